@@ -1,0 +1,6 @@
+//! Acceleration structures: the course's "keep the nearest valid hit over all objects", without
+//! testing every object.
+
+mod bvh;
+
+pub use bvh::Bvh;

@@ -1,0 +1,137 @@
+//! Cameras: from a point on the film to a ray into the scene.
+//!
+//! The course's camera sits at the origin looking down −z, its image plane at z = −1 spanning
+//! [−1, 1] (see [`Camera::course`]); scene files use pbrt's `perspective` camera, where the same
+//! picture comes from a screen window, a field of view and a camera-to-world transform.
+
+use crate::math::{Transform, Vec2, Vec3};
+use crate::ray::Ray;
+use crate::sampling::sample_uniform_disk_concentric;
+use crate::scene::desc::{CameraDesc, Projection};
+
+/// A camera able to generate primary rays.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Camera {
+    /// Camera space → world space.
+    pub world_from_camera: Transform,
+    /// Raster space (pixels, (0, 0) at the image's top-left corner) → camera space.
+    pub camera_from_raster: Transform,
+    /// Perspective or orthographic.
+    pub perspective: bool,
+    /// Thin-lens aperture radius (0: pinhole).
+    pub lens_radius: f32,
+    /// Distance to the plane in focus.
+    pub focal_distance: f32,
+}
+
+impl Camera {
+    /// pbrt's projective cameras. The screen window defaults to [−a, a] × [−1, 1] for a wide
+    /// image of aspect a (and [−1, 1] × [−1/a, 1/a] for a tall one), so `fov` spans the shorter
+    /// axis. Raster y grows downwards, screen y upwards.
+    pub fn from_desc(desc: &CameraDesc, xres: u32, yres: u32) -> Option<Camera> {
+        let aspect = xres as f32 / yres as f32;
+        let sw = desc.screen_window.unwrap_or(if aspect > 1.0 {
+            [-aspect, aspect, -1.0, 1.0]
+        } else {
+            [-1.0, 1.0, -1.0 / aspect, 1.0 / aspect]
+        });
+        let (perspective, screen_from_camera) = match desc.projection {
+            Projection::Perspective { fov } => (true, Transform::perspective(fov, 1e-2, 1000.0)?),
+            // pbrt's orthographic projection keeps x and y; z does not matter for ray origins.
+            Projection::Orthographic => (false, Transform::IDENTITY),
+        };
+        // raster ← screen: translate the window's top-left corner to the origin, scale to
+        // pixels, flip y.
+        let raster_from_screen = Transform::scale(Vec3::new(xres as f32, -(yres as f32), 1.0))?
+            * Transform::scale(Vec3::new(1.0 / (sw[1] - sw[0]), 1.0 / (sw[3] - sw[2]), 1.0))?
+            * Transform::translate(Vec3::new(-sw[0], -sw[3], 0.0));
+        let camera_from_raster = screen_from_camera.inverse() * raster_from_screen.inverse();
+        Some(Camera {
+            world_from_camera: desc.camera_from_world.inverse(),
+            camera_from_raster,
+            perspective,
+            lens_radius: desc.lens_radius,
+            focal_distance: desc.focal_distance,
+        })
+    }
+
+    /// The course's pinhole camera for a `width × height` image: eye at the origin, looking
+    /// down −z, +y up, +x to the right, image plane z = −1 spanning [−1, 1] on its shorter axis
+    /// (exactly [−1, 1]² for a square image).
+    pub fn course(width: u32, height: u32) -> Camera {
+        let desc = CameraDesc {
+            // Camera space looks down +z; mirroring z turns it into the course's −z view with
+            // +x still on the right.
+            camera_from_world: Transform::scale(Vec3::new(1.0, 1.0, -1.0)).expect("non-zero scale"),
+            ..CameraDesc::default()
+        };
+        Camera::from_desc(&desc, width, height).expect("valid course camera")
+    }
+
+    /// The ray through raster point `p_film` (pixels from the top-left corner), with `p_lens`
+    /// a uniform sample for the lens.
+    #[inline]
+    pub fn generate_ray(&self, p_film: Vec2, p_lens: Vec2) -> Ray {
+        let p_camera = self.camera_from_raster.point(p_film.extend(0.0));
+        let mut ray = if self.perspective {
+            Ray::new(Vec3::ZERO, p_camera.normalize())
+        } else {
+            Ray::new(Vec3::new(p_camera.x, p_camera.y, 0.0), Vec3::Z)
+        };
+        if self.lens_radius > 0.0 {
+            // Thin lens: move the origin on the aperture, aim at the point in focus.
+            let lens = self.lens_radius * sample_uniform_disk_concentric(p_lens);
+            let ft = self.focal_distance / ray.d.z;
+            let focus = ray.at(ft);
+            ray.o = Vec3::new(lens.x, lens.y, if self.perspective { 0.0 } else { ray.o.z });
+            if !self.perspective {
+                ray.o.x += p_camera.x;
+                ray.o.y += p_camera.y;
+            }
+            ray.d = (focus - ray.o).normalize();
+        }
+        let o = self.world_from_camera.point(ray.o);
+        let d = self.world_from_camera.vector(ray.d).normalize();
+        Ray::new(o, d)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn course_camera_matches_the_lecture() {
+        let cam = Camera::course(100, 100);
+        // The image centre looks down −z.
+        let r = cam.generate_ray(Vec2::new(50.0, 50.0), Vec2::ZERO);
+        assert!(r.o.length() < 1e-6 && (r.d - -Vec3::Z).length() < 1e-5);
+        // The top-left corner of the image is the image-plane point (−1, 1, −1).
+        let c = cam.generate_ray(Vec2::new(0.0, 0.0), Vec2::ZERO);
+        assert!((c.d - Vec3::new(-1.0, 1.0, -1.0).normalize()).length() < 1e-5);
+        // The bottom-right corner is (1, −1, −1).
+        let c = cam.generate_ray(Vec2::new(100.0, 100.0), Vec2::ZERO);
+        assert!((c.d - Vec3::new(1.0, -1.0, -1.0).normalize()).length() < 1e-5);
+    }
+
+    #[test]
+    fn pbrt_lookat_with_mirror_equals_the_course_view() {
+        // `Scale -1 1 1  LookAt 0 0 0  0 0 -1  0 1 0  Camera "perspective" "float fov" 90`.
+        let m = Transform::scale(Vec3::new(-1.0, 1.0, 1.0)).unwrap()
+            * Transform::look_at(Vec3::ZERO, -Vec3::Z, Vec3::Y).unwrap();
+        let desc = CameraDesc {
+            camera_from_world: m,
+            ..CameraDesc::default()
+        };
+        let a = Camera::from_desc(&desc, 64, 48).unwrap();
+        let b = Camera::course(64, 48);
+        for p in [
+            Vec2::new(0.0, 0.0),
+            Vec2::new(10.0, 40.0),
+            Vec2::new(64.0, 48.0),
+        ] {
+            let (ra, rb) = (a.generate_ray(p, Vec2::ZERO), b.generate_ray(p, Vec2::ZERO));
+            assert!((ra.d - rb.d).length() < 1e-5, "{p}: {} vs {}", ra.d, rb.d);
+        }
+    }
+}

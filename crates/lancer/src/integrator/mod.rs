@@ -1,0 +1,112 @@
+//! Integrators: how much light arrives along a camera ray.
+
+mod debug;
+mod path;
+mod whitted;
+
+use crate::material::{Bsdf, Material};
+use crate::math::{Rgb, Vec3};
+use crate::ray::Ray;
+use crate::sampling::Sampler;
+use crate::scene::desc::IntegratorDesc;
+use crate::scene::{Scene, SceneHit};
+
+/// The light transport algorithm, ready to run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Integrator {
+    /// The course (see [`IntegratorDesc::Whitted`]).
+    Whitted {
+        /// Specular recursion depth.
+        max_depth: u32,
+    },
+    /// Path tracing with next-event estimation and MIS.
+    Path {
+        /// Maximum number of bounces.
+        max_depth: u32,
+    },
+    /// Shading normal as colour: (n + 1)/2.
+    Normals,
+    /// Distance to the first hit.
+    Depth,
+    /// Ambient occlusion.
+    AmbientOcclusion {
+        /// Cosine-weighted sampling.
+        cos_sample: bool,
+        /// Occluders farther than this are ignored.
+        max_distance: f32,
+    },
+}
+
+impl Integrator {
+    /// The integrator a description asks for.
+    pub fn from_desc(desc: &IntegratorDesc) -> Integrator {
+        match *desc {
+            IntegratorDesc::Whitted { max_depth } => Integrator::Whitted { max_depth },
+            IntegratorDesc::Path { max_depth, .. } => Integrator::Path { max_depth },
+            IntegratorDesc::Normals => Integrator::Normals,
+            IntegratorDesc::Depth => Integrator::Depth,
+            IntegratorDesc::AmbientOcclusion {
+                cos_sample,
+                max_distance,
+            } => Integrator::AmbientOcclusion {
+                cos_sample,
+                max_distance,
+            },
+        }
+    }
+
+    /// Radiance arriving at the camera along `ray`.
+    pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut Sampler) -> Rgb {
+        match *self {
+            Integrator::Whitted { max_depth } => whitted::li(scene, ray, sampler, 0, max_depth),
+            Integrator::Path { max_depth } => path::li(scene, ray, sampler, max_depth),
+            Integrator::Normals => debug::normals(scene, ray),
+            Integrator::Depth => debug::depth(scene, ray),
+            Integrator::AmbientOcclusion {
+                cos_sample,
+                max_distance,
+            } => debug::ambient_occlusion(scene, ray, sampler, cos_sample, max_distance),
+        }
+    }
+}
+
+/// The BSDF at a hit, with `Mix` materials resolved (the choice is a deterministic hash of the
+/// hit, as pbrt does, so it needs no sampler dimension). `None` for `interface` materials,
+/// which the ray passes straight through.
+pub(crate) fn bsdf_at(scene: &Scene, hit: &SceneHit) -> Option<Bsdf> {
+    let mut m = scene.prims[hit.prim as usize].material;
+    let tex = scene.textures();
+    let tc = Scene::tex_coord(&hit.si);
+    for _ in 0..16 {
+        match &scene.materials[m as usize] {
+            Material::Mix { materials, amount } => {
+                let a = tex.float(*amount, &tc);
+                let u = crate::sampling::u32_to_unit_f32(crate::sampling::hash_u64(&[
+                    hit.si.p.x.to_bits() as u64,
+                    hit.si.p.y.to_bits() as u64,
+                    hit.si.p.z.to_bits() as u64,
+                ]) as u32);
+                m = if a <= 0.0 {
+                    materials[0]
+                } else if a >= 1.0 || u < a {
+                    materials[1]
+                } else {
+                    materials[0]
+                };
+            }
+            mat => {
+                let bxdf = mat.bxdf(&tex, &tc)?;
+                return Some(Bsdf::new(bxdf, hit.si.shading.n, hit.si.shading.dpdu));
+            }
+        }
+    }
+    None
+}
+
+/// Radiance emitted by the surface at `hit` towards `wo` (area lights).
+pub(crate) fn emitted(scene: &Scene, hit: &SceneHit, wo: Vec3) -> Rgb {
+    match scene.prims[hit.prim as usize].emission {
+        Some(e) if e.two_sided || hit.si.n.dot(wo) > 0.0 => e.l,
+        _ => Rgb::ZERO,
+    }
+}

@@ -1,0 +1,87 @@
+//! The course's ray tracer (Whitted 1980): what is visible, how the lights light it, shadows,
+//! and perfect mirror reflection and refraction.
+
+use super::{bsdf_at, emitted};
+use crate::light::LightSampleContext;
+use crate::material::{BxDF, TransportMode, fresnel_complex, fresnel_dielectric, refract};
+use crate::math::{Rgb, Vec3};
+use crate::ray::Ray;
+use crate::sampling::Sampler;
+use crate::scene::Scene;
+
+/// Radiance along `ray`:
+///
+/// L = Le + Σ_lights f(wo, wi) · Li · |cos θi| · V(p, light) + [specular: F·L(reflected) +
+/// (1 − F)·L(refracted)], where V is 1 when the shadow ray reaches the light unobstructed.
+pub fn li(scene: &Scene, ray: &Ray, sampler: &mut Sampler, depth: u32, max_depth: u32) -> Rgb {
+    let Some(hit) = scene.intersect(ray) else {
+        return scene.lights.iter().map(|l| l.le(ray.d)).sum();
+    };
+    let si = &hit.si;
+    let wo = si.wo;
+    let mut l = emitted(scene, &hit, wo);
+    let Some(bsdf) = bsdf_at(scene, &hit) else {
+        // No surface (interface material): continue the ray.
+        return l + li(scene, &si.spawn_ray(ray.d), sampler, depth, max_depth);
+    };
+    let ctx = LightSampleContext {
+        p: si.p,
+        n: si.n,
+        ns: si.shading.n,
+    };
+    if bsdf.flags().is_non_specular() {
+        for light in &scene.lights {
+            let u = sampler.get_2d();
+            let Some(ls) = light.sample_li(&ctx, u) else {
+                continue;
+            };
+            if ls.pdf == 0.0 || ls.l == Rgb::ZERO {
+                continue;
+            }
+            let f = bsdf.f(wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(si.shading.n).abs();
+            if f == Rgb::ZERO {
+                continue;
+            }
+            // The shadow ray: is the segment from the point to the light free?
+            if !scene.intersect_p(&si.spawn_ray_to(ls.p_light)) {
+                l += f * ls.l / ls.pdf;
+            }
+        }
+    }
+    if depth + 1 < max_depth {
+        let n = bsdf.frame.z;
+        let wo_l = bsdf.frame.to_local(wo);
+        let reflect = |w: Vec3| -w + 2.0 * w.dot(n) * n;
+        match bsdf.bxdf {
+            BxDF::Conductor { eta, k } => {
+                let f = fresnel_complex(wo_l.z.abs(), eta, k);
+                l += f * li(
+                    scene,
+                    &si.spawn_ray(reflect(wo)),
+                    sampler,
+                    depth + 1,
+                    max_depth,
+                );
+            }
+            BxDF::Dielectric { eta } => {
+                let r = fresnel_dielectric(wo_l.z, eta);
+                if r > 0.0 {
+                    l += r * li(
+                        scene,
+                        &si.spawn_ray(reflect(wo)),
+                        sampler,
+                        depth + 1,
+                        max_depth,
+                    );
+                }
+                if let Some((wt, etap)) = refract(wo, n, eta) {
+                    // Radiance entering a denser medium is compressed: scale by 1/η².
+                    let t = (1.0 - r) / (etap * etap);
+                    l += t * li(scene, &si.spawn_ray(wt), sampler, depth + 1, max_depth);
+                }
+            }
+            BxDF::Diffuse { .. } => {}
+        }
+    }
+    l
+}

@@ -1,0 +1,55 @@
+//! The ray of the course: p(t) = o + t·d.
+
+use crate::math::{SHADOW_EPSILON, Vec3, offset_ray_origin};
+
+/// A half-line `p(t) = o + t·d` for `0 < t < t_max`.
+///
+/// `d` need not be normalised: `t` then measures in units of `|d|`. Shadow rays use a finite
+/// `t_max` so that nothing beyond the light counts as an occluder.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ray {
+    /// Origin `o`.
+    pub o: Vec3,
+    /// Direction `d`.
+    pub d: Vec3,
+    /// Hits are valid for `t < t_max`.
+    pub t_max: f32,
+}
+
+impl Ray {
+    /// An unbounded ray.
+    #[inline]
+    pub fn new(o: Vec3, d: Vec3) -> Ray {
+        Ray {
+            o,
+            d,
+            t_max: f32::INFINITY,
+        }
+    }
+
+    /// The point `p(t) = o + t·d`.
+    #[inline]
+    pub fn at(&self, t: f32) -> Vec3 {
+        self.o + t * self.d
+    }
+
+    /// A ray leaving a surface point `p` (with error bound `p_error` and geometric normal `n`)
+    /// in direction `d`, its origin offset so that it cannot re-hit that surface.
+    #[inline]
+    pub fn spawn(p: Vec3, p_error: Vec3, n: Vec3, d: Vec3) -> Ray {
+        Ray::new(offset_ray_origin(p, p_error, n, d), d)
+    }
+
+    /// A shadow ray from a surface point towards the point `target`: it stops just short of
+    /// the target (by [`SHADOW_EPSILON`] of the segment), so `t ∈ (0, 1 − ε)` covers exactly
+    /// the open segment between them.
+    #[inline]
+    pub fn spawn_to(p: Vec3, p_error: Vec3, n: Vec3, target: Vec3) -> Ray {
+        let o = offset_ray_origin(p, p_error, n, target - p);
+        Ray {
+            o,
+            d: target - o,
+            t_max: 1.0 - SHADOW_EPSILON,
+        }
+    }
+}

@@ -1,0 +1,117 @@
+//! Warps: maps from uniform points of [0, 1)² to points distributed on shapes with known
+//! densities. Each `sample_*` has a matching `*_pdf`.
+
+use crate::math::{INV_4PI, INV_PI, PI, Vec2, Vec3, safe_sqrt};
+
+/// A point uniform on the unit disk by Shirley–Chiu's concentric map, which keeps strata
+/// compact (adjacent squares map to adjacent wedges). Density 1/π.
+#[inline]
+pub fn sample_uniform_disk_concentric(u: Vec2) -> Vec2 {
+    let o = 2.0 * u - Vec2::ONE;
+    if o.x == 0.0 && o.y == 0.0 {
+        return Vec2::ZERO;
+    }
+    let (r, theta) = if o.x.abs() > o.y.abs() {
+        (o.x, PI / 4.0 * (o.y / o.x))
+    } else {
+        (o.y, PI / 2.0 - PI / 4.0 * (o.x / o.y))
+    };
+    r * Vec2::new(theta.cos(), theta.sin())
+}
+
+/// A direction in the +z hemisphere with density cos θ / π (Malley's method: a uniform disk
+/// point lifted onto the hemisphere).
+#[inline]
+pub fn sample_cosine_hemisphere(u: Vec2) -> Vec3 {
+    let d = sample_uniform_disk_concentric(u);
+    let z = safe_sqrt(1.0 - d.x * d.x - d.y * d.y);
+    Vec3::new(d.x, d.y, z)
+}
+
+/// Density of [`sample_cosine_hemisphere`].
+#[inline]
+pub fn cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
+    cos_theta.max(0.0) * INV_PI
+}
+
+/// A direction uniform on the unit sphere: z = 1 − 2u₀, φ = 2πu₁. Density 1/(4π).
+#[inline]
+pub fn sample_uniform_sphere(u: Vec2) -> Vec3 {
+    let z = 1.0 - 2.0 * u.x;
+    let r = safe_sqrt(1.0 - z * z);
+    let phi = 2.0 * PI * u.y;
+    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+/// Density of [`sample_uniform_sphere`].
+#[inline]
+pub fn uniform_sphere_pdf() -> f32 {
+    INV_4PI
+}
+
+/// A direction uniform in the +z hemisphere. Density 1/(2π).
+#[inline]
+pub fn sample_uniform_hemisphere(u: Vec2) -> Vec3 {
+    let z = u.x;
+    let r = safe_sqrt(1.0 - z * z);
+    let phi = 2.0 * PI * u.y;
+    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+/// Density of [`sample_uniform_hemisphere`].
+#[inline]
+pub fn uniform_hemisphere_pdf() -> f32 {
+    0.5 * INV_PI
+}
+
+/// A direction uniform in the cone of half-angle θmax around +z. Density 1/(2π(1 − cos θmax)).
+#[inline]
+pub fn sample_uniform_cone(u: Vec2, cos_theta_max: f32) -> Vec3 {
+    let cos_theta = (1.0 - u.x) + u.x * cos_theta_max;
+    let sin_theta = safe_sqrt(1.0 - cos_theta * cos_theta);
+    let phi = u.y * 2.0 * PI;
+    Vec3::new(sin_theta * phi.cos(), sin_theta * phi.sin(), cos_theta)
+}
+
+/// Density of [`sample_uniform_cone`].
+#[inline]
+pub fn uniform_cone_pdf(cos_theta_max: f32) -> f32 {
+    1.0 / (2.0 * PI * (1.0 - cos_theta_max))
+}
+
+/// Barycentrics (b₀, b₁, b₂) of a point uniform on a triangle, by the area-preserving map of
+/// Heitz 2019 (no square root, keeps strata compact).
+#[inline]
+pub fn sample_uniform_triangle(u: Vec2) -> [f32; 3] {
+    let (b0, b1);
+    if u.x < u.y {
+        b0 = u.x / 2.0;
+        b1 = u.y - b0;
+    } else {
+        b1 = u.y / 2.0;
+        b0 = u.x - b1;
+    }
+    [b0, b1, 1.0 - b0 - b1]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn warps_land_on_their_domains() {
+        for i in 0..64 {
+            for j in 0..64 {
+                let u = Vec2::new((i as f32 + 0.5) / 64.0, (j as f32 + 0.5) / 64.0);
+                assert!(sample_uniform_disk_concentric(u).length() <= 1.0 + 1e-6);
+                let h = sample_cosine_hemisphere(u);
+                assert!((h.length() - 1.0).abs() < 1e-5 && h.z >= 0.0);
+                assert!((sample_uniform_sphere(u).length() - 1.0).abs() < 1e-5);
+                let c = sample_uniform_cone(u, 0.8);
+                assert!(c.z >= 0.8 - 1e-6);
+                let b = sample_uniform_triangle(u);
+                assert!(b.iter().all(|&x| (-1e-6..=1.0 + 1e-6).contains(&x)));
+            }
+        }
+    }
+}

@@ -1,0 +1,366 @@
+//! [`SceneDesc`]: a scene as plain data, the meeting point of every input format and the
+//! renderer.
+//!
+//! Readers (pbrt, glTF, OBJ, PLY, or a program using the library) fill it in; [`crate::Scene`]
+//! is built from it. Colours are already linear RGB (spectra are converted by the readers, with
+//! pbrt's light normalisation applied); meshes are in object space with their transforms.
+
+use crate::material::Material;
+use crate::math::{Rgb, Transform, Vec3};
+use crate::shape::TriangleMesh;
+use crate::texture::{FloatTex, FloatTexture, SpectrumTexture};
+use std::sync::Arc;
+
+/// A whole scene: what to render and how.
+#[derive(Clone, Debug, Default)]
+pub struct SceneDesc {
+    /// The camera.
+    pub camera: CameraDesc,
+    /// The image.
+    pub film: FilmDesc,
+    /// How pixel samples are drawn.
+    pub sampler: SamplerDesc,
+    /// How samples are weighted into pixels.
+    pub filter: FilterDesc,
+    /// How light transport is computed.
+    pub integrator: IntegratorDesc,
+    /// Materials; shapes refer to them by index.
+    pub materials: Vec<Material>,
+    /// Float textures; material parameters refer to them by index.
+    pub float_textures: Vec<FloatTexture>,
+    /// Colour textures; material parameters refer to them by index.
+    pub spectrum_textures: Vec<SpectrumTexture>,
+    /// Shapes placed in the world.
+    pub shapes: Vec<ShapeDesc>,
+    /// Light sources other than area lights (those belong to their shapes).
+    pub lights: Vec<LightDesc>,
+    /// Object definitions (pbrt's `ObjectBegin`/`ObjectEnd`), for instancing.
+    pub objects: Vec<ObjectDesc>,
+    /// Placements of objects (pbrt's `ObjectInstance`).
+    pub instances: Vec<InstanceDesc>,
+}
+
+/// Camera projection.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection {
+    /// pbrt's `perspective`.
+    Perspective {
+        /// Full field of view of the shorter image axis, degrees.
+        fov: f32,
+    },
+    /// pbrt's `orthographic`.
+    Orthographic,
+}
+
+/// The camera.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraDesc {
+    /// Projection and its parameters.
+    pub projection: Projection,
+    /// World space → camera space (pbrt's CTM at `Camera`). Camera space is pbrt's: looking
+    /// down +z, +y up, left-handed.
+    pub camera_from_world: Transform,
+    /// Screen window (x_min, x_max, y_min, y_max); `None` for pbrt's default from the aspect
+    /// ratio.
+    pub screen_window: Option<[f32; 4]>,
+    /// Thin-lens aperture radius (0: pinhole).
+    pub lens_radius: f32,
+    /// Distance to the plane in focus.
+    pub focal_distance: f32,
+    /// Shutter open and close times (`shutteropen`, `shutterclose`).
+    pub shutter: [f32; 2],
+}
+
+impl Default for CameraDesc {
+    /// pbrt's default: perspective, fov 90, at the origin looking down +z.
+    fn default() -> Self {
+        CameraDesc {
+            projection: Projection::Perspective { fov: 90.0 },
+            camera_from_world: Transform::IDENTITY,
+            screen_window: None,
+            lens_radius: 0.0,
+            focal_distance: 1e6,
+            shutter: [0.0, 1.0],
+        }
+    }
+}
+
+/// The film: the image's size, the part of it rendered, its exposure and where it goes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FilmDesc {
+    /// Full image width in pixels.
+    pub xresolution: u32,
+    /// Full image height in pixels.
+    pub yresolution: u32,
+    /// Output file named in the scene (`filename`); the command line may override it.
+    pub filename: Option<String>,
+    /// Crop window in NDC (x_min, x_max, y_min, y_max), pbrt's `cropwindow`.
+    pub crop_window: [f32; 4],
+    /// Pixel bounds (x0, x1, y0, y1), half-open, pbrt's `pixelbounds`; overrides the crop
+    /// window when set.
+    pub pixel_bounds: Option<[i32; 4]>,
+    /// Multiplies every pixel: `exposure time × iso / 100` in pbrt-v4 terms (1 by default).
+    pub scale: f32,
+    /// Largest sample value kept (pbrt's `maxcomponentvalue`), per component.
+    pub max_component_value: f32,
+    /// Write EXR as half floats (pbrt's `savefp16`; lancer defaults to full float).
+    pub save_fp16: bool,
+}
+
+impl Default for FilmDesc {
+    /// pbrt's default film: 1280 × 720.
+    fn default() -> Self {
+        FilmDesc {
+            xresolution: 1280,
+            yresolution: 720,
+            filename: None,
+            crop_window: [0.0, 1.0, 0.0, 1.0],
+            pixel_bounds: None,
+            scale: 1.0,
+            max_component_value: f32::INFINITY,
+            save_fp16: false,
+        }
+    }
+}
+
+/// Which sampler, how many samples, which seed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SamplerDesc {
+    /// The point set.
+    pub kind: crate::sampling::SamplerKind,
+    /// Samples per pixel.
+    pub spp: u32,
+    /// Seed (pbrt's `seed` parameter, or `--seed`).
+    pub seed: u64,
+}
+
+impl Default for SamplerDesc {
+    /// pbrt's default is `zsobol` with 16 samples; lancer's Owen-scrambled Sobol stands in.
+    fn default() -> Self {
+        SamplerDesc {
+            kind: crate::sampling::SamplerKind::Sobol,
+            spp: 16,
+            seed: 0,
+        }
+    }
+}
+
+/// Pixel reconstruction filter (sampled by importance, as pbrt-v4 does).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FilterDesc {
+    /// Box of the given radius (x, y).
+    Box {
+        /// Radius.
+        radius: [f32; 2],
+    },
+    /// Gaussian with `sigma`, cut at `radius`.
+    Gaussian {
+        /// Radius.
+        radius: [f32; 2],
+        /// Standard deviation.
+        sigma: f32,
+    },
+    /// Tent.
+    Triangle {
+        /// Radius.
+        radius: [f32; 2],
+    },
+    /// Mitchell–Netravali with parameters B and C.
+    Mitchell {
+        /// Radius.
+        radius: [f32; 2],
+        /// B.
+        b: f32,
+        /// C.
+        c: f32,
+    },
+    /// Windowed sinc.
+    Lanczos {
+        /// Radius.
+        radius: [f32; 2],
+        /// Number of sinc lobes in the window.
+        tau: f32,
+    },
+}
+
+impl Default for FilterDesc {
+    /// pbrt's default: Gaussian, radius 1.5, σ 0.5.
+    fn default() -> Self {
+        FilterDesc::Gaussian {
+            radius: [1.5, 1.5],
+            sigma: 0.5,
+        }
+    }
+}
+
+/// The light transport algorithm.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum IntegratorDesc {
+    /// The course: direct light from every light with shadows, plus perfect specular
+    /// reflection and refraction up to `max_depth` levels.
+    Whitted {
+        /// Specular recursion depth.
+        max_depth: u32,
+    },
+    /// Unidirectional path tracing with next-event estimation and MIS.
+    Path {
+        /// Maximum number of bounces.
+        max_depth: u32,
+        /// Roughen near-specular lobes after the first diffuse bounce.
+        regularize: bool,
+    },
+    /// Ambient occlusion.
+    AmbientOcclusion {
+        /// Cosine-weighted sampling.
+        cos_sample: bool,
+        /// Occluders farther than this are ignored.
+        max_distance: f32,
+    },
+    /// Debug view: shading normals mapped to colours.
+    Normals,
+    /// Debug view: distance to the first hit.
+    Depth,
+}
+
+impl Default for IntegratorDesc {
+    /// pbrt's default (`volpath`, maxdepth 5) is served by the path tracer.
+    fn default() -> Self {
+        IntegratorDesc::Path {
+            max_depth: 5,
+            regularize: false,
+        }
+    }
+}
+
+/// A shape's geometry, in object space.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Geometry {
+    /// pbrt's `sphere`.
+    Sphere {
+        /// Radius.
+        radius: f32,
+        /// Lowest z kept.
+        z_min: f32,
+        /// Highest z kept.
+        z_max: f32,
+        /// Sweep, degrees.
+        phi_max: f32,
+    },
+    /// pbrt's `disk`.
+    Disk {
+        /// Height (z) of the disk.
+        height: f32,
+        /// Outer radius.
+        radius: f32,
+        /// Inner radius.
+        inner_radius: f32,
+        /// Sweep, degrees.
+        phi_max: f32,
+    },
+    /// pbrt's `cylinder`.
+    Cylinder {
+        /// Radius.
+        radius: f32,
+        /// Bottom.
+        z_min: f32,
+        /// Top.
+        z_max: f32,
+        /// Sweep, degrees.
+        phi_max: f32,
+    },
+    /// lancer's infinite `plane` through `p` with normal `n`.
+    Plane {
+        /// A point of the plane.
+        p: Vec3,
+        /// Its normal.
+        n: Vec3,
+    },
+    /// A triangle mesh (`trianglemesh`, `plymesh`, `objmesh`, glTF, …).
+    TriangleMesh(Arc<TriangleMesh>),
+}
+
+/// A diffuse area light attached to a shape.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AreaLightDesc {
+    /// Emitted radiance (already scaled and normalised as pbrt does).
+    pub l: Rgb,
+    /// Emits from both sides (otherwise only the side the normal faces).
+    pub two_sided: bool,
+}
+
+/// A shape placed in the world with its material and optional emission.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShapeDesc {
+    /// The geometry, object space.
+    pub geometry: Geometry,
+    /// Object space → world space.
+    pub object_to_world: Transform,
+    /// pbrt's `ReverseOrientation`: flips the normal (and the emitting side).
+    pub reverse_orientation: bool,
+    /// Index into [`SceneDesc::materials`].
+    pub material: u32,
+    /// Emission, when the shape is an area light.
+    pub area_light: Option<AreaLightDesc>,
+    /// Alpha cut-out: where it is 0 the surface is absent.
+    pub alpha: Option<FloatTex>,
+}
+
+/// A light source.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LightDesc {
+    /// An isotropic point light.
+    Point {
+        /// Position, world space.
+        from: Vec3,
+        /// Radiant intensity (scaled and normalised).
+        intensity: Rgb,
+    },
+    /// A spot light: a point light limited to a cone with a smooth falloff.
+    Spot {
+        /// Position, world space.
+        from: Vec3,
+        /// A point on the axis, world space.
+        to: Vec3,
+        /// Radiant intensity on the axis.
+        intensity: Rgb,
+        /// Total half-angle of the cone, degrees.
+        cone_angle: f32,
+        /// Width of the falloff at the cone's edge, degrees.
+        cone_delta_angle: f32,
+    },
+    /// A directional light (the sun): light arrives along `to − from` everywhere.
+    Distant {
+        /// Direction *towards* the light, world space (not necessarily normalised).
+        direction: Vec3,
+        /// Radiance (scaled and normalised).
+        l: Rgb,
+    },
+    /// Light from infinitely far away in every direction: a constant colour or an
+    /// environment image.
+    Infinite {
+        /// Light space → world space.
+        light_to_world: Transform,
+        /// Constant radiance (multiplies the image when there is one).
+        l: Rgb,
+        /// Environment map, equal-area octahedral (square) or lat-long (2:1).
+        image: Option<Arc<crate::image::Image>>,
+    },
+}
+
+/// A named object definition (instancing).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ObjectDesc {
+    /// Its name in the scene file.
+    pub name: String,
+    /// Its shapes, in the object's own space.
+    pub shapes: Vec<ShapeDesc>,
+}
+
+/// One placement of an object.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InstanceDesc {
+    /// Index into [`SceneDesc::objects`].
+    pub object: u32,
+    /// Object space → world space.
+    pub object_to_world: Transform,
+}

@@ -1,0 +1,365 @@
+//! The built scene: immutable, shared by all render threads.
+
+pub mod desc;
+
+use crate::accel::Bvh;
+use crate::camera::Camera;
+use crate::light::Light;
+use crate::material::Material;
+use crate::math::{Bounds3, Frame, Rgb, Vec3};
+use crate::ray::Ray;
+use crate::shape::{
+    Cylinder, Disk, Placement, Plane, Shape, Sphere, SurfaceInteraction, Triangle, TriangleMesh,
+};
+use crate::texture::{FloatTexture, SpectrumTexture, TexCoord, TextureEval};
+use desc::{Geometry, LightDesc, SceneDesc, ShapeDesc};
+
+/// What a primitive is made of, beside its shape.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrimInfo {
+    /// Index into [`Scene::materials`].
+    pub material: u32,
+    /// Emitted radiance when the primitive is an area light.
+    pub emission: Option<AreaEmission>,
+}
+
+/// A primitive's emission.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AreaEmission {
+    /// Radiance.
+    pub l: Rgb,
+    /// Emits from both sides.
+    pub two_sided: bool,
+}
+
+/// A ray's nearest hit in the scene.
+#[derive(Clone, Copy, Debug)]
+pub struct SceneHit {
+    /// The surface.
+    pub si: SurfaceInteraction,
+    /// Index of the primitive hit.
+    pub prim: u32,
+}
+
+/// Why a scene description could not be built.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum BuildError {
+    /// A mesh with bad indices or mismatched arrays.
+    #[error("shape {shape}: {message}")]
+    BadMesh {
+        /// Index of the shape in the description.
+        shape: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// A material index out of range.
+    #[error("shape {shape}: material {material} does not exist")]
+    BadMaterial {
+        /// Index of the shape.
+        shape: usize,
+        /// The index given.
+        material: u32,
+    },
+    /// The camera's parameters give no valid projection.
+    #[error("the camera's parameters give no valid projection")]
+    BadCamera,
+    /// A zero or non-finite parameter that makes a shape or light meaningless.
+    #[error("{0}")]
+    Invalid(String),
+}
+
+/// A scene ready to render: primitives in a BVH, lights, materials, textures, camera.
+#[derive(Debug)]
+pub struct Scene {
+    /// Every primitive's shape.
+    pub shapes: Vec<Shape>,
+    /// Every primitive's material and emission, same indices as `shapes`.
+    pub prims: Vec<PrimInfo>,
+    /// Triangle meshes, world space.
+    pub meshes: Vec<TriangleMesh>,
+    /// Lights, area lights included.
+    pub lights: Vec<Light>,
+    /// Materials.
+    pub materials: Vec<Material>,
+    /// Float textures.
+    pub float_textures: Vec<FloatTexture>,
+    /// Colour textures.
+    pub spectrum_textures: Vec<SpectrumTexture>,
+    /// The camera.
+    pub camera: Camera,
+    bvh: Bvh,
+    /// Primitives without finite bounds (infinite planes), tested on every ray.
+    unbounded: Vec<u32>,
+    bounds: Bounds3,
+}
+
+fn shapes_of(
+    sd: &ShapeDesc,
+    index: usize,
+    meshes: &mut Vec<TriangleMesh>,
+    out: &mut Vec<Shape>,
+) -> Result<(), BuildError> {
+    let placement = Placement::new(sd.object_to_world, sd.reverse_orientation);
+    let positive = |v: f32, what: &str| {
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(BuildError::Invalid(format!(
+                "shape {index}: {what} must be positive, got {v}"
+            )))
+        }
+    };
+    match &sd.geometry {
+        Geometry::Sphere {
+            radius,
+            z_min,
+            z_max,
+            phi_max,
+        } => out.push(Shape::Sphere(Sphere::new(
+            placement,
+            positive(*radius, "radius")?,
+            *z_min,
+            *z_max,
+            *phi_max,
+        ))),
+        Geometry::Disk {
+            height,
+            radius,
+            inner_radius,
+            phi_max,
+        } => out.push(Shape::Disk(Disk::new(
+            placement,
+            *height,
+            positive(*radius, "radius")?,
+            *inner_radius,
+            *phi_max,
+        ))),
+        Geometry::Cylinder {
+            radius,
+            z_min,
+            z_max,
+            phi_max,
+        } => out.push(Shape::Cylinder(Cylinder::new(
+            placement,
+            positive(*radius, "radius")?,
+            *z_min,
+            *z_max,
+            *phi_max,
+        ))),
+        Geometry::Plane { p, n } => {
+            let t = &sd.object_to_world;
+            let mut n = t.normal(*n);
+            if sd.reverse_orientation {
+                n = -n;
+            }
+            let plane = Plane::new(t.point(*p), n).ok_or_else(|| {
+                BuildError::Invalid(format!("shape {index}: plane normal is zero"))
+            })?;
+            out.push(Shape::Plane(plane));
+        }
+        Geometry::TriangleMesh(m) => {
+            m.validate().map_err(|message| BuildError::BadMesh {
+                shape: index,
+                message,
+            })?;
+            let world = m.transformed(&sd.object_to_world, sd.reverse_orientation);
+            let mesh_index = meshes.len() as u32;
+            for i in 0..world.triangle_count() as u32 {
+                let v = world.vertices(i);
+                out.push(Shape::Triangle(Triangle {
+                    p: [
+                        world.positions[v[0]],
+                        world.positions[v[1]],
+                        world.positions[v[2]],
+                    ],
+                    mesh: mesh_index,
+                    index: i,
+                }));
+            }
+            meshes.push(world);
+        }
+    }
+    Ok(())
+}
+
+impl Scene {
+    /// Builds a scene: shapes moved to world space and put in a BVH, lights gathered, the
+    /// camera set up for an `xres × yres` image.
+    pub fn build(desc: &SceneDesc) -> Result<Scene, BuildError> {
+        let mut shapes = Vec::new();
+        let mut prims = Vec::new();
+        let mut meshes = Vec::new();
+        let mut all: Vec<(usize, &ShapeDesc, crate::math::Transform)> = desc
+            .shapes
+            .iter()
+            .enumerate()
+            .map(|(i, s)| (i, s, crate::math::Transform::IDENTITY))
+            .collect();
+        // Instances are flattened for now: each copy becomes shapes of its own.
+        for inst in &desc.instances {
+            let obj = desc.objects.get(inst.object as usize).ok_or_else(|| {
+                BuildError::Invalid(format!("instance of unknown object {}", inst.object))
+            })?;
+            for s in &obj.shapes {
+                all.push((desc.shapes.len(), s, inst.object_to_world));
+            }
+        }
+        let mut materials = desc.materials.clone();
+        if materials.is_empty() {
+            materials.push(Material::default());
+        }
+        for (index, sd, instance_xf) in all {
+            if sd.material as usize >= materials.len() {
+                return Err(BuildError::BadMaterial {
+                    shape: index,
+                    material: sd.material,
+                });
+            }
+            let placed;
+            let sd = if instance_xf.is_identity() {
+                sd
+            } else {
+                placed = ShapeDesc {
+                    object_to_world: instance_xf * sd.object_to_world,
+                    ..sd.clone()
+                };
+                &placed
+            };
+            let first = shapes.len();
+            shapes_of(sd, index, &mut meshes, &mut shapes)?;
+            let info = PrimInfo {
+                material: sd.material,
+                emission: sd.area_light.map(|a| AreaEmission {
+                    l: a.l,
+                    two_sided: a.two_sided,
+                }),
+            };
+            prims.extend(std::iter::repeat_n(info, shapes.len() - first));
+        }
+        let (mut bounded, mut unbounded) = (Vec::new(), Vec::new());
+        for (i, s) in shapes.iter().enumerate() {
+            if s.is_unbounded() {
+                unbounded.push(i as u32);
+            } else {
+                bounded.push(i as u32);
+            }
+        }
+        let bounds_list: Vec<Bounds3> = bounded
+            .iter()
+            .map(|&i| shapes[i as usize].bounds())
+            .collect();
+        let mut bvh = Bvh::build(&bounds_list);
+        for idx in bvh.indices.iter_mut() {
+            *idx = bounded[*idx as usize];
+        }
+        let mut bounds = bvh.bounds();
+        if bounds.is_empty() {
+            bounds = Bounds3::from_point(Vec3::ZERO);
+        }
+        let (_, scene_radius) = bounds.bounding_sphere();
+
+        let mut lights = Vec::new();
+        for l in &desc.lights {
+            lights.push(match l {
+                LightDesc::Point { from, intensity } => Light::Point {
+                    p: *from,
+                    intensity: *intensity,
+                },
+                LightDesc::Spot {
+                    from,
+                    to,
+                    intensity,
+                    cone_angle,
+                    cone_delta_angle,
+                } => {
+                    let axis = (*to - *from).try_normalize().ok_or_else(|| {
+                        BuildError::Invalid("spot light with from == to".to_string())
+                    })?;
+                    Light::Spot {
+                        p: *from,
+                        frame: Frame::from_z(axis),
+                        intensity: *intensity,
+                        cos_falloff_end: cone_angle.to_radians().cos(),
+                        cos_falloff_start: (cone_angle - cone_delta_angle).to_radians().cos(),
+                    }
+                }
+                LightDesc::Distant { direction, l } => Light::Distant {
+                    w: direction.try_normalize().ok_or_else(|| {
+                        BuildError::Invalid("distant light with from == to".to_string())
+                    })?,
+                    l: *l,
+                    scene_radius,
+                },
+                LightDesc::Infinite { l, .. } => Light::UniformInfinite {
+                    l: *l,
+                    scene_radius,
+                },
+            });
+        }
+
+        let camera = Camera::from_desc(&desc.camera, desc.film.xresolution, desc.film.yresolution)
+            .ok_or(BuildError::BadCamera)?;
+        Ok(Scene {
+            shapes,
+            prims,
+            meshes,
+            lights,
+            materials,
+            float_textures: desc.float_textures.clone(),
+            spectrum_textures: desc.spectrum_textures.clone(),
+            camera,
+            bvh,
+            unbounded,
+            bounds,
+        })
+    }
+
+    /// Bounds of the bounded geometry.
+    pub fn bounds(&self) -> Bounds3 {
+        self.bounds
+    }
+
+    /// The course's "keep the nearest valid hit": the smallest t with 0 < t < t_max over all
+    /// primitives, found through the BVH.
+    pub fn intersect(&self, ray: &Ray) -> Option<SceneHit> {
+        let mut best: Option<(crate::shape::ShapeHit, u32)> = None;
+        let mut r = *ray;
+        for &i in &self.unbounded {
+            if let Some(h) = self.shapes[i as usize].intersect(&r) {
+                r.t_max = h.t;
+                best = Some((h, i));
+            }
+        }
+        self.bvh.intersect(&r, |i, r| {
+            let h = self.shapes[i as usize].intersect(r)?;
+            best = Some((h, i));
+            Some(h.t)
+        });
+        let (h, prim) = best?;
+        let si = self.shapes[prim as usize].interaction(ray, &h, &self.meshes);
+        Some(SceneHit { si, prim })
+    }
+
+    /// True if anything blocks the ray before `t_max` (shadow rays).
+    pub fn intersect_p(&self, ray: &Ray) -> bool {
+        self.unbounded
+            .iter()
+            .any(|&i| self.shapes[i as usize].intersect_p(ray))
+            || self
+                .bvh
+                .intersect_any(ray, |i, r| self.shapes[i as usize].intersect_p(r))
+    }
+
+    /// Texture evaluation against this scene's textures.
+    pub fn textures(&self) -> TextureEval<'_> {
+        TextureEval {
+            floats: &self.float_textures,
+            spectra: &self.spectrum_textures,
+        }
+    }
+
+    /// Where textures are looked up for a hit.
+    pub fn tex_coord(si: &SurfaceInteraction) -> TexCoord {
+        TexCoord { uv: si.uv, p: si.p }
+    }
+}

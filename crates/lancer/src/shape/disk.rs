@@ -1,0 +1,125 @@
+//! The disk: the plane z = h inside radius r (and outside `innerradius`), swept to `phimax`.
+
+use super::{Placement, ShapeHit, SurfaceInteraction};
+use crate::math::{Bounds3, Vec2, Vec3};
+use crate::ray::Ray;
+
+/// A disk (or annulus) at height `height` in object space, normal +z.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Disk {
+    /// z of the disk's plane.
+    pub height: f32,
+    /// Outer radius.
+    pub radius: f32,
+    /// Inner radius (a hole when > 0).
+    pub inner_radius: f32,
+    /// Sweep angle, radians.
+    pub phi_max: f32,
+    /// Placement in the world.
+    pub placement: Placement,
+}
+
+impl Disk {
+    /// pbrt's disk (`height`, `radius`, `innerradius`, `phimax` in degrees).
+    pub fn new(
+        placement: Placement,
+        height: f32,
+        radius: f32,
+        inner_radius: f32,
+        phi_max_deg: f32,
+    ) -> Disk {
+        Disk {
+            height,
+            radius,
+            inner_radius: inner_radius.clamp(0.0, radius),
+            phi_max: phi_max_deg.clamp(0.0, 360.0).to_radians(),
+            placement,
+        }
+    }
+
+    /// World-space bounds.
+    pub fn bounds(&self) -> Bounds3 {
+        let b = Bounds3::new(
+            Vec3::new(-self.radius, -self.radius, self.height),
+            Vec3::new(self.radius, self.radius, self.height),
+        );
+        self.placement.to_world.bounds(&b)
+    }
+
+    /// Nearest hit: the plane z = h at t = (h − o_z)/d_z, kept if r_i² ≤ x² + y² ≤ r² and
+    /// φ ≤ φmax.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray) -> Option<ShapeHit> {
+        let (o, d) = self.placement.object_ray(ray);
+        if d.z == 0.0 {
+            return None;
+        }
+        let t = (self.height as f64 - o.z) / d.z;
+        if t <= 0.0 || t >= ray.t_max as f64 {
+            return None;
+        }
+        let p = o + t * d;
+        let dist2 = p.x * p.x + p.y * p.y;
+        let (r, ri) = (self.radius as f64, self.inner_radius as f64);
+        if dist2 > r * r || dist2 < ri * ri {
+            return None;
+        }
+        if self.phi_max < 2.0 * std::f32::consts::PI {
+            let mut phi = p.y.atan2(p.x);
+            if phi < 0.0 {
+                phi += 2.0 * std::f64::consts::PI;
+            }
+            if phi > self.phi_max as f64 {
+                return None;
+            }
+        }
+        Some(ShapeHit {
+            t: t as f32,
+            u: 0.0,
+            v: 0.0,
+        })
+    }
+
+    /// Full interaction: u = φ/φmax, v = (r − r_hit)/(r − r_i), ∂p/∂u = (−φmax·y, φmax·x, 0),
+    /// ∂p/∂v = (x, y, 0)(r_i − r)/r_hit. The point lies exactly on the plane (no error in z).
+    pub fn interaction(&self, ray: &Ray, hit: &ShapeHit) -> SurfaceInteraction {
+        let (o, d) = self.placement.object_ray(ray);
+        let mut p = (o + hit.t as f64 * d).as_vec3();
+        p.z = self.height;
+        let dist = (p.x * p.x + p.y * p.y).sqrt();
+        let mut phi = p.y.atan2(p.x);
+        if phi < 0.0 {
+            phi += 2.0 * std::f32::consts::PI;
+        }
+        let u = phi / self.phi_max;
+        let v = (self.radius - dist) / (self.radius - self.inner_radius);
+        let dpdu = Vec3::new(-self.phi_max * p.y, self.phi_max * p.x, 0.0);
+        let dpdv = if dist > 0.0 {
+            Vec3::new(p.x, p.y, 0.0) * (self.inner_radius - self.radius) / dist
+        } else {
+            Vec3::new(self.inner_radius - self.radius, 0.0, 0.0)
+        };
+        // At the centre ∂p/∂u vanishes; keep a tangent so the normal stays +z.
+        let dpdu = if dpdu.length_squared() == 0.0 {
+            Vec3::new(0.0, 1.0, 0.0) * self.phi_max
+        } else {
+            dpdu
+        };
+        let dpdv = if dpdu.cross(dpdv).length_squared() == 0.0 {
+            Vec3::new(-1.0, 0.0, 0.0)
+        } else {
+            dpdv
+        };
+        SurfaceInteraction::from_object(
+            &self.placement.to_world,
+            p,
+            Vec3::ZERO,
+            Vec2::new(u, v),
+            dpdu,
+            dpdv,
+            self.placement.flip_normal,
+            -ray.d.normalize(),
+            hit.t,
+        )
+    }
+}

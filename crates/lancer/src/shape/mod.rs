@@ -1,0 +1,225 @@
+//! Shapes: what a ray can hit. One file per shape; [`Shape`] is the closed set the accelerator
+//! and the integrators match on (no trait objects in the hot loop).
+//!
+//! Intersection is split in two, as in PBRT: [`Shape::intersect`] finds the nearest parametric
+//! distance `t` (and whatever the shape needs later, such as barycentrics) as cheaply as
+//! possible; [`Shape::interaction`] then computes the full [`SurfaceInteraction`] (point, error
+//! bounds, normals, (u, v), derivatives) once, for the closest hit only.
+
+mod cylinder;
+mod disk;
+mod plane;
+mod sphere;
+mod triangle;
+
+pub use cylinder::Cylinder;
+pub use disk::Disk;
+pub use plane::Plane;
+pub use sphere::Sphere;
+pub use triangle::{Triangle, TriangleMesh, intersect_triangle};
+
+use crate::math::{Bounds3, Transform, Vec2, Vec3};
+use crate::ray::Ray;
+use glam::{DMat4, DVec3};
+
+/// The result of [`Shape::intersect`]: the distance along the ray and two shape-specific
+/// values kept for [`Shape::interaction`] (barycentrics b₁, b₂ for triangles).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShapeHit {
+    /// Parametric distance: the hit point is `ray.at(t)`.
+    pub t: f32,
+    /// Shape-specific (triangles: barycentric b₁).
+    pub u: f32,
+    /// Shape-specific (triangles: barycentric b₂).
+    pub v: f32,
+}
+
+/// The local differential geometry used for shading (may differ from the true geometry:
+/// interpolated vertex normals, normal maps).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shading {
+    /// Shading normal, unit length, on the same side as the geometric normal.
+    pub n: Vec3,
+    /// Shading ∂p/∂u.
+    pub dpdu: Vec3,
+    /// Shading ∂p/∂v.
+    pub dpdv: Vec3,
+}
+
+/// Everything known about a ray's hit on a surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceInteraction {
+    /// The hit point, world space.
+    pub p: Vec3,
+    /// Bound on the absolute rounding error of `p`, per axis: the true point lies in
+    /// `p ± p_error`. Spawned rays are offset by it.
+    pub p_error: Vec3,
+    /// Geometric normal, unit length. Its side follows pbrt: the shape's natural orientation,
+    /// flipped by `ReverseOrientation` (and by handedness changes as pbrt does).
+    pub n: Vec3,
+    /// Surface parameterisation (u, v).
+    pub uv: Vec2,
+    /// ∂p/∂u.
+    pub dpdu: Vec3,
+    /// ∂p/∂v.
+    pub dpdv: Vec3,
+    /// Shading geometry.
+    pub shading: Shading,
+    /// Direction towards the ray's origin (−d, normalised).
+    pub wo: Vec3,
+    /// Parametric distance along the ray.
+    pub t: f32,
+}
+
+impl SurfaceInteraction {
+    /// A ray leaving this point in direction `d`.
+    #[inline]
+    pub fn spawn_ray(&self, d: Vec3) -> Ray {
+        Ray::spawn(self.p, self.p_error, self.n, d)
+    }
+
+    /// A shadow ray from this point to `target` (stopping just short of it).
+    #[inline]
+    pub fn spawn_ray_to(&self, target: Vec3) -> Ray {
+        Ray::spawn_to(self.p, self.p_error, self.n, target)
+    }
+
+    /// Builds an interaction from object-space differential geometry, applying the pbrt rules:
+    /// `n = normalize(∂p/∂u × ∂p/∂v)`, flipped when `flip` (reverse orientation xor a
+    /// handedness-swapping transform), then everything moved to world space by `to_world`.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn from_object(
+        to_world: &Transform,
+        p_obj: Vec3,
+        p_err_obj: Vec3,
+        uv: Vec2,
+        dpdu: Vec3,
+        dpdv: Vec3,
+        flip: bool,
+        wo: Vec3,
+        t: f32,
+    ) -> SurfaceInteraction {
+        let mut n_obj = dpdu.cross(dpdv).normalize_or_zero();
+        if flip {
+            n_obj = -n_obj;
+        }
+        let (p, p_error) = to_world.point_with_error_in(p_obj, p_err_obj);
+        let n = to_world.normal(n_obj).normalize_or_zero();
+        let (dpdu, dpdv) = (to_world.vector(dpdu), to_world.vector(dpdv));
+        SurfaceInteraction {
+            p,
+            p_error,
+            n,
+            uv,
+            dpdu,
+            dpdv,
+            shading: Shading { n, dpdu, dpdv },
+            wo,
+            t,
+        }
+    }
+}
+
+/// Where a quadric sits: its object-to-world transform and orientation.
+///
+/// Rays are moved into object space in double precision: the rounding error of that transform
+/// is then negligible next to the single-precision error bounds by which spawned rays are
+/// offset, so a ray leaving a quadric can never find it again at a tiny positive `t`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Placement {
+    /// Object space → world space.
+    pub to_world: Transform,
+    /// World space → object space, in double precision.
+    pub to_object: DMat4,
+    /// Normals flipped (reverse orientation xor the transform swaps handedness).
+    pub flip_normal: bool,
+}
+
+impl Placement {
+    /// A placement from a transform and pbrt's `ReverseOrientation` state.
+    pub fn new(to_world: Transform, reverse_orientation: bool) -> Placement {
+        Placement {
+            to_world,
+            to_object: to_world.m.as_dmat4().inverse(),
+            flip_normal: reverse_orientation ^ to_world.swaps_handedness(),
+        }
+    }
+
+    /// The ray in object space, double precision: (origin, direction).
+    #[inline]
+    pub fn object_ray(&self, ray: &Ray) -> (DVec3, DVec3) {
+        (
+            self.to_object.transform_point3(ray.o.as_dvec3()),
+            self.to_object.transform_vector3(ray.d.as_dvec3()),
+        )
+    }
+}
+
+/// Every kind of shape lancer intersects.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shape {
+    /// A (partial) sphere.
+    Sphere(Sphere),
+    /// A (partial) disk or annulus.
+    Disk(Disk),
+    /// A (partial) open cylinder.
+    Cylinder(Cylinder),
+    /// An infinite plane (lancer extension).
+    Plane(Plane),
+    /// One triangle of a mesh.
+    Triangle(Triangle),
+}
+
+impl Shape {
+    /// World-space bounds (infinite for planes).
+    pub fn bounds(&self) -> Bounds3 {
+        match self {
+            Shape::Sphere(s) => s.bounds(),
+            Shape::Disk(s) => s.bounds(),
+            Shape::Cylinder(s) => s.bounds(),
+            Shape::Plane(_) => {
+                Bounds3::new(Vec3::splat(f32::NEG_INFINITY), Vec3::splat(f32::INFINITY))
+            }
+            Shape::Triangle(t) => t.bounds(),
+        }
+    }
+
+    /// True for shapes without finite bounds, which are kept out of the BVH.
+    pub fn is_unbounded(&self) -> bool {
+        matches!(self, Shape::Plane(_))
+    }
+
+    /// The nearest hit with `0 < t < ray.t_max`, if any.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray) -> Option<ShapeHit> {
+        match self {
+            Shape::Sphere(s) => s.intersect(ray),
+            Shape::Disk(s) => s.intersect(ray),
+            Shape::Cylinder(s) => s.intersect(ray),
+            Shape::Plane(s) => s.intersect(ray),
+            Shape::Triangle(t) => t.intersect(ray),
+        }
+    }
+
+    /// True if the ray hits the shape with `0 < t < ray.t_max` (shadow rays).
+    #[inline]
+    pub fn intersect_p(&self, ray: &Ray) -> bool {
+        self.intersect(ray).is_some()
+    }
+
+    /// The full interaction for a hit found by [`Shape::intersect`] on the same ray.
+    pub fn interaction(
+        &self,
+        ray: &Ray,
+        hit: &ShapeHit,
+        meshes: &[TriangleMesh],
+    ) -> SurfaceInteraction {
+        match self {
+            Shape::Sphere(s) => s.interaction(ray, hit),
+            Shape::Disk(s) => s.interaction(ray, hit),
+            Shape::Cylinder(s) => s.interaction(ray, hit),
+            Shape::Plane(s) => s.interaction(ray, hit),
+            Shape::Triangle(t) => t.interaction(ray, hit, &meshes[t.mesh as usize]),
+        }
+    }
+}
