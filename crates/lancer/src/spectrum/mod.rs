@@ -1,13 +1,28 @@
 //! Spectra, converted to RGB once at load time.
 //!
 //! lancer renders in linear sRGB. Scene files may give colours as spectra (constants,
-//! blackbodies, sampled data, pbrt's named measured spectra); they are reduced to RGB here,
-//! according to what they describe ([`SpectrumKind`]).
+//! blackbodies, sampled data, pbrt-v4's named measured spectra); they are reduced to RGB here,
+//! according to what they describe ([`SpectrumKind`]), with the tabulated CIE 1931 observer and
+//! illuminant D65 of [`cie`]:
 //!
-//! NOTE: the colour-matching functions below are the analytic fit of Wyman, Sloan and Shirley
-//! (2013); tabulated CIE 1931 data, D65 and pbrt's named spectra are still to come.
+//! - an **illuminant** is reduced to its chromaticity at luminance 1, as pbrt-v4 divides a
+//!   light's `scale` by its spectrum's luminance: XYZ = ∫ s·(x̄, ȳ, z̄) / ∫ s·ȳ;
+//! - a **reflectance** or an **unbounded** quantity (an index of refraction) is seen under D65,
+//!   the white of sRGB, as Mitsuba 3's RGB mode does: XYZ = ∫ s·D65·(x̄, ȳ, z̄) / ∫ D65·ȳ.
+//!
+//! XYZ then goes to linear sRGB with the standard D65 matrix ([`xyz_to_srgb`]). Integrals are
+//! sums over 360–830 nm every 1 nm, the 5 nm tables being interpolated linearly.
+
+pub mod cie;
+mod named;
+
+use std::sync::OnceLock;
+
+use glam::{DMat3, DVec3};
 
 use crate::math::Rgb;
+
+pub use named::{IOR_WAVELENGTH, named_ior, named_spectrum, named_spectrum_names};
 
 /// A spectral distribution over wavelength in nanometres.
 #[derive(Clone, Debug, PartialEq)]
@@ -26,20 +41,37 @@ pub enum Spectrum {
         /// Values at those wavelengths.
         values: Vec<f32>,
     },
+    /// A measured spectrum known only through its RGB reductions, computed offline from the
+    /// data (pbrt-v4's named spectra, see [`named_spectrum`]). [`spectrum_to_rgb`] returns the
+    /// stored triples; [`Spectrum::eval`] gives a three-band stand-in whose reduction as
+    /// [`SpectrumKind::Unbounded`] is the stored `unbounded` triple.
+    Precomputed(PrecomputedRgb),
+}
+
+/// The linear-sRGB reductions of a spectrum, computed ahead of time by the rules of
+/// [`spectrum_to_rgb`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrecomputedRgb {
+    /// Reduction as [`SpectrumKind::Unbounded`] (seen under D65, ≥ 0); as
+    /// [`SpectrumKind::Albedo`] it is clamped to [0, 1].
+    pub unbounded: Rgb,
+    /// Reduction as [`SpectrumKind::Illuminant`] (luminance 1, ≥ 0).
+    pub illuminant: Rgb,
 }
 
 /// What a spectrum describes, which decides how it becomes RGB.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SpectrumKind {
-    /// A reflectance or transmittance in [0, 1], seen under the colour space's white.
+    /// A reflectance or transmittance in [0, 1], seen under the colour space's white (D65).
     Albedo,
-    /// An unbounded quantity such as an index of refraction.
+    /// An unbounded quantity such as an index of refraction, seen under D65; kept ≥ 0.
     Unbounded,
     /// Emission: normalised to luminance 1 (pbrt's light normalisation).
     Illuminant,
 }
 
-/// Planck's law: emitted radiance of a black body at `lambda_nm` and temperature `t`.
+/// Planck's law: emitted radiance of a black body at `lambda_nm` and temperature `t`
+/// (W·sr⁻¹·m⁻³); 0 for `t` ≤ 0.
 pub fn blackbody(lambda_nm: f32, t: f32) -> f32 {
     if t <= 0.0 {
         return 0.0;
@@ -75,77 +107,155 @@ impl Spectrum {
                 };
                 values[i] * (1.0 - t) + values[(i + 1).min(values.len() - 1)] * t
             }
+            Spectrum::Precomputed(p) => {
+                let c = weights().band_inverse * p.unbounded.as_dvec3();
+                c[band_of(lambda as f64)] as f32
+            }
         }
     }
 }
 
-fn g(x: f32, mu: f32, s1: f32, s2: f32) -> f32 {
-    let t = (x - mu) / if x < mu { s1 } else { s2 };
-    (-0.5 * t * t).exp()
+/// Where `lambda` falls in the 5 nm tables of [`cie`]: the entry below and the fraction of the
+/// way to the next one; `None` outside 360–830 nm.
+fn table_position(lambda: f64) -> Option<(usize, f64)> {
+    if !(cie::LAMBDA_MIN..=cie::LAMBDA_MAX).contains(&lambda) {
+        return None;
+    }
+    let x = (lambda - cie::LAMBDA_MIN) / cie::LAMBDA_STEP;
+    let i = (x.floor() as usize).min(cie::SAMPLES - 2);
+    Some((i, x - i as f64))
 }
 
-/// CIE 1931 colour-matching functions x̄, ȳ, z̄ at `lambda` (Wyman, Sloan, Shirley 2013,
-/// multi-lobe fit).
+fn cmf(lambda: f64) -> [f64; 3] {
+    let Some((i, t)) = table_position(lambda) else {
+        return [0.0; 3];
+    };
+    let (a, b) = (cie::CMF_1931[i], cie::CMF_1931[i + 1]);
+    std::array::from_fn(|k| a[k] * (1.0 - t) + b[k] * t)
+}
+
+fn d65(lambda: f64) -> f64 {
+    table_position(lambda).map_or(0.0, |(i, t)| cie::D65[i] * (1.0 - t) + cie::D65[i + 1] * t)
+}
+
+/// CIE 1931 2° colour-matching functions `[x̄, ȳ, z̄]` at `lambda` (nm), interpolated linearly
+/// in the 5 nm table; zero outside 360–830 nm.
 pub fn cie_xyz(lambda: f32) -> [f32; 3] {
-    [
-        1.056 * g(lambda, 599.8, 37.9, 31.0) + 0.362 * g(lambda, 442.0, 16.0, 26.7)
-            - 0.065 * g(lambda, 501.1, 20.4, 26.2),
-        0.821 * g(lambda, 568.8, 46.9, 40.5) + 0.286 * g(lambda, 530.9, 16.3, 31.1),
-        1.217 * g(lambda, 437.0, 11.8, 36.0) + 0.681 * g(lambda, 459.0, 26.0, 13.8),
-    ]
+    cmf(lambda as f64).map(|v| v as f32)
 }
 
-/// CIE XYZ → linear sRGB (D65 white).
+/// CIE standard illuminant D65 at `lambda` (nm), relative power (100 at 560 nm), interpolated
+/// linearly in the 5 nm table; zero outside 360–830 nm.
+pub fn cie_d65(lambda: f32) -> f32 {
+    d65(lambda as f64) as f32
+}
+
+/// Rows of the standard XYZ → linear sRGB matrix (D65 white, IEC 61966-2-1).
+const XYZ_TO_SRGB: [[f64; 3]; 3] = [
+    [3.240_454_2, -1.537_138_5, -0.498_531_4],
+    [-0.969_266, 1.876_010_8, 0.041_556],
+    [0.055_643_4, -0.204_025_9, 1.057_225_2],
+];
+
+/// CIE XYZ → linear sRGB (D65 white), the standard matrix of IEC 61966-2-1.
 pub fn xyz_to_srgb(xyz: [f32; 3]) -> Rgb {
-    let [x, y, z] = xyz;
-    Rgb::new(
-        3.240_454_2 * x - 1.537_138_5 * y - 0.498_531_4 * z,
-        -0.969_266 * x + 1.876_010_8 * y + 0.041_556 * z,
-        0.055_643_4 * x - 0.204_025_9 * y + 1.057_225_2 * z,
-    )
+    xyz_to_srgb_f64(DVec3::from(xyz.map(f64::from))).as_vec3()
 }
 
-/// ∫ s(λ)·(x̄, ȳ, z̄)(λ) dλ over 360–830 nm (1 nm steps).
-pub fn spectrum_to_xyz_unnormalised(s: &Spectrum) -> [f32; 3] {
-    let mut acc = [0.0f64; 3];
-    for l in 360..=830 {
-        let v = s.eval(l as f32) as f64;
-        let c = cie_xyz(l as f32);
-        for k in 0..3 {
-            acc[k] += v * c[k] as f64;
+fn xyz_to_srgb_f64(xyz: DVec3) -> DVec3 {
+    DVec3::from(XYZ_TO_SRGB.map(|row| DVec3::from(row).dot(xyz)))
+}
+
+/// First and last wavelengths of the integrals (nm); they are sums every 1 nm.
+const INTEGRATION_RANGE: std::ops::RangeInclusive<u32> = 360..=830;
+
+/// Boundaries (nm) of the three bands of [`Spectrum::Precomputed`]'s stand-in spectrum, between
+/// integration wavelengths so that no sample sits on an edge.
+const BAND_EDGES: [f64; 2] = [489.5, 589.5];
+
+fn band_of(lambda: f64) -> usize {
+    BAND_EDGES.iter().filter(|&&e| lambda >= e).count()
+}
+
+/// The integration weights, sampled once.
+struct Weights {
+    /// (x̄, ȳ, z̄) at each integration wavelength.
+    cmf: Vec<[f64; 3]>,
+    /// D65 · (x̄, ȳ, z̄) at each integration wavelength.
+    d65_cmf: Vec<[f64; 3]>,
+    /// ∑ D65 · ȳ.
+    d65_y: f64,
+    /// Inverse of the matrix whose columns are the reductions (as [`SpectrumKind::Unbounded`])
+    /// of the three unit bands: maps a triple to the band heights that reproduce it.
+    band_inverse: DMat3,
+}
+
+fn weights() -> &'static Weights {
+    static WEIGHTS: OnceLock<Weights> = OnceLock::new();
+    WEIGHTS.get_or_init(|| {
+        let lambdas = INTEGRATION_RANGE.map(f64::from);
+        let cmf: Vec<[f64; 3]> = lambdas.clone().map(self::cmf).collect();
+        let d65_cmf: Vec<[f64; 3]> = lambdas
+            .clone()
+            .zip(&cmf)
+            .map(|(l, c)| c.map(|v| v * d65(l)))
+            .collect();
+        let d65_y = d65_cmf.iter().map(|c| c[1]).sum::<f64>();
+        let mut bands = [DVec3::ZERO; 3];
+        for (l, c) in lambdas.zip(&d65_cmf) {
+            bands[band_of(l)] += DVec3::from(*c) / d65_y;
         }
-    }
-    [acc[0] as f32, acc[1] as f32, acc[2] as f32]
+        let band_rgb = bands.map(xyz_to_srgb_f64);
+        let band_inverse = DMat3::from_cols(band_rgb[0], band_rgb[1], band_rgb[2]).inverse();
+        Weights {
+            cmf,
+            d65_cmf,
+            d65_y,
+            band_inverse,
+        }
+    })
 }
 
-/// Reduces a spectrum to linear sRGB according to what it describes.
+/// ∑ s(λ)·w(λ) over the integration wavelengths.
+fn integrate(s: &Spectrum, w: &[[f64; 3]]) -> DVec3 {
+    INTEGRATION_RANGE
+        .zip(w)
+        .map(|(l, c)| DVec3::from(*c) * s.eval(l as f32) as f64)
+        .sum()
+}
+
+/// ∫ s(λ)·(x̄, ȳ, z̄)(λ) dλ over 360–830 nm (1 nm steps, λ in nm). A constant 1 gives
+/// Y ≈ 106.857.
+pub fn spectrum_to_xyz_unnormalised(s: &Spectrum) -> [f32; 3] {
+    integrate(s, &weights().cmf).as_vec3().to_array()
+}
+
+/// Reduces a spectrum to linear sRGB according to what it describes (see the module
+/// documentation): illuminants to luminance 1, reflectances and unbounded quantities under D65.
+/// Albedos are clamped to [0, 1], everything else to ≥ 0. Constant reflectances and unbounded
+/// quantities stay exactly grey.
 pub fn spectrum_to_rgb(s: &Spectrum, kind: SpectrumKind) -> Rgb {
-    if let (Spectrum::Constant(c), SpectrumKind::Albedo | SpectrumKind::Unbounded) = (s, kind) {
-        return Rgb::splat(*c);
-    }
-    let xyz = spectrum_to_xyz_unnormalised(s);
-    let white = spectrum_to_xyz_unnormalised(&Spectrum::Constant(1.0));
-    match kind {
-        SpectrumKind::Illuminant => {
-            if xyz[1] <= 0.0 {
+    let rgb = match (s, kind) {
+        (Spectrum::Constant(c), SpectrumKind::Albedo | SpectrumKind::Unbounded) => Rgb::splat(*c),
+        (Spectrum::Precomputed(p), SpectrumKind::Albedo | SpectrumKind::Unbounded) => p.unbounded,
+        (Spectrum::Precomputed(p), SpectrumKind::Illuminant) => p.illuminant,
+        (_, SpectrumKind::Illuminant) => {
+            let xyz = integrate(s, &weights().cmf);
+            if xyz.y.is_nan() || xyz.y <= 0.0 {
                 return Rgb::ZERO;
             }
-            xyz_to_srgb([xyz[0] / xyz[1], 1.0, xyz[2] / xyz[1]])
+            xyz_to_srgb_f64(xyz / xyz.y).as_vec3()
         }
-        SpectrumKind::Albedo | SpectrumKind::Unbounded => {
-            let y = white[1];
-            let rgb = xyz_to_srgb([xyz[0] / y, xyz[1] / y, xyz[2] / y]);
-            // Chromatic adaptation from illuminant E (equal energy) is still to do; scale so
-            // that a constant spectrum stays grey.
-            let w = xyz_to_srgb([white[0] / y, 1.0, white[2] / y]);
-            rgb / w
+        (_, SpectrumKind::Albedo | SpectrumKind::Unbounded) => {
+            let w = weights();
+            xyz_to_srgb_f64(integrate(s, &w.d65_cmf) / w.d65_y).as_vec3()
         }
+    };
+    let rgb = rgb.max(Rgb::ZERO);
+    match kind {
+        SpectrumKind::Albedo => rgb.min(Rgb::ONE),
+        SpectrumKind::Unbounded | SpectrumKind::Illuminant => rgb,
     }
-}
-
-/// One of pbrt's named spectra (`metal-Au-eta`, `glass-BK7`, `stdillum-D65`, …).
-pub fn named_spectrum(_name: &str) -> Option<Spectrum> {
-    None
 }
 
 /// Parses a spectrum file (pbrt's `.spd`: pairs of wavelength and value, `#` comments).
@@ -175,3 +285,6 @@ pub fn parse_spd(text: &str) -> Result<Spectrum, String> {
     }
     Ok(Spectrum::PiecewiseLinear { lambda, values })
 }
+
+#[cfg(test)]
+mod tests;

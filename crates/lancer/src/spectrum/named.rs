@@ -1,0 +1,326 @@
+//! pbrt-v4's named spectra (`"spectrum eta" "metal-Au-eta"`, `"spectrum L" "stdillum-F2"`, …).
+//!
+//! lancer renders in RGB, so most named spectra are stored only as their linear-sRGB reductions
+//! ([`Spectrum::Precomputed`]), computed offline from the tabulated data pbrt-v4 uses:
+//!
+//! - `metal-*-eta`, `metal-*-k`: measured complex indices of refraction of silver, aluminium,
+//!   gold, copper, brass (CuZn), magnesium oxide and titanium dioxide;
+//! - `stdillum-A`, `stdillum-D50`, `stdillum-F1` … `stdillum-F12`: CIE standard illuminants;
+//! - `illum-acesD60`: the ACES white, CIE daylight at a correlated colour temperature of 6000 K.
+//!
+//! Method: each spectrum (piecewise linear between its samples, zero outside them) was reduced
+//! with the rules of [`spectrum_to_rgb`](super::spectrum_to_rgb) exactly as this module computes
+//! them (1 nm sums over 360–830 nm of the interpolated 5 nm CIE 1931 and D65 tables): `unbounded`
+//! by the [`SpectrumKind::Unbounded`](super::SpectrumKind::Unbounded) rule (seen under D65) and
+//! `illuminant` by the [`SpectrumKind::Illuminant`](super::SpectrumKind::Illuminant) rule
+//! (luminance 1); negative components were set to 0. Illuminants are normalised to luminance 1
+//! first, as pbrt-v4 does.
+//!
+//! Two spectra are exact here instead: `stdillum-D65` (the CIE table of [`cie`](super::cie)) and
+//! the glasses `glass-BK7`, `glass-BAF10`, `glass-FK51A`, `glass-LASF9`, `glass-F5`, `glass-F10`,
+//! `glass-F11`, whose index of refraction follows Schott's Sellmeier formulas. A renderer
+//! without dispersion takes one index per glass: [`named_ior`] gives the value at 550 nm.
+
+use super::{PrecomputedRgb, Spectrum, cie, spectrum_to_xyz_unnormalised};
+use crate::math::Rgb;
+
+/// pbrt-v4's named spectra known by their reductions: name, reduction as
+/// [`SpectrumKind::Unbounded`](super::SpectrumKind::Unbounded), reduction as
+/// [`SpectrumKind::Illuminant`](super::SpectrumKind::Illuminant) (see the module documentation
+/// for the method).
+#[rustfmt::skip]
+const PRECOMPUTED: [(&str, [f32; 3], [f32; 3]); 29] = [
+    ("metal-Ag-eta", [0.128488, 0.123534, 0.15087], [1.22757, 0.92284, 1.09398]),
+    ("metal-Ag-k", [4.06513, 3.28619, 2.3914], [1.41399, 0.914362, 0.628677]),
+    ("metal-Al-eta", [1.40749, 0.926649, 0.583982], [1.62539, 0.863362, 0.511108]),
+    ("metal-Al-k", [7.74084, 6.60242, 5.35954], [1.35755, 0.922753, 0.711851]),
+    ("metal-Au-eta", [0.079961, 0.405085, 1.56061], [0.355036, 0.931515, 3.57906]),
+    ("metal-Au-k", [3.39047, 2.50352, 1.77074], [1.4924, 0.893866, 0.600718]),
+    ("metal-Cu-eta", [0.105142, 0.977925, 1.20448], [0.256702, 1.1799, 1.4077]),
+    ("metal-Cu-k", [3.27375, 2.5925, 2.36881], [1.42759, 0.894905, 0.781397]),
+    ("metal-CuZn-eta", [0.418439, 0.520076, 1.12285], [0.971153, 0.913027, 1.94678]),
+    ("metal-CuZn-k", [3.66789, 2.68061, 1.7711], [1.51513, 0.891514, 0.557029]),
+    ("metal-MgO-eta", [1.73382, 1.74094, 1.75327], [1.20088, 0.948687, 0.91651]),
+    ("metal-MgO-k", [0.0, 0.0, 0.0], [28.7561, 0.0, 165.761]),
+    ("metal-TiO2-eta", [2.86061, 2.95651, 3.18502], [1.17233, 0.950242, 0.985235]),
+    ("metal-TiO2-k", [9.093e-05, 0.0, 0.000565871], [28.983, 0.0, 179.72]),
+    ("stdillum-A", [1.5821, 0.867085, 0.27418], [1.84496, 0.826088, 0.233435]),
+    ("stdillum-D50", [0.974433, 1.02714, 0.810975], [1.17619, 0.975673, 0.721881]),
+    ("stdillum-F1", [0.807301, 1.06352, 1.02553], [0.953648, 1.0196, 0.942416]),
+    ("stdillum-F2", [1.18097, 0.972439, 0.610113], [1.33916, 0.943351, 0.561944]),
+    ("stdillum-F3", [1.40683, 0.912615, 0.410726], [1.57528, 0.891487, 0.380073]),
+    ("stdillum-F4", [1.62211, 0.849507, 0.285852], [1.80486, 0.834698, 0.266282]),
+    ("stdillum-F5", [0.77541, 1.07992, 0.968463], [0.914924, 1.03648, 0.889209]),
+    ("stdillum-F6", [1.16464, 0.98584, 0.527173], [1.31526, 0.958151, 0.485699]),
+    ("stdillum-F7", [0.827727, 1.05242, 1.08356], [1.00009, 1.00037, 0.996052]),
+    ("stdillum-F8", [0.978518, 1.02862, 0.790816], [1.17664, 0.975823, 0.719081]),
+    ("stdillum-F9", [1.17332, 0.976256, 0.623613], [1.37645, 0.931608, 0.568402]),
+    ("stdillum-F10", [1.00675, 1.02883, 0.785965], [1.17316, 0.976971, 0.717961]),
+    ("stdillum-F11", [1.22452, 0.974522, 0.576479], [1.41045, 0.925315, 0.530569]),
+    ("stdillum-F12", [1.55142, 0.889163, 0.289373], [1.76624, 0.845784, 0.270233]),
+    ("illum-acesD60", [0.856666, 1.04812, 1.0197], [1.047, 0.994562, 0.915387]),
+];
+
+/// Schott's Sellmeier coefficients `[B1, B2, B3, C1, C2, C3]` (C in µm²) of the glasses pbrt-v4
+/// names: n²(λ) = 1 + Σ Bᵢ·λ² / (λ² − Cᵢ), λ in µm. pbrt's `glass-F5`, `glass-F10` and
+/// `glass-F11` are Schott SF5, N-SF10 and SF11; the others are N-BK7, N-BAF10, N-FK51A and
+/// N-LASF9.
+#[rustfmt::skip]
+const GLASSES: [(&str, [f64; 6]); 7] = [
+    ("glass-BK7", [1.039_612_12, 0.231_792_344, 1.010_469_45, 0.006_000_698_67, 0.020_017_914_4, 103.560_653]),
+    ("glass-BAF10", [1.585_149_5, 0.143_559_385, 1.085_212_69, 0.009_266_812_82, 0.042_448_980_5, 105.613_573]),
+    ("glass-FK51A", [0.971_247_817, 0.216_901_417, 0.904_651_666, 0.004_723_019_95, 0.015_357_561_2, 168.681_33]),
+    ("glass-LASF9", [2.000_295_47, 0.298_926_886, 1.806_918_43, 0.012_142_601_7, 0.053_873_623_6, 156.530_829]),
+    ("glass-F5", [1.524_818_89, 0.187_085_527, 1.427_290_15, 0.011_254_756, 0.058_899_539_2, 129.141_675]),
+    ("glass-F10", [1.621_539_02, 0.256_287_842, 1.644_475_52, 0.012_224_145_7, 0.059_573_677_5, 147.468_793]),
+    ("glass-F11", [1.737_596_95, 0.313_747_346, 1.898_781_01, 0.013_188_707, 0.062_306_814_2, 155.236_29]),
+];
+
+/// The wavelength (nm) at which [`named_ior`] evaluates a glass.
+pub const IOR_WAVELENGTH: f32 = 550.0;
+
+/// Index of refraction from Sellmeier coefficients at `lambda_nm`.
+fn sellmeier(c: &[f64; 6], lambda_nm: f64) -> f64 {
+    let l2 = (lambda_nm * 1e-3).powi(2);
+    let n2 = 1.0 + (0..3).map(|i| c[i] * l2 / (l2 - c[i + 3])).sum::<f64>();
+    n2.sqrt()
+}
+
+fn glass(name: &str) -> Option<&'static [f64; 6]> {
+    GLASSES.iter().find(|(n, _)| *n == name).map(|(_, c)| c)
+}
+
+/// The spectrum pbrt-v4 calls `name`, or `None` if it has no such named spectrum.
+///
+/// Glasses come back as their index of refraction sampled every 5 nm over 360–830 nm
+/// ([`Spectrum::PiecewiseLinear`]), `stdillum-D65` as the CIE table scaled to luminance 1, and
+/// every other name (metals, the other illuminants) as its precomputed RGB reductions
+/// ([`Spectrum::Precomputed`]). Names are case-sensitive, as in pbrt.
+pub fn named_spectrum(name: &str) -> Option<Spectrum> {
+    let grid = || (0..cie::SAMPLES).map(|i| cie::LAMBDA_MIN + i as f64 * cie::LAMBDA_STEP);
+    if let Some(c) = glass(name) {
+        return Some(Spectrum::PiecewiseLinear {
+            lambda: grid().map(|l| l as f32).collect(),
+            values: grid().map(|l| sellmeier(c, l) as f32).collect(),
+        });
+    }
+    if name == "stdillum-D65" {
+        let lambda: Vec<f32> = grid().map(|l| l as f32).collect();
+        let values: Vec<f32> = cie::D65.iter().map(|&v| v as f32).collect();
+        let raw = Spectrum::PiecewiseLinear {
+            lambda: lambda.clone(),
+            values: values.clone(),
+        };
+        // Scaled to luminance 1: ∫ s·ȳ = ∫ ȳ.
+        let y = spectrum_to_xyz_unnormalised(&raw)[1]
+            / spectrum_to_xyz_unnormalised(&Spectrum::Constant(1.0))[1];
+        let values = values.into_iter().map(|v| v / y).collect();
+        return Some(Spectrum::PiecewiseLinear { lambda, values });
+    }
+    PRECOMPUTED
+        .iter()
+        .find(|(n, _, _)| *n == name)
+        .map(|(_, u, i)| {
+            Spectrum::Precomputed(PrecomputedRgb {
+                unbounded: Rgb::from_array(*u),
+                illuminant: Rgb::from_array(*i),
+            })
+        })
+}
+
+/// The single index of refraction of a named glass (`glass-BK7`, …) for a renderer without
+/// dispersion: its value at [`IOR_WAVELENGTH`] (550 nm). `None` for any other name.
+pub fn named_ior(name: &str) -> Option<f32> {
+    glass(name).map(|c| sellmeier(c, IOR_WAVELENGTH as f64) as f32)
+}
+
+/// Every name [`named_spectrum`] knows.
+pub fn named_spectrum_names() -> impl Iterator<Item = &'static str> {
+    GLASSES
+        .iter()
+        .map(|(n, _)| *n)
+        .chain(std::iter::once("stdillum-D65"))
+        .chain(PRECOMPUTED.iter().map(|(n, _, _)| *n))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::luminance;
+    use crate::spectrum::{SpectrumKind, spectrum_to_rgb};
+
+    fn rgb(name: &str, kind: SpectrumKind) -> Rgb {
+        spectrum_to_rgb(&named_spectrum(name).expect(name), kind)
+    }
+
+    /// Reflectance at normal incidence of a conductor, per channel, from its named eta and k.
+    fn reflectance(metal: &str) -> Rgb {
+        let eta = rgb(&format!("metal-{metal}-eta"), SpectrumKind::Unbounded);
+        let k = rgb(&format!("metal-{metal}-k"), SpectrumKind::Unbounded);
+        let r = |n: f32, k: f32| ((n - 1.0).powi(2) + k * k) / ((n + 1.0).powi(2) + k * k);
+        Rgb::new(r(eta.x, k.x), r(eta.y, k.y), r(eta.z, k.z))
+    }
+
+    #[test]
+    fn every_pbrt_name_resolves() {
+        let mut names: Vec<String> = ["BK7", "BAF10", "FK51A", "LASF9", "F5", "F10", "F11"]
+            .iter()
+            .map(|g| format!("glass-{g}"))
+            .collect();
+        for m in ["Ag", "Al", "Au", "Cu", "CuZn", "MgO", "TiO2"] {
+            names.push(format!("metal-{m}-eta"));
+            names.push(format!("metal-{m}-k"));
+        }
+        for i in ["A", "D50", "D65"] {
+            names.push(format!("stdillum-{i}"));
+        }
+        names.extend((1..=12).map(|i| format!("stdillum-F{i}")));
+        names.push("illum-acesD60".into());
+        for n in &names {
+            assert!(named_spectrum(n).is_some(), "{n}");
+        }
+        let known: Vec<&str> = named_spectrum_names().collect();
+        assert_eq!(known.len(), names.len());
+        for n in known {
+            assert!(named_spectrum(n).is_some(), "{n}");
+        }
+    }
+
+    #[test]
+    fn other_names_are_unknown() {
+        for n in ["", "metal-Fe-eta", "glass-bk7", "stdillum-D60", "metal-Cu"] {
+            assert!(named_spectrum(n).is_none(), "{n}");
+        }
+        assert_eq!(named_ior("metal-Cu-eta"), None);
+        assert_eq!(named_ior("glass-SF10"), None);
+    }
+
+    #[test]
+    fn stored_reductions_are_finite_and_non_negative() {
+        for (name, u, i) in PRECOMPUTED {
+            for v in u.into_iter().chain(i) {
+                assert!(v.is_finite() && v >= 0.0, "{name}: {v}");
+            }
+        }
+    }
+
+    #[test]
+    fn copper_the_default_conductor() {
+        let eta = rgb("metal-Cu-eta", SpectrumKind::Unbounded);
+        let k = rgb("metal-Cu-k", SpectrumKind::Unbounded);
+        assert!(close(eta, Rgb::new(0.105, 0.978, 1.204), 1e-3), "{eta}");
+        assert!(close(k, Rgb::new(3.274, 2.592, 2.369), 1e-3), "{k}");
+        let r = reflectance("Cu");
+        assert!(r.x > 0.9 && r.x > r.y && r.y > r.z, "{r}");
+    }
+
+    #[test]
+    fn gold_is_yellow() {
+        let eta = rgb("metal-Au-eta", SpectrumKind::Unbounded);
+        let k = rgb("metal-Au-k", SpectrumKind::Unbounded);
+        assert!(k.x > k.y && k.y > k.z, "{k}");
+        assert!(eta.x < eta.y && eta.y < eta.z, "{eta}");
+        let r = reflectance("Au");
+        assert!(r.x > 0.9 && r.x > r.y && r.y > r.z && r.z < 0.5, "{r}");
+    }
+
+    #[test]
+    fn silver_and_aluminium_are_bright_and_neutral() {
+        let ag = reflectance("Ag");
+        assert!(ag.min_element() > 0.9, "{ag}");
+        let al = reflectance("Al");
+        assert!(al.min_element() > 0.9, "{al}");
+        assert!(al.max_element() - al.min_element() < 0.02, "{al}");
+    }
+
+    #[test]
+    fn brass_sits_between_copper_and_gold() {
+        let r = reflectance("CuZn");
+        assert!(r.x > r.y && r.y > r.z && r.z > reflectance("Au").z, "{r}");
+    }
+
+    #[test]
+    fn dielectric_oxides_are_clear() {
+        let mgo = rgb("metal-MgO-eta", SpectrumKind::Unbounded);
+        assert!(close(mgo, Rgb::splat(1.74), 0.015), "{mgo}");
+        assert_eq!(rgb("metal-MgO-k", SpectrumKind::Unbounded), Rgb::ZERO);
+        let tio2 = rgb("metal-TiO2-k", SpectrumKind::Unbounded);
+        assert!(tio2.max_element() < 1e-3, "{tio2}");
+    }
+
+    #[test]
+    fn bk7_index_at_550_nm() {
+        let n = named_ior("glass-BK7").unwrap();
+        assert!((n - 1.5185).abs() < 1e-3, "{n}");
+    }
+
+    #[test]
+    fn glasses_match_their_catalogue_index_at_the_d_line() {
+        // Schott's n_d (587.5618 nm, the helium d line).
+        let nd = [
+            ("glass-BK7", 1.51680),
+            ("glass-BAF10", 1.67003),
+            ("glass-FK51A", 1.48656),
+            ("glass-LASF9", 1.85025),
+            ("glass-F5", 1.67270),
+            ("glass-F10", 1.72828),
+            ("glass-F11", 1.78472),
+        ];
+        for (name, n) in nd {
+            let got = sellmeier(glass(name).unwrap(), 587.5618);
+            assert!((got - n).abs() < 2e-5, "{name}: {got}");
+            let at_550 = named_ior(name).unwrap() as f64;
+            assert!(at_550 > n && at_550 - n < 0.01, "{name}: {at_550}");
+        }
+    }
+
+    #[test]
+    fn glass_spectra_disperse() {
+        let n = named_ior("glass-F11").unwrap();
+        let c = rgb("glass-F11", SpectrumKind::Unbounded);
+        assert!(c.z > c.y && c.y > c.x, "{c}");
+        assert!(close(c, Rgb::splat(n), 0.04), "{c}");
+    }
+
+    #[test]
+    fn named_d65_is_white_light_of_luminance_one() {
+        let d65 = named_spectrum("stdillum-D65").unwrap();
+        let rgb = spectrum_to_rgb(&d65, SpectrumKind::Illuminant);
+        assert!(close(rgb, Rgb::ONE, 1e-3), "{rgb}");
+        let y = spectrum_to_xyz_unnormalised(&d65)[1]
+            / spectrum_to_xyz_unnormalised(&Spectrum::Constant(1.0))[1];
+        assert!((y - 1.0).abs() < 1e-5, "{y}");
+    }
+
+    #[test]
+    fn named_illuminants_have_luminance_one() {
+        for name in named_spectrum_names().filter(|n| n.contains("illum")) {
+            let c = rgb(name, SpectrumKind::Illuminant);
+            assert!((luminance(c) - 1.0).abs() < 2e-3, "{name}: {c}");
+        }
+    }
+
+    #[test]
+    fn named_illuminants_have_their_colours() {
+        // Illuminant A is a 2856 K black body.
+        let a = rgb("stdillum-A", SpectrumKind::Illuminant);
+        let bb = spectrum_to_rgb(
+            &Spectrum::Blackbody { kelvin: 2856.0 },
+            SpectrumKind::Illuminant,
+        );
+        assert!(close(a, bb, 2e-3), "{a} vs {bb}");
+        // F7 simulates D65; D50 and ACES D60 are warmer than D65, D50 the warmer of the two.
+        assert!(close(
+            rgb("stdillum-F7", SpectrumKind::Illuminant),
+            Rgb::ONE,
+            5e-3
+        ));
+        let d50 = rgb("stdillum-D50", SpectrumKind::Illuminant);
+        let d60 = rgb("illum-acesD60", SpectrumKind::Illuminant);
+        assert!(d50.x > d60.x && d60.x > 1.0 && d50.z < d60.z && d60.z < 1.0);
+    }
+
+    fn close(a: Rgb, b: Rgb, tol: f32) -> bool {
+        (a - b).abs().max_element() <= tol
+    }
+}
