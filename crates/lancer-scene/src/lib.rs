@@ -1,1 +1,94 @@
-//! Scene formats.
+//! Scene formats read into lancer's plain-data [`SceneDesc`]: pbrt-v4 files today; glTF, OBJ
+//! and PLY are to come.
+//!
+//! Every error names its place (`file:line:column`) and comes with the offending line; what
+//! lancer reads but does not do yet is a [`Warning`] saying what it does instead.
+
+pub mod error;
+pub mod pbrt;
+
+pub use error::{Location, SceneError, Warning};
+
+use lancer::SceneDesc;
+use pbrt::parser::Parser;
+use std::collections::HashMap;
+use std::path::Path;
+
+/// A scene read from a file, and what the reader had to warn about.
+#[derive(Debug)]
+pub struct LoadedScene {
+    /// The scene.
+    pub desc: SceneDesc,
+    /// Warnings, in file order; repeats of the same message are folded into the first.
+    pub warnings: Vec<Warning>,
+}
+
+/// Reads a scene file, its format chosen by the extension.
+pub fn load(path: &Path) -> Result<LoadedScene, SceneError> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("pbrt") | None => {
+            let mut parser = Parser::from_file(path)?;
+            finish(pbrt::builder::build(&mut parser), &parser)
+        }
+        Some(other) => Err(SceneError::general(format!(
+            "{}: unknown scene format '.{other}' (lancer reads .pbrt files)",
+            path.display()
+        ))),
+    }
+}
+
+/// Reads pbrt-v4 scene text held in memory; `name` names it in messages and `dir` is where its
+/// relative file names point.
+pub fn load_pbrt_str(text: &str, name: &str, dir: &Path) -> Result<LoadedScene, SceneError> {
+    let mut parser = Parser::from_str(text, name, dir);
+    finish(pbrt::builder::build(&mut parser), &parser)
+}
+
+fn finish(
+    result: Result<(SceneDesc, Vec<Warning>), SceneError>,
+    parser: &Parser,
+) -> Result<LoadedScene, SceneError> {
+    match result {
+        Ok((desc, warnings)) => Ok(LoadedScene {
+            desc,
+            warnings: fold_repeats(warnings),
+        }),
+        Err(mut e) => {
+            if e.source_line.is_none()
+                && let Some(loc) = &e.location
+                && let Some(src) = parser.source(&loc.file)
+            {
+                e.source_line = pbrt::lexer::source_line(src, loc.line);
+            }
+            Err(e)
+        }
+    }
+}
+
+/// Keeps the first of warnings that say the same thing, noting how many more there were (a
+/// mesh-heavy scene would otherwise repeat one line thousands of times).
+fn fold_repeats(warnings: Vec<Warning>) -> Vec<Warning> {
+    let mut first: HashMap<String, usize> = HashMap::new();
+    let mut out: Vec<(Warning, usize)> = Vec::new();
+    for w in warnings {
+        match first.get(&w.message) {
+            Some(&i) => out[i].1 += 1,
+            None => {
+                first.insert(w.message.clone(), out.len());
+                out.push((w, 0));
+            }
+        }
+    }
+    out.into_iter()
+        .map(|(mut w, more)| {
+            if more > 0 {
+                w.message.push_str(&format!(" ({more} more like it)"));
+            }
+            w
+        })
+        .collect()
+}

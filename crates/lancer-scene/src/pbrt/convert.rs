@@ -1,0 +1,650 @@
+//! From a directive's type and parameters to lancer's plain data: materials, textures, shapes,
+//! lights and the rendering options, with pbrt-v4's defaults.
+//!
+//! Each function reads the parameters it knows; the caller then reports the others as unused.
+//! Something lancer does not support yet comes back as `Unsupported` with what it does instead,
+//! for the caller to turn into a warning.
+
+use super::params::{ColorParam, FloatParam, ParamList};
+use crate::error::{Location, SceneError};
+use lancer::material::Material;
+use lancer::math::{Rgb, Vec3};
+use lancer::sampling::SamplerKind;
+use lancer::scene::desc::{FilterDesc, Geometry, IntegratorDesc};
+use lancer::shape::TriangleMesh;
+use lancer::spectrum::{SpectrumKind, named_spectrum, spectrum_to_rgb};
+use lancer::texture::{FloatTex, FloatTexture, SpectrumTex, SpectrumTexture, UvMapping};
+use std::collections::HashMap;
+use std::path::Path;
+use std::sync::Arc;
+
+/// Largest image side accepted (a film of 65536² pixels would already need ~100 GiB).
+pub const MAX_RESOLUTION: i32 = 1 << 16;
+
+/// Named textures defined so far, by kind.
+#[derive(Default)]
+pub struct TextureNames {
+    /// Float textures: name → index in the scene's list.
+    pub floats: HashMap<String, u32>,
+    /// Spectrum textures: name → index.
+    pub spectra: HashMap<String, u32>,
+}
+
+impl TextureNames {
+    fn float(&self, name: &str, loc: &Location) -> Result<FloatTex, SceneError> {
+        self.floats
+            .get(name)
+            .map(|&i| FloatTex::Tex(i))
+            .ok_or_else(|| {
+                let hint = if self.spectra.contains_key(name) {
+                    " (there is a spectrum texture of that name)"
+                } else {
+                    ""
+                };
+                SceneError::at(
+                    loc.clone(),
+                    format!("no float texture named \"{name}\"{hint}"),
+                )
+            })
+    }
+
+    fn spectrum(&self, name: &str, loc: &Location) -> Result<SpectrumTex, SceneError> {
+        self.spectra
+            .get(name)
+            .map(|&i| SpectrumTex::Tex(i))
+            .ok_or_else(|| {
+                let hint = if self.floats.contains_key(name) {
+                    " (there is a float texture of that name)"
+                } else {
+                    ""
+                };
+                SceneError::at(
+                    loc.clone(),
+                    format!("no spectrum texture named \"{name}\"{hint}"),
+                )
+            })
+    }
+}
+
+/// What a conversion gives: the thing, or what lancer does instead of an unsupported one.
+pub enum Converted<T> {
+    /// Done.
+    Done(T),
+    /// Not supported: a warning (what lancer does instead) and the stand-in, if any.
+    Unsupported(String, Option<T>),
+}
+
+/// A material, with the names a `mix` refers to (and where they are written), to resolve once
+/// every named material is known.
+pub type MaterialWithNames = (Material, Option<(Vec<String>, Location)>);
+
+/// Reads parameters against the scene's textures and the directive's folder.
+pub struct Reader<'a> {
+    /// The parameters.
+    pub params: &'a ParamList,
+    /// Textures defined so far.
+    pub textures: &'a TextureNames,
+    /// The folder of the file holding the directive.
+    pub dir: &'a Path,
+}
+
+impl Reader<'_> {
+    fn spectrum_tex(
+        &self,
+        name: &str,
+        default: Rgb,
+        kind: SpectrumKind,
+    ) -> Result<SpectrumTex, SceneError> {
+        Ok(match self.params.color_or_texture(name, kind, self.dir)? {
+            None => SpectrumTex::Const(default),
+            Some(ColorParam::Const(c)) => SpectrumTex::Const(c),
+            Some(ColorParam::Texture(t, loc)) => self.textures.spectrum(&t, &loc)?,
+        })
+    }
+
+    fn opt_spectrum_tex(
+        &self,
+        name: &str,
+        kind: SpectrumKind,
+    ) -> Result<Option<SpectrumTex>, SceneError> {
+        if self.params.has(name) {
+            self.spectrum_tex(name, Rgb::ZERO, kind).map(Some)
+        } else {
+            Ok(None)
+        }
+    }
+
+    fn float_tex(&self, name: &str, default: f32) -> Result<FloatTex, SceneError> {
+        Ok(match self.params.float_or_texture(name)? {
+            None => FloatTex::Const(default),
+            Some(FloatParam::Const(v)) => FloatTex::Const(v),
+            Some(FloatParam::Texture(t, loc)) => self.textures.float(&t, &loc)?,
+        })
+    }
+
+    /// `uroughness`/`vroughness`, each defaulting to `roughness` (prefixed by `prefix`, as in
+    /// `interface.` for the coated materials).
+    fn roughness(&self, prefix: &str) -> Result<(FloatTex, FloatTex), SceneError> {
+        let r = self.float_tex(&format!("{prefix}roughness"), 0.0)?;
+        let u = self.params.has(&format!("{prefix}uroughness"));
+        let v = self.params.has(&format!("{prefix}vroughness"));
+        Ok((
+            if u {
+                self.float_tex(&format!("{prefix}uroughness"), 0.0)?
+            } else {
+                r
+            },
+            if v {
+                self.float_tex(&format!("{prefix}vroughness"), 0.0)?
+            } else {
+                r
+            },
+        ))
+    }
+
+    fn named_rgb(name: &str) -> Rgb {
+        named_spectrum(name)
+            .map(|s| spectrum_to_rgb(&s, SpectrumKind::Unbounded))
+            .expect("pbrt's named metal spectra are built in")
+    }
+
+    /// A material of pbrt-v4's `ty`. `Mix` comes back with placeholder indices: its material
+    /// names are returned beside it for the caller to resolve.
+    pub fn material(&self, ty: &str) -> Result<Converted<MaterialWithNames>, SceneError> {
+        use SpectrumKind::{Albedo, Unbounded};
+        let p = self.params;
+        let remap = || p.bool("remaproughness", true);
+        let m = match ty {
+            "diffuse" => Material::Diffuse {
+                reflectance: self.spectrum_tex("reflectance", Rgb::splat(0.5), Albedo)?,
+            },
+            "conductor" => {
+                let (uroughness, vroughness) = self.roughness("")?;
+                Material::Conductor {
+                    eta: self.spectrum_tex("eta", Self::named_rgb("metal-Cu-eta"), Unbounded)?,
+                    k: self.spectrum_tex("k", Self::named_rgb("metal-Cu-k"), Unbounded)?,
+                    reflectance: self.opt_spectrum_tex("reflectance", Albedo)?,
+                    uroughness,
+                    vroughness,
+                    remap_roughness: remap()?,
+                }
+            }
+            "dielectric" => {
+                let (uroughness, vroughness) = self.roughness("")?;
+                Material::Dielectric {
+                    eta: p.ior("eta", 1.5, self.dir)?,
+                    uroughness,
+                    vroughness,
+                    remap_roughness: remap()?,
+                }
+            }
+            "thindielectric" => Material::ThinDielectric {
+                eta: p.ior("eta", 1.5, self.dir)?,
+            },
+            "diffusetransmission" => Material::DiffuseTransmission {
+                reflectance: self.spectrum_tex("reflectance", Rgb::splat(0.25), Albedo)?,
+                transmittance: self.spectrum_tex("transmittance", Rgb::splat(0.25), Albedo)?,
+                scale: p.float("scale", 1.0)?,
+            },
+            "coateddiffuse" => {
+                let (uroughness, vroughness) = self.roughness("")?;
+                Material::CoatedDiffuse {
+                    reflectance: self.spectrum_tex("reflectance", Rgb::splat(0.5), Albedo)?,
+                    uroughness,
+                    vroughness,
+                    thickness: self.float_tex("thickness", 0.01)?,
+                    eta: p.ior("eta", 1.5, self.dir)?,
+                    albedo: self.spectrum_tex("albedo", Rgb::ZERO, Albedo)?,
+                    g: self.float_tex("g", 0.0)?,
+                    max_depth: p.int_in("maxdepth", 10, 0..=1000)? as u32,
+                    n_samples: p.int_in("nsamples", 1, 1..=1000)? as u32,
+                    remap_roughness: remap()?,
+                }
+            }
+            "coatedconductor" => {
+                let (interface_uroughness, interface_vroughness) = self.roughness("interface.")?;
+                let (conductor_uroughness, conductor_vroughness) = self.roughness("conductor.")?;
+                Material::CoatedConductor {
+                    interface_uroughness,
+                    interface_vroughness,
+                    interface_eta: p.ior("interface.eta", 1.5, self.dir)?,
+                    conductor_eta: self.spectrum_tex(
+                        "conductor.eta",
+                        Self::named_rgb("metal-Cu-eta"),
+                        Unbounded,
+                    )?,
+                    k: self.spectrum_tex(
+                        "conductor.k",
+                        Self::named_rgb("metal-Cu-k"),
+                        Unbounded,
+                    )?,
+                    reflectance: self.opt_spectrum_tex("reflectance", Albedo)?,
+                    conductor_uroughness,
+                    conductor_vroughness,
+                    thickness: self.float_tex("thickness", 0.01)?,
+                    albedo: self.spectrum_tex("albedo", Rgb::ZERO, Albedo)?,
+                    g: self.float_tex("g", 0.0)?,
+                    max_depth: p.int_in("maxdepth", 10, 0..=1000)? as u32,
+                    n_samples: p.int_in("nsamples", 1, 1..=1000)? as u32,
+                    remap_roughness: remap()?,
+                }
+            }
+            "mix" => {
+                let Some((names, loc)) = p.strings("materials")? else {
+                    return Err(SceneError::general(
+                        "material \"mix\" needs \"string materials\" [\"a\" \"b\"]",
+                    ));
+                };
+                if names.len() != 2 {
+                    return Err(SceneError::at(
+                        loc,
+                        format!(
+                            "\"string materials\" of a mix names 2 materials, not {}",
+                            names.len()
+                        ),
+                    ));
+                }
+                let m = Material::Mix {
+                    materials: [0, 0],
+                    amount: self.float_tex("amount", 0.5)?,
+                };
+                return Ok(Converted::Done((m, Some((names, loc)))));
+            }
+            "interface" | "" | "none" => Material::Interface,
+            "measured" | "hair" | "subsurface" => {
+                let m = Material::Diffuse {
+                    reflectance: self.spectrum_tex("reflectance", Rgb::splat(0.5), Albedo)?,
+                };
+                return Ok(Converted::Unsupported(
+                    format!(
+                        "material \"{ty}\" is not supported yet; lancer renders it as \"diffuse\""
+                    ),
+                    Some((m, None)),
+                ));
+            }
+            _ => {
+                return Ok(Converted::Unsupported(
+                    format!("unknown material \"{ty}\"; lancer renders it as \"diffuse\""),
+                    Some((Material::default(), None)),
+                ));
+            }
+        };
+        Ok(Converted::Done((m, None)))
+    }
+
+    fn mapping(&self) -> Result<Option<String>, SceneError> {
+        let p = self.params;
+        let kind = p.string("mapping")?.unwrap_or_else(|| "uv".to_string());
+        Ok((kind != "uv").then(|| {
+            format!("texture mapping \"{kind}\" is not supported yet; lancer uses \"uv\"")
+        }))
+    }
+
+    fn uv_mapping(&self) -> Result<UvMapping, SceneError> {
+        let p = self.params;
+        Ok(UvMapping {
+            su: p.float("uscale", 1.0)?,
+            sv: p.float("vscale", 1.0)?,
+            du: p.float("udelta", 0.0)?,
+            dv: p.float("vdelta", 0.0)?,
+        })
+    }
+
+    /// A float texture of class `class`.
+    pub fn float_texture(&self, class: &str) -> Result<Converted<FloatTexture>, SceneError> {
+        let p = self.params;
+        let t = match class {
+            "constant" => FloatTexture::Constant(p.float("value", 1.0)?),
+            "scale" => FloatTexture::Scale {
+                tex: self.float_tex("tex", 1.0)?,
+                scale: self.float_tex("scale", 1.0)?,
+            },
+            "mix" => FloatTexture::Mix {
+                tex1: self.float_tex("tex1", 0.0)?,
+                tex2: self.float_tex("tex2", 1.0)?,
+                amount: self.float_tex("amount", 0.5)?,
+            },
+            "checkerboard" => {
+                let t = FloatTexture::Checkerboard {
+                    mapping: self.uv_mapping()?,
+                    tex1: self.float_tex("tex1", 1.0)?,
+                    tex2: self.float_tex("tex2", 0.0)?,
+                };
+                if let Some(w) = self.checkerboard_warning()? {
+                    return Ok(Converted::Unsupported(w, Some(t)));
+                }
+                t
+            }
+            _ => {
+                return Ok(Converted::Unsupported(
+                    format!(
+                        "float texture \"{class}\" is not supported yet; lancer uses the constant 1"
+                    ),
+                    Some(FloatTexture::Constant(1.0)),
+                ));
+            }
+        };
+        Ok(Converted::Done(t))
+    }
+
+    fn checkerboard_warning(&self) -> Result<Option<String>, SceneError> {
+        let dim = self.params.int("dimension", 2)?;
+        if dim != 2 {
+            return Ok(Some(format!(
+                "a {dim}D checkerboard is not supported yet; lancer uses the 2D one"
+            )));
+        }
+        self.mapping()
+    }
+
+    /// A spectrum texture of class `class`.
+    pub fn spectrum_texture(&self, class: &str) -> Result<Converted<SpectrumTexture>, SceneError> {
+        use SpectrumKind::Albedo;
+        let t = match class {
+            "constant" => SpectrumTexture::Constant(
+                self.params
+                    .color("value", Albedo, self.dir)?
+                    .unwrap_or(Rgb::ONE),
+            ),
+            "scale" => SpectrumTexture::Scale {
+                tex: self.spectrum_tex("tex", Rgb::ONE, Albedo)?,
+                scale: self.float_tex("scale", 1.0)?,
+            },
+            "mix" => SpectrumTexture::Mix {
+                tex1: self.spectrum_tex("tex1", Rgb::ZERO, Albedo)?,
+                tex2: self.spectrum_tex("tex2", Rgb::ONE, Albedo)?,
+                amount: self.float_tex("amount", 0.5)?,
+            },
+            "checkerboard" => {
+                let t = SpectrumTexture::Checkerboard {
+                    mapping: self.uv_mapping()?,
+                    tex1: self.spectrum_tex("tex1", Rgb::ONE, Albedo)?,
+                    tex2: self.spectrum_tex("tex2", Rgb::ZERO, Albedo)?,
+                };
+                if let Some(w) = self.checkerboard_warning()? {
+                    return Ok(Converted::Unsupported(w, Some(t)));
+                }
+                t
+            }
+            _ => {
+                return Ok(Converted::Unsupported(
+                    format!(
+                        "spectrum texture \"{class}\" is not supported yet; lancer uses a constant grey 0.5"
+                    ),
+                    Some(SpectrumTexture::Constant(Rgb::splat(0.5))),
+                ));
+            }
+        };
+        Ok(Converted::Done(t))
+    }
+
+    /// A shape's geometry (object space) and its `alpha`.
+    pub fn shape(&self, ty: &str) -> Result<Converted<(Geometry, Option<FloatTex>)>, SceneError> {
+        let p = self.params;
+        let positive = |v: f32| v > 0.0;
+        let geometry = match ty {
+            "sphere" => {
+                let radius = p.float_checked("radius", 1.0, "positive", positive)?;
+                Geometry::Sphere {
+                    radius,
+                    z_min: p.float("zmin", -radius)?,
+                    z_max: p.float("zmax", radius)?,
+                    phi_max: p
+                        .float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0)?,
+                }
+            }
+            "disk" => {
+                let radius = p.float_checked("radius", 1.0, "positive", positive)?;
+                Geometry::Disk {
+                    height: p.float("height", 0.0)?,
+                    radius,
+                    inner_radius: p.float_checked(
+                        "innerradius",
+                        0.0,
+                        "at least 0 and less than the radius",
+                        |v| (0.0..radius).contains(&v),
+                    )?,
+                    phi_max: p
+                        .float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0)?,
+                }
+            }
+            "cylinder" => Geometry::Cylinder {
+                radius: p.float_checked("radius", 1.0, "positive", positive)?,
+                z_min: p.float("zmin", -1.0)?,
+                z_max: p.float("zmax", 1.0)?,
+                phi_max: p
+                    .float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0)?,
+            },
+            "plane" => {
+                let n = p.normal("n", Vec3::Z)?;
+                if n == Vec3::ZERO {
+                    let loc = p.location("n").cloned();
+                    return Err(match loc {
+                        Some(l) => SceneError::at(l, "the plane's normal \"n\" is zero"),
+                        None => SceneError::general("the plane's normal \"n\" is zero"),
+                    });
+                }
+                Geometry::Plane {
+                    p: p.point3("p", Vec3::ZERO)?,
+                    n,
+                }
+            }
+            "trianglemesh" => Geometry::TriangleMesh(Arc::new(self.triangle_mesh()?)),
+            "plymesh" | "bilinearmesh" | "loopsubdiv" | "curve" | "cone" | "paraboloid"
+            | "hyperboloid" => {
+                return Ok(Converted::Unsupported(
+                    format!("shape \"{ty}\" is not supported yet; skipped"),
+                    None,
+                ));
+            }
+            _ => {
+                return Ok(Converted::Unsupported(
+                    format!("unknown shape \"{ty}\"; skipped"),
+                    None,
+                ));
+            }
+        };
+        let alpha = match p.float_or_texture("alpha")? {
+            None | Some(FloatParam::Const(1.0)) => None,
+            Some(FloatParam::Const(a)) => Some(FloatTex::Const(a)),
+            Some(FloatParam::Texture(t, loc)) => Some(self.textures.float(&t, &loc)?),
+        };
+        Ok(Converted::Done((geometry, alpha)))
+    }
+
+    /// pbrt's `trianglemesh`: `P`, `indices` (optional for a single triangle), `N`, `uv`.
+    fn triangle_mesh(&self) -> Result<TriangleMesh, SceneError> {
+        let p = self.params;
+        let Some(positions) = p.point3s("P")? else {
+            return Err(SceneError::general(
+                "a \"trianglemesh\" needs vertex positions \"point3 P\"",
+            ));
+        };
+        let p_loc = p.location("P").cloned().expect("given");
+        let indices: Vec<u32> = match p.ints("indices")? {
+            Some((idx, loc)) => {
+                if idx.len() % 3 != 0 {
+                    return Err(SceneError::at(
+                        loc,
+                        format!(
+                            "\"integer indices\" holds {} values, not a multiple of 3",
+                            idx.len()
+                        ),
+                    ));
+                }
+                if let Some(bad) = idx
+                    .iter()
+                    .find(|&&i| i < 0 || i as usize >= positions.len())
+                {
+                    return Err(SceneError::at(
+                        loc,
+                        format!(
+                            "index {bad} in \"integer indices\" is out of range for {} vertices",
+                            positions.len()
+                        ),
+                    ));
+                }
+                idx.into_iter().map(|i| i as u32).collect()
+            }
+            None if positions.len() == 3 => vec![0, 1, 2],
+            None => {
+                return Err(SceneError::at(
+                    p_loc,
+                    "a \"trianglemesh\" with more than 3 vertices needs \"integer indices\"",
+                ));
+            }
+        };
+        let per_vertex = |name: &str, n: usize| -> Result<(), SceneError> {
+            if n != positions.len() {
+                let loc = p.location(name).cloned().expect("given");
+                return Err(SceneError::at(
+                    loc,
+                    format!(
+                        "\"{name}\" has {n} entries for {} vertices",
+                        positions.len()
+                    ),
+                ));
+            }
+            Ok(())
+        };
+        let normals = p.normals("N")?.unwrap_or_default();
+        if !normals.is_empty() {
+            per_vertex("N", normals.len())?;
+        }
+        let uv_name = if p.has("uv") { "uv" } else { "st" };
+        let uvs = p.point2s(uv_name)?.unwrap_or_default();
+        if !uvs.is_empty() {
+            per_vertex(uv_name, uvs.len())?;
+        }
+        Ok(TriangleMesh {
+            positions,
+            normals,
+            uvs,
+            indices,
+            flip_normal: false,
+        })
+    }
+
+    /// The integrator, with pbrt-v4's defaults (`maxdepth` 5).
+    pub fn integrator(&self, ty: &str) -> Result<Converted<IntegratorDesc>, SceneError> {
+        let p = self.params;
+        let max_depth = p.int_in("maxdepth", 5, 0..=100_000)? as u32;
+        let path = || -> Result<IntegratorDesc, SceneError> {
+            Ok(IntegratorDesc::Path {
+                max_depth,
+                regularize: p.bool("regularize", false)?,
+            })
+        };
+        let i = match ty {
+            "whitted" => IntegratorDesc::Whitted { max_depth },
+            "path" | "volpath" => {
+                // The light sampler is lancer's own; pbrt's choice needs no warning.
+                let _ = p.string("lightsampler")?;
+                path()?
+            }
+            "ambientocclusion" => IntegratorDesc::AmbientOcclusion {
+                cos_sample: p.bool("cossample", true)?,
+                max_distance: p.float("maxdistance", f32::INFINITY)?,
+            },
+            "normals" => IntegratorDesc::Normals,
+            "depth" => IntegratorDesc::Depth,
+            "bdpt" | "mlt" | "sppm" | "lightpath" | "randomwalk" | "simplepath"
+            | "simplevolpath" | "aov" => {
+                return Ok(Converted::Unsupported(
+                    format!(
+                        "integrator \"{ty}\" is not supported yet; lancer uses \"path\" with maxdepth {max_depth}"
+                    ),
+                    Some(path()?),
+                ));
+            }
+            _ => {
+                return Ok(Converted::Unsupported(
+                    format!("unknown integrator \"{ty}\"; lancer uses \"path\""),
+                    Some(path()?),
+                ));
+            }
+        };
+        Ok(Converted::Done(i))
+    }
+
+    /// The sampler: its point set and samples per pixel (the seed is read by the caller).
+    pub fn sampler(&self, ty: &str) -> Result<Converted<(SamplerKind, u32)>, SceneError> {
+        let p = self.params;
+        let spp =
+            || -> Result<u32, SceneError> { Ok(p.int_in("pixelsamples", 16, 1..=1 << 24)? as u32) };
+        let s = match ty {
+            "independent" => (SamplerKind::Independent, spp()?),
+            "stratified" => {
+                let x = p.int_in("xsamples", 4, 1..=4096)? as u32;
+                let y = p.int_in("ysamples", 4, 1..=4096)? as u32;
+                let jitter = p.bool("jitter", true)?;
+                (
+                    SamplerKind::Stratified {
+                        xsamples: x,
+                        ysamples: y,
+                        jitter,
+                    },
+                    x * y,
+                )
+            }
+            "sobol" | "zsobol" | "paddedsobol" => {
+                let _ = p.string("randomization")?;
+                (SamplerKind::Sobol, spp()?)
+            }
+            "halton" | "pmj02bn" => {
+                let _ = p.string("randomization")?;
+                return Ok(Converted::Unsupported(
+                    format!("sampler \"{ty}\" is not supported yet; lancer uses \"zsobol\""),
+                    Some((SamplerKind::Sobol, spp()?)),
+                ));
+            }
+            _ => {
+                return Ok(Converted::Unsupported(
+                    format!("unknown sampler \"{ty}\"; lancer uses \"zsobol\""),
+                    Some((SamplerKind::Sobol, spp()?)),
+                ));
+            }
+        };
+        Ok(Converted::Done(s))
+    }
+
+    /// The pixel filter, with pbrt-v4's default radii.
+    pub fn filter(&self, ty: &str) -> Result<Converted<FilterDesc>, SceneError> {
+        let p = self.params;
+        let radius = |d: f32| -> Result<[f32; 2], SceneError> {
+            let ok = |v: f32| v > 0.0 && v <= 64.0;
+            Ok([
+                p.float_checked("xradius", d, "in (0, 64]", ok)?,
+                p.float_checked("yradius", d, "in (0, 64]", ok)?,
+            ])
+        };
+        let f = match ty {
+            "box" => FilterDesc::Box {
+                radius: radius(0.5)?,
+            },
+            "gaussian" => FilterDesc::Gaussian {
+                radius: radius(1.5)?,
+                sigma: p.float_checked("sigma", 0.5, "positive", |v| v > 0.0)?,
+            },
+            "triangle" => FilterDesc::Triangle {
+                radius: radius(2.0)?,
+            },
+            "mitchell" => FilterDesc::Mitchell {
+                radius: radius(2.0)?,
+                b: p.float("B", 1.0 / 3.0)?,
+                c: p.float("C", 1.0 / 3.0)?,
+            },
+            "sinc" | "lanczos" => FilterDesc::Lanczos {
+                radius: radius(4.0)?,
+                tau: p.float_checked("tau", 3.0, "positive", |v| v > 0.0)?,
+            },
+            _ => {
+                return Ok(Converted::Unsupported(
+                    format!("unknown pixel filter \"{ty}\"; lancer uses \"gaussian\""),
+                    Some(FilterDesc::default()),
+                ));
+            }
+        };
+        Ok(Converted::Done(f))
+    }
+}

@@ -1,0 +1,770 @@
+//! pbrt's typed parameter lists: `"float radius" [1]  "rgb reflectance" [0.8 0.3 0.2]`.
+//!
+//! Values are checked against their declared type when read (an `integer` must be a whole
+//! number, an `rgb` three numbers). Directives then look parameters up by name and type; a
+//! parameter found under the right name but the wrong type is an error, one never looked up is
+//! reported as a warning (lancer does not use it).
+
+use crate::error::{Location, SceneError, Warning};
+use lancer::math::{Rgb, Vec2, Vec3};
+use lancer::spectrum::{Spectrum, SpectrumKind, parse_spd, spectrum_to_rgb};
+use std::cell::Cell;
+use std::path::Path;
+
+/// The declared type of a parameter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ParamType {
+    /// `float`
+    Float,
+    /// `integer`
+    Integer,
+    /// `bool`
+    Bool,
+    /// `string`
+    String,
+    /// `texture` (the name of a texture)
+    Texture,
+    /// `point2`
+    Point2,
+    /// `vector2`
+    Vector2,
+    /// `point3` (pbrt-v3: `point`)
+    Point3,
+    /// `vector3` (pbrt-v3: `vector`)
+    Vector3,
+    /// `normal` or `normal3`
+    Normal,
+    /// `rgb` (pbrt-v3: `color`)
+    Rgb,
+    /// `spectrum`: wavelength–value pairs, a named spectrum or a file
+    Spectrum,
+    /// `blackbody`: a temperature in kelvin
+    Blackbody,
+}
+
+impl ParamType {
+    fn parse(s: &str) -> Option<ParamType> {
+        Some(match s {
+            "float" => ParamType::Float,
+            "integer" => ParamType::Integer,
+            "bool" => ParamType::Bool,
+            "string" => ParamType::String,
+            "texture" => ParamType::Texture,
+            "point2" => ParamType::Point2,
+            "vector2" => ParamType::Vector2,
+            "point3" | "point" => ParamType::Point3,
+            "vector3" | "vector" => ParamType::Vector3,
+            "normal" | "normal3" => ParamType::Normal,
+            "rgb" | "color" => ParamType::Rgb,
+            "spectrum" => ParamType::Spectrum,
+            "blackbody" => ParamType::Blackbody,
+            _ => return None,
+        })
+    }
+
+    /// The name pbrt-v4 uses in files.
+    pub fn name(self) -> &'static str {
+        match self {
+            ParamType::Float => "float",
+            ParamType::Integer => "integer",
+            ParamType::Bool => "bool",
+            ParamType::String => "string",
+            ParamType::Texture => "texture",
+            ParamType::Point2 => "point2",
+            ParamType::Vector2 => "vector2",
+            ParamType::Point3 => "point3",
+            ParamType::Vector3 => "vector3",
+            ParamType::Normal => "normal",
+            ParamType::Rgb => "rgb",
+            ParamType::Spectrum => "spectrum",
+            ParamType::Blackbody => "blackbody",
+        }
+    }
+}
+
+/// One value as written, before the parameter's type gives it a meaning.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RawValue {
+    /// A number, and whether it is written as an integer.
+    Number(f64, bool),
+    /// A quoted string.
+    Str(String),
+    /// A bare `true` or `false`.
+    Bool(bool),
+}
+
+/// A parameter's values, typed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Values {
+    /// `float`, `point*`, `vector*`, `normal`, `rgb`, `blackbody`, numeric `spectrum`.
+    Numbers(Vec<f32>),
+    /// `integer`.
+    Integers(Vec<i32>),
+    /// `bool`.
+    Bools(Vec<bool>),
+    /// `string`, `texture`, named or file `spectrum`.
+    Strings(Vec<String>),
+}
+
+impl Values {
+    fn len(&self) -> usize {
+        match self {
+            Values::Numbers(v) => v.len(),
+            Values::Integers(v) => v.len(),
+            Values::Bools(v) => v.len(),
+            Values::Strings(v) => v.len(),
+        }
+    }
+}
+
+/// One `"type name" value(s)` pair.
+#[derive(Clone, Debug)]
+pub struct Param {
+    /// Declared type.
+    pub ty: ParamType,
+    /// Name.
+    pub name: String,
+    /// Where its declaration string starts.
+    pub loc: Location,
+    /// Values.
+    pub values: Values,
+    used: Cell<bool>,
+}
+
+impl Param {
+    /// Builds a parameter from its declaration string (`"float radius"`) and raw values, checking
+    /// the values against the type.
+    pub fn new(
+        decl: &str,
+        loc: Location,
+        raw: Vec<(RawValue, Location)>,
+    ) -> Result<Param, SceneError> {
+        let mut words = decl.split_whitespace();
+        let (Some(ty_name), Some(name), None) = (words.next(), words.next(), words.next()) else {
+            return Err(SceneError::at(
+                loc,
+                format!("\"{decl}\" is not a parameter declaration (expected \"type name\")"),
+            ));
+        };
+        let ty = ParamType::parse(ty_name).ok_or_else(|| {
+            SceneError::at(
+                loc.clone(),
+                format!(
+                    "unknown parameter type '{ty_name}' (expected float, integer, bool, string, \
+                     texture, point2, vector2, point3, vector3, normal, rgb, spectrum or blackbody)"
+                ),
+            )
+        })?;
+        if raw.is_empty() {
+            return Err(SceneError::at(
+                loc,
+                format!("parameter \"{decl}\" has no value"),
+            ));
+        }
+        let what = |v: &RawValue| match v {
+            RawValue::Number(t, _) => format!("the number {t}"),
+            RawValue::Str(s) => format!("the string \"{s}\""),
+            RawValue::Bool(b) => format!("{b}"),
+        };
+        let wrong = |v: &RawValue, l: &Location, expected: &str| {
+            SceneError::at(
+                l.clone(),
+                format!("parameter \"{decl}\" expects {expected}, found {}", what(v)),
+            )
+        };
+        let numbers = |raw: &[(RawValue, Location)]| -> Result<Vec<f32>, SceneError> {
+            raw.iter()
+                .map(|(v, l)| match v {
+                    RawValue::Number(t, _) => Ok(*t as f32),
+                    _ => Err(wrong(v, l, "numbers")),
+                })
+                .collect()
+        };
+        let values = match ty {
+            ParamType::Integer => Values::Integers(
+                raw.iter()
+                    .map(|(v, l)| match v {
+                        RawValue::Number(t, true) if t.abs() <= i32::MAX as f64 => Ok(*t as i32),
+                        RawValue::Number(t, _) => Err(SceneError::at(
+                            l.clone(),
+                            format!("parameter \"{decl}\" expects integers, found {t}"),
+                        )),
+                        _ => Err(wrong(v, l, "integers")),
+                    })
+                    .collect::<Result<_, _>>()?,
+            ),
+            ParamType::Bool => Values::Bools(
+                raw.iter()
+                    .map(|(v, l)| match v {
+                        RawValue::Bool(b) => Ok(*b),
+                        RawValue::Str(s) if s == "true" => Ok(true),
+                        RawValue::Str(s) if s == "false" => Ok(false),
+                        _ => Err(wrong(v, l, "true or false")),
+                    })
+                    .collect::<Result<_, _>>()?,
+            ),
+            ParamType::String | ParamType::Texture => Values::Strings(
+                raw.iter()
+                    .map(|(v, l)| match v {
+                        RawValue::Str(s) => Ok(s.clone()),
+                        _ => Err(wrong(v, l, "quoted strings")),
+                    })
+                    .collect::<Result<_, _>>()?,
+            ),
+            ParamType::Spectrum if matches!(raw[0].0, RawValue::Str(_)) => {
+                if raw.len() != 1 {
+                    return Err(SceneError::at(
+                        raw[1].1.clone(),
+                        format!(
+                            "parameter \"{decl}\" takes one spectrum name or file, or \
+                             wavelength–value pairs"
+                        ),
+                    ));
+                }
+                let RawValue::Str(s) = &raw[0].0 else {
+                    unreachable!("checked above")
+                };
+                Values::Strings(vec![s.clone()])
+            }
+            _ => Values::Numbers(numbers(&raw)?),
+        };
+        let n = values.len();
+        let arity_error = |expected: &str| {
+            SceneError::at(
+                loc.clone(),
+                format!("parameter \"{decl}\" needs {expected}, found {n} value(s)"),
+            )
+        };
+        match ty {
+            ParamType::Point2 | ParamType::Vector2 if n % 2 != 0 => {
+                return Err(arity_error("pairs of numbers"));
+            }
+            ParamType::Point3 | ParamType::Vector3 | ParamType::Normal if n % 3 != 0 => {
+                return Err(arity_error("triples of numbers"));
+            }
+            ParamType::Rgb if n != 3 => return Err(arity_error("3 numbers")),
+            ParamType::Blackbody if n != 1 && n != 2 => {
+                return Err(arity_error("a temperature in kelvin"));
+            }
+            ParamType::Spectrum
+                if matches!(values, Values::Numbers(_)) && (n < 2 || n % 2 != 0) =>
+            {
+                return Err(arity_error("wavelength–value pairs"));
+            }
+            _ => {}
+        }
+        Ok(Param {
+            ty,
+            name: name.to_string(),
+            loc,
+            values,
+            used: Cell::new(false),
+        })
+    }
+
+    /// `"type name"`, as written in files.
+    pub fn decl(&self) -> String {
+        format!("\"{} {}\"", self.ty.name(), self.name)
+    }
+
+    fn numbers(&self) -> &[f32] {
+        match &self.values {
+            Values::Numbers(v) => v,
+            _ => &[],
+        }
+    }
+
+    fn error(&self, message: impl Into<String>) -> SceneError {
+        SceneError::at(self.loc.clone(), message)
+    }
+}
+
+/// The reading of a colour parameter: a constant or the name of a texture.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ColorParam {
+    /// A constant colour.
+    Const(Rgb),
+    /// `"texture name" "texname"`.
+    Texture(String, Location),
+}
+
+/// The reading of a float parameter: a constant or the name of a texture.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FloatParam {
+    /// A constant.
+    Const(f32),
+    /// `"texture name" "texname"`.
+    Texture(String, Location),
+}
+
+/// A directive's parameters.
+#[derive(Clone, Debug, Default)]
+pub struct ParamList {
+    params: Vec<Param>,
+}
+
+impl ParamList {
+    /// A list of parsed parameters. A name given twice is an error.
+    pub fn new(params: Vec<Param>) -> Result<ParamList, SceneError> {
+        for (i, p) in params.iter().enumerate() {
+            if let Some(q) = params[..i].iter().find(|q| q.name == p.name) {
+                return Err(p.error(format!(
+                    "parameter '{}' is given twice (first at line {})",
+                    p.name, q.loc.line
+                )));
+            }
+        }
+        Ok(ParamList { params })
+    }
+
+    /// Adds `defaults` (pbrt's `Attribute` values) for the names this list does not give.
+    pub fn with_defaults(mut self, defaults: &[Param]) -> ParamList {
+        for d in defaults {
+            if !self.params.iter().any(|p| p.name == d.name) {
+                let mut d = d.clone();
+                d.used = Cell::new(false);
+                self.params.push(d);
+            }
+        }
+        self
+    }
+
+    /// The parameters, in order.
+    pub fn iter(&self) -> impl Iterator<Item = &Param> {
+        self.params.iter()
+    }
+
+    /// The parameter called `name`, if its type is one of `types`: marks it used. A parameter of
+    /// that name but another type is an error.
+    pub fn find(&self, name: &str, types: &[ParamType]) -> Result<Option<&Param>, SceneError> {
+        let Some(p) = self.params.iter().find(|p| p.name == name) else {
+            return Ok(None);
+        };
+        if !types.contains(&p.ty) {
+            let expected: Vec<_> = types.iter().map(|t| t.name()).collect();
+            return Err(p.error(format!(
+                "parameter '{name}' must be of type {}, not {}",
+                expected.join(" or "),
+                p.ty.name()
+            )));
+        }
+        p.used.set(true);
+        Ok(Some(p))
+    }
+
+    /// True if a parameter called `name` is given (whatever its type); does not mark it used.
+    pub fn has(&self, name: &str) -> bool {
+        self.params.iter().any(|p| p.name == name)
+    }
+
+    /// Where the parameter `name` is declared, if given.
+    pub fn location(&self, name: &str) -> Option<&Location> {
+        self.params.iter().find(|p| p.name == name).map(|p| &p.loc)
+    }
+
+    fn one_number(&self, name: &str, ty: ParamType) -> Result<Option<(f32, &Param)>, SceneError> {
+        let Some(p) = self.find(name, &[ty])? else {
+            return Ok(None);
+        };
+        match p.numbers() {
+            [v] => Ok(Some((*v, p))),
+            vs => Err(p.error(format!(
+                "parameter {} takes one value, found {}",
+                p.decl(),
+                vs.len()
+            ))),
+        }
+    }
+
+    /// A `float`, or `default`.
+    pub fn float(&self, name: &str, default: f32) -> Result<f32, SceneError> {
+        Ok(self
+            .one_number(name, ParamType::Float)?
+            .map_or(default, |v| v.0))
+    }
+
+    /// A `float` checked by `ok` (which says what is required when it fails), or `default`.
+    pub fn float_checked(
+        &self,
+        name: &str,
+        default: f32,
+        requirement: &str,
+        ok: impl Fn(f32) -> bool,
+    ) -> Result<f32, SceneError> {
+        match self.one_number(name, ParamType::Float)? {
+            Some((v, _)) if ok(v) => Ok(v),
+            Some((v, p)) => Err(p.error(format!("{} must be {requirement}, not {v}", p.decl()))),
+            None => Ok(default),
+        }
+    }
+
+    /// `float` values (any count).
+    pub fn floats(&self, name: &str) -> Result<Option<Vec<f32>>, SceneError> {
+        Ok(self
+            .find(name, &[ParamType::Float])?
+            .map(|p| p.numbers().to_vec()))
+    }
+
+    /// An `integer`, or `default`.
+    pub fn int(&self, name: &str, default: i32) -> Result<i32, SceneError> {
+        let Some(p) = self.find(name, &[ParamType::Integer])? else {
+            return Ok(default);
+        };
+        match &p.values {
+            Values::Integers(v) if v.len() == 1 => Ok(v[0]),
+            v => Err(p.error(format!(
+                "parameter {} takes one value, found {}",
+                p.decl(),
+                v.len()
+            ))),
+        }
+    }
+
+    /// An `integer` within `range`, or `default`.
+    pub fn int_in(
+        &self,
+        name: &str,
+        default: i32,
+        range: std::ops::RangeInclusive<i32>,
+    ) -> Result<i32, SceneError> {
+        let v = self.int(name, default)?;
+        if !range.contains(&v) {
+            let p = self.find(name, &[ParamType::Integer])?.expect("given");
+            return Err(p.error(format!(
+                "{} must be between {} and {}, not {v}",
+                p.decl(),
+                range.start(),
+                range.end()
+            )));
+        }
+        Ok(v)
+    }
+
+    /// `integer` values (any count).
+    pub fn ints(&self, name: &str) -> Result<Option<(Vec<i32>, Location)>, SceneError> {
+        Ok(self
+            .find(name, &[ParamType::Integer])?
+            .map(|p| match &p.values {
+                Values::Integers(v) => (v.clone(), p.loc.clone()),
+                _ => (Vec::new(), p.loc.clone()),
+            }))
+    }
+
+    /// A `bool`, or `default`.
+    pub fn bool(&self, name: &str, default: bool) -> Result<bool, SceneError> {
+        let Some(p) = self.find(name, &[ParamType::Bool])? else {
+            return Ok(default);
+        };
+        match &p.values {
+            Values::Bools(v) if v.len() == 1 => Ok(v[0]),
+            v => Err(p.error(format!(
+                "parameter {} takes one value, found {}",
+                p.decl(),
+                v.len()
+            ))),
+        }
+    }
+
+    /// A `string`, if given.
+    pub fn string(&self, name: &str) -> Result<Option<String>, SceneError> {
+        self.string_of(name, ParamType::String)
+    }
+
+    fn string_of(&self, name: &str, ty: ParamType) -> Result<Option<String>, SceneError> {
+        let Some(p) = self.find(name, &[ty])? else {
+            return Ok(None);
+        };
+        match &p.values {
+            Values::Strings(v) if v.len() == 1 => Ok(Some(v[0].clone())),
+            v => Err(p.error(format!(
+                "parameter {} takes one value, found {}",
+                p.decl(),
+                v.len()
+            ))),
+        }
+    }
+
+    /// `string` values (any count), with where they are declared.
+    pub fn strings(&self, name: &str) -> Result<Option<(Vec<String>, Location)>, SceneError> {
+        Ok(self
+            .find(name, &[ParamType::String])?
+            .map(|p| match &p.values {
+                Values::Strings(v) => (v.clone(), p.loc.clone()),
+                _ => (Vec::new(), p.loc.clone()),
+            }))
+    }
+
+    fn vec3s(&self, name: &str, types: &[ParamType]) -> Result<Option<Vec<Vec3>>, SceneError> {
+        Ok(self.find(name, types)?.map(|p| {
+            p.numbers()
+                .chunks_exact(3)
+                .map(|c| Vec3::new(c[0], c[1], c[2]))
+                .collect()
+        }))
+    }
+
+    fn one_vec3(&self, name: &str, types: &[ParamType]) -> Result<Option<Vec3>, SceneError> {
+        match self.vec3s(name, types)? {
+            None => Ok(None),
+            Some(v) if v.len() == 1 => Ok(Some(v[0])),
+            Some(v) => {
+                let p = self.find(name, types)?.expect("given");
+                Err(p.error(format!(
+                    "parameter {} takes one triple, found {}",
+                    p.decl(),
+                    v.len()
+                )))
+            }
+        }
+    }
+
+    /// A `point3`, or `default`.
+    pub fn point3(&self, name: &str, default: Vec3) -> Result<Vec3, SceneError> {
+        Ok(self
+            .one_vec3(name, &[ParamType::Point3])?
+            .unwrap_or(default))
+    }
+
+    /// A `normal`, or `default`.
+    pub fn normal(&self, name: &str, default: Vec3) -> Result<Vec3, SceneError> {
+        Ok(self
+            .one_vec3(name, &[ParamType::Normal])?
+            .unwrap_or(default))
+    }
+
+    /// `point3` values.
+    pub fn point3s(&self, name: &str) -> Result<Option<Vec<Vec3>>, SceneError> {
+        self.vec3s(name, &[ParamType::Point3])
+    }
+
+    /// `normal` values.
+    pub fn normals(&self, name: &str) -> Result<Option<Vec<Vec3>>, SceneError> {
+        self.vec3s(name, &[ParamType::Normal])
+    }
+
+    /// `point2` values (pbrt-v3 also wrote them as `float`).
+    pub fn point2s(&self, name: &str) -> Result<Option<Vec<Vec2>>, SceneError> {
+        let Some(p) = self.find(name, &[ParamType::Point2, ParamType::Float])? else {
+            return Ok(None);
+        };
+        let n = p.numbers();
+        if n.len() % 2 != 0 {
+            return Err(p.error(format!(
+                "parameter {} needs pairs of numbers, found {}",
+                p.decl(),
+                n.len()
+            )));
+        }
+        Ok(Some(
+            n.chunks_exact(2).map(|c| Vec2::new(c[0], c[1])).collect(),
+        ))
+    }
+
+    /// A colour given as `rgb`, `spectrum` (pairs, a named spectrum or an `.spd` file relative
+    /// to `dir`) or `blackbody`, reduced to linear RGB as `kind` asks.
+    pub fn color(
+        &self,
+        name: &str,
+        kind: SpectrumKind,
+        dir: &Path,
+    ) -> Result<Option<Rgb>, SceneError> {
+        let Some(p) = self.find(
+            name,
+            &[ParamType::Rgb, ParamType::Spectrum, ParamType::Blackbody],
+        )?
+        else {
+            return Ok(None);
+        };
+        let rgb = match (p.ty, &p.values) {
+            (ParamType::Rgb, Values::Numbers(v)) => {
+                let c = Rgb::new(v[0], v[1], v[2]);
+                if kind != SpectrumKind::Unbounded && c.min_element() < 0.0 {
+                    return Err(p.error(format!(
+                        "{} has a negative component: {} {} {}",
+                        p.decl(),
+                        c.x,
+                        c.y,
+                        c.z
+                    )));
+                }
+                c
+            }
+            (ParamType::Blackbody, Values::Numbers(v)) => {
+                if v[0] <= 0.0 {
+                    return Err(p.error(format!(
+                        "{} needs a positive temperature, not {}",
+                        p.decl(),
+                        v[0]
+                    )));
+                }
+                // pbrt-v4's blackbody is normalised to a peak of 1; pbrt-v3 wrote a second
+                // value, a scale.
+                let scale = v.get(1).copied().unwrap_or(1.0);
+                spectrum_to_rgb(&Spectrum::Blackbody { kelvin: v[0] }, kind) * scale
+            }
+            (ParamType::Spectrum, Values::Numbers(v)) => {
+                let (lambda, values): (Vec<f32>, Vec<f32>) =
+                    v.chunks_exact(2).map(|c| (c[0], c[1])).unzip();
+                if lambda.windows(2).any(|w| w[1] <= w[0]) {
+                    return Err(p.error(format!("{}: wavelengths must increase", p.decl())));
+                }
+                spectrum_to_rgb(&Spectrum::PiecewiseLinear { lambda, values }, kind)
+            }
+            (ParamType::Spectrum, Values::Strings(v)) => {
+                let s = named_or_file_spectrum(&v[0], dir).map_err(|m| p.error(m))?;
+                spectrum_to_rgb(&s, kind)
+            }
+            _ => unreachable!("types checked by find"),
+        };
+        Ok(Some(rgb))
+    }
+
+    /// An index of refraction: a `float`, or a `spectrum` (pairs, a named glass, a file)
+    /// sampled at [`lancer::spectrum::IOR_WAVELENGTH`], as lancer does not render dispersion.
+    pub fn ior(&self, name: &str, default: f32, dir: &Path) -> Result<f32, SceneError> {
+        let Some(p) = self.find(name, &[ParamType::Float, ParamType::Spectrum])? else {
+            return Ok(default);
+        };
+        let lambda = lancer::spectrum::IOR_WAVELENGTH;
+        let eta = match &p.values {
+            Values::Numbers(v) if p.ty == ParamType::Float => match v.as_slice() {
+                [eta] => *eta,
+                _ => return Err(p.error(format!("{} takes one value", p.decl()))),
+            },
+            Values::Numbers(v) => {
+                let (lambda_s, values) = v.chunks_exact(2).map(|c| (c[0], c[1])).unzip();
+                Spectrum::PiecewiseLinear {
+                    lambda: lambda_s,
+                    values,
+                }
+                .eval(lambda)
+            }
+            Values::Strings(v) => match lancer::spectrum::named_ior(&v[0]) {
+                Some(eta) => eta,
+                None => named_or_file_spectrum(&v[0], dir)
+                    .map_err(|m| p.error(m))?
+                    .eval(lambda),
+            },
+            _ => unreachable!("types checked by find"),
+        };
+        if !(eta.is_finite() && eta > 0.0) {
+            return Err(p.error(format!(
+                "{} must be a positive index of refraction, not {eta}",
+                p.decl()
+            )));
+        }
+        Ok(eta)
+    }
+
+    /// A colour or a texture name.
+    pub fn color_or_texture(
+        &self,
+        name: &str,
+        kind: SpectrumKind,
+        dir: &Path,
+    ) -> Result<Option<ColorParam>, SceneError> {
+        if let Some(p) = self.params.iter().find(|p| p.name == name)
+            && p.ty == ParamType::Texture
+        {
+            let t = self.string_of(name, ParamType::Texture)?.expect("given");
+            return Ok(Some(ColorParam::Texture(t, p.loc.clone())));
+        }
+        Ok(self.color(name, kind, dir)?.map(ColorParam::Const))
+    }
+
+    /// A float or a texture name.
+    pub fn float_or_texture(&self, name: &str) -> Result<Option<FloatParam>, SceneError> {
+        if let Some(p) = self.params.iter().find(|p| p.name == name)
+            && p.ty == ParamType::Texture
+        {
+            let t = self.string_of(name, ParamType::Texture)?.expect("given");
+            return Ok(Some(FloatParam::Texture(t, p.loc.clone())));
+        }
+        Ok(self
+            .one_number(name, ParamType::Float)?
+            .map(|v| FloatParam::Const(v.0)))
+    }
+
+    /// Warnings for every parameter nobody looked up: lancer ignores them.
+    pub fn report_unused(&self, what: &str, warnings: &mut Vec<Warning>) {
+        for p in self.params.iter().filter(|p| !p.used.get()) {
+            warnings.push(Warning {
+                location: p.loc.clone(),
+                message: format!(
+                    "parameter {} of {what} is not used by lancer; ignored",
+                    p.decl()
+                ),
+            });
+        }
+    }
+}
+
+/// A spectrum named in a scene: one of pbrt's named spectra, or an `.spd` file (relative to
+/// `dir`).
+fn named_or_file_spectrum(name: &str, dir: &Path) -> Result<Spectrum, String> {
+    if let Some(s) = lancer::spectrum::named_spectrum(name) {
+        return Ok(s);
+    }
+    let path = dir.join(name);
+    match std::fs::read_to_string(&path) {
+        Ok(text) => parse_spd(&text).map_err(|e| format!("spectrum file {}: {e}", path.display())),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Err(format!(
+            "'{name}' is neither a named spectrum nor a spectrum file ({} not found)",
+            path.display()
+        )),
+        Err(e) => Err(format!("cannot read spectrum file {}: {e}", path.display())),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::Arc;
+
+    fn loc() -> Location {
+        Location {
+            file: Arc::from("t.pbrt"),
+            line: 1,
+            col: 1,
+        }
+    }
+
+    fn num(t: &str) -> (RawValue, Location) {
+        let integral = !t.contains(['.', 'e']);
+        (RawValue::Number(t.parse().unwrap(), integral), loc())
+    }
+
+    #[test]
+    fn types_are_checked_when_read() {
+        assert!(Param::new("integer n", loc(), vec![num("1.5")]).is_err());
+        assert!(Param::new("integer n", loc(), vec![num("3")]).is_ok());
+        assert!(Param::new("rgb c", loc(), vec![num("1"), num("2")]).is_err());
+        assert!(Param::new("floot x", loc(), vec![num("1")]).is_err());
+        assert!(Param::new("float", loc(), vec![num("1")]).is_err());
+        assert!(Param::new("float x", loc(), vec![]).is_err());
+        assert!(Param::new("point3 p", loc(), vec![num("1"), num("2")]).is_err());
+        assert!(Param::new("bool b", loc(), vec![(RawValue::Str("true".into()), loc())]).is_ok());
+    }
+
+    #[test]
+    fn lookups_check_types_and_track_use() {
+        let list = ParamList::new(vec![
+            Param::new("float radius", loc(), vec![num("2")]).unwrap(),
+            Param::new("integer n", loc(), vec![num("2")]).unwrap(),
+            Param::new("float unused", loc(), vec![num("2")]).unwrap(),
+        ])
+        .unwrap();
+        assert_eq!(list.float("radius", 1.0).unwrap(), 2.0);
+        assert_eq!(list.float("zmin", -1.0).unwrap(), -1.0);
+        assert!(list.float("n", 0.0).is_err());
+        assert_eq!(list.int("n", 0).unwrap(), 2);
+        let mut w = Vec::new();
+        list.report_unused("Shape \"sphere\"", &mut w);
+        assert_eq!(w.len(), 1);
+        assert!(
+            w[0].message.contains("\"float unused\""),
+            "{}",
+            w[0].message
+        );
+    }
+}

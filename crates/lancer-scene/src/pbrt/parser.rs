@@ -1,0 +1,693 @@
+//! The pbrt parser: tokens → directives, one at a time, with `Include` and `Import` followed
+//! into the named files (relative to the including file).
+//!
+//! The parser knows every directive of pbrt-v4 (and pbrt-v3's `TransformBegin`/`End`,
+//! `WorldEnd`) and the shape of its arguments; what the directives *mean* is the builder's
+//! business ([`super::builder`]).
+
+use super::lexer::{Lexer, Token, TokenKind, decode_utf8};
+use super::params::{Param, ParamList, RawValue};
+use crate::error::{Location, SceneError};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// Deepest chain of `Include`s accepted (a file that includes itself is caught earlier).
+pub const MAX_INCLUDE_DEPTH: usize = 32;
+
+/// A directive with its arguments.
+#[derive(Debug)]
+pub enum Directive {
+    /// `Identity`
+    Identity,
+    /// `Translate dx dy dz`
+    Translate([f32; 3]),
+    /// `Scale sx sy sz`
+    Scale([f32; 3]),
+    /// `Rotate angle x y z`
+    Rotate([f32; 4]),
+    /// `LookAt ex ey ez lx ly lz ux uy uz`
+    LookAt([f32; 9]),
+    /// `Transform m00 … m33` (column-major)
+    Transform([f32; 16]),
+    /// `ConcatTransform m00 … m33` (column-major)
+    ConcatTransform([f32; 16]),
+    /// `CoordinateSystem "name"`
+    CoordinateSystem(String),
+    /// `CoordSysTransform "name"`
+    CoordSysTransform(String),
+    /// `ActiveTransform StartTime|EndTime|All`
+    ActiveTransform(String),
+    /// `TransformTimes start end`
+    TransformTimes([f32; 2]),
+    /// `ReverseOrientation`
+    ReverseOrientation,
+    /// `AttributeBegin`
+    AttributeBegin,
+    /// `AttributeEnd`
+    AttributeEnd,
+    /// `TransformBegin` (pbrt-v3)
+    TransformBegin,
+    /// `TransformEnd` (pbrt-v3)
+    TransformEnd,
+    /// `Attribute "target" params`
+    Attribute(String, ParamList),
+    /// `WorldBegin`
+    WorldBegin,
+    /// `WorldEnd` (pbrt-v3)
+    WorldEnd,
+    /// `Option params`
+    Option(ParamList),
+    /// `ColorSpace "name"`
+    ColorSpace(String),
+    /// `Camera "type" params`
+    Camera(String, ParamList),
+    /// `Film "type" params`
+    Film(String, ParamList),
+    /// `Sampler "type" params`
+    Sampler(String, ParamList),
+    /// `PixelFilter "type" params`
+    PixelFilter(String, ParamList),
+    /// `Integrator "type" params`
+    Integrator(String, ParamList),
+    /// `Accelerator "type" params`
+    Accelerator(String, ParamList),
+    /// `MakeNamedMedium "name" params`
+    MakeNamedMedium(String, ParamList),
+    /// `MediumInterface "inside" ["outside"]`
+    MediumInterface(String, String),
+    /// `Material "type" params`
+    Material(String, ParamList),
+    /// `MakeNamedMaterial "name" params`
+    MakeNamedMaterial(String, ParamList),
+    /// `NamedMaterial "name"`
+    NamedMaterial(String),
+    /// `Texture "name" "type" "class" params`
+    Texture(String, String, String, ParamList),
+    /// `LightSource "type" params`
+    LightSource(String, ParamList),
+    /// `AreaLightSource "type" params`
+    AreaLightSource(String, ParamList),
+    /// `Shape "type" params`
+    Shape(String, ParamList),
+    /// `ObjectBegin "name"`
+    ObjectBegin(String),
+    /// `ObjectEnd`
+    ObjectEnd,
+    /// `ObjectInstance "name"`
+    ObjectInstance(String),
+}
+
+/// A directive, where it starts, and the folder of its file (for relative file names).
+#[derive(Debug)]
+pub struct Located {
+    /// The directive.
+    pub directive: Directive,
+    /// Where its name starts.
+    pub loc: Location,
+    /// The folder of the file it is in.
+    pub dir: Arc<Path>,
+}
+
+struct Source {
+    lexer: Lexer,
+    dir: Arc<Path>,
+    /// Canonical path, to catch a file that includes itself.
+    canonical: Option<PathBuf>,
+    /// A token read ahead.
+    peeked: Option<Token>,
+}
+
+/// Reads directives from a scene file and the files it includes.
+pub struct Parser {
+    stack: Vec<Source>,
+    /// Every file's text, by the name used in locations (for error excerpts).
+    sources: HashMap<Arc<str>, Arc<str>>,
+}
+
+/// Reads a file as UTF-8 text; `at` is where it was asked for (an `Include`), if anywhere.
+fn read_text(path: &Path, name: &Arc<str>, at: Option<&Location>) -> Result<String, SceneError> {
+    let bytes = std::fs::read(path).map_err(|e| {
+        let what = if at.is_some() {
+            "cannot read included file"
+        } else {
+            "cannot read scene"
+        };
+        let message = format!("{what} {}: {}", path.display(), io_reason(&e));
+        match at {
+            Some(l) => SceneError::at(l.clone(), message),
+            None => SceneError::general(message),
+        }
+    })?;
+    decode_utf8(&bytes, name)
+}
+
+/// An I/O error in a few words.
+fn io_reason(e: &std::io::Error) -> String {
+    match e.kind() {
+        std::io::ErrorKind::NotFound => "no such file".to_string(),
+        std::io::ErrorKind::PermissionDenied => "permission denied".to_string(),
+        std::io::ErrorKind::IsADirectory => "it is a folder".to_string(),
+        _ => e.to_string(),
+    }
+}
+
+const DIRECTIVES: &[&str] = &[
+    "Accelerator",
+    "ActiveTransform",
+    "AreaLightSource",
+    "Attribute",
+    "AttributeBegin",
+    "AttributeEnd",
+    "Camera",
+    "ColorSpace",
+    "ConcatTransform",
+    "CoordinateSystem",
+    "CoordSysTransform",
+    "Film",
+    "Identity",
+    "Import",
+    "Include",
+    "Integrator",
+    "LightSource",
+    "LookAt",
+    "MakeNamedMaterial",
+    "MakeNamedMedium",
+    "Material",
+    "MediumInterface",
+    "NamedMaterial",
+    "ObjectBegin",
+    "ObjectEnd",
+    "ObjectInstance",
+    "Option",
+    "PixelFilter",
+    "ReverseOrientation",
+    "Rotate",
+    "Sampler",
+    "Scale",
+    "Shape",
+    "Texture",
+    "Transform",
+    "TransformBegin",
+    "TransformEnd",
+    "TransformTimes",
+    "Translate",
+    "WorldBegin",
+    "WorldEnd",
+];
+
+/// The directive closest in spelling to `word`, for "did you mean" hints.
+fn closest_directive(word: &str) -> Option<&'static str> {
+    let lower = word.to_ascii_lowercase();
+    DIRECTIVES
+        .iter()
+        .map(|d| (edit_distance(&lower, &d.to_ascii_lowercase()), *d))
+        .filter(|(dist, _)| *dist <= 2)
+        .min()
+        .map(|(_, d)| d)
+}
+
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut prev = row[0];
+        row[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let cur = row[j + 1];
+            row[j + 1] = (prev + usize::from(ca != *cb)).min(row[j] + 1).min(cur + 1);
+            prev = cur;
+        }
+    }
+    row[b.len()]
+}
+
+impl Parser {
+    /// A parser over a scene file.
+    pub fn from_file(path: &Path) -> Result<Parser, SceneError> {
+        let name: Arc<str> = Arc::from(path.display().to_string());
+        let text = read_text(path, &name, None)?;
+        let mut p = Parser {
+            stack: Vec::new(),
+            sources: HashMap::new(),
+        };
+        p.push(text, name, path)?;
+        Ok(p)
+    }
+
+    /// A parser over scene text held in memory, named `name` in messages, with relative file
+    /// names resolved against `dir`.
+    pub fn from_str(text: &str, name: &str, dir: &Path) -> Parser {
+        let name: Arc<str> = Arc::from(name);
+        let src: Arc<str> = Arc::from(text);
+        Parser {
+            stack: vec![Source {
+                lexer: Lexer::new(src.clone(), name.clone()),
+                dir: Arc::from(dir),
+                canonical: None,
+                peeked: None,
+            }],
+            sources: HashMap::from([(name, src)]),
+        }
+    }
+
+    fn push(&mut self, text: String, name: Arc<str>, path: &Path) -> Result<(), SceneError> {
+        let src: Arc<str> = Arc::from(text);
+        let dir = path
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        self.sources.insert(name.clone(), src.clone());
+        self.stack.push(Source {
+            lexer: Lexer::new(src, name),
+            dir: Arc::from(dir),
+            canonical: path.canonicalize().ok(),
+            peeked: None,
+        });
+        Ok(())
+    }
+
+    /// The text of a file read so far, by its name in locations.
+    pub fn source(&self, file: &str) -> Option<&str> {
+        self.sources.get(file).map(|s| &**s)
+    }
+
+    /// The next token of the innermost file; `None` at its end (included files are not left
+    /// here: a directive must end in the file where it starts).
+    fn next(&mut self) -> Result<Option<Token>, SceneError> {
+        let Some(top) = self.stack.last_mut() else {
+            return Ok(None);
+        };
+        match top.peeked.take() {
+            Some(t) => Ok(Some(t)),
+            None => top.lexer.next_token(),
+        }
+    }
+
+    fn peek(&mut self) -> Result<Option<&Token>, SceneError> {
+        let Some(top) = self.stack.last_mut() else {
+            return Ok(None);
+        };
+        if top.peeked.is_none() {
+            top.peeked = top.lexer.next_token()?;
+        }
+        Ok(top.peeked.as_ref())
+    }
+
+    /// The start of the main file (for messages about a scene as a whole).
+    pub fn start_location(&self) -> Location {
+        let name = self
+            .stack
+            .first()
+            .map(|s| s.lexer.location().file)
+            .or_else(|| self.sources.keys().next().cloned())
+            .unwrap_or_else(|| std::sync::Arc::from("<scene>"));
+        Location {
+            file: name,
+            line: 1,
+            col: 1,
+        }
+    }
+
+    fn end_location(&self) -> Location {
+        self.stack
+            .last()
+            .map(|s| s.lexer.location())
+            .expect("a file is open")
+    }
+
+    fn describe(t: &Token) -> String {
+        match t.kind {
+            TokenKind::Word => format!("'{}'", t.text),
+            TokenKind::Str => format!("the string \"{}\"", t.text),
+            TokenKind::Number => format!("the number {}", t.number),
+            TokenKind::Open | TokenKind::Close => format!("'{}'", t.text),
+        }
+    }
+
+    /// A quoted string argument of `directive`.
+    fn string_arg(&mut self, directive: &str, what: &str) -> Result<String, SceneError> {
+        match self.next()? {
+            Some(t) if t.kind == TokenKind::Str => Ok(t.text),
+            Some(t) => Err(SceneError::at(
+                t.loc.clone(),
+                format!(
+                    "{directive} expects {what} in quotes, found {}",
+                    Self::describe(&t)
+                ),
+            )),
+            None => Err(SceneError::at(
+                self.end_location(),
+                format!("{directive} expects {what}, but the file ends"),
+            )),
+        }
+    }
+
+    /// `N` numbers, bare or in one pair of brackets.
+    fn numbers<const N: usize>(&mut self, directive: &str) -> Result<[f32; N], SceneError> {
+        let mut out = [0.0; N];
+        let bracket = match self.peek()? {
+            Some(t) if t.kind == TokenKind::Open => Some(self.next()?.expect("peeked").loc),
+            _ => None,
+        };
+        for (i, v) in out.iter_mut().enumerate() {
+            match self.next()? {
+                Some(t) if t.kind == TokenKind::Number => *v = t.number as f32,
+                Some(t) => {
+                    let hint = if t.kind == TokenKind::Word
+                        && matches!(
+                            t.text.to_ascii_lowercase().as_str(),
+                            "nan" | "inf" | "infinity"
+                        ) {
+                        format!("'{}' is not a finite number", t.text)
+                    } else {
+                        format!(
+                            "{directive} expects {N} numbers, found {} after {i}",
+                            Self::describe(&t)
+                        )
+                    };
+                    return Err(SceneError::at(t.loc.clone(), hint));
+                }
+                None => {
+                    return Err(SceneError::at(
+                        self.end_location(),
+                        format!("{directive} expects {N} numbers, but the file ends after {i}"),
+                    ));
+                }
+            }
+        }
+        if let Some(open) = bracket {
+            match self.next()? {
+                Some(t) if t.kind == TokenKind::Close => {}
+                Some(t) => {
+                    return Err(SceneError::at(
+                        t.loc.clone(),
+                        format!(
+                            "{directive} expects exactly {N} numbers, found {} where ']' should be",
+                            Self::describe(&t)
+                        ),
+                    ));
+                }
+                None => {
+                    return Err(SceneError::at(
+                        open,
+                        "this '[' is never closed: the file ends first",
+                    ));
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// The value(s) of a parameter: one value, or a bracketed list.
+    fn param_values(
+        &mut self,
+        decl: &str,
+        decl_loc: &Location,
+    ) -> Result<Vec<(RawValue, Location)>, SceneError> {
+        let raw = |t: Token| -> Result<(RawValue, Location), SceneError> {
+            let v = match t.kind {
+                TokenKind::Number => RawValue::Number(t.number, t.integral),
+                TokenKind::Str => RawValue::Str(t.text),
+                TokenKind::Word if t.text == "true" => RawValue::Bool(true),
+                TokenKind::Word if t.text == "false" => RawValue::Bool(false),
+                TokenKind::Word
+                    if matches!(
+                        t.text.to_ascii_lowercase().as_str(),
+                        "nan" | "inf" | "infinity"
+                    ) =>
+                {
+                    return Err(SceneError::at(
+                        t.loc,
+                        format!("'{}' is not a finite number", t.text),
+                    ));
+                }
+                _ => {
+                    return Err(SceneError::at(
+                        t.loc.clone(),
+                        format!(
+                            "parameter \"{decl}\" expects a value, found {}",
+                            Self::describe(&t)
+                        ),
+                    ));
+                }
+            };
+            Ok((v, t.loc))
+        };
+        match self.next()? {
+            Some(t) if t.kind == TokenKind::Open => {
+                let open = t.loc;
+                let mut out = Vec::new();
+                loop {
+                    match self.next()? {
+                        Some(t) if t.kind == TokenKind::Close => return Ok(out),
+                        Some(t) if t.kind == TokenKind::Open => {
+                            return Err(SceneError::at(t.loc, "'[' inside a bracketed list"));
+                        }
+                        Some(t) => out.push(raw(t)?),
+                        None => {
+                            return Err(SceneError::at(
+                                open,
+                                "this '[' is never closed: the file ends first",
+                            ));
+                        }
+                    }
+                }
+            }
+            Some(t) => Ok(vec![raw(t)?]),
+            None => Err(SceneError::at(
+                decl_loc.clone(),
+                format!("parameter \"{decl}\" has no value: the file ends"),
+            )),
+        }
+    }
+
+    /// A parameter list: `"type name" value` pairs until the next directive.
+    fn params(&mut self) -> Result<ParamList, SceneError> {
+        let mut params = Vec::new();
+        while let Some(t) = self.peek()? {
+            match t.kind {
+                TokenKind::Str => {
+                    let t = self.next()?.expect("peeked");
+                    let values = self.param_values(&t.text, &t.loc)?;
+                    params.push(Param::new(&t.text, t.loc, values)?);
+                }
+                TokenKind::Word => break,
+                _ => {
+                    let t = self.next()?.expect("peeked");
+                    return Err(SceneError::at(
+                        t.loc.clone(),
+                        format!(
+                            "expected a parameter (\"type name\" value) or a directive, found {}",
+                            Self::describe(&t)
+                        ),
+                    ));
+                }
+            }
+        }
+        ParamList::new(params)
+    }
+
+    fn include(&mut self, loc: &Location, dir: &Path, what: &str) -> Result<(), SceneError> {
+        let file = self.string_arg(what, "a file name")?;
+        let path = dir.join(&file);
+        if self.stack.len() >= MAX_INCLUDE_DEPTH {
+            return Err(SceneError::at(
+                loc.clone(),
+                format!("{what} nested more than {MAX_INCLUDE_DEPTH} files deep"),
+            ));
+        }
+        if let Ok(c) = path.canonicalize()
+            && self.stack.iter().any(|s| s.canonical.as_ref() == Some(&c))
+        {
+            return Err(SceneError::at(
+                loc.clone(),
+                format!("{what} \"{file}\" includes a file that is already being read (a cycle)"),
+            ));
+        }
+        let name: Arc<str> = Arc::from(path.display().to_string());
+        let text = read_text(&path, &name, Some(loc))?;
+        self.push(text, name, &path)
+    }
+
+    /// The next directive, `None` when every file is read.
+    pub fn next_directive(&mut self) -> Result<Option<Located>, SceneError> {
+        loop {
+            let Some(t) = self.next()? else {
+                self.stack.pop();
+                if self.stack.is_empty() {
+                    return Ok(None);
+                }
+                continue;
+            };
+            let loc = t.loc.clone();
+            let dir = self.stack.last().expect("open").dir.clone();
+            if t.kind != TokenKind::Word {
+                return Err(SceneError::at(
+                    loc,
+                    format!("expected a directive, found {}", Self::describe(&t)),
+                ));
+            }
+            use Directive as D;
+            let name = t.text.as_str();
+            let directive = match name {
+                "Include" | "Import" => {
+                    self.include(&loc, &dir, name)?;
+                    continue;
+                }
+                "Identity" => D::Identity,
+                "Translate" => D::Translate(self.numbers(name)?),
+                "Scale" => D::Scale(self.numbers(name)?),
+                "Rotate" => D::Rotate(self.numbers(name)?),
+                "LookAt" => D::LookAt(self.numbers(name)?),
+                "Transform" => D::Transform(self.numbers(name)?),
+                "ConcatTransform" => D::ConcatTransform(self.numbers(name)?),
+                "TransformTimes" => D::TransformTimes(self.numbers(name)?),
+                "CoordinateSystem" => D::CoordinateSystem(self.string_arg(name, "a name")?),
+                "CoordSysTransform" => D::CoordSysTransform(self.string_arg(name, "a name")?),
+                "ActiveTransform" => match self.next()? {
+                    Some(t)
+                        if t.kind == TokenKind::Word
+                            && matches!(t.text.as_str(), "StartTime" | "EndTime" | "All") =>
+                    {
+                        D::ActiveTransform(t.text)
+                    }
+                    Some(t) => {
+                        return Err(SceneError::at(
+                            t.loc.clone(),
+                            format!(
+                                "ActiveTransform expects StartTime, EndTime or All, found {}",
+                                Self::describe(&t)
+                            ),
+                        ));
+                    }
+                    None => {
+                        return Err(SceneError::at(
+                            self.end_location(),
+                            "ActiveTransform expects StartTime, EndTime or All, but the file ends",
+                        ));
+                    }
+                },
+                "ReverseOrientation" => D::ReverseOrientation,
+                "AttributeBegin" => D::AttributeBegin,
+                "AttributeEnd" => D::AttributeEnd,
+                "TransformBegin" => D::TransformBegin,
+                "TransformEnd" => D::TransformEnd,
+                "Attribute" => D::Attribute(self.string_arg(name, "a target")?, self.params()?),
+                "WorldBegin" => D::WorldBegin,
+                "WorldEnd" => D::WorldEnd,
+                "Option" => D::Option(self.params()?),
+                "ColorSpace" => D::ColorSpace(self.string_arg(name, "a colour space name")?),
+                "Camera" => D::Camera(self.string_arg(name, "a type")?, self.params()?),
+                "Film" => D::Film(self.string_arg(name, "a type")?, self.params()?),
+                "Sampler" => D::Sampler(self.string_arg(name, "a type")?, self.params()?),
+                "PixelFilter" => D::PixelFilter(self.string_arg(name, "a type")?, self.params()?),
+                "Integrator" => D::Integrator(self.string_arg(name, "a type")?, self.params()?),
+                "Accelerator" => D::Accelerator(self.string_arg(name, "a type")?, self.params()?),
+                "MakeNamedMedium" => {
+                    D::MakeNamedMedium(self.string_arg(name, "a name")?, self.params()?)
+                }
+                "MediumInterface" => {
+                    let inside = self.string_arg(name, "a medium name")?;
+                    let outside = match self.peek()? {
+                        Some(t) if t.kind == TokenKind::Str => self.next()?.expect("peeked").text,
+                        _ => inside.clone(),
+                    };
+                    D::MediumInterface(inside, outside)
+                }
+                "Material" => D::Material(self.string_arg(name, "a type")?, self.params()?),
+                "MakeNamedMaterial" => {
+                    D::MakeNamedMaterial(self.string_arg(name, "a name")?, self.params()?)
+                }
+                "NamedMaterial" => D::NamedMaterial(self.string_arg(name, "a name")?),
+                "Texture" => D::Texture(
+                    self.string_arg(name, "a name")?,
+                    self.string_arg(name, "a type (\"float\" or \"spectrum\")")?,
+                    self.string_arg(name, "a class")?,
+                    self.params()?,
+                ),
+                "LightSource" => D::LightSource(self.string_arg(name, "a type")?, self.params()?),
+                "AreaLightSource" => {
+                    D::AreaLightSource(self.string_arg(name, "a type")?, self.params()?)
+                }
+                "Shape" => D::Shape(self.string_arg(name, "a type")?, self.params()?),
+                "ObjectBegin" => D::ObjectBegin(self.string_arg(name, "a name")?),
+                "ObjectEnd" => D::ObjectEnd,
+                "ObjectInstance" => D::ObjectInstance(self.string_arg(name, "a name")?),
+                _ => {
+                    let hint = closest_directive(name)
+                        .map(|d| format!(" (did you mean {d}?)"))
+                        .unwrap_or_default();
+                    return Err(SceneError::at(
+                        loc,
+                        format!("unknown directive '{name}'{hint}"),
+                    ));
+                }
+            };
+            return Ok(Some(Located {
+                directive,
+                loc,
+                dir,
+            }));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn all(src: &str) -> Result<Vec<Directive>, SceneError> {
+        let mut p = Parser::from_str(src, "t.pbrt", Path::new("."));
+        let mut out = Vec::new();
+        while let Some(d) = p.next_directive()? {
+            out.push(d.directive);
+        }
+        Ok(out)
+    }
+
+    fn err(src: &str) -> (u32, u32, String) {
+        let e = all(src).unwrap_err();
+        let l = e.location.expect("located");
+        (l.line, l.col, e.message)
+    }
+
+    #[test]
+    fn directives_and_arguments() {
+        let d = all("LookAt 0 0 5  0 0 0  0 1 0\nTransform [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1]\n\
+                     Shape \"sphere\" \"float radius\" 2 Texture \"t\" \"spectrum\" \"checkerboard\"")
+        .unwrap();
+        assert!(matches!(d[0], Directive::LookAt(v) if v[2] == 5.0));
+        assert!(matches!(d[1], Directive::Transform(m) if m[15] == 1.0));
+        assert!(
+            matches!(&d[2], Directive::Shape(n, p) if n == "sphere" && p.float("radius", 1.0).unwrap() == 2.0)
+        );
+        assert!(matches!(&d[3], Directive::Texture(n, _, c, _) if n == "t" && c == "checkerboard"));
+    }
+
+    #[test]
+    fn malformed_input_is_located() {
+        assert_eq!(err("WorldBegin\nSphere \"sphere\"").0, 2);
+        assert!(err("Shap \"sphere\"").2.contains("did you mean Shape"));
+        assert_eq!(err("Shape \"sphere\" \"float radius\" [2 3").1, 31);
+        assert_eq!(err("Translate 1 2").0, 1);
+        assert!(err("Translate 1 nan 2").2.contains("finite"));
+        assert!(
+            err("Shape \"sphere\" \"float radius\" [nan]")
+                .2
+                .contains("finite")
+        );
+        assert!(
+            err("Shape \"sphere\" \"float radius\"")
+                .2
+                .contains("no value")
+        );
+        assert!(err("Shape \"sphere\" \"radius\" 1").2.contains("type name"));
+        assert!(err("Shape \"sphere\" 1").2.contains("expected a parameter"));
+        assert!(
+            err("Include \"does-not-exist.pbrt\"")
+                .2
+                .contains("no such file")
+        );
+    }
+}
