@@ -105,6 +105,7 @@ pub fn render_image(width: u32, height: u32) -> Canvas {
         filter: Filter::new(desc.filter),
         integrator: Integrator::from_desc(&desc.integrator),
         tile_size: 16,
+        max_component_value: f32::INFINITY,
     };
     let mut film = Film::new(width, height, bounds);
     render(&scene, &settings, &mut film, &|_| {}, &Default::default());

@@ -107,8 +107,11 @@ pub fn encode_exr(width: u32, height: u32, pixels: &[Rgb]) -> Result<Vec<u8>, St
     });
     let image = Image::from_channels((width as usize, height as usize), channels);
     let mut buf = std::io::Cursor::new(Vec::new());
+    // Sequential: the parallel encoder writes chunks in the order they finish, so the bytes of
+    // the file would depend on thread timing; a render must give the same file every time.
     image
         .write()
+        .non_parallel()
         .to_buffered(&mut buf)
         .map_err(|e| e.to_string())?;
     Ok(buf.into_inner())
@@ -182,5 +185,11 @@ mod tests {
         assert_eq!(&png[1..4], b"PNG");
         let exr = encode_exr(3, 2, &px).unwrap();
         assert_eq!(&exr[..4], &[0x76, 0x2f, 0x31, 0x01]);
+        // Deterministic bytes, whatever the encoder's scheduling.
+        let big: Vec<Rgb> = (0..256 * 256).map(|i| Rgb::splat((i % 251) as f32)).collect();
+        let first = encode_exr(256, 256, &big).unwrap();
+        for _ in 0..4 {
+            assert_eq!(encode_exr(256, 256, &big).unwrap(), first);
+        }
     }
 }

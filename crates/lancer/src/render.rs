@@ -45,6 +45,9 @@ pub struct RenderSettings {
     pub integrator: Integrator,
     /// Tile edge in pixels.
     pub tile_size: u32,
+    /// Largest component a sample may have; brighter samples are scaled down to it, keeping
+    /// their colour (pbrt's `maxcomponentvalue`; infinity keeps every sample as it is).
+    pub max_component_value: f32,
 }
 
 /// Totals of a render.
@@ -105,6 +108,12 @@ pub fn render_tile(
                     l
                 } else {
                     crate::math::Rgb::ZERO
+                };
+                let m = l.max_element();
+                let l = if m > settings.max_component_value {
+                    l * (settings.max_component_value / m)
+                } else {
+                    l
                 };
                 sum.add(l, weight);
             }

@@ -82,6 +82,7 @@ fn render_centres(desc: &SceneDesc) -> (Scene, Vec<Rgb>) {
         filter: Filter::new(desc.filter),
         integrator: Integrator::from_desc(&desc.integrator),
         tile_size: 16,
+        max_component_value: f32::INFINITY,
     };
     let mut film = Film::new(W, H, bounds);
     render(&scene, &settings, &mut film, &|_| {}, &Default::default());
