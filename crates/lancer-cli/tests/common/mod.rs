@@ -1,0 +1,138 @@
+//! Helpers shared by the command-line tests: running `lancer`, reading EXR images, comparing
+//! them the way the team's acceptance scripts do.
+
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// The `lancer` binary built for these tests.
+pub fn lancer() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_lancer"))
+}
+
+/// Runs `lancer` with `args` in `dir`.
+pub fn run_in(dir: &Path, args: &[&str]) -> Output {
+    lancer()
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .expect("lancer runs")
+}
+
+/// A fresh temporary folder for one test.
+pub fn temp_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("lancer-cli-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Test data shipped with the crate.
+pub fn data(rel: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(rel)
+}
+
+/// The team's shared folder, when present (`../shared` next to the repository).
+pub fn shared() -> Option<PathBuf> {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared");
+    p.is_dir().then(|| p.canonicalize().unwrap())
+}
+
+/// An RGB float image.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Img {
+    pub width: usize,
+    pub height: usize,
+    pub rgb: Vec<[f64; 3]>,
+}
+
+/// Reads an EXR's R, G, B channels.
+pub fn read_exr(path: &Path) -> Img {
+    use exr::prelude::*;
+    let image = read_first_rgba_layer_from_file(
+        path,
+        |res, _| Img {
+            width: res.width(),
+            height: res.height(),
+            rgb: vec![[0.0; 3]; res.width() * res.height()],
+        },
+        |img: &mut Img, pos, (r, g, b, _a): (f32, f32, f32, f32)| {
+            let w = img.width;
+            img.rgb[pos.y() * w + pos.x()] = [r as f64, g as f64, b as f64];
+        },
+    )
+    .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    image.layer_data.channel_data.pixels
+}
+
+impl Img {
+    /// Box-filters the image down by an integer factor.
+    pub fn shrink(&self, k: usize) -> Img {
+        let (w, h) = (self.width / k, self.height / k);
+        let mut rgb = vec![[0.0; 3]; w * h];
+        for y in 0..h * k {
+            for x in 0..w * k {
+                let p = self.rgb[y * self.width + x];
+                let q = &mut rgb[(y / k) * w + x / k];
+                for c in 0..3 {
+                    q[c] += p[c] / (k * k) as f64;
+                }
+            }
+        }
+        Img {
+            width: w,
+            height: h,
+            rgb,
+        }
+    }
+
+    /// Mean of each channel.
+    pub fn means(&self) -> [f64; 3] {
+        let mut m = [0.0; 3];
+        for p in &self.rgb {
+            for c in 0..3 {
+                m[c] += p[c];
+            }
+        }
+        m.map(|v| v / self.rgb.len() as f64)
+    }
+}
+
+/// The acceptance scripts' comparison: per-channel relative error of the means, and the RMSE
+/// over the reference's mean. Panics with both figures when a bound is exceeded.
+pub fn compare(name: &str, test: &Img, reference: &Img, max_mre: f64, max_nrmse: f64) {
+    assert_eq!(
+        (test.width, test.height),
+        (reference.width, reference.height),
+        "{name}: sizes differ"
+    );
+    assert!(
+        test.rgb.iter().all(|p| p.iter().all(|v| v.is_finite())),
+        "{name}: non-finite pixels"
+    );
+    let (mt, mr) = (test.means(), reference.means());
+    let mre = (0..3)
+        .map(|c| (mt[c] - mr[c]).abs() / mr[c].max(1e-4))
+        .fold(0.0, f64::max);
+    let m = (mr.iter().sum::<f64>() / 3.0).max(1e-6);
+    let se: f64 = test
+        .rgb
+        .iter()
+        .zip(&reference.rgb)
+        .map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>())
+        .sum::<f64>()
+        / (3 * test.rgb.len()) as f64;
+    let nrmse = se.sqrt() / m;
+    println!("{name}: means {mt:.5?} vs {mr:.5?}, mre {mre:.4}, nrmse {nrmse:.4}");
+    assert!(
+        mre <= max_mre,
+        "{name}: channel means differ by {mre:.4} (> {max_mre})"
+    );
+    assert!(
+        nrmse <= max_nrmse,
+        "{name}: nrmse {nrmse:.4} (> {max_nrmse})"
+    );
+}
