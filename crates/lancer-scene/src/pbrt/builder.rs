@@ -174,7 +174,7 @@ impl Builder {
             SceneError::at(
                 loc.clone(),
                 format!(
-                    "{what} gives a singular transformation (nothing could be seen through it)"
+                    "{what} gives a singular transformation (it flattens space and cannot be inverted)"
                 ),
             )
         })?;

@@ -253,10 +253,9 @@ impl Parser {
 
     fn push(&mut self, text: String, name: Arc<str>, path: &Path) -> Result<(), SceneError> {
         let src: Arc<str> = Arc::from(text);
-        let dir = path
-            .parent()
-            .filter(|d| !d.as_os_str().is_empty())
-            .unwrap_or(Path::new("."));
+        // A file in the working folder has the empty folder, so that the files it includes
+        // are named as plainly as it is.
+        let dir = path.parent().unwrap_or(Path::new(""));
         self.sources.insert(name.clone(), src.clone());
         self.stack.push(Source {
             lexer: Lexer::new(src, name),
