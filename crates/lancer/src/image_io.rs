@@ -186,7 +186,9 @@ mod tests {
         let exr = encode_exr(3, 2, &px).unwrap();
         assert_eq!(&exr[..4], &[0x76, 0x2f, 0x31, 0x01]);
         // Deterministic bytes, whatever the encoder's scheduling.
-        let big: Vec<Rgb> = (0..256 * 256).map(|i| Rgb::splat((i % 251) as f32)).collect();
+        let big: Vec<Rgb> = (0..256 * 256)
+            .map(|i| Rgb::splat((i % 251) as f32))
+            .collect();
         let first = encode_exr(256, 256, &big).unwrap();
         for _ in 0..4 {
             assert_eq!(encode_exr(256, 256, &big).unwrap(), first);
