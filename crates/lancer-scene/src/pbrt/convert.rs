@@ -417,7 +417,9 @@ impl Reader<'_> {
             },
             "plane" => {
                 let n = p.normal("n", Vec3::Z)?;
-                if n == Vec3::ZERO {
+                // Too short to normalise (components so small their squares underflow) counts
+                // as zero.
+                if n.try_normalize().is_none() {
                     let loc = p.location("n").cloned();
                     return Err(match loc {
                         Some(l) => SceneError::at(l, "the plane's normal \"n\" is zero"),
