@@ -138,6 +138,18 @@ impl Builder {
         }
     }
 
+    /// What a conversion gives, after warning about an unsupported one; `None` when lancer
+    /// skips it.
+    fn accept<T>(&mut self, converted: Converted<T>, loc: &Location) -> Option<T> {
+        match converted {
+            Converted::Done(t) => Some(t),
+            Converted::Unsupported(warning, t) => {
+                self.warn(loc, warning);
+                t
+            }
+        }
+    }
+
     fn unused(&mut self, params: &ParamList, what: String) {
         params.report_unused(&what, &mut self.warnings);
     }
@@ -341,13 +353,7 @@ impl Builder {
             }
             D::Sampler(ty, params) => {
                 self.require_options("Sampler", &loc)?;
-                let (kind, spp) = match self.reader(&params, &dir).sampler(&ty)? {
-                    Converted::Done(s) => s,
-                    Converted::Unsupported(w, s) => {
-                        self.warn(&loc, w);
-                        s.expect("samplers always fall back")
-                    }
-                };
+                let (kind, spp) = self.accept(self.reader(&params, &dir).sampler(&ty)?, &loc).expect("samplers always fall back");
                 self.desc.sampler.kind = kind;
                 self.desc.sampler.spp = spp;
                 if params.has("seed") {
@@ -357,24 +363,12 @@ impl Builder {
             }
             D::PixelFilter(ty, params) => {
                 self.require_options("PixelFilter", &loc)?;
-                self.desc.filter = match self.reader(&params, &dir).filter(&ty)? {
-                    Converted::Done(f) => f,
-                    Converted::Unsupported(w, f) => {
-                        self.warn(&loc, w);
-                        f.expect("filters always fall back")
-                    }
-                };
+                self.desc.filter = self.accept(self.reader(&params, &dir).filter(&ty)?, &loc).expect("filters always fall back");
                 self.unused(&params, format!("PixelFilter \"{ty}\""));
             }
             D::Integrator(ty, params) => {
                 self.require_options("Integrator", &loc)?;
-                self.desc.integrator = match self.reader(&params, &dir).integrator(&ty)? {
-                    Converted::Done(i) => i,
-                    Converted::Unsupported(w, i) => {
-                        self.warn(&loc, w);
-                        i.expect("integrators always fall back")
-                    }
-                };
+                self.desc.integrator = self.accept(self.reader(&params, &dir).integrator(&ty)?, &loc).expect("integrators always fall back");
                 self.unused(&params, format!("Integrator \"{ty}\""));
             }
             D::Accelerator(..) => {
@@ -610,17 +604,13 @@ impl Builder {
         dir: &Path,
         loc: &Location,
     ) -> Result<u32, SceneError> {
-        let (m, mix) = match self
+        let converted = self
             .reader(params, dir)
             .material(ty)
-            .map_err(|e| locate(e, loc))?
-        {
-            Converted::Done(m) => m,
-            Converted::Unsupported(w, m) => {
-                self.warn(loc, w);
-                m.expect("materials always fall back")
-            }
-        };
+            .map_err(|e| locate(e, loc))?;
+        let (m, mix) = self
+            .accept(converted, loc)
+            .expect("materials always fall back");
         let index = self.desc.materials.len() as u32;
         self.desc.materials.push(m);
         if let Some((names, nloc)) = mix {
@@ -643,25 +633,17 @@ impl Builder {
     ) -> Result<(), SceneError> {
         match ty {
             "float" => {
-                let t = match self.reader(params, dir).float_texture(class)? {
-                    Converted::Done(t) => t,
-                    Converted::Unsupported(w, t) => {
-                        self.warn(loc, w);
-                        t.expect("textures always fall back")
-                    }
-                };
+                let t = self
+                    .accept(self.reader(params, dir).float_texture(class)?, loc)
+                    .expect("textures always fall back");
                 let index = self.desc.float_textures.len() as u32;
                 self.desc.float_textures.push(t);
                 self.textures.floats.insert(name, index);
             }
             "spectrum" | "color" | "rgb" => {
-                let t = match self.reader(params, dir).spectrum_texture(class)? {
-                    Converted::Done(t) => t,
-                    Converted::Unsupported(w, t) => {
-                        self.warn(loc, w);
-                        t.expect("textures always fall back")
-                    }
-                };
+                let t = self
+                    .accept(self.reader(params, dir).spectrum_texture(class)?, loc)
+                    .expect("textures always fall back");
                 let index = self.desc.spectrum_textures.len() as u32;
                 self.desc.spectrum_textures.push(t);
                 self.textures.spectra.insert(name, index);
@@ -828,19 +810,12 @@ impl Builder {
         dir: &Path,
         loc: &Location,
     ) -> Result<(), SceneError> {
-        let (geometry, alpha) = match self
+        let converted = self
             .reader(params, dir)
             .shape(ty)
-            .map_err(|e| locate(e, loc))?
-        {
-            Converted::Done(g) => g,
-            Converted::Unsupported(w, g) => {
-                self.warn(loc, w);
-                match g {
-                    Some(g) => g,
-                    None => return Ok(()),
-                }
-            }
+            .map_err(|e| locate(e, loc))?;
+        let Some((geometry, alpha)) = self.accept(converted, loc) else {
+            return Ok(());
         };
         let (material, pending) = match &self.gs.material {
             MaterialRef::Index(i) => (*i, None),
