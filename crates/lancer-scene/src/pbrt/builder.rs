@@ -4,6 +4,7 @@
 
 use super::convert::{Converted, MAX_RESOLUTION, Reader, TextureNames};
 use super::params::{Param, ParamList};
+use super::parser::SearchPath;
 use super::parser::{Directive, Located, Parser};
 use crate::error::{Location, SceneError, Warning};
 use lancer::material::Material;
@@ -14,7 +15,6 @@ use lancer::scene::desc::{
 };
 use lancer::spectrum::SpectrumKind;
 use std::collections::{HashMap, HashSet};
-use std::path::Path;
 
 /// The material a shape gets: one already in the list, or a name resolved at the end (pbrt-v4
 /// lets `NamedMaterial` come before `MakeNamedMaterial`).
@@ -203,7 +203,7 @@ impl Builder {
         }
     }
 
-    fn reader<'a>(&'a self, params: &'a ParamList, dir: &'a Path) -> Reader<'a> {
+    fn reader<'a>(&'a self, params: &'a ParamList, dir: &'a SearchPath) -> Reader<'a> {
         Reader {
             params,
             textures: &self.textures,
@@ -601,7 +601,7 @@ impl Builder {
         &mut self,
         ty: &str,
         params: &ParamList,
-        dir: &Path,
+        dir: &SearchPath,
         loc: &Location,
     ) -> Result<u32, SceneError> {
         let converted = self
@@ -628,7 +628,7 @@ impl Builder {
         ty: &str,
         class: &str,
         params: &ParamList,
-        dir: &Path,
+        dir: &SearchPath,
         loc: &Location,
     ) -> Result<(), SceneError> {
         match ty {
@@ -662,7 +662,7 @@ impl Builder {
 
     /// A light's emission: its colour (RGB passes through; spectra are normalised to luminance
     /// 1, as pbrt-v4 divides `scale` by the spectrum's photometric value) times `scale`.
-    fn emission(params: &ParamList, name: &str, dir: &Path) -> Result<Rgb, SceneError> {
+    fn emission(params: &ParamList, name: &str, dir: &SearchPath) -> Result<Rgb, SceneError> {
         let c = params
             .color(name, SpectrumKind::Illuminant, dir)?
             .unwrap_or(Rgb::ONE);
@@ -673,7 +673,7 @@ impl Builder {
         &mut self,
         ty: &str,
         params: &ParamList,
-        dir: &Path,
+        dir: &SearchPath,
         loc: &Location,
     ) -> Result<(), SceneError> {
         let ctm = self.gs.ctm;
@@ -788,7 +788,7 @@ impl Builder {
         &mut self,
         ty: &str,
         params: &ParamList,
-        dir: &Path,
+        dir: &SearchPath,
         loc: &Location,
     ) -> Result<(), SceneError> {
         if ty != "diffuse" {
@@ -807,7 +807,7 @@ impl Builder {
         &mut self,
         ty: &str,
         params: &ParamList,
-        dir: &Path,
+        dir: &SearchPath,
         loc: &Location,
     ) -> Result<(), SceneError> {
         let converted = self

@@ -6,6 +6,7 @@
 //! for the caller to turn into a warning.
 
 use super::params::{ColorParam, FloatParam, ParamList};
+use super::parser::SearchPath;
 use crate::error::{Location, SceneError};
 use lancer::material::Material;
 use lancer::math::{Rgb, Vec3};
@@ -15,7 +16,6 @@ use lancer::shape::TriangleMesh;
 use lancer::spectrum::{SpectrumKind, named_spectrum, spectrum_to_rgb};
 use lancer::texture::{FloatTex, FloatTexture, SpectrumTex, SpectrumTexture, UvMapping};
 use std::collections::HashMap;
-use std::path::Path;
 use std::sync::Arc;
 
 /// Largest image side accepted (a film of 65536² pixels would already need ~100 GiB).
@@ -85,7 +85,7 @@ pub struct Reader<'a> {
     /// Textures defined so far.
     pub textures: &'a TextureNames,
     /// The folder of the file holding the directive.
-    pub dir: &'a Path,
+    pub dir: &'a SearchPath,
 }
 
 impl Reader<'_> {

@@ -5,11 +5,11 @@
 //! parameter found under the right name but the wrong type is an error, one never looked up is
 //! reported as a warning (lancer does not use it).
 
+use super::parser::SearchPath;
 use crate::error::{Location, SceneError, Warning};
 use lancer::math::{Rgb, Vec2, Vec3};
 use lancer::spectrum::{Spectrum, SpectrumKind, parse_spd, spectrum_to_rgb};
 use std::cell::Cell;
-use std::path::Path;
 
 /// The declared type of a parameter.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -566,7 +566,7 @@ impl ParamList {
         &self,
         name: &str,
         kind: SpectrumKind,
-        dir: &Path,
+        dir: &SearchPath,
     ) -> Result<Option<Rgb>, SceneError> {
         let Some(p) = self.find(
             name,
@@ -621,7 +621,7 @@ impl ParamList {
 
     /// An index of refraction: a `float`, or a `spectrum` (pairs, a named glass, a file)
     /// sampled at [`lancer::spectrum::IOR_WAVELENGTH`], as lancer does not render dispersion.
-    pub fn ior(&self, name: &str, default: f32, dir: &Path) -> Result<f32, SceneError> {
+    pub fn ior(&self, name: &str, default: f32, dir: &SearchPath) -> Result<f32, SceneError> {
         let Some(p) = self.find(name, &[ParamType::Float, ParamType::Spectrum])? else {
             return Ok(default);
         };
@@ -661,7 +661,7 @@ impl ParamList {
         &self,
         name: &str,
         kind: SpectrumKind,
-        dir: &Path,
+        dir: &SearchPath,
     ) -> Result<Option<ColorParam>, SceneError> {
         if let Some(p) = self.params.iter().find(|p| p.name == name)
             && p.ty == ParamType::Texture
@@ -701,11 +701,11 @@ impl ParamList {
 
 /// A spectrum named in a scene: one of pbrt's named spectra, or an `.spd` file (relative to
 /// `dir`).
-fn named_or_file_spectrum(name: &str, dir: &Path) -> Result<Spectrum, String> {
+fn named_or_file_spectrum(name: &str, dir: &SearchPath) -> Result<Spectrum, String> {
     if let Some(s) = lancer::spectrum::named_spectrum(name) {
         return Ok(s);
     }
-    let path = dir.join(name);
+    let path = dir.resolve(name);
     match std::fs::read_to_string(&path) {
         Ok(text) => parse_spd(&text).map_err(|e| format!("spectrum file {}: {e}", path.display())),
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => Err(format!(

@@ -1,5 +1,7 @@
 //! The pbrt parser: tokens → directives, one at a time, with `Include` and `Import` followed
-//! into the named files (relative to the including file).
+//! into the named files. Relative file names are looked up as pbrt-v4 does, in the folder of
+//! the scene file given on the command line, and then in the folder of the file that names
+//! them ([`SearchPath`]).
 //!
 //! The parser knows every directive of pbrt-v4 (and pbrt-v3's `TransformBegin`/`End`,
 //! `WorldEnd`) and the shape of its arguments; what the directives *mean* is the builder's
@@ -98,20 +100,56 @@ pub enum Directive {
     ObjectInstance(String),
 }
 
-/// A directive, where it starts, and the folder of its file (for relative file names).
+/// Where a directive's relative file names are looked for.
+///
+/// pbrt-v4 resolves every relative name (in `Include` and in parameters alike) against the
+/// folder of the main scene file, so an included `geometry/a.pbrt` names its meshes
+/// `geometry/mesh.ply`. Scenes written by hand often expect the including file's folder
+/// instead; lancer tries pbrt's folder first and the directive's own folder second.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SearchPath {
+    /// The folder of the main scene file.
+    pub scene: Arc<Path>,
+    /// The folder of the file holding the directive.
+    pub file: Arc<Path>,
+}
+
+impl SearchPath {
+    /// The same folder for both rules (a scene without includes).
+    pub fn new(dir: &Path) -> SearchPath {
+        let dir: Arc<Path> = Arc::from(dir);
+        SearchPath {
+            scene: dir.clone(),
+            file: dir,
+        }
+    }
+
+    /// The file a relative `name` means: in the scene's folder if it exists there, else in
+    /// the directive's folder if it exists there, else (for the error message) the scene's.
+    pub fn resolve(&self, name: &str) -> PathBuf {
+        let in_scene = self.scene.join(name);
+        if in_scene.exists() || self.file == self.scene {
+            return in_scene;
+        }
+        let in_file = self.file.join(name);
+        if in_file.exists() { in_file } else { in_scene }
+    }
+}
+
+/// A directive, where it starts, and where its relative file names point.
 #[derive(Debug)]
 pub struct Located {
     /// The directive.
     pub directive: Directive,
     /// Where its name starts.
     pub loc: Location,
-    /// The folder of the file it is in.
-    pub dir: Arc<Path>,
+    /// Where its relative file names are looked for.
+    pub dir: SearchPath,
 }
 
 struct Source {
     lexer: Lexer,
-    dir: Arc<Path>,
+    dir: SearchPath,
     /// Canonical path, to catch a file that includes itself.
     canonical: Option<PathBuf>,
     /// A token read ahead.
@@ -243,7 +281,7 @@ impl Parser {
         Parser {
             stack: vec![Source {
                 lexer: Lexer::new(src.clone(), name.clone()),
-                dir: Arc::from(dir),
+                dir: SearchPath::new(dir),
                 canonical: None,
                 peeked: None,
             }],
@@ -255,11 +293,15 @@ impl Parser {
         let src: Arc<str> = Arc::from(text);
         // A file in the working folder has the empty folder, so that the files it includes
         // are named as plainly as it is.
-        let dir = path.parent().unwrap_or(Path::new(""));
+        let dir: Arc<Path> = Arc::from(path.parent().unwrap_or(Path::new("")));
+        let scene = match self.stack.first() {
+            Some(main) => main.dir.scene.clone(),
+            None => dir.clone(),
+        };
         self.sources.insert(name.clone(), src.clone());
         self.stack.push(Source {
             lexer: Lexer::new(src, name),
-            dir: Arc::from(dir),
+            dir: SearchPath { scene, file: dir },
             canonical: path.canonicalize().ok(),
             peeked: None,
         });
@@ -487,9 +529,9 @@ impl Parser {
         ParamList::new(params)
     }
 
-    fn include(&mut self, loc: &Location, dir: &Path, what: &str) -> Result<(), SceneError> {
+    fn include(&mut self, loc: &Location, dir: &SearchPath, what: &str) -> Result<(), SceneError> {
         let file = self.string_arg(what, "a file name")?;
-        let path = dir.join(&file);
+        let path = dir.resolve(&file);
         if self.stack.len() >= MAX_INCLUDE_DEPTH {
             return Err(SceneError::at(
                 loc.clone(),
