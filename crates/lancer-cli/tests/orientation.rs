@@ -1,0 +1,91 @@
+//! The image is oriented exactly as pbrt-v4 orients it: with `LookAt` towards −z, world +x is
+//! on the image's left (pbrt's camera space is left-handed) and +y at the top; a
+//! `Scale -1 1 1` before `LookAt` (as Blender exports write) puts +x on the right.
+
+mod common;
+use common::*;
+
+/// Renders a red sphere at world +x and a blue one at world +y, seen from +z, and returns the
+/// image.
+fn render(dir: &std::path::Path, name: &str, pre_camera: &str) -> Img {
+    let scene = format!(
+        r#"{pre_camera}
+LookAt 0 0 6  0 0 0  0 1 0
+Camera "perspective" "float fov" [50]
+Film "rgb" "integer xresolution" [48] "integer yresolution" [32] "string filename" "{name}.exr"
+Sampler "independent" "integer pixelsamples" [4]
+Integrator "whitted"
+WorldBegin
+LightSource "distant" "point3 from" [0 0 10] "point3 to" [0 0 0] "rgb L" [3 3 3]
+AttributeBegin
+  Material "diffuse" "rgb reflectance" [0.8 0 0]
+  Translate 1.5 0 0
+  Shape "sphere" "float radius" [0.6]
+AttributeEnd
+AttributeBegin
+  Material "diffuse" "rgb reflectance" [0 0 0.8]
+  Translate 0 1.2 0
+  Shape "sphere" "float radius" [0.4]
+AttributeEnd
+"#
+    );
+    let file = dir.join(format!("{name}.pbrt"));
+    std::fs::write(&file, scene).unwrap();
+    let out = run_in(dir, &["render", file.to_str().unwrap(), "--quiet"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    read_exr(&dir.join(format!("{name}.exr")))
+}
+
+/// Sum of channel `c` over the pixels with `keep(x, y)`.
+fn sum(img: &Img, c: usize, keep: impl Fn(usize, usize) -> bool) -> f64 {
+    let mut s = 0.0;
+    for y in 0..img.height {
+        for x in 0..img.width {
+            if keep(x, y) {
+                s += img.rgb[y * img.width + x][c];
+            }
+        }
+    }
+    s
+}
+
+#[test]
+fn world_x_is_on_the_left_and_y_on_top_as_in_pbrt() {
+    let dir = temp_dir("orientation");
+    let img = render(&dir, "pbrt", "");
+    let w = img.width;
+    let (red_left, red_right) = (
+        sum(&img, 0, |x, _| x < w / 2),
+        sum(&img, 0, |x, _| x >= w / 2),
+    );
+    assert!(
+        red_left > 1.0 && red_right == 0.0,
+        "red: left {red_left}, right {red_right}"
+    );
+    let h = img.height;
+    let (blue_top, blue_bottom) = (
+        sum(&img, 2, |_, y| y < h / 2),
+        sum(&img, 2, |_, y| y >= h / 2),
+    );
+    assert!(
+        blue_top > 1.0 && blue_bottom == 0.0,
+        "blue: top {blue_top}, bottom {blue_bottom}"
+    );
+
+    let img = render(&dir, "mirrored", "Scale -1 1 1");
+    let (red_left, red_right) = (
+        sum(&img, 0, |x, _| x < w / 2),
+        sum(&img, 0, |x, _| x >= w / 2),
+    );
+    assert!(
+        red_right > 1.0 && red_left == 0.0,
+        "mirrored red: left {red_left}, right {red_right}"
+    );
+    let blue_top = sum(&img, 2, |_, y| y < h / 2);
+    assert!(blue_top > 1.0, "mirrored blue stays on top");
+    let _ = std::fs::remove_dir_all(&dir);
+}
