@@ -19,23 +19,7 @@ fn course_scenes_agree_with_pbrt() {
     ] {
         let scene = data(&format!("course/{name}.pbrt"));
         let out = dir.join(format!("{name}.exr"));
-        let o = run_in(
-            &dir,
-            &[
-                "render",
-                scene.to_str().unwrap(),
-                "-o",
-                out.to_str().unwrap(),
-                "--spp",
-                "64",
-                "--quiet",
-            ],
-        );
-        assert!(
-            o.status.success(),
-            "{name}: {}",
-            String::from_utf8_lossy(&o.stderr)
-        );
+        render_ok(&dir, &scene, &out, &["--spp", "64"]);
         let img = read_exr(&out).shrink(4);
         let reference = read_exr(&data(&format!("references/course/{name}.exr")));
         compare(name, &img, &reference, 0.02, 0.05);
@@ -50,23 +34,12 @@ fn thread_count_does_not_change_a_single_byte() {
     for threads in ["1", "2", "3"] {
         for ext in ["exr", "png"] {
             let out = dir.join(format!("t{threads}.{ext}"));
-            let o = run_in(
+            render_ok(
                 &dir,
-                &[
-                    "render",
-                    scene.to_str().unwrap(),
-                    "-o",
-                    out.to_str().unwrap(),
-                    "--spp",
-                    "4",
-                    "--seed",
-                    "3",
-                    "--threads",
-                    threads,
-                    "--quiet",
-                ],
+                &scene,
+                &out,
+                &["--spp", "4", "--seed", "3", "--threads", threads],
             );
-            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
             outputs.push((ext, std::fs::read(&out).unwrap()));
         }
     }

@@ -31,13 +31,9 @@ AttributeEnd
     );
     let file = dir.join(format!("{name}.pbrt"));
     std::fs::write(&file, scene).unwrap();
-    let out = run_in(dir, &["render", file.to_str().unwrap(), "--quiet"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    read_exr(&dir.join(format!("{name}.exr")))
+    let out = dir.join(format!("{name}.exr"));
+    render_ok(dir, &file, &out, &[]);
+    read_exr(&out)
 }
 
 /// Sum of channel `c` over the pixels with `keep(x, y)`.

@@ -20,6 +20,26 @@ pub fn run_in(dir: &Path, args: &[&str]) -> Output {
         .expect("lancer runs")
 }
 
+/// Renders `scene` to `out` quietly with `extra` flags, in `dir`; panics with lancer's
+/// message if it fails.
+pub fn render_ok(dir: &Path, scene: &Path, out: &Path, extra: &[&str]) {
+    let mut args = vec![
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--quiet",
+    ];
+    args.extend_from_slice(extra);
+    let o = run_in(dir, &args);
+    assert!(
+        o.status.success(),
+        "{}: {}",
+        scene.display(),
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
 /// A fresh temporary folder for one test.
 pub fn temp_dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("lancer-cli-{}-{name}", std::process::id()));

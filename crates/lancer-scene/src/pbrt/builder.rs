@@ -203,6 +203,25 @@ impl Builder {
         }
     }
 
+    /// The frame of a world directive with parameters: it must come after `WorldBegin`, the
+    /// `Attribute` defaults of `category` fill in what it does not say, and the parameters
+    /// `body` leaves unread are warned about as parameters of `what`.
+    fn world_directive(
+        &mut self,
+        directive: &str,
+        category: &str,
+        params: ParamList,
+        loc: &Location,
+        what: String,
+        body: impl FnOnce(&mut Self, &ParamList) -> Result<(), SceneError>,
+    ) -> Result<(), SceneError> {
+        self.require_world(directive, loc)?;
+        let params = self.defaults(category, params);
+        body(self, &params)?;
+        self.unused(&params, what);
+        Ok(())
+    }
+
     fn reader<'a>(&'a self, params: &'a ParamList, dir: &'a SearchPath) -> Reader<'a> {
         Reader {
             params,
@@ -406,28 +425,28 @@ impl Builder {
                 self.gs.material = MaterialRef::Named(name, loc);
             }
             D::Texture(name, ty, class, params) => {
-                self.require_world("Texture", &loc)?;
-                let params = self.defaults("texture", params);
-                self.texture(name, &ty, &class, &params, &dir, &loc)?;
-                self.unused(&params, format!("Texture \"{class}\""));
+                let what = format!("Texture \"{class}\"");
+                self.world_directive("Texture", "texture", params, &loc, what, |b, p| {
+                    b.texture(name, &ty, &class, p, &dir, &loc)
+                })?;
             }
             D::LightSource(ty, params) => {
-                self.require_world("LightSource", &loc)?;
-                let params = self.defaults("light", params);
-                self.light(&ty, &params, &dir, &loc)?;
-                self.unused(&params, format!("LightSource \"{ty}\""));
+                let what = format!("LightSource \"{ty}\"");
+                self.world_directive("LightSource", "light", params, &loc, what, |b, p| {
+                    b.light(&ty, p, &dir, &loc)
+                })?;
             }
             D::AreaLightSource(ty, params) => {
-                self.require_world("AreaLightSource", &loc)?;
-                let params = self.defaults("light", params);
-                self.area_light(&ty, &params, &dir, &loc)?;
-                self.unused(&params, format!("AreaLightSource \"{ty}\""));
+                let what = format!("AreaLightSource \"{ty}\"");
+                self.world_directive("AreaLightSource", "light", params, &loc, what, |b, p| {
+                    b.area_light(&ty, p, &dir, &loc)
+                })?;
             }
             D::Shape(ty, params) => {
-                self.require_world("Shape", &loc)?;
-                let params = self.defaults("shape", params);
-                self.shape(&ty, &params, &dir, &loc)?;
-                self.unused(&params, format!("Shape \"{ty}\""));
+                let what = format!("Shape \"{ty}\"");
+                self.world_directive("Shape", "shape", params, &loc, what, |b, p| {
+                    b.shape(&ty, p, &dir, &loc)
+                })?;
             }
             D::ObjectBegin(name) => {
                 self.require_world("ObjectBegin", &loc)?;
