@@ -26,7 +26,22 @@ enum Command {
     Render(render::RenderArgs),
 }
 
+/// A binary built for x86-64-v3 (see `.cargo/config.toml`) dies of an illegal instruction on
+/// an older CPU; say so plainly instead, and how to rebuild.
+fn check_cpu() {
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+    if !(std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma"))
+    {
+        eprintln!(
+            "error: this lancer was built for CPUs with AVX2 and FMA, which this one lacks; \
+             rebuild it with RUSTFLAGS=\"-C target-cpu=x86-64\" cargo build --release"
+        );
+        std::process::exit(1);
+    }
+}
+
 fn main() {
+    check_cpu();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => render::run(args),
