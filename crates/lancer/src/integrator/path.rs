@@ -29,17 +29,20 @@ pub fn li(scene: &Scene, ray: &Ray, sampler: &mut Sampler, max_depth: u32) -> Rg
     let mut p_b = 1.0f32;
     let mut prev_ctx: Option<LightSampleContext> = None;
     let mut eta_scale = 1.0f32;
-    let n_lights = scene.lights.len().max(1) as f32;
     loop {
         let Some(hit) = scene.intersect(&ray) else {
-            for light in &scene.lights {
+            // Environment light: counted in full where no light sampling could have found it
+            // (camera rays, specular bounces), otherwise weighted against light sampling.
+            for &i in &scene.infinite_lights {
+                let (i, light) = (i as usize, &scene.lights[i as usize]);
                 let le = light.le(ray.d);
                 if le == Rgb::ZERO {
                     continue;
                 }
                 match (depth == 0 || specular_bounce, prev_ctx) {
                     (false, Some(ctx)) => {
-                        let p_l = light.pdf_li(&ctx, ray.d.normalize()) / n_lights;
+                        let p_l = scene.light_distribution.pmf(i)
+                            * light.pdf_li(&ctx, ray.d.normalize(), None);
                         l += beta * power_heuristic(p_b, p_l) * le;
                     }
                     _ => l += beta * le,
@@ -49,11 +52,26 @@ pub fn li(scene: &Scene, ray: &Ray, sampler: &mut Sampler, max_depth: u32) -> Rg
         };
         let si = hit.si;
         let wo = si.wo;
-        // Area lights are not sampled by next-event estimation yet: their emission is counted
-        // where paths hit them.
-        l += beta * emitted(scene, &hit, wo);
+        // An area light hit by a BSDF-sampled ray: weighted against the chance that light
+        // sampling picked the same point.
+        let le = emitted(scene, &hit, wo);
+        if le != Rgb::ZERO {
+            match (
+                depth == 0 || specular_bounce,
+                prev_ctx,
+                scene.prims[hit.prim as usize].emission,
+            ) {
+                (false, Some(ctx), Some(e)) => {
+                    let light = &scene.lights[e.light as usize];
+                    let p_l = scene.light_distribution.pmf(e.light as usize)
+                        * light.pdf_li(&ctx, ray.d.normalize(), Some((si.p, si.n)));
+                    l += beta * power_heuristic(p_b, p_l) * le;
+                }
+                _ => l += beta * le,
+            }
+        }
         let Some(bsdf) = bsdf_at(scene, &hit) else {
-            specular_bounce = true;
+            // An interface between media: no surface, the ray goes on unchanged.
             ray = si.spawn_ray(ray.d);
             continue;
         };
@@ -68,24 +86,26 @@ pub fn li(scene: &Scene, ray: &Ray, sampler: &mut Sampler, max_depth: u32) -> Rg
         };
         let flags = bsdf.flags();
         if flags.is_non_specular() && !scene.lights.is_empty() {
-            // Next-event estimation: one light chosen uniformly.
+            // Next-event estimation: one light chosen by power, one point on it.
             let ul = sampler.get_1d();
             let u = sampler.get_2d();
-            let li = ((ul * n_lights) as usize).min(scene.lights.len() - 1);
-            let light = &scene.lights[li];
-            if let Some(ls) = light.sample_li(&ctx, u) {
-                let f = bsdf.f(wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(si.shading.n).abs();
-                if ls.pdf > 0.0
-                    && f != Rgb::ZERO
-                    && !scene.intersect_p(&si.spawn_ray_to(ls.p_light))
-                {
-                    let p_l = ls.pdf / n_lights;
-                    let w = if light.is_delta() {
-                        1.0
-                    } else {
-                        power_heuristic(p_l, bsdf.pdf(wo, ls.wi, TransportMode::Radiance))
-                    };
-                    l += beta * f * ls.l * (w / p_l);
+            if let Some((i, pmf)) = scene.light_distribution.sample(ul) {
+                let light = &scene.lights[i];
+                if let Some(ls) = light.sample_li(&ctx, u, &scene.shapes, &scene.meshes) {
+                    let f =
+                        bsdf.f(wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(si.shading.n).abs();
+                    if ls.pdf > 0.0
+                        && f != Rgb::ZERO
+                        && !scene.intersect_p(&si.spawn_ray_to(ls.p_light))
+                    {
+                        let p_l = pmf * ls.pdf;
+                        let w = if light.is_delta() {
+                            1.0
+                        } else {
+                            power_heuristic(p_l, bsdf.pdf(wo, ls.wi, TransportMode::Radiance))
+                        };
+                        l += beta * f * ls.l * (w / p_l);
+                    }
                 }
             }
         } else {

@@ -15,7 +15,11 @@ use crate::scene::Scene;
 /// (1 − F)·L(refracted)], where V is 1 when the shadow ray reaches the light unobstructed.
 pub fn li(scene: &Scene, ray: &Ray, sampler: &mut Sampler, depth: u32, max_depth: u32) -> Rgb {
     let Some(hit) = scene.intersect(ray) else {
-        return scene.lights.iter().map(|l| l.le(ray.d)).sum();
+        return scene
+            .infinite_lights
+            .iter()
+            .map(|&i| scene.lights[i as usize].le(ray.d))
+            .sum();
     };
     let si = &hit.si;
     let wo = si.wo;
@@ -32,7 +36,7 @@ pub fn li(scene: &Scene, ray: &Ray, sampler: &mut Sampler, depth: u32, max_depth
     if bsdf.flags().is_non_specular() {
         for light in &scene.lights {
             let u = sampler.get_2d();
-            let Some(ls) = light.sample_li(&ctx, u) else {
+            let Some(ls) = light.sample_li(&ctx, u, &scene.shapes, &scene.meshes) else {
                 continue;
             };
             if ls.pdf == 0.0 || ls.l == Rgb::ZERO {

@@ -3,7 +3,12 @@
 //! [`Light::sample_li`] answers, for a point being shaded, "from which direction does this
 //! light arrive, how much, and where must a shadow ray go to check that nothing is in the way".
 
+mod distribution;
+
+pub use distribution::LightDistribution;
+
 use crate::math::{Frame, INV_PI, Rgb, Vec2, Vec3, smooth_step};
+use crate::shape::{Shape, TriangleMesh};
 
 /// The point being lit.
 #[derive(Clone, Copy, Debug)]
@@ -61,6 +66,20 @@ pub enum Light {
         /// Radius of the scene's bounding sphere: shadow rays go twice as far.
         scene_radius: f32,
     },
+    /// A diffuse area light: a primitive of the scene that emits radiance L from its surface.
+    Area {
+        /// Index of the primitive in the scene's shapes.
+        prim: u32,
+        /// Emitted radiance.
+        l: Rgb,
+        /// Emits from both sides (otherwise only from the side its normal faces).
+        two_sided: bool,
+        /// Surface area, world space.
+        area: f32,
+        /// Centre and radius of a whole sphere, which is sampled by the cone of directions it
+        /// subtends rather than by area.
+        sphere: Option<(Vec3, f32)>,
+    },
     /// Constant-radiance environment ("sky").
     UniformInfinite {
         /// Radiance from every direction.
@@ -80,8 +99,68 @@ impl Light {
     }
 
     /// Samples incident light at `ctx`; `None` when the light contributes nothing there.
-    pub fn sample_li(&self, ctx: &LightSampleContext, u: Vec2) -> Option<LightLiSample> {
+    /// `shapes` and `meshes` are the scene's, where area lights find their surface.
+    pub fn sample_li(
+        &self,
+        ctx: &LightSampleContext,
+        u: Vec2,
+        shapes: &[Shape],
+        meshes: &[TriangleMesh],
+    ) -> Option<LightLiSample> {
         match self {
+            Light::Area {
+                prim,
+                l,
+                two_sided,
+                area,
+                sphere,
+            } => {
+                if let Some((c, r)) = *sphere
+                    && let Some(cone) = SphereCone::new(ctx.p, c, r)
+                {
+                    // Seen from outside, a sphere fills a cone of half-angle θmax with
+                    // sin θmax = r/d: sample directions uniformly inside it, then find where
+                    // the direction meets the sphere.
+                    let local = crate::sampling::sample_uniform_cone(u, cone.cos_theta_max);
+                    let wi = cone.frame.from_local(local);
+                    let p = cone.hit(ctx.p, wi, c, r);
+                    let mut n = (p - c) / r;
+                    if let Shape::Sphere(s) = &shapes[*prim as usize]
+                        && s.placement.flip_normal
+                    {
+                        n = -n;
+                    }
+                    if !*two_sided && n.dot(wi) >= 0.0 {
+                        return None;
+                    }
+                    return Some(LightLiSample {
+                        l: *l,
+                        wi,
+                        pdf: crate::sampling::uniform_cone_pdf(cone.cos_theta_max),
+                        p_light: p,
+                    });
+                }
+                // Uniform by area, turned into a density per solid angle:
+                // p_ω = p_A · d² / |cos θ_light|.
+                let ss = shapes[*prim as usize].sample_area(u, meshes)?;
+                let d = ss.p - ctx.p;
+                let d2 = d.length_squared();
+                if d2 == 0.0 {
+                    return None;
+                }
+                let wi = d / d2.sqrt();
+                let cos_light = ss.n.dot(-wi);
+                if cos_light == 0.0 || (!*two_sided && cos_light < 0.0) {
+                    return None;
+                }
+                let pdf = d2 / (cos_light.abs() * area);
+                pdf.is_finite().then_some(LightLiSample {
+                    l: *l,
+                    wi,
+                    pdf,
+                    p_light: ss.p,
+                })
+            }
             Light::Point { p, intensity } => {
                 let d = *p - ctx.p;
                 let r2 = d.length_squared();
@@ -148,9 +227,25 @@ impl Light {
     }
 
     /// Density with which [`Light::sample_li`] picks direction `wi` at `ctx` (0 for delta
-    /// lights).
-    pub fn pdf_li(&self, ctx: &LightSampleContext, wi: Vec3) -> f32 {
+    /// lights). For area lights, `hit` is the point where `wi` meets the light and its
+    /// geometric normal.
+    pub fn pdf_li(&self, ctx: &LightSampleContext, wi: Vec3, hit: Option<(Vec3, Vec3)>) -> f32 {
         match self {
+            Light::Area { area, sphere, .. } => {
+                if let Some((c, r)) = *sphere
+                    && let Some(cone) = SphereCone::new(ctx.p, c, r)
+                {
+                    return crate::sampling::uniform_cone_pdf(cone.cos_theta_max);
+                }
+                let Some((p, n)) = hit else { return 0.0 };
+                let d2 = (p - ctx.p).length_squared();
+                let cos_light = n.dot(wi).abs();
+                if cos_light == 0.0 {
+                    0.0
+                } else {
+                    d2 / (cos_light * area)
+                }
+            }
             Light::UniformInfinite { .. } => {
                 if ctx.ns != Vec3::ZERO {
                     wi.dot(ctx.ns).max(0.0) * INV_PI
@@ -162,6 +257,35 @@ impl Light {
         }
     }
 
+    /// Total emitted power Φ (averaged over the channels), by which lights are chosen.
+    pub fn power(&self) -> f32 {
+        use std::f32::consts::PI;
+        let avg = |c: Rgb| (c.x + c.y + c.z) / 3.0;
+        match self {
+            // Φ = 4π·I.
+            Light::Point { intensity, .. } => 4.0 * PI * avg(*intensity),
+            // Φ = 2π·I·(1 − (cos θ_start + cos θ_end)/2): full inside, half over the falloff.
+            Light::Spot {
+                intensity,
+                cos_falloff_start,
+                cos_falloff_end,
+                ..
+            } => 2.0 * PI * avg(*intensity) * (1.0 - 0.5 * (cos_falloff_start + cos_falloff_end)),
+            // Φ = π·r²·L through the scene's bounding disk.
+            Light::Distant {
+                l, scene_radius, ..
+            } => PI * scene_radius * scene_radius * avg(*l),
+            // Φ = π·A·L per emitting side.
+            Light::Area {
+                l, two_sided, area, ..
+            } => PI * area * avg(*l) * if *two_sided { 2.0 } else { 1.0 },
+            // Φ = 4π²·r²·L.
+            Light::UniformInfinite { l, scene_radius } => {
+                4.0 * PI * PI * scene_radius * scene_radius * avg(*l)
+            }
+        }
+    }
+
     /// Radiance arriving along a ray that escapes the scene in direction `d` (environment
     /// lights only).
     pub fn le(&self, _d: Vec3) -> Rgb {
@@ -169,5 +293,50 @@ impl Light {
             Light::UniformInfinite { l, .. } => *l,
             _ => Rgb::ZERO,
         }
+    }
+}
+
+/// The cone of directions in which a sphere is seen from a point outside it.
+struct SphereCone {
+    /// Frame whose z points at the centre.
+    frame: Frame,
+    /// cos θmax, with sin θmax = r/d.
+    cos_theta_max: f32,
+}
+
+impl SphereCone {
+    /// `None` when `p` is inside the sphere (or so close that the cone is the hemisphere).
+    fn new(p: Vec3, c: Vec3, r: f32) -> Option<SphereCone> {
+        let d2 = (c - p).length_squared();
+        let r2 = r * r;
+        if d2 <= r2 * 1.0001 {
+            return None;
+        }
+        let sin2 = r2 / d2;
+        // For tiny cones 1 − sin² loses every digit: use cos ≈ 1 − sin²/2.
+        let cos_theta_max = if sin2 < 1e-4 {
+            1.0 - 0.5 * sin2
+        } else {
+            (1.0 - sin2).sqrt()
+        };
+        Some(SphereCone {
+            frame: Frame::from_z((c - p) / d2.sqrt()),
+            cos_theta_max,
+        })
+    }
+
+    /// Where the direction `w` from `p` first meets the sphere: the nearer root of
+    /// t² − 2t(w·(c − p)) + |c − p|² − r² = 0 (grazing directions that round to a miss take
+    /// the point of closest approach).
+    fn hit(&self, p: Vec3, w: Vec3, c: Vec3, r: f32) -> Vec3 {
+        let oc = (c - p).as_dvec3();
+        let w = w.as_dvec3();
+        let b = w.dot(oc);
+        let disc = b * b - (oc.length_squared() - (r as f64) * (r as f64));
+        let t = b - disc.max(0.0).sqrt();
+        let q = p.as_dvec3() + t * w;
+        // Put the point exactly on the sphere.
+        let c = c.as_dvec3();
+        (c + (q - c).normalize() * r as f64).as_vec3()
     }
 }

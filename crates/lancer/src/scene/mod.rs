@@ -4,7 +4,7 @@ pub mod desc;
 
 use crate::accel::Bvh;
 use crate::camera::Camera;
-use crate::light::Light;
+use crate::light::{Light, LightDistribution};
 use crate::material::Material;
 use crate::math::{Bounds3, Frame, Rgb, Vec3};
 use crate::ray::Ray;
@@ -30,6 +30,8 @@ pub struct AreaEmission {
     pub l: Rgb,
     /// Emits from both sides.
     pub two_sided: bool,
+    /// Index of the light in [`Scene::lights`].
+    pub light: u32,
 }
 
 /// A ray's nearest hit in the scene.
@@ -79,6 +81,10 @@ pub struct Scene {
     pub meshes: Vec<TriangleMesh>,
     /// Lights, area lights included.
     pub lights: Vec<Light>,
+    /// How next-event estimation picks a light: in proportion to power.
+    pub light_distribution: LightDistribution,
+    /// Indices of the lights that rays escaping the scene see (environment lights).
+    pub infinite_lights: Vec<u32>,
     /// Materials.
     pub materials: Vec<Material>,
     /// Float textures.
@@ -182,6 +188,16 @@ fn shapes_of(
     Ok(())
 }
 
+/// The world centre and radius of a shape that is a whole sphere (no cut, full sweep).
+fn whole_sphere(shape: &Shape) -> Option<(Vec3, f32)> {
+    let Shape::Sphere(s) = shape else { return None };
+    let whole =
+        s.z_min <= -s.radius && s.z_max >= s.radius && s.phi_max >= 2.0 * std::f32::consts::PI;
+    let t = &s.placement.to_world;
+    let scale = glam::Mat3::from_mat4(t.m).determinant().abs().cbrt();
+    whole.then(|| (t.point(Vec3::ZERO), s.radius * scale))
+}
+
 impl Scene {
     /// Builds a scene: shapes moved to world space and put in a BVH, lights gathered, the
     /// camera set up for an `xres × yres` image.
@@ -232,6 +248,7 @@ impl Scene {
                 emission: sd.area_light.map(|a| AreaEmission {
                     l: a.l,
                     two_sided: a.two_sided,
+                    light: 0,
                 }),
             };
             prims.extend(std::iter::repeat_n(info, shapes.len() - first));
@@ -297,6 +314,30 @@ impl Scene {
             });
         }
 
+        // Every emitting primitive is a light of its own (a mesh light: one per triangle).
+        for (i, (shape, info)) in shapes.iter().zip(prims.iter_mut()).enumerate() {
+            let Some(e) = info.emission.as_mut() else {
+                continue;
+            };
+            let area = shape.area();
+            if !(area > 0.0 && area.is_finite()) || e.l == Rgb::ZERO {
+                continue;
+            }
+            e.light = lights.len() as u32;
+            lights.push(Light::Area {
+                prim: i as u32,
+                l: e.l,
+                two_sided: e.two_sided,
+                area,
+                sphere: whole_sphere(shape),
+            });
+        }
+        let powers: Vec<f32> = lights.iter().map(Light::power).collect();
+        let light_distribution = LightDistribution::new(&powers);
+        let infinite_lights = (0..lights.len() as u32)
+            .filter(|&i| matches!(lights[i as usize], Light::UniformInfinite { .. }))
+            .collect();
+
         let camera = Camera::from_desc(&desc.camera, desc.film.xresolution, desc.film.yresolution)
             .ok_or(BuildError::BadCamera)?;
         Ok(Scene {
@@ -304,6 +345,8 @@ impl Scene {
             prims,
             meshes,
             lights,
+            light_distribution,
+            infinite_lights,
             materials,
             float_textures: desc.float_textures.clone(),
             spectrum_textures: desc.spectrum_textures.clone(),

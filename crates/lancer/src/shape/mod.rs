@@ -9,12 +9,14 @@
 mod cylinder;
 mod disk;
 mod plane;
+mod sample;
 mod sphere;
 mod triangle;
 
 pub use cylinder::Cylinder;
 pub use disk::Disk;
 pub use plane::Plane;
+pub use sample::ShapeSample;
 pub use sphere::Sphere;
 pub use triangle::{Triangle, TriangleMesh, intersect_triangle};
 
