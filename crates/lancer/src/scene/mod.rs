@@ -10,6 +10,7 @@ use crate::math::{Bounds3, Frame, Rgb, Vec3};
 use crate::ray::Ray;
 use crate::shape::{
     Cylinder, Disk, Placement, Plane, Shape, Sphere, SurfaceInteraction, Triangle, TriangleMesh,
+    TriangleRay, is_degenerate,
 };
 use crate::texture::{FloatTexture, SpectrumTexture, TexCoord, TextureEval};
 use desc::{Geometry, LightDesc, SceneDesc, ShapeDesc};
@@ -172,15 +173,19 @@ fn shapes_of(
             let mesh_index = meshes.len() as u32;
             for i in 0..world.triangle_count() as u32 {
                 let v = world.vertices(i);
-                out.push(Shape::Triangle(Triangle {
-                    p: [
-                        world.positions[v[0]],
-                        world.positions[v[1]],
-                        world.positions[v[2]],
-                    ],
-                    mesh: mesh_index,
-                    index: i,
-                }));
+                let p = [
+                    world.positions[v[0]],
+                    world.positions[v[1]],
+                    world.positions[v[2]],
+                ];
+                // A triangle of zero area can never be hit: leave it out.
+                if !is_degenerate(p[0], p[1], p[2]) {
+                    out.push(Shape::Triangle(Triangle {
+                        p,
+                        mesh: mesh_index,
+                        index: i,
+                    }));
+                }
             }
             meshes.push(world);
         }
@@ -368,14 +373,15 @@ impl Scene {
         crate::render::count_ray();
         let mut best: Option<(crate::shape::ShapeHit, u32)> = None;
         let mut r = *ray;
+        let pre = TriangleRay::new(ray);
         for &i in &self.unbounded {
-            if let Some(h) = self.shapes[i as usize].intersect(&r) {
+            if let Some(h) = self.shapes[i as usize].intersect_with(&r, &pre) {
                 r.t_max = h.t;
                 best = Some((h, i));
             }
         }
         self.bvh.intersect(&r, |i, r| {
-            let h = self.shapes[i as usize].intersect(r)?;
+            let h = self.shapes[i as usize].intersect_with(r, &pre)?;
             best = Some((h, i));
             Some(h.t)
         });
@@ -387,12 +393,13 @@ impl Scene {
     /// True if anything blocks the ray before `t_max` (shadow rays).
     pub fn intersect_p(&self, ray: &Ray) -> bool {
         crate::render::count_ray();
+        let pre = TriangleRay::new(ray);
         self.unbounded
             .iter()
-            .any(|&i| self.shapes[i as usize].intersect_p(ray))
+            .any(|&i| self.shapes[i as usize].intersect_p(ray, &pre))
             || self
                 .bvh
-                .intersect_any(ray, |i, r| self.shapes[i as usize].intersect_p(r))
+                .intersect_any(ray, |i, r| self.shapes[i as usize].intersect_p(r, &pre))
     }
 
     /// Texture evaluation against this scene's textures.

@@ -18,7 +18,9 @@ pub use disk::Disk;
 pub use plane::Plane;
 pub use sample::ShapeSample;
 pub use sphere::Sphere;
-pub use triangle::{Triangle, TriangleMesh, intersect_triangle};
+pub use triangle::{
+    Triangle, TriangleMesh, TriangleRay, intersect_triangle, intersect_triangle_with, is_degenerate,
+};
 
 use crate::math::{Bounds3, Transform, Vec2, Vec3};
 use crate::ray::Ray;
@@ -191,22 +193,30 @@ impl Shape {
         matches!(self, Shape::Plane(_))
     }
 
-    /// The nearest hit with `0 < t < ray.t_max`, if any.
+    /// The nearest hit with `0 < t < ray.t_max`, if any (the course's "intersect the ray with
+    /// an object").
     #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<ShapeHit> {
+        self.intersect_with(ray, &TriangleRay::new(ray))
+    }
+
+    /// [`Shape::intersect`] with `pre` = [`TriangleRay::new`] of the same ray, computed once
+    /// for all the shapes a ray is tested against.
+    #[inline]
+    pub fn intersect_with(&self, ray: &Ray, pre: &TriangleRay) -> Option<ShapeHit> {
         match self {
+            Shape::Triangle(t) => t.intersect(ray, pre),
             Shape::Sphere(s) => s.intersect(ray),
             Shape::Disk(s) => s.intersect(ray),
             Shape::Cylinder(s) => s.intersect(ray),
             Shape::Plane(s) => s.intersect(ray),
-            Shape::Triangle(t) => t.intersect(ray),
         }
     }
 
     /// True if the ray hits the shape with `0 < t < ray.t_max` (shadow rays).
     #[inline]
-    pub fn intersect_p(&self, ray: &Ray) -> bool {
-        self.intersect(ray).is_some()
+    pub fn intersect_p(&self, ray: &Ray, pre: &TriangleRay) -> bool {
+        self.intersect_with(ray, pre).is_some()
     }
 
     /// The full interaction for a hit found by [`Shape::intersect`] on the same ray.

@@ -100,10 +100,11 @@ impl Triangle {
             .union_point(self.p[2])
     }
 
-    /// Nearest hit (see [`intersect_triangle`]).
+    /// Nearest hit (see [`intersect_triangle`]); degenerate triangles are left out of scenes
+    /// when they are built.
     #[inline]
-    pub fn intersect(&self, ray: &Ray) -> Option<ShapeHit> {
-        intersect_triangle(ray, self.p[0], self.p[1], self.p[2])
+    pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<ShapeHit> {
+        intersect_triangle_with(ray, pre, self.p[0], self.p[1], self.p[2])
     }
 
     /// Full interaction: p = b₀p₀ + b₁p₁ + b₂p₂ with error ≤ γ₇ Σ|bᵢpᵢ|; ∂p/∂u, ∂p/∂v from the
@@ -202,30 +203,77 @@ impl Triangle {
 #[inline]
 pub fn intersect_triangle(ray: &Ray, p0: Vec3, p1: Vec3, p2: Vec3) -> Option<ShapeHit> {
     // Degenerate (zero-area) triangles are never hit.
-    if (p2 - p0).cross(p1 - p0).length_squared() == 0.0 {
+    if is_degenerate(p0, p1, p2) {
         return None;
     }
-    let mut p0t = p0 - ray.o;
-    let mut p1t = p1 - ray.o;
-    let mut p2t = p2 - ray.o;
-    let ad = ray.d.abs();
-    let kz = if ad.x > ad.y {
-        if ad.x > ad.z { 0 } else { 2 }
-    } else if ad.y > ad.z {
-        1
-    } else {
-        2
-    };
-    let kx = if kz == 2 { 0 } else { kz + 1 };
-    let ky = if kx == 2 { 0 } else { kx + 1 };
-    let perm = |v: Vec3| Vec3::new(v[kx], v[ky], v[kz]);
-    let d = perm(ray.d);
-    p0t = perm(p0t);
-    p1t = perm(p1t);
-    p2t = perm(p2t);
-    let sx = -d.x / d.z;
-    let sy = -d.y / d.z;
-    let sz = 1.0 / d.z;
+    intersect_triangle_with(ray, &TriangleRay::new(ray), p0, p1, p2)
+}
+
+/// True for a triangle of zero area, which no ray can hit.
+#[inline]
+pub fn is_degenerate(p0: Vec3, p1: Vec3, p2: Vec3) -> bool {
+    (p2 - p0).cross(p1 - p0).length_squared() == 0.0
+}
+
+/// The part of the watertight test that depends on the ray alone, computed once per ray
+/// rather than once per triangle: the axis `kz` along which the ray runs most (it becomes z),
+/// and the shear (sx, sy, sz) that turns the permuted direction into +z.
+#[derive(Clone, Copy, Debug)]
+pub struct TriangleRay {
+    kz: u8,
+    shear: Vec3,
+}
+
+impl TriangleRay {
+    /// Precomputes the permutation and shear for `ray`.
+    #[inline]
+    pub fn new(ray: &Ray) -> TriangleRay {
+        let ad = ray.d.abs();
+        let kz = if ad.x > ad.y {
+            if ad.x > ad.z { 0 } else { 2 }
+        } else if ad.y > ad.z {
+            1
+        } else {
+            2
+        };
+        let mut pre = TriangleRay {
+            kz,
+            shear: Vec3::ZERO,
+        };
+        let d = pre.permute(ray.d);
+        pre.shear = Vec3::new(-d.x / d.z, -d.y / d.z, 1.0 / d.z);
+        pre
+    }
+
+    /// (v[kx], v[ky], v[kz]) with kx, ky the two other axes in cyclic order.
+    #[inline(always)]
+    fn permute(&self, v: Vec3) -> Vec3 {
+        match self.kz {
+            0 => Vec3::new(v.y, v.z, v.x),
+            1 => Vec3::new(v.z, v.x, v.y),
+            _ => v,
+        }
+    }
+}
+
+/// [`intersect_triangle`] with the ray's permutation and shear already computed, for a
+/// triangle known not to be degenerate.
+#[inline]
+pub fn intersect_triangle_with(
+    ray: &Ray,
+    pre: &TriangleRay,
+    p0: Vec3,
+    p1: Vec3,
+    p2: Vec3,
+) -> Option<ShapeHit> {
+    let mut p0t = pre.permute(p0 - ray.o);
+    let mut p1t = pre.permute(p1 - ray.o);
+    let mut p2t = pre.permute(p2 - ray.o);
+    let Vec3 {
+        x: sx,
+        y: sy,
+        z: sz,
+    } = pre.shear;
     p0t.x += sx * p0t.z;
     p0t.y += sy * p0t.z;
     p1t.x += sx * p1t.z;
