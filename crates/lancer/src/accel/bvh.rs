@@ -26,7 +26,7 @@ pub struct Bvh {
 }
 
 const BINS: usize = 12;
-const MAX_LEAF: usize = 4;
+const MAX_LEAF: usize = 2;
 
 struct BuildPrim {
     bounds: Bounds3,
