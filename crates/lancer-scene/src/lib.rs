@@ -1,11 +1,12 @@
-//! Scene formats read into lancer's plain-data [`SceneDesc`]: pbrt-v4 files today; glTF, OBJ
-//! and PLY are to come.
+//! Scene formats read into lancer's plain-data [`SceneDesc`]: pbrt-v4 files today, with the
+//! PLY meshes their `plymesh` shapes name; glTF and OBJ are to come.
 //!
 //! Every error names its place (`file:line:column`) and comes with the offending line; what
 //! lancer reads but does not do yet is a [`Warning`] saying what it does instead.
 
 pub mod error;
 pub mod pbrt;
+pub mod ply;
 
 pub use error::{Location, SceneError, Warning};
 

@@ -8,6 +8,7 @@
 use super::params::{ColorParam, FloatParam, ParamList};
 use super::parser::SearchPath;
 use crate::error::{Location, SceneError};
+use crate::ply::read_ply;
 use lancer::material::Material;
 use lancer::math::{Rgb, Vec3};
 use lancer::sampling::SamplerKind;
@@ -382,6 +383,8 @@ impl Reader<'_> {
     pub fn shape(&self, ty: &str) -> Result<Converted<(Geometry, Option<FloatTex>)>, SceneError> {
         let p = self.params;
         let positive = |v: f32| v > 0.0;
+        // What lancer left out of a shape it still makes.
+        let mut note = None;
         let geometry = match ty {
             "sphere" => {
                 let radius = p.float_checked("radius", 1.0, "positive", positive)?;
@@ -432,8 +435,17 @@ impl Reader<'_> {
                 }
             }
             "trianglemesh" => Geometry::TriangleMesh(Arc::new(self.triangle_mesh()?)),
-            "plymesh" | "bilinearmesh" | "loopsubdiv" | "curve" | "cone" | "paraboloid"
-            | "hyperboloid" => {
+            "plymesh" => match self.ply_mesh()? {
+                Converted::Done(mesh) => Geometry::TriangleMesh(Arc::new(mesh)),
+                Converted::Unsupported(warning, Some(mesh)) => {
+                    note = Some(warning);
+                    Geometry::TriangleMesh(Arc::new(mesh))
+                }
+                Converted::Unsupported(warning, None) => {
+                    return Ok(Converted::Unsupported(warning, None));
+                }
+            },
+            "bilinearmesh" | "loopsubdiv" | "curve" | "cone" | "paraboloid" | "hyperboloid" => {
                 return Ok(Converted::Unsupported(
                     format!("shape \"{ty}\" is not supported yet; skipped"),
                     None,
@@ -451,7 +463,57 @@ impl Reader<'_> {
             Some(FloatParam::Const(a)) => Some(FloatTex::Const(a)),
             Some(FloatParam::Texture(t, loc)) => Some(self.textures.float(&t, &loc)?),
         };
-        Ok(Converted::Done((geometry, alpha)))
+        Ok(match note {
+            None => Converted::Done((geometry, alpha)),
+            Some(warning) => Converted::Unsupported(warning, Some((geometry, alpha))),
+        })
+    }
+
+    /// pbrt's `plymesh`: the triangles of the PLY file `filename` (gzipped when it ends in
+    /// `.gz`). Displacement is not supported: the mesh is used as it is, with a warning.
+    fn ply_mesh(&self) -> Result<Converted<TriangleMesh>, SceneError> {
+        let p = self.params;
+        let Some(name) = p.string("filename")? else {
+            return Err(SceneError::general(
+                "a \"plymesh\" needs the name of its PLY file, \"string filename\"",
+            ));
+        };
+        let path = self.dir.resolve(&name);
+        let ply = read_ply(&path).map_err(|e| SceneError::general(e.to_string()))?;
+        if ply.mesh.triangle_count() == 0 {
+            return Ok(Converted::Unsupported(
+                format!("{} has no faces; the shape is skipped", path.display()),
+                None,
+            ));
+        }
+        let mut notes = Vec::new();
+        if ply.skipped_faces > 0 {
+            notes.push(format!(
+                "{}: {} faces with fewer than 3 vertices skipped",
+                path.display(),
+                ply.skipped_faces
+            ));
+        }
+        // Read (so that they are not also reported as unused) but not applied.
+        let displaced = p.float_or_texture("displacement")?.is_some();
+        let edge_length = p.has("edgelength");
+        p.float("edgelength", 1.0)?;
+        if displaced {
+            notes.push(
+                "displacement of a \"plymesh\" is not supported yet; the mesh is used undisplaced"
+                    .into(),
+            );
+        } else if edge_length {
+            notes.push(
+                "\"edgelength\" only matters with \"displacement\", which lancer does not support yet; ignored"
+                    .into(),
+            );
+        }
+        Ok(if notes.is_empty() {
+            Converted::Done(ply.mesh)
+        } else {
+            Converted::Unsupported(notes.join("; "), Some(ply.mesh))
+        })
     }
 
     /// pbrt's `trianglemesh`: `P`, `indices` (optional for a single triangle), `N`, `uv`.
