@@ -96,12 +96,14 @@ pub fn save_or_exit(canvas: &Canvas, name: &str) {
 pub fn sphere(c: Vec3, r: f32) -> lancer::shape::Shape {
     use lancer::shape::{Placement, Shape, Sphere};
     let placement = Placement::new(lancer::math::Transform::translate(c), false);
-    Shape::Sphere(Sphere::new(placement, r, -r, r, 360.0))
+    Shape::Sphere(Box::new(Sphere::new(placement, r, -r, r, 360.0)))
 }
 
 /// The infinite plane through `a` with normal `n`.
 pub fn plane(a: Vec3, n: Vec3) -> lancer::shape::Shape {
-    lancer::shape::Shape::Plane(lancer::shape::Plane::new(a, n).expect("non-zero normal"))
+    lancer::shape::Shape::Plane(Box::new(
+        lancer::shape::Plane::new(a, n).expect("non-zero normal"),
+    ))
 }
 
 /// The nearest valid hit of `ray` among `objects`: the smallest t with t > 0, as the index of

@@ -122,37 +122,37 @@ fn shapes_of(
             z_min,
             z_max,
             phi_max,
-        } => out.push(Shape::Sphere(Sphere::new(
+        } => out.push(Shape::Sphere(Box::new(Sphere::new(
             placement,
             positive(*radius, "radius")?,
             *z_min,
             *z_max,
             *phi_max,
-        ))),
+        )))),
         Geometry::Disk {
             height,
             radius,
             inner_radius,
             phi_max,
-        } => out.push(Shape::Disk(Disk::new(
+        } => out.push(Shape::Disk(Box::new(Disk::new(
             placement,
             *height,
             positive(*radius, "radius")?,
             *inner_radius,
             *phi_max,
-        ))),
+        )))),
         Geometry::Cylinder {
             radius,
             z_min,
             z_max,
             phi_max,
-        } => out.push(Shape::Cylinder(Cylinder::new(
+        } => out.push(Shape::Cylinder(Box::new(Cylinder::new(
             placement,
             positive(*radius, "radius")?,
             *z_min,
             *z_max,
             *phi_max,
-        ))),
+        )))),
         Geometry::Plane { p, n } => {
             let t = &sd.object_to_world;
             let mut n = t.normal(*n);
@@ -162,7 +162,7 @@ fn shapes_of(
             let plane = Plane::new(t.point(*p), n).ok_or_else(|| {
                 BuildError::Invalid(format!("shape {index}: plane normal is zero"))
             })?;
-            out.push(Shape::Plane(plane));
+            out.push(Shape::Plane(Box::new(plane)));
         }
         Geometry::TriangleMesh(m) => {
             m.validate().map_err(|message| BuildError::BadMesh {
@@ -271,9 +271,25 @@ impl Scene {
             .map(|&i| shapes[i as usize].bounds())
             .collect();
         let mut bvh = Bvh::build(&bounds_list);
-        for idx in bvh.indices.iter_mut() {
-            *idx = bounded[*idx as usize];
+        // Lay the primitives out in the tree's leaf order (unbounded ones last), so that the
+        // primitives of a leaf are neighbours in memory and the leaf's indices are its slots.
+        let order: Vec<u32> = bvh
+            .indices
+            .iter()
+            .map(|&k| bounded[k as usize])
+            .chain(unbounded.iter().copied())
+            .collect();
+        let mut slots: Vec<Option<Shape>> = shapes.into_iter().map(Some).collect();
+        let shapes: Vec<Shape> = order
+            .iter()
+            .map(|&i| slots[i as usize].take().expect("each primitive once"))
+            .collect();
+        let mut prims: Vec<PrimInfo> = order.iter().map(|&i| prims[i as usize]).collect();
+        let n_bounded = bvh.indices.len() as u32;
+        for (k, idx) in bvh.indices.iter_mut().enumerate() {
+            *idx = k as u32;
         }
+        let unbounded: Vec<u32> = (n_bounded..shapes.len() as u32).collect();
         let mut bounds = bvh.bounds();
         if bounds.is_empty() {
             bounds = Bounds3::from_point(Vec3::ZERO);

@@ -160,16 +160,20 @@ impl Placement {
 }
 
 /// Every kind of shape lancer intersects.
+///
+/// Quadrics carry two 4×4 matrices each and are boxed, so that the enum stays the size of a
+/// triangle (48 bytes rather than 320): scenes are mostly triangles, and the intersection loop
+/// walks arrays of shapes.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Shape {
     /// A (partial) sphere.
-    Sphere(Sphere),
+    Sphere(Box<Sphere>),
     /// A (partial) disk or annulus.
-    Disk(Disk),
+    Disk(Box<Disk>),
     /// A (partial) open cylinder.
-    Cylinder(Cylinder),
+    Cylinder(Box<Cylinder>),
     /// An infinite plane (lancer extension).
-    Plane(Plane),
+    Plane(Box<Plane>),
     /// One triangle of a mesh.
     Triangle(Triangle),
 }
