@@ -2,11 +2,22 @@
 //! into a [`Bsdf`] in the local shading frame.
 
 mod bxdf;
+mod conductor;
+mod dielectric;
+mod diffuse;
 mod fresnel;
+mod layered;
+mod microfacet;
 
-pub use bxdf::{Bsdf, BsdfSample, BxDF, BxdfFlags, TransportMode};
+pub use bxdf::{Bsdf, BsdfSample, BxDF, BxdfFlags, ReflTrans, Scatter, TransportMode};
+pub use conductor::ConductorBxdf;
+pub use dielectric::{DielectricBxdf, ThinDielectricBxdf};
+pub use diffuse::{DiffuseBxdf, DiffuseTransmissionBxdf};
 pub use fresnel::{fresnel_complex, fresnel_dielectric, reflect, refract};
+pub use layered::{CoatedConductorBxdf, CoatedDiffuseBxdf, LayeredBxdf};
+pub use microfacet::TrowbridgeReitz;
 
+use crate::math::Rgb;
 use crate::texture::{FloatTex, SpectrumTex, TexCoord, TextureEval};
 
 /// A material as given in a scene (pbrt-v4's names and parameters), plain data.
@@ -133,56 +144,150 @@ impl Default for Material {
     }
 }
 
+/// pbrt's treatment of an index of refraction of 0 (unset or meaningless): 1.
+#[inline]
+fn nonzero_eta(eta: f32) -> f32 {
+    if eta == 0.0 { 1.0 } else { eta }
+}
+
+/// The conductor index pbrt-v4 uses: `eta`/`k` as given, or, when an artist's `reflectance`
+/// r is given instead, η = 1 and k = 2√r / √(1 − r) (r clamped to [0, 0.9999]), which makes
+/// the normal-incidence Fresnel reflectance ((η − 1)² + k²)/((η + 1)² + k²) equal r.
+fn conductor_index(
+    tex: &TextureEval,
+    tc: &TexCoord,
+    eta: SpectrumTex,
+    k: SpectrumTex,
+    reflectance: Option<SpectrumTex>,
+) -> (Rgb, Rgb) {
+    match reflectance {
+        Some(r) => {
+            let r = tex.spectrum(r, tc).clamp(Rgb::ZERO, Rgb::splat(0.9999));
+            let k = 2.0 * r.map(f32::sqrt) / (Rgb::ONE - r).max(Rgb::ZERO).map(f32::sqrt);
+            (Rgb::ONE, k)
+        }
+        None => (tex.spectrum(eta, tc), tex.spectrum(k, tc)),
+    }
+}
+
 impl Material {
-    /// The BxDF this material has at a surface point, with textures evaluated there. `Mix` must
-    /// be resolved by the caller first (it needs a random choice); `Interface` has none.
+    /// The BxDF this material has at a surface point, with textures evaluated there, as
+    /// pbrt-v4's materials build theirs: albedos clamped to [0, 1], roughness remapped to α
+    /// when asked, an index of 0 taken as 1. `Mix` must be resolved by the caller first (it
+    /// needs a random choice); `Interface` has none.
     pub fn bxdf(&self, tex: &TextureEval, tc: &TexCoord) -> Option<BxDF> {
-        match self {
-            Material::Diffuse { reflectance } => Some(BxDF::Diffuse {
-                r: tex
-                    .spectrum(*reflectance, tc)
-                    .clamp(crate::math::Rgb::ZERO, crate::math::Rgb::ONE),
-            }),
+        let albedo = |t: SpectrumTex| tex.spectrum(t, tc).clamp(Rgb::ZERO, Rgb::ONE);
+        let distrib = |u: FloatTex, v: FloatTex, remap: bool| {
+            TrowbridgeReitz::from_roughness(tex.float(u, tc), tex.float(v, tc), remap)
+        };
+        Some(match *self {
+            Material::Diffuse { reflectance } => BxDF::diffuse(albedo(reflectance)),
             Material::Conductor {
                 eta,
                 k,
                 reflectance,
-                ..
+                uroughness,
+                vroughness,
+                remap_roughness,
             } => {
-                let (eta, k) = match reflectance {
-                    Some(r) => {
-                        // pbrt: k = 2√r / √(1 − r), eta = 1, so that F(0) = r.
-                        let r = tex
-                            .spectrum(*r, tc)
-                            .clamp(crate::math::Rgb::ZERO, crate::math::Rgb::splat(0.9999));
-                        let k = 2.0 * r.map(f32::sqrt) / (crate::math::Rgb::ONE - r).map(f32::sqrt);
-                        (crate::math::Rgb::ONE, k)
-                    }
-                    None => (tex.spectrum(*eta, tc), tex.spectrum(*k, tc)),
-                };
-                Some(BxDF::Conductor { eta, k })
+                let (eta, k) = conductor_index(tex, tc, eta, k, reflectance);
+                BxDF::Conductor(ConductorBxdf {
+                    distrib: distrib(uroughness, vroughness, remap_roughness),
+                    eta,
+                    k,
+                })
             }
-            Material::Dielectric { eta, .. } | Material::ThinDielectric { eta } => {
-                Some(BxDF::Dielectric { eta: *eta })
-            }
+            Material::Dielectric {
+                eta,
+                uroughness,
+                vroughness,
+                remap_roughness,
+            } => BxDF::Dielectric(DielectricBxdf {
+                eta: nonzero_eta(eta),
+                distrib: distrib(uroughness, vroughness, remap_roughness),
+            }),
+            Material::ThinDielectric { eta } => BxDF::ThinDielectric(ThinDielectricBxdf {
+                eta: nonzero_eta(eta),
+            }),
             Material::DiffuseTransmission {
-                reflectance, scale, ..
-            } => Some(BxDF::Diffuse {
-                r: (tex.spectrum(*reflectance, tc) * *scale)
-                    .clamp(crate::math::Rgb::ZERO, crate::math::Rgb::ONE),
+                reflectance,
+                transmittance,
+                scale,
+            } => BxDF::DiffuseTransmission(DiffuseTransmissionBxdf {
+                r: (tex.spectrum(reflectance, tc) * scale).clamp(Rgb::ZERO, Rgb::ONE),
+                t: (tex.spectrum(transmittance, tc) * scale).clamp(Rgb::ZERO, Rgb::ONE),
             }),
-            Material::CoatedDiffuse { reflectance, .. } => Some(BxDF::Diffuse {
-                r: tex
-                    .spectrum(*reflectance, tc)
-                    .clamp(crate::math::Rgb::ZERO, crate::math::Rgb::ONE),
-            }),
+            Material::CoatedDiffuse {
+                reflectance,
+                uroughness,
+                vroughness,
+                thickness,
+                eta,
+                albedo: medium_albedo,
+                g,
+                max_depth,
+                n_samples,
+                remap_roughness,
+            } => BxDF::CoatedDiffuse(CoatedDiffuseBxdf::new(
+                DielectricBxdf {
+                    eta: nonzero_eta(eta),
+                    distrib: distrib(uroughness, vroughness, remap_roughness),
+                },
+                DiffuseBxdf {
+                    r: albedo(reflectance),
+                },
+                tex.float(thickness, tc),
+                albedo(medium_albedo),
+                tex.float(g, tc).clamp(-1.0, 1.0),
+                max_depth,
+                n_samples,
+            )),
             Material::CoatedConductor {
-                conductor_eta, k, ..
-            } => Some(BxDF::Conductor {
-                eta: tex.spectrum(*conductor_eta, tc),
-                k: tex.spectrum(*k, tc),
-            }),
-            Material::Mix { .. } | Material::Interface => None,
-        }
+                interface_uroughness,
+                interface_vroughness,
+                interface_eta,
+                conductor_eta,
+                k,
+                reflectance,
+                conductor_uroughness,
+                conductor_vroughness,
+                thickness,
+                albedo: medium_albedo,
+                g,
+                max_depth,
+                n_samples,
+                remap_roughness,
+            } => {
+                let ieta = nonzero_eta(interface_eta);
+                let (ce, ck) = conductor_index(tex, tc, conductor_eta, k, reflectance);
+                BxDF::CoatedConductor(CoatedConductorBxdf::new(
+                    DielectricBxdf {
+                        eta: ieta,
+                        distrib: distrib(
+                            interface_uroughness,
+                            interface_vroughness,
+                            remap_roughness,
+                        ),
+                    },
+                    // Under the coating the conductor borders the coating's medium, not air:
+                    // its index relative to that medium is (η + ik)/η_coating.
+                    ConductorBxdf {
+                        distrib: distrib(
+                            conductor_uroughness,
+                            conductor_vroughness,
+                            remap_roughness,
+                        ),
+                        eta: ce / ieta,
+                        k: ck / ieta,
+                    },
+                    tex.float(thickness, tc),
+                    albedo(medium_albedo),
+                    tex.float(g, tc).clamp(-1.0, 1.0),
+                    max_depth,
+                    n_samples,
+                ))
+            }
+            Material::Mix { .. } | Material::Interface => return None,
+        })
     }
 }
