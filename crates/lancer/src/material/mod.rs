@@ -291,3 +291,140 @@ impl Material {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn eval(m: &Material) -> BxDF {
+        let tex = TextureEval {
+            floats: &[],
+            spectra: &[],
+        };
+        m.bxdf(&tex, &TexCoord::default())
+            .expect("a surface material")
+    }
+
+    fn c(v: f32) -> FloatTex {
+        FloatTex::Const(v)
+    }
+
+    fn rgb(v: f32) -> SpectrumTex {
+        SpectrumTex::Const(Rgb::splat(v))
+    }
+
+    #[test]
+    fn conductors_remap_roughness_and_honour_an_artists_reflectance() {
+        let m = Material::Conductor {
+            eta: rgb(0.2),
+            k: rgb(3.0),
+            reflectance: Some(SpectrumTex::Const(Rgb::new(0.9, 0.5, 0.1))),
+            uroughness: c(0.25),
+            vroughness: c(0.04),
+            remap_roughness: true,
+        };
+        let BxDF::Conductor(b) = eval(&m) else {
+            panic!("not a conductor")
+        };
+        // α = √roughness.
+        assert_eq!((b.distrib.alpha_x(), b.distrib.alpha_y()), (0.5, 0.2));
+        // η = 1, k = 2√r/√(1 − r): the normal-incidence reflectance is r.
+        let f0 = fresnel_complex(1.0, b.eta, b.k);
+        assert!(
+            (f0 - Rgb::new(0.9, 0.5, 0.1)).abs().max_element() < 1e-4,
+            "{f0}"
+        );
+        // Without remapping the roughness is α itself; zero makes a mirror.
+        let m = Material::Conductor {
+            eta: rgb(0.2),
+            k: rgb(3.0),
+            reflectance: None,
+            uroughness: c(0.0),
+            vroughness: c(0.0),
+            remap_roughness: false,
+        };
+        let BxDF::Conductor(b) = eval(&m) else {
+            panic!("not a conductor")
+        };
+        assert!(b.distrib.effectively_smooth());
+        assert_eq!((b.eta, b.k), (Rgb::splat(0.2), Rgb::splat(3.0)));
+    }
+
+    #[test]
+    fn every_material_becomes_its_own_bxdf() {
+        let d = eval(&Material::Dielectric {
+            eta: 0.0,
+            uroughness: c(0.09),
+            vroughness: c(0.09),
+            remap_roughness: true,
+        });
+        // An index of 0 means 1, as in pbrt.
+        assert!(
+            matches!(d, BxDF::Dielectric(b) if b.eta == 1.0 && (b.distrib.alpha_x() - 0.3).abs() < 1e-6)
+        );
+        let t = eval(&Material::ThinDielectric { eta: 1.33 });
+        assert!(matches!(t, BxDF::ThinDielectric(b) if b.eta == 1.33));
+        // Diffuse transmission: both albedos scaled, then clamped to one.
+        let dt = eval(&Material::DiffuseTransmission {
+            reflectance: rgb(0.3),
+            transmittance: rgb(0.6),
+            scale: 2.0,
+        });
+        assert!(
+            matches!(dt, BxDF::DiffuseTransmission(b) if b.r == Rgb::splat(0.6) && b.t == Rgb::ONE)
+        );
+        let cd = eval(&Material::CoatedDiffuse {
+            reflectance: rgb(1.5),
+            uroughness: c(0.0),
+            vroughness: c(0.0),
+            thickness: c(0.01),
+            eta: 1.5,
+            albedo: rgb(0.2),
+            g: c(3.0),
+            max_depth: 10,
+            n_samples: 2,
+            remap_roughness: true,
+        });
+        let BxDF::CoatedDiffuse(l) = cd else {
+            panic!("not a coated diffuse")
+        };
+        assert_eq!(l.bottom.r, Rgb::ONE);
+        assert_eq!((l.top.eta, l.thickness, l.g), (1.5, 0.01, 1.0));
+        assert_eq!(
+            (l.albedo, l.max_depth, l.n_samples),
+            (Rgb::splat(0.2), 10, 2)
+        );
+        // Under its coating the conductor's index is relative to the coating's.
+        let cc = eval(&Material::CoatedConductor {
+            interface_uroughness: c(0.0),
+            interface_vroughness: c(0.0),
+            interface_eta: 1.5,
+            conductor_eta: rgb(0.3),
+            k: rgb(3.0),
+            reflectance: None,
+            conductor_uroughness: c(0.16),
+            conductor_vroughness: c(0.16),
+            thickness: c(0.01),
+            albedo: rgb(0.0),
+            g: c(0.0),
+            max_depth: 10,
+            n_samples: 1,
+            remap_roughness: true,
+        });
+        let BxDF::CoatedConductor(l) = cc else {
+            panic!("not a coated conductor")
+        };
+        assert!((l.bottom.eta - Rgb::splat(0.2)).abs().max_element() < 1e-6);
+        assert!((l.bottom.k - Rgb::splat(2.0)).abs().max_element() < 1e-6);
+        assert!((l.bottom.distrib.alpha_x() - 0.4).abs() < 1e-6);
+        let none = TextureEval {
+            floats: &[],
+            spectra: &[],
+        };
+        assert!(
+            Material::Interface
+                .bxdf(&none, &TexCoord::default())
+                .is_none()
+        );
+    }
+}
