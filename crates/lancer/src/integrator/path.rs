@@ -5,19 +5,8 @@ use crate::light::LightSampleContext;
 use crate::material::TransportMode;
 use crate::math::Rgb;
 use crate::ray::Ray;
-use crate::sampling::Sampler;
+use crate::sampling::{Sampler, power_heuristic};
 use crate::scene::Scene;
-
-/// Power heuristic (β = 2) weight of a sample taken with density `f` against another strategy
-/// of density `g`: w = f² / (f² + g²) (Veach 1997).
-#[inline]
-pub fn power_heuristic(f: f32, g: f32) -> f32 {
-    let (f2, g2) = (f * f, g * g);
-    if f2.is_infinite() {
-        return 1.0;
-    }
-    if f2 + g2 == 0.0 { 0.0 } else { f2 / (f2 + g2) }
-}
 
 /// Radiance along a camera ray, by path tracing up to `max_depth` bounces.
 pub fn li(scene: &Scene, ray: &Ray, sampler: &mut Sampler, max_depth: u32) -> Rgb {
@@ -119,7 +108,13 @@ pub fn li(scene: &Scene, ray: &Ray, sampler: &mut Sampler, max_depth: u32) -> Rg
             break;
         };
         beta *= bs.f * bs.wi.dot(si.shading.n).abs() / bs.pdf;
-        p_b = bs.pdf;
+        // A layered BSDF's sample density is only proportional to the true one; MIS needs the
+        // density the light-sampling side will also use.
+        p_b = if bs.pdf_is_proportional {
+            bsdf.pdf(wo, bs.wi, TransportMode::Radiance)
+        } else {
+            bs.pdf
+        };
         specular_bounce = bs.flags.is_specular();
         if bs.flags.has(crate::material::BxdfFlags::TRANSMISSION) {
             eta_scale *= bs.eta * bs.eta;

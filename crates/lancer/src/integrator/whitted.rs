@@ -57,8 +57,10 @@ pub fn li(scene: &Scene, ray: &Ray, sampler: &mut Sampler, depth: u32, max_depth
         let wo_l = bsdf.frame.to_local(wo);
         let reflect = |w: Vec3| -w + 2.0 * w.dot(n) * n;
         match bsdf.bxdf {
-            BxDF::Conductor { eta, k } => {
-                let f = fresnel_complex(wo_l.z.abs(), eta, k);
+            // The course's recursion follows perfect mirrors and refractions only; rough
+            // interfaces are lit directly above and nothing more.
+            BxDF::Conductor(c) if c.distrib.effectively_smooth() => {
+                let f = fresnel_complex(wo_l.z.abs(), c.eta, c.k);
                 l += f * li(
                     scene,
                     &si.spawn_ray(reflect(wo)),
@@ -67,7 +69,8 @@ pub fn li(scene: &Scene, ray: &Ray, sampler: &mut Sampler, depth: u32, max_depth
                     max_depth,
                 );
             }
-            BxDF::Dielectric { eta } => {
+            BxDF::Dielectric(d) if d.distrib.effectively_smooth() => {
+                let eta = d.eta;
                 let r = fresnel_dielectric(wo_l.z, eta);
                 if r > 0.0 {
                     l += r * li(
@@ -84,7 +87,7 @@ pub fn li(scene: &Scene, ray: &Ray, sampler: &mut Sampler, depth: u32, max_depth
                     l += t * li(scene, &si.spawn_ray(wt), sampler, depth + 1, max_depth);
                 }
             }
-            BxDF::Diffuse { .. } => {}
+            _ => {}
         }
     }
     l

@@ -1,8 +1,15 @@
 //! BxDFs in the local shading frame (normal = +z) and the [`Bsdf`] that places them in the world.
+//!
+//! Each kind of scattering is a small `Copy` struct implementing [`Scatter`] (in
+//! [`super::diffuse`], [`super::conductor`], [`super::dielectric`], [`super::layered`]); the
+//! closed set of them is the enum [`BxDF`], matched per call: no allocation and no dynamic
+//! dispatch per ray.
 
-use super::fresnel::{fresnel_complex, fresnel_dielectric, refract};
-use crate::math::{Frame, INV_PI, Rgb, Vec2, Vec3};
-use crate::sampling::sample_cosine_hemisphere;
+use super::conductor::ConductorBxdf;
+use super::dielectric::{DielectricBxdf, ThinDielectricBxdf};
+use super::diffuse::{DiffuseBxdf, DiffuseTransmissionBxdf};
+use super::layered::{CoatedConductorBxdf, CoatedDiffuseBxdf};
+use crate::math::{Frame, Rgb, Vec2, Vec3};
 
 /// Whether radiance (from the camera) or importance (from lights) is carried: refraction scales
 /// radiance by 1/η², not importance.
@@ -14,11 +21,24 @@ pub enum TransportMode {
     Importance,
 }
 
+impl TransportMode {
+    /// The adjoint mode: what a path traced the other way carries.
+    #[inline]
+    pub fn flip(self) -> TransportMode {
+        match self {
+            TransportMode::Radiance => TransportMode::Importance,
+            TransportMode::Importance => TransportMode::Radiance,
+        }
+    }
+}
+
 /// What kind of scattering a BxDF (or a sampled lobe) does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct BxdfFlags(pub u8);
 
 impl BxdfFlags {
+    /// No scattering at all.
+    pub const NONE: BxdfFlags = BxdfFlags(0);
     /// Scatters into the hemisphere of the normal.
     pub const REFLECTION: BxdfFlags = BxdfFlags(1);
     /// Scatters through the surface.
@@ -47,6 +67,30 @@ impl BxdfFlags {
     pub fn is_non_specular(self) -> bool {
         self.has(BxdfFlags(Self::DIFFUSE.0 | Self::GLOSSY.0))
     }
+
+    /// True when some lobe reflects.
+    #[inline]
+    pub fn is_reflection(self) -> bool {
+        self.has(Self::REFLECTION)
+    }
+
+    /// True when some lobe transmits.
+    #[inline]
+    pub fn is_transmission(self) -> bool {
+        self.has(Self::TRANSMISSION)
+    }
+
+    /// True when some lobe is diffuse.
+    #[inline]
+    pub fn is_diffuse(self) -> bool {
+        self.has(Self::DIFFUSE)
+    }
+
+    /// True when some lobe is glossy.
+    #[inline]
+    pub fn is_glossy(self) -> bool {
+        self.has(Self::GLOSSY)
+    }
 }
 
 impl std::ops::BitOr for BxdfFlags {
@@ -56,10 +100,43 @@ impl std::ops::BitOr for BxdfFlags {
     }
 }
 
+impl std::ops::BitOrAssign for BxdfFlags {
+    fn bitor_assign(&mut self, o: BxdfFlags) {
+        self.0 |= o.0;
+    }
+}
+
+/// Which halves of the sphere a sampling or density query may consider (pbrt's
+/// `BxDFReflTransFlags`): layered BSDFs ask an interface for its transmission alone, say.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ReflTrans(u8);
+
+impl ReflTrans {
+    /// Only reflection.
+    pub const REFLECTION: ReflTrans = ReflTrans(1);
+    /// Only transmission.
+    pub const TRANSMISSION: ReflTrans = ReflTrans(2);
+    /// Both.
+    pub const ALL: ReflTrans = ReflTrans(3);
+
+    /// Reflection is allowed.
+    #[inline]
+    pub fn reflection(self) -> bool {
+        self.0 & 1 != 0
+    }
+
+    /// Transmission is allowed.
+    #[inline]
+    pub fn transmission(self) -> bool {
+        self.0 & 2 != 0
+    }
+}
+
 /// A sampled scattering direction.
 #[derive(Clone, Copy, Debug)]
 pub struct BsdfSample {
-    /// BSDF value f(wo, wi).
+    /// BSDF value f(wo, wi) (for layered BSDFs, an unbiased estimate of f·pdf-ratio; see
+    /// `pdf_is_proportional`).
     pub f: Rgb,
     /// The sampled incident direction.
     pub wi: Vec3,
@@ -69,165 +146,170 @@ pub struct BsdfSample {
     pub flags: BxdfFlags,
     /// Relative index of refraction crossed (1 for reflection).
     pub eta: f32,
+    /// True when `f/pdf` is a correct weight but `pdf` is not the density of `wi` (layered
+    /// BSDFs, sampled by a random walk): MIS must then ask [`Bsdf::pdf`] instead.
+    pub pdf_is_proportional: bool,
+}
+
+impl BsdfSample {
+    /// A sample with exact density and no refraction.
+    #[inline]
+    pub fn new(f: Rgb, wi: Vec3, pdf: f32, flags: BxdfFlags) -> BsdfSample {
+        BsdfSample {
+            f,
+            wi,
+            pdf,
+            flags,
+            eta: 1.0,
+            pdf_is_proportional: false,
+        }
+    }
+
+    /// True when the sampled lobe reflects.
+    #[inline]
+    pub fn is_reflection(&self) -> bool {
+        self.flags.is_reflection()
+    }
+
+    /// True when the sampled lobe transmits.
+    #[inline]
+    pub fn is_transmission(&self) -> bool {
+        self.flags.is_transmission()
+    }
+
+    /// True when the sampled lobe is a delta.
+    #[inline]
+    pub fn is_specular(&self) -> bool {
+        self.flags.is_specular()
+    }
+
+    /// A sample a random walk can continue from: non-zero value and density, and a direction
+    /// off the surface plane.
+    #[inline]
+    pub(crate) fn is_usable(&self) -> bool {
+        self.f != Rgb::ZERO && self.pdf > 0.0 && self.wi.z != 0.0
+    }
+}
+
+/// cos θ of a local direction.
+#[inline]
+pub(crate) fn cos_theta(w: Vec3) -> f32 {
+    w.z
+}
+
+/// |cos θ| of a local direction.
+#[inline]
+pub(crate) fn abs_cos_theta(w: Vec3) -> f32 {
+    w.z.abs()
+}
+
+/// True when both directions are on the same side of the surface.
+#[inline]
+pub(crate) fn same_hemisphere(a: Vec3, b: Vec3) -> bool {
+    a.z * b.z > 0.0
+}
+
+/// The interface every local scattering function implements (pbrt-v4's BxDF concept).
+/// Directions are local (z = shading normal), both point away from the surface.
+pub trait Scatter {
+    /// The kinds of lobes present.
+    fn flags(&self) -> BxdfFlags;
+
+    /// f(wo, wi); zero for specular lobes.
+    fn f(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb;
+
+    /// Samples `wi` given `wo`, with `uc` choosing a lobe and `u` the direction within it,
+    /// restricted to the halves `mask` allows.
+    fn sample_f(
+        &self,
+        wo: Vec3,
+        uc: f32,
+        u: Vec2,
+        mode: TransportMode,
+        mask: ReflTrans,
+    ) -> Option<BsdfSample>;
+
+    /// Density with which [`Scatter::sample_f`] (with the same `mask`) returns `wi`; zero for
+    /// specular lobes.
+    fn pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode, mask: ReflTrans) -> f32;
 }
 
 /// A BxDF in its local frame: directions have the shading normal as +z.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum BxDF {
-    /// Lambert: f = ρ/π.
-    Diffuse {
-        /// Albedo.
-        r: Rgb,
-    },
-    /// A perfectly smooth conductor: a mirror whose reflectance is the Fresnel term of
-    /// `eta + i·k`.
-    Conductor {
-        /// Real index, per channel.
-        eta: Rgb,
-        /// Absorption, per channel.
-        k: Rgb,
-    },
-    /// A perfectly smooth dielectric: Fresnel-weighted specular reflection and refraction.
-    Dielectric {
-        /// Relative index inside/outside.
-        eta: f32,
-    },
+    /// Lambertian reflection.
+    Diffuse(DiffuseBxdf),
+    /// A conductor: smooth mirror or rough microfacet reflection with complex Fresnel.
+    Conductor(ConductorBxdf),
+    /// A dielectric interface: smooth or rough reflection and refraction.
+    Dielectric(DielectricBxdf),
+    /// A thin dielectric slab: specular reflection and straight-through transmission.
+    ThinDielectric(ThinDielectricBxdf),
+    /// Lambertian reflection and Lambertian transmission.
+    DiffuseTransmission(DiffuseTransmissionBxdf),
+    /// A dielectric coating over a diffuse base, evaluated by random walks.
+    CoatedDiffuse(CoatedDiffuseBxdf),
+    /// A dielectric coating over a conductor, evaluated by random walks.
+    CoatedConductor(CoatedConductorBxdf),
 }
 
-#[inline]
-fn cos_theta(w: Vec3) -> f32 {
-    w.z
-}
-
-#[inline]
-fn same_hemisphere(a: Vec3, b: Vec3) -> bool {
-    a.z * b.z > 0.0
+/// Calls `$body` with `$b` bound to the variant's inner BxDF, whatever the variant.
+macro_rules! dispatch {
+    ($self:expr, $b:ident => $body:expr) => {
+        match $self {
+            BxDF::Diffuse($b) => $body,
+            BxDF::Conductor($b) => $body,
+            BxDF::Dielectric($b) => $body,
+            BxDF::ThinDielectric($b) => $body,
+            BxDF::DiffuseTransmission($b) => $body,
+            BxDF::CoatedDiffuse($b) => $body,
+            BxDF::CoatedConductor($b) => $body,
+        }
+    };
 }
 
 impl BxDF {
+    /// Lambert with albedo `r`.
+    #[inline]
+    pub fn diffuse(r: Rgb) -> BxDF {
+        BxDF::Diffuse(DiffuseBxdf { r })
+    }
+
     /// The kinds of lobes this BxDF has.
     pub fn flags(&self) -> BxdfFlags {
-        match self {
-            BxDF::Diffuse { r } => {
-                if *r == Rgb::ZERO {
-                    BxdfFlags(0)
-                } else {
-                    BxdfFlags::REFLECTION | BxdfFlags::DIFFUSE
-                }
-            }
-            BxDF::Conductor { .. } => BxdfFlags::REFLECTION | BxdfFlags::SPECULAR,
-            BxDF::Dielectric { eta } => {
-                if *eta == 1.0 {
-                    BxdfFlags::TRANSMISSION | BxdfFlags::SPECULAR
-                } else {
-                    BxdfFlags::REFLECTION | BxdfFlags::TRANSMISSION | BxdfFlags::SPECULAR
-                }
-            }
-        }
+        dispatch!(self, b => b.flags())
     }
 
     /// f(wo, wi) for a pair of local directions (zero for specular lobes).
-    pub fn f(&self, wo: Vec3, wi: Vec3, _mode: TransportMode) -> Rgb {
-        match self {
-            BxDF::Diffuse { r } => {
-                if same_hemisphere(wo, wi) {
-                    *r * INV_PI
-                } else {
-                    Rgb::ZERO
-                }
-            }
-            BxDF::Conductor { .. } | BxDF::Dielectric { .. } => Rgb::ZERO,
-        }
+    pub fn f(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
+        dispatch!(self, b => b.f(wo, wi, mode))
     }
 
     /// Density of [`BxDF::sample_f`] choosing `wi` (zero for specular lobes).
-    pub fn pdf(&self, wo: Vec3, wi: Vec3, _mode: TransportMode) -> f32 {
-        match self {
-            BxDF::Diffuse { .. } => {
-                if same_hemisphere(wo, wi) {
-                    wi.z.abs() * INV_PI
-                } else {
-                    0.0
-                }
-            }
-            BxDF::Conductor { .. } | BxDF::Dielectric { .. } => 0.0,
-        }
+    pub fn pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
+        dispatch!(self, b => b.pdf(wo, wi, mode, ReflTrans::ALL))
     }
 
     /// Samples an incident direction for outgoing `wo`, with `uc` choosing a lobe and `u` the
     /// direction within it.
     pub fn sample_f(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample> {
+        // A visible normal drawn at the very edge of its disk can lie in the surface plane,
+        // where D = 0: such a sample has no density and is no sample at all.
+        dispatch!(self, b => b.sample_f(wo, uc, u, mode, ReflTrans::ALL)).filter(|s| s.pdf > 0.0)
+    }
+
+    /// pbrt-v4's regularisation: widens near-specular microfacet lobes (see
+    /// [`super::TrowbridgeReitz::regularize`]); other BxDFs are unchanged.
+    pub fn regularize(&mut self) {
         match self {
-            BxDF::Diffuse { r } => {
-                if *r == Rgb::ZERO {
-                    return None;
-                }
-                let mut wi = sample_cosine_hemisphere(u);
-                if wo.z < 0.0 {
-                    wi.z = -wi.z;
-                }
-                let pdf = wi.z.abs() * INV_PI;
-                (pdf > 0.0).then_some(BsdfSample {
-                    f: *r * INV_PI,
-                    wi,
-                    pdf,
-                    flags: BxdfFlags::REFLECTION | BxdfFlags::DIFFUSE,
-                    eta: 1.0,
-                })
+            BxDF::Conductor(c) => c.distrib.regularize(),
+            BxDF::Dielectric(d) => d.distrib.regularize(),
+            BxDF::CoatedDiffuse(l) => l.top.distrib.regularize(),
+            BxDF::CoatedConductor(l) => {
+                l.top.distrib.regularize();
+                l.bottom.distrib.regularize();
             }
-            BxDF::Conductor { eta, k } => {
-                // Perfect mirror: wi = (−wo.x, −wo.y, wo.z); f = F/|cos θi| so that the
-                // estimator f·|cos θ|/pdf returns the Fresnel reflectance.
-                let wi = Vec3::new(-wo.x, -wo.y, wo.z);
-                let c = cos_theta(wi).abs();
-                if c == 0.0 {
-                    return None;
-                }
-                Some(BsdfSample {
-                    f: fresnel_complex(c, *eta, *k) / c,
-                    wi,
-                    pdf: 1.0,
-                    flags: BxdfFlags::REFLECTION | BxdfFlags::SPECULAR,
-                    eta: 1.0,
-                })
-            }
-            BxDF::Dielectric { eta } => {
-                let r = fresnel_dielectric(cos_theta(wo), *eta);
-                let t = 1.0 - r;
-                if uc < r / (r + t) {
-                    let wi = Vec3::new(-wo.x, -wo.y, wo.z);
-                    let c = wi.z.abs();
-                    if c == 0.0 {
-                        return None;
-                    }
-                    Some(BsdfSample {
-                        f: Rgb::splat(r / c),
-                        wi,
-                        pdf: r / (r + t),
-                        flags: BxdfFlags::REFLECTION | BxdfFlags::SPECULAR,
-                        eta: 1.0,
-                    })
-                } else {
-                    let (wi, etap) = refract(wo, Vec3::Z, *eta)?;
-                    let c = wi.z.abs();
-                    if c == 0.0 {
-                        return None;
-                    }
-                    let mut ft = t / c;
-                    // Radiance is compressed into a smaller solid angle when entering a denser
-                    // medium: L scales by 1/η².
-                    if mode == TransportMode::Radiance {
-                        ft /= etap * etap;
-                    }
-                    Some(BsdfSample {
-                        f: Rgb::splat(ft),
-                        wi,
-                        pdf: t / (r + t),
-                        flags: BxdfFlags::TRANSMISSION | BxdfFlags::SPECULAR,
-                        eta: etap,
-                    })
-                }
-            }
+            BxDF::Diffuse(_) | BxDF::ThinDielectric(_) | BxDF::DiffuseTransmission(_) => {}
         }
     }
 }
@@ -281,7 +363,7 @@ impl Bsdf {
             return None;
         }
         let mut s = self.bxdf.sample_f(wo_l, uc, u, mode)?;
-        if s.pdf <= 0.0 || !s.f.is_finite() || s.wi.z == 0.0 {
+        if s.pdf <= 0.0 || !s.f.is_finite() || s.f == Rgb::ZERO || s.wi.z == 0.0 {
             return None;
         }
         s.wi = self.frame.from_local(s.wi);

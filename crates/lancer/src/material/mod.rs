@@ -2,11 +2,22 @@
 //! into a [`Bsdf`] in the local shading frame.
 
 mod bxdf;
+mod conductor;
+mod dielectric;
+mod diffuse;
 mod fresnel;
+mod layered;
+mod microfacet;
 
-pub use bxdf::{Bsdf, BsdfSample, BxDF, BxdfFlags, TransportMode};
+pub use bxdf::{Bsdf, BsdfSample, BxDF, BxdfFlags, ReflTrans, Scatter, TransportMode};
+pub use conductor::ConductorBxdf;
+pub use dielectric::{DielectricBxdf, ThinDielectricBxdf};
+pub use diffuse::{DiffuseBxdf, DiffuseTransmissionBxdf};
 pub use fresnel::{fresnel_complex, fresnel_dielectric, reflect, refract};
+pub use layered::{CoatedConductorBxdf, CoatedDiffuseBxdf, LayeredBxdf};
+pub use microfacet::TrowbridgeReitz;
 
+use crate::math::Rgb;
 use crate::texture::{FloatTex, SpectrumTex, TexCoord, TextureEval};
 
 /// A material as given in a scene (pbrt-v4's names and parameters), plain data.
@@ -133,56 +144,287 @@ impl Default for Material {
     }
 }
 
+/// pbrt's treatment of an index of refraction of 0 (unset or meaningless): 1.
+#[inline]
+fn nonzero_eta(eta: f32) -> f32 {
+    if eta == 0.0 { 1.0 } else { eta }
+}
+
+/// The conductor index pbrt-v4 uses: `eta`/`k` as given, or, when an artist's `reflectance`
+/// r is given instead, η = 1 and k = 2√r / √(1 − r) (r clamped to [0, 0.9999]), which makes
+/// the normal-incidence Fresnel reflectance ((η − 1)² + k²)/((η + 1)² + k²) equal r.
+fn conductor_index(
+    tex: &TextureEval,
+    tc: &TexCoord,
+    eta: SpectrumTex,
+    k: SpectrumTex,
+    reflectance: Option<SpectrumTex>,
+) -> (Rgb, Rgb) {
+    match reflectance {
+        Some(r) => {
+            let r = tex.spectrum(r, tc).clamp(Rgb::ZERO, Rgb::splat(0.9999));
+            let k = 2.0 * r.map(f32::sqrt) / (Rgb::ONE - r).max(Rgb::ZERO).map(f32::sqrt);
+            (Rgb::ONE, k)
+        }
+        None => (tex.spectrum(eta, tc), tex.spectrum(k, tc)),
+    }
+}
+
 impl Material {
-    /// The BxDF this material has at a surface point, with textures evaluated there. `Mix` must
-    /// be resolved by the caller first (it needs a random choice); `Interface` has none.
+    /// The BxDF this material has at a surface point, with textures evaluated there, as
+    /// pbrt-v4's materials build theirs: albedos clamped to [0, 1], roughness remapped to α
+    /// when asked, an index of 0 taken as 1. `Mix` must be resolved by the caller first (it
+    /// needs a random choice); `Interface` has none.
     pub fn bxdf(&self, tex: &TextureEval, tc: &TexCoord) -> Option<BxDF> {
-        match self {
-            Material::Diffuse { reflectance } => Some(BxDF::Diffuse {
-                r: tex
-                    .spectrum(*reflectance, tc)
-                    .clamp(crate::math::Rgb::ZERO, crate::math::Rgb::ONE),
-            }),
+        let albedo = |t: SpectrumTex| tex.spectrum(t, tc).clamp(Rgb::ZERO, Rgb::ONE);
+        let distrib = |u: FloatTex, v: FloatTex, remap: bool| {
+            TrowbridgeReitz::from_roughness(tex.float(u, tc), tex.float(v, tc), remap)
+        };
+        Some(match *self {
+            Material::Diffuse { reflectance } => BxDF::diffuse(albedo(reflectance)),
             Material::Conductor {
                 eta,
                 k,
                 reflectance,
-                ..
+                uroughness,
+                vroughness,
+                remap_roughness,
             } => {
-                let (eta, k) = match reflectance {
-                    Some(r) => {
-                        // pbrt: k = 2√r / √(1 − r), eta = 1, so that F(0) = r.
-                        let r = tex
-                            .spectrum(*r, tc)
-                            .clamp(crate::math::Rgb::ZERO, crate::math::Rgb::splat(0.9999));
-                        let k = 2.0 * r.map(f32::sqrt) / (crate::math::Rgb::ONE - r).map(f32::sqrt);
-                        (crate::math::Rgb::ONE, k)
-                    }
-                    None => (tex.spectrum(*eta, tc), tex.spectrum(*k, tc)),
-                };
-                Some(BxDF::Conductor { eta, k })
+                let (eta, k) = conductor_index(tex, tc, eta, k, reflectance);
+                BxDF::Conductor(ConductorBxdf {
+                    distrib: distrib(uroughness, vroughness, remap_roughness),
+                    eta,
+                    k,
+                })
             }
-            Material::Dielectric { eta, .. } | Material::ThinDielectric { eta } => {
-                Some(BxDF::Dielectric { eta: *eta })
-            }
+            Material::Dielectric {
+                eta,
+                uroughness,
+                vroughness,
+                remap_roughness,
+            } => BxDF::Dielectric(DielectricBxdf {
+                eta: nonzero_eta(eta),
+                distrib: distrib(uroughness, vroughness, remap_roughness),
+            }),
+            Material::ThinDielectric { eta } => BxDF::ThinDielectric(ThinDielectricBxdf {
+                eta: nonzero_eta(eta),
+            }),
             Material::DiffuseTransmission {
-                reflectance, scale, ..
-            } => Some(BxDF::Diffuse {
-                r: (tex.spectrum(*reflectance, tc) * *scale)
-                    .clamp(crate::math::Rgb::ZERO, crate::math::Rgb::ONE),
+                reflectance,
+                transmittance,
+                scale,
+            } => BxDF::DiffuseTransmission(DiffuseTransmissionBxdf {
+                r: (tex.spectrum(reflectance, tc) * scale).clamp(Rgb::ZERO, Rgb::ONE),
+                t: (tex.spectrum(transmittance, tc) * scale).clamp(Rgb::ZERO, Rgb::ONE),
             }),
-            Material::CoatedDiffuse { reflectance, .. } => Some(BxDF::Diffuse {
-                r: tex
-                    .spectrum(*reflectance, tc)
-                    .clamp(crate::math::Rgb::ZERO, crate::math::Rgb::ONE),
-            }),
+            Material::CoatedDiffuse {
+                reflectance,
+                uroughness,
+                vroughness,
+                thickness,
+                eta,
+                albedo: medium_albedo,
+                g,
+                max_depth,
+                n_samples,
+                remap_roughness,
+            } => BxDF::CoatedDiffuse(CoatedDiffuseBxdf::new(
+                DielectricBxdf {
+                    eta: nonzero_eta(eta),
+                    distrib: distrib(uroughness, vroughness, remap_roughness),
+                },
+                DiffuseBxdf {
+                    r: albedo(reflectance),
+                },
+                tex.float(thickness, tc),
+                albedo(medium_albedo),
+                tex.float(g, tc).clamp(-1.0, 1.0),
+                max_depth,
+                n_samples,
+            )),
             Material::CoatedConductor {
-                conductor_eta, k, ..
-            } => Some(BxDF::Conductor {
-                eta: tex.spectrum(*conductor_eta, tc),
-                k: tex.spectrum(*k, tc),
-            }),
-            Material::Mix { .. } | Material::Interface => None,
-        }
+                interface_uroughness,
+                interface_vroughness,
+                interface_eta,
+                conductor_eta,
+                k,
+                reflectance,
+                conductor_uroughness,
+                conductor_vroughness,
+                thickness,
+                albedo: medium_albedo,
+                g,
+                max_depth,
+                n_samples,
+                remap_roughness,
+            } => {
+                let ieta = nonzero_eta(interface_eta);
+                let (ce, ck) = conductor_index(tex, tc, conductor_eta, k, reflectance);
+                BxDF::CoatedConductor(CoatedConductorBxdf::new(
+                    DielectricBxdf {
+                        eta: ieta,
+                        distrib: distrib(
+                            interface_uroughness,
+                            interface_vroughness,
+                            remap_roughness,
+                        ),
+                    },
+                    // Under the coating the conductor borders the coating's medium, not air:
+                    // its index relative to that medium is (η + ik)/η_coating.
+                    ConductorBxdf {
+                        distrib: distrib(
+                            conductor_uroughness,
+                            conductor_vroughness,
+                            remap_roughness,
+                        ),
+                        eta: ce / ieta,
+                        k: ck / ieta,
+                    },
+                    tex.float(thickness, tc),
+                    albedo(medium_albedo),
+                    tex.float(g, tc).clamp(-1.0, 1.0),
+                    max_depth,
+                    n_samples,
+                ))
+            }
+            Material::Mix { .. } | Material::Interface => return None,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn eval(m: &Material) -> BxDF {
+        let tex = TextureEval {
+            floats: &[],
+            spectra: &[],
+        };
+        m.bxdf(&tex, &TexCoord::default())
+            .expect("a surface material")
+    }
+
+    fn c(v: f32) -> FloatTex {
+        FloatTex::Const(v)
+    }
+
+    fn rgb(v: f32) -> SpectrumTex {
+        SpectrumTex::Const(Rgb::splat(v))
+    }
+
+    #[test]
+    fn conductors_remap_roughness_and_honour_an_artists_reflectance() {
+        let m = Material::Conductor {
+            eta: rgb(0.2),
+            k: rgb(3.0),
+            reflectance: Some(SpectrumTex::Const(Rgb::new(0.9, 0.5, 0.1))),
+            uroughness: c(0.25),
+            vroughness: c(0.04),
+            remap_roughness: true,
+        };
+        let BxDF::Conductor(b) = eval(&m) else {
+            panic!("not a conductor")
+        };
+        // α = √roughness.
+        assert_eq!((b.distrib.alpha_x(), b.distrib.alpha_y()), (0.5, 0.2));
+        // η = 1, k = 2√r/√(1 − r): the normal-incidence reflectance is r.
+        let f0 = fresnel_complex(1.0, b.eta, b.k);
+        assert!(
+            (f0 - Rgb::new(0.9, 0.5, 0.1)).abs().max_element() < 1e-4,
+            "{f0}"
+        );
+        // Without remapping the roughness is α itself; zero makes a mirror.
+        let m = Material::Conductor {
+            eta: rgb(0.2),
+            k: rgb(3.0),
+            reflectance: None,
+            uroughness: c(0.0),
+            vroughness: c(0.0),
+            remap_roughness: false,
+        };
+        let BxDF::Conductor(b) = eval(&m) else {
+            panic!("not a conductor")
+        };
+        assert!(b.distrib.effectively_smooth());
+        assert_eq!((b.eta, b.k), (Rgb::splat(0.2), Rgb::splat(3.0)));
+    }
+
+    #[test]
+    fn every_material_becomes_its_own_bxdf() {
+        let d = eval(&Material::Dielectric {
+            eta: 0.0,
+            uroughness: c(0.09),
+            vroughness: c(0.09),
+            remap_roughness: true,
+        });
+        // An index of 0 means 1, as in pbrt.
+        assert!(
+            matches!(d, BxDF::Dielectric(b) if b.eta == 1.0 && (b.distrib.alpha_x() - 0.3).abs() < 1e-6)
+        );
+        let t = eval(&Material::ThinDielectric { eta: 1.33 });
+        assert!(matches!(t, BxDF::ThinDielectric(b) if b.eta == 1.33));
+        // Diffuse transmission: both albedos scaled, then clamped to one.
+        let dt = eval(&Material::DiffuseTransmission {
+            reflectance: rgb(0.3),
+            transmittance: rgb(0.6),
+            scale: 2.0,
+        });
+        assert!(
+            matches!(dt, BxDF::DiffuseTransmission(b) if b.r == Rgb::splat(0.6) && b.t == Rgb::ONE)
+        );
+        let cd = eval(&Material::CoatedDiffuse {
+            reflectance: rgb(1.5),
+            uroughness: c(0.0),
+            vroughness: c(0.0),
+            thickness: c(0.01),
+            eta: 1.5,
+            albedo: rgb(0.2),
+            g: c(3.0),
+            max_depth: 10,
+            n_samples: 2,
+            remap_roughness: true,
+        });
+        let BxDF::CoatedDiffuse(l) = cd else {
+            panic!("not a coated diffuse")
+        };
+        assert_eq!(l.bottom.r, Rgb::ONE);
+        assert_eq!((l.top.eta, l.thickness, l.g), (1.5, 0.01, 1.0));
+        assert_eq!(
+            (l.albedo, l.max_depth, l.n_samples),
+            (Rgb::splat(0.2), 10, 2)
+        );
+        // Under its coating the conductor's index is relative to the coating's.
+        let cc = eval(&Material::CoatedConductor {
+            interface_uroughness: c(0.0),
+            interface_vroughness: c(0.0),
+            interface_eta: 1.5,
+            conductor_eta: rgb(0.3),
+            k: rgb(3.0),
+            reflectance: None,
+            conductor_uroughness: c(0.16),
+            conductor_vroughness: c(0.16),
+            thickness: c(0.01),
+            albedo: rgb(0.0),
+            g: c(0.0),
+            max_depth: 10,
+            n_samples: 1,
+            remap_roughness: true,
+        });
+        let BxDF::CoatedConductor(l) = cc else {
+            panic!("not a coated conductor")
+        };
+        assert!((l.bottom.eta - Rgb::splat(0.2)).abs().max_element() < 1e-6);
+        assert!((l.bottom.k - Rgb::splat(2.0)).abs().max_element() < 1e-6);
+        assert!((l.bottom.distrib.alpha_x() - 0.4).abs() < 1e-6);
+        let none = TextureEval {
+            floats: &[],
+            spectra: &[],
+        };
+        assert!(
+            Material::Interface
+                .bxdf(&none, &TexCoord::default())
+                .is_none()
+        );
     }
 }

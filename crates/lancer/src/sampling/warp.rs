@@ -19,6 +19,49 @@ pub fn sample_uniform_disk_concentric(u: Vec2) -> Vec2 {
     r * Vec2::new(theta.cos(), theta.sin())
 }
 
+/// A point uniform on the unit disk by polar coordinates: r = √u₀, φ = 2πu₁. Density 1/π.
+/// Unlike the concentric map it keeps u₁ ↦ φ linear, which visible-normal sampling relies on.
+#[inline]
+pub fn sample_uniform_disk_polar(u: Vec2) -> Vec2 {
+    let r = u.x.max(0.0).sqrt();
+    let theta = 2.0 * PI * u.y;
+    Vec2::new(r * theta.cos(), r * theta.sin())
+}
+
+/// A distance with density a·e^(−a·x) on [0, ∞): x = −ln(1 − u)/a.
+#[inline]
+pub fn sample_exponential(u: f32, a: f32) -> f32 {
+    -(1.0 - u).ln() / a
+}
+
+/// The Henyey–Greenstein phase function for the cosine between `wo` and `wi`, both pointing
+/// away from the scattering point (pbrt-v4's convention, so forward scattering, g > 0, peaks
+/// at cos = −1): p = (1 − g²) / (4π (1 + g² + 2g·cos)^{3/2}).
+#[inline]
+pub fn henyey_greenstein(cos_theta: f32, g: f32) -> f32 {
+    let denom = 1.0 + g * g + 2.0 * g * cos_theta;
+    INV_4PI * (1.0 - g * g) / (denom * safe_sqrt(denom))
+}
+
+/// Samples `wi` from the Henyey–Greenstein phase function around `wo` (same convention as
+/// [`henyey_greenstein`]) by inverting its CDF in cos θ:
+/// cos θ = −(1 + g² − ((1 − g²)/(1 + g − 2g·u₀))²) / (2g) (uniform when |g| < 10⁻³), φ = 2πu₁.
+/// Returns the direction and its density, which equals the phase function value.
+#[inline]
+pub fn sample_henyey_greenstein(wo: Vec3, g: f32, u: Vec2) -> (Vec3, f32) {
+    let cos_theta = if g.abs() < 1e-3 {
+        1.0 - 2.0 * u.x
+    } else {
+        let s = (1.0 - g * g) / (1.0 + g - 2.0 * g * u.x);
+        (-(1.0 + g * g - s * s) / (2.0 * g)).clamp(-1.0, 1.0)
+    };
+    let sin_theta = safe_sqrt(1.0 - cos_theta * cos_theta);
+    let phi = 2.0 * PI * u.y;
+    let frame = crate::math::Frame::from_z(wo);
+    let wi = frame.from_local(crate::math::spherical_direction(sin_theta, cos_theta, phi));
+    (wi, henyey_greenstein(cos_theta, g))
+}
+
 /// A direction in the +z hemisphere with density cos θ / π (Malley's method: a uniform disk
 /// point lifted onto the hemisphere).
 #[inline]
@@ -109,9 +152,44 @@ mod tests {
                 assert!((sample_uniform_sphere(u).length() - 1.0).abs() < 1e-5);
                 let c = sample_uniform_cone(u, 0.8);
                 assert!(c.z >= 0.8 - 1e-6);
+                assert!(sample_uniform_disk_polar(u).length() <= 1.0 + 1e-6);
                 let b = sample_uniform_triangle(u);
                 assert!(b.iter().all(|&x| (-1e-6..=1.0 + 1e-6).contains(&x)));
             }
+        }
+    }
+
+    #[test]
+    fn henyey_greenstein_is_a_density_with_mean_cosine_minus_g() {
+        // ∫ p dω = 2π ∫ p(c) dc = 1, and with wo and wi both pointing away the mean of
+        // wo·wi is −g. Midpoint rule in c with 20 000 steps is accurate to well below 10⁻³
+        // even for g = 0.9, whose density peaks at 1.9/(4π·0.001) ≈ 151.
+        for g in [-0.7f32, 0.0, 0.3, 0.9] {
+            let n = 20_000;
+            let (mut total, mut mean) = (0.0f64, 0.0f64);
+            for i in 0..n {
+                let c = -1.0 + 2.0 * (i as f64 + 0.5) / n as f64;
+                let p = henyey_greenstein(c as f32, g) as f64 * 2.0 * std::f64::consts::PI;
+                total += p * 2.0 / n as f64;
+                mean += c * p * 2.0 / n as f64;
+            }
+            assert!((total - 1.0).abs() < 2e-3, "g={g}: ∫p = {total}");
+            assert!((mean + g as f64).abs() < 2e-3, "g={g}: mean cos {mean}");
+            // Sampling reproduces the mean and reports the density it used.
+            let wo = Vec3::new(0.3, -0.4, 0.866).normalize();
+            let m = 256;
+            let mut s = 0.0f64;
+            for i in 0..m {
+                for j in 0..m {
+                    let u = Vec2::new((i as f32 + 0.5) / m as f32, (j as f32 + 0.5) / m as f32);
+                    let (wi, pdf) = sample_henyey_greenstein(wo, g, u);
+                    assert!((wi.length() - 1.0).abs() < 1e-4);
+                    assert!((pdf - henyey_greenstein(wo.dot(wi), g)).abs() <= 1e-3 * pdf + 1e-4);
+                    s += wo.dot(wi) as f64;
+                }
+            }
+            let sm = s / (m * m) as f64;
+            assert!((sm + g as f64).abs() < 3e-3, "g={g}: sampled mean cos {sm}");
         }
     }
 }
