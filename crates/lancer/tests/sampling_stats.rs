@@ -1,0 +1,275 @@
+//! Chi-square tests of the sampling routines that are not BSDFs: the warps to directions, and
+//! light sampling for every kind of area light and for the uniform sky. Sampled directions are
+//! binned over the sphere and compared with the bin integrals of the routine's own density
+//! (for lights, `pdf_li` where the direction meets the light, 0 where it misses).
+
+mod common;
+use common::chi2::*;
+
+use lancer::Scene;
+use lancer::light::{Light, LightSampleContext};
+use lancer::math::{Rgb, Transform, Vec2, Vec3};
+use lancer::ray::Ray;
+use lancer::sampling::{
+    Pcg32, cosine_hemisphere_pdf, sample_cosine_hemisphere, sample_uniform_cone,
+    sample_uniform_hemisphere, sample_uniform_sphere, uniform_cone_pdf, uniform_hemisphere_pdf,
+    uniform_sphere_pdf,
+};
+use lancer::scene::desc::{AreaLightDesc, Geometry, LightDesc, SceneDesc, ShapeDesc};
+use lancer::shape::TriangleMesh;
+use std::sync::Arc;
+
+/// Chi-square tests in this file, for the Šidák correction.
+const TESTS: usize = 11;
+
+/// Bins `n` directions from `sample` (None: no sample) against the bin integrals of `pdf`
+/// (`quadrature` Gauss panels per bin and axis), checks that the success rate equals ∫pdf, and
+/// that the fit passes. `CHI2_DEBUG=1` prints the worst bins before each verdict.
+fn chi2_fit(
+    name: &str,
+    n: usize,
+    quadrature: usize,
+    mut sample: impl FnMut(Vec2) -> Option<Vec3>,
+    pdf: impl Fn(Vec3) -> f64,
+) {
+    let mut rng = Pcg32::new(0x5eed ^ name.len() as u64, 7);
+    let mut obs = vec![0.0; N_BINS];
+    let mut ok = 0usize;
+    for _ in 0..n {
+        let u = Vec2::new(rng.uniform(), rng.uniform());
+        if let Some(w) = sample(u) {
+            assert!(w.is_finite(), "{name}: non-finite direction");
+            obs[bin_of(w.normalize())] += 1.0;
+            ok += 1;
+        }
+    }
+    let integral = integrate_bins(quadrature, &pdf);
+    let total: f64 = integral.iter().sum();
+    let rate = ok as f64 / n as f64;
+    assert!(
+        (rate - total).abs() < 0.01,
+        "{name}: {rate} of samples succeed but ∫pdf = {total}"
+    );
+    let exp: Vec<f64> = integral.iter().map(|p| p * n as f64).collect();
+    if std::env::var("CHI2_DEBUG").is_ok() {
+        let mut worst: Vec<(f64, usize)> = (0..N_BINS)
+            .map(|i| ((obs[i] - exp[i]).powi(2) / exp[i].max(1.0), i))
+            .collect();
+        worst.sort_by(|a, b| b.0.total_cmp(&a.0));
+        for &(c, i) in worst.iter().take(6) {
+            println!(
+                "  bin {i} (cos {}, phi {}): obs {} exp {:.1} ({c:.1})",
+                i / N_PHI,
+                i % N_PHI,
+                obs[i],
+                exp[i]
+            );
+        }
+    }
+    let (chi2, dof) = pooled_chi2(&obs, &exp).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let p = chi2_survival(chi2, dof);
+    println!("{name}: χ² = {chi2:.1}, {dof} dof, p = {p:.3}; ∫pdf = {total:.4}");
+    assert!(
+        p > sidak(TESTS),
+        "{name}: χ² = {chi2:.1} with {dof} dof, p = {p:.2e}"
+    );
+}
+
+#[test]
+fn chi2_direction_warps() {
+    let n = 200_000;
+    chi2_fit(
+        "cosine hemisphere",
+        n,
+        8,
+        |u| Some(sample_cosine_hemisphere(u)),
+        |w| {
+            if w.z > 0.0 {
+                cosine_hemisphere_pdf(w.z) as f64
+            } else {
+                0.0
+            }
+        },
+    );
+    chi2_fit(
+        "uniform sphere",
+        n,
+        8,
+        |u| Some(sample_uniform_sphere(u)),
+        |_| uniform_sphere_pdf() as f64,
+    );
+    chi2_fit(
+        "uniform hemisphere",
+        n,
+        8,
+        |u| Some(sample_uniform_hemisphere(u)),
+        |w| {
+            if w.z > 0.0 {
+                uniform_hemisphere_pdf() as f64
+            } else {
+                0.0
+            }
+        },
+    );
+    let cos_max = 0.3f32;
+    chi2_fit(
+        "uniform cone",
+        n,
+        // The density jumps at the cone's edge, inside a bin: finer quadrature.
+        32,
+        |u| Some(sample_uniform_cone(u, cos_max)),
+        |w| {
+            if w.z >= cos_max {
+                uniform_cone_pdf(cos_max) as f64
+            } else {
+                0.0
+            }
+        },
+    );
+}
+
+fn emitter(geometry: Geometry, to_world: Transform) -> ShapeDesc {
+    ShapeDesc {
+        geometry,
+        object_to_world: to_world,
+        reverse_orientation: false,
+        material: 0,
+        area_light: Some(AreaLightDesc {
+            l: Rgb::ONE,
+            two_sided: false,
+        }),
+        alpha: None,
+    }
+}
+
+/// Chi-square test of light 0 of a scene seen from the origin (surface normal +z).
+fn chi2_light(name: &str, desc: SceneDesc) {
+    let scene = Scene::build(&desc).unwrap();
+    let ctx = LightSampleContext {
+        p: Vec3::ZERO,
+        n: Vec3::Z,
+        ns: Vec3::Z,
+    };
+    let light = &scene.lights[0];
+    // Lights' densities jump at their silhouettes, which cross bins: fine quadrature.
+    chi2_fit(
+        name,
+        200_000,
+        32,
+        |u| {
+            light
+                .sample_li(&ctx, u, &scene.shapes, &scene.meshes)
+                .map(|s| s.wi)
+        },
+        |w| {
+            let hit = if desc.shapes.is_empty() {
+                None
+            } else {
+                // An area light has a density only where the direction meets it, and only on
+                // the side it emits from.
+                let Light::Area { prim, .. } = light else {
+                    unreachable!("scenes with shapes test their area light")
+                };
+                match scene.intersect(&Ray::new(Vec3::ZERO, w)) {
+                    Some(h) if h.prim == *prim && h.si.n.dot(w) < 0.0 => Some((h.si.p, h.si.n)),
+                    _ => return 0.0,
+                }
+            };
+            light.pdf_li(&ctx, w, hit) as f64
+        },
+    );
+}
+
+fn scene_with(shapes: Vec<ShapeDesc>) -> SceneDesc {
+    SceneDesc {
+        shapes,
+        ..SceneDesc::default()
+    }
+}
+
+#[test]
+fn chi2_area_lights() {
+    let quad = TriangleMesh {
+        positions: vec![
+            Vec3::new(-1.0, -0.5, 1.0),
+            Vec3::new(1.5, -0.5, 1.2),
+            Vec3::new(1.0, 1.0, 0.8),
+            Vec3::new(-1.2, 1.0, 0.6),
+        ],
+        normals: vec![],
+        uvs: vec![],
+        // Wound so that the geometric normal faces down, towards the origin.
+        indices: vec![0, 2, 1, 0, 3, 2],
+        flip_normal: false,
+    };
+    chi2_light(
+        "triangle-mesh light",
+        scene_with(vec![emitter(
+            Geometry::TriangleMesh(Arc::new(quad)),
+            Transform::IDENTITY,
+        )]),
+    );
+    let sphere = |z_min: f32, z_max: f32, phi: f32| Geometry::Sphere {
+        radius: 0.7,
+        z_min,
+        z_max,
+        phi_max: phi,
+    };
+    chi2_light(
+        "whole sphere light (cone)",
+        scene_with(vec![emitter(
+            sphere(-0.7, 0.7, 360.0),
+            Transform::translate(Vec3::new(0.4, 0.2, 1.5)),
+        )]),
+    );
+    // Area sampling of a curved light has a density d²/(|cos θ|·A) that diverges at the
+    // silhouette, which quadrature cannot integrate: test it from inside, lit by the inner
+    // side (ReverseOrientation), where cos θ stays away from 0.
+    let mut inside = emitter(
+        sphere(-0.7, 0.5, 270.0),
+        Transform::translate(Vec3::new(0.1, -0.2, 0.15)),
+    );
+    inside.reverse_orientation = true;
+    chi2_light("partial sphere light (area)", scene_with(vec![inside]));
+    chi2_light(
+        "disk light",
+        scene_with(vec![emitter(
+            Geometry::Disk {
+                height: 0.0,
+                radius: 1.0,
+                inner_radius: 0.3,
+                phi_max: 300.0,
+            },
+            // Above the origin, tilted, its normal turned down towards it.
+            Transform::translate(Vec3::new(0.5, 0.3, 1.2))
+                * Transform::rotate(160.0, Vec3::new(1.0, 0.3, 0.0)).unwrap(),
+        )]),
+    );
+    // The cylinder too, from inside.
+    let mut tube = emitter(
+        Geometry::Cylinder {
+            radius: 0.5,
+            z_min: -0.8,
+            z_max: 0.8,
+            phi_max: 300.0,
+        },
+        Transform::translate(Vec3::new(0.1, 0.15, 0.2)) * Transform::rotate(40.0, Vec3::X).unwrap(),
+    );
+    tube.reverse_orientation = true;
+    chi2_light("cylinder light", scene_with(vec![tube]));
+}
+
+#[test]
+fn chi2_uniform_sky() {
+    chi2_light(
+        "uniform sky",
+        SceneDesc {
+            lights: vec![LightDesc::Infinite {
+                light_to_world: Transform::IDENTITY,
+                l: Rgb::ONE,
+                image: None,
+            }],
+            ..SceneDesc::default()
+        },
+    );
+}
