@@ -23,6 +23,9 @@ pub enum Integrator {
     Path {
         /// Maximum number of bounces.
         max_depth: u32,
+        /// Roughen near-specular lobes after the first non-specular bounce (pbrt's
+        /// `regularize`).
+        regularize: bool,
     },
     /// Shading normal as colour: (n + 1)/2.
     Normals,
@@ -42,7 +45,13 @@ impl Integrator {
     pub fn from_desc(desc: &IntegratorDesc) -> Integrator {
         match *desc {
             IntegratorDesc::Whitted { max_depth } => Integrator::Whitted { max_depth },
-            IntegratorDesc::Path { max_depth, .. } => Integrator::Path { max_depth },
+            IntegratorDesc::Path {
+                max_depth,
+                regularize,
+            } => Integrator::Path {
+                max_depth,
+                regularize,
+            },
             IntegratorDesc::Normals => Integrator::Normals,
             IntegratorDesc::Depth => Integrator::Depth,
             IntegratorDesc::AmbientOcclusion {
@@ -59,7 +68,10 @@ impl Integrator {
     pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut Sampler) -> Rgb {
         match *self {
             Integrator::Whitted { max_depth } => whitted::li(scene, ray, sampler, 0, max_depth),
-            Integrator::Path { max_depth } => path::li(scene, ray, sampler, max_depth),
+            Integrator::Path {
+                max_depth,
+                regularize,
+            } => path::li(scene, ray, sampler, max_depth, regularize),
             Integrator::Normals => debug::normals(scene, ray),
             Integrator::Depth => debug::depth(scene, ray),
             Integrator::AmbientOcclusion {

@@ -8,8 +8,16 @@ use crate::ray::Ray;
 use crate::sampling::{Sampler, power_heuristic};
 use crate::scene::Scene;
 
-/// Radiance along a camera ray, by path tracing up to `max_depth` bounces.
-pub fn li(scene: &Scene, ray: &Ray, sampler: &mut Sampler, max_depth: u32) -> Rgb {
+/// Radiance along a camera ray, by path tracing up to `max_depth` bounces. With `regularize`,
+/// near-specular lobes met after a non-specular bounce are roughened (pbrt-v4's path
+/// regularisation: a little bias for much less noise in caustics).
+pub fn li(
+    scene: &Scene,
+    ray: &Ray,
+    sampler: &mut Sampler,
+    max_depth: u32,
+    regularize: bool,
+) -> Rgb {
     let mut l = Rgb::ZERO;
     let mut beta = Rgb::ONE;
     let mut ray = *ray;
@@ -18,6 +26,7 @@ pub fn li(scene: &Scene, ray: &Ray, sampler: &mut Sampler, max_depth: u32) -> Rg
     let mut p_b = 1.0f32;
     let mut prev_ctx: Option<LightSampleContext> = None;
     let mut eta_scale = 1.0f32;
+    let mut any_non_specular = false;
     loop {
         let Some(hit) = scene.intersect(&ray) else {
             // Environment light: counted in full where no light sampling could have found it
@@ -59,11 +68,14 @@ pub fn li(scene: &Scene, ray: &Ray, sampler: &mut Sampler, max_depth: u32) -> Rg
                 _ => l += beta * le,
             }
         }
-        let Some(bsdf) = bsdf_at(scene, &hit) else {
+        let Some(mut bsdf) = bsdf_at(scene, &hit) else {
             // An interface between media: no surface, the ray goes on unchanged.
             ray = si.spawn_ray(ray.d);
             continue;
         };
+        if regularize && any_non_specular {
+            bsdf.bxdf.regularize();
+        }
         if depth == max_depth {
             break;
         }
@@ -116,6 +128,7 @@ pub fn li(scene: &Scene, ray: &Ray, sampler: &mut Sampler, max_depth: u32) -> Rg
             bs.pdf
         };
         specular_bounce = bs.flags.is_specular();
+        any_non_specular |= !specular_bounce;
         if bs.flags.has(crate::material::BxdfFlags::TRANSMISSION) {
             eta_scale *= bs.eta * bs.eta;
         }

@@ -12,7 +12,7 @@ use crate::shape::{
     Cylinder, Disk, Placement, Plane, Shape, Sphere, SurfaceInteraction, Triangle, TriangleMesh,
     TriangleRay, is_degenerate,
 };
-use crate::texture::{FloatTexture, SpectrumTexture, TexCoord, TextureEval};
+use crate::texture::{FloatTex, FloatTexture, SpectrumTexture, TexCoord, TextureEval};
 use desc::{Geometry, LightDesc, SceneDesc, ShapeDesc};
 
 /// What a primitive is made of, beside its shape.
@@ -22,6 +22,8 @@ pub struct PrimInfo {
     pub material: u32,
     /// Emitted radiance when the primitive is an area light.
     pub emission: Option<AreaEmission>,
+    /// Alpha cut-out: where it is below 1 the surface is (partly) absent.
+    pub alpha: Option<FloatTex>,
 }
 
 /// A primitive's emission.
@@ -255,6 +257,8 @@ impl Scene {
                     two_sided: a.two_sided,
                     light: 0,
                 }),
+                // A constant alpha of 1 (pbrt's default) cuts nothing: no test needed.
+                alpha: sd.alpha.filter(|a| *a != FloatTex::Const(1.0)),
             };
             prims.extend(std::iter::repeat_n(info, shapes.len() - first));
         }
@@ -391,13 +395,13 @@ impl Scene {
         let mut r = *ray;
         let pre = TriangleRay::new(ray);
         for &i in &self.unbounded {
-            if let Some(h) = self.shapes[i as usize].intersect_with(&r, &pre) {
+            if let Some(h) = self.hit(i, &r, &pre) {
                 r.t_max = h.t;
                 best = Some((h, i));
             }
         }
         self.bvh.intersect(&r, |i, r| {
-            let h = self.shapes[i as usize].intersect_with(r, &pre)?;
+            let h = self.hit(i, r, &pre)?;
             best = Some((h, i));
             Some(h.t)
         });
@@ -406,16 +410,42 @@ impl Scene {
         Some(SceneHit { si, prim })
     }
 
+    /// Primitive `i`'s hit by `ray`, unless its alpha cuts the surface away there: alpha 0 is
+    /// a hole, alpha 1 solid, and in between the surface is there for a fraction alpha of the
+    /// rays, chosen by a hash of the ray (pbrt-v4's stochastic alpha).
+    #[inline]
+    fn hit(&self, i: u32, ray: &Ray, pre: &TriangleRay) -> Option<crate::shape::ShapeHit> {
+        let shape = &self.shapes[i as usize];
+        let h = shape.intersect_with(ray, pre)?;
+        let Some(alpha) = self.prims[i as usize].alpha else {
+            return Some(h);
+        };
+        let si = shape.interaction(ray, &h, &self.meshes);
+        let a = self.textures().float(alpha, &Scene::tex_coord(&si));
+        if a >= 1.0 {
+            return Some(h);
+        }
+        if a <= 0.0 {
+            return None;
+        }
+        let u = crate::sampling::u32_to_unit_f32(crate::sampling::hash_u64(&[
+            ray.o.x.to_bits() as u64 | (ray.o.y.to_bits() as u64) << 32,
+            ray.o.z.to_bits() as u64 | (ray.d.x.to_bits() as u64) << 32,
+            ray.d.y.to_bits() as u64 | (ray.d.z.to_bits() as u64) << 32,
+        ]) as u32);
+        (u < a).then_some(h)
+    }
+
     /// True if anything blocks the ray before `t_max` (shadow rays).
     pub fn intersect_p(&self, ray: &Ray) -> bool {
         crate::render::count_ray();
         let pre = TriangleRay::new(ray);
         self.unbounded
             .iter()
-            .any(|&i| self.shapes[i as usize].intersect_p(ray, &pre))
+            .any(|&i| self.hit(i, ray, &pre).is_some())
             || self
                 .bvh
-                .intersect_any(ray, |i, r| self.shapes[i as usize].intersect_p(r, &pre))
+                .intersect_any(ray, |i, r| self.hit(i, r, &pre).is_some())
     }
 
     /// Texture evaluation against this scene's textures.
