@@ -7,6 +7,7 @@ use super::params::{Param, ParamList};
 use super::parser::SearchPath;
 use super::parser::{Directive, Located, Parser};
 use crate::error::{Location, SceneError, Warning};
+use crate::image_read::ImageCache;
 use lancer::material::Material;
 use lancer::math::{Mat4, Rgb, Transform, Vec3};
 use lancer::scene::desc::{
@@ -67,6 +68,8 @@ pub struct Builder {
     named_coords: HashMap<String, Transform>,
     named_materials: HashMap<String, u32>,
     textures: TextureNames,
+    /// Images decoded so far, shared by the textures and lights that name the same file.
+    images: ImageCache,
     object_names: HashMap<String, u32>,
     current_object: Option<u32>,
     in_world: bool,
@@ -109,6 +112,7 @@ impl Builder {
             named_coords: HashMap::new(),
             named_materials: HashMap::new(),
             textures: TextureNames::default(),
+            images: ImageCache::default(),
             object_names: HashMap::new(),
             current_object: None,
             in_world: false,
@@ -227,6 +231,7 @@ impl Builder {
             params,
             textures: &self.textures,
             dir,
+            images: &self.images,
         }
     }
 
@@ -652,16 +657,24 @@ impl Builder {
     ) -> Result<(), SceneError> {
         match ty {
             "float" => {
+                let converted = self
+                    .reader(params, dir)
+                    .float_texture(class)
+                    .map_err(|e| locate(e, loc))?;
                 let t = self
-                    .accept(self.reader(params, dir).float_texture(class)?, loc)
+                    .accept(converted, loc)
                     .expect("textures always fall back");
                 let index = self.desc.float_textures.len() as u32;
                 self.desc.float_textures.push(t);
                 self.textures.floats.insert(name, index);
             }
             "spectrum" | "color" | "rgb" => {
+                let converted = self
+                    .reader(params, dir)
+                    .spectrum_texture(class)
+                    .map_err(|e| locate(e, loc))?;
                 let t = self
-                    .accept(self.reader(params, dir).spectrum_texture(class)?, loc)
+                    .accept(converted, loc)
                     .expect("textures always fall back");
                 let index = self.desc.spectrum_textures.len() as u32;
                 self.desc.spectrum_textures.push(t);
