@@ -1,7 +1,7 @@
 //! Random numbers, samplers and warps from the unit square to the shapes light travels through.
 
 mod hash;
-mod piecewise;
+pub(crate) mod piecewise;
 mod sampler;
 mod warp;
 

@@ -102,7 +102,8 @@ impl PiecewiseConstant1D {
             0.0
         };
         // Keep x inside the cell (and below 1) despite rounding.
-        let x = ((i as f32 + du) / n as f32).min((i as f32 + 1.0) / n as f32 * (1.0 - f32::EPSILON));
+        let x =
+            ((i as f32 + du) / n as f32).min((i as f32 + 1.0) / n as f32 * (1.0 - f32::EPSILON));
         (x, self.cell_pdf(i), i)
     }
 }
@@ -235,7 +236,10 @@ pub(crate) mod tests {
         let mut counts = vec![0.0f64; nu * nv];
         for i in 0..n {
             let (p, pdf) = d.sample(rand2(i));
-            assert!((0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y), "{p}");
+            assert!(
+                (0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y),
+                "{p}"
+            );
             let cell = (p.y * nv as f32) as usize * nu + (p.x * nu as f32) as usize;
             assert!(f[cell] > 0.0, "sampled an empty cell");
             // The density returned matches pdf() and f / I.
