@@ -5,6 +5,7 @@
 //! lancer reads but does not do yet is a [`Warning`] saying what it does instead.
 
 pub mod error;
+pub mod image_read;
 pub mod pbrt;
 pub mod ply;
 

@@ -29,6 +29,26 @@ impl Image {
     /// The texel at integer coordinates, with the wrap mode applied.
     pub fn texel(&self, x: i64, y: i64, wrap: WrapMode) -> Rgb {
         let (w, h) = (self.width as i64, self.height as i64);
+        if wrap == WrapMode::OctahedralSphere {
+            // pbrt-v4's rule for equal-area octahedral maps: a step off the left or right edge
+            // comes back mirrored in x (about the edge texel, as pbrt writes it: x → −x or
+            // 2w − 1 − x) and in y (y → h − 1 − y); off the top or bottom likewise with the
+            // roles swapped. The square's edges meet their mirror images on the sphere.
+            let (mut x, mut y) = (x, y);
+            if x < 0 {
+                (x, y) = (-x, h - 1 - y);
+            } else if x >= w {
+                (x, y) = (2 * w - 1 - x, h - 1 - y);
+            }
+            if y < 0 {
+                (x, y) = (w - 1 - x, -y);
+            } else if y >= h {
+                (x, y) = (w - 1 - x, 2 * h - 1 - y);
+            }
+            // Further than one image away (or a 1-texel side) only clamping makes sense.
+            let (x, y) = (x.clamp(0, w - 1), y.clamp(0, h - 1));
+            return self.texels[(y * w + x) as usize];
+        }
         let fix = |v: i64, n: i64| -> Option<i64> {
             match wrap {
                 WrapMode::Repeat => Some(v.rem_euclid(n)),
@@ -38,6 +58,7 @@ impl Image {
                     let m = v.rem_euclid(2 * n);
                     Some(if m < n { m } else { 2 * n - 1 - m })
                 }
+                WrapMode::OctahedralSphere => unreachable!("handled above"),
             }
         };
         match (fix(x, w), fix(y, h)) {
@@ -55,7 +76,8 @@ impl Image {
             return Rgb::ZERO;
         }
         if nearest {
-            return self.texel((x + 0.5).floor() as i64, (y + 0.5).floor() as i64, wrap);
+            // pbrt-v4's point filter: the texel round(s·w − ½), halves rounded away from 0.
+            return self.texel(x.round() as i64, y.round() as i64, wrap);
         }
         let (x0, y0) = (x.floor(), y.floor());
         let (dx, dy) = (x - x0, y - y0);
@@ -64,5 +86,55 @@ impl Image {
             + dx * (1.0 - dy) * self.texel(xi + 1, yi, wrap)
             + (1.0 - dx) * dy * self.texel(xi, yi + 1, wrap)
             + dx * dy * self.texel(xi + 1, yi + 1, wrap)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 3×3 image whose texel (x, y) holds (x, y, 0).
+    fn grid() -> Image {
+        let texels = (0..9)
+            .map(|i| Rgb::new((i % 3) as f32, (i / 3) as f32, 0.0))
+            .collect();
+        Image::new(3, 3, texels).unwrap()
+    }
+
+    #[test]
+    fn octahedral_wrap_mirrors_as_pbrt_does() {
+        let im = grid();
+        let at = |x, y| {
+            let t = im.texel(x, y, WrapMode::OctahedralSphere);
+            (t.x as i64, t.y as i64)
+        };
+        assert_eq!(at(1, 1), (1, 1));
+        // Off the left edge: x → −x, y → h − 1 − y.
+        assert_eq!(at(-1, 0), (1, 2));
+        // Off the right edge: x → 2w − 1 − x, y → h − 1 − y.
+        assert_eq!(at(3, 1), (2, 1));
+        assert_eq!(at(3, 0), (2, 2));
+        // Off the top: x → w − 1 − x, y → −y; off the bottom: y → 2h − 1 − y.
+        assert_eq!(at(0, -1), (2, 1));
+        assert_eq!(at(0, 3), (2, 2));
+    }
+
+    #[test]
+    fn lookups_flip_v_and_round_like_pbrt() {
+        let im = grid();
+        // (s, t) = (0.5, 0.5) is the centre texel; t = 1 − ε is the top row.
+        let c = im.lookup(Vec2::new(0.5, 0.5), WrapMode::Clamp, false);
+        assert!((c - Rgb::new(1.0, 1.0, 0.0)).abs().max_element() < 1e-6);
+        let top = im.lookup(Vec2::new(1.0 / 6.0, 5.0 / 6.0), WrapMode::Clamp, true);
+        assert_eq!(top, Rgb::new(0.0, 0.0, 0.0));
+        // Bilinear half-way between texel columns 0 and 1 of the bottom row.
+        let b = im.lookup(Vec2::new(1.0 / 3.0, 1.0 / 6.0), WrapMode::Clamp, false);
+        assert!(
+            (b - Rgb::new(0.5, 2.0, 0.0)).abs().max_element() < 1e-5,
+            "{b}"
+        );
+        // Point sampling picks round(s·w − ½): s = 0.49/3 → round(−0.01) = 0.
+        let p = im.lookup(Vec2::new(0.49 / 3.0, 0.5), WrapMode::Clamp, true);
+        assert_eq!(p.x, 0.0);
     }
 }

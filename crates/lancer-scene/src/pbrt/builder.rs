@@ -7,6 +7,8 @@ use super::params::{Param, ParamList};
 use super::parser::SearchPath;
 use super::parser::{Directive, Located, Parser};
 use crate::error::{Location, SceneError, Warning};
+use crate::image_read::{Encoding, ImageCache};
+use lancer::light::EnvMapping;
 use lancer::material::Material;
 use lancer::math::{Mat4, Rgb, Transform, Vec3};
 use lancer::scene::desc::{
@@ -67,6 +69,8 @@ pub struct Builder {
     named_coords: HashMap<String, Transform>,
     named_materials: HashMap<String, u32>,
     textures: TextureNames,
+    /// Images decoded so far, shared by the textures and lights that name the same file.
+    images: ImageCache,
     object_names: HashMap<String, u32>,
     current_object: Option<u32>,
     in_world: bool,
@@ -109,6 +113,7 @@ impl Builder {
             named_coords: HashMap::new(),
             named_materials: HashMap::new(),
             textures: TextureNames::default(),
+            images: ImageCache::default(),
             object_names: HashMap::new(),
             current_object: None,
             in_world: false,
@@ -227,6 +232,7 @@ impl Builder {
             params,
             textures: &self.textures,
             dir,
+            images: &self.images,
         }
     }
 
@@ -652,16 +658,24 @@ impl Builder {
     ) -> Result<(), SceneError> {
         match ty {
             "float" => {
+                let converted = self
+                    .reader(params, dir)
+                    .float_texture(class)
+                    .map_err(|e| locate(e, loc))?;
                 let t = self
-                    .accept(self.reader(params, dir).float_texture(class)?, loc)
+                    .accept(converted, loc)
                     .expect("textures always fall back");
                 let index = self.desc.float_textures.len() as u32;
                 self.desc.float_textures.push(t);
                 self.textures.floats.insert(name, index);
             }
             "spectrum" | "color" | "rgb" => {
+                let converted = self
+                    .reader(params, dir)
+                    .spectrum_texture(class)
+                    .map_err(|e| locate(e, loc))?;
                 let t = self
-                    .accept(self.reader(params, dir).spectrum_texture(class)?, loc)
+                    .accept(converted, loc)
                     .expect("textures always fall back");
                 let index = self.desc.spectrum_textures.len() as u32;
                 self.desc.spectrum_textures.push(t);
@@ -764,28 +778,7 @@ impl Builder {
                 }
                 LightDesc::Distant { direction, l }
             }
-            "infinite" => {
-                let mut l = Self::emission(params, "L", dir)?;
-                let illuminance = params.float("illuminance", -1.0)?;
-                if illuminance > 0.0 {
-                    // A uniform sky of radiance L gives an illuminance of π·L.
-                    l *= illuminance / std::f32::consts::PI;
-                }
-                if let Some(f) = params.string("filename")? {
-                    self.warn(
-                        loc,
-                        format!(
-                            "environment images (\"{f}\") are not supported yet; lancer uses a uniform sky of radiance {} {} {}",
-                            l.x, l.y, l.z
-                        ),
-                    );
-                }
-                LightDesc::Infinite {
-                    light_to_world: ctm,
-                    l,
-                    image: None,
-                }
-            }
+            "infinite" => self.infinite_light(ctm, params, dir, loc)?,
             "goniometric" | "projection" => {
                 self.warn(loc, format!("light \"{ty}\" is not supported yet; skipped"));
                 return Ok(());
@@ -801,6 +794,95 @@ impl Builder {
         };
         self.desc.lights.push(light);
         Ok(())
+    }
+
+    /// pbrt-v4's `infinite` light: a uniform sky of radiance `L`, or the image `filename`
+    /// (equal-area octahedral, or, as a lancer extension, 2:1 latitude-longitude) times
+    /// `scale`. With `illuminance` E, a sky is scaled so that an upward patch receives E
+    /// (L·π = E); an image is scaled by E over the illuminance pbrt-v4 computes for it, which
+    /// is half the physical one (see `EnvMapping::pbrt_illuminance`), so that lancer matches
+    /// pbrt-v4's images.
+    fn infinite_light(
+        &mut self,
+        ctm: Transform,
+        params: &ParamList,
+        dir: &SearchPath,
+        loc: &Location,
+    ) -> Result<LightDesc, SceneError> {
+        let illuminance = params.float("illuminance", -1.0)?;
+        if !params.has("filename") {
+            let mut l = Self::emission(params, "L", dir)?;
+            if illuminance > 0.0 {
+                // A uniform sky of radiance L gives an illuminance of π·L.
+                l *= illuminance / std::f32::consts::PI;
+            }
+            return Ok(LightDesc::Infinite {
+                light_to_world: ctm,
+                l,
+                image: None,
+            });
+        }
+        if params.has("L") {
+            return Err(SceneError::at(
+                loc.clone(),
+                "an \"infinite\" light takes either \"L\" or \"filename\", not both",
+            ));
+        }
+        let mut scale = params.float("scale", 1.0)?;
+        // pbrt-v4 reads environment images with their default encoding (sRGB for PNG).
+        let (path, _) = self
+            .reader(params, dir)
+            .image_file("an \"infinite\" light with an image")
+            .map_err(|e| locate(e, loc))?;
+        let image = self
+            .images
+            .rgb(&path, Encoding::Srgb)
+            .map_err(|e| SceneError::at(loc.clone(), e.to_string()))?;
+        let mapping = EnvMapping::of_size(image.width, image.height).ok_or_else(|| {
+            SceneError::at(
+                loc.clone(),
+                format!(
+                    "{}: an environment image must be square (pbrt-v4's equal-area octahedral layout) or twice as wide as high (latitude-longitude), not {}×{}",
+                    path.display(),
+                    image.width,
+                    image.height
+                ),
+            )
+        })?;
+        if image.texels.iter().any(|c| !c.is_finite()) {
+            return Err(SceneError::at(
+                loc.clone(),
+                format!(
+                    "{}: the image has infinite or NaN values and cannot be a light",
+                    path.display()
+                ),
+            ));
+        }
+        if illuminance > 0.0 {
+            let e = mapping.pbrt_illuminance(&image);
+            if e > 0.0 {
+                scale *= illuminance / e;
+            } else {
+                self.warn(
+                    loc,
+                    format!(
+                        "{} is black above the horizon, so \"illuminance\" cannot scale it; ignored",
+                        path.display()
+                    ),
+                );
+            }
+        }
+        if params.point3s("portal")?.is_some() {
+            self.warn(
+                loc,
+                "infinite light portals are not supported yet; lancer samples the whole image",
+            );
+        }
+        Ok(LightDesc::Infinite {
+            light_to_world: ctm,
+            l: Rgb::splat(scale),
+            image: Some(image),
+        })
     }
 
     fn area_light(

@@ -8,6 +8,7 @@
 use super::params::{ColorParam, FloatParam, ParamList};
 use super::parser::SearchPath;
 use crate::error::{Location, SceneError};
+use crate::image_read::{Encoding, ImageCache};
 use crate::ply::read_ply;
 use lancer::material::Material;
 use lancer::math::{Rgb, Vec3};
@@ -15,7 +16,9 @@ use lancer::sampling::SamplerKind;
 use lancer::scene::desc::{FilterDesc, Geometry, IntegratorDesc};
 use lancer::shape::TriangleMesh;
 use lancer::spectrum::{SpectrumKind, named_spectrum, spectrum_to_rgb};
-use lancer::texture::{FloatTex, FloatTexture, SpectrumTex, SpectrumTexture, UvMapping};
+use lancer::texture::{
+    FloatTex, FloatTexture, ImageTexture, SpectrumTex, SpectrumTexture, UvMapping, WrapMode,
+};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -87,6 +90,8 @@ pub struct Reader<'a> {
     pub textures: &'a TextureNames,
     /// The folder of the file holding the directive.
     pub dir: &'a SearchPath,
+    /// Images decoded so far in this scene.
+    pub images: &'a ImageCache,
 }
 
 impl Reader<'_> {
@@ -291,6 +296,107 @@ impl Reader<'_> {
         })
     }
 
+    /// An error at the place of parameter `name` (or without a place).
+    fn param_error(&self, name: &str, message: String) -> SceneError {
+        match self.params.location(name) {
+            Some(l) => SceneError::at(l.clone(), message),
+            None => SceneError::general(message),
+        }
+    }
+
+    /// The image file named by `filename`, resolved against the directive's folders, and the
+    /// `encoding` its 8- and 16-bit values go through (pbrt-v4's default: sRGB for `.png`,
+    /// linear otherwise; JPEG is sRGB whatever it says, as in pbrt-v4).
+    pub fn image_file(&self, what: &str) -> Result<(std::path::PathBuf, Encoding), SceneError> {
+        let p = self.params;
+        let Some(name) = p.string("filename")? else {
+            return Err(SceneError::general(format!(
+                "{what} needs the name of its image, \"string filename\""
+            )));
+        };
+        let path = self.dir.resolve(&name);
+        let is_png = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+        let encoding = match p.string("encoding")? {
+            None if is_png => Encoding::Srgb,
+            None => Encoding::Linear,
+            Some(e) => Encoding::parse(&e).ok_or_else(|| {
+                self.param_error(
+                    "encoding",
+                    format!(
+                        "unknown encoding \"{e}\" (expected \"sRGB\", \"linear\" or \"gamma G\")"
+                    ),
+                )
+            })?,
+        };
+        Ok((path, encoding))
+    }
+
+    /// pbrt-v4's `imagemap`: the image, its wrap mode and filter, `scale`, `invert` and the
+    /// (u, v) mapping. Float textures read the value pbrt-v4's MIPMap gives (see
+    /// [`crate::image_read::DecodedImage::float_image`]).
+    fn image_texture(&self, float: bool) -> Result<Converted<ImageTexture>, SceneError> {
+        let p = self.params;
+        let mut notes = Vec::new();
+        let (path, encoding) = self.image_file("an \"imagemap\" texture")?;
+        let wrap = match p.string("wrap")?.as_deref().unwrap_or("repeat") {
+            "repeat" => WrapMode::Repeat,
+            "black" => WrapMode::Black,
+            "clamp" => WrapMode::Clamp,
+            "octahedralsphere" => WrapMode::OctahedralSphere,
+            other => {
+                return Err(self.param_error(
+                    "wrap",
+                    format!(
+                        "unknown wrap mode \"{other}\" (expected \"repeat\", \"black\", \"clamp\" or \"octahedralsphere\")"
+                    ),
+                ));
+            }
+        };
+        let nearest = match p.string("filter")?.as_deref().unwrap_or("bilinear") {
+            "bilinear" => false,
+            "point" => true,
+            f @ ("trilinear" | "ewa" | "EWA") => {
+                notes.push(format!(
+                    "texture filter \"{f}\" is not supported yet (lancer has no ray differentials); lancer uses \"bilinear\""
+                ));
+                false
+            }
+            other => {
+                notes.push(format!(
+                    "unknown texture filter \"{other}\"; lancer uses \"bilinear\""
+                ));
+                false
+            }
+        };
+        // Only matters for the EWA filter.
+        p.float("maxanisotropy", 8.0)?;
+        let image = if float {
+            self.images.float(&path, encoding, nearest)
+        } else {
+            self.images.rgb(&path, encoding)
+        }
+        .map_err(|e| SceneError::general(e.to_string()))?;
+        if let Some(w) = self.mapping()? {
+            notes.push(w);
+        }
+        let t = ImageTexture {
+            image,
+            mapping: self.uv_mapping()?,
+            wrap,
+            scale: p.float("scale", 1.0)?,
+            invert: p.bool("invert", false)?,
+            nearest,
+        };
+        Ok(if notes.is_empty() {
+            Converted::Done(t)
+        } else {
+            Converted::Unsupported(notes.join("; "), Some(t))
+        })
+    }
+
     /// A float texture of class `class`.
     pub fn float_texture(&self, class: &str) -> Result<Converted<FloatTexture>, SceneError> {
         let p = self.params;
@@ -315,6 +421,14 @@ impl Reader<'_> {
                     return Ok(Converted::Unsupported(w, Some(t)));
                 }
                 t
+            }
+            "imagemap" => {
+                return Ok(match self.image_texture(true)? {
+                    Converted::Done(t) => Converted::Done(FloatTexture::Image(t)),
+                    Converted::Unsupported(w, t) => {
+                        Converted::Unsupported(w, t.map(FloatTexture::Image))
+                    }
+                });
             }
             _ => {
                 return Ok(Converted::Unsupported(
@@ -366,6 +480,14 @@ impl Reader<'_> {
                     return Ok(Converted::Unsupported(w, Some(t)));
                 }
                 t
+            }
+            "imagemap" => {
+                return Ok(match self.image_texture(false)? {
+                    Converted::Done(t) => Converted::Done(SpectrumTexture::Image(t)),
+                    Converted::Unsupported(w, t) => {
+                        Converted::Unsupported(w, t.map(SpectrumTexture::Image))
+                    }
+                });
             }
             _ => {
                 return Ok(Converted::Unsupported(

@@ -4,8 +4,10 @@
 //! light arrive, how much, and where must a shadow ray go to check that nothing is in the way".
 
 mod distribution;
+mod image_infinite;
 
 pub use distribution::LightDistribution;
+pub use image_infinite::{EnvMapping, ImageInfiniteLight};
 
 use crate::math::{Frame, INV_PI, Rgb, Vec2, Vec3, smooth_step};
 use crate::shape::{Shape, TriangleMesh};
@@ -87,9 +89,20 @@ pub enum Light {
         /// Radius of the scene's bounding sphere.
         scene_radius: f32,
     },
+    /// Environment radiance from an image, importance-sampled (boxed: it holds the image's
+    /// sampling tables, much larger than the other variants).
+    ImageInfinite(Box<ImageInfiniteLight>),
 }
 
 impl Light {
+    /// True for environment lights, which rays leaving the scene see.
+    pub fn is_infinite(&self) -> bool {
+        matches!(
+            self,
+            Light::UniformInfinite { .. } | Light::ImageInfinite(_)
+        )
+    }
+
     /// True for lights that only sampling can reach (points and directions).
     pub fn is_delta(&self) -> bool {
         matches!(
@@ -223,6 +236,7 @@ impl Light {
                     p_light: ctx.p + wi * (2.0 * scene_radius.max(1e-3)),
                 })
             }
+            Light::ImageInfinite(light) => light.sample_li(ctx, u),
         }
     }
 
@@ -253,6 +267,7 @@ impl Light {
                     crate::sampling::uniform_sphere_pdf()
                 }
             }
+            Light::ImageInfinite(light) => light.pdf_li(wi),
             _ => 0.0,
         }
     }
@@ -283,14 +298,17 @@ impl Light {
             Light::UniformInfinite { l, scene_radius } => {
                 4.0 * PI * PI * scene_radius * scene_radius * avg(*l)
             }
+            // Φ = π·r²·∫L dω.
+            Light::ImageInfinite(light) => light.power(),
         }
     }
 
     /// Radiance arriving along a ray that escapes the scene in direction `d` (environment
-    /// lights only).
-    pub fn le(&self, _d: Vec3) -> Rgb {
+    /// lights only; `d` need not be normalised).
+    pub fn le(&self, d: Vec3) -> Rgb {
         match self {
             Light::UniformInfinite { l, .. } => *l,
+            Light::ImageInfinite(light) => light.le(d),
             _ => Rgb::ZERO,
         }
     }

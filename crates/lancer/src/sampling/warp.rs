@@ -137,9 +137,79 @@ pub fn sample_uniform_triangle(u: Vec2) -> [f32; 3] {
     [b0, b1, 1.0 - b0 - b1]
 }
 
+/// pbrt-v4's equal-area octahedral map from the unit square to the unit sphere (Clarberg,
+/// "Fast equal-area mapping of the (hemi)sphere using SIMD", 2008). With (u, v) = 2p − 1,
+/// r = 1 − |1 − |u| − |v||, φ = π/4·((|v| − |u|)/r + 1) in the first quadrant:
+/// z = ±(1 − r²) (+ inside the diamond |u| + |v| < 1), (x, y) = r·√(2 − r²)·(cos φ, sin φ)
+/// with the signs of u and v. Every cell of the square covers the same solid angle: dω = 4π·du·dv.
+#[inline]
+pub fn equal_area_square_to_sphere(p: Vec2) -> Vec3 {
+    let u = 2.0 * p.x - 1.0;
+    let v = 2.0 * p.y - 1.0;
+    let (up, vp) = (u.abs(), v.abs());
+    let signed_distance = 1.0 - (up + vp);
+    let r = 1.0 - signed_distance.abs();
+    let phi = if r == 0.0 { 1.0 } else { (vp - up) / r + 1.0 } * (PI / 4.0);
+    let z = (1.0 - r * r).copysign(signed_distance);
+    let cos_phi = phi.cos().copysign(u);
+    let sin_phi = phi.sin().copysign(v);
+    let s = r * safe_sqrt(2.0 - r * r);
+    Vec3::new(cos_phi * s, sin_phi * s, z)
+}
+
+/// The inverse of [`equal_area_square_to_sphere`]: r = √(1 − |z|), φ' = atan(min/max of |x|,
+/// |y|)·2/π (mirrored to 1 − φ' when |x| < |y|), v' = φ'·r, u' = r − v'; the lower hemisphere
+/// swaps and reflects them (u', v') → (1 − v', 1 − u'); the signs of x and y pick the quadrant.
+#[inline]
+pub fn equal_area_sphere_to_square(d: Vec3) -> Vec2 {
+    let (x, y, z) = (d.x.abs(), d.y.abs(), d.z.abs());
+    let r = safe_sqrt(1.0 - z);
+    let a = x.max(y);
+    let b = if a == 0.0 { 0.0 } else { x.min(y) / a };
+    let mut phi = b.atan() * (2.0 / PI);
+    if x < y {
+        phi = 1.0 - phi;
+    }
+    let mut v = phi * r;
+    let mut u = r - v;
+    if d.z < 0.0 {
+        std::mem::swap(&mut u, &mut v);
+        u = 1.0 - u;
+        v = 1.0 - v;
+    }
+    u = u.copysign(d.x);
+    v = v.copysign(d.y);
+    Vec2::new(0.5 * (u + 1.0), 0.5 * (v + 1.0))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn equal_area_map_matches_pbrt_corners_and_centre() {
+        // pbrt-v4's layout: the centre is +z, the corners −z, the edge midpoints ±x and ±y.
+        let at = |x: f32, y: f32| equal_area_square_to_sphere(Vec2::new(x, y));
+        assert!((at(0.5, 0.5) - Vec3::Z).length() < 1e-6);
+        assert!((at(0.0, 0.0) + Vec3::Z).length() < 1e-6);
+        assert!((at(1.0, 1.0) + Vec3::Z).length() < 1e-6);
+        assert!((at(1.0, 0.5) - Vec3::X).length() < 1e-6);
+        assert!((at(0.0, 0.5) + Vec3::X).length() < 1e-6);
+        assert!((at(0.5, 1.0) - Vec3::Y).length() < 1e-6);
+        assert!((at(0.5, 0.0) + Vec3::Y).length() < 1e-6);
+        // Equal area: the inner diamond (a half of the square) is the upper hemisphere.
+        let n = 200;
+        let upper = (0..n * n)
+            .filter(|k| {
+                at(
+                    ((k % n) as f32 + 0.5) / n as f32,
+                    ((k / n) as f32 + 0.5) / n as f32,
+                )
+                .z > 0.0
+            })
+            .count();
+        assert!((upper as f32 / (n * n) as f32 - 0.5).abs() < 0.01);
+    }
 
     #[test]
     fn warps_land_on_their_domains() {
@@ -155,6 +225,11 @@ mod tests {
                 assert!(sample_uniform_disk_polar(u).length() <= 1.0 + 1e-6);
                 let b = sample_uniform_triangle(u);
                 assert!(b.iter().all(|&x| (-1e-6..=1.0 + 1e-6).contains(&x)));
+                // The equal-area map lands on the sphere and inverts.
+                let w = equal_area_square_to_sphere(u);
+                assert!((w.length() - 1.0).abs() < 1e-5, "{w}");
+                let back = equal_area_sphere_to_square(w);
+                assert!((back - u).abs().max_element() < 1e-4, "{u} → {w} → {back}");
             }
         }
     }

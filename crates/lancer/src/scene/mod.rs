@@ -332,10 +332,23 @@ impl Scene {
                     l: *l,
                     scene_radius,
                 },
-                LightDesc::Infinite { l, .. } => Light::UniformInfinite {
+                LightDesc::Infinite { l, image: None, .. } => Light::UniformInfinite {
                     l: *l,
                     scene_radius,
                 },
+                LightDesc::Infinite {
+                    light_to_world,
+                    l,
+                    image: Some(image),
+                } => Light::ImageInfinite(Box::new(
+                    crate::light::ImageInfiniteLight::new(
+                        *light_to_world,
+                        image.clone(),
+                        *l,
+                        scene_radius,
+                    )
+                    .map_err(BuildError::Invalid)?,
+                )),
             });
         }
 
@@ -360,7 +373,7 @@ impl Scene {
         let powers: Vec<f32> = lights.iter().map(Light::power).collect();
         let light_distribution = LightDistribution::new(&powers);
         let infinite_lights = (0..lights.len() as u32)
-            .filter(|&i| matches!(lights[i as usize], Light::UniformInfinite { .. }))
+            .filter(|&i| lights[i as usize].is_infinite())
             .collect();
 
         let camera = Camera::from_desc(&desc.camera, desc.film.xresolution, desc.film.yresolution)

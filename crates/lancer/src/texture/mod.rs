@@ -68,8 +68,11 @@ pub enum WrapMode {
     Clamp,
     /// Black outside.
     Black,
-    /// Mirror every other tile (pbrt's `octahedralsphere` is handled by the light).
+    /// Mirror every other tile.
     Mirror,
+    /// pbrt's `octahedralsphere`: the neighbours of an equal-area octahedral map's edge texels
+    /// are the texels that touch them on the sphere (mirrored across the edge's midpoint).
+    OctahedralSphere,
 }
 
 /// An image texture's parameters.
@@ -94,7 +97,8 @@ pub struct ImageTexture {
 pub enum FloatTexture {
     /// A constant.
     Constant(f32),
-    /// An image's first channel (or its average).
+    /// An image holding the float value in all three channels (the scene reader chooses it as
+    /// pbrt-v4 does: alpha, the average of R, G, B, or the first channel); `.x` is read.
     Image(ImageTexture),
     /// Alternates `tex1` and `tex2` on a grid of the mapped (u, v).
     Checkerboard {
@@ -222,12 +226,10 @@ impl TextureEval<'_> {
             SpectrumTex::Tex(i) => match &self.spectra[i as usize] {
                 SpectrumTexture::Constant(v) => *v,
                 SpectrumTexture::Image(it) => {
+                    // pbrt-v4: max(0, invert ? 1 − scale·c : scale·c).
                     let v = it.image.lookup(it.mapping.map(tc.uv), it.wrap, it.nearest) * it.scale;
-                    if it.invert {
-                        (Rgb::ONE - v).max(Rgb::ZERO)
-                    } else {
-                        v
-                    }
+                    let v = if it.invert { Rgb::ONE - v } else { v };
+                    v.max(Rgb::ZERO)
                 }
                 SpectrumTexture::Checkerboard {
                     mapping,
