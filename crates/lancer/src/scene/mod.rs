@@ -423,17 +423,29 @@ impl Scene {
         Some(SceneHit { si, prim })
     }
 
-    /// Primitive `i`'s hit by `ray`, unless its alpha cuts the surface away there: alpha 0 is
-    /// a hole, alpha 1 solid, and in between the surface is there for a fraction alpha of the
-    /// rays, chosen by a hash of the ray (pbrt-v4's stochastic alpha).
-    #[inline]
+    /// Primitive `i`'s hit by `ray`, unless its alpha cuts the surface away there.
+    #[inline(always)]
     fn hit(&self, i: u32, ray: &Ray, pre: &TriangleRay) -> Option<crate::shape::ShapeHit> {
-        let shape = &self.shapes[i as usize];
-        let h = shape.intersect_with(ray, pre)?;
-        let Some(alpha) = self.prims[i as usize].alpha else {
-            return Some(h);
-        };
-        let si = shape.interaction(ray, &h, &self.meshes);
+        let h = self.shapes[i as usize].intersect_with(ray, pre)?;
+        match self.prims[i as usize].alpha {
+            None => Some(h),
+            Some(alpha) => self.alpha_test(i, ray, h, alpha),
+        }
+    }
+
+    /// The alpha test, out of the hot loop: alpha 0 is a hole, alpha 1 solid, and in between
+    /// the surface is there for a fraction alpha of the rays, chosen by a hash of the ray
+    /// (pbrt-v4's stochastic alpha).
+    #[cold]
+    #[inline(never)]
+    fn alpha_test(
+        &self,
+        i: u32,
+        ray: &Ray,
+        h: crate::shape::ShapeHit,
+        alpha: FloatTex,
+    ) -> Option<crate::shape::ShapeHit> {
+        let si = self.shapes[i as usize].interaction(ray, &h, &self.meshes);
         let a = self.textures().float(alpha, &Scene::tex_coord(&si));
         if a >= 1.0 {
             return Some(h);
