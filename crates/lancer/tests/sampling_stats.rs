@@ -11,16 +11,17 @@ use lancer::light::{Light, LightSampleContext};
 use lancer::math::{Rgb, Transform, Vec2, Vec3};
 use lancer::ray::Ray;
 use lancer::sampling::{
-    Pcg32, cosine_hemisphere_pdf, sample_cosine_hemisphere, sample_uniform_cone,
-    sample_uniform_hemisphere, sample_uniform_sphere, uniform_cone_pdf, uniform_hemisphere_pdf,
-    uniform_sphere_pdf,
+    Pcg32, cosine_hemisphere_pdf, equal_area_square_to_sphere, henyey_greenstein,
+    sample_cosine_hemisphere, sample_henyey_greenstein, sample_uniform_cone,
+    sample_uniform_disk_polar, sample_uniform_hemisphere, sample_uniform_sphere,
+    sample_uniform_triangle, uniform_cone_pdf, uniform_hemisphere_pdf, uniform_sphere_pdf,
 };
 use lancer::scene::desc::{AreaLightDesc, Geometry, LightDesc, SceneDesc, ShapeDesc};
 use lancer::shape::TriangleMesh;
 use std::sync::Arc;
 
 /// Chi-square tests in this file, for the Šidák correction.
-const TESTS: usize = 11;
+const TESTS: usize = 16;
 
 /// Bins `n` directions from `sample` (None: no sample) against the bin integrals of `pdf`
 /// (`quadrature` Gauss panels per bin and axis), checks that the success rate equals ∫pdf, and
@@ -126,6 +127,87 @@ fn chi2_direction_warps() {
             }
         },
     );
+}
+
+#[test]
+fn chi2_more_direction_warps() {
+    let n = 200_000;
+    // pbrt-v4's equal-area square → sphere map takes uniform points to uniform directions.
+    chi2_fit(
+        "equal-area square to sphere",
+        n,
+        8,
+        |u| Some(equal_area_square_to_sphere(u)),
+        |_| uniform_sphere_pdf() as f64,
+    );
+    // A uniform disk point lifted onto the hemisphere (Malley) is cosine-distributed: this
+    // checks the polar disk warp (the concentric one is checked through the cosine warp).
+    chi2_fit(
+        "polar disk, lifted",
+        n,
+        8,
+        |u| {
+            let d = sample_uniform_disk_polar(u);
+            Some(Vec3::new(
+                d.x,
+                d.y,
+                (1.0 - d.length_squared()).max(0.0).sqrt(),
+            ))
+        },
+        |w| {
+            if w.z > 0.0 {
+                cosine_hemisphere_pdf(w.z) as f64
+            } else {
+                0.0
+            }
+        },
+    );
+    for g in [0.6f32, -0.3] {
+        let wo = Vec3::new(0.3, -0.5, 0.8).normalize();
+        chi2_fit(
+            &format!("Henyey-Greenstein g = {g}"),
+            n,
+            8,
+            |u| Some(sample_henyey_greenstein(wo, g, u).0),
+            |w| henyey_greenstein(wo.dot(w), g) as f64,
+        );
+    }
+}
+
+#[test]
+fn chi2_uniform_triangle() {
+    // Points (b₁, b₂) of a uniform triangle sample fill the half square b₁ + b₂ < 1 evenly.
+    // On an N × N grid the diagonal runs through cell corners, so each cell's expectation is
+    // exact: whole below it, half on it, none above.
+    const N: usize = 16;
+    let n = 200_000;
+    let mut rng = Pcg32::new(11, 3);
+    let mut obs = vec![0.0; N * N];
+    for _ in 0..n {
+        let [_, b1, b2] = sample_uniform_triangle(Vec2::new(rng.uniform(), rng.uniform()));
+        assert!(b1 >= 0.0 && b2 >= 0.0 && b1 + b2 <= 1.0 + 1e-6);
+        let (i, j) = (
+            ((b1 * N as f32) as usize).min(N - 1),
+            ((b2 * N as f32) as usize).min(N - 1),
+        );
+        obs[i * N + j] += 1.0;
+    }
+    let cell = 2.0 / (N * N) as f64;
+    let exp: Vec<f64> = (0..N * N)
+        .map(|k| {
+            let (i, j) = (k / N, k % N);
+            n as f64
+                * match (i + j).cmp(&(N - 1)) {
+                    std::cmp::Ordering::Less => cell,
+                    std::cmp::Ordering::Equal => cell / 2.0,
+                    std::cmp::Ordering::Greater => 0.0,
+                }
+        })
+        .collect();
+    let (chi2, dof) = pooled_chi2(&obs, &exp).unwrap();
+    let p = chi2_survival(chi2, dof);
+    println!("uniform triangle: χ² = {chi2:.1}, {dof} dof, p = {p:.3}");
+    assert!(p > sidak(TESTS), "uniform triangle: p = {p:.2e}");
 }
 
 fn emitter(geometry: Geometry, to_world: Transform) -> ShapeDesc {
