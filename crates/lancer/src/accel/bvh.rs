@@ -16,11 +16,39 @@ struct Node {
     axis: u8,
 }
 
+/// Four children's boxes side by side (one array per axis and side), so that one ray is
+/// tested against all four at once with 4-wide vector instructions.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(32))]
+struct Node4 {
+    /// Lower corners: `min[axis][child]`.
+    min: [[f32; 4]; 3],
+    /// Upper corners: `max[axis][child]`.
+    max: [[f32; 4]; 3],
+    /// Interior child: index of its node; leaf child: its first primitive.
+    child: [u32; 4],
+    /// Leaf child: its primitive count; interior child: 0; empty slot: 0 with an empty box.
+    count: [u32; 4],
+}
+
+/// A child reference on the traversal stack: a node (count 0) or a leaf's primitive range.
+#[derive(Clone, Copy, Debug, Default)]
+struct ChildRef {
+    index: u32,
+    count: u32,
+}
+
 /// A BVH over primitives given by their bounds. It stores primitive indices only; the caller
 /// intersects primitives through a closure, so the same tree serves every kind of shape.
+///
+/// The tree is built binary (binned SAH) and then collapsed into a 4-wide tree: each node
+/// holds up to four children, and a ray tests their four boxes at once.
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
     nodes: Vec<Node>,
+    wide: Vec<Node4>,
+    /// The root: a node, or a leaf when the tree has a single leaf.
+    root: ChildRef,
     /// Primitive indices in leaf order.
     pub indices: Vec<u32>,
 }
@@ -48,12 +76,66 @@ impl Bvh {
             .collect();
         let mut bvh = Bvh {
             nodes: Vec::with_capacity(2 * prims.len().max(1)),
+            wide: Vec::new(),
+            root: ChildRef::default(),
             indices: Vec::with_capacity(prims.len()),
         };
         if !prims.is_empty() {
             bvh.build_rec(&mut prims, 0);
+            bvh.root = bvh.collapse(0);
         }
         bvh
+    }
+
+    /// The binary node `n` as a child reference of the wide tree, its subtree collapsed.
+    fn collapse(&mut self, n: usize) -> ChildRef {
+        let node = self.nodes[n];
+        if node.count > 0 {
+            return ChildRef {
+                index: node.offset,
+                count: node.count as u32,
+            };
+        }
+        // Open the children with the largest boxes until there are four (or only leaves).
+        let mut kids: Vec<usize> = vec![n + 1, node.offset as usize];
+        while kids.len() < 4 {
+            let widest = kids
+                .iter()
+                .enumerate()
+                .filter(|(_, k)| self.nodes[**k].count == 0)
+                .max_by(|a, b| {
+                    let sa = self.nodes[*a.1].bounds.surface_area();
+                    let sb = self.nodes[*b.1].bounds.surface_area();
+                    sa.total_cmp(&sb)
+                })
+                .map(|(i, _)| i);
+            let Some(i) = widest else { break };
+            let k = kids.swap_remove(i);
+            kids.push(k + 1);
+            kids.push(self.nodes[k].offset as usize);
+        }
+        let index = self.wide.len();
+        self.wide.push(Node4 {
+            min: [[f32::INFINITY; 4]; 3],
+            max: [[f32::NEG_INFINITY; 4]; 3],
+            child: [0; 4],
+            count: [0; 4],
+        });
+        for (slot, &k) in kids.iter().enumerate() {
+            let b = self.nodes[k].bounds;
+            let c = self.collapse(k);
+            let w = &mut self.wide[index];
+            for a in 0..3 {
+                w.min[a][slot] = b.min[a];
+                w.max[a][slot] = b.max[a];
+            }
+            w.child[slot] = c.index;
+            w.count[slot] = c.count;
+        }
+        ChildRef {
+            index: index as u32,
+            count: 0,
+        }
     }
 
     /// Bounds of everything in the tree.
@@ -156,45 +238,54 @@ impl Bvh {
     /// shortened as hits are found, so farther subtrees are culled.
     #[inline]
     pub fn intersect<F: FnMut(u32, &Ray) -> Option<f32>>(&self, ray: &Ray, mut hit: F) -> bool {
-        if self.nodes.is_empty() {
+        if self.indices.is_empty() {
             return false;
         }
         let mut ray = *ray;
-        let inv_d = ray.d.recip();
-        let neg = [inv_d.x < 0.0, inv_d.y < 0.0, inv_d.z < 0.0];
-        let mut stack = [0u32; 64];
-        let mut sp = 0usize;
-        let mut node = 0usize;
+        let slabs = Slabs::new(&ray);
+        // Entries carry the distance at which the ray enters their box, so that a subtree
+        // found to lie beyond a closer hit is skipped when it is popped.
+        let mut stack = [(ChildRef::default(), 0.0f32); 128];
+        stack[0] = (self.root, 0.0);
+        let mut sp = 1usize;
         let mut found = false;
-        loop {
-            let n = &self.nodes[node];
-            if slab(&n.bounds, &ray, inv_d) {
-                if n.count > 0 {
-                    for k in 0..n.count as usize {
-                        let prim = self.indices[n.offset as usize + k];
-                        if let Some(t) = hit(prim, &ray) {
-                            ray.t_max = t;
-                            found = true;
-                        }
+        while sp > 0 {
+            sp -= 1;
+            let (c, t_enter) = stack[sp];
+            if t_enter > ray.t_max {
+                continue;
+            }
+            if c.count > 0 {
+                for k in c.index..c.index + c.count {
+                    if let Some(t) = hit(self.indices[k as usize], &ray) {
+                        ray.t_max = t;
+                        found = true;
                     }
-                } else {
-                    let (first, second) = (node + 1, n.offset as usize);
-                    let (near, far) = if neg[n.axis as usize] {
-                        (second, first)
-                    } else {
-                        (first, second)
-                    };
-                    stack[sp] = far as u32;
-                    sp += 1;
-                    node = near;
-                    continue;
+                }
+                continue;
+            }
+            let node = &self.wide[c.index as usize];
+            let (t_near, mask) = slabs.test(node, ray.t_max);
+            // Push the children crossed, farthest first, so the nearest is visited next.
+            let mut order = [(0.0f32, 0usize); 4];
+            let mut n = 0;
+            for k in 0..4 {
+                if mask[k] {
+                    order[n] = (t_near[k], k);
+                    n += 1;
                 }
             }
-            if sp == 0 {
-                break;
+            order[..n].sort_unstable_by(|a, b| b.0.total_cmp(&a.0));
+            for &(t, k) in &order[..n] {
+                stack[sp] = (
+                    ChildRef {
+                        index: node.child[k],
+                        count: node.count[k],
+                    },
+                    t,
+                );
+                sp += 1;
             }
-            sp -= 1;
-            node = stack[sp] as usize;
         }
         found
     }
@@ -202,49 +293,84 @@ impl Bvh {
     /// True as soon as `hit(i, ray)` reports a hit (shadow rays).
     #[inline]
     pub fn intersect_any<F: FnMut(u32, &Ray) -> bool>(&self, ray: &Ray, mut hit: F) -> bool {
-        if self.nodes.is_empty() {
+        if self.indices.is_empty() {
             return false;
         }
-        let inv_d = ray.d.recip();
-        let mut stack = [0u32; 64];
-        let mut sp = 0usize;
-        let mut node = 0usize;
-        loop {
-            let n = &self.nodes[node];
-            if slab(&n.bounds, ray, inv_d) {
-                if n.count > 0 {
-                    for k in 0..n.count as usize {
-                        if hit(self.indices[n.offset as usize + k], ray) {
-                            return true;
-                        }
-                    }
-                } else {
-                    stack[sp] = n.offset;
-                    sp += 1;
-                    node += 1;
-                    continue;
-                }
-            }
-            if sp == 0 {
-                return false;
-            }
+        let slabs = Slabs::new(ray);
+        let mut stack = [ChildRef::default(); 128];
+        stack[0] = self.root;
+        let mut sp = 1usize;
+        while sp > 0 {
             sp -= 1;
-            node = stack[sp] as usize;
+            let c = stack[sp];
+            if c.count > 0 {
+                for k in c.index..c.index + c.count {
+                    if hit(self.indices[k as usize], ray) {
+                        return true;
+                    }
+                }
+                continue;
+            }
+            let node = &self.wide[c.index as usize];
+            let (_, mask) = slabs.test(node, ray.t_max);
+            for (k, _) in mask.iter().enumerate().filter(|(_, m)| **m) {
+                stack[sp] = ChildRef {
+                    index: node.child[k],
+                    count: node.count[k],
+                };
+                sp += 1;
+            }
         }
+        false
     }
 }
 
-/// Slab test against precomputed 1/d; the far distance is enlarged by 2γ₃ so rounding never
-/// culls a box the ray really crosses.
-#[inline(always)]
-fn slab(b: &Bounds3, ray: &Ray, inv_d: Vec3) -> bool {
-    let t1 = (b.min - ray.o) * inv_d;
-    let t2 = (b.max - ray.o) * inv_d;
-    let tmin = t1.min(t2);
-    let tmax = t1.max(t2) * (1.0 + 2.0 * crate::math::gamma(3));
-    let t0 = tmin.max_element().max(0.0);
-    let t1 = tmax.min_element().min(ray.t_max);
-    t0 <= t1
+/// A ray prepared for slab tests: its origin, 1/d, and for each axis whether d is negative
+/// (then the box's far side on that axis is its min).
+struct Slabs {
+    o: [f32; 3],
+    inv_d: [f32; 3],
+    neg: [bool; 3],
+}
+
+impl Slabs {
+    #[inline(always)]
+    fn new(ray: &Ray) -> Slabs {
+        let inv = ray.d.recip();
+        Slabs {
+            o: ray.o.to_array(),
+            inv_d: inv.to_array(),
+            neg: [inv.x < 0.0, inv.y < 0.0, inv.z < 0.0],
+        }
+    }
+
+    /// The slab test against a node's four boxes at once: t_near = max over axes of the
+    /// entry distances, t_far = min of the exit distances (enlarged by 2γ₃ so that rounding
+    /// never culls a box the ray crosses); a box is crossed when t_near ≤ t_far, t_far ≥ 0
+    /// and t_near < t_max.
+    #[inline(always)]
+    fn test(&self, node: &Node4, t_max: f32) -> ([f32; 4], [bool; 4]) {
+        let mut t0 = [0.0f32; 4];
+        let mut t1 = [t_max; 4];
+        for a in 0..3 {
+            let (near, far) = if self.neg[a] {
+                (&node.max[a], &node.min[a])
+            } else {
+                (&node.min[a], &node.max[a])
+            };
+            for k in 0..4 {
+                let tn = (near[k] - self.o[a]) * self.inv_d[a];
+                let tf = (far[k] - self.o[a]) * self.inv_d[a] * (1.0 + 2.0 * crate::math::gamma(3));
+                t0[k] = if tn > t0[k] { tn } else { t0[k] };
+                t1[k] = if tf < t1[k] { tf } else { t1[k] };
+            }
+        }
+        let mut mask = [false; 4];
+        for k in 0..4 {
+            mask[k] = t0[k] <= t1[k];
+        }
+        (t0, mask)
+    }
 }
 
 #[cfg(test)]
