@@ -6,6 +6,7 @@
 
 pub mod error;
 pub mod image_read;
+pub mod obj;
 pub mod pbrt;
 pub mod ply;
 

@@ -9,6 +9,7 @@ use super::params::{ColorParam, FloatParam, ParamList};
 use super::parser::SearchPath;
 use crate::error::{Location, SceneError};
 use crate::image_read::{Encoding, ImageCache};
+use crate::obj::read_obj;
 use crate::ply::read_ply;
 use lancer::material::Material;
 use lancer::math::{Rgb, Vec3};
@@ -567,6 +568,16 @@ impl Reader<'_> {
                     return Ok(Converted::Unsupported(warning, None));
                 }
             },
+            "objmesh" => match self.obj_mesh()? {
+                Converted::Done(mesh) => Geometry::TriangleMesh(Arc::new(mesh)),
+                Converted::Unsupported(warning, Some(mesh)) => {
+                    note = Some(warning);
+                    Geometry::TriangleMesh(Arc::new(mesh))
+                }
+                Converted::Unsupported(warning, None) => {
+                    return Ok(Converted::Unsupported(warning, None));
+                }
+            },
             "bilinearmesh" | "loopsubdiv" | "curve" | "cone" | "paraboloid" | "hyperboloid" => {
                 return Ok(Converted::Unsupported(
                     format!("shape \"{ty}\" is not supported yet; skipped"),
@@ -588,6 +599,41 @@ impl Reader<'_> {
         Ok(match note {
             None => Converted::Done((geometry, alpha)),
             Some(warning) => Converted::Unsupported(warning, Some((geometry, alpha))),
+        })
+    }
+
+    /// pbrt-v4's `objmesh`: every triangle of the OBJ file `filename` in one mesh (objects,
+    /// groups and materials merged; the file's materials are not used, the shape takes the
+    /// current pbrt material as any other shape does).
+    fn obj_mesh(&self) -> Result<Converted<TriangleMesh>, SceneError> {
+        let p = self.params;
+        let Some(name) = p.string("filename")? else {
+            return Err(SceneError::general(
+                "an \"objmesh\" needs the name of its OBJ file, \"string filename\"",
+            ));
+        };
+        let path = self.dir.resolve(&name);
+        let obj = read_obj(&path).map_err(|e| SceneError::general(e.to_string()))?;
+        let mesh = obj.merged_mesh();
+        mesh.validate()
+            .map_err(|e| SceneError::general(format!("{}: {e}", path.display())))?;
+        if mesh.triangle_count() == 0 {
+            return Ok(Converted::Unsupported(
+                format!("{} has no faces; the shape is skipped", path.display()),
+                None,
+            ));
+        }
+        Ok(if obj.skipped_faces > 0 {
+            Converted::Unsupported(
+                format!(
+                    "{}: {} faces with fewer than 3 vertices skipped",
+                    path.display(),
+                    obj.skipped_faces
+                ),
+                Some(mesh),
+            )
+        } else {
+            Converted::Done(mesh)
         })
     }
 
