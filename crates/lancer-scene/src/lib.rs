@@ -1,11 +1,13 @@
-//! Scene formats read into lancer's plain-data [`SceneDesc`]: pbrt-v4 files today, with the
-//! PLY meshes their `plymesh` shapes name; glTF and OBJ are to come.
+//! Scene formats read into lancer's plain-data [`SceneDesc`]: pbrt-v4 files, with the PLY and
+//! OBJ meshes their `plymesh` and `objmesh` shapes name, and bare `.obj`/`.ply` meshes made
+//! into a scene around them ([`mesh_scene`]); glTF is to come.
 //!
 //! Every error names its place (`file:line:column`) and comes with the offending line; what
 //! lancer reads but does not do yet is a [`Warning`] saying what it does instead.
 
 pub mod error;
 pub mod image_read;
+pub mod mesh_scene;
 pub mod obj;
 pub mod pbrt;
 pub mod ply;
@@ -26,21 +28,39 @@ pub struct LoadedScene {
     pub warnings: Vec<Warning>,
 }
 
-/// Reads a scene file, its format chosen by the extension.
+/// Reads a scene file, its format chosen by the extension: `.pbrt` (or none) a pbrt-v4
+/// scene; `.obj`, `.ply` or `.ply.gz` a bare mesh, with the camera, lights and film of
+/// [`mesh_scene::defaults`] around it.
 pub fn load(path: &Path) -> Result<LoadedScene, SceneError> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
+    let gzipped_ply = || {
+        path.file_stem()
+            .and_then(|s| Path::new(s).extension())
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("ply"))
+    };
     match ext.as_deref() {
         Some("pbrt") | None => {
             let mut parser = Parser::from_file(path)?;
             finish(pbrt::builder::build(&mut parser), &parser)
         }
+        Some("obj") => mesh_scene::load_obj_scene(path).map(fold),
+        Some("ply") => mesh_scene::load_ply_scene(path).map(fold),
+        Some("gz") if gzipped_ply() => mesh_scene::load_ply_scene(path).map(fold),
         Some(other) => Err(SceneError::general(format!(
-            "{}: unknown scene format '.{other}' (lancer reads .pbrt files)",
+            "{}: unknown scene format '.{other}' (lancer reads .pbrt scenes and .obj/.ply meshes)",
             path.display()
         ))),
+    }
+}
+
+fn fold(loaded: LoadedScene) -> LoadedScene {
+    LoadedScene {
+        desc: loaded.desc,
+        warnings: fold_repeats(loaded.warnings),
     }
 }
 

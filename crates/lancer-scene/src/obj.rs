@@ -69,8 +69,11 @@ pub struct ObjFile {
     tris: Vec<Tri>,
     /// Material names in the order `usemtl` first named them.
     pub material_names: Vec<String>,
-    /// The material libraries `mtllib` named, as written (relative to the OBJ's folder).
-    pub mtllibs: Vec<String>,
+    /// The line of each material's first `usemtl`, parallel to `material_names`.
+    pub material_lines: Vec<u32>,
+    /// The material libraries `mtllib` named, as written (relative to the OBJ's folder),
+    /// with the line naming them.
+    pub mtllibs: Vec<(u32, String)>,
     /// Faces with fewer than three corners, skipped.
     pub skipped_faces: u64,
 }
@@ -254,6 +257,7 @@ pub fn parse_obj(text: &str, name: &str) -> Result<ObjFile, ObjError> {
                     Some(i) => i as u32,
                     None => {
                         obj.material_names.push(m);
+                        obj.material_lines.push(line_no);
                         (obj.material_names.len() - 1) as u32
                     }
                 });
@@ -261,7 +265,7 @@ pub fn parse_obj(text: &str, name: &str) -> Result<ObjFile, ObjError> {
             "mtllib" => {
                 let rest = line[keyword.len()..].trim();
                 if !rest.is_empty() {
-                    obj.mtllibs.push(rest.to_string());
+                    obj.mtllibs.push((line_no, rest.to_string()));
                 }
             }
             _ => {}
@@ -540,7 +544,8 @@ mod tests {
         let text = "mtllib a.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\ng one\nusemtl red\nf 1 2 3\n\
                     g two\nusemtl white\nf 1 3 2\nusemtl red\nf 2 1 3\n";
         let o = obj(text);
-        assert_eq!(o.mtllibs, vec!["a.mtl".to_string()]);
+        assert_eq!(o.mtllibs, vec![(1, "a.mtl".to_string())]);
+        assert_eq!(o.material_lines, vec![6, 9]);
         assert_eq!(
             o.material_names,
             vec!["red".to_string(), "white".to_string()]
