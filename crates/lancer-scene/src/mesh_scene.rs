@@ -2,13 +2,15 @@
 //! model.obj` works without writing a pbrt file around it.
 //!
 //! The mesh is placed as it is (object space = world space). An OBJ's MTL materials become
-//! one shape per material: `Kd` the diffuse reflectance, `Ke` an area light; `map_Kd` is not
-//! read (a warning says so) and `Ks`/`Ns` are not used. Everything a mesh file does not say
+//! one shape per material: `Kd` the diffuse reflectance, or the sRGB image `map_Kd` names
+//! (used instead of `Kd`, when the faces have texture coordinates; otherwise a warning says
+//! `Kd` is used), `Ke` an area light; `Ks`/`Ns` are not used. Everything a mesh file does not say
 //! comes from [`defaults`]: a camera framing the mesh, the film size, the light grey material,
 //! a uniform sky and a distant key light.
 
 use crate::LoadedScene;
 use crate::error::{Location, SceneError, Warning};
+use crate::image_read::{Encoding, ImageCache};
 use crate::obj::{ObjError, read_mtl, read_obj};
 use crate::ply::read_ply;
 use lancer::material::Material;
@@ -18,7 +20,7 @@ use lancer::scene::desc::{
     SceneDesc, ShapeDesc,
 };
 use lancer::shape::TriangleMesh;
-use lancer::texture::SpectrumTex;
+use lancer::texture::{ImageTexture, SpectrumTex, SpectrumTexture, UvMapping, WrapMode};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -37,9 +39,9 @@ pub mod defaults {
     /// slightly above (+y is taken as up, as in most OBJ and PLY files).
     pub const VIEW_FROM: Vec3 = Vec3::new(0.0, 0.3, 1.0);
     /// Room left around the bounding sphere: its radius is multiplied by this before framing.
-    pub const FRAME_MARGIN: f32 = 1.08;
+    pub const FRAME_MARGIN: f32 = 1.0;
     /// Reflectance of meshes without a material (and of MTL materials without `Kd`).
-    pub const ALBEDO: f32 = 0.7;
+    pub const ALBEDO: f32 = 0.6;
     /// Radiance of the uniform sky.
     pub const SKY_RADIANCE: f32 = 0.5;
     /// Direction *towards* the key light: above, in front, a little to the left.
@@ -118,6 +120,8 @@ pub fn load_obj_scene(path: &Path) -> Result<LoadedScene, SceneError> {
     };
     let mut materials = vec![grey];
     let mut parts = Vec::new();
+    let mut textures = Vec::new();
+    let images = ImageCache::default();
     for (which, mesh) in obj.meshes_by_material() {
         let mut part = Part {
             mesh,
@@ -140,19 +144,29 @@ pub fn load_obj_scene(path: &Path) -> Result<LoadedScene, SceneError> {
                     }
                 }
                 Some(m) => {
-                    if let Some(map) = &m.map_kd {
-                        warnings.push(warning(
-                            &name,
-                            line,
-                            format!(
-                                "material '{mat_name}': textures (map_Kd {map}) are not read yet; its Kd colour is used"
-                            ),
-                        ));
-                    }
                     let kd = m.kd.unwrap_or(Rgb::splat(defaults::ALBEDO));
-                    materials.push(Material::Diffuse {
-                        reflectance: SpectrumTex::Const(kd.clamp(Vec3::ZERO, Vec3::ONE)),
-                    });
+                    let mut reflectance = SpectrumTex::Const(kd.clamp(Vec3::ZERO, Vec3::ONE));
+                    if let Some(map) = &m.map_kd {
+                        let texture = if part.mesh.uvs.is_empty() {
+                            Err("the faces using it have no texture coordinates".to_string())
+                        } else {
+                            image_texture(&images, &dir.join(map))
+                        };
+                        match texture {
+                            Ok(t) => {
+                                textures.push(SpectrumTexture::Image(t));
+                                reflectance = SpectrumTex::Tex((textures.len() - 1) as u32);
+                            }
+                            Err(e) => warnings.push(warning(
+                                &name,
+                                line,
+                                format!(
+                                    "material '{mat_name}': texture map_Kd {map} not used ({e}); its Kd colour is used"
+                                ),
+                            )),
+                        }
+                    }
+                    materials.push(Material::Diffuse { reflectance });
                     part.material = (materials.len() - 1) as u32;
                     part.emission = m.ke.filter(|ke| ke.max_element() > 0.0);
                 }
@@ -160,9 +174,24 @@ pub fn load_obj_scene(path: &Path) -> Result<LoadedScene, SceneError> {
         }
         parts.push(part);
     }
-    Ok(LoadedScene {
-        desc: scene_around(&name, parts, materials)?,
-        warnings,
+    let mut desc = scene_around(&name, parts, materials)?;
+    desc.spectrum_textures = textures;
+    Ok(LoadedScene { desc, warnings })
+}
+
+/// A diffuse texture: the sRGB image at `path`, tiled, looked up bilinearly with the OBJ's
+/// (u, v) as they are (pbrt's convention: v = 0 is the image's bottom row, as in OBJ).
+fn image_texture(images: &ImageCache, path: &Path) -> Result<ImageTexture, String> {
+    let image = images
+        .rgb(path, Encoding::Srgb)
+        .map_err(|e| e.to_string())?;
+    Ok(ImageTexture {
+        image,
+        mapping: UvMapping::default(),
+        wrap: WrapMode::Repeat,
+        scale: 1.0,
+        invert: false,
+        nearest: false,
     })
 }
 

@@ -231,3 +231,55 @@ fn the_shared_mcguire_cornell_box_loads_with_its_materials() {
     assert!(red, "the red wall's Kd");
     check_framing(d);
 }
+
+#[test]
+fn map_kd_images_become_textures_when_the_faces_have_uvs() {
+    let dir = temp_dir("map");
+    // A 2 × 1 sRGB PNG: white, black.
+    {
+        let file = std::fs::File::create(dir.join("wb.png")).unwrap();
+        let mut enc = png::Encoder::new(file, 2, 1);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        let mut w = enc.write_header().unwrap();
+        w.write_image_data(&[255, 255, 255, 0, 0, 0]).unwrap();
+    }
+    std::fs::write(
+        dir.join("t.mtl"),
+        "newmtl tex\nKd 0.5 0.5 0.5\nmap_Kd wb.png\nnewmtl gone\nmap_Kd nothere.png\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("t.obj"),
+        "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n\
+         usemtl tex\nf 1/1 2/2 3/3\nusemtl gone\nf 1/1 3/3 2/2\n",
+    )
+    .unwrap();
+    let loaded = load(&dir.join("t.obj")).unwrap_or_else(|e| panic!("{e}"));
+    let d = &loaded.desc;
+    assert_eq!(d.spectrum_textures.len(), 1);
+    let lancer::texture::SpectrumTexture::Image(t) = &d.spectrum_textures[0] else {
+        panic!("not an image texture")
+    };
+    assert_eq!((t.image.width, t.image.height), (2, 1));
+    assert_eq!(
+        d.materials[d.shapes[0].material as usize],
+        lancer::material::Material::Diffuse {
+            reflectance: lancer::texture::SpectrumTex::Tex(0)
+        }
+    );
+    // The missing image falls back to Kd (the default grey here) with a warning on its line.
+    assert_eq!(
+        d.materials[d.shapes[1].material as usize],
+        lancer::material::Material::Diffuse {
+            reflectance: lancer::texture::SpectrumTex::Const(Vec3::splat(0.6))
+        }
+    );
+    let w: Vec<String> = loaded.warnings.iter().map(|w| w.to_string()).collect();
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(
+        w[0].contains("t.obj:10:1: material 'gone': texture map_Kd nothere.png not used"),
+        "{w:?}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
