@@ -16,7 +16,7 @@ use std::time::Instant;
 /// Options of `lancer render`.
 #[derive(Args, Debug)]
 pub struct RenderArgs {
-    /// Scene file (.pbrt); without it, the built-in default scene.
+    /// Scene file (.pbrt), or a bare mesh (.obj, .ply) to frame and light; without it, the built-in default scene.
     pub scene: Option<PathBuf>,
     /// Output image (.png or .exr); defaults to the scene's Film filename, else lancer.png.
     #[arg(short, long)]

@@ -169,7 +169,7 @@ fn non_utf8_bytes_are_located() {
 fn a_missing_scene_or_unknown_format_fails_cleanly() {
     let dir = temp_dir("missing");
     std::fs::write(dir.join("keep.png"), OLD_IMAGE).unwrap();
-    for scene in ["nowhere.pbrt", "model.xyz"] {
+    for scene in ["nowhere.pbrt", "model.xyz", "nowhere.obj", "nowhere.ply"] {
         let o = run_in(&dir, &["render", scene, "-o", "keep.png", "--quiet"]);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{scene}: {err}");

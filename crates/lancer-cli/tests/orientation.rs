@@ -1,6 +1,7 @@
 //! The image is oriented exactly as pbrt-v4 orients it: with `LookAt` towards −z, world +x is
 //! on the image's left (pbrt's camera space is left-handed) and +y at the top; a
-//! `Scale -1 1 1` before `LookAt` (as Blender exports write) puts +x on the right.
+//! `Scale -1 1 1` before `LookAt` (as Blender exports write) puts +x on the right, as the
+//! camera lancer makes for a bare mesh file does.
 
 mod common;
 use common::*;
@@ -83,5 +84,82 @@ fn world_x_is_on_the_left_and_y_on_top_as_in_pbrt() {
     );
     let blue_top = sum(&img, 2, |_, y| y < h / 2);
     assert!(blue_top > 1.0, "mirrored blue stays on top");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A quad of side `s` centred at (x, y, 0), facing +z, as OBJ lines (vertices counted back).
+fn quad(x: f32, y: f32, s: f32, material: &str) -> String {
+    let h = s / 2.0;
+    format!(
+        "usemtl {material}\nv {} {} 0\nv {} {} 0\nv {} {} 0\nv {} {} 0\nf -4 -3 -2 -1\n",
+        x - h,
+        y - h,
+        x + h,
+        y - h,
+        x + h,
+        y + h,
+        x - h,
+        y + h
+    )
+}
+
+#[test]
+fn a_bare_obj_is_framed_with_x_on_the_right_and_y_on_top() {
+    let dir = temp_dir("bare-obj");
+    std::fs::write(
+        dir.join("m.mtl"),
+        "newmtl red\nKd 0.9 0 0\nnewmtl blue\nKd 0 0 0.9\n",
+    )
+    .unwrap();
+    let obj = format!(
+        "mtllib m.mtl\n{}{}",
+        quad(1.5, 0.0, 0.8, "red"),
+        quad(0.0, 1.2, 0.6, "blue")
+    );
+    std::fs::write(dir.join("m.obj"), obj).unwrap();
+    let out = dir.join("m.exr");
+    render_ok(
+        &dir,
+        &dir.join("m.obj"),
+        &out,
+        &["--resolution", "48x32", "--spp", "4"],
+    );
+    let img = read_exr(&out);
+    let (w, h) = (img.width, img.height);
+    // The grey sky has r = g = b: only the patches are "red" or "blue".
+    let redness = |keep: &dyn Fn(usize, usize) -> bool| {
+        let mut s = 0.0;
+        for y in 0..h {
+            for x in 0..w {
+                let [r, g, b] = img.rgb[y * w + x];
+                if keep(x, y) {
+                    s += (r - g.max(b)).max(0.0);
+                }
+            }
+        }
+        s
+    };
+    let blueness = |keep: &dyn Fn(usize, usize) -> bool| {
+        let mut s = 0.0;
+        for y in 0..h {
+            for x in 0..w {
+                let [r, g, b] = img.rgb[y * w + x];
+                if keep(x, y) {
+                    s += (b - g.max(r)).max(0.0);
+                }
+            }
+        }
+        s
+    };
+    let (red_left, red_right) = (redness(&|x, _| x < w / 2), redness(&|x, _| x >= w / 2));
+    assert!(
+        red_right > 1.0 && red_left < 0.01 * red_right,
+        "red: left {red_left}, right {red_right}"
+    );
+    let (blue_top, blue_bottom) = (blueness(&|_, y| y < h / 2), blueness(&|_, y| y >= h / 2));
+    assert!(
+        blue_top > 1.0 && blue_bottom < 0.01 * blue_top,
+        "blue: top {blue_top}, bottom {blue_bottom}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
