@@ -101,6 +101,25 @@ pub fn load_obj_scene(path: &Path) -> Result<LoadedScene, SceneError> {
     let mut library = Vec::new();
     for (line, lib) in &obj.mtllibs {
         let lib_path = dir.join(lib);
+        // `mtllib a.mtl b.mtl` names several libraries; a single name may hold spaces.
+        if !lib_path.exists() && lib.contains(char::is_whitespace) {
+            for part in lib.split_whitespace() {
+                let p = dir.join(part);
+                if p.exists() {
+                    library.extend(read_mtl(&p).map_err(general)?);
+                } else {
+                    warnings.push(warning(
+                        &name,
+                        *line,
+                        format!(
+                            "material library {} not found; its materials are light grey",
+                            p.display()
+                        ),
+                    ));
+                }
+            }
+            continue;
+        }
         if !lib_path.exists() {
             warnings.push(warning(
                 &name,

@@ -93,15 +93,19 @@ impl ObjFile {
     /// One mesh per material: `(index into material_names or None, mesh)`, in order of first
     /// use, meshes without triangles left out.
     pub fn meshes_by_material(&self) -> Vec<(Option<u32>, TriangleMesh)> {
-        let mut order: Vec<Option<u32>> = Vec::new();
+        // One pass into buckets (a file may have thousands of materials).
+        let mut slot: HashMap<Option<u32>, usize> = HashMap::new();
+        let mut buckets: Vec<(Option<u32>, Vec<&Tri>)> = Vec::new();
         for t in &self.tris {
-            if !order.contains(&t.material) {
-                order.push(t.material);
-            }
+            let i = *slot.entry(t.material).or_insert_with(|| {
+                buckets.push((t.material, Vec::new()));
+                buckets.len() - 1
+            });
+            buckets[i].1.push(t);
         }
-        order
+        buckets
             .into_iter()
-            .map(|m| (m, self.build(self.tris.iter().filter(|t| t.material == m))))
+            .map(|(m, tris)| (m, self.build(tris.iter().copied())))
             .collect()
     }
 

@@ -283,3 +283,26 @@ fn map_kd_images_become_textures_when_the_faces_have_uvs() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn several_material_libraries_on_one_mtllib_line() {
+    let dir = temp_dir("libs");
+    std::fs::write(dir.join("a.mtl"), "newmtl a\nKd 1 0 0\n").unwrap();
+    std::fs::write(dir.join("b.mtl"), "newmtl b\nKd 0 1 0\n").unwrap();
+    std::fs::write(
+        dir.join("m.obj"),
+        "mtllib a.mtl b.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl b\nf 1 2 3\nusemtl a\nf 1 3 2\n",
+    )
+    .unwrap();
+    let loaded = load(&dir.join("m.obj")).unwrap_or_else(|e| panic!("{e}"));
+    assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
+    let d = &loaded.desc;
+    let kd = |i: usize| match &d.materials[d.shapes[i].material as usize] {
+        lancer::material::Material::Diffuse {
+            reflectance: lancer::texture::SpectrumTex::Const(c),
+        } => *c,
+        m => panic!("{m:?}"),
+    };
+    assert_eq!((kd(0), kd(1)), (Vec3::Y, Vec3::X));
+    let _ = std::fs::remove_dir_all(&dir);
+}
