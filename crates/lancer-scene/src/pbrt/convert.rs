@@ -540,6 +540,12 @@ impl Reader<'_> {
                 phi_max: p
                     .float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0)?,
             },
+            "cone" => Geometry::Cone {
+                radius: p.float_checked("radius", 1.0, "positive", positive)?,
+                height: p.float_checked("height", 1.0, "positive", positive)?,
+                phi_max: p
+                    .float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0)?,
+            },
             "plane" => {
                 let n = p.normal("n", Vec3::Z)?;
                 // Too short to normalise (components so small their squares underflow) counts
@@ -567,7 +573,7 @@ impl Reader<'_> {
                     return Ok(Converted::Unsupported(warning, None));
                 }
             },
-            "bilinearmesh" | "loopsubdiv" | "curve" | "cone" | "paraboloid" | "hyperboloid" => {
+            "bilinearmesh" | "loopsubdiv" | "curve" | "paraboloid" | "hyperboloid" => {
                 return Ok(Converted::Unsupported(
                     format!("shape \"{ty}\" is not supported yet; skipped"),
                     None,

@@ -268,6 +268,15 @@ pub enum Geometry {
         /// Sweep, degrees.
         phi_max: f32,
     },
+    /// pbrt's `cone`: base radius at z = 0, apex at z = `height`.
+    Cone {
+        /// Radius of the base.
+        radius: f32,
+        /// Height of the apex.
+        height: f32,
+        /// Sweep, degrees.
+        phi_max: f32,
+    },
     /// lancer's infinite `plane` through `p` with normal `n`.
     Plane {
         /// A point of the plane.

@@ -9,8 +9,8 @@ use crate::material::Material;
 use crate::math::{Bounds3, Frame, Rgb, Vec3};
 use crate::ray::Ray;
 use crate::shape::{
-    Cylinder, Disk, Placement, Plane, Shape, Sphere, SurfaceInteraction, Triangle, TriangleMesh,
-    TriangleRay, is_degenerate,
+    Cone, Cylinder, Disk, Placement, Plane, Shape, Sphere, SurfaceInteraction, Triangle,
+    TriangleMesh, TriangleRay, is_degenerate,
 };
 use crate::texture::{FloatTex, FloatTexture, SpectrumTexture, TexCoord, TextureEval};
 use desc::{Geometry, LightDesc, SceneDesc, ShapeDesc};
@@ -153,6 +153,16 @@ fn shapes_of(
             positive(*radius, "radius")?,
             *z_min,
             *z_max,
+            *phi_max,
+        )))),
+        Geometry::Cone {
+            radius,
+            height,
+            phi_max,
+        } => out.push(Shape::Cone(Box::new(Cone::new(
+            placement,
+            positive(*radius, "radius")?,
+            positive(*height, "height")?,
             *phi_max,
         )))),
         Geometry::Plane { p, n } => {
