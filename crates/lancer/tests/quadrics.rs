@@ -1,4 +1,4 @@
-//! Cones: hits agree with a brute-force root finder on
+//! Cones and paraboloids: hits agree with a brute-force root finder on
 //! the implicit surface, hit points and normals are right, spawned rays never find their own
 //! surface again, areas agree with Crofton's formula, and sampled points carry the
 //! intersection's normal.
@@ -23,6 +23,18 @@ fn geometries() -> Vec<Geometry> {
             radius: 0.8,
             height: 2.0,
             phi_max: 250.0,
+        },
+        Geometry::Paraboloid {
+            radius: 1.0,
+            z_min: 0.0,
+            z_max: 1.0,
+            phi_max: 360.0,
+        },
+        Geometry::Paraboloid {
+            radius: 0.7,
+            z_min: 0.3,
+            z_max: 1.4,
+            phi_max: 290.0,
         },
     ]
 }
@@ -60,6 +72,7 @@ fn scene_of(geometry: Geometry, to_world: Transform, reverse: bool) -> Scene {
 fn placement(s: &Shape) -> &Placement {
     match s {
         Shape::Cone(c) => &c.placement,
+        Shape::Paraboloid(p) => &p.placement,
         _ => unreachable!(),
     }
 }
@@ -84,6 +97,19 @@ fn implicit(g: &Geometry, p: DVec3) -> (f64, DVec3, bool, f64) {
             let f = p.x * p.x + p.y * p.y - k * (p.z - h).powi(2);
             let grad = DVec3::new(2.0 * p.x, 2.0 * p.y, -2.0 * k * (p.z - h));
             let ok = (0.0..=h).contains(&p.z) && phi_of(p.x, p.y) <= (phi_max as f64).to_radians();
+            (f, grad, ok, 1.0)
+        }
+        Geometry::Paraboloid {
+            radius,
+            z_min,
+            z_max,
+            phi_max,
+        } => {
+            let k = z_max as f64 / (radius as f64).powi(2);
+            let f = k * (p.x * p.x + p.y * p.y) - p.z;
+            let grad = DVec3::new(2.0 * k * p.x, 2.0 * k * p.y, -1.0);
+            let ok = (z_min as f64..=z_max as f64).contains(&p.z)
+                && phi_of(p.x, p.y) <= (phi_max as f64).to_radians();
             (f, grad, ok, 1.0)
         }
         _ => unreachable!(),
@@ -350,6 +376,16 @@ fn closed_form_areas() {
             },
             PI * 1.2 * 1.5f64.hypot(1.2),
         ),
+        // Paraboloid z = ρ² up to z = 1: π/6·(5√5 − 1).
+        (
+            Geometry::Paraboloid {
+                radius: 1.0,
+                z_min: 0.0,
+                z_max: 1.0,
+                phi_max: 360.0,
+            },
+            PI / 6.0 * (5.0 * 5f64.sqrt() - 1.0),
+        ),
     ];
     for (i, (g, want)) in cases.into_iter().enumerate() {
         let got = scene_of(g, Transform::IDENTITY, false).shapes[0].area() as f64;
@@ -478,6 +514,25 @@ fn rays_outside_the_cuts_miss() {
                 phi_max: 360.0,
             },
             DVec3::new(0.3, 0.0, 1.3),
+        ),
+        // Paraboloid above zmax and below zmin.
+        (
+            Geometry::Paraboloid {
+                radius: 1.0,
+                z_min: 0.25,
+                z_max: 1.0,
+                phi_max: 360.0,
+            },
+            DVec3::new(1.2, 0.0, 1.44),
+        ),
+        (
+            Geometry::Paraboloid {
+                radius: 1.0,
+                z_min: 0.25,
+                z_max: 1.0,
+                phi_max: 360.0,
+            },
+            DVec3::new(0.0, 0.3, 0.09),
         ),
     ];
     for (i, (g, p)) in cases.into_iter().enumerate() {

@@ -546,6 +546,18 @@ impl Reader<'_> {
                 phi_max: p
                     .float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0)?,
             },
+            "paraboloid" => {
+                let z_max = p.float_checked("zmax", 1.0, "positive", positive)?;
+                Geometry::Paraboloid {
+                    radius: p.float_checked("radius", 1.0, "positive", positive)?,
+                    z_min: p.float_checked("zmin", 0.0, "at least 0 and less than zmax", |v| {
+                        (0.0..z_max).contains(&v)
+                    })?,
+                    z_max,
+                    phi_max: p
+                        .float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0)?,
+                }
+            }
             "plane" => {
                 let n = p.normal("n", Vec3::Z)?;
                 // Too short to normalise (components so small their squares underflow) counts
@@ -573,7 +585,7 @@ impl Reader<'_> {
                     return Ok(Converted::Unsupported(warning, None));
                 }
             },
-            "bilinearmesh" | "loopsubdiv" | "curve" | "paraboloid" | "hyperboloid" => {
+            "bilinearmesh" | "loopsubdiv" | "curve" | "hyperboloid" => {
                 return Ok(Converted::Unsupported(
                     format!("shape \"{ty}\" is not supported yet; skipped"),
                     None,

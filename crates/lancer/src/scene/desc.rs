@@ -277,6 +277,17 @@ pub enum Geometry {
         /// Sweep, degrees.
         phi_max: f32,
     },
+    /// pbrt's `paraboloid`: z = zmax·(x² + y²)/radius², cut to [zmin, zmax].
+    Paraboloid {
+        /// Radius at `z_max`.
+        radius: f32,
+        /// Bottom.
+        z_min: f32,
+        /// Top (positive).
+        z_max: f32,
+        /// Sweep, degrees.
+        phi_max: f32,
+    },
     /// lancer's infinite `plane` through `p` with normal `n`.
     Plane {
         /// A point of the plane.

@@ -9,8 +9,8 @@ use crate::material::Material;
 use crate::math::{Bounds3, Frame, Rgb, Vec3};
 use crate::ray::Ray;
 use crate::shape::{
-    Cone, Cylinder, Disk, Placement, Plane, Shape, Sphere, SurfaceInteraction, Triangle,
-    TriangleMesh, TriangleRay, is_degenerate,
+    Cone, Cylinder, Disk, Paraboloid, Placement, Plane, Shape, Sphere, SurfaceInteraction,
+    Triangle, TriangleMesh, TriangleRay, is_degenerate,
 };
 use crate::texture::{FloatTex, FloatTexture, SpectrumTexture, TexCoord, TextureEval};
 use desc::{Geometry, LightDesc, SceneDesc, ShapeDesc};
@@ -163,6 +163,18 @@ fn shapes_of(
             placement,
             positive(*radius, "radius")?,
             positive(*height, "height")?,
+            *phi_max,
+        )))),
+        Geometry::Paraboloid {
+            radius,
+            z_min,
+            z_max,
+            phi_max,
+        } => out.push(Shape::Paraboloid(Box::new(Paraboloid::new(
+            placement,
+            positive(*radius, "radius")?,
+            *z_min,
+            positive(z_min.max(*z_max), "zmax")?,
             *phi_max,
         )))),
         Geometry::Plane { p, n } => {

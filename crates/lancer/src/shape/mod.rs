@@ -9,6 +9,7 @@
 mod cone;
 mod cylinder;
 mod disk;
+mod paraboloid;
 mod plane;
 mod sample;
 mod sphere;
@@ -17,6 +18,7 @@ mod triangle;
 pub use cone::Cone;
 pub use cylinder::Cylinder;
 pub use disk::Disk;
+pub use paraboloid::Paraboloid;
 pub use plane::Plane;
 pub use sample::ShapeSample;
 pub use sphere::Sphere;
@@ -214,6 +216,8 @@ pub enum Shape {
     Cylinder(Box<Cylinder>),
     /// A (partial) open cone.
     Cone(Box<Cone>),
+    /// A (partial) paraboloid.
+    Paraboloid(Box<Paraboloid>),
     /// An infinite plane (lancer extension).
     Plane(Box<Plane>),
     /// One triangle of a mesh.
@@ -228,6 +232,7 @@ impl Shape {
             Shape::Disk(s) => s.bounds(),
             Shape::Cylinder(s) => s.bounds(),
             Shape::Cone(s) => s.bounds(),
+            Shape::Paraboloid(s) => s.bounds(),
             Shape::Plane(_) => {
                 Bounds3::new(Vec3::splat(f32::NEG_INFINITY), Vec3::splat(f32::INFINITY))
             }
@@ -257,6 +262,7 @@ impl Shape {
             Shape::Disk(s) => s.intersect(ray),
             Shape::Cylinder(s) => s.intersect(ray),
             Shape::Cone(s) => s.intersect(ray),
+            Shape::Paraboloid(s) => s.intersect(ray),
             Shape::Plane(s) => s.intersect(ray),
         }
     }
@@ -279,6 +285,7 @@ impl Shape {
             Shape::Disk(s) => s.interaction(ray, hit),
             Shape::Cylinder(s) => s.interaction(ray, hit),
             Shape::Cone(s) => s.interaction(ray, hit),
+            Shape::Paraboloid(s) => s.interaction(ray, hit),
             Shape::Plane(s) => s.interaction(ray, hit),
             Shape::Triangle(t) => t.interaction(ray, hit, &meshes[t.mesh as usize]),
         }
