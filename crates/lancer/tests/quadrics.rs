@@ -1,4 +1,4 @@
-//! Cones and paraboloids: hits agree with a brute-force root finder on
+//! Cones, paraboloids and hyperboloids: hits agree with a brute-force root finder on
 //! the implicit surface, hit points and normals are right, spawned rays never find their own
 //! surface again, areas agree with Crofton's formula, and sampled points carry the
 //! intersection's normal.
@@ -35,6 +35,30 @@ fn geometries() -> Vec<Geometry> {
             z_min: 0.3,
             z_max: 1.4,
             phi_max: 290.0,
+        },
+        // Skew segment: a one-sheet hyperboloid whose waist is not at z = 0.
+        Geometry::Hyperboloid {
+            p1: Vec3::new(1.0, 0.0, -0.5),
+            p2: Vec3::new(0.3, 0.8, 0.7),
+            phi_max: 360.0,
+        },
+        // pbrt's defaults: the segment's line meets the axis, a cone.
+        Geometry::Hyperboloid {
+            p1: Vec3::ZERO,
+            p2: Vec3::ONE,
+            phi_max: 300.0,
+        },
+        // Parallel to the axis: a cylinder.
+        Geometry::Hyperboloid {
+            p1: Vec3::new(0.5, 0.0, -1.0),
+            p2: Vec3::new(0.5, 0.0, 1.0),
+            phi_max: 200.0,
+        },
+        // The classic hyperboloid, its segment going down.
+        Geometry::Hyperboloid {
+            p1: Vec3::new(1.0, -1.0, 1.0),
+            p2: Vec3::new(1.0, 1.0, -1.0),
+            phi_max: 360.0,
         },
     ]
 }
@@ -73,6 +97,7 @@ fn placement(s: &Shape) -> &Placement {
     match s {
         Shape::Cone(c) => &c.placement,
         Shape::Paraboloid(p) => &p.placement,
+        Shape::Hyperboloid(h) => &h.placement,
         _ => unreachable!(),
     }
 }
@@ -111,6 +136,21 @@ fn implicit(g: &Geometry, p: DVec3) -> (f64, DVec3, bool, f64) {
             let ok = (z_min as f64..=z_max as f64).contains(&p.z)
                 && phi_of(p.x, p.y) <= (phi_max as f64).to_radians();
             (f, grad, ok, 1.0)
+        }
+        Geometry::Hyperboloid { p1, p2, phi_max } => {
+            let (p1, p2) = (p1.as_dvec3(), p2.as_dvec3());
+            let dz = p2.z - p1.z;
+            let s = (p.z - p1.z) / dz;
+            // The segment's point at p's height, and its radius² there.
+            let pr = p1 + s * (p2 - p1);
+            let f = p.x * p.x + p.y * p.y - (pr.x * pr.x + pr.y * pr.y);
+            let e = (p2 - p1).truncate();
+            let dr2 = 2.0 * pr.truncate().dot(e) / dz;
+            let grad = DVec3::new(2.0 * p.x, 2.0 * p.y, -dr2);
+            // The angle turning the segment's point onto p.
+            let turn = phi_of(pr.x * p.x + pr.y * p.y, pr.x * p.y - pr.y * p.x);
+            let ok = (0.0..=1.0).contains(&s) && turn <= (phi_max as f64).to_radians();
+            (f, grad, ok, dz.signum())
         }
         _ => unreachable!(),
     }
@@ -386,6 +426,24 @@ fn closed_form_areas() {
             },
             PI / 6.0 * (5.0 * 5f64.sqrt() - 1.0),
         ),
+        // Half a cylinder as a hyperboloid: φmax·r·h.
+        (
+            Geometry::Hyperboloid {
+                p1: Vec3::new(0.5, 0.0, -1.0),
+                p2: Vec3::new(0.5, 0.0, 1.0),
+                phi_max: 180.0,
+            },
+            PI * 0.5 * 2.0,
+        ),
+        // A cone as a hyperboloid (segment from the apex): π·r·slant, r = √2, slant = √3.
+        (
+            Geometry::Hyperboloid {
+                p1: Vec3::ZERO,
+                p2: Vec3::ONE,
+                phi_max: 360.0,
+            },
+            PI * 2f64.sqrt() * 3f64.sqrt(),
+        ),
     ];
     for (i, (g, want)) in cases.into_iter().enumerate() {
         let got = scene_of(g, Transform::IDENTITY, false).shapes[0].area() as f64;
@@ -533,6 +591,15 @@ fn rays_outside_the_cuts_miss() {
                 phi_max: 360.0,
             },
             DVec3::new(0.0, 0.3, 0.09),
+        ),
+        // Hyperboloid (x² + y² = 1 + z²... for p1 = (1, −1, 1), p2 = (1, 1, −1)) beyond z = 1.
+        (
+            Geometry::Hyperboloid {
+                p1: Vec3::new(1.0, -1.0, 1.0),
+                p2: Vec3::new(1.0, 1.0, -1.0),
+                phi_max: 360.0,
+            },
+            DVec3::new((1.0f64 + 1.5 * 1.5).sqrt(), 0.0, 1.5),
         ),
     ];
     for (i, (g, p)) in cases.into_iter().enumerate() {

@@ -558,6 +558,27 @@ impl Reader<'_> {
                         .float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0)?,
                 }
             }
+            "hyperboloid" => {
+                let p1 = p.point3("p1", Vec3::ZERO)?;
+                let p2 = p.point3("p2", Vec3::ONE)?;
+                if p1.z == p2.z {
+                    let msg = format!(
+                        "the hyperboloid's \"p1\" {p1} and \"p2\" {p2} are at the same height; \
+                         the swept segment would be a flat annulus (use a disk)"
+                    );
+                    let loc = p.location("p2").or(p.location("p1")).cloned();
+                    return Err(match loc {
+                        Some(l) => SceneError::at(l, msg),
+                        None => SceneError::general(msg),
+                    });
+                }
+                Geometry::Hyperboloid {
+                    p1,
+                    p2,
+                    phi_max: p
+                        .float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0)?,
+                }
+            }
             "plane" => {
                 let n = p.normal("n", Vec3::Z)?;
                 // Too short to normalise (components so small their squares underflow) counts
@@ -585,7 +606,7 @@ impl Reader<'_> {
                     return Ok(Converted::Unsupported(warning, None));
                 }
             },
-            "bilinearmesh" | "loopsubdiv" | "curve" | "hyperboloid" => {
+            "bilinearmesh" | "loopsubdiv" | "curve" => {
                 return Ok(Converted::Unsupported(
                     format!("shape \"{ty}\" is not supported yet; skipped"),
                     None,

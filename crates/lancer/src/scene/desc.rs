@@ -288,6 +288,15 @@ pub enum Geometry {
         /// Sweep, degrees.
         phi_max: f32,
     },
+    /// pbrt's `hyperboloid`: the segment `p1`–`p2` swept about the z axis.
+    Hyperboloid {
+        /// Start of the segment.
+        p1: Vec3,
+        /// End of the segment (at a different height from `p1`).
+        p2: Vec3,
+        /// Sweep, degrees.
+        phi_max: f32,
+    },
     /// lancer's infinite `plane` through `p` with normal `n`.
     Plane {
         /// A point of the plane.

@@ -9,8 +9,8 @@ use crate::material::Material;
 use crate::math::{Bounds3, Frame, Rgb, Vec3};
 use crate::ray::Ray;
 use crate::shape::{
-    Cone, Cylinder, Disk, Paraboloid, Placement, Plane, Shape, Sphere, SurfaceInteraction,
-    Triangle, TriangleMesh, TriangleRay, is_degenerate,
+    Cone, Cylinder, Disk, Hyperboloid, Paraboloid, Placement, Plane, Shape, Sphere,
+    SurfaceInteraction, Triangle, TriangleMesh, TriangleRay, is_degenerate,
 };
 use crate::texture::{FloatTex, FloatTexture, SpectrumTexture, TexCoord, TextureEval};
 use desc::{Geometry, LightDesc, SceneDesc, ShapeDesc};
@@ -177,6 +177,14 @@ fn shapes_of(
             positive(z_min.max(*z_max), "zmax")?,
             *phi_max,
         )))),
+        Geometry::Hyperboloid { p1, p2, phi_max } => {
+            let h = Hyperboloid::new(placement, *p1, *p2, *phi_max).ok_or_else(|| {
+                BuildError::Invalid(format!(
+                    "shape {index}: hyperboloid p1 {p1} and p2 {p2} must be finite and at different heights"
+                ))
+            })?;
+            out.push(Shape::Hyperboloid(Box::new(h)));
+        }
         Geometry::Plane { p, n } => {
             let t = &sd.object_to_world;
             let mut n = t.normal(*n);

@@ -9,6 +9,7 @@
 mod cone;
 mod cylinder;
 mod disk;
+mod hyperboloid;
 mod paraboloid;
 mod plane;
 mod sample;
@@ -18,6 +19,7 @@ mod triangle;
 pub use cone::Cone;
 pub use cylinder::Cylinder;
 pub use disk::Disk;
+pub use hyperboloid::Hyperboloid;
 pub use paraboloid::Paraboloid;
 pub use plane::Plane;
 pub use sample::ShapeSample;
@@ -218,6 +220,8 @@ pub enum Shape {
     Cone(Box<Cone>),
     /// A (partial) paraboloid.
     Paraboloid(Box<Paraboloid>),
+    /// A (partial) hyperboloid: a line segment swept around the z axis.
+    Hyperboloid(Box<Hyperboloid>),
     /// An infinite plane (lancer extension).
     Plane(Box<Plane>),
     /// One triangle of a mesh.
@@ -233,6 +237,7 @@ impl Shape {
             Shape::Cylinder(s) => s.bounds(),
             Shape::Cone(s) => s.bounds(),
             Shape::Paraboloid(s) => s.bounds(),
+            Shape::Hyperboloid(s) => s.bounds(),
             Shape::Plane(_) => {
                 Bounds3::new(Vec3::splat(f32::NEG_INFINITY), Vec3::splat(f32::INFINITY))
             }
@@ -263,6 +268,7 @@ impl Shape {
             Shape::Cylinder(s) => s.intersect(ray),
             Shape::Cone(s) => s.intersect(ray),
             Shape::Paraboloid(s) => s.intersect(ray),
+            Shape::Hyperboloid(s) => s.intersect(ray),
             Shape::Plane(s) => s.intersect(ray),
         }
     }
@@ -286,6 +292,7 @@ impl Shape {
             Shape::Cylinder(s) => s.interaction(ray, hit),
             Shape::Cone(s) => s.interaction(ray, hit),
             Shape::Paraboloid(s) => s.interaction(ray, hit),
+            Shape::Hyperboloid(s) => s.interaction(ray, hit),
             Shape::Plane(s) => s.interaction(ray, hit),
             Shape::Triangle(t) => t.interaction(ray, hit, &meshes[t.mesh as usize]),
         }
