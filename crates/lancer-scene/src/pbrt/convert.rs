@@ -579,6 +579,22 @@ impl Reader<'_> {
                         .float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0)?,
                 }
             }
+            // lancer extension: an axis-aligned box in object space.
+            "box" => {
+                let min = p.point3("min", Vec3::splat(-1.0))?;
+                let max = p.point3("max", Vec3::ONE)?;
+                if !min.cmplt(max).all() {
+                    let msg = format!(
+                        "the box's \"min\" {min} must be below its \"max\" {max} on every axis"
+                    );
+                    let loc = p.location("max").or(p.location("min")).cloned();
+                    return Err(match loc {
+                        Some(l) => SceneError::at(l, msg),
+                        None => SceneError::general(msg),
+                    });
+                }
+                Geometry::Box { min, max }
+            }
             "plane" => {
                 let n = p.normal("n", Vec3::Z)?;
                 // Too short to normalise (components so small their squares underflow) counts

@@ -297,6 +297,13 @@ pub enum Geometry {
         /// Sweep, degrees.
         phi_max: f32,
     },
+    /// lancer's `box`: the object-space box between `min` and `max`.
+    Box {
+        /// Low corner.
+        min: Vec3,
+        /// High corner (greater than `min` on every axis).
+        max: Vec3,
+    },
     /// lancer's infinite `plane` through `p` with normal `n`.
     Plane {
         /// A point of the plane.

@@ -9,7 +9,7 @@ use crate::material::Material;
 use crate::math::{Bounds3, Frame, Rgb, Vec3};
 use crate::ray::Ray;
 use crate::shape::{
-    Cone, Cylinder, Disk, Hyperboloid, Paraboloid, Placement, Plane, Shape, Sphere,
+    Cone, Cuboid, Cylinder, Disk, Hyperboloid, Paraboloid, Placement, Plane, Shape, Sphere,
     SurfaceInteraction, Triangle, TriangleMesh, TriangleRay, is_degenerate,
 };
 use crate::texture::{FloatTex, FloatTexture, SpectrumTexture, TexCoord, TextureEval};
@@ -184,6 +184,14 @@ fn shapes_of(
                 ))
             })?;
             out.push(Shape::Hyperboloid(Box::new(h)));
+        }
+        Geometry::Box { min, max } => {
+            if !(min.cmplt(*max).all() && min.is_finite() && max.is_finite()) {
+                return Err(BuildError::Invalid(format!(
+                    "shape {index}: box min {min} must be below max {max} on every axis"
+                )));
+            }
+            out.push(Shape::Box(Box::new(Cuboid::new(placement, *min, *max))));
         }
         Geometry::Plane { p, n } => {
             let t = &sd.object_to_world;

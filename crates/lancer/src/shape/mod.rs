@@ -7,6 +7,7 @@
 //! bounds, normals, (u, v), derivatives) once, for the closest hit only.
 
 mod cone;
+mod cuboid;
 mod cylinder;
 mod disk;
 mod hyperboloid;
@@ -17,6 +18,7 @@ mod sphere;
 mod triangle;
 
 pub use cone::Cone;
+pub use cuboid::Cuboid;
 pub use cylinder::Cylinder;
 pub use disk::Disk;
 pub use hyperboloid::Hyperboloid;
@@ -222,6 +224,8 @@ pub enum Shape {
     Paraboloid(Box<Paraboloid>),
     /// A (partial) hyperboloid: a line segment swept around the z axis.
     Hyperboloid(Box<Hyperboloid>),
+    /// A box, axis-aligned in object space (lancer extension).
+    Box(Box<Cuboid>),
     /// An infinite plane (lancer extension).
     Plane(Box<Plane>),
     /// One triangle of a mesh.
@@ -238,6 +242,7 @@ impl Shape {
             Shape::Cone(s) => s.bounds(),
             Shape::Paraboloid(s) => s.bounds(),
             Shape::Hyperboloid(s) => s.bounds(),
+            Shape::Box(s) => s.bounds(),
             Shape::Plane(_) => {
                 Bounds3::new(Vec3::splat(f32::NEG_INFINITY), Vec3::splat(f32::INFINITY))
             }
@@ -269,6 +274,7 @@ impl Shape {
             Shape::Cone(s) => s.intersect(ray),
             Shape::Paraboloid(s) => s.intersect(ray),
             Shape::Hyperboloid(s) => s.intersect(ray),
+            Shape::Box(s) => s.intersect(ray),
             Shape::Plane(s) => s.intersect(ray),
         }
     }
@@ -293,6 +299,7 @@ impl Shape {
             Shape::Cone(s) => s.interaction(ray, hit),
             Shape::Paraboloid(s) => s.interaction(ray, hit),
             Shape::Hyperboloid(s) => s.interaction(ray, hit),
+            Shape::Box(s) => s.interaction(ray, hit),
             Shape::Plane(s) => s.interaction(ray, hit),
             Shape::Triangle(t) => t.interaction(ray, hit, &meshes[t.mesh as usize]),
         }

@@ -57,6 +57,7 @@ impl Shape {
             Shape::Cone(c) => c.object_area() * area_scale(&c.placement),
             Shape::Paraboloid(p) => p.object_area() * area_scale(&p.placement),
             Shape::Hyperboloid(h) => h.object_area() * area_scale(&h.placement),
+            Shape::Box(b) => b.area(),
             Shape::Plane(_) => 0.0,
             // A = |(p₁ − p₀) × (p₂ − p₀)| / 2.
             Shape::Triangle(t) => 0.5 * (t.p[1] - t.p[0]).cross(t.p[2] - t.p[0]).length(),
@@ -103,6 +104,10 @@ impl Shape {
             Shape::Hyperboloid(h) => {
                 let (p, n) = h.sample_object(u);
                 Some(placed(&h.placement, p, n))
+            }
+            Shape::Box(b) => {
+                let (p, n) = b.sample_object(u);
+                Some(placed(&b.placement, p, n))
             }
             Shape::Plane(_) => None,
             Shape::Triangle(t) => {
