@@ -331,7 +331,13 @@ fn spawned_rays_never_find_their_own_surface_again() {
             let scene = scene_of(g.clone(), xf, rev);
             let shape = &scene.shapes[0];
             let mut spawned = 0;
-            for ray in random_rays(shape, &mut rng, 800) {
+            // Rays from nearby, and from 10³ away, where o + t·d cancels most of its digits.
+            let mut rays = random_rays(shape, &mut rng, 800);
+            for r in random_rays(shape, &mut rng, 400) {
+                let d = r.d.normalize();
+                rays.push(Ray::new(r.o + 1000.0 * (r.o - r.at(1.0)).normalize(), d));
+            }
+            for ray in rays {
                 let Some(hit) = scene.intersect(&ray) else {
                     continue;
                 };
