@@ -213,7 +213,7 @@ fn unsupported_features_warn_with_their_line_and_still_render() {
          WorldBegin\n\
          MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n\
          Shape \"sphere\" \"float radius\" [1] \"float wobble\" [2]\n\
-         Shape \"hyperboloid\"\n",
+         Shape \"curve\"\n",
     )
     .unwrap();
     let o = run_in(&dir, &["render", "warn.pbrt", "-o", "w.png", "--quiet"]);
@@ -222,10 +222,7 @@ fn unsupported_features_warn_with_their_line_and_still_render() {
     for (at, words) in [
         ("warn.pbrt:4:1", "media"),
         ("warn.pbrt:5:35", "\"float wobble\""),
-        (
-            "warn.pbrt:6:1",
-            "\"hyperboloid\" is not supported yet; skipped",
-        ),
+        ("warn.pbrt:6:1", "\"curve\" is not supported yet; skipped"),
     ] {
         assert!(
             err.lines()

@@ -500,3 +500,92 @@ fn spectrum_files_resolve_like_includes() {
     assert!((luminance(intensity) - 1.0).abs() < 0.01, "{intensity}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn quadrics_and_boxes_take_pbrts_defaults() {
+    let loaded = load_pbrt_str(
+        r#"WorldBegin
+        Shape "cone"
+        Shape "paraboloid"
+        Shape "hyperboloid"
+        Shape "box"
+        Shape "cone" "float radius" [2] "float height" [3] "float phimax" [90]
+        Shape "paraboloid" "float radius" [2] "float zmin" [0.5] "float zmax" [3] "float phimax" [180]
+        Shape "hyperboloid" "point3 p1" [1 0 -1] "point3 p2" [0 1 1] "float phimax" [270]
+        Shape "box" "point3 min" [-1 -2 -3] "point3 max" [1 2 3]"#,
+        "t.pbrt",
+        Path::new("."),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
+    let g: Vec<&Geometry> = loaded.desc.shapes.iter().map(|s| &s.geometry).collect();
+    assert_eq!(
+        g,
+        [
+            &Geometry::Cone {
+                radius: 1.0,
+                height: 1.0,
+                phi_max: 360.0
+            },
+            &Geometry::Paraboloid {
+                radius: 1.0,
+                z_min: 0.0,
+                z_max: 1.0,
+                phi_max: 360.0
+            },
+            &Geometry::Hyperboloid {
+                p1: Vec3::ZERO,
+                p2: Vec3::ONE,
+                phi_max: 360.0
+            },
+            &Geometry::Box {
+                min: Vec3::splat(-1.0),
+                max: Vec3::ONE
+            },
+            &Geometry::Cone {
+                radius: 2.0,
+                height: 3.0,
+                phi_max: 90.0
+            },
+            &Geometry::Paraboloid {
+                radius: 2.0,
+                z_min: 0.5,
+                z_max: 3.0,
+                phi_max: 180.0
+            },
+            &Geometry::Hyperboloid {
+                p1: Vec3::new(1.0, 0.0, -1.0),
+                p2: Vec3::new(0.0, 1.0, 1.0),
+                phi_max: 270.0
+            },
+            &Geometry::Box {
+                min: Vec3::new(-1.0, -2.0, -3.0),
+                max: Vec3::new(1.0, 2.0, 3.0)
+            },
+        ]
+    );
+}
+
+#[test]
+fn degenerate_boxes_and_quadrics_are_errors_where_they_are_written() {
+    for (text, words) in [
+        (
+            "Shape \"box\" \"point3 min\" [0 0 0] \"point3 max\" [1 0 1]",
+            "below its \"max\"",
+        ),
+        (
+            "Shape \"hyperboloid\" \"point3 p1\" [1 0 1] \"point3 p2\" [0 1 1]",
+            "same height",
+        ),
+        ("Shape \"cone\" \"float height\" [0]", "positive"),
+        ("Shape \"paraboloid\" \"float zmin\" [2]", "less than zmax"),
+    ] {
+        let e = load_pbrt_str(&format!("WorldBegin\n{text}"), "t.pbrt", Path::new("."))
+            .expect_err(text);
+        let msg = e.to_string();
+        assert!(
+            msg.contains("t.pbrt:2:") && msg.contains(words),
+            "{text}: {msg}"
+        );
+    }
+}

@@ -541,6 +541,61 @@ impl Reader<'_> {
                 phi_max: p
                     .float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0)?,
             },
+            "cone" => Geometry::Cone {
+                radius: p.float_checked("radius", 1.0, "positive", positive)?,
+                height: p.float_checked("height", 1.0, "positive", positive)?,
+                phi_max: p
+                    .float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0)?,
+            },
+            "paraboloid" => {
+                let z_max = p.float_checked("zmax", 1.0, "positive", positive)?;
+                Geometry::Paraboloid {
+                    radius: p.float_checked("radius", 1.0, "positive", positive)?,
+                    z_min: p.float_checked("zmin", 0.0, "at least 0 and less than zmax", |v| {
+                        (0.0..z_max).contains(&v)
+                    })?,
+                    z_max,
+                    phi_max: p
+                        .float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0)?,
+                }
+            }
+            "hyperboloid" => {
+                let p1 = p.point3("p1", Vec3::ZERO)?;
+                let p2 = p.point3("p2", Vec3::ONE)?;
+                if p1.z == p2.z {
+                    let msg = format!(
+                        "the hyperboloid's \"p1\" {p1} and \"p2\" {p2} are at the same height; \
+                         the swept segment would be a flat annulus (use a disk)"
+                    );
+                    let loc = p.location("p2").or(p.location("p1")).cloned();
+                    return Err(match loc {
+                        Some(l) => SceneError::at(l, msg),
+                        None => SceneError::general(msg),
+                    });
+                }
+                Geometry::Hyperboloid {
+                    p1,
+                    p2,
+                    phi_max: p
+                        .float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0)?,
+                }
+            }
+            // lancer extension: an axis-aligned box in object space.
+            "box" => {
+                let min = p.point3("min", Vec3::splat(-1.0))?;
+                let max = p.point3("max", Vec3::ONE)?;
+                if !min.cmplt(max).all() {
+                    let msg = format!(
+                        "the box's \"min\" {min} must be below its \"max\" {max} on every axis"
+                    );
+                    let loc = p.location("max").or(p.location("min")).cloned();
+                    return Err(match loc {
+                        Some(l) => SceneError::at(l, msg),
+                        None => SceneError::general(msg),
+                    });
+                }
+                Geometry::Box { min, max }
+            }
             "plane" => {
                 let n = p.normal("n", Vec3::Z)?;
                 // Too short to normalise (components so small their squares underflow) counts
@@ -578,7 +633,7 @@ impl Reader<'_> {
                     return Ok(Converted::Unsupported(warning, None));
                 }
             },
-            "bilinearmesh" | "loopsubdiv" | "curve" | "cone" | "paraboloid" | "hyperboloid" => {
+            "bilinearmesh" | "loopsubdiv" | "curve" => {
                 return Ok(Converted::Unsupported(
                     format!("shape \"{ty}\" is not supported yet; skipped"),
                     None,

@@ -268,6 +268,42 @@ pub enum Geometry {
         /// Sweep, degrees.
         phi_max: f32,
     },
+    /// pbrt's `cone`: base radius at z = 0, apex at z = `height`.
+    Cone {
+        /// Radius of the base.
+        radius: f32,
+        /// Height of the apex.
+        height: f32,
+        /// Sweep, degrees.
+        phi_max: f32,
+    },
+    /// pbrt's `paraboloid`: z = zmax·(x² + y²)/radius², cut to [zmin, zmax].
+    Paraboloid {
+        /// Radius at `z_max`.
+        radius: f32,
+        /// Bottom.
+        z_min: f32,
+        /// Top (positive).
+        z_max: f32,
+        /// Sweep, degrees.
+        phi_max: f32,
+    },
+    /// pbrt's `hyperboloid`: the segment `p1`–`p2` swept about the z axis.
+    Hyperboloid {
+        /// Start of the segment.
+        p1: Vec3,
+        /// End of the segment (at a different height from `p1`).
+        p2: Vec3,
+        /// Sweep, degrees.
+        phi_max: f32,
+    },
+    /// lancer's `box`: the object-space box between `min` and `max`.
+    Box {
+        /// Low corner.
+        min: Vec3,
+        /// High corner (greater than `min` on every axis).
+        max: Vec3,
+    },
     /// lancer's infinite `plane` through `p` with normal `n`.
     Plane {
         /// A point of the plane.

@@ -9,8 +9,8 @@ use crate::material::Material;
 use crate::math::{Bounds3, Frame, Rgb, Vec3};
 use crate::ray::Ray;
 use crate::shape::{
-    Cylinder, Disk, Placement, Plane, Shape, Sphere, SurfaceInteraction, Triangle, TriangleMesh,
-    TriangleRay, is_degenerate,
+    Cone, Cuboid, Cylinder, Disk, Hyperboloid, Paraboloid, Placement, Plane, Shape, Sphere,
+    SurfaceInteraction, Triangle, TriangleMesh, TriangleRay, is_degenerate,
 };
 use crate::texture::{FloatTex, FloatTexture, SpectrumTexture, TexCoord, TextureEval};
 use desc::{Geometry, LightDesc, SceneDesc, ShapeDesc};
@@ -155,6 +155,44 @@ fn shapes_of(
             *z_max,
             *phi_max,
         )))),
+        Geometry::Cone {
+            radius,
+            height,
+            phi_max,
+        } => out.push(Shape::Cone(Box::new(Cone::new(
+            placement,
+            positive(*radius, "radius")?,
+            positive(*height, "height")?,
+            *phi_max,
+        )))),
+        Geometry::Paraboloid {
+            radius,
+            z_min,
+            z_max,
+            phi_max,
+        } => out.push(Shape::Paraboloid(Box::new(Paraboloid::new(
+            placement,
+            positive(*radius, "radius")?,
+            *z_min,
+            positive(z_min.max(*z_max), "zmax")?,
+            *phi_max,
+        )))),
+        Geometry::Hyperboloid { p1, p2, phi_max } => {
+            let h = Hyperboloid::new(placement, *p1, *p2, *phi_max).ok_or_else(|| {
+                BuildError::Invalid(format!(
+                    "shape {index}: hyperboloid p1 {p1} and p2 {p2} must be finite and at different heights"
+                ))
+            })?;
+            out.push(Shape::Hyperboloid(Box::new(h)));
+        }
+        Geometry::Box { min, max } => {
+            if !(min.cmplt(*max).all() && min.is_finite() && max.is_finite()) {
+                return Err(BuildError::Invalid(format!(
+                    "shape {index}: box min {min} must be below max {max} on every axis"
+                )));
+            }
+            out.push(Shape::Box(Box::new(Cuboid::new(placement, *min, *max))));
+        }
         Geometry::Plane { p, n } => {
             let t = &sd.object_to_world;
             let mut n = t.normal(*n);

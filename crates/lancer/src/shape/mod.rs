@@ -6,15 +6,23 @@
 //! possible; [`Shape::interaction`] then computes the full [`SurfaceInteraction`] (point, error
 //! bounds, normals, (u, v), derivatives) once, for the closest hit only.
 
+mod cone;
+mod cuboid;
 mod cylinder;
 mod disk;
+mod hyperboloid;
+mod paraboloid;
 mod plane;
 mod sample;
 mod sphere;
 mod triangle;
 
+pub use cone::Cone;
+pub use cuboid::Cuboid;
 pub use cylinder::Cylinder;
 pub use disk::Disk;
+pub use hyperboloid::Hyperboloid;
+pub use paraboloid::Paraboloid;
 pub use plane::Plane;
 pub use sample::ShapeSample;
 pub use sphere::Sphere;
@@ -22,7 +30,7 @@ pub use triangle::{
     Triangle, TriangleMesh, TriangleRay, intersect_triangle, intersect_triangle_with, is_degenerate,
 };
 
-use crate::math::{Bounds3, Transform, Vec2, Vec3};
+use crate::math::{Bounds3, Transform, Vec2, Vec3, gamma};
 use crate::ray::Ray;
 use glam::{DMat4, DVec3};
 
@@ -159,6 +167,44 @@ impl Placement {
     }
 }
 
+/// The azimuth φ = atan2(y, x) of an object-space point, in [0, 2π).
+#[inline]
+pub(crate) fn phi_of(p: DVec3) -> f64 {
+    let phi = p.y.atan2(p.x);
+    if phi < 0.0 {
+        phi + 2.0 * std::f64::consts::PI
+    } else {
+        phi
+    }
+}
+
+/// A quadric's hit at the double-precision distance `t`: `t` rounded to `f32`, and the
+/// rounding residual kept in `u` so that [`quadric_t`] recovers `t` to about 48 bits.
+#[inline]
+pub(crate) fn quadric_hit(t: f64) -> ShapeHit {
+    let tf = t as f32;
+    ShapeHit {
+        t: tf,
+        u: (t - tf as f64) as f32,
+        v: 0.0,
+    }
+}
+
+/// The double-precision distance stored by [`quadric_hit`].
+#[inline]
+pub(crate) fn quadric_t(hit: &ShapeHit) -> f64 {
+    hit.t as f64 + hit.u as f64
+}
+
+/// Error bound of the object-space point p = o + t·d computed in double precision from the
+/// root t and rounded to `f32`, for quadrics whose hit points are not reprojected onto the
+/// surface: γ₃·|p| covers the rounding to `f32` with room to spare, and 10⁻¹²·(|o| + |t·d|)
+/// the double-precision error of the root and of o + t·d, per axis.
+#[inline]
+pub(crate) fn quadric_error(o: DVec3, d: DVec3, t: f64, p: Vec3) -> Vec3 {
+    gamma(3) * p.abs() + (1e-12 * (o.abs() + (t * d).abs())).as_vec3()
+}
+
 /// Every kind of shape lancer intersects.
 ///
 /// Quadrics carry two 4×4 matrices each and are boxed, so that the enum stays the size of a
@@ -172,6 +218,14 @@ pub enum Shape {
     Disk(Box<Disk>),
     /// A (partial) open cylinder.
     Cylinder(Box<Cylinder>),
+    /// A (partial) open cone.
+    Cone(Box<Cone>),
+    /// A (partial) paraboloid.
+    Paraboloid(Box<Paraboloid>),
+    /// A (partial) hyperboloid: a line segment swept around the z axis.
+    Hyperboloid(Box<Hyperboloid>),
+    /// A box, axis-aligned in object space (lancer extension).
+    Box(Box<Cuboid>),
     /// An infinite plane (lancer extension).
     Plane(Box<Plane>),
     /// One triangle of a mesh.
@@ -185,6 +239,10 @@ impl Shape {
             Shape::Sphere(s) => s.bounds(),
             Shape::Disk(s) => s.bounds(),
             Shape::Cylinder(s) => s.bounds(),
+            Shape::Cone(s) => s.bounds(),
+            Shape::Paraboloid(s) => s.bounds(),
+            Shape::Hyperboloid(s) => s.bounds(),
+            Shape::Box(s) => s.bounds(),
             Shape::Plane(_) => {
                 Bounds3::new(Vec3::splat(f32::NEG_INFINITY), Vec3::splat(f32::INFINITY))
             }
@@ -213,6 +271,10 @@ impl Shape {
             Shape::Sphere(s) => s.intersect(ray),
             Shape::Disk(s) => s.intersect(ray),
             Shape::Cylinder(s) => s.intersect(ray),
+            Shape::Cone(s) => s.intersect(ray),
+            Shape::Paraboloid(s) => s.intersect(ray),
+            Shape::Hyperboloid(s) => s.intersect(ray),
+            Shape::Box(s) => s.intersect(ray),
             Shape::Plane(s) => s.intersect(ray),
         }
     }
@@ -234,6 +296,10 @@ impl Shape {
             Shape::Sphere(s) => s.interaction(ray, hit),
             Shape::Disk(s) => s.interaction(ray, hit),
             Shape::Cylinder(s) => s.interaction(ray, hit),
+            Shape::Cone(s) => s.interaction(ray, hit),
+            Shape::Paraboloid(s) => s.interaction(ray, hit),
+            Shape::Hyperboloid(s) => s.interaction(ray, hit),
+            Shape::Box(s) => s.interaction(ray, hit),
             Shape::Plane(s) => s.interaction(ray, hit),
             Shape::Triangle(t) => t.interaction(ray, hit, &meshes[t.mesh as usize]),
         }

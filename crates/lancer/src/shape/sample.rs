@@ -54,6 +54,10 @@ impl Shape {
             Shape::Cylinder(c) => {
                 (c.z_max - c.z_min) * c.radius * c.phi_max * area_scale(&c.placement)
             }
+            Shape::Cone(c) => c.object_area() * area_scale(&c.placement),
+            Shape::Paraboloid(p) => p.object_area() * area_scale(&p.placement),
+            Shape::Hyperboloid(h) => h.object_area() * area_scale(&h.placement),
+            Shape::Box(b) => b.area(),
             Shape::Plane(_) => 0.0,
             // A = |(p₁ − p₀) × (p₂ − p₀)| / 2.
             Shape::Triangle(t) => 0.5 * (t.p[1] - t.p[0]).cross(t.p[2] - t.p[0]).length(),
@@ -88,6 +92,22 @@ impl Shape {
                     Vec3::new(x, y, z),
                     Vec3::new(x, y, 0.0) / c.radius,
                 ))
+            }
+            Shape::Cone(c) => {
+                let (p, n) = c.sample_object(u);
+                Some(placed(&c.placement, p, n))
+            }
+            Shape::Paraboloid(q) => {
+                let (p, n) = q.sample_object(u);
+                Some(placed(&q.placement, p, n))
+            }
+            Shape::Hyperboloid(h) => {
+                let (p, n) = h.sample_object(u);
+                Some(placed(&h.placement, p, n))
+            }
+            Shape::Box(b) => {
+                let (p, n) = b.sample_object(u);
+                Some(placed(&b.placement, p, n))
             }
             Shape::Plane(_) => None,
             Shape::Triangle(t) => {

@@ -1,0 +1,147 @@
+//! The paraboloid: z = zmax·(x² + y²)/r² between `zmin` and `zmax`, swept to `phimax`.
+
+use super::{
+    Placement, ShapeHit, SurfaceInteraction, phi_of, quadric_error, quadric_hit, quadric_t,
+};
+use crate::math::{Bounds3, Vec2, Vec3, solve_quadratic};
+use crate::ray::Ray;
+
+/// pbrt's paraboloid around the object-space z axis: its rim of radius `r` is at z = `zmax`,
+/// its apex at the origin; the part with `zmin ≤ z ≤ zmax` is kept.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Paraboloid {
+    /// Radius at `z_max`.
+    pub radius: f32,
+    /// Lowest z kept (at least 0).
+    pub z_min: f32,
+    /// Highest z kept (positive).
+    pub z_max: f32,
+    /// Sweep angle, radians.
+    pub phi_max: f32,
+    /// Placement in the world.
+    pub placement: Placement,
+}
+
+impl Paraboloid {
+    /// pbrt's paraboloid (`radius`, `zmin`, `zmax`, `phimax` in degrees); `z_max` must be
+    /// positive, `z_min` is clamped to `[0, z_max]`.
+    pub fn new(
+        placement: Placement,
+        radius: f32,
+        z_min: f32,
+        z_max: f32,
+        phi_max_deg: f32,
+    ) -> Paraboloid {
+        let (lo, hi) = (z_min.min(z_max), z_min.max(z_max));
+        Paraboloid {
+            radius,
+            z_min: lo.clamp(0.0, hi),
+            z_max: hi,
+            phi_max: phi_max_deg.clamp(0.0, 360.0).to_radians(),
+            placement,
+        }
+    }
+
+    /// World-space bounds.
+    pub fn bounds(&self) -> Bounds3 {
+        let b = Bounds3::new(
+            Vec3::new(-self.radius, -self.radius, self.z_min),
+            Vec3::new(self.radius, self.radius, self.z_max),
+        );
+        self.placement.to_world.bounds(&b)
+    }
+
+    /// k = zmax/r², the paraboloid being z = k(x² + y²).
+    #[inline]
+    fn k(&self) -> f64 {
+        self.z_max as f64 / (self.radius as f64 * self.radius as f64)
+    }
+
+    /// Nearest hit: with k = zmax/r², the roots of
+    /// k(dx² + dy²)t² + (2k(dx·ox + dy·oy) − dz)t + k(ox² + oy²) − oz = 0 (pbrt-v3 §3.9.2),
+    /// kept when zmin ≤ z ≤ zmax and φ ≤ φmax.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray) -> Option<ShapeHit> {
+        let (o, d) = self.placement.object_ray(ray);
+        let k = self.k();
+        let a = k * (d.x * d.x + d.y * d.y);
+        let b = 2.0 * k * (d.x * o.x + d.y * o.y) - d.z;
+        let c = k * (o.x * o.x + o.y * o.y) - o.z;
+        let (t0, t1) = solve_quadratic(a, b, c)?;
+        let t_max = ray.t_max as f64;
+        for t in [t0, t1] {
+            if t <= 0.0 || t >= t_max {
+                continue;
+            }
+            let p = o + t * d;
+            if p.z < self.z_min as f64 || p.z > self.z_max as f64 || phi_of(p) > self.phi_max as f64
+            {
+                continue;
+            }
+            return Some(quadric_hit(t));
+        }
+        None
+    }
+
+    /// Full interaction: u = φ/φmax, v = (z − zmin)/(zmax − zmin), ∂p/∂u = (−φmax·y, φmax·x, 0),
+    /// ∂p/∂v = (zmax − zmin)·(x/2z, y/2z, 1); the normal ∂p/∂u × ∂p/∂v points away from the
+    /// axis (out of the bowl).
+    pub fn interaction(&self, ray: &Ray, hit: &ShapeHit) -> SurfaceInteraction {
+        let (o, d) = self.placement.object_ray(ray);
+        let t = quadric_t(hit);
+        let p64 = o + t * d;
+        let phi = phi_of(p64) as f32;
+        let p = p64.as_vec3();
+        let u = phi / self.phi_max;
+        let dz = self.z_max - self.z_min;
+        let v = (p.z - self.z_min) / dz;
+        let dpdu = Vec3::new(-self.phi_max * p.y, self.phi_max * p.x, 0.0);
+        // (x, y)/(2z) with z = kρ² written as (x, y)/(2kρ²); at the apex itself (ρ = 0) the
+        // derivative is undefined and ∂p/∂v is taken along z.
+        let k = self.k() as f32;
+        let rho2 = p.x * p.x + p.y * p.y;
+        let dpdv = if rho2 > 0.0 {
+            dz * Vec3::new(p.x / (2.0 * k * rho2), p.y / (2.0 * k * rho2), 1.0)
+        } else {
+            dz * Vec3::Z
+        };
+        SurfaceInteraction::from_object(
+            &self.placement.to_world,
+            p,
+            quadric_error(o, d, t, p),
+            Vec2::new(u, v),
+            dpdu,
+            dpdv,
+            self.placement.flip_normal,
+            -ray.d.normalize(),
+            hit.t,
+        )
+    }
+
+    /// Surface area, object space: with z = kρ², dA = ρ·√(1 + 4k²ρ²) dρ dφ, so
+    /// A = φmax/(12k²)·[(1 + 4k·zmax)^{3/2} − (1 + 4k·zmin)^{3/2}].
+    pub fn object_area(&self) -> f32 {
+        let k = self.k();
+        let f = |z: f64| (1.0 + 4.0 * k * z).powf(1.5);
+        (self.phi_max as f64 / (12.0 * k * k) * (f(self.z_max as f64) - f(self.z_min as f64)))
+            as f32
+    }
+
+    /// A point uniform by area and its outward normal, object space. The area between the
+    /// apex and height z is ∝ (1 + 4kz)^{3/2} − 1, so inverting the CDF gives
+    /// 1 + 4kz = [(1 + 4k·zmin)^{3/2} + u₀·((1 + 4k·zmax)^{3/2} − (1 + 4k·zmin)^{3/2})]^{2/3};
+    /// φ = u₁·φmax. The normal is ∂p/∂u × ∂p/∂v normalised: ∝ (x, y, −1/(2k)).
+    pub fn sample_object(&self, u: Vec2) -> (Vec3, Vec3) {
+        let k = self.k();
+        let f = |z: f64| (1.0 + 4.0 * k * z).powf(1.5);
+        let (f0, f1) = (f(self.z_min as f64), f(self.z_max as f64));
+        let g = (f0 + u.x as f64 * (f1 - f0)).powf(2.0 / 3.0);
+        let z = ((g - 1.0) / (4.0 * k)).clamp(self.z_min as f64, self.z_max as f64);
+        let rho = (z / k).sqrt();
+        let phi = u.y as f64 * self.phi_max as f64;
+        let (sin, cos) = phi.sin_cos();
+        let p = glam::DVec3::new(rho * cos, rho * sin, z);
+        let n = glam::DVec3::new(p.x, p.y, -0.5 / k).normalize();
+        (p.as_vec3(), n.as_vec3())
+    }
+}
