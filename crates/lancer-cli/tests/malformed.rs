@@ -213,7 +213,7 @@ fn unsupported_features_warn_with_their_line_and_still_render() {
          WorldBegin\n\
          MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n\
          Shape \"sphere\" \"float radius\" [1] \"float wobble\" [2]\n\
-         Shape \"curve\"\n",
+         Shape \"curve\" \"point3 P\" [0 0 0 1 0 0 1 1 0 0 1 0]\n",
     )
     .unwrap();
     let o = run_in(&dir, &["render", "warn.pbrt", "-o", "w.png", "--quiet"]);
@@ -230,5 +230,10 @@ fn unsupported_features_warn_with_their_line_and_still_render() {
             "no warning at {at} saying {words} in:\n{err}"
         );
     }
+    // A shape skipped whole has one warning, not one more per parameter.
+    assert!(
+        !err.contains("\"point3 P\" of Shape \"curve\""),
+        "a skipped shape's parameters were warned about:\n{err}"
+    );
     assert!(dir.join("w.png").exists());
 }

@@ -916,6 +916,8 @@ impl Builder {
             .shape(ty)
             .map_err(|e| locate(e, loc))?;
         let Some((geometry, alpha)) = self.accept(converted, loc) else {
+            // Skipped whole: its warning says so; its parameters need no warnings of their own.
+            params.mark_all_used();
             return Ok(());
         };
         let (material, pending) = match &self.gs.material {

@@ -685,6 +685,14 @@ impl ParamList {
             .map(|v| FloatParam::Const(v.0)))
     }
 
+    /// Marks every parameter used: for a directive skipped as a whole, whose one warning says
+    /// so, rather than one more per parameter.
+    pub fn mark_all_used(&self) {
+        for p in &self.params {
+            p.used.set(true);
+        }
+    }
+
     /// Warnings for every parameter nobody looked up: lancer ignores them.
     pub fn report_unused(&self, what: &str, warnings: &mut Vec<Warning>) {
         for p in self.params.iter().filter(|p| !p.used.get()) {
