@@ -506,8 +506,18 @@ impl Reader<'_> {
     pub fn shape(&self, ty: &str) -> Result<Converted<(Geometry, Option<FloatTex>)>, SceneError> {
         let p = self.params;
         let positive = |v: f32| v > 0.0;
+        // pbrt's sweep angle, in degrees, for every quadric.
+        let phi_max = || p.float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0);
         // What lancer left out of a shape it still makes.
         let mut note = None;
+        // A mesh read from a file; `None` when it is skipped (with its warning).
+        let mut mesh = |c: Converted<TriangleMesh>| match c {
+            Converted::Done(m) => Some(Geometry::TriangleMesh(Arc::new(m))),
+            Converted::Unsupported(w, m) => {
+                note = Some(w);
+                m.map(|m| Geometry::TriangleMesh(Arc::new(m)))
+            }
+        };
         let geometry = match ty {
             "sphere" => {
                 let radius = p.float_checked("radius", 1.0, "positive", positive)?;
@@ -515,8 +525,7 @@ impl Reader<'_> {
                     radius,
                     z_min: p.float("zmin", -radius)?,
                     z_max: p.float("zmax", radius)?,
-                    phi_max: p
-                        .float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0)?,
+                    phi_max: phi_max()?,
                 }
             }
             "disk" => {
@@ -530,22 +539,19 @@ impl Reader<'_> {
                         "at least 0 and less than the radius",
                         |v| (0.0..radius).contains(&v),
                     )?,
-                    phi_max: p
-                        .float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0)?,
+                    phi_max: phi_max()?,
                 }
             }
             "cylinder" => Geometry::Cylinder {
                 radius: p.float_checked("radius", 1.0, "positive", positive)?,
                 z_min: p.float("zmin", -1.0)?,
                 z_max: p.float("zmax", 1.0)?,
-                phi_max: p
-                    .float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0)?,
+                phi_max: phi_max()?,
             },
             "cone" => Geometry::Cone {
                 radius: p.float_checked("radius", 1.0, "positive", positive)?,
                 height: p.float_checked("height", 1.0, "positive", positive)?,
-                phi_max: p
-                    .float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0)?,
+                phi_max: phi_max()?,
             },
             "paraboloid" => {
                 let z_max = p.float_checked("zmax", 1.0, "positive", positive)?;
@@ -555,8 +561,7 @@ impl Reader<'_> {
                         (0.0..z_max).contains(&v)
                     })?,
                     z_max,
-                    phi_max: p
-                        .float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0)?,
+                    phi_max: phi_max()?,
                 }
             }
             "hyperboloid" => {
@@ -576,8 +581,7 @@ impl Reader<'_> {
                 Geometry::Hyperboloid {
                     p1,
                     p2,
-                    phi_max: p
-                        .float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0)?,
+                    phi_max: phi_max()?,
                 }
             }
             // lancer extension: an axis-aligned box in object space.
@@ -613,26 +617,20 @@ impl Reader<'_> {
                 }
             }
             "trianglemesh" => Geometry::TriangleMesh(Arc::new(self.triangle_mesh()?)),
-            "plymesh" => match self.ply_mesh()? {
-                Converted::Done(mesh) => Geometry::TriangleMesh(Arc::new(mesh)),
-                Converted::Unsupported(warning, Some(mesh)) => {
-                    note = Some(warning);
-                    Geometry::TriangleMesh(Arc::new(mesh))
+            "plymesh" | "objmesh" => {
+                let read = if ty == "plymesh" {
+                    self.ply_mesh()?
+                } else {
+                    self.obj_mesh()?
+                };
+                match mesh(read) {
+                    Some(g) => g,
+                    None => {
+                        let warning = note.take().unwrap_or_default();
+                        return Ok(Converted::Unsupported(warning, None));
+                    }
                 }
-                Converted::Unsupported(warning, None) => {
-                    return Ok(Converted::Unsupported(warning, None));
-                }
-            },
-            "objmesh" => match self.obj_mesh()? {
-                Converted::Done(mesh) => Geometry::TriangleMesh(Arc::new(mesh)),
-                Converted::Unsupported(warning, Some(mesh)) => {
-                    note = Some(warning);
-                    Geometry::TriangleMesh(Arc::new(mesh))
-                }
-                Converted::Unsupported(warning, None) => {
-                    return Ok(Converted::Unsupported(warning, None));
-                }
-            },
+            }
             "bilinearmesh" | "loopsubdiv" | "curve" => {
                 return Ok(Converted::Unsupported(
                     format!("shape \"{ty}\" is not supported yet; skipped"),
