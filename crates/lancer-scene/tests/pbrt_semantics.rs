@@ -589,3 +589,28 @@ fn degenerate_boxes_and_quadrics_are_errors_where_they_are_written() {
         );
     }
 }
+
+#[test]
+fn loopsubdiv_refines_its_control_mesh() {
+    let d = scene(
+        r#"WorldBegin
+        Shape "loopsubdiv" "integer levels" [2]
+            "point3 P" [1 1 1  1 -1 -1  -1 1 -1  -1 -1 1]
+            "integer indices" [0 1 2  0 3 1  0 2 3  1 3 2]"#,
+    );
+    let Geometry::TriangleMesh(m) = &d.shapes[0].geometry else {
+        panic!("{:?}", d.shapes[0].geometry)
+    };
+    // Each level splits every triangle in four; the limit surface gets smooth normals.
+    assert_eq!(m.triangle_count(), 4 * 16);
+    assert_eq!(m.normals.len(), m.positions.len());
+    // pbrt's default is 3 levels.
+    let d = scene(
+        r#"WorldBegin
+        Shape "loopsubdiv" "point3 P" [0 0 0  1 0 0  0 1 0]"#,
+    );
+    let Geometry::TriangleMesh(m) = &d.shapes[0].geometry else {
+        panic!()
+    };
+    assert_eq!(m.triangle_count(), 64);
+}

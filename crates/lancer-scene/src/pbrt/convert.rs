@@ -616,7 +616,14 @@ impl Reader<'_> {
                     n,
                 }
             }
-            "trianglemesh" => Geometry::TriangleMesh(Arc::new(self.triangle_mesh()?)),
+            "trianglemesh" => Geometry::TriangleMesh(Arc::new(self.triangle_mesh(ty)?)),
+            // pbrt's subdivision surface: the control mesh refined `levels` times (default 3)
+            // and moved to the limit surface.
+            "loopsubdiv" => {
+                let levels = p.int_in("levels", 3, 0..=8)? as u32;
+                let control = self.triangle_mesh(ty)?;
+                Geometry::TriangleMesh(Arc::new(lancer::shape::loop_subdivide(&control, levels)))
+            }
             "plymesh" | "objmesh" => {
                 let read = if ty == "plymesh" {
                     self.ply_mesh()?
@@ -631,7 +638,7 @@ impl Reader<'_> {
                     }
                 }
             }
-            "bilinearmesh" | "loopsubdiv" | "curve" => {
+            "bilinearmesh" | "curve" => {
                 return Ok(Converted::Unsupported(
                     format!("shape \"{ty}\" is not supported yet; skipped"),
                     None,
@@ -738,12 +745,12 @@ impl Reader<'_> {
     }
 
     /// pbrt's `trianglemesh`: `P`, `indices` (optional for a single triangle), `N`, `uv`.
-    fn triangle_mesh(&self) -> Result<TriangleMesh, SceneError> {
+    fn triangle_mesh(&self, what: &str) -> Result<TriangleMesh, SceneError> {
         let p = self.params;
         let Some(positions) = p.point3s("P")? else {
-            return Err(SceneError::general(
-                "a \"trianglemesh\" needs vertex positions \"point3 P\"",
-            ));
+            return Err(SceneError::general(format!(
+                "a \"{what}\" needs vertex positions \"point3 P\""
+            )));
         };
         let p_loc = p.location("P").cloned().expect("given");
         let indices: Vec<u32> = match p.ints("indices")? {
@@ -775,7 +782,7 @@ impl Reader<'_> {
             None => {
                 return Err(SceneError::at(
                     p_loc,
-                    "a \"trianglemesh\" with more than 3 vertices needs \"integer indices\"",
+                    format!("a \"{what}\" with more than 3 vertices needs \"integer indices\""),
                 ));
             }
         };
