@@ -7,12 +7,13 @@ mod common;
 use common::chi2::*;
 
 use lancer::Scene;
+use lancer::image::Image;
 use lancer::light::{Light, LightSampleContext};
 use lancer::math::{Rgb, Transform, Vec2, Vec3};
 use lancer::ray::Ray;
 use lancer::sampling::{
-    Pcg32, cosine_hemisphere_pdf, equal_area_square_to_sphere, henyey_greenstein,
-    sample_cosine_hemisphere, sample_henyey_greenstein, sample_uniform_cone,
+    Pcg32, PiecewiseConstant2D, cosine_hemisphere_pdf, equal_area_square_to_sphere,
+    henyey_greenstein, sample_cosine_hemisphere, sample_henyey_greenstein, sample_uniform_cone,
     sample_uniform_disk_polar, sample_uniform_hemisphere, sample_uniform_sphere,
     sample_uniform_triangle, uniform_cone_pdf, uniform_hemisphere_pdf, uniform_sphere_pdf,
 };
@@ -21,7 +22,7 @@ use lancer::shape::TriangleMesh;
 use std::sync::Arc;
 
 /// Chi-square tests in this file, for the Šidák correction.
-const TESTS: usize = 16;
+const TESTS: usize = 19;
 
 /// Bins `n` directions from `sample` (None: no sample) against the bin integrals of `pdf`
 /// (`quadrature` Gauss panels per bin and axis), checks that the success rate equals ∫pdf, and
@@ -233,15 +234,23 @@ fn chi2_light(name: &str, desc: SceneDesc) {
         ns: Vec3::Z,
     };
     let light = &scene.lights[0];
+    // Lights at infinity: each sample's density must be pdf_li's for its direction (but for
+    // rounding at texel borders).
+    let mismatched = std::cell::Cell::new(0usize);
     // Lights' densities jump at their silhouettes, which cross bins: fine quadrature.
     chi2_fit(
         name,
         200_000,
         32,
         |u| {
-            light
-                .sample_li(&ctx, u, &scene.shapes, &scene.meshes)
-                .map(|s| s.wi)
+            let s = light.sample_li(&ctx, u, &scene.shapes, &scene.meshes)?;
+            if desc.shapes.is_empty() {
+                let p = light.pdf_li(&ctx, s.wi, None);
+                if (p - s.pdf).abs() > 1e-3 * s.pdf {
+                    mismatched.set(mismatched.get() + 1);
+                }
+            }
+            Some(s.wi)
         },
         |w| {
             let hit = if desc.shapes.is_empty() {
@@ -259,6 +268,11 @@ fn chi2_light(name: &str, desc: SceneDesc) {
             };
             light.pdf_li(&ctx, w, hit) as f64
         },
+    );
+    assert!(
+        mismatched.get() * 1000 < 200_000,
+        "{name}: {} sample densities differ from pdf_li",
+        mismatched.get()
     );
 }
 
@@ -354,4 +368,69 @@ fn chi2_uniform_sky() {
             ..SceneDesc::default()
         },
     );
+}
+
+/// A `w × h` environment with a gradient, a bright spot and a black corner.
+fn sky_image(w: u32, h: u32) -> Arc<Image> {
+    let texels = (0..w * h)
+        .map(|i| {
+            let (x, y) = ((i % w) as f32 / w as f32, (i / w) as f32 / h as f32);
+            let mut c = Rgb::new(0.2 + x, 0.5 + 0.3 * y, 0.1 + x * y);
+            if (x - 0.3).abs() < 0.1 && (y - 0.6).abs() < 0.1 {
+                c *= 20.0;
+            }
+            if x > 0.85 && y > 0.8 {
+                c = Rgb::ZERO;
+            }
+            c
+        })
+        .collect();
+    Arc::new(Image::new(w, h, texels).unwrap())
+}
+
+#[test]
+fn chi2_environment_lights() {
+    // Square images are equal-area octahedral maps, 2:1 ones lat-long; both turned.
+    for (name, w, h) in [("octahedral sky", 32, 32), ("lat-long sky", 48, 24)] {
+        chi2_light(
+            name,
+            SceneDesc {
+                lights: vec![LightDesc::Infinite {
+                    light_to_world: Transform::rotate(35.0, Vec3::new(1.0, 2.0, 0.5)).unwrap(),
+                    l: Rgb::ONE,
+                    image: Some(sky_image(w, h)),
+                }],
+                ..SceneDesc::default()
+            },
+        );
+    }
+}
+
+#[test]
+fn chi2_piecewise_constant_2d() {
+    // A 6 × 4 table with a zero cell, a bright cell and a zero row: sampled cells against
+    // expected counts n·f/Σf (exact: the density is constant on each cell).
+    let (nu, nv) = (6usize, 4usize);
+    let mut f: Vec<f32> = (0..nu * nv).map(|i| 1.0 + (i % 5) as f32).collect();
+    f[3] = 0.0;
+    f[8] = 40.0;
+    for u in 0..nu {
+        f[2 * nu + u] = 0.0;
+    }
+    let d = PiecewiseConstant2D::new(&f, nu, nv).unwrap();
+    let total: f64 = f.iter().map(|&v| v as f64).sum();
+    let n = 200_000;
+    let mut rng = Pcg32::new(5, 9);
+    let mut obs = vec![0.0; nu * nv];
+    for _ in 0..n {
+        let (p, pdf) = d.sample(Vec2::new(rng.uniform(), rng.uniform()));
+        let cell = (p.y * nv as f32) as usize * nu + (p.x * nu as f32) as usize;
+        assert!((pdf - d.pdf(p)).abs() <= 1e-5 * pdf);
+        obs[cell] += 1.0;
+    }
+    let exp: Vec<f64> = f.iter().map(|&v| n as f64 * v as f64 / total).collect();
+    let (chi2, dof) = pooled_chi2(&obs, &exp).unwrap();
+    let p = chi2_survival(chi2, dof);
+    println!("piecewise constant 2D: χ² = {chi2:.1}, {dof} dof, p = {p:.3}");
+    assert!(p > sidak(TESTS), "piecewise constant 2D: p = {p:.2e}");
 }

@@ -263,30 +263,11 @@ impl ImageInfiniteLight {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sampling::piecewise::tests::{chi_square, chi_square_threshold_001};
     use crate::sampling::{hash_u64, u32_to_unit_f32};
 
     fn rand2(i: u64, seed: u64) -> Vec2 {
         let h = hash_u64(&[i, seed]);
         Vec2::new(u32_to_unit_f32(h as u32), u32_to_unit_f32((h >> 32) as u32))
-    }
-
-    /// A `w × h` image with a smooth gradient, a bright spot and a black corner region.
-    fn test_image(w: u32, h: u32) -> Arc<Image> {
-        let texels = (0..w * h)
-            .map(|i| {
-                let (x, y) = ((i % w) as f32 / w as f32, (i / w) as f32 / h as f32);
-                let mut c = Rgb::new(0.2 + x, 0.5 + 0.3 * y, 0.1 + x * y);
-                if (x - 0.3).abs() < 0.1 && (y - 0.6).abs() < 0.1 {
-                    c *= 20.0;
-                }
-                if x > 0.85 && y > 0.8 {
-                    c = Rgb::ZERO;
-                }
-                c
-            })
-            .collect();
-        Arc::new(Image::new(w, h, texels).unwrap())
     }
 
     fn ctx() -> LightSampleContext {
@@ -299,83 +280,6 @@ mod tests {
 
     fn rotated() -> Transform {
         Transform::rotate(35.0, Vec3::new(1.0, 2.0, 0.5)).unwrap()
-    }
-
-    /// Samples many directions, bins them on the sphere (equal-area bins in cos θ and φ, world
-    /// space) and compares the counts with the integral of `pdf_li` over each bin.
-    fn check_sampling(light: &ImageInfiniteLight) {
-        let (nz, nphi) = (16usize, 32usize);
-        let n = 300_000u64;
-        let bin_of = |w: Vec3| {
-            let iz = (((w.z + 1.0) * 0.5 * nz as f32) as usize).min(nz - 1);
-            let mut phi = w.y.atan2(w.x);
-            if phi < 0.0 {
-                phi += 2.0 * PI;
-            }
-            let ip = ((phi / (2.0 * PI) * nphi as f32) as usize).min(nphi - 1);
-            iz * nphi + ip
-        };
-        let mut counts = vec![0.0f64; nz * nphi];
-        let mut mismatched = 0;
-        for i in 0..n {
-            let Some(s) = light.sample_li(&ctx(), rand2(i, 7)) else {
-                continue;
-            };
-            assert!((s.wi.length() - 1.0).abs() < 1e-4);
-            assert!(
-                s.pdf > 0.0 && s.l.max_element() > 0.0,
-                "sampled where there is no light"
-            );
-            // sample_li's density is pdf_li's (but for rounding at texel borders).
-            let p = light.pdf_li(s.wi);
-            if (p - s.pdf).abs() > 1e-3 * s.pdf {
-                mismatched += 1;
-            }
-            counts[bin_of(s.wi)] += 1.0;
-        }
-        assert!(mismatched < n / 1000, "{mismatched} densities disagree");
-        // Expected counts: n · ∫_bin pdf dω, by a 64 × 64 midpoint rule in (z, φ) per bin,
-        // where dω = dz dφ (fine enough that the pdf's jumps at texel edges cost < 1%).
-        let sub = 64;
-        let mut expected = vec![0.0f64; nz * nphi];
-        let mut total = 0.0f64;
-        for (b, e) in expected.iter_mut().enumerate() {
-            let (iz, ip) = (b / nphi, b % nphi);
-            let mut sum = 0.0f64;
-            for k in 0..sub * sub {
-                let z =
-                    -1.0 + 2.0 * (iz as f32 + ((k / sub) as f32 + 0.5) / sub as f32) / nz as f32;
-                let phi =
-                    2.0 * PI * (ip as f32 + ((k % sub) as f32 + 0.5) / sub as f32) / nphi as f32;
-                let r = (1.0 - z * z).max(0.0).sqrt();
-                let w = Vec3::new(r * phi.cos(), r * phi.sin(), z);
-                sum += light.pdf_li(w) as f64;
-            }
-            let domega = 4.0 * PI as f64 / (nz * nphi) as f64;
-            *e = n as f64 * sum / (sub * sub) as f64 * domega;
-            total += sum / (sub * sub) as f64 * domega;
-        }
-        // The density integrates to 1 over the sphere.
-        assert!((total - 1.0).abs() < 5e-3, "∫ pdf dω = {total}");
-        let (chi2, dof) = chi_square(&counts, &expected);
-        assert!(
-            chi2 < chi_square_threshold_001(dof),
-            "χ² = {chi2} with {dof} degrees of freedom"
-        );
-    }
-
-    #[test]
-    fn equal_area_sampling_matches_its_density() {
-        let light = ImageInfiniteLight::new(rotated(), test_image(32, 32), Rgb::ONE, 10.0).unwrap();
-        assert_eq!(light.mapping(), EnvMapping::EqualArea);
-        check_sampling(&light);
-    }
-
-    #[test]
-    fn lat_long_sampling_matches_its_density() {
-        let light = ImageInfiniteLight::new(rotated(), test_image(48, 24), Rgb::ONE, 10.0).unwrap();
-        assert_eq!(light.mapping(), EnvMapping::LatLong);
-        check_sampling(&light);
     }
 
     /// Irradiance on a patch facing +z, by light sampling: E ≈ (1/n) Σ L cos θ / p.

@@ -159,7 +159,7 @@ impl PiecewiseConstant2D {
 }
 
 #[cfg(test)]
-pub(crate) mod tests {
+mod tests {
     use super::*;
     use crate::math::Vec2;
     use crate::sampling::hash::{hash_u64, u32_to_unit_f32};
@@ -187,36 +187,6 @@ pub(crate) mod tests {
         let z = PiecewiseConstant1D::new(&[0.0, 0.0]);
         assert_eq!(z.pdf(0.3), 1.0);
         assert!((z.sample(0.75).0 - 0.75).abs() < 1e-6);
-    }
-
-    /// Pearson's χ² for observed against expected counts over cells with an expected count of
-    /// at least 5 (others pooled), and its degrees of freedom.
-    pub fn chi_square(observed: &[f64], expected: &[f64]) -> (f64, usize) {
-        let (mut chi2, mut dof) = (0.0, 0usize);
-        let (mut pool_o, mut pool_e) = (0.0, 0.0);
-        for (&o, &e) in observed.iter().zip(expected) {
-            if e < 5.0 {
-                pool_o += o;
-                pool_e += e;
-            } else {
-                chi2 += (o - e) * (o - e) / e;
-                dof += 1;
-            }
-        }
-        if pool_e > 0.0 {
-            chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e;
-            dof += 1;
-        }
-        (chi2, dof.saturating_sub(1))
-    }
-
-    /// The χ² value above which a result has probability below 0.01 under the null hypothesis,
-    /// by the Wilson–Hilferty approximation (accurate to a fraction of a percent for dof ≥ 10).
-    pub fn chi_square_threshold_001(dof: usize) -> f64 {
-        let k = dof as f64;
-        let z = 2.326_347_874; // the normal's 0.99 quantile
-        let t = 1.0 - 2.0 / (9.0 * k) + z * (2.0 / (9.0 * k)).sqrt();
-        k * t * t * t
     }
 
     #[test]
@@ -247,16 +217,6 @@ pub(crate) mod tests {
             assert!((pdf - f[cell] / d.integral()).abs() <= 1e-4 * pdf);
             counts[cell] += 1.0;
         }
-        // Expected counts: n · (cell area) · f / I.
-        let expected: Vec<f64> = f
-            .iter()
-            .map(|&v| n as f64 * v as f64 / total as f64)
-            .collect();
-        let (chi2, dof) = chi_square(&counts, &expected);
-        assert!(
-            chi2 < chi_square_threshold_001(dof),
-            "χ² = {chi2} with {dof} degrees of freedom"
-        );
         // The density integrates to 1.
         // (A midpoint sum on a grid finer than the cells and aligned with them.)
         let (mu, mv) = (10 * nu, 10 * nv);
@@ -272,14 +232,5 @@ pub(crate) mod tests {
             / (mu * mv) as f32;
         assert!((integral - 1.0).abs() < 1e-3, "{integral}");
         assert!(PiecewiseConstant2D::new(&f, 5, 4).is_none());
-    }
-
-    #[test]
-    fn the_threshold_matches_tables() {
-        // Tabulated 0.99 quantiles of χ²: 10 → 23.209, 50 → 76.154, 100 → 135.807.
-        for (k, q) in [(10, 23.209), (50, 76.154), (100, 135.807)] {
-            let t = chi_square_threshold_001(k);
-            assert!((t - q).abs() < 0.01 * q, "{k}: {t} vs {q}");
-        }
     }
 }
