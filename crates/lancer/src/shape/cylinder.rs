@@ -1,9 +1,8 @@
 //! The cylinder: x² + y² = r² between `zmin` and `zmax`, swept to `phimax` (open ends).
 
-use super::{Placement, ShapeHit, SurfaceInteraction};
+use super::{Placement, ShapeHit, SurfaceInteraction, phi_of};
 use crate::math::{Bounds3, Vec2, Vec3, gamma};
 use crate::ray::Ray;
-use glam::DVec3;
 
 /// An open cylinder around the object-space z axis.
 #[derive(Clone, Debug, PartialEq)]
@@ -47,16 +46,6 @@ impl Cylinder {
         self.placement.to_world.bounds(&b)
     }
 
-    #[inline]
-    fn phi_of(p: DVec3) -> f64 {
-        let phi = p.y.atan2(p.x);
-        if phi < 0.0 {
-            phi + 2.0 * std::f64::consts::PI
-        } else {
-            phi
-        }
-    }
-
     /// Nearest hit: roots of (dx² + dy²)t² + 2(dx·ox + dy·oy)t + ox² + oy² − r² = 0, with the
     /// discriminant in the cancellation-free form 4a(r + |v|)(r − |v|) as for the sphere.
     #[inline]
@@ -95,7 +84,7 @@ impl Cylinder {
             if p.z < self.z_min as f64 || p.z > self.z_max as f64 {
                 continue;
             }
-            if Self::phi_of(p) > self.phi_max as f64 {
+            if phi_of(p) > self.phi_max as f64 {
                 continue;
             }
             return Some(ShapeHit {
@@ -115,7 +104,7 @@ impl Cylinder {
         let hit_rad = (p.x * p.x + p.y * p.y).sqrt();
         p.x *= self.radius as f64 / hit_rad;
         p.y *= self.radius as f64 / hit_rad;
-        let phi = Self::phi_of(p) as f32;
+        let phi = phi_of(p) as f32;
         let p = p.as_vec3();
         let u = phi / self.phi_max;
         let v = (p.z - self.z_min) / (self.z_max - self.z_min);

@@ -1,6 +1,6 @@
 //! The disk: the plane z = h inside radius r (and outside `innerradius`), swept to `phimax`.
 
-use super::{Placement, ShapeHit, SurfaceInteraction};
+use super::{Placement, ShapeHit, SurfaceInteraction, phi_of};
 use crate::math::{Bounds3, Vec2, Vec3};
 use crate::ray::Ray;
 
@@ -64,14 +64,8 @@ impl Disk {
         if dist2 > r * r || dist2 < ri * ri {
             return None;
         }
-        if self.phi_max < 2.0 * std::f32::consts::PI {
-            let mut phi = p.y.atan2(p.x);
-            if phi < 0.0 {
-                phi += 2.0 * std::f64::consts::PI;
-            }
-            if phi > self.phi_max as f64 {
-                return None;
-            }
+        if self.phi_max < 2.0 * std::f32::consts::PI && phi_of(p) > self.phi_max as f64 {
+            return None;
         }
         Some(ShapeHit {
             t: t as f32,
@@ -87,11 +81,7 @@ impl Disk {
         let mut p = (o + hit.t as f64 * d).as_vec3();
         p.z = self.height;
         let dist = (p.x * p.x + p.y * p.y).sqrt();
-        let mut phi = p.y.atan2(p.x);
-        if phi < 0.0 {
-            phi += 2.0 * std::f32::consts::PI;
-        }
-        let u = phi / self.phi_max;
+        let u = phi_of(p.as_dvec3()) as f32 / self.phi_max;
         let v = (self.radius - dist) / (self.radius - self.inner_radius);
         let dpdu = Vec3::new(-self.phi_max * p.y, self.phi_max * p.x, 0.0);
         let dpdv = if dist > 0.0 {

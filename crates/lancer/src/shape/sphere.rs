@@ -1,6 +1,6 @@
 //! The sphere: x² + y² + z² = r², optionally cut by `zmin`/`zmax` and swept to `phimax`.
 
-use super::{Placement, ShapeHit, SurfaceInteraction};
+use super::{Placement, ShapeHit, SurfaceInteraction, phi_of};
 use crate::math::{Bounds3, Vec2, Vec3, gamma};
 use crate::ray::Ray;
 use glam::DVec3;
@@ -65,11 +65,7 @@ impl Sphere {
         if p.x == 0.0 && p.y == 0.0 {
             p.x = 1e-5 * self.radius as f64;
         }
-        let mut phi = p.y.atan2(p.x);
-        if phi < 0.0 {
-            phi += 2.0 * std::f64::consts::PI;
-        }
-        (p, phi)
+        (p, phi_of(p))
     }
 
     #[inline]
