@@ -121,6 +121,7 @@ fn sampled_points_carry_the_intersection_normal() {
     // One shape per scene, so that the ray can only meet the one sampled.
     for (k, sd) in all_shapes().into_iter().enumerate() {
         let scene = scene_of(vec![sd]);
+        let (mut checked, mut tried) = (0, 0);
         for prim in 0..scene.shapes.len() {
             let shape = &scene.shapes[prim];
             for u in points(64) {
@@ -128,6 +129,7 @@ fn sampled_points_carry_the_intersection_normal() {
                 // Aim at the sampled point from a little way off the surface along the normal,
                 // from outside whichever side faces the ray.
                 for side in [1.0f32, -1.0] {
+                    tried += 1;
                     let o = s.p + s.n * (0.05 * side);
                     let ray = Ray::new(o, s.p - o);
                     let Some(hit) = scene.intersect(&ray) else {
@@ -136,6 +138,7 @@ fn sampled_points_carry_the_intersection_normal() {
                     if (hit.si.p - s.p).length() > 1e-3 {
                         continue; // another part of the same shape is in the way
                     }
+                    checked += 1;
                     assert!(
                         hit.si.n.dot(s.n) > 0.999,
                         "shape {k}: sampled normal {} but intersection normal {}",
@@ -145,6 +148,12 @@ fn sampled_points_carry_the_intersection_normal() {
                 }
             }
         }
+        // The ray from the side the normal faces always reaches the point first, so at
+        // least half the tries compare normals.
+        assert!(
+            2 * checked >= tried,
+            "shape {k}: only {checked} of {tried} compared"
+        );
     }
 }
 
