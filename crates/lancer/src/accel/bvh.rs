@@ -12,8 +12,6 @@ struct Node {
     offset: u32,
     /// Leaf: primitive count (> 0); interior: 0.
     count: u16,
-    /// Interior: split axis (which child is nearer depends on the ray's direction on it).
-    axis: u8,
 }
 
 /// Four children's boxes side by side (one array per axis and side), so that one ray is
@@ -45,7 +43,10 @@ struct ChildRef {
 /// holds up to four children, and a ray tests their four boxes at once.
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
+    /// The binary tree, only while building.
     nodes: Vec<Node>,
+    /// Bounds of everything.
+    bounds: Bounds3,
     wide: Vec<Node4>,
     /// The root: a node, or a leaf when the tree has a single leaf.
     root: ChildRef,
@@ -76,6 +77,7 @@ impl Bvh {
             .collect();
         let mut bvh = Bvh {
             nodes: Vec::with_capacity(2 * prims.len().max(1)),
+            bounds: Bounds3::EMPTY,
             wide: Vec::new(),
             root: ChildRef::default(),
             indices: Vec::with_capacity(prims.len()),
@@ -83,6 +85,8 @@ impl Bvh {
         if !prims.is_empty() {
             bvh.build_rec(&mut prims, 0);
             bvh.root = bvh.collapse(0);
+            bvh.bounds = bvh.nodes[0].bounds;
+            bvh.nodes = Vec::new();
         }
         bvh
     }
@@ -140,7 +144,7 @@ impl Bvh {
 
     /// Bounds of everything in the tree.
     pub fn bounds(&self) -> Bounds3 {
-        self.nodes.first().map_or(Bounds3::EMPTY, |n| n.bounds)
+        self.bounds
     }
 
     fn build_rec(&mut self, prims: &mut [BuildPrim], depth: u32) -> usize {
@@ -150,7 +154,6 @@ impl Bvh {
             bounds,
             offset: 0,
             count: 0,
-            axis: 0,
         });
         let make_leaf = |bvh: &mut Bvh, prims: &[BuildPrim]| {
             let first = bvh.indices.len() as u32;
@@ -229,7 +232,6 @@ impl Bvh {
         self.build_rec(left, depth + 1);
         let second = self.build_rec(right, depth + 1);
         self.nodes[node_index].offset = second as u32;
-        self.nodes[node_index].axis = axis as u8;
         node_index
     }
 

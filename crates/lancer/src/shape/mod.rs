@@ -281,12 +281,6 @@ impl Shape {
         }
     }
 
-    /// True if the ray hits the shape with `0 < t < ray.t_max` (shadow rays).
-    #[inline]
-    pub fn intersect_p(&self, ray: &Ray, pre: &TriangleRay) -> bool {
-        self.intersect_with(ray, pre).is_some()
-    }
-
     /// The full interaction for a hit found by [`Shape::intersect`] on the same ray.
     pub fn interaction(
         &self,
