@@ -91,13 +91,32 @@ fn scene_with(body: &str) -> String {
     )
 }
 
-/// The hostile inputs: (name, files to write, file to render, words the error must contain).
-fn cases() -> Vec<(
-    &'static str,
-    Vec<(&'static str, Vec<u8>)>,
-    &'static str,
-    &'static str,
-)> {
+/// One hostile input: its name, the files to write, the file to render, and words the error
+/// must contain.
+struct Case {
+    name: &'static str,
+    files: Vec<(&'static str, Vec<u8>)>,
+    scene: &'static str,
+    words: &'static str,
+}
+
+/// A [`Case`].
+fn case(
+    name: &'static str,
+    files: Vec<(&'static str, Vec<u8>)>,
+    scene: &'static str,
+    words: &'static str,
+) -> Case {
+    Case {
+        name,
+        files,
+        scene,
+        words,
+    }
+}
+
+/// The hostile inputs.
+fn cases() -> Vec<Case> {
     let mut truncated = ply_header("binary_little_endian", 3, 1);
     truncated.extend(triangle_vertices());
     truncated.extend([3u8, 0, 0, 0, 0, 1]); // the face's indices stop after one and a half
@@ -121,43 +140,43 @@ fn cases() -> Vec<(
         "AttributeEnd\n".repeat(100_000)
     ));
     vec![
-        (
+        case(
             "truncated-binary-ply",
             vec![("t.ply", truncated)],
             "t.ply",
             "t.ply",
         ),
-        (
+        case(
             "ply-2^40-faces",
             vec![("f.ply", many_faces)],
             "f.ply",
             "f.ply",
         ),
-        (
+        case(
             "ply-2^40-vertices",
             vec![("v.ply", many_verts)],
             "v.ply",
             "v.ply",
         ),
-        (
+        case(
             "ply-index-out-of-range",
             vec![("i.ply", bad_index)],
             "i.ply",
             "i.ply",
         ),
-        (
+        case(
             "obj-index-out-of-range",
             vec![("o.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n".to_vec())],
             "o.obj",
             "out of range",
         ),
-        (
+        case(
             "obj-relative-index-before-first",
             vec![("r.obj", b"v 0 0 0\nf -1 -2 -3\n".to_vec())],
             "r.obj",
             "r.obj:2",
         ),
-        (
+        case(
             "png-100000x100000",
             vec![
                 ("big.png", png_claiming(100_000, 100_000)),
@@ -166,7 +185,7 @@ fn cases() -> Vec<(
             "s.pbrt",
             "big.png",
         ),
-        (
+        case(
             "exr-2^30-pixels-a-side",
             vec![
                 ("big.exr", exr_claiming(1 << 30)),
@@ -175,7 +194,7 @@ fn cases() -> Vec<(
             "s.pbrt",
             "big.exr",
         ),
-        (
+        case(
             "scene-including-itself",
             vec![(
                 "self.pbrt",
@@ -184,13 +203,13 @@ fn cases() -> Vec<(
             "self.pbrt",
             "self.pbrt",
         ),
-        (
+        case(
             "100000-nested-blocks",
             vec![("deep.pbrt", nested.into_bytes())],
             "deep.pbrt",
             "nested",
         ),
-        (
+        case(
             "film-too-large-for-memory",
             vec![(
                 "film.pbrt",
@@ -251,7 +270,13 @@ fn children_max_rss_kib() -> i64 {
 #[test]
 fn hostile_inputs_fail_cleanly_and_cheaply() {
     let mut failures = Vec::new();
-    for (name, files, scene, words) in cases() {
+    for Case {
+        name,
+        files,
+        scene,
+        words,
+    } in cases()
+    {
         let dir = temp_dir(&format!("hostile-{name}"));
         for (file, bytes) in &files {
             std::fs::File::create(dir.join(file))
