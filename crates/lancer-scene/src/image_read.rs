@@ -158,6 +158,7 @@ pub fn read_image(path: &Path, encoding: Encoding) -> Result<DecodedImage, Image
             ));
         }
     };
+    crate::files_read::record(path);
     let bytes = std::fs::read(path).map_err(|e| err(path, format!("cannot read: {e}")))?;
     let (width, height, texels, alpha) = match kind {
         0 => read_png(path, &bytes, encoding)?,
