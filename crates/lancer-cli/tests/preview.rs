@@ -175,6 +175,7 @@ fn display_server_streams_every_pixel_in_tevs_protocol() {
     let mut covered = vec![0u32; w * h];
     let mut last = vec![[f32::NAN; 3]; w * h];
     let mut coverage_before_last = Vec::new();
+    let mut values_before_last = Vec::new();
     for p in &packets[1..] {
         let TevPacket::Update {
             name: n,
@@ -191,6 +192,7 @@ fn display_server_streams_every_pixel_in_tevs_protocol() {
         assert!(x >= 0 && y >= 0 && rw > 0 && rh > 0);
         assert!((x + rw) as usize <= w && (y + rh) as usize <= h, "{rect:?}");
         coverage_before_last.push(covered.clone());
+        values_before_last.push(last.clone());
         for j in 0..rh as usize {
             for i in 0..rw as usize {
                 let k = (y as usize + j) * w + x as usize + i;
@@ -212,14 +214,24 @@ fn display_server_streams_every_pixel_in_tevs_protocol() {
 
     let img = read_exr(&out);
     assert_eq!((img.width, img.height), (w, h));
-    let mut max_err = 0.0f32;
-    for (px, want) in last.iter().zip(&img.rgb) {
-        for (&v, &e) in px.iter().zip(want) {
-            let e = e as f32;
-            max_err = max_err.max((v - e).abs() / e.abs().max(1e-3));
+    let max_err = |values: &[[f32; 3]]| {
+        let mut m = 0.0f32;
+        for (px, want) in values.iter().zip(&img.rgb) {
+            for (&v, &e) in px.iter().zip(want) {
+                let e = e as f32;
+                m = m.max((v - e).abs() / e.abs().max(1e-3));
+            }
         }
-    }
-    assert!(max_err < 1e-6, "stream and EXR differ by {max_err}");
+        m
+    };
+    let final_err = max_err(&last);
+    assert!(final_err < 1e-6, "stream and EXR differ by {final_err}");
+    // Each tile is rendered in one pass here, so its update already holds the final pixels.
+    let tiles_err = max_err(values_before_last.last().unwrap());
+    assert!(
+        tiles_err < 1e-6,
+        "tile updates and EXR differ by {tiles_err}"
+    );
     let mean: f32 = last.iter().map(|p| p[0] + p[1] + p[2]).sum::<f32>() / (w * h) as f32;
     assert!(mean > 0.01, "the streamed image is black");
 }
