@@ -169,6 +169,7 @@ fn format_of(path: &Path) -> Result<Format, ImageReadError> {
 /// `encoding` applies to PNG only (see the module's notes).
 pub fn read_image(path: &Path, encoding: Encoding) -> Result<DecodedImage, ImageReadError> {
     let format = format_of(path)?;
+    crate::files_read::record(path);
     let bytes = std::fs::read(path).map_err(|e| err(path, format!("cannot read: {e}")))?;
     decode(path, &bytes, format, encoding)
 }
