@@ -607,3 +607,39 @@ fn rays_leaving_the_surface_do_not_find_it_again() {
         assert!(found > 500, "{src}: {found}");
     }
 }
+
+#[test]
+fn scenes_build_sdf_objects_and_refuse_them_as_emitters() {
+    use lancer::Scene;
+    use lancer::math::Rgb;
+    use lancer::scene::desc::{AreaLightDesc, Geometry, SceneDesc, ShapeDesc};
+    let shape = |src: &str, bounds, area_light| SceneDesc {
+        shapes: vec![ShapeDesc {
+            geometry: Geometry::Sdf {
+                function: Arc::new(f(src)),
+                bounds,
+            },
+            object_to_world: Transform::translate(Vec3::new(0.0, 0.0, -3.0)),
+            reverse_orientation: false,
+            material: 0,
+            area_light,
+            alpha: None,
+        }],
+        ..SceneDesc::default()
+    };
+    assert!(Scene::build(&shape("sphere(1)", None, None)).is_ok());
+    let light = AreaLightDesc {
+        l: Rgb::ONE,
+        two_sided: false,
+    };
+    let e = Scene::build(&shape("sphere(1)", None, Some(light)))
+        .err()
+        .unwrap();
+    assert!(e.to_string().contains("area light"), "{e}");
+    let e = Scene::build(&shape("plane([0, 1, 0], 0)", None, None))
+        .err()
+        .unwrap();
+    assert!(e.to_string().contains("point3 min"), "{e}");
+    let clipped = Some((Vec3::splat(-1.0), Vec3::splat(1.0)));
+    assert!(Scene::build(&shape("plane([0, 1, 0], 0)", clipped, None)).is_ok());
+}
