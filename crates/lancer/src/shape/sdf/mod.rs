@@ -11,6 +11,7 @@
 //! refuses it with a clear error, [`Shape::area`](super::Shape::area) is 0).
 
 pub mod expr;
+pub mod flat;
 pub mod node;
 
 pub use expr::SdfError;

@@ -185,12 +185,37 @@ impl Aabb {
 /// Polynomial smooth minimum (Quilez): smin(a, b, k) = min(a, b) − h²k/4 with
 /// h = max(k − |a − b|, 0)/k; it departs from min by at most k/4, where |a − b| < k.
 #[inline]
-fn smin(a: f64, b: f64, k: f64) -> f64 {
+pub(crate) fn smin(a: f64, b: f64, k: f64) -> f64 {
     if k <= 0.0 {
         return a.min(b);
     }
     let h = (k - (a - b).abs()).max(0.0) / k;
     a.min(b) - h * h * k * 0.25
+}
+
+/// The point a twist evaluates its operand at: R_y(−k·y)·p, that is
+/// (x cos ky − z sin ky, y, x sin ky + z cos ky).
+#[inline]
+pub(crate) fn twist_point(k: f64, p: DVec3) -> DVec3 {
+    let (s, c) = (k * p.y).sin_cos();
+    DVec3::new(c * p.x - s * p.z, p.y, s * p.x + c * p.z)
+}
+
+/// The point a repetition evaluates its operand at: qᵢ = pᵢ − cᵢ·kᵢ with kᵢ = round(pᵢ/cᵢ),
+/// clamped to ±nᵢ when limited; axes with cᵢ = 0 are left alone.
+#[inline]
+pub(crate) fn repeat_point(c: DVec3, n: Option<&DVec3>, p: DVec3) -> DVec3 {
+    let mut q = p;
+    for i in 0..3 {
+        if c[i] > 0.0 {
+            let mut k = (p[i] / c[i]).round();
+            if let Some(n) = n {
+                k = k.clamp(-n[i], n[i]);
+            }
+            q[i] = p[i] - c[i] * k;
+        }
+    }
+    q
 }
 
 /// Exact box distance with half-extents h.
@@ -249,23 +274,8 @@ impl Node {
             Node::Translate(v, e) => e.eval(p - *v),
             Node::Rotate(m, e) => e.eval(*m * p),
             Node::Scale(s, e) => s * e.eval(p / *s),
-            Node::Twist(k, e) => {
-                let (s, c) = (k * p.y).sin_cos();
-                e.eval(DVec3::new(c * p.x - s * p.z, p.y, s * p.x + c * p.z))
-            }
-            Node::Repeat(c, n, e) => {
-                let mut q = p;
-                for i in 0..3 {
-                    if c[i] > 0.0 {
-                        let mut k = (p[i] / c[i]).round();
-                        if let Some(n) = n {
-                            k = k.clamp(-n[i], n[i]);
-                        }
-                        q[i] = p[i] - c[i] * k;
-                    }
-                }
-                e.eval(q)
-            }
+            Node::Twist(k, e) => e.eval(twist_point(*k, p)),
+            Node::Repeat(c, n, e) => e.eval(repeat_point(*c, n.as_ref(), p)),
         }
     }
 
