@@ -11,7 +11,6 @@
 //! refuses it with a clear error, [`Shape::area`](super::Shape::area) is 0).
 
 pub mod expr;
-pub mod flat;
 pub mod node;
 
 pub use expr::SdfError;
@@ -80,8 +79,13 @@ impl SdfFunction {
 }
 
 /// Over-relaxation factor ω of the enhanced sphere tracer: steps of ω·f while the unbounding
-/// spheres of consecutive points overlap (Keinert et al. use 1.2–1.6 on typical scenes).
-pub const OMEGA: f64 = 1.6;
+/// spheres of consecutive points overlap (Keinert et al. use 1.2–1.6).
+///
+/// Measured on 10⁶ rays from 5 units away aimed at the shapes scene's blend (evaluations per
+/// ray, misses of the box included): ω = 1: 5.12, 1.2: 5.01, 1.4: 5.33, 1.6: 5.49. A ray
+/// heading straight at a surface overshoots it with any ω > 1 and pays one evaluation to fall
+/// back, so large ω only pays on long grazing marches; 1.2 is the best of these.
+pub const OMEGA: f64 = 1.2;
 
 /// Hit tolerance relative to the distance marched: a hit is declared when f/L < τ with
 /// τ = `TAU_REL`·s + `TAU_ABS`·diagonal (object space). Rays carry no differentials, so the

