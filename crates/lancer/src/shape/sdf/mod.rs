@@ -221,8 +221,10 @@ impl Sdf {
     /// Over-relaxation: steps of ω·r (ω = [`OMEGA`]); when the new point's sphere and the
     /// previous one do not overlap (r + r_prev < step), the long step may have jumped over a
     /// thin part: the march goes back to the plain step s_prev + r_prev and continues with
-    /// ω = 1 (as it does when a relaxed step passes s₁: only plain steps may end a march). A ray starting inside the solid marches on −f (the sign at s₀), to find where
-    /// it leaves. Returns the object-space distance s of the hit, with s > 0.
+    /// ω = 1 (as it does when a relaxed step passes s₁: only plain steps may end a march).
+    /// A ray starting inside the solid marches on −f (the sign at s₀), to find where it
+    /// leaves. Returns the object-space distance s of the hit, with s > 0; a miss when the
+    /// march passes s₁ or takes more than [`MAX_STEPS`] steps.
     pub fn march(&self, o: DVec3, u: DVec3, s0: f64, s1: f64) -> Option<f64> {
         let inv_l = 1.0 / self.lipschitz;
         let f0 = self.function.eval(o + u * s0);
