@@ -313,6 +313,13 @@ pub enum Geometry {
     },
     /// A triangle mesh (`trianglemesh`, `plymesh`, `objmesh`, glTF, …).
     TriangleMesh(Arc<TriangleMesh>),
+    /// lancer's `sdf`: a signed-distance expression, optionally clipped to a box.
+    Sdf {
+        /// The parsed expression.
+        function: Arc<crate::shape::SdfFunction>,
+        /// Object-space box (`min`, `max`) clipping the solid; required when it is unbounded.
+        bounds: Option<(Vec3, Vec3)>,
+    },
 }
 
 /// A diffuse area light attached to a shape.

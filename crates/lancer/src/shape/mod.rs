@@ -15,6 +15,7 @@ mod loop_subdiv;
 mod paraboloid;
 mod plane;
 mod sample;
+pub mod sdf;
 mod sphere;
 mod triangle;
 
@@ -27,6 +28,7 @@ pub use loop_subdiv::loop_subdivide;
 pub use paraboloid::Paraboloid;
 pub use plane::Plane;
 pub use sample::ShapeSample;
+pub use sdf::{Sdf, SdfFunction};
 pub use sphere::Sphere;
 pub use triangle::{
     Triangle, TriangleMesh, TriangleRay, intersect_triangle, intersect_triangle_with, is_degenerate,
@@ -232,6 +234,8 @@ pub enum Shape {
     Plane(Box<Plane>),
     /// One triangle of a mesh.
     Triangle(Triangle),
+    /// A signed-distance object, sphere-traced (lancer extension).
+    Sdf(Box<Sdf>),
 }
 
 impl Shape {
@@ -249,6 +253,7 @@ impl Shape {
                 Bounds3::new(Vec3::splat(f32::NEG_INFINITY), Vec3::splat(f32::INFINITY))
             }
             Shape::Triangle(t) => t.bounds(),
+            Shape::Sdf(s) => s.bounds(),
         }
     }
 
@@ -278,6 +283,7 @@ impl Shape {
             Shape::Hyperboloid(s) => s.intersect(ray),
             Shape::Box(s) => s.intersect(ray),
             Shape::Plane(s) => s.intersect(ray),
+            Shape::Sdf(s) => s.intersect(ray),
         }
     }
 
@@ -298,6 +304,7 @@ impl Shape {
             Shape::Box(s) => s.interaction(ray, hit),
             Shape::Plane(s) => s.interaction(ray, hit),
             Shape::Triangle(t) => t.interaction(ray, hit, &meshes[t.mesh as usize]),
+            Shape::Sdf(s) => s.interaction(ray, hit),
         }
     }
 }
