@@ -5,10 +5,13 @@
 //! malformed scene, a missing file, bad options), 1 when something else fails (writing the
 //! image, an interrupted render).
 
+mod checkpoint;
 mod cli_error;
 mod input;
+mod merge;
 mod progress;
 mod render;
+mod split;
 
 use clap::{Parser, Subcommand};
 
@@ -24,6 +27,8 @@ struct Cli {
 enum Command {
     /// Render a scene to an image (PNG or EXR, chosen by the extension).
     Render(render::RenderArgs),
+    /// Merge the parts of a split render (`render --split i/N`) into the final image.
+    Merge(merge::MergeArgs),
 }
 
 /// A binary built for x86-64-v3 (see `.cargo/config.toml`) dies of an illegal instruction on
@@ -45,6 +50,7 @@ fn main() {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => render::run(args),
+        Command::Merge(args) => merge::run(args),
     };
     if let Err(e) = result {
         e.report();

@@ -89,6 +89,19 @@ pub fn render_tile(
     settings: &RenderSettings,
     tile: &PixelBounds,
 ) -> (Vec<PixelSum>, u64) {
+    render_tile_samples(scene, settings, tile, settings.samples.clone())
+}
+
+/// Renders sample indices `samples` of every pixel of `tile`, in order. Returns the tile's
+/// sums and the number of rays traced. Each sample depends only on (seed, pixel, index), and
+/// the sums are fixed-point integers, so any partition of the samples into ranges adds up to
+/// the same sums bit for bit.
+pub fn render_tile_samples(
+    scene: &Scene,
+    settings: &RenderSettings,
+    tile: &PixelBounds,
+    samples: std::ops::Range<u32>,
+) -> (Vec<PixelSum>, u64) {
     let rays0 = rays_traced();
     let mut sampler = Sampler::new(settings.sampler, settings.spp, settings.seed);
     let mut sums = vec![PixelSum::default(); tile.area() as usize];
@@ -96,7 +109,7 @@ pub fn render_tile(
     for y in tile.y0..tile.y1 {
         for x in tile.x0..tile.x1 {
             let sum = &mut sums[(y - tile.y0) as usize * w + (x - tile.x0) as usize];
-            for s in settings.samples.clone() {
+            for s in samples.clone() {
                 sampler.start_pixel_sample(x, y, s as u64);
                 let (offset, weight) = settings.filter.sample(sampler.get_pixel_2d());
                 let p_film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
@@ -148,5 +161,94 @@ pub fn render(
         drop(t);
         progress(tile.area());
     });
+    totals.into_inner().unwrap()
+}
+
+/// A piece of work: one tile over one range of sample indices. A render is a list of units;
+/// since their sums are added in integer arithmetic, the film does not depend on the order in
+/// which units finish, nor on how they are spread over threads, processes or interruptions.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct WorkUnit {
+    /// The pixels.
+    pub tile: PixelBounds,
+    /// The sample indices `[start, end)` taken in each pixel.
+    pub samples: std::ops::Range<u32>,
+}
+
+/// The units of a render of `bounds` × `samples`: tiles of `tile_size` pixels, sample ranges
+/// of at most `pass` samples, pass-major (every tile gets its first pass before any tile gets
+/// its second), so an interrupted render holds an evenly converged image.
+pub fn work_units(
+    bounds: &PixelBounds,
+    tile_size: u32,
+    samples: std::ops::Range<u32>,
+    pass: u32,
+) -> Vec<WorkUnit> {
+    let tiles = tiles(bounds, tile_size);
+    let pass = pass.max(1);
+    let mut out = Vec::new();
+    let mut s = samples.start;
+    while s < samples.end {
+        let e = s.saturating_add(pass).min(samples.end);
+        out.extend(tiles.iter().map(|t| WorkUnit {
+            tile: *t,
+            samples: s..e,
+        }));
+        s = e;
+    }
+    out
+}
+
+/// Renders the units of `units` not yet marked in `done` into `film`, marking each one as
+/// its sums are added (under the same lock, so `film` and `done` always agree). Units run in
+/// parallel within a pass (a run of units with the same sample range), passes one after the
+/// other. `stop()` is asked before each unit starts: once it says yes, no new unit starts and
+/// the call returns when the units in flight have been added (the result's `cancelled` is
+/// then true). `progress(n)` is called with the pixel-samples of each finished unit.
+pub fn render_units(
+    scene: &Scene,
+    settings: &RenderSettings,
+    film: &mut Film,
+    units: &[WorkUnit],
+    done: &mut [bool],
+    progress: &(dyn Fn(u64) + Sync),
+    stop: &(dyn Fn() -> bool + Sync),
+) -> RenderStats {
+    let state = Mutex::new((film, done));
+    let totals = Mutex::new(RenderStats::default());
+    let mut start = 0;
+    while start < units.len() {
+        let range = &units[start].samples;
+        let len = units[start..]
+            .iter()
+            .take_while(|u| u.samples == *range)
+            .count();
+        let pass = start..start + len;
+        start += len;
+        pass.into_par_iter().for_each(|i| {
+            if state.lock().unwrap().1[i] {
+                return;
+            }
+            if stop() {
+                totals.lock().unwrap().cancelled = true;
+                return;
+            }
+            let u = &units[i];
+            let (sums, rays) = render_tile_samples(scene, settings, &u.tile, u.samples.clone());
+            let mut st = state.lock().unwrap();
+            st.0.merge_tile(&u.tile, &sums);
+            st.1[i] = true;
+            drop(st);
+            let n = u.tile.area() * u.samples.len() as u64;
+            let mut t = totals.lock().unwrap();
+            t.rays += rays;
+            t.samples += n;
+            drop(t);
+            progress(n);
+        });
+        if totals.lock().unwrap().cancelled {
+            break;
+        }
+    }
     totals.into_inner().unwrap()
 }
