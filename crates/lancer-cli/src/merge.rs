@@ -33,13 +33,6 @@ pub fn check_parts(parts: &[(PathBuf, Film, PartMeta)]) -> Result<(), String> {
     let p0 = p0.display();
     for (p, f, m) in &parts[1..] {
         let p = p.display();
-        if m.scene_hash != m0.scene_hash {
-            return Err(format!(
-                "{p} is a part of another scene (or of the same one with other options) than {p0}: \
-                 scene hash {:016x} vs {:016x}",
-                m.scene_hash, m0.scene_hash
-            ));
-        }
         let differs =
             |what: &str, a: String, b: String| Err(format!("{p} has {what} {a} but {p0} has {b}"));
         if m.seed != m0.seed {
@@ -64,6 +57,14 @@ pub fn check_parts(parts: &[(PathBuf, Film, PartMeta)]) -> Result<(), String> {
         }
         if m.scale.to_bits() != m0.scale.to_bits() {
             return differs("film scale", m.scale.to_string(), m0.scale.to_string());
+        }
+        // Last: the specific differences above say more than a hash.
+        if m.scene_hash != m0.scene_hash {
+            return Err(format!(
+                "{p} is a part of another scene (or of the same one with other options) than {p0}: \
+                 scene hash {:016x} vs {:016x}",
+                m.scene_hash, m0.scene_hash
+            ));
         }
     }
     let rb = m0.render_bounds;
