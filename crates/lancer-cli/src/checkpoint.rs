@@ -117,6 +117,9 @@ impl Checkpoint {
 
     /// Decodes the bytes of a checkpoint file.
     pub fn decode(bytes: &[u8]) -> Result<Checkpoint, String> {
+        if !bytes.starts_with(format!("{MAGIC}\n").as_bytes()) {
+            return Err(format!("not a lancer checkpoint (no '{MAGIC}' first line)"));
+        }
         let mut pos = 0;
         let mut lines = Vec::new();
         loop {
@@ -130,9 +133,6 @@ impl Checkpoint {
                 break;
             }
             lines.push(line.to_string());
-        }
-        if lines.first().map(String::as_str) != Some(MAGIC) {
-            return Err(format!("not a lancer checkpoint (no '{MAGIC}' first line)"));
         }
         let (mut cwd, mut args, mut hash, mut film, mut units) = (None, vec![], None, None, None);
         for (n, line) in lines.iter().enumerate().skip(1) {
@@ -268,6 +268,7 @@ mod tests {
         assert_eq!(Checkpoint::decode(&bytes).unwrap(), c);
         let e = Checkpoint::decode(&bytes[..bytes.len() - 1]).unwrap_err();
         assert!(e.contains("truncated"), "{e}");
-        assert!(Checkpoint::decode(b"P3\n1 1\n").is_err());
+        let e = Checkpoint::decode(b"\x76\x2f\x31\x01 an EXR").unwrap_err();
+        assert!(e.contains("not a lancer checkpoint"), "{e}");
     }
 }

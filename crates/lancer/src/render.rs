@@ -252,3 +252,41 @@ pub fn render_units(
     }
     totals.into_inner().unwrap()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn work_units_cover_every_pixel_sample_once_pass_by_pass() {
+        let b = PixelBounds {
+            x0: 3,
+            x1: 40,
+            y0: 1,
+            y1: 20,
+        };
+        let units = work_units(&b, 16, 5..42, 16);
+        // Passes 5..21, 21..37, 37..42 over 3 × 2 tiles.
+        assert_eq!(units.len(), 3 * 6);
+        let mut count = vec![0u32; b.area() as usize * 42];
+        let mut last_start = 0;
+        for u in &units {
+            assert!(u.samples.start >= last_start, "not pass-major");
+            last_start = u.samples.start;
+            assert!(u.samples.len() <= 16 && !u.samples.is_empty());
+            assert_eq!(u.tile.intersect(&b), u.tile);
+            for y in u.tile.y0..u.tile.y1 {
+                for x in u.tile.x0..u.tile.x1 {
+                    let p = ((y - b.y0) * b.width() as i32 + (x - b.x0)) as usize;
+                    for s in u.samples.clone() {
+                        count[p * 42 + s as usize] += 1;
+                    }
+                }
+            }
+        }
+        for (i, c) in count.iter().enumerate() {
+            let expected = u32::from((5..42).contains(&(i % 42)));
+            assert_eq!(*c, expected, "pixel {} sample {}", i / 42, i % 42);
+        }
+    }
+}
