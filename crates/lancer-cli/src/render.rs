@@ -35,13 +35,13 @@ pub struct RenderArgs {
     #[arg(long, value_parser = parse_resolution, conflicts_with = "resume")]
     pub resolution: Option<(u32, u32)>,
     /// Render only the crop window x0,x1,y0,y1 (fractions of the image, pbrt's `cropwindow`).
-    #[arg(long, value_parser = split::parse_crop, conflicts_with = "resume")]
+    #[arg(long, value_name = "X0,X1,Y0,Y1", value_parser = split::parse_crop, conflicts_with = "resume")]
     pub crop: Option<[f32; 4]>,
     /// Take only the sample indices a..b of each pixel; writes a part (.exr) for `lancer merge`.
-    #[arg(long, value_parser = split::parse_samples, conflicts_with = "resume")]
+    #[arg(long, value_name = "A..B", value_parser = split::parse_samples, conflicts_with = "resume")]
     pub samples: Option<std::ops::Range<u32>>,
     /// Render part i of N (0-based) and write it as a part (.exr) for `lancer merge`.
-    #[arg(long, value_parser = split::parse_split, conflicts_with = "resume")]
+    #[arg(long, value_name = "I/N", value_parser = split::parse_split, conflicts_with = "resume")]
     pub split: Option<split::Split>,
     /// How --split divides the render: bands of tiles, or ranges of samples.
     #[arg(long, value_enum, default_value_t, conflicts_with = "resume")]
@@ -277,6 +277,13 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         .unwrap_or_else(|| default_checkpoint_path(&output));
     // A checkpoint this render resumed from or wrote is removed once the render is done.
     let mut wrote_ckpt = resumed.is_some();
+    if resumed.is_none() && ckpt_path.exists() && !args.quiet {
+        eprintln!(
+            "warning: {} exists (an interrupted render?); this new render will replace it if it              is interrupted; to continue the old one instead, use --resume {}",
+            ckpt_path.display(),
+            ckpt_path.display()
+        );
+    }
     let (ckpt_cwd, ckpt_args, mut film, mut done) = match resumed {
         Some(Resumed { path, ckpt }) => {
             if ckpt.scene_hash != scene_hash {
