@@ -5,12 +5,15 @@
 //! malformed scene, a missing file, bad options), 1 when something else fails (writing the
 //! image, an interrupted render).
 
+mod checkpoint;
 mod cli_error;
 mod info;
 mod input;
+mod merge;
 mod preview;
 mod progress;
 mod render;
+mod split;
 mod stats;
 mod tev;
 
@@ -30,6 +33,8 @@ enum Command {
     Render(render::RenderArgs),
     /// Describe a scene without rendering it: camera, counts, lights, bounds, memory, files.
     Info(info::InfoArgs),
+    /// Merge the parts of a split render (`render --split i/N`) into the final image.
+    Merge(merge::MergeArgs),
 }
 
 /// A binary built for x86-64-v3 (see `.cargo/config.toml`) dies of an illegal instruction on
@@ -52,6 +57,7 @@ fn main() {
     let result = match cli.command {
         Command::Render(args) => render::run(args),
         Command::Info(args) => info::run(args),
+        Command::Merge(args) => merge::run(args),
     };
     if let Err(e) = result {
         e.report();

@@ -1,17 +1,18 @@
 //! `lancer render`: load, build, render in parallel tiles, write the image atomically.
 
+use crate::checkpoint::{self, Checkpoint};
 use crate::cli_error::CliError;
+use crate::split::{self, SAMPLES_PER_PASS, TILE_SIZE};
 use crate::{input, preview, progress, stats};
 use clap::Args;
-use lancer::film::{Film, PixelBounds};
+use lancer::film::{Film, PixelBounds, PixelSum};
 use lancer::filter::Filter;
-use lancer::image_io::{ImageFormat, write_image};
+use lancer::image_io::{ImageFormat, PartMeta, write_image, write_part};
 use lancer::integrator::Integrator;
-use lancer::render::{RenderSettings, render_observed};
+use lancer::render::{RenderSettings, RenderStats, WorkUnit, render_units, work_units};
 use lancer::{Scene, SceneDesc};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::AtomicBool;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// Options of `lancer render`.
 #[derive(Args, Debug)]
@@ -22,17 +23,39 @@ pub struct RenderArgs {
     #[arg(short, long)]
     pub output: Option<PathBuf>,
     /// Samples per pixel (overrides the scene).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "resume")]
     pub spp: Option<u32>,
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
     /// Seed of the samplers (overrides the scene).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "resume")]
     pub seed: Option<u64>,
     /// Image size WIDTHxHEIGHT (overrides the scene).
-    #[arg(long, value_parser = parse_resolution)]
+    #[arg(long, value_parser = parse_resolution, conflicts_with = "resume")]
     pub resolution: Option<(u32, u32)>,
+    /// Render only the crop window x0,x1,y0,y1 (fractions of the image, pbrt's `cropwindow`).
+    #[arg(long, value_name = "X0,X1,Y0,Y1", value_parser = split::parse_crop, conflicts_with = "resume")]
+    pub crop: Option<[f32; 4]>,
+    /// Take only the sample indices a..b of each pixel; writes a part (.exr) for `lancer merge`.
+    #[arg(long, value_name = "A..B", value_parser = split::parse_samples, conflicts_with = "resume")]
+    pub samples: Option<std::ops::Range<u32>>,
+    /// Render part i of N (0-based) and write it as a part (.exr) for `lancer merge`.
+    #[arg(long, value_name = "I/N", value_parser = split::parse_split, conflicts_with = "resume")]
+    pub split: Option<split::Split>,
+    /// How --split divides the render: bands of tiles, or ranges of samples.
+    #[arg(long, value_enum, default_value_t, conflicts_with = "resume")]
+    pub split_by: split::SplitBy,
+    /// Write the image so far and a checkpoint every MINUTES (a checkpoint is also written on
+    /// SIGINT/SIGTERM).
+    #[arg(long, value_name = "MINUTES", value_parser = parse_minutes)]
+    pub checkpoint_every: Option<f64>,
+    /// Checkpoint file (default: the output path followed by .ckpt).
+    #[arg(long, value_name = "FILE")]
+    pub checkpoint: Option<PathBuf>,
+    /// Continue the render saved in this checkpoint, with its scene and options.
+    #[arg(long, value_name = "FILE")]
+    pub resume: Option<PathBuf>,
     /// No progress bar, no summary.
     #[arg(short, long)]
     pub quiet: bool,
@@ -65,6 +88,13 @@ pub fn film_bytes(bounds: &PixelBounds) -> u64 {
     bounds.area() * per_pixel as u64
 }
 
+fn parse_minutes(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(m) if m > 0.0 && m < 1e9 => Ok(m),
+        _ => Err(format!("'{s}' is not a positive number of minutes")),
+    }
+}
+
 fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
@@ -93,6 +123,10 @@ fn apply_overrides(desc: &mut SceneDesc, args: &RenderArgs) {
     if let Some((w, h)) = args.resolution {
         desc.film.xresolution = w;
         desc.film.yresolution = h;
+        desc.film.pixel_bounds = None;
+    }
+    if let Some(c) = args.crop {
+        desc.film.crop_window = c;
         desc.film.pixel_bounds = None;
     }
 }
@@ -154,9 +188,61 @@ pub fn check_output(path: &Path) -> Result<(), CliError> {
     }
 }
 
+/// The checkpoint a render resumes from, with where it was read.
+struct Resumed {
+    path: PathBuf,
+    ckpt: Checkpoint,
+}
+
+/// `lancer render --resume FILE`: the checkpoint's options, with this command line's scene
+/// (if given, e.g. after moving it), output, checkpoint settings, threads and quietness.
+fn resume_args(args: RenderArgs, path: &Path) -> Result<(RenderArgs, Resumed), CliError> {
+    #[derive(clap::Parser)]
+    #[command(no_binary_name = true)]
+    struct Saved {
+        #[command(flatten)]
+        args: RenderArgs,
+    }
+    let ckpt = Checkpoint::read(path).map_err(|e| CliError::input(e.to_string()))?;
+    let saved = <Saved as clap::Parser>::try_parse_from(&ckpt.args).map_err(|e| {
+        CliError::input(format!(
+            "{}: the saved options do not parse: {}",
+            path.display(),
+            e.to_string().lines().next().unwrap_or_default()
+        ))
+    })?;
+    let mut a = saved.args;
+    a.scene = args.scene.or(a.scene.map(|p| ckpt.cwd.join(p)));
+    a.output = args.output.or(a.output.map(|p| ckpt.cwd.join(p)));
+    a.checkpoint = args.checkpoint.or_else(|| Some(path.to_path_buf()));
+    a.checkpoint_every = args.checkpoint_every.or(a.checkpoint_every);
+    a.threads = args.threads;
+    a.quiet = args.quiet;
+    a.resume = None;
+    let resumed = Resumed {
+        path: path.to_path_buf(),
+        ckpt,
+    };
+    Ok((a, resumed))
+}
+
+/// The default checkpoint path: the output's with `.ckpt` appended.
+pub fn default_checkpoint_path(output: &Path) -> PathBuf {
+    let mut p = output.as_os_str().to_os_string();
+    p.push(".ckpt");
+    PathBuf::from(p)
+}
+
 /// Runs `lancer render`.
 pub fn run(args: RenderArgs) -> Result<(), CliError> {
     let t0 = Instant::now();
+    let (args, resumed) = match args.resume.clone() {
+        Some(path) => {
+            let (a, r) = resume_args(args, &path)?;
+            (a, Some(r))
+        }
+        None => (args, None),
+    };
     let loaded = input::load(args.scene.as_deref())?;
     let parse_s = t0.elapsed().as_secs_f64();
     let mut desc = loaded.desc;
@@ -181,23 +267,81 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
             ));
         }
     }
-    let bounds = pixel_bounds(&desc);
-    if bounds.is_empty() {
+    let render_bounds = pixel_bounds(&desc);
+    if render_bounds.is_empty() {
         return Err(CliError::input("the crop window selects no pixel"));
     }
-    if film_bytes(&bounds) > MAX_FILM_BYTES {
+    if film_bytes(&render_bounds) > MAX_FILM_BYTES {
         return Err(CliError::input(format!(
             "a {}x{} image would need {:.1} GiB of memory for its film (the limit is {} GiB); \
              render it in parts with the film's \"cropwindow\"",
-            bounds.width(),
-            bounds.height(),
-            film_bytes(&bounds) as f64 / (1u64 << 30) as f64,
+            render_bounds.width(),
+            render_bounds.height(),
+            film_bytes(&render_bounds) as f64 / (1u64 << 30) as f64,
             MAX_FILM_BYTES >> 30
         )));
     }
     if desc.sampler.spp == 0 {
         return Err(CliError::input("samples per pixel must be at least 1"));
     }
+    let plan = split::plan(
+        render_bounds,
+        desc.sampler.spp,
+        args.samples.clone(),
+        args.split.map(|s| (s, args.split_by)),
+    )?;
+    if plan.is_part && ImageFormat::from_path(&output) != Some(ImageFormat::Exr) {
+        return Err(CliError::input(format!(
+            "{}: a part of a split render (--split, --samples) is written as .exr",
+            output.display()
+        )));
+    }
+    let bounds = plan.bounds;
+    let scene_hash = split::scene_hash(&desc);
+    let units = work_units(&bounds, TILE_SIZE, plan.samples.clone(), SAMPLES_PER_PASS);
+    let ckpt_path = args
+        .checkpoint
+        .clone()
+        .unwrap_or_else(|| default_checkpoint_path(&output));
+    // A checkpoint this render resumed from or wrote is removed once the render is done.
+    let mut wrote_ckpt = resumed.is_some();
+    if resumed.is_none() && ckpt_path.exists() && !args.quiet {
+        eprintln!(
+            "warning: {} exists (an interrupted render?); this new render will replace it if it \
+             is interrupted; to continue the old one instead, use --resume {}",
+            ckpt_path.display(),
+            ckpt_path.display()
+        );
+    }
+    let (ckpt_cwd, ckpt_args, mut film, mut done) = match resumed {
+        Some(Resumed { path, ckpt }) => {
+            if ckpt.scene_hash != scene_hash {
+                return Err(CliError::input(format!(
+                    "{}: the scene or its options changed since this checkpoint was written \
+                     (scene hash {scene_hash:016x}, checkpoint {:016x}); render it anew",
+                    path.display(),
+                    ckpt.scene_hash
+                )));
+            }
+            let f = &ckpt.film;
+            if f.bounds != bounds
+                || (f.full_width, f.full_height) != (desc.film.xresolution, desc.film.yresolution)
+                || ckpt.done.len() != units.len()
+            {
+                return Err(CliError::input(format!(
+                    "{}: the checkpoint's film or units of work do not match its options",
+                    path.display()
+                )));
+            }
+            (ckpt.cwd, ckpt.args, ckpt.film, ckpt.done)
+        }
+        None => (
+            std::env::current_dir().unwrap_or_default(),
+            checkpoint::render_args(),
+            Film::new(desc.film.xresolution, desc.film.yresolution, bounds),
+            vec![false; units.len()],
+        ),
+    };
 
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0))
@@ -210,50 +354,130 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
 
     let settings = RenderSettings {
         bounds,
-        samples: 0..desc.sampler.spp,
+        samples: plan.samples.clone(),
         spp: desc.sampler.spp,
         seed: desc.sampler.seed,
         sampler: desc.sampler.kind,
         filter: Filter::new(desc.filter),
         integrator: Integrator::from_desc(&desc.integrator),
-        tile_size: 16,
+        tile_size: TILE_SIZE,
         max_component_value: desc.film.max_component_value,
     };
-    let mut film = Film::new(desc.film.xresolution, desc.film.yresolution, bounds);
-    let bar = progress::bar(bounds.area(), args.quiet);
-    let cancel = AtomicBool::new(false);
+    let part_meta = PartMeta {
+        scene_hash,
+        seed: desc.sampler.seed,
+        spp: desc.sampler.spp,
+        samples: plan.samples.clone(),
+        render_bounds,
+        scale: desc.film.scale,
+    };
+    checkpoint::install_handler().map_err(CliError::runtime)?;
+    let remaining: u64 = units
+        .iter()
+        .zip(&done)
+        .filter(|(_, d)| !**d)
+        .map(|(u, _)| u.tile.area() * u.samples.len() as u64)
+        .sum();
+    let bar = progress::bar(remaining, args.quiet);
+    let every = args
+        .checkpoint_every
+        .map(|m| Duration::from_secs_f64(m * 60.0));
     let t1 = Instant::now();
     let live = preview::LiveOutputs::start(
         bounds,
         desc.film.scale,
         args.preview
             .clone()
-            .map(|p| (p, std::time::Duration::from_secs_f64(args.preview_every))),
+            .map(|p| (p, Duration::from_secs_f64(args.preview_every))),
         args.display_server
             .clone()
             .map(|a| (a, output.display().to_string())),
     );
-    let on_tile = |tile: &PixelBounds, sums: &[lancer::film::PixelSum]| {
-        bar.inc(tile.area());
-        live.tile(tile, sums);
+    let on_unit = |unit: &WorkUnit, sums: &[PixelSum]| {
+        bar.inc(unit.tile.area() * unit.samples.len() as u64);
+        live.tile(&unit.tile, sums);
     };
-    let stats = pool.install(|| render_observed(&scene, &settings, &mut film, &on_tile, &cancel));
+    let mut stats = RenderStats::default();
+    loop {
+        let deadline = every.map(|d| Instant::now() + d);
+        let stop = || checkpoint::interrupted() || deadline.is_some_and(|d| Instant::now() >= d);
+        let s = pool.install(|| {
+            render_units(
+                &scene, &settings, &mut film, &units, &mut done, &on_unit, &stop,
+            )
+        });
+        stats.samples += s.samples;
+        stats.rays += s.rays;
+        if done.iter().all(|&d| d) {
+            break;
+        }
+        // Stopped by a signal or the checkpoint timer: save the image so far and the state.
+        bar.suspend(|| -> Result<(), CliError> {
+            if !plan.is_part {
+                write_image(
+                    &output,
+                    bounds.width(),
+                    bounds.height(),
+                    &film.image(desc.film.scale),
+                )
+                .map_err(|e| CliError::runtime(e.to_string()))?;
+            }
+            Checkpoint {
+                cwd: ckpt_cwd.clone(),
+                args: ckpt_args.clone(),
+                scene_hash,
+                done: done.clone(),
+                film: film.clone(),
+            }
+            .write(&ckpt_path)
+            .map_err(|e| CliError::runtime(format!("cannot write the checkpoint: {e}")))
+        })?;
+        wrote_ckpt = true;
+        if checkpoint::interrupted() {
+            bar.finish_and_clear();
+            let finished = done.iter().filter(|&&d| d).count();
+            eprintln!(
+                "interrupted: {} of {} units of work done; {}checkpoint {}; continue with \
+                 `lancer render -o {} --resume {}`",
+                finished,
+                units.len(),
+                if plan.is_part {
+                    String::new()
+                } else {
+                    format!("image so far in {}, ", output.display())
+                },
+                ckpt_path.display(),
+                output.display(),
+                ckpt_path.display()
+            );
+            std::process::exit(130);
+        }
+    }
     bar.finish_and_clear();
     let render_s = t1.elapsed().as_secs_f64();
 
     let t_write = Instant::now();
     let pixels = film.image(desc.film.scale);
-    let written = write_image(&output, bounds.width(), bounds.height(), &pixels)
-        .map_err(|e| CliError::runtime(e.to_string()));
+    let written = if plan.is_part {
+        write_part(&output, &film, &part_meta).map_err(|e| CliError::runtime(e.to_string()))
+    } else {
+        write_image(&output, bounds.width(), bounds.height(), &pixels)
+            .map_err(|e| CliError::runtime(e.to_string()))
+    };
     let write_s = t_write.elapsed().as_secs_f64();
     live.finish(&pixels);
     written?;
+    if wrote_ckpt {
+        let _ = std::fs::remove_file(&ckpt_path);
+    }
     if !args.quiet {
         eprintln!(
-            "{}: {}x{} pixels, {} spp in {:.2} s (+{:.2} s loading): {:.2} M samples/s, {:.2} M rays/s",
+            "{}: {}x{} pixels, samples {}..{} of {} spp in {:.2} s (+{:.2} s loading): {:.2} M samples/s, {:.2} M rays/s",
             output.display(),
             bounds.width(),
             bounds.height(),
+            plan.samples.start,
+            plan.samples.end,
             desc.sampler.spp,
             render_s,
             load_s,

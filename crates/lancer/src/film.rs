@@ -170,6 +170,12 @@ impl Film {
         }
     }
 
+    /// Adds every pixel of `other` that this film also holds (exact integer sums), as
+    /// `merge_tile` does for one tile.
+    pub fn merge_film(&mut self, other: &Film) {
+        self.merge_tile(&other.bounds, &other.pixels);
+    }
+
     /// The image: each pixel's Σ w·L / Σ w times `scale`, row-major over `bounds`.
     pub fn image(&self, scale: f32) -> Vec<Rgb> {
         self.pixels.iter().map(|p| p.value() * scale).collect()

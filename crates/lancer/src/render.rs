@@ -89,6 +89,19 @@ pub fn render_tile(
     settings: &RenderSettings,
     tile: &PixelBounds,
 ) -> (Vec<PixelSum>, u64) {
+    render_tile_samples(scene, settings, tile, settings.samples.clone())
+}
+
+/// Renders sample indices `samples` of every pixel of `tile`, in order. Returns the tile's
+/// sums and the number of rays traced. Each sample depends only on (seed, pixel, index), and
+/// the sums are fixed-point integers, so any partition of the samples into ranges adds up to
+/// the same sums bit for bit.
+pub fn render_tile_samples(
+    scene: &Scene,
+    settings: &RenderSettings,
+    tile: &PixelBounds,
+    samples: std::ops::Range<u32>,
+) -> (Vec<PixelSum>, u64) {
     let rays0 = rays_traced();
     let mut sampler = Sampler::new(settings.sampler, settings.spp, settings.seed);
     let mut sums = vec![PixelSum::default(); tile.area() as usize];
@@ -96,7 +109,7 @@ pub fn render_tile(
     for y in tile.y0..tile.y1 {
         for x in tile.x0..tile.x1 {
             let sum = &mut sums[(y - tile.y0) as usize * w + (x - tile.x0) as usize];
-            for s in settings.samples.clone() {
+            for s in samples.clone() {
                 sampler.start_pixel_sample(x, y, s as u64);
                 let (offset, weight) = settings.filter.sample(sampler.get_pixel_2d());
                 let p_film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
@@ -134,9 +147,9 @@ fn tile_sums(film: &Film, tile: &PixelBounds) -> Vec<PixelSum> {
     out
 }
 
-/// Renders `settings.bounds` into `film` on the current rayon pool. `progress(pixels)` is
-/// called as tiles finish; `cancel` stops the render between tiles (the film then holds the
-/// finished tiles only).
+/// Renders `settings.bounds` into `film` on the current rayon pool, tile by tile with all of
+/// `settings.samples` at once. `progress(pixels)` is called as tiles finish; `cancel` stops the
+/// render between tiles (the film then holds the finished tiles only).
 pub fn render(
     scene: &Scene,
     settings: &RenderSettings,
@@ -144,46 +157,155 @@ pub fn render(
     progress: &(dyn Fn(u64) + Sync),
     cancel: &AtomicBool,
 ) -> RenderStats {
-    render_observed(
+    let bounds = settings.bounds.intersect(&film.bounds);
+    let units = work_units(
+        &bounds,
+        settings.tile_size,
+        settings.samples.clone(),
+        u32::MAX,
+    );
+    let mut done = vec![false; units.len()];
+    render_units(
         scene,
         settings,
         film,
-        &|tile, _| progress(tile.area()),
-        cancel,
+        &units,
+        &mut done,
+        &|unit, _| progress(unit.tile.area()),
+        &|| cancel.load(Ordering::Relaxed),
     )
 }
 
-/// Called as each tile finishes, with the tile and the film's sums over it after the tile was
-/// added (row-major over the tile), for live previews. Calls come from the worker threads.
-pub type TileHook<'a> = &'a (dyn Fn(&PixelBounds, &[PixelSum]) + Sync);
+/// Called as each unit of work finishes, with the unit and the film's sums over its tile after
+/// the unit was added (row-major over the tile), for progress and live previews. Calls come
+/// from the worker threads.
+pub type UnitHook<'a> = &'a (dyn Fn(&WorkUnit, &[PixelSum]) + Sync);
 
-/// [`render`], with `on_tile` called for every finished tile instead of a pixel count.
-pub fn render_observed(
+/// A piece of work: one tile over one range of sample indices. A render is a list of units;
+/// since their sums are added in integer arithmetic, the film does not depend on the order in
+/// which units finish, nor on how they are spread over threads, processes or interruptions.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct WorkUnit {
+    /// The pixels.
+    pub tile: PixelBounds,
+    /// The sample indices `[start, end)` taken in each pixel.
+    pub samples: std::ops::Range<u32>,
+}
+
+/// The units of a render of `bounds` × `samples`: tiles of `tile_size` pixels, sample ranges
+/// of at most `pass` samples, pass-major (every tile gets its first pass before any tile gets
+/// its second), so an interrupted render holds an evenly converged image.
+pub fn work_units(
+    bounds: &PixelBounds,
+    tile_size: u32,
+    samples: std::ops::Range<u32>,
+    pass: u32,
+) -> Vec<WorkUnit> {
+    let tiles = tiles(bounds, tile_size);
+    let pass = pass.max(1);
+    let mut out = Vec::new();
+    let mut s = samples.start;
+    while s < samples.end {
+        let e = s.saturating_add(pass).min(samples.end);
+        out.extend(tiles.iter().map(|t| WorkUnit {
+            tile: *t,
+            samples: s..e,
+        }));
+        s = e;
+    }
+    out
+}
+
+/// Renders the units of `units` not yet marked in `done` into `film`, marking each one as
+/// its sums are added (under the same lock, so `film` and `done` always agree). Units run in
+/// parallel within a pass (a run of units with the same sample range), passes one after the
+/// other. `stop()` is asked before each unit starts: once it says yes, no new unit starts and
+/// the call returns when the units in flight have been added (the result's `cancelled` is
+/// then true). `on_unit` is called with each finished unit and the film's sums over its tile.
+pub fn render_units(
     scene: &Scene,
     settings: &RenderSettings,
     film: &mut Film,
-    on_tile: TileHook<'_>,
-    cancel: &AtomicBool,
+    units: &[WorkUnit],
+    done: &mut [bool],
+    on_unit: UnitHook<'_>,
+    stop: &(dyn Fn() -> bool + Sync),
 ) -> RenderStats {
-    let tiles = tiles(&settings.bounds.intersect(&film.bounds), settings.tile_size);
-    let film = Mutex::new(film);
+    let state = Mutex::new((film, done));
     let totals = Mutex::new(RenderStats::default());
-    tiles.par_iter().for_each(|tile| {
-        if cancel.load(Ordering::Relaxed) {
-            totals.lock().unwrap().cancelled = true;
-            return;
+    let mut start = 0;
+    while start < units.len() {
+        let range = &units[start].samples;
+        let len = units[start..]
+            .iter()
+            .take_while(|u| u.samples == *range)
+            .count();
+        let pass = start..start + len;
+        start += len;
+        pass.into_par_iter().for_each(|i| {
+            if state.lock().unwrap().1[i] {
+                return;
+            }
+            if stop() {
+                totals.lock().unwrap().cancelled = true;
+                return;
+            }
+            let u = &units[i];
+            let (sums, rays) = render_tile_samples(scene, settings, &u.tile, u.samples.clone());
+            let merged = {
+                let mut st = state.lock().unwrap();
+                st.0.merge_tile(&u.tile, &sums);
+                st.1[i] = true;
+                tile_sums(st.0, &u.tile)
+            };
+            let n = u.tile.area() * u.samples.len() as u64;
+            let mut t = totals.lock().unwrap();
+            t.rays += rays;
+            t.samples += n;
+            drop(t);
+            on_unit(u, &merged);
+        });
+        if totals.lock().unwrap().cancelled {
+            break;
         }
-        let (sums, rays) = render_tile(scene, settings, tile);
-        let merged = {
-            let mut f = film.lock().unwrap();
-            f.merge_tile(tile, &sums);
-            tile_sums(&f, tile)
-        };
-        let mut t = totals.lock().unwrap();
-        t.rays += rays;
-        t.samples += tile.area() * settings.samples.len() as u64;
-        drop(t);
-        on_tile(tile, &merged);
-    });
+    }
     totals.into_inner().unwrap()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn work_units_cover_every_pixel_sample_once_pass_by_pass() {
+        let b = PixelBounds {
+            x0: 3,
+            x1: 40,
+            y0: 1,
+            y1: 20,
+        };
+        let units = work_units(&b, 16, 5..42, 16);
+        // Passes 5..21, 21..37, 37..42 over 3 × 2 tiles.
+        assert_eq!(units.len(), 3 * 6);
+        let mut count = vec![0u32; b.area() as usize * 42];
+        let mut last_start = 0;
+        for u in &units {
+            assert!(u.samples.start >= last_start, "not pass-major");
+            last_start = u.samples.start;
+            assert!(u.samples.len() <= 16 && !u.samples.is_empty());
+            assert_eq!(u.tile.intersect(&b), u.tile);
+            for y in u.tile.y0..u.tile.y1 {
+                for x in u.tile.x0..u.tile.x1 {
+                    let p = ((y - b.y0) * b.width() as i32 + (x - b.x0)) as usize;
+                    for s in u.samples.clone() {
+                        count[p * 42 + s as usize] += 1;
+                    }
+                }
+            }
+        }
+        for (i, c) in count.iter().enumerate() {
+            let expected = u32::from((5..42).contains(&(i % 42)));
+            assert_eq!(*c, expected, "pixel {} sample {}", i / 42, i % 42);
+        }
+    }
 }

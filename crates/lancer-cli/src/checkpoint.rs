@@ -1,0 +1,274 @@
+//! Checkpoints: a render's film accumulators and finished units of work, with the options
+//! that started it, so that `lancer render --resume FILE` can finish it exactly; and the
+//! signal handling that writes one on SIGINT/SIGTERM.
+//!
+//! The file is a short text header, `key=value` lines, then the binary data:
+//!
+//! ```text
+//! lancer-checkpoint 1
+//! cwd=/folder/the/render/started/in
+//! arg=<each argument given after `lancer render`, one per line>
+//! hash=<scene hash, 16 hex digits>
+//! film=x0,x1,y0,y1,width,height
+//! units=<count>
+//! end
+//! <count bytes: 1 when that unit of work is done, else 0>
+//! <per pixel, row-major: Σw·R, Σw·G, Σw·B, Σw as i64, samples as u32, little-endian>
+//! ```
+
+use lancer::film::{Film, PixelBounds, PixelSum};
+use std::ffi::OsString;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+
+const MAGIC: &str = "lancer-checkpoint 1";
+
+/// A render's saved state.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Checkpoint {
+    /// Folder the render was started in (relative paths in `args` are relative to it).
+    pub cwd: PathBuf,
+    /// The arguments given after `lancer render`.
+    pub args: Vec<String>,
+    /// The scene hash ([`crate::split::scene_hash`]).
+    pub scene_hash: u64,
+    /// Which units of work are done, in the order of `lancer::render::work_units`.
+    pub done: Vec<bool>,
+    /// The film so far.
+    pub film: Film,
+}
+
+/// Why a checkpoint could not be read or written.
+#[derive(Debug, thiserror::Error)]
+pub enum CheckpointError {
+    /// The file system refused.
+    #[error("{path}: {source}")]
+    Io {
+        /// The path.
+        path: PathBuf,
+        /// The error.
+        source: std::io::Error,
+    },
+    /// The file is not a checkpoint, or is damaged.
+    #[error("{path}: {message}")]
+    Format {
+        /// The path.
+        path: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+/// Bytes of one pixel's sums in the file.
+const PIXEL_BYTES: usize = 4 * 8 + 4;
+
+impl Checkpoint {
+    /// Encodes the checkpoint (see the module documentation for the layout).
+    pub fn encode(&self) -> Vec<u8> {
+        let b = &self.film.bounds;
+        let mut head = format!("{MAGIC}\ncwd={}\n", self.cwd.display());
+        for a in &self.args {
+            // A newline inside an argument would break the line structure; arguments with
+            // one cannot name a scene or an option of ours anyway.
+            head.push_str(&format!("arg={}\n", a.replace('\n', " ")));
+        }
+        head.push_str(&format!(
+            "hash={:016x}\nfilm={},{},{},{},{},{}\nunits={}\nend\n",
+            self.scene_hash,
+            b.x0,
+            b.x1,
+            b.y0,
+            b.y1,
+            self.film.full_width,
+            self.film.full_height,
+            self.done.len()
+        ));
+        let mut out = head.into_bytes();
+        out.extend(self.done.iter().map(|&d| d as u8));
+        out.reserve(self.film.pixels.len() * PIXEL_BYTES);
+        for p in &self.film.pixels {
+            for v in [p.rgb[0], p.rgb[1], p.rgb[2], p.weight] {
+                out.extend_from_slice(&v.to_le_bytes());
+            }
+            out.extend_from_slice(&p.samples.to_le_bytes());
+        }
+        out
+    }
+
+    /// Writes the checkpoint atomically (temporary file, then rename).
+    pub fn write(&self, path: &Path) -> Result<(), CheckpointError> {
+        lancer::image_io::write_atomic(path, &self.encode()).map_err(|source| CheckpointError::Io {
+            path: path.to_path_buf(),
+            source,
+        })
+    }
+
+    /// Reads a checkpoint, checking its structure; errors name the file (and the header line).
+    pub fn read(path: &Path) -> Result<Checkpoint, CheckpointError> {
+        let bytes = std::fs::read(path).map_err(|source| CheckpointError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::decode(&bytes).map_err(|message| CheckpointError::Format {
+            path: path.to_path_buf(),
+            message,
+        })
+    }
+
+    /// Decodes the bytes of a checkpoint file.
+    pub fn decode(bytes: &[u8]) -> Result<Checkpoint, String> {
+        if !bytes.starts_with(format!("{MAGIC}\n").as_bytes()) {
+            return Err(format!("not a lancer checkpoint (no '{MAGIC}' first line)"));
+        }
+        let mut pos = 0;
+        let mut lines = Vec::new();
+        loop {
+            let Some(nl) = bytes[pos..].iter().position(|&b| b == b'\n') else {
+                return Err("truncated header (no 'end' line)".into());
+            };
+            let line = std::str::from_utf8(&bytes[pos..pos + nl])
+                .map_err(|_| format!("line {}: not text", lines.len() + 1))?;
+            pos += nl + 1;
+            if line == "end" {
+                break;
+            }
+            lines.push(line.to_string());
+        }
+        let (mut cwd, mut args, mut hash, mut film, mut units) = (None, vec![], None, None, None);
+        for (n, line) in lines.iter().enumerate().skip(1) {
+            let bad = |what: &str| format!("line {}: bad {what} '{line}'", n + 1);
+            let (k, v) = line.split_once('=').ok_or_else(|| bad("line"))?;
+            match k {
+                "cwd" => cwd = Some(PathBuf::from(v)),
+                "arg" => args.push(v.to_string()),
+                "hash" => hash = Some(u64::from_str_radix(v, 16).map_err(|_| bad("hash"))?),
+                "units" => units = Some(v.parse::<usize>().map_err(|_| bad("unit count"))?),
+                "film" => {
+                    let f: Vec<i64> = v
+                        .split(',')
+                        .map(|x| x.parse())
+                        .collect::<Result<_, _>>()
+                        .map_err(|_| bad("film"))?;
+                    match f[..] {
+                        [x0, x1, y0, y1, w, h]
+                            if x0 <= x1
+                                && y0 <= y1
+                                && (1..=1 << 20).contains(&w)
+                                && (1..=1 << 20).contains(&h)
+                                && x0 >= 0
+                                && y0 >= 0
+                                && x1 <= w
+                                && y1 <= h =>
+                        {
+                            let b = PixelBounds {
+                                x0: x0 as i32,
+                                x1: x1 as i32,
+                                y0: y0 as i32,
+                                y1: y1 as i32,
+                            };
+                            film = Some((b, w as u32, h as u32));
+                        }
+                        _ => return Err(bad("film")),
+                    }
+                }
+                _ => return Err(format!("line {}: unknown key '{k}'", n + 1)),
+            }
+        }
+        let missing = |k: &str| format!("the header has no '{k}=' line");
+        let (bounds, w, h) = film.ok_or_else(|| missing("film"))?;
+        let units = units.ok_or_else(|| missing("units"))?;
+        let npix = bounds.area() as usize;
+        let expected = units.saturating_add(npix.saturating_mul(PIXEL_BYTES));
+        if bytes.len() - pos != expected {
+            return Err(format!(
+                "{} bytes of data where {units} units and {npix} pixels need {expected}: \
+                 the file is truncated or damaged",
+                bytes.len() - pos
+            ));
+        }
+        let done = bytes[pos..pos + units].iter().map(|&b| b != 0).collect();
+        pos += units;
+        let mut film = Film::new(w, h, bounds);
+        let i64_at = |p: usize| i64::from_le_bytes(bytes[p..p + 8].try_into().unwrap());
+        for px in film.pixels.iter_mut() {
+            *px = PixelSum {
+                rgb: [i64_at(pos), i64_at(pos + 8), i64_at(pos + 16)],
+                weight: i64_at(pos + 24),
+                samples: u32::from_le_bytes(bytes[pos + 32..pos + 36].try_into().unwrap()),
+            };
+            pos += PIXEL_BYTES;
+        }
+        Ok(Checkpoint {
+            cwd: cwd.ok_or_else(|| missing("cwd"))?,
+            args,
+            scene_hash: hash.ok_or_else(|| missing("hash"))?,
+            done,
+            film,
+        })
+    }
+}
+
+/// The arguments given after `lancer render` in this process (for a new checkpoint).
+pub fn render_args() -> Vec<String> {
+    std::env::args_os()
+        .skip(2)
+        .map(|a: OsString| a.to_string_lossy().into_owned())
+        .collect()
+}
+
+/// Set by the first SIGINT/SIGTERM.
+static INTERRUPTED: AtomicBool = AtomicBool::new(false);
+
+/// True once SIGINT or SIGTERM has arrived.
+pub fn interrupted() -> bool {
+    INTERRUPTED.load(Ordering::SeqCst)
+}
+
+/// Installs the SIGINT/SIGTERM handler: the first signal asks the render to stop handing out
+/// work (it then writes its image and checkpoint and exits with status 130); a second one
+/// exits at once with status 130 (files are only ever replaced by rename, so none is left
+/// half written).
+pub fn install_handler() -> Result<(), String> {
+    ctrlc::set_handler(|| {
+        if INTERRUPTED.swap(true, Ordering::SeqCst) {
+            eprintln!("\ninterrupted again: exiting without a checkpoint");
+            std::process::exit(130);
+        }
+        eprintln!("\ninterrupted: finishing the tiles in flight, then writing a checkpoint");
+    })
+    .map_err(|e| format!("cannot install the interrupt handler: {e}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn checkpoints_round_trip_and_damage_is_caught() {
+        let b = PixelBounds {
+            x0: 1,
+            x1: 4,
+            y0: 0,
+            y1: 2,
+        };
+        let mut film = Film::new(5, 3, b);
+        for (i, p) in film.pixels.iter_mut().enumerate() {
+            p.rgb = [i as i64 * -77, 1 << 50, 3];
+            p.weight = i as i64 + 9;
+            p.samples = i as u32;
+        }
+        let c = Checkpoint {
+            cwd: PathBuf::from("/some/where"),
+            args: vec!["scene.pbrt".into(), "--spp".into(), "16".into()],
+            scene_hash: 0x0123_4567_89ab_cdef,
+            done: vec![true, false, true, true],
+            film,
+        };
+        let bytes = c.encode();
+        assert_eq!(Checkpoint::decode(&bytes).unwrap(), c);
+        let e = Checkpoint::decode(&bytes[..bytes.len() - 1]).unwrap_err();
+        assert!(e.contains("truncated"), "{e}");
+        let e = Checkpoint::decode(b"\x76\x2f\x31\x01 an EXR").unwrap_err();
+        assert!(e.contains("not a lancer checkpoint"), "{e}");
+    }
+}

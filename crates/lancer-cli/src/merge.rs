@@ -1,0 +1,132 @@
+//! `lancer merge PARTS... -o OUT`: adds up the parts of a split render and writes the image,
+//! bit for bit the one a single process would have written.
+
+use crate::cli_error::CliError;
+use crate::render::check_output;
+use clap::Args;
+use lancer::film::{Film, PixelBounds};
+use lancer::image_io::{PartMeta, read_part, write_image};
+use std::path::PathBuf;
+
+/// Options of `lancer merge`.
+#[derive(Args, Debug)]
+pub struct MergeArgs {
+    /// Part files written by `lancer render --split i/N` (or `--samples a..b`).
+    #[arg(required = true)]
+    pub parts: Vec<PathBuf>,
+    /// The image to write (.png or .exr).
+    #[arg(short, long)]
+    pub output: PathBuf,
+}
+
+fn show(b: &PixelBounds) -> String {
+    format!("pixels x {}..{}, y {}..{}", b.x0, b.x1, b.y0, b.y1)
+}
+
+/// Checks that `parts` make up exactly one render: the same scene, seed, samples per pixel,
+/// resolution, crop and scale; each part inside the render; no two overlapping (as boxes of
+/// pixels × sample indices); together covering every pixel with every sample (their volumes
+/// add up to the render's, `Σ area·samples = area(render)·spp`, which with no overlap means no
+/// hole). The message names the part at fault and what differs.
+pub fn check_parts(parts: &[(PathBuf, Film, PartMeta)]) -> Result<(), String> {
+    let (p0, f0, m0) = &parts[0];
+    let p0 = p0.display();
+    for (p, f, m) in &parts[1..] {
+        let p = p.display();
+        let differs =
+            |what: &str, a: String, b: String| Err(format!("{p} has {what} {a} but {p0} has {b}"));
+        if m.seed != m0.seed {
+            return differs("seed", m.seed.to_string(), m0.seed.to_string());
+        }
+        if m.spp != m0.spp {
+            return differs("spp", m.spp.to_string(), m0.spp.to_string());
+        }
+        if (f.full_width, f.full_height) != (f0.full_width, f0.full_height) {
+            return differs(
+                "resolution",
+                format!("{}x{}", f.full_width, f.full_height),
+                format!("{}x{}", f0.full_width, f0.full_height),
+            );
+        }
+        if m.render_bounds != m0.render_bounds {
+            return differs(
+                "crop window",
+                show(&m.render_bounds),
+                show(&m0.render_bounds),
+            );
+        }
+        if m.scale.to_bits() != m0.scale.to_bits() {
+            return differs("film scale", m.scale.to_string(), m0.scale.to_string());
+        }
+        // Last: the specific differences above say more than a hash.
+        if m.scene_hash != m0.scene_hash {
+            return Err(format!(
+                "{p} is a part of another scene (or of the same one with other options) than {p0}: \
+                 scene hash {:016x} vs {:016x}",
+                m.scene_hash, m0.scene_hash
+            ));
+        }
+    }
+    let rb = m0.render_bounds;
+    for (p, f, m) in parts {
+        if f.bounds.intersect(&rb) != f.bounds || m.samples.end > m.spp {
+            return Err(format!(
+                "{} holds {} samples {}..{}, outside the render's {} samples 0..{}",
+                p.display(),
+                show(&f.bounds),
+                m.samples.start,
+                m.samples.end,
+                show(&rb),
+                m.spp
+            ));
+        }
+    }
+    for (i, (pa, fa, ma)) in parts.iter().enumerate() {
+        for (pb, fb, mb) in &parts[i + 1..] {
+            let pixels = fa.bounds.intersect(&fb.bounds);
+            let s0 = ma.samples.start.max(mb.samples.start);
+            let s1 = ma.samples.end.min(mb.samples.end);
+            if !pixels.is_empty() && s0 < s1 {
+                return Err(format!(
+                    "{} and {} overlap: both hold {} samples {s0}..{s1}",
+                    pa.display(),
+                    pb.display(),
+                    show(&pixels)
+                ));
+            }
+        }
+    }
+    let covered: u64 = parts
+        .iter()
+        .map(|(_, f, m)| f.bounds.area() * m.samples.len() as u64)
+        .sum();
+    let total = rb.area() * m0.spp as u64;
+    if covered != total {
+        return Err(format!(
+            "the parts leave holes: they hold {covered} pixel samples of the render's {total} \
+             ({} at {} spp); a part is missing",
+            show(&rb),
+            m0.spp
+        ));
+    }
+    Ok(())
+}
+
+/// Runs `lancer merge`: reads and checks every part before writing anything.
+pub fn run(args: MergeArgs) -> Result<(), CliError> {
+    check_output(&args.output)?;
+    let mut parts = Vec::new();
+    for p in &args.parts {
+        let (film, meta) = read_part(p).map_err(|e| CliError::input(e.to_string()))?;
+        parts.push((p.clone(), film, meta));
+    }
+    check_parts(&parts).map_err(|e| CliError::input(format!("cannot merge: {e}")))?;
+    let (_, f0, m0) = &parts[0];
+    let mut film = Film::new(f0.full_width, f0.full_height, m0.render_bounds);
+    for (_, f, _) in &parts {
+        film.merge_film(f);
+    }
+    let b = film.bounds;
+    write_image(&args.output, b.width(), b.height(), &film.image(m0.scale))
+        .map_err(|e| CliError::runtime(e.to_string()))
+}

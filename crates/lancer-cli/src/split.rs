@@ -1,0 +1,277 @@
+//! Splitting a render: `--crop`, `--samples a..b`, `--split i/N --split-by tiles|samples`, and
+//! the scene hash that tells whether parts belong to the same render.
+
+use crate::cli_error::CliError;
+use lancer::SceneDesc;
+use lancer::film::PixelBounds;
+use std::ops::Range;
+
+/// Tile edge in pixels of every render (tile splits are bands of whole tiles).
+pub const TILE_SIZE: u32 = 16;
+
+/// Largest sample range of one unit of work: an interrupt waits for at most one unit per
+/// thread, and resumes from the last finished units.
+pub const SAMPLES_PER_PASS: u32 = 16;
+
+/// How `--split` divides the render.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum SplitBy {
+    /// Bands of whole tile rows of the image, every sample of their pixels.
+    #[default]
+    Tiles,
+    /// Ranges of sample indices, every pixel.
+    Samples,
+}
+
+/// Part `index` of `count` (0-based), from `--split i/N`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Split {
+    /// Which part, `0 ≤ index < count`.
+    pub index: u32,
+    /// How many parts.
+    pub count: u32,
+}
+
+/// Parses `i/N`, `0 ≤ i < N`.
+pub fn parse_split(s: &str) -> Result<Split, String> {
+    let (i, n) = s
+        .split_once('/')
+        .ok_or_else(|| format!("'{s}' is not i/N (a part index, 0-based, and a count)"))?;
+    let index: u32 = i
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{i}' is not a part index"))?;
+    let count: u32 = n
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{n}' is not a part count"))?;
+    if count == 0 || index >= count {
+        return Err(format!(
+            "part {index} of {count} does not exist (0 ≤ i < N)"
+        ));
+    }
+    Ok(Split { index, count })
+}
+
+/// Parses `x0,x1,y0,y1`, fractions of the image with `0 ≤ x0 < x1 ≤ 1`, `0 ≤ y0 < y1 ≤ 1`.
+pub fn parse_crop(s: &str) -> Result<[f32; 4], String> {
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f32>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("'{s}' is not four numbers x0,x1,y0,y1"))?;
+    match v[..] {
+        [x0, x1, y0, y1]
+            if (0.0..=1.0).contains(&x0)
+                && (0.0..=1.0).contains(&x1)
+                && (0.0..=1.0).contains(&y0)
+                && (0.0..=1.0).contains(&y1)
+                && x0 < x1
+                && y0 < y1 =>
+        {
+            Ok([x0, x1, y0, y1])
+        }
+        [_, _, _, _] => Err(format!(
+            "'{s}': a crop window needs 0 ≤ x0 < x1 ≤ 1 and 0 ≤ y0 < y1 ≤ 1"
+        )),
+        _ => Err(format!("'{s}' is not four numbers x0,x1,y0,y1")),
+    }
+}
+
+/// Parses a sample index range `a..b` (`a < b`).
+pub fn parse_samples(s: &str) -> Result<Range<u32>, String> {
+    let (a, b) = s
+        .split_once("..")
+        .ok_or_else(|| format!("'{s}' is not a range a..b"))?;
+    let a: u32 = a
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{a}' is not a sample index"))?;
+    let b: u32 = b
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{b}' is not a sample index"))?;
+    if a >= b {
+        return Err(format!("the sample range {a}..{b} is empty"));
+    }
+    Ok(a..b)
+}
+
+/// FNV-1a (64 bits) over text: `h ← (h ⊕ byte) · 1099511628211`, from `h = 14695981039346656037`.
+struct Fnv1a(u64);
+
+impl std::fmt::Write for Fnv1a {
+    fn write_str(&mut self, s: &str) -> std::fmt::Result {
+        for b in s.bytes() {
+            self.0 = (self.0 ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3);
+        }
+        Ok(())
+    }
+}
+
+/// The scene hash: FNV-1a of the scene description as parsed, with the command line's
+/// overrides applied, but without what does not change a pixel's value (the output file name)
+/// or what a part records on its own (which pixels it holds: crop window, pixel bounds).
+/// The description's debug form is hashed as it is printed: every number at full precision,
+/// meshes and textures included; the path the scene was read from is not in it.
+pub fn scene_hash(desc: &SceneDesc) -> u64 {
+    use std::fmt::Write;
+    let mut d = desc.clone();
+    d.film.filename = None;
+    d.film.crop_window = [0.0, 1.0, 0.0, 1.0];
+    d.film.pixel_bounds = None;
+    let mut h = Fnv1a(0xcbf2_9ce4_8422_2325);
+    let _ = write!(h, "{d:?}");
+    h.0
+}
+
+/// What one process renders.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Plan {
+    /// The pixels of the whole render (the crop window).
+    pub render_bounds: PixelBounds,
+    /// The pixels this process renders.
+    pub bounds: PixelBounds,
+    /// The sample indices this process takes in each of them.
+    pub samples: Range<u32>,
+    /// True when the result is a part to merge (with `--split` or `--samples`), not an image.
+    pub is_part: bool,
+}
+
+/// Works out which pixels and samples to render: `render_bounds` × `0..spp`, narrowed by
+/// `--samples` and then by `--split`. Tile parts are bands of whole tile rows: part i of N
+/// gets rows `⌊R·i/N⌋ .. ⌊R·(i+1)/N⌋` of the `R` tile rows; sample parts get indices
+/// `a + ⌊n·i/N⌋ .. a + ⌊n·(i+1)/N⌋` of the `n` samples of `a..b`.
+pub fn plan(
+    render_bounds: PixelBounds,
+    spp: u32,
+    samples: Option<Range<u32>>,
+    split: Option<(Split, SplitBy)>,
+) -> Result<Plan, CliError> {
+    let base = samples.clone().unwrap_or(0..spp);
+    if base.end > spp {
+        return Err(CliError::input(format!(
+            "--samples {}..{} goes past the {spp} samples per pixel",
+            base.start, base.end
+        )));
+    }
+    let mut p = Plan {
+        render_bounds,
+        bounds: render_bounds,
+        samples: base.clone(),
+        is_part: samples.is_some() || split.is_some(),
+    };
+    let Some((s, by)) = split else {
+        return Ok(p);
+    };
+    let (i, n) = (s.index as u64, s.count as u64);
+    match by {
+        SplitBy::Tiles => {
+            let rows = render_bounds.height().div_ceil(TILE_SIZE) as u64;
+            let (r0, r1) = (rows * i / n, rows * (i + 1) / n);
+            if r0 == r1 {
+                return Err(CliError::input(format!(
+                    "--split {}/{}: the image has only {rows} rows of {TILE_SIZE}-pixel tiles, \
+                     too few for {n} parts",
+                    s.index, s.count
+                )));
+            }
+            let t = TILE_SIZE as i32;
+            p.bounds.y0 = render_bounds.y0 + r0 as i32 * t;
+            p.bounds.y1 = (render_bounds.y0 + r1 as i32 * t).min(render_bounds.y1);
+        }
+        SplitBy::Samples => {
+            let len = base.len() as u64;
+            let (a, b) = (len * i / n, len * (i + 1) / n);
+            if a == b {
+                return Err(CliError::input(format!(
+                    "--split {}/{}: {len} samples per pixel are too few for {n} sample parts",
+                    s.index, s.count
+                )));
+            }
+            p.samples = base.start + a as u32..base.start + b as u32;
+        }
+    }
+    Ok(p)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const B: PixelBounds = PixelBounds {
+        x0: 0,
+        x1: 50,
+        y0: 3,
+        y1: 70,
+    };
+
+    #[test]
+    fn options_parse_and_nonsense_is_refused() {
+        assert_eq!(parse_split("2/4"), Ok(Split { index: 2, count: 4 }));
+        assert!(parse_split("4/4").is_err());
+        assert!(parse_split("1/0").is_err());
+        assert!(parse_split("x").is_err());
+        assert_eq!(parse_samples("3..17"), Ok(3..17));
+        assert!(parse_samples("5..5").is_err());
+        assert_eq!(parse_crop("0,0.5,0.25,1"), Ok([0.0, 0.5, 0.25, 1.0]));
+        assert!(parse_crop("0.5,0.2,0,1").is_err());
+        assert!(parse_crop("0,1,0").is_err());
+    }
+
+    #[test]
+    fn tile_splits_are_bands_that_cover_the_image_once() {
+        // 67 rows: 5 tile rows (the last one partial).
+        let mut next = B.y0;
+        for i in 0..3 {
+            let p = plan(
+                B,
+                8,
+                None,
+                Some((Split { index: i, count: 3 }, SplitBy::Tiles)),
+            )
+            .unwrap();
+            assert!(p.is_part);
+            assert_eq!(p.samples, 0..8);
+            assert_eq!((p.bounds.x0, p.bounds.x1), (0, 50));
+            assert_eq!(p.bounds.y0, next);
+            assert_eq!((p.bounds.y0 - B.y0) % TILE_SIZE as i32, 0);
+            next = p.bounds.y1;
+        }
+        assert_eq!(next, B.y1);
+        let s = Split { index: 0, count: 6 };
+        assert!(plan(B, 8, None, Some((s, SplitBy::Tiles))).is_err());
+    }
+
+    #[test]
+    fn sample_splits_partition_the_range() {
+        let mut next = 4;
+        for i in 0..3 {
+            let s = Split { index: i, count: 3 };
+            let p = plan(B, 16, Some(4..14), Some((s, SplitBy::Samples))).unwrap();
+            assert_eq!(p.bounds, B);
+            assert_eq!(p.samples.start, next);
+            assert!(p.samples.len() == 3 || p.samples.len() == 4);
+            next = p.samples.end;
+        }
+        assert_eq!(next, 14);
+        assert!(plan(B, 8, Some(4..9), None).is_err());
+        let whole = plan(B, 8, None, None).unwrap();
+        assert!(!whole.is_part);
+        assert_eq!(whole.samples, 0..8);
+    }
+
+    #[test]
+    fn the_hash_sees_pixels_not_names() {
+        let a = SceneDesc::default();
+        let mut b = a.clone();
+        b.film.filename = Some("elsewhere.exr".into());
+        b.film.crop_window = [0.0, 0.5, 0.0, 1.0];
+        assert_eq!(scene_hash(&a), scene_hash(&b));
+        b.sampler.seed += 1;
+        assert_ne!(scene_hash(&a), scene_hash(&b));
+        let mut c = a.clone();
+        c.film.scale = 2.0;
+        assert_ne!(scene_hash(&a), scene_hash(&c));
+    }
+}
