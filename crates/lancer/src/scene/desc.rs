@@ -313,6 +313,10 @@ pub enum Geometry {
     },
     /// A triangle mesh (`trianglemesh`, `plymesh`, `objmesh`, glTF, …).
     TriangleMesh(Arc<TriangleMesh>),
+    /// pbrt's `curve`: a spline with a width, split into pieces when the scene is built.
+    Curve(Arc<crate::shape::CurveDesc>),
+    /// pbrt's `bilinearmesh`: bilinear patches, four vertex indices each.
+    BilinearMesh(Arc<crate::shape::BilinearMesh>),
 }
 
 /// A diffuse area light attached to a shape.

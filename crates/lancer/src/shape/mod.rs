@@ -6,8 +6,10 @@
 //! possible; [`Shape::interaction`] then computes the full [`SurfaceInteraction`] (point, error
 //! bounds, normals, (u, v), derivatives) once, for the closest hit only.
 
+mod bilinear;
 mod cone;
 mod cuboid;
+mod curve;
 mod cylinder;
 mod disk;
 mod hyperboloid;
@@ -18,8 +20,10 @@ mod sample;
 mod sphere;
 mod triangle;
 
+pub use bilinear::{BilinearMesh, BilinearPatch, bilinear_point, intersect_bilinear};
 pub use cone::Cone;
 pub use cuboid::Cuboid;
+pub use curve::{Curve, CurveBasis, CurveCommon, CurveDesc, CurveType, bezier_eval, bezier_piece};
 pub use cylinder::Cylinder;
 pub use disk::Disk;
 pub use hyperboloid::Hyperboloid;
@@ -232,6 +236,10 @@ pub enum Shape {
     Plane(Box<Plane>),
     /// One triangle of a mesh.
     Triangle(Triangle),
+    /// A piece of a curve (pbrt's `curve`).
+    Curve(Curve),
+    /// One patch of a bilinear mesh (pbrt's `bilinearmesh`).
+    Bilinear(Box<BilinearPatch>),
 }
 
 impl Shape {
@@ -249,6 +257,8 @@ impl Shape {
                 Bounds3::new(Vec3::splat(f32::NEG_INFINITY), Vec3::splat(f32::INFINITY))
             }
             Shape::Triangle(t) => t.bounds(),
+            Shape::Curve(c) => c.bounds(),
+            Shape::Bilinear(b) => b.bounds(),
         }
     }
 
@@ -278,6 +288,8 @@ impl Shape {
             Shape::Hyperboloid(s) => s.intersect(ray),
             Shape::Box(s) => s.intersect(ray),
             Shape::Plane(s) => s.intersect(ray),
+            Shape::Curve(c) => c.intersect(ray),
+            Shape::Bilinear(b) => b.intersect(ray),
         }
     }
 
@@ -298,6 +310,8 @@ impl Shape {
             Shape::Box(s) => s.interaction(ray, hit),
             Shape::Plane(s) => s.interaction(ray, hit),
             Shape::Triangle(t) => t.interaction(ray, hit, &meshes[t.mesh as usize]),
+            Shape::Curve(c) => c.interaction(ray, hit),
+            Shape::Bilinear(b) => b.interaction(ray, hit),
         }
     }
 }
