@@ -322,19 +322,29 @@ impl BilinearPatch {
     /// with J = |∂p/∂u × ∂p/∂v|, so (u, v) is drawn uniformly and kept with probability
     /// J(u, v)/J_max (rejection sampling; J_max is a corner's J, J being convex): the kept
     /// (u, v) has density J/A, i.e. uniform by area. The first candidate is `u` itself;
-    /// later candidates and the acceptance draws come from a hash of `u`. Planar
-    /// parallelograms (J constant) accept at once.
+    /// later candidates and the acceptance draws come from a hash of `u`. Parallelograms
+    /// (J constant) accept at once.
     pub fn sample_uv(&self, u: Vec2) -> (Vec3, Vec2) {
-        let corners = [
-            jacobian(&self.p, 0.0, 0.0),
-            jacobian(&self.p, 1.0, 0.0),
-            jacobian(&self.p, 0.0, 1.0),
-            jacobian(&self.p, 1.0, 1.0),
-        ];
-        let j_max = corners.iter().copied().fold(0.0f32, f32::max);
-        let j_min = corners.iter().copied().fold(f32::INFINITY, f32::min);
+        // N(u, v) = ∂p/∂u × ∂p/∂v = N₀₀ + u·(N₁₀ − N₀₀) + v·(N₀₁ − N₀₀) (linear); J = |N| is
+        // convex, so J_max is a corner's. J is constant only when N is (a parallelogram).
+        let cross = |u: f32, v: f32| {
+            let (du, dv) = partials(&self.p, u, v);
+            du.cross(dv)
+        };
+        let (n00, n10, n01, n11) = (
+            cross(0.0, 0.0),
+            cross(1.0, 0.0),
+            cross(0.0, 1.0),
+            cross(1.0, 1.0),
+        );
+        let j_max = n00
+            .length()
+            .max(n10.length())
+            .max(n01.length())
+            .max(n11.length());
+        let constant = (n10 - n00).length() + (n01 - n00).length() <= 1e-6 * j_max;
         let mut cand = u;
-        if j_max > 0.0 && j_min < j_max * (1.0 - 1e-6) {
+        if j_max > 0.0 && !constant {
             let seed = ((u.x.to_bits() as u64) << 32) | u.y.to_bits() as u64;
             for k in 0..256u64 {
                 let r = hash_pair(seed, 2 * k);
@@ -348,16 +358,11 @@ impl BilinearPatch {
     }
 }
 
-/// Two numbers in [0, 1) from a seed and a counter (SplitMix64's finaliser).
+/// Two numbers in [0, 1) from a seed and a counter, by the renderer's hash.
 fn hash_pair(seed: u64, k: u64) -> Vec2 {
-    let mut z = seed
-        .wrapping_add(k.wrapping_add(1).wrapping_mul(0x9E37_79B9_7F4A_7C15))
-        .wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^= z >> 31;
-    let to_unit = |bits: u64| (bits >> 40) as f32 * (1.0 / (1u64 << 24) as f32);
-    Vec2::new(to_unit(z), to_unit(z << 24))
+    use crate::sampling::{hash_u64, u32_to_unit_f32};
+    let h = hash_u64(&[seed, k]);
+    Vec2::new(u32_to_unit_f32(h as u32), u32_to_unit_f32((h >> 32) as u32))
 }
 
 /// Ray ∩ bilinear patch (corners p₀₀, p₁₀, p₀₁, p₁₁), exactly, in double precision:
