@@ -390,3 +390,31 @@ fn area_sampling_is_uniform_by_area() {
         }
     }
 }
+
+/// Rays spawned from a hit (as the integrators spawn them, on either side) never find the
+/// patch again at the point they leave.
+#[test]
+fn spawned_rays_leave_the_patch() {
+    for (name, p) in patches() {
+        let scene = scene_of(mesh(p, vec![]), Transform::IDENTITY, false);
+        let mut rng = Pcg32::new(4, 8);
+        let mut tested = 0;
+        for _ in 0..2000 {
+            let ray = random_ray(&mut rng, &p);
+            let Some(h) = scene.intersect(&ray) else {
+                continue;
+            };
+            let d = uniform3(&mut rng, -1.0, 1.0);
+            if let Some(again) = scene.intersect(&h.si.spawn_ray(d)) {
+                assert!(
+                    (again.si.p - h.si.p).length() > 1e-3,
+                    "{name}: re-hit at {} leaving {}",
+                    again.si.p,
+                    h.si.p
+                );
+            }
+            tested += 1;
+        }
+        assert!(tested > 500, "{name}: {tested}");
+    }
+}
