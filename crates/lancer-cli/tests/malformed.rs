@@ -213,7 +213,7 @@ fn unsupported_features_warn_with_their_line_and_still_render() {
          WorldBegin\n\
          MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n\
          Shape \"sphere\" \"float radius\" [1] \"float wobble\" [2]\n\
-         Shape \"curve\" \"point3 P\" [0 0 0 1 0 0 1 1 0 0 1 0]\n",
+         Shape \"nurbs\" \"point3 P\" [0 0 0 1 0 0 1 1 0 0 1 0]\n",
     )
     .unwrap();
     let o = run_in(&dir, &["render", "warn.pbrt", "-o", "w.png", "--quiet"]);
@@ -222,7 +222,7 @@ fn unsupported_features_warn_with_their_line_and_still_render() {
     for (at, words) in [
         ("warn.pbrt:4:1", "media"),
         ("warn.pbrt:5:35", "\"float wobble\""),
-        ("warn.pbrt:6:1", "\"curve\" is not supported yet; skipped"),
+        ("warn.pbrt:6:1", "unknown shape \"nurbs\"; skipped"),
     ] {
         assert!(
             err.lines()
@@ -232,7 +232,7 @@ fn unsupported_features_warn_with_their_line_and_still_render() {
     }
     // A shape skipped whole has one warning, not one more per parameter.
     assert!(
-        !err.contains("\"point3 P\" of Shape \"curve\""),
+        !err.contains("\"point3 P\" of Shape \"nurbs\""),
         "a skipped shape's parameters were warned about:\n{err}"
     );
     assert!(dir.join("w.png").exists());

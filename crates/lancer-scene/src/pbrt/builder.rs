@@ -945,6 +945,14 @@ impl Builder {
                 None => (0, Some((name.clone(), nloc.clone()))),
             },
         };
+        if self.gs.area_light.is_some()
+            && matches!(geometry, lancer::scene::desc::Geometry::Curve(_))
+        {
+            return Err(SceneError::at(
+                loc.clone(),
+                "a curve cannot be an area light (pbrt-v4 cannot sample curves either)",
+            ));
+        }
         let mut area_light = self.gs.area_light;
         if area_light.is_some() && self.current_object.is_some() {
             self.warn_once(

@@ -15,7 +15,7 @@ use lancer::material::Material;
 use lancer::math::{Rgb, Vec3};
 use lancer::sampling::SamplerKind;
 use lancer::scene::desc::{FilterDesc, Geometry, IntegratorDesc};
-use lancer::shape::TriangleMesh;
+use lancer::shape::{BilinearMesh, CurveBasis, CurveDesc, CurveType, TriangleMesh};
 use lancer::spectrum::{SpectrumKind, named_spectrum, spectrum_to_rgb};
 use lancer::texture::{
     FloatTex, FloatTexture, ImageTexture, SpectrumTex, SpectrumTexture, UvMapping, WrapMode,
@@ -640,12 +640,16 @@ impl Reader<'_> {
                     }
                 }
             }
-            "bilinearmesh" | "curve" => {
-                return Ok(Converted::Unsupported(
-                    format!("shape \"{ty}\" is not supported yet; skipped"),
-                    None,
-                ));
+            "curve" => {
+                let (desc, ignored_normals) = self.curve()?;
+                if ignored_normals {
+                    note = Some(
+                        "curve normals \"N\" are only used by \"ribbon\" curves; ignored".into(),
+                    );
+                }
+                Geometry::Curve(Arc::new(desc))
             }
+            "bilinearmesh" => Geometry::BilinearMesh(Arc::new(self.bilinear_mesh()?)),
             _ => {
                 return Ok(Converted::Unsupported(
                     format!("unknown shape \"{ty}\"; skipped"),
@@ -811,6 +815,156 @@ impl Reader<'_> {
             per_vertex(uv_name, uvs.len())?;
         }
         Ok(TriangleMesh {
+            positions,
+            normals,
+            uvs,
+            indices,
+            flip_normal: false,
+        })
+    }
+
+    /// The error `message` at parameter `name`'s location (or without one).
+    fn error_at(&self, name: &str, message: String) -> SceneError {
+        match self.params.location(name) {
+            Some(l) => SceneError::at(l.clone(), message),
+            None => SceneError::general(message),
+        }
+    }
+
+    /// pbrt-v4's `curve`: `P`, `basis` (`bezier` | `bspline`), `degree` (2 | 3), `type`
+    /// (`flat` | `ribbon` | `cylinder`), `width` / `width0` / `width1`, `N` (ribbons: one per
+    /// segment boundary), `splitdepth` (default 3). Also says whether `N` was given to a curve
+    /// that does not use it.
+    fn curve(&self) -> Result<(CurveDesc, bool), SceneError> {
+        let p = self.params;
+        let Some(points) = p.point3s("P")? else {
+            return Err(SceneError::general(
+                "a \"curve\" needs control points \"point3 P\"",
+            ));
+        };
+        let non_negative = |v: f32| v >= 0.0 && v.is_finite();
+        let width = p.float_checked("width", 1.0, "at least 0", non_negative)?;
+        let width0 = p.float_checked("width0", width, "at least 0", non_negative)?;
+        let width1 = p.float_checked("width1", width, "at least 0", non_negative)?;
+        let degree = p.int_in("degree", 3, 2..=3)? as u32;
+        let basis = match p.string("basis")?.as_deref() {
+            None | Some("bezier") => CurveBasis::Bezier,
+            Some("bspline") => CurveBasis::BSpline,
+            Some(other) => {
+                return Err(self.error_at(
+                    "basis",
+                    format!("unknown curve basis \"{other}\" (expected \"bezier\" or \"bspline\")"),
+                ));
+            }
+        };
+        let kind = match p.string("type")?.as_deref() {
+            None | Some("flat") => CurveType::Flat,
+            Some("ribbon") => CurveType::Ribbon,
+            Some("cylinder") => CurveType::Cylinder,
+            Some(other) => {
+                return Err(self.error_at(
+                    "type",
+                    format!(
+                        "unknown curve type \"{other}\" (expected \"flat\", \"ribbon\" or \"cylinder\")"
+                    ),
+                ));
+            }
+        };
+        let split_depth = p.int_in("splitdepth", 3, 0..=10)? as u32;
+        let mut normals = p.normals("N")?.unwrap_or_default();
+        let ignored_normals = kind != CurveType::Ribbon && !normals.is_empty();
+        if ignored_normals {
+            normals.clear();
+        }
+        let desc = CurveDesc {
+            points,
+            basis,
+            degree,
+            kind,
+            width0,
+            width1,
+            normals,
+            split_depth,
+        };
+        desc.segment_count().map_err(|e| self.error_at("P", e))?;
+        desc.validate().map_err(|e| {
+            let at = if kind == CurveType::Ribbon && p.has("N") {
+                "N"
+            } else {
+                "P"
+            };
+            self.error_at(at, e)
+        })?;
+        Ok((desc, ignored_normals))
+    }
+
+    /// pbrt-v4's `bilinearmesh`: `P`, `indices` (four per patch: p₀₀, p₁₀, p₀₁, p₁₁;
+    /// optional for a single patch), `uv`, `N`.
+    fn bilinear_mesh(&self) -> Result<BilinearMesh, SceneError> {
+        let p = self.params;
+        let Some(positions) = p.point3s("P")? else {
+            return Err(SceneError::general(
+                "a \"bilinearmesh\" needs vertex positions \"point3 P\"",
+            ));
+        };
+        let indices: Vec<u32> = match p.ints("indices")? {
+            Some((idx, loc)) => {
+                if idx.is_empty() || idx.len() % 4 != 0 {
+                    return Err(SceneError::at(
+                        loc,
+                        format!(
+                            "\"integer indices\" holds {} values, not a (non-zero) multiple of 4",
+                            idx.len()
+                        ),
+                    ));
+                }
+                if let Some(bad) = idx
+                    .iter()
+                    .find(|&&i| i < 0 || i as usize >= positions.len())
+                {
+                    return Err(SceneError::at(
+                        loc,
+                        format!(
+                            "index {bad} in \"integer indices\" is out of range for {} vertices",
+                            positions.len()
+                        ),
+                    ));
+                }
+                idx.into_iter().map(|i| i as u32).collect()
+            }
+            None if positions.len() == 4 => vec![0, 1, 2, 3],
+            None => {
+                return Err(self.error_at(
+                    "P",
+                    "a \"bilinearmesh\" with other than 4 vertices needs \"integer indices\""
+                        .into(),
+                ));
+            }
+        };
+        if positions.iter().any(|v| !v.is_finite()) {
+            return Err(self.error_at("P", "vertex positions must be finite".into()));
+        }
+        let per_vertex = |name: &str, n: usize| -> Result<(), SceneError> {
+            if n != positions.len() {
+                return Err(self.error_at(
+                    name,
+                    format!(
+                        "\"{name}\" has {n} entries for {} vertices",
+                        positions.len()
+                    ),
+                ));
+            }
+            Ok(())
+        };
+        let normals = p.normals("N")?.unwrap_or_default();
+        if !normals.is_empty() {
+            per_vertex("N", normals.len())?;
+        }
+        let uvs = p.point2s("uv")?.unwrap_or_default();
+        if !uvs.is_empty() {
+            per_vertex("uv", uvs.len())?;
+        }
+        Ok(BilinearMesh {
             positions,
             normals,
             uvs,

@@ -320,6 +320,10 @@ pub enum Geometry {
         /// Object-space box (`min`, `max`) clipping the solid; required when it is unbounded.
         bounds: Option<(Vec3, Vec3)>,
     },
+    /// pbrt's `curve`: a spline with a width, split into pieces when the scene is built.
+    Curve(Arc<crate::shape::CurveDesc>),
+    /// pbrt's `bilinearmesh`: bilinear patches, four vertex indices each.
+    BilinearMesh(Arc<crate::shape::BilinearMesh>),
 }
 
 /// A diffuse area light attached to a shape.

@@ -214,6 +214,30 @@ fn shapes_of(
                 .map_err(|e| BuildError::Invalid(format!("shape {index}: {e}")))?;
             out.push(Shape::Sdf(Box::new(sdf)));
         }
+        Geometry::Curve(c) => {
+            if sd.area_light.is_some() {
+                return Err(BuildError::Invalid(format!(
+                    "shape {index}: a curve cannot be an area light (pbrt-v4 cannot sample curves either)"
+                )));
+            }
+            let curves = c
+                .curves(&sd.object_to_world, sd.reverse_orientation)
+                .map_err(|e| BuildError::Invalid(format!("shape {index}: {e}")))?;
+            out.extend(curves.into_iter().map(Shape::Curve));
+        }
+        Geometry::BilinearMesh(m) => {
+            m.validate().map_err(|message| BuildError::BadMesh {
+                shape: index,
+                message,
+            })?;
+            let world =
+                std::sync::Arc::new(m.transformed(&sd.object_to_world, sd.reverse_orientation));
+            out.extend(
+                crate::shape::BilinearMesh::patches(&world)
+                    .into_iter()
+                    .map(|p| Shape::Bilinear(Box::new(p))),
+            );
+        }
         Geometry::TriangleMesh(m) => {
             m.validate().map_err(|message| BuildError::BadMesh {
                 shape: index,

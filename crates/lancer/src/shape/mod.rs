@@ -6,8 +6,10 @@
 //! possible; [`Shape::interaction`] then computes the full [`SurfaceInteraction`] (point, error
 //! bounds, normals, (u, v), derivatives) once, for the closest hit only.
 
+mod bilinear;
 mod cone;
 mod cuboid;
+mod curve;
 mod cylinder;
 mod disk;
 mod hyperboloid;
@@ -19,8 +21,10 @@ pub mod sdf;
 mod sphere;
 mod triangle;
 
+pub use bilinear::{BilinearMesh, BilinearPatch, bilinear_point, intersect_bilinear};
 pub use cone::Cone;
 pub use cuboid::Cuboid;
+pub use curve::{Curve, CurveBasis, CurveCommon, CurveDesc, CurveType, bezier_eval, bezier_piece};
 pub use cylinder::Cylinder;
 pub use disk::Disk;
 pub use hyperboloid::Hyperboloid;
@@ -236,6 +240,10 @@ pub enum Shape {
     Triangle(Triangle),
     /// A signed-distance object, sphere-traced (lancer extension).
     Sdf(Box<Sdf>),
+    /// A piece of a curve (pbrt's `curve`).
+    Curve(Curve),
+    /// One patch of a bilinear mesh (pbrt's `bilinearmesh`).
+    Bilinear(Box<BilinearPatch>),
 }
 
 impl Shape {
@@ -254,6 +262,8 @@ impl Shape {
             }
             Shape::Triangle(t) => t.bounds(),
             Shape::Sdf(s) => s.bounds(),
+            Shape::Curve(c) => c.bounds(),
+            Shape::Bilinear(b) => b.bounds(),
         }
     }
 
@@ -284,6 +294,8 @@ impl Shape {
             Shape::Box(s) => s.intersect(ray),
             Shape::Plane(s) => s.intersect(ray),
             Shape::Sdf(s) => s.intersect(ray),
+            Shape::Curve(c) => c.intersect(ray),
+            Shape::Bilinear(b) => b.intersect(ray),
         }
     }
 
@@ -305,6 +317,8 @@ impl Shape {
             Shape::Plane(s) => s.interaction(ray, hit),
             Shape::Triangle(t) => t.interaction(ray, hit, &meshes[t.mesh as usize]),
             Shape::Sdf(s) => s.interaction(ray, hit),
+            Shape::Curve(c) => c.interaction(ray, hit),
+            Shape::Bilinear(b) => b.interaction(ray, hit),
         }
     }
 }

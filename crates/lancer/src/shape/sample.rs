@@ -62,10 +62,15 @@ impl Shape {
             Shape::Plane(_) | Shape::Sdf(_) => 0.0,
             // A = |(p₁ − p₀) × (p₂ − p₀)| / 2.
             Shape::Triangle(t) => 0.5 * (t.p[1] - t.p[0]).cross(t.p[2] - t.p[0]).length(),
+            // pbrt's approximation: control polygon length × mean width.
+            Shape::Curve(c) => c.area(),
+            // A = ∫∫ |∂p/∂u × ∂p/∂v| du dv.
+            Shape::Bilinear(b) => b.area(),
         }
     }
 
-    /// A point uniform by area on the shape; `None` for planes and SDF objects.
+    /// A point uniform by area on the shape; `None` for planes, SDF objects and curves (which
+    /// pbrt-v4 cannot sample either).
     pub fn sample_area(&self, u: Vec2, meshes: &[TriangleMesh]) -> Option<ShapeSample> {
         match self {
             Shape::Sphere(s) => {
@@ -110,7 +115,14 @@ impl Shape {
                 let (p, n) = b.sample_object(u);
                 Some(placed(&b.placement, p, n))
             }
-            Shape::Plane(_) | Shape::Sdf(_) => None,
+            Shape::Plane(_) | Shape::Sdf(_) | Shape::Curve(_) => None,
+            Shape::Bilinear(b) => {
+                let (p, uv) = b.sample_uv(u);
+                Some(ShapeSample {
+                    p,
+                    n: b.normal_at(uv.x, uv.y),
+                })
+            }
             Shape::Triangle(t) => {
                 let [b0, b1, b2] = sample_uniform_triangle(u);
                 let [p0, p1, p2] = t.p;

@@ -1,0 +1,479 @@
+//! pbrt-v4's `bilinearmesh`: bilinear patches, the surfaces swept by a line whose ends run
+//! along two opposite edges of a quadrilateral,
+//!
+//!   p(u, v) = (1 − u)(1 − v)·p₀₀ + u(1 − v)·p₁₀ + (1 − u)v·p₀₁ + uv·p₁₁,   (u, v) ∈ [0, 1]²,
+//!
+//! intersected exactly by Reshetov's method ("Cool Patches", Ray Tracing Gems ch. 8), as pbrt-v4
+//! does: the ray meets the segment of constant u, from a(u) = lerp(u, p₀₀, p₁₀) to
+//! b(u) = lerp(u, p₀₁, p₁₁), where the triple product (a(u) − o)·(d × (b(u) − a(u))) vanishes,
+//! a quadratic in u; v and t then follow from the closest points of the ray and that segment.
+//! Planar patches (a parallelogram makes the quadratic linear) need no special case.
+//!
+//! Patches are kept in world space (the mesh is transformed once when the scene is built).
+
+use super::{Shading, ShapeHit, SurfaceInteraction};
+use crate::math::{Bounds3, Frame, Transform, Vec2, Vec3, gamma, solve_quadratic};
+use crate::ray::Ray;
+use glam::DVec3;
+use std::sync::Arc;
+
+/// A mesh of bilinear patches: shared vertices, four indices per patch (p₀₀, p₁₀, p₀₁, p₁₁).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BilinearMesh {
+    /// Vertex positions.
+    pub positions: Vec<Vec3>,
+    /// Per-vertex shading normals (empty: none).
+    pub normals: Vec<Vec3>,
+    /// Per-vertex texture coordinates (empty: the patch's own (u, v)).
+    pub uvs: Vec<Vec2>,
+    /// Four vertex indices per patch.
+    pub indices: Vec<u32>,
+    /// Geometric normals flipped: reverse orientation xor a handedness-swapping transform
+    /// (ignored where per-vertex normals decide the side, as in pbrt).
+    pub flip_normal: bool,
+}
+
+impl BilinearMesh {
+    /// Number of patches.
+    pub fn patch_count(&self) -> usize {
+        self.indices.len() / 4
+    }
+
+    /// Checks that indices come in fours and are in range, and that per-vertex arrays match
+    /// the positions.
+    pub fn validate(&self) -> Result<(), String> {
+        if !self.indices.len().is_multiple_of(4) {
+            return Err(format!(
+                "{} indices is not a multiple of 4",
+                self.indices.len()
+            ));
+        }
+        let n = self.positions.len();
+        if let Some(&bad) = self.indices.iter().find(|&&i| i as usize >= n) {
+            return Err(format!("index {bad} out of range for {n} vertices"));
+        }
+        if !self.normals.is_empty() && self.normals.len() != n {
+            return Err(format!("{} normals for {n} vertices", self.normals.len()));
+        }
+        if !self.uvs.is_empty() && self.uvs.len() != n {
+            return Err(format!("{} uvs for {n} vertices", self.uvs.len()));
+        }
+        if self.positions.iter().any(|p| !p.is_finite()) {
+            return Err("vertex positions must be finite".into());
+        }
+        Ok(())
+    }
+
+    /// The mesh moved to world space: positions as points, normals by the inverse transpose
+    /// (normalised, and flipped under `ReverseOrientation` as pbrt does).
+    pub fn transformed(&self, t: &Transform, reverse_orientation: bool) -> BilinearMesh {
+        BilinearMesh {
+            positions: self.positions.iter().map(|&p| t.point(p)).collect(),
+            normals: self
+                .normals
+                .iter()
+                .map(|&n| {
+                    let n = t.normal(n).normalize_or_zero();
+                    if reverse_orientation { -n } else { n }
+                })
+                .collect(),
+            uvs: self.uvs.clone(),
+            indices: self.indices.clone(),
+            flip_normal: reverse_orientation ^ t.swaps_handedness(),
+        }
+    }
+
+    /// The four vertex indices of patch `i`: p₀₀, p₁₀, p₀₁, p₁₁.
+    #[inline]
+    pub fn vertices(&self, i: u32) -> [usize; 4] {
+        let b = 4 * i as usize;
+        [
+            self.indices[b] as usize,
+            self.indices[b + 1] as usize,
+            self.indices[b + 2] as usize,
+            self.indices[b + 3] as usize,
+        ]
+    }
+
+    /// Every patch of a world-space mesh, as primitives.
+    pub fn patches(mesh: &Arc<BilinearMesh>) -> Vec<BilinearPatch> {
+        (0..mesh.patch_count() as u32)
+            .map(|i| {
+                let v = mesh.vertices(i);
+                BilinearPatch::new(
+                    [
+                        mesh.positions[v[0]],
+                        mesh.positions[v[1]],
+                        mesh.positions[v[2]],
+                        mesh.positions[v[3]],
+                    ],
+                    mesh.clone(),
+                    i,
+                )
+            })
+            .collect()
+    }
+}
+
+/// One bilinear patch of a world-space mesh; its corners are copied in for intersection.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BilinearPatch {
+    /// Corners p₀₀, p₁₀, p₀₁, p₁₁, world space.
+    pub p: [Vec3; 4],
+    /// The mesh it belongs to (normals, uvs, orientation).
+    pub mesh: Arc<BilinearMesh>,
+    /// Its index in the mesh.
+    pub index: u32,
+    /// Surface area.
+    area: f32,
+}
+
+/// ∂p/∂u and ∂p/∂v of a patch at (u, v):
+/// ∂p/∂u = lerp(v, p₁₀, p₁₁) − lerp(v, p₀₀, p₀₁), ∂p/∂v = lerp(u, p₀₁, p₁₁) − lerp(u, p₀₀, p₁₀).
+#[inline]
+fn partials(p: &[Vec3; 4], u: f32, v: f32) -> (Vec3, Vec3) {
+    let [p00, p10, p01, p11] = *p;
+    (
+        p10.lerp(p11, v) - p00.lerp(p01, v),
+        p01.lerp(p11, u) - p00.lerp(p10, u),
+    )
+}
+
+/// The point p(u, v) = lerp(u, lerp(v, p₀₀, p₀₁), lerp(v, p₁₀, p₁₁)).
+#[inline]
+pub fn bilinear_point(p: &[Vec3; 4], u: f32, v: f32) -> Vec3 {
+    let [p00, p10, p01, p11] = *p;
+    p00.lerp(p01, v).lerp(p10.lerp(p11, v), u)
+}
+
+/// The area element |∂p/∂u × ∂p/∂v| at (u, v). The cross product is linear in u and v
+/// (the u·v term is (p₁₁ − p₁₀ − p₀₁ + p₀₀) × itself = 0), so its length is convex and
+/// largest at a corner.
+#[inline]
+fn jacobian(p: &[Vec3; 4], u: f32, v: f32) -> f32 {
+    let (du, dv) = partials(p, u, v);
+    du.cross(dv).length()
+}
+
+/// Nodes and weights of 4-point Gauss–Legendre quadrature on [0, 1].
+const GAUSS4: [(f64, f64); 4] = [
+    (0.069_431_844_202_973_7, 0.173_927_422_568_726_9),
+    (0.330_009_478_207_571_9, 0.326_072_577_431_273_1),
+    (0.669_990_521_792_428_1, 0.326_072_577_431_273_1),
+    (0.930_568_155_797_026_3, 0.173_927_422_568_726_9),
+];
+
+impl BilinearPatch {
+    /// A patch from its corners (p₀₀, p₁₀, p₀₁, p₁₁); its area is computed once.
+    pub fn new(p: [Vec3; 4], mesh: Arc<BilinearMesh>, index: u32) -> BilinearPatch {
+        let mut patch = BilinearPatch {
+            p,
+            mesh,
+            index,
+            area: 0.0,
+        };
+        patch.area = patch.compute_area();
+        patch
+    }
+
+    /// A = ∫∫ |∂p/∂u × ∂p/∂v| du dv over [0, 1]², by 4-point Gauss–Legendre on each of 4 × 4
+    /// cells (exact for parallelograms, where the integrand is constant).
+    fn compute_area(&self) -> f32 {
+        const CELLS: usize = 4;
+        let h = 1.0 / CELLS as f64;
+        let mut sum = 0.0f64;
+        for ci in 0..CELLS {
+            for cj in 0..CELLS {
+                for &(xu, wu) in &GAUSS4 {
+                    for &(xv, wv) in &GAUSS4 {
+                        let u = (ci as f64 + xu) * h;
+                        let v = (cj as f64 + xv) * h;
+                        sum += wu * wv * jacobian(&self.p, u as f32, v as f32) as f64;
+                    }
+                }
+            }
+        }
+        (sum * h * h) as f32
+    }
+
+    /// Surface area.
+    pub fn area(&self) -> f32 {
+        self.area
+    }
+
+    /// World-space bounds: the box of the corners (the patch lies in their convex hull).
+    pub fn bounds(&self) -> Bounds3 {
+        Bounds3::from_point(self.p[0])
+            .union_point(self.p[1])
+            .union_point(self.p[2])
+            .union_point(self.p[3])
+    }
+
+    /// Nearest hit (see [`intersect_bilinear`]); (u, v) are kept for the interaction.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray) -> Option<ShapeHit> {
+        let (t, u, v) = intersect_bilinear(ray, &self.p)?;
+        Some(ShapeHit { t, u, v })
+    }
+
+    /// Full interaction, with pbrt's conventions: p = p(u, v) with error ≤ γ₆·Σ|pᵢⱼ|; ∂p/∂u,
+    /// ∂p/∂v of the patch, or with vertex uvs (s, t) the derivatives with respect to them
+    /// (∂p/∂s = ∂p/∂u·∂u/∂s + ∂p/∂v·∂v/∂s, …, turned to keep the side of ∂p/∂u × ∂p/∂v);
+    /// n = normalize(∂p/∂u × ∂p/∂v), flipped by reverse orientation / handedness, or turned to
+    /// the side of the interpolated vertex normal when there is one.
+    pub fn interaction(&self, ray: &Ray, hit: &ShapeHit) -> SurfaceInteraction {
+        let (u, v) = (hit.u, hit.v);
+        let mesh = &*self.mesh;
+        let vi = mesh.vertices(self.index);
+        let p = bilinear_point(&self.p, u, v);
+        let (mut dpdu, mut dpdv) = partials(&self.p, u, v);
+        let mut uv = Vec2::new(u, v);
+        if !mesh.uvs.is_empty() {
+            let [t00, t10, t01, t11] = vi.map(|i| mesh.uvs[i]);
+            uv = t00.lerp(t01, v).lerp(t10.lerp(t11, v), u);
+            // ∂(s,t)/∂u and ∂(s,t)/∂v, inverted component-wise as pbrt does.
+            let dstdu = t10.lerp(t11, v) - t00.lerp(t01, v);
+            let dstdv = t01.lerp(t11, u) - t00.lerp(t10, u);
+            let inv = |x: f32| if x.abs() < 1e-8 { 0.0 } else { 1.0 / x };
+            let (duds, dvds) = (inv(dstdu.x), inv(dstdv.x));
+            let (dudt, dvdt) = (inv(dstdu.y), inv(dstdv.y));
+            let dpds = dpdu * duds + dpdv * dvds;
+            let mut dpdt = dpdu * dudt + dpdv * dvdt;
+            let cross = dpds.cross(dpdt);
+            if cross != Vec3::ZERO {
+                if dpdu.cross(dpdv).dot(cross) < 0.0 {
+                    dpdt = -dpdt;
+                }
+                dpdu = dpds;
+                dpdv = dpdt;
+            }
+        }
+        let mut n = dpdu.cross(dpdv).normalize_or_zero();
+        if n == Vec3::ZERO {
+            // A corner where two edges are parallel: the normal of the whole patch.
+            let (du, dv) = partials(&self.p, 0.5, 0.5);
+            n = du.cross(dv).normalize_or_zero();
+        }
+        let mut ns = n;
+        if let Some(s) = self.shading_normal(u, v) {
+            ns = s;
+            if n.dot(ns) < 0.0 {
+                n = -n;
+            }
+        } else if mesh.flip_normal {
+            n = -n;
+            ns = n;
+        }
+        // Shading tangents: ∂p/∂u made perpendicular to the shading normal.
+        let mut ss = dpdu.normalize_or_zero();
+        let mut ts = ns.cross(ss);
+        if ts.length_squared() > 0.0 {
+            ss = ts.cross(ns);
+        } else {
+            let f = Frame::from_z(ns);
+            ss = f.x;
+            ts = f.y;
+        }
+        let p_error = gamma(6) * self.p.iter().map(|q| q.abs()).sum::<Vec3>();
+        SurfaceInteraction {
+            p,
+            p_error,
+            n,
+            uv,
+            dpdu,
+            dpdv,
+            shading: Shading {
+                n: ns,
+                dpdu: ss,
+                dpdv: ts,
+            },
+            wo: -ray.d.normalize(),
+            t: hit.t,
+        }
+    }
+
+    /// The interpolated vertex normal at (u, v), normalised, if the mesh has normals.
+    fn shading_normal(&self, u: f32, v: f32) -> Option<Vec3> {
+        let mesh = &*self.mesh;
+        if mesh.normals.is_empty() {
+            return None;
+        }
+        let [n00, n10, n01, n11] = mesh.vertices(self.index).map(|i| mesh.normals[i]);
+        n00.lerp(n01, v).lerp(n10.lerp(n11, v), u).try_normalize()
+    }
+
+    /// The geometric normal at (u, v), oriented as [`BilinearPatch::interaction`] orients it.
+    pub fn normal_at(&self, u: f32, v: f32) -> Vec3 {
+        let (du, dv) = partials(&self.p, u, v);
+        let mut n = du.cross(dv).normalize_or_zero();
+        if n == Vec3::ZERO {
+            let (du, dv) = partials(&self.p, 0.5, 0.5);
+            n = du.cross(dv).normalize_or_zero();
+        }
+        match self.shading_normal(u, v) {
+            Some(ns) if n.dot(ns) < 0.0 => -n,
+            Some(_) => n,
+            None if self.mesh.flip_normal => -n,
+            None => n,
+        }
+    }
+
+    /// A point uniform by area, and its (u, v). Uniform (u, v) has area density 1/J(u, v)
+    /// with J = |∂p/∂u × ∂p/∂v|, so (u, v) is drawn uniformly and kept with probability
+    /// J(u, v)/J_max (rejection sampling; J_max is a corner's J, J being convex): the kept
+    /// (u, v) has density J/A, i.e. uniform by area. The first candidate is `u` itself;
+    /// later candidates and the acceptance draws come from a hash of `u`. Parallelograms
+    /// (J constant) accept at once.
+    pub fn sample_uv(&self, u: Vec2) -> (Vec3, Vec2) {
+        // N(u, v) = ∂p/∂u × ∂p/∂v = N₀₀ + u·(N₁₀ − N₀₀) + v·(N₀₁ − N₀₀) (linear); J = |N| is
+        // convex, so J_max is a corner's. J is constant only when N is (a parallelogram).
+        let cross = |u: f32, v: f32| {
+            let (du, dv) = partials(&self.p, u, v);
+            du.cross(dv)
+        };
+        let (n00, n10, n01, n11) = (
+            cross(0.0, 0.0),
+            cross(1.0, 0.0),
+            cross(0.0, 1.0),
+            cross(1.0, 1.0),
+        );
+        let j_max = n00
+            .length()
+            .max(n10.length())
+            .max(n01.length())
+            .max(n11.length());
+        let constant = (n10 - n00).length() + (n01 - n00).length() <= 1e-6 * j_max;
+        let mut cand = u;
+        if j_max > 0.0 && !constant {
+            let seed = ((u.x.to_bits() as u64) << 32) | u.y.to_bits() as u64;
+            for k in 0..256u64 {
+                let r = hash_pair(seed, 2 * k);
+                if r.x * j_max <= jacobian(&self.p, cand.x, cand.y) {
+                    break;
+                }
+                cand = hash_pair(seed, 2 * k + 1);
+            }
+        }
+        (bilinear_point(&self.p, cand.x, cand.y), cand)
+    }
+}
+
+/// Two numbers in [0, 1) from a seed and a counter, by the renderer's hash.
+fn hash_pair(seed: u64, k: u64) -> Vec2 {
+    use crate::sampling::{hash_u64, u32_to_unit_f32};
+    let h = hash_u64(&[seed, k]);
+    Vec2::new(u32_to_unit_f32(h as u32), u32_to_unit_f32((h >> 32) as u32))
+}
+
+/// Ray ∩ bilinear patch (corners p₀₀, p₁₀, p₀₁, p₁₁), exactly, in double precision:
+/// the nearest (t, u, v) with ε < t < t_max, (u, v) ∈ [0, 1]².
+///
+/// With e₁₀ = p₁₀ − p₀₀, the triple product f(u) = (a(u) − o)·(d × (b(u) − a(u))) is the
+/// quadratic A·u² + B·u + C with
+///   A = (e₁₀ × (p₀₁ − p₁₁))·d,  C = ((p₀₀ − o) × d)·(p₀₁ − p₀₀),
+///   B = ((p₁₀ − o) × d)·(p₁₁ − p₁₀) − A − C   (so that f(1) = A + B + C).
+/// For each root u in [0, 1], with Δ = a(u) − o, q = b(u) − a(u) and n = d × q, the closest
+/// points of the ray and the segment give v = det[Δ, d, n]/|n|², t = det[Δ, q, n]/|n|².
+/// ε = γ₁₀·(max|o| + max|d| + Σ max|pᵢⱼ|), pbrt's bound, keeps rays leaving the patch off it.
+pub fn intersect_bilinear(ray: &Ray, p: &[Vec3; 4]) -> Option<(f32, f32, f32)> {
+    let [p00, p10, p01, p11] = p.map(|q| q.as_dvec3());
+    let o = ray.o.as_dvec3();
+    let d = ray.d.as_dvec3();
+    let a = (p10 - p00).cross(p01 - p11).dot(d);
+    let c = (p00 - o).cross(d).dot(p01 - p00);
+    let b = (p10 - o).cross(d).dot(p11 - p10) - a - c;
+    let (u1, u2) = solve_quadratic(a, b, c)?;
+    let eps = gamma(10) as f64
+        * (ray.o.abs().max_element()
+            + ray.d.abs().max_element()
+            + p.iter().map(|q| q.abs().max_element()).sum::<f32>()) as f64;
+    let t_max = ray.t_max as f64;
+    let mut best: Option<(f64, f64, f64)> = None;
+    let det = |x: DVec3, y: DVec3, z: DVec3| x.dot(y.cross(z));
+    for (i, u) in [u1, u2].into_iter().enumerate() {
+        if !(0.0..=1.0).contains(&u) || (i == 1 && u2 == u1) {
+            continue;
+        }
+        let uo = p00.lerp(p10, u);
+        let q = p01.lerp(p11, u) - uo;
+        let delta = uo - o;
+        let n = d.cross(q);
+        let n2 = n.length_squared();
+        if n2 == 0.0 {
+            continue;
+        }
+        let v = det(delta, d, n) / n2;
+        let t = det(delta, q, n) / n2;
+        if !(0.0..=1.0).contains(&v) || t <= eps || t >= t_max {
+            continue;
+        }
+        if best.is_none_or(|(bt, _, _)| t < bt) {
+            best = Some((t, u, v));
+        }
+    }
+    let (t, u, v) = best?;
+    let tf = t as f32;
+    (tf > 0.0 && tf < ray.t_max).then_some((tf, u as f32, v as f32))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn mesh_of(p: [Vec3; 4]) -> Arc<BilinearMesh> {
+        Arc::new(BilinearMesh {
+            positions: p.to_vec(),
+            indices: vec![0, 1, 2, 3],
+            ..Default::default()
+        })
+    }
+
+    #[test]
+    fn unit_square_hits_and_uv() {
+        let p = [
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::new(2.0, 1.0, 0.0),
+        ];
+        let patch = BilinearPatch::new(p, mesh_of(p), 0);
+        assert!((patch.area() - 2.0).abs() < 1e-6);
+        let r = Ray::new(Vec3::new(0.5, 0.25, 3.0), -Vec3::Z);
+        let h = patch.intersect(&r).unwrap();
+        assert!((h.t - 3.0).abs() < 1e-6);
+        assert!((h.u - 0.25).abs() < 1e-6 && (h.v - 0.25).abs() < 1e-6);
+        let si = patch.interaction(&r, &h);
+        // n = ∂p/∂u × ∂p/∂v = (2, 0, 0) × (0, 1, 0) ∝ +z.
+        assert!((si.n - Vec3::Z).length() < 1e-6);
+        assert!((si.p - Vec3::new(0.5, 0.25, 0.0)).length() < 1e-6);
+        assert!(
+            patch
+                .intersect(&Ray::new(Vec3::new(2.5, 0.5, 3.0), -Vec3::Z))
+                .is_none()
+        );
+        assert!(
+            patch
+                .intersect(&Ray::new(Vec3::new(0.5, 0.5, -3.0), -Vec3::Z))
+                .is_none()
+        );
+        let short = Ray { t_max: 2.0, ..r };
+        assert!(patch.intersect(&short).is_none());
+    }
+
+    #[test]
+    fn hyperbolic_paraboloid_area() {
+        // z = xy over the unit square: A = ∫∫ √(1 + x² + y²) dx dy = 1.28079…
+        let p = [
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::new(1.0, 1.0, 1.0),
+        ];
+        let patch = BilinearPatch::new(p, mesh_of(p), 0);
+        assert!(
+            (patch.area() - 1.280_789_3).abs() < 1e-5,
+            "{}",
+            patch.area()
+        );
+    }
+}
