@@ -173,6 +173,30 @@ pub fn read_image(path: &Path, encoding: Encoding) -> Result<DecodedImage, Image
     })
 }
 
+/// Decodes an image held in memory (a glTF file's embedded or data-URI image), its format
+/// told by its first bytes (PNG or JPEG); `name` names it in messages and `encoding` applies to
+/// PNG only, as in [`read_image`].
+pub fn decode_image(
+    name: &Path,
+    bytes: &[u8],
+    encoding: Encoding,
+) -> Result<DecodedImage, ImageReadError> {
+    let (width, height, texels, alpha) = if bytes.starts_with(&[0x89, b'P', b'N', b'G']) {
+        read_png(name, bytes, encoding)?
+    } else if bytes.starts_with(&[0xff, 0xd8, 0xff]) {
+        read_jpeg(name, bytes)?
+    } else {
+        return Err(err(name, "not a PNG or JPEG image"));
+    };
+    let alpha = alpha.filter(|a| a.iter().any(|&v| v != 1.0));
+    let rgb =
+        Image::new(width, height, texels).ok_or_else(|| err(name, "decoded size mismatch"))?;
+    Ok(DecodedImage {
+        rgb: Arc::new(rgb),
+        alpha,
+    })
+}
+
 type Decoded = (u32, u32, Vec<Rgb>, Option<Vec<f32>>);
 
 /// Width and height from a PNG's IHDR chunk, which the format puts first.
