@@ -566,6 +566,136 @@ fn texture_lookups_follow_gltf_uv_orientation() {
     );
 }
 
+/// A PNG of `w`×`h` 8-bit RGB pixels, row 0 at the top.
+fn png_bytes(w: u32, h: u32, rgb: &[u8]) -> Vec<u8> {
+    let mut out = Vec::new();
+    let mut enc = png::Encoder::new(&mut out, w, h);
+    enc.set_color(png::ColorType::Rgb);
+    enc.set_depth(png::BitDepth::Eight);
+    let mut writer = enc.write_header().unwrap();
+    writer.write_image_data(rgb).unwrap();
+    writer.finish().unwrap();
+    out
+}
+
+#[test]
+fn embedded_images_are_decoded_and_placed_by_texcoords() {
+    // A 2×2 image: red and green on the top row, blue and white below; the quad's corners take
+    // glTF uv (0, 1) at (0, 0, 0) … (0, 0) at (0, 1, 0), so the image stands upright on it.
+    let png = png_bytes(2, 2, &[255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255]);
+    let mut buf = Vec::new();
+    for p in [
+        [0.0f32, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+    ] {
+        for c in p {
+            buf.extend(c.to_le_bytes());
+        }
+    }
+    for i in [0u16, 1, 2, 0, 2, 3] {
+        buf.extend(i.to_le_bytes());
+    }
+    for t in [[0.0f32, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]] {
+        for c in t {
+            buf.extend(c.to_le_bytes());
+        }
+    }
+    let image_offset = buf.len();
+    buf.extend(&png);
+    let text = format!(
+        r#"{{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [0]}}],
+  "nodes": [{{"mesh": 0}}],
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "TEXCOORD_0": 2}}, "indices": 1, "material": 0}}]}}],
+  "materials": [{{"pbrMetallicRoughness": {{"baseColorTexture": {{"index": 0}}, "metallicFactor": 0}}}}],
+  "textures": [{{"source": 0, "sampler": 0}}],
+  "samplers": [{{"magFilter": 9728, "wrapS": 33071, "wrapT": 33071}}],
+  "images": [{{"bufferView": 3, "mimeType": "image/png"}}],
+  "buffers": [{{"byteLength": {len}, "uri": "data:application/octet-stream;base64,{b64}"}}],
+  "bufferViews": [{{"buffer": 0, "byteOffset": 0, "byteLength": 48}},
+                  {{"buffer": 0, "byteOffset": 48, "byteLength": 12}},
+                  {{"buffer": 0, "byteOffset": 60, "byteLength": 32}},
+                  {{"buffer": 0, "byteOffset": {image_offset}, "byteLength": {png_len}}}],
+  "accessors": [
+    {{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}},
+    {{"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}},
+    {{"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"}}
+  ]}}"#,
+        len = buf.len(),
+        b64 = base64(&buf),
+        png_len = png.len()
+    );
+    let dir = temp_dir("embedded");
+    let d = load_ok(&write(&dir, "e.gltf", &text));
+    let scene = Scene::build(&d).unwrap();
+    let colour_at = |x: f32, y: f32| {
+        let hit = scene
+            .intersect(&lancer::ray::Ray::new(Vec3::new(x, y, 1.0), -Vec3::Z))
+            .expect("the quad is there");
+        let Material::CoatedDiffuse { reflectance, .. } =
+            scene.materials[scene.prims[hit.prim as usize].material as usize]
+        else {
+            panic!("coated diffuse expected")
+        };
+        scene
+            .textures()
+            .spectrum(reflectance, &Scene::tex_coord(&hit.si))
+    };
+    let close = |a: Vec3, b: Vec3| (a - b).abs().max_element() < 1e-3;
+    assert!(
+        close(colour_at(0.25, 0.75), Vec3::X),
+        "{}",
+        colour_at(0.25, 0.75)
+    );
+    assert!(
+        close(colour_at(0.75, 0.75), Vec3::Y),
+        "{}",
+        colour_at(0.75, 0.75)
+    );
+    assert!(
+        close(colour_at(0.25, 0.25), Vec3::Z),
+        "{}",
+        colour_at(0.25, 0.25)
+    );
+    assert!(
+        close(colour_at(0.75, 0.25), Vec3::ONE),
+        "{}",
+        colour_at(0.75, 0.25)
+    );
+}
+
+#[test]
+fn a_glb_reads_its_buffer_from_the_binary_chunk() {
+    // The quad's document with its buffer in the GLB's BIN chunk (no uri), translated by +z.
+    let uri = quad_buffer();
+    let bin = lancer_scene::gltf::data::base64_decode(uri.rsplit(',').next().unwrap()).unwrap();
+    assert_eq!(bin.len(), 60);
+    let json = quad_gltf(r#"[{"mesh": 0, "translation": [0, 0, 2]}]"#, "", "")
+        .replace(&format!(r#", "uri": "{uri}""#), "");
+    let mut json = json.into_bytes();
+    while json.len() % 4 != 0 {
+        json.push(b' ');
+    }
+    let mut glb = b"glTF".to_vec();
+    glb.extend(2u32.to_le_bytes());
+    glb.extend(((12 + 8 + json.len() + 8 + bin.len()) as u32).to_le_bytes());
+    glb.extend((json.len() as u32).to_le_bytes());
+    glb.extend(b"JSON");
+    glb.extend(&json);
+    glb.extend((bin.len() as u32).to_le_bytes());
+    glb.extend(b"BIN\0");
+    glb.extend(&bin);
+    let dir = temp_dir("glb");
+    let p = dir.join("quad.glb");
+    std::fs::write(&p, &glb).unwrap();
+    let d = load_ok(&p);
+    assert_eq!(mesh(&d, 0).triangle_count(), 2);
+    assert_eq!(mesh(&d, 0).positions[2], Vec3::new(1.0, 1.0, 0.0));
+    let q = d.shapes[0].object_to_world.point(Vec3::ONE);
+    assert!((q - Vec3::new(1.0, 1.0, 3.0)).length() < 1e-6, "{q}");
+}
+
 #[test]
 fn broken_files_give_clear_errors() {
     let dir = temp_dir("broken");

@@ -50,6 +50,19 @@ pub struct MaterialInfo {
 struct Sampling {
     wrap: WrapMode,
     nearest: bool,
+    mapping: UvMapping,
+}
+
+/// `KHR_texture_transform`'s offset (du, dv) and scale (su, sv) in lancer's (u, v), where
+/// v_lancer = 1 − v_glTF: glTF looks up v' = sv·v + dv, so lancer must look up
+/// 1 − v' = sv·v_lancer + (1 − sv − dv).
+pub fn uv_mapping(offset: [f32; 2], scale: [f32; 2]) -> UvMapping {
+    UvMapping {
+        su: scale[0],
+        sv: scale[1],
+        du: offset[0],
+        dv: 1.0 - scale[1] - offset[1],
+    }
 }
 
 fn wrap_mode(w: WrappingMode) -> WrapMode {
@@ -63,7 +76,7 @@ fn wrap_mode(w: WrappingMode) -> WrapMode {
 fn image_texture(image: Image, s: &Sampling) -> ImageTexture {
     ImageTexture {
         image: Arc::new(image),
-        mapping: UvMapping::default(),
+        mapping: s.mapping,
         wrap: s.wrap,
         scale: 1.0,
         invert: false,
@@ -129,11 +142,26 @@ impl GltfLoader<'_> {
                 info.tex_coord()
             ));
         }
+        let mut mapping = UvMapping::default();
+        if let Some(t) = info.texture_transform() {
+            if t.rotation() != 0.0 {
+                self.warn(format!(
+                    "{what}: KHR_texture_transform's rotation is not supported; only its offset and scale are used"
+                ));
+            }
+            if t.tex_coord().is_some_and(|c| c != 0) {
+                self.warn(format!(
+                    "{what}: KHR_texture_transform's texCoord is not supported; TEXCOORD_0 is used"
+                ));
+            }
+            mapping = uv_mapping(t.offset(), t.scale());
+        }
         let tex = info.texture();
         let sampler = tex.sampler();
         let sampling = Sampling {
             wrap: wrap_mode(sampler.wrap_s()),
             nearest: sampler.mag_filter() == Some(MagFilter::Nearest),
+            mapping,
         };
         if sampler.wrap_s() != sampler.wrap_t() {
             self.warn(format!(
@@ -311,5 +339,24 @@ impl GltfLoader<'_> {
             emission: (emission.max_element() > 0.0 && emission.is_finite()).then_some(emission),
             double_sided: m.double_sided(),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use lancer::math::Vec2;
+
+    #[test]
+    fn texture_transform_composes_with_the_v_flip() {
+        // glTF looks up (su·u + du, sv·v + dv); lancer holds v_l = 1 − v and its image's v
+        // runs upwards, so its lookup must land on 1 − (sv·v + dv).
+        let (offset, scale) = ([0.25, 0.5], [2.0, 0.5]);
+        let m = uv_mapping(offset, scale);
+        for (u, v) in [(0.0, 0.0), (0.3, 0.7), (1.0, 0.2)] {
+            let got = m.map(Vec2::new(u, 1.0 - v));
+            let want = Vec2::new(scale[0] * u + offset[0], 1.0 - (scale[1] * v + offset[1]));
+            assert!((got - want).length() < 1e-6, "{got} {want}");
+        }
     }
 }

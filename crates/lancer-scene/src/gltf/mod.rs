@@ -14,7 +14,12 @@
 //!   that several nodes use is stored once and placed by each;
 //! - the first camera met in the hierarchy (depth first), perspective (`yfov` is the vertical
 //!   field of view; `aspectRatio` sets the image's shape) or orthographic (`xmag`, `ymag`);
-//! - `KHR_lights_punctual` point, spot and directional lights.
+//! - `KHR_lights_punctual` point, spot and directional lights;
+//! - `KHR_texture_transform`'s offset and scale (not its rotation).
+//!
+//! Not read (a warning says so): normal maps, vertex colours, skins (the bind pose is shown),
+//! morph targets (the base shape), texture coordinate sets other than 0; Draco-compressed
+//! meshes (`KHR_draco_mesh_compression`) and other required extensions are refused.
 //!
 //! **Handedness.** glTF's world is right-handed, +y up, and a camera looks down its local −z
 //! with +x to the right of the image. lancer's camera space is pbrt's: looking down +z, +y up,
@@ -59,7 +64,11 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 /// Extensions lancer reads (a file requiring any other is refused).
-const SUPPORTED_EXTENSIONS: &[&str] = &["KHR_lights_punctual", "KHR_materials_emissive_strength"];
+const SUPPORTED_EXTENSIONS: &[&str] = &[
+    "KHR_lights_punctual",
+    "KHR_materials_emissive_strength",
+    "KHR_texture_transform",
+];
 
 /// Luminous efficacy used to turn glTF's photometric light intensities into radiometric ones:
 /// 683 lm/W, the peak of the photopic curve (light of 555 nm).
@@ -202,6 +211,12 @@ impl GltfLoader<'_> {
                 ));
             }
             if let Some(mesh) = node.mesh() {
+                if node.skin().is_some() {
+                    self.warn(format!(
+                        "node {}: skinning is not supported; the mesh is shown in its bind pose",
+                        node.index()
+                    ));
+                }
                 self.place_mesh(&node, &mesh, world)?;
             }
             if let Some(camera) = node.camera()
@@ -286,6 +301,16 @@ impl GltfLoader<'_> {
                 "{label}: {mode:?} primitives are not rendered (lancer renders triangles)"
             ));
             return Ok(None);
+        }
+        if prim.morph_targets().next().is_some() {
+            self.warn(format!(
+                "{label}: morph targets are not supported; the base shape is used"
+            ));
+        }
+        if prim.get(&Semantic::Colors(0)).is_some() {
+            self.warn(format!(
+                "{label}: vertex colours (COLOR_0) are not supported; ignored"
+            ));
         }
         let Some(pos) = prim.get(&Semantic::Positions) else {
             self.warn(format!("{label}: no POSITION attribute; skipped"));
