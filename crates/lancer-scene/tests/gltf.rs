@@ -730,6 +730,17 @@ fn broken_files_give_clear_errors() {
         r#""count": 2, "type": "VEC3""#,
     );
     expect_err(&write(&dir, "idx.gltf", &text), "out of range");
+    // Absurd counts and offsets are refused, not allocated or overflowed.
+    let text = quad_gltf(r#"[{"mesh": 0}]"#, "", "").replace(
+        r#"{"bufferView": 0, "componentType": 5126, "count": 4,"#,
+        r#"{"bufferView": 0, "componentType": 5126, "count": 4000000000,"#,
+    );
+    expect_err(&write(&dir, "huge.gltf", &text), "too many");
+    let text = quad_gltf(r#"[{"mesh": 0}]"#, "", "").replace(
+        r#"{"bufferView": 0, "componentType": 5126, "count": 4,"#,
+        r#"{"bufferView": 0, "byteOffset": 18446744073709551000, "componentType": 5126, "count": 4,"#,
+    );
+    assert!(load(&write(&dir, "offset.gltf", &text)).is_err());
     // A buffer shorter than it says.
     let text = quad_gltf(r#"[{"mesh": 0}]"#, "", "")
         .replace(r#""byteLength": 60"#, r#""byteLength": 600"#);

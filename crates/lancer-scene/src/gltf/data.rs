@@ -273,6 +273,10 @@ fn component_u32(b: &[u8], t: DataType) -> Option<u32> {
     }
 }
 
+/// Largest accessor read, in bytes (1 GiB): an accessor without a buffer view is zeros that
+/// a hostile count could make enormous.
+const MAX_ACCESSOR_BYTES: usize = 1 << 30;
+
 /// The raw elements of an accessor: for each of `count` elements, the bytes of its components
 /// (`ncomp × size` bytes), read from its buffer view with its stride, then sparse substitution.
 /// Returns the component type, the component count and a flat byte vector.
@@ -283,24 +287,35 @@ fn element_bytes(buffers: &[Vec<u8>], a: &Accessor) -> Result<(DataType, usize, 
     let count = a.count();
     let total = count
         .checked_mul(elem)
-        .filter(|&n| n <= 1 << 32)
+        .filter(|&n| n <= MAX_ACCESSOR_BYTES)
         .ok_or_else(|| format!("accessor {}: {count} elements is too many", a.index()))?;
-    let mut out = vec![0u8; total];
-    if let Some(view) = a.view() {
-        let bytes = view_bytes(buffers, &view)?;
-        let stride = view.stride().unwrap_or(elem).max(elem);
-        if count > 0 {
+    // The view's bytes are checked before anything is allocated for them.
+    let view = match a.view() {
+        Some(view) => {
+            let bytes = view_bytes(buffers, &view)?;
+            let stride = view.stride().unwrap_or(elem).max(elem);
             // The last element ends at offset + stride·(count − 1) + element size.
-            let need = a.offset() + stride * (count - 1) + elem;
-            if need > bytes.len() {
-                return Err(format!(
-                    "accessor {} reads {count} elements up to byte {need} of buffer view {}, which has {} bytes",
-                    a.index(),
-                    view.index(),
-                    bytes.len()
-                ));
+            let need = stride
+                .checked_mul(count.saturating_sub(1))
+                .and_then(|n| n.checked_add(a.offset()))
+                .and_then(|n| n.checked_add(elem));
+            match need {
+                Some(need) if count == 0 || need <= bytes.len() => Some((bytes, stride)),
+                _ => {
+                    return Err(format!(
+                        "accessor {} reads {count} elements of {elem} bytes every {stride} from byte {} of buffer view {}, which has {} bytes",
+                        a.index(),
+                        a.offset(),
+                        view.index(),
+                        bytes.len()
+                    ));
+                }
             }
         }
+        None => None,
+    };
+    let mut out = vec![0u8; total];
+    if let Some((bytes, stride)) = view {
         for i in 0..count {
             let s = a.offset() + i * stride;
             out[i * elem..(i + 1) * elem].copy_from_slice(&bytes[s..s + elem]);
@@ -324,10 +339,15 @@ fn element_bytes(buffers: &[Vec<u8>], a: &Accessor) -> Result<(DataType, usize, 
                 a.index()
             )
         };
-        if idx.offset() + n * isz > idx_bytes.len() {
+        let fits = |offset: usize, size: usize, len: usize| {
+            n.checked_mul(size)
+                .and_then(|b| b.checked_add(offset))
+                .is_some_and(|end| end <= len)
+        };
+        if !fits(idx.offset(), isz, idx_bytes.len()) {
             return Err(short("indices"));
         }
-        if vals.offset() + n * elem > val_bytes.len() {
+        if !fits(vals.offset(), elem, val_bytes.len()) {
             return Err(short("values"));
         }
         for k in 0..n {

@@ -108,7 +108,7 @@ pub fn load_gltf_scene(path: &Path) -> Result<LoadedScene, SceneError> {
             }
         )));
     }
-    let doc = Document::from_json(root).map_err(|e| fail(format!("invalid glTF: {e}")))?;
+    let doc = Document::from_json(root).map_err(|e| fail(e.to_string()))?;
     let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
     let buffers = data::load_buffers(&doc, bin, &dir).map_err(fail)?;
     let mut loader = GltfLoader {
