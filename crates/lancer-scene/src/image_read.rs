@@ -174,14 +174,24 @@ pub fn read_image(path: &Path, encoding: Encoding) -> Result<DecodedImage, Image
     decode(path, &bytes, format, encoding)
 }
 
-/// Decodes an image held in memory, its format chosen by `path`'s extension as
-/// [`read_image`] does; `path` only names the image in messages.
+/// Decodes an image held in memory (a glTF file's embedded image, a fuzzer's input), its
+/// format told by its first bytes (PNG, JPEG or OpenEXR signature), else by `name`'s extension;
+/// `name` names it in messages and `encoding` applies to PNG only, as in [`read_image`].
 pub fn decode_image(
-    path: &Path,
+    name: &Path,
     bytes: &[u8],
     encoding: Encoding,
 ) -> Result<DecodedImage, ImageReadError> {
-    decode(path, bytes, format_of(path)?, encoding)
+    let format = if bytes.starts_with(&[0x89, b'P', b'N', b'G']) {
+        Format::Png
+    } else if bytes.starts_with(&[0xff, 0xd8, 0xff]) {
+        Format::Jpeg
+    } else if bytes.starts_with(&[0x76, 0x2f, 0x31, 0x01]) {
+        Format::Exr
+    } else {
+        format_of(name)?
+    };
+    decode(name, bytes, format, encoding)
 }
 
 fn decode(

@@ -1,12 +1,13 @@
 //! Scene formats read into lancer's plain-data [`SceneDesc`]: pbrt-v4 files, with the PLY and
 //! OBJ meshes their `plymesh` and `objmesh` shapes name, and bare `.obj`/`.ply` meshes made
-//! into a scene around them ([`mesh_scene`]); glTF is to come.
+//! into a scene around them ([`mesh_scene`]); glTF models ([`gltf`]).
 //!
 //! Every error names its place (`file:line:column`) and comes with the offending line; what
 //! lancer reads but does not do yet is a [`Warning`] saying what it does instead.
 
 pub mod error;
 pub mod files_read;
+pub mod gltf;
 pub mod image_read;
 pub mod mesh_scene;
 pub mod obj;
@@ -33,7 +34,7 @@ pub struct LoadedScene {
 }
 
 /// Reads a scene file, its format chosen by the extension: `.pbrt` (or none) a pbrt-v4
-/// scene; `.obj`, `.ply` or `.ply.gz` a bare mesh, with the camera, lights and film of
+/// scene; `.gltf` or `.glb` a glTF 2.0 model ([`gltf`]); `.obj`, `.ply` or `.ply.gz` a bare mesh, with the camera, lights and film of
 /// [`mesh_scene::defaults`] around it.
 pub fn load(path: &Path) -> Result<LoadedScene, SceneError> {
     let (result, files) = files_read::recording(|| load_unrecorded(path));
@@ -59,8 +60,9 @@ fn load_unrecorded(path: &Path) -> Result<LoadedScene, SceneError> {
         Some("obj") => mesh_scene::load_obj_scene(path).map(fold),
         Some("ply") => mesh_scene::load_ply_scene(path).map(fold),
         Some("gz") if gzipped_ply() => mesh_scene::load_ply_scene(path).map(fold),
+        Some("gltf") | Some("glb") => gltf::load_gltf_scene(path).map(fold),
         Some(other) => Err(SceneError::general(format!(
-            "{}: unknown scene format '.{other}' (lancer reads .pbrt scenes and .obj/.ply meshes)",
+            "{}: unknown scene format '.{other}' (lancer reads .pbrt scenes, .gltf/.glb models and .obj/.ply meshes)",
             path.display()
         ))),
     }

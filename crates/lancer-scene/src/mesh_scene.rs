@@ -293,19 +293,24 @@ fn scene_around(
         },
         materials,
         shapes,
-        lights: vec![
-            LightDesc::Infinite {
-                light_to_world: Transform::IDENTITY,
-                l: Rgb::splat(defaults::SKY_RADIANCE),
-                image: None,
-            },
-            LightDesc::Distant {
-                direction: defaults::KEY_LIGHT_FROM,
-                l: Rgb::splat(defaults::KEY_LIGHT_RADIANCE),
-            },
-        ],
+        lights: default_lights(),
         ..SceneDesc::default()
     })
+}
+
+/// The lights of a scene whose file has none: the uniform sky and the distant key light.
+pub fn default_lights() -> Vec<LightDesc> {
+    vec![
+        LightDesc::Infinite {
+            light_to_world: Transform::IDENTITY,
+            l: Rgb::splat(defaults::SKY_RADIANCE),
+            image: None,
+        },
+        LightDesc::Distant {
+            direction: defaults::KEY_LIGHT_FROM,
+            l: Rgb::splat(defaults::KEY_LIGHT_RADIANCE),
+        },
+    ]
 }
 
 /// A perspective camera (fov [`defaults::FOV_DEGREES`]) looking at the centre of the box
