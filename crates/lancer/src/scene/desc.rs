@@ -313,6 +313,8 @@ pub enum Geometry {
     },
     /// A triangle mesh (`trianglemesh`, `plymesh`, `objmesh`, glTF, …).
     TriangleMesh(Arc<TriangleMesh>),
+    /// lancer's `voxels`: a voxel grid (shared, never copied per voxel).
+    Voxels(Arc<crate::shape::VoxelGrid>),
 }
 
 /// A diffuse area light attached to a shape.

@@ -17,6 +17,7 @@ mod plane;
 mod sample;
 mod sphere;
 mod triangle;
+mod voxels;
 
 pub use cone::Cone;
 pub use cuboid::Cuboid;
@@ -31,6 +32,7 @@ pub use sphere::Sphere;
 pub use triangle::{
     Triangle, TriangleMesh, TriangleRay, intersect_triangle, intersect_triangle_with, is_degenerate,
 };
+pub use voxels::{BRICK, VoxelGrid, Voxels, srgb8_to_linear};
 
 use crate::math::{Bounds3, Transform, Vec2, Vec3, gamma};
 use crate::ray::Ray;
@@ -232,6 +234,8 @@ pub enum Shape {
     Plane(Box<Plane>),
     /// One triangle of a mesh.
     Triangle(Triangle),
+    /// A voxel grid (lancer extension).
+    Voxels(Box<Voxels>),
 }
 
 impl Shape {
@@ -249,6 +253,7 @@ impl Shape {
                 Bounds3::new(Vec3::splat(f32::NEG_INFINITY), Vec3::splat(f32::INFINITY))
             }
             Shape::Triangle(t) => t.bounds(),
+            Shape::Voxels(v) => v.bounds(),
         }
     }
 
@@ -278,6 +283,7 @@ impl Shape {
             Shape::Hyperboloid(s) => s.intersect(ray),
             Shape::Box(s) => s.intersect(ray),
             Shape::Plane(s) => s.intersect(ray),
+            Shape::Voxels(v) => v.intersect(ray),
         }
     }
 
@@ -298,6 +304,18 @@ impl Shape {
             Shape::Box(s) => s.interaction(ray, hit),
             Shape::Plane(s) => s.interaction(ray, hit),
             Shape::Triangle(t) => t.interaction(ray, hit, &meshes[t.mesh as usize]),
+            Shape::Voxels(v) => v.interaction(ray, hit),
+        }
+    }
+
+    /// The reflectance the shape itself gives a hit found by [`Shape::intersect`], which a
+    /// `diffuse` material uses instead of its own: a voxel's palette colour. `None` for
+    /// every other shape.
+    #[inline]
+    pub fn hit_albedo(&self, hit: &ShapeHit) -> Option<crate::math::Rgb> {
+        match self {
+            Shape::Voxels(v) => Some(v.hit_albedo(hit)),
+            _ => None,
         }
     }
 }

@@ -59,12 +59,14 @@ impl Shape {
             Shape::Hyperboloid(h) => h.object_area() * area_scale(&h.placement),
             Shape::Box(b) => b.area(),
             Shape::Plane(_) => 0.0,
+            // Voxel grids cannot emit (Scene::build refuses them as area lights).
+            Shape::Voxels(_) => 0.0,
             // A = |(p₁ − p₀) × (p₂ − p₀)| / 2.
             Shape::Triangle(t) => 0.5 * (t.p[1] - t.p[0]).cross(t.p[2] - t.p[0]).length(),
         }
     }
 
-    /// A point uniform by area on the shape; `None` for planes.
+    /// A point uniform by area on the shape; `None` for planes and voxel grids.
     pub fn sample_area(&self, u: Vec2, meshes: &[TriangleMesh]) -> Option<ShapeSample> {
         match self {
             Shape::Sphere(s) => {
@@ -109,7 +111,7 @@ impl Shape {
                 let (p, n) = b.sample_object(u);
                 Some(placed(&b.placement, p, n))
             }
-            Shape::Plane(_) => None,
+            Shape::Plane(_) | Shape::Voxels(_) => None,
             Shape::Triangle(t) => {
                 let [b0, b1, b2] = sample_uniform_triangle(u);
                 let [p0, p1, p2] = t.p;
