@@ -393,3 +393,44 @@ fn voxels_refuse_to_emit_and_empty_grids_vanish() {
     assert!(VoxelGrid::new([2, 2, 2], vec![1; 7], palette()).is_err());
     assert!(VoxelGrid::new([0, 2, 2], vec![], palette()).is_err());
 }
+
+#[test]
+fn spawned_rays_never_find_their_own_face_again() {
+    let mut rng = Pcg32::new(17, 2);
+    let mut checked = 0;
+    for gi in 0..12 {
+        let grid = Arc::new(random_grid(&mut rng));
+        let (to_world, reverse) = random_placement(&mut rng, gi + 1);
+        let scene = scene_of(grid, to_world, reverse);
+        let b = scene.shapes[0].bounds();
+        let (centre, size) = (0.5 * (b.min + b.max), (b.max - b.min).length());
+        for _ in 0..400 {
+            let o = centre + random_unit(&mut rng) * size;
+            let target =
+                b.min + (b.max - b.min) * Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
+            let Some(hit) = scene.intersect(&Ray::new(o, target - o)) else {
+                continue;
+            };
+            let si = hit.si;
+            // The side the ray came from: the normal as seen by the incoming ray.
+            let side = if si.n.dot(si.wo) > 0.0 { si.n } else { -si.n };
+            for _ in 0..4 {
+                let mut d = random_unit(&mut rng);
+                if d.dot(side) < 0.0 {
+                    d = -d;
+                }
+                if let Some(next) = scene.intersect(&si.spawn_ray(d)) {
+                    // Another voxel may be hit, never this face at a tiny distance.
+                    let moved = next.si.p.distance(si.p);
+                    assert!(
+                        moved > 1e-3 * size.min(1.0),
+                        "grid {gi}: a ray leaving {} found the surface again {moved} away",
+                        si.p
+                    );
+                }
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 4000, "{checked}");
+}
