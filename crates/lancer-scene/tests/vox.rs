@@ -253,3 +253,37 @@ fn pbrt_voxel_errors() {
     assert!(e.contains("area light"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn the_shipped_voxel_scene_loads() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/voxels.pbrt");
+    let loaded = lancer_scene::load(&path).unwrap();
+    assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
+    let g = loaded
+        .desc
+        .shapes
+        .iter()
+        .find_map(|s| match &s.geometry {
+            Geometry::Voxels(g) => Some(g.clone()),
+            _ => None,
+        })
+        .expect("a voxels shape");
+    assert_eq!(g.dims(), [32, 32, 24]);
+    assert_eq!(g.filled_count(), 5441);
+    // Grass, from the file's own palette: sRGB (86, 160, 60).
+    assert_eq!(
+        g.palette()[1],
+        Rgb::new(
+            srgb8_to_linear(86),
+            srgb8_to_linear(160),
+            srgb8_to_linear(60)
+        )
+    );
+    let scene = lancer::Scene::build(&loaded.desc).unwrap();
+    assert!(
+        scene
+            .shapes
+            .iter()
+            .any(|s| matches!(s, lancer::shape::Shape::Voxels(_)))
+    );
+}
