@@ -6,9 +6,13 @@
 //! image, an interrupted render).
 
 mod cli_error;
+mod info;
 mod input;
+mod preview;
 mod progress;
 mod render;
+mod stats;
+mod tev;
 
 use clap::{Parser, Subcommand};
 
@@ -24,6 +28,8 @@ struct Cli {
 enum Command {
     /// Render a scene to an image (PNG or EXR, chosen by the extension).
     Render(render::RenderArgs),
+    /// Describe a scene without rendering it: camera, counts, lights, bounds, memory, files.
+    Info(info::InfoArgs),
 }
 
 /// A binary built for x86-64-v3 (see `.cargo/config.toml`) dies of an illegal instruction on
@@ -45,6 +51,7 @@ fn main() {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => render::run(args),
+        Command::Info(args) => info::run(args),
     };
     if let Err(e) = result {
         e.report();

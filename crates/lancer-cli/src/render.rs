@@ -1,13 +1,13 @@
 //! `lancer render`: load, build, render in parallel tiles, write the image atomically.
 
 use crate::cli_error::CliError;
-use crate::{input, progress};
+use crate::{input, preview, progress, stats};
 use clap::Args;
 use lancer::film::{Film, PixelBounds};
 use lancer::filter::Filter;
 use lancer::image_io::{ImageFormat, write_image};
 use lancer::integrator::Integrator;
-use lancer::render::{RenderSettings, render};
+use lancer::render::{RenderSettings, render_observed};
 use lancer::{Scene, SceneDesc};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
@@ -36,6 +36,19 @@ pub struct RenderArgs {
     /// No progress bar, no summary.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Stream the image as it converges to the tev viewer listening at HOST:PORT (tev's
+    /// default port is 14158); an unreachable viewer is only a warning.
+    #[arg(long, value_name = "HOST:PORT")]
+    pub display_server: Option<String>,
+    /// Rewrite this PNG with the image so far every --preview-every seconds, and at the end.
+    #[arg(long, value_name = "FILE.png")]
+    pub preview: Option<PathBuf>,
+    /// Seconds between two rewrites of the --preview image.
+    #[arg(long, value_name = "SECS", default_value_t = 5.0)]
+    pub preview_every: f64,
+    /// Print a summary on stdout at the end: times per phase, samples, rays, memory.
+    #[arg(long, value_enum, value_name = "FORMAT")]
+    pub stats: Option<stats::StatsFormat>,
 }
 
 /// Largest image side accepted, in pixels: the scene reader's limit.
@@ -145,6 +158,7 @@ pub fn check_output(path: &Path) -> Result<(), CliError> {
 pub fn run(args: RenderArgs) -> Result<(), CliError> {
     let t0 = Instant::now();
     let loaded = input::load(args.scene.as_deref())?;
+    let parse_s = t0.elapsed().as_secs_f64();
     let mut desc = loaded.desc;
     apply_overrides(&mut desc, &args);
     let output = args
@@ -153,6 +167,20 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         .or_else(|| desc.film.filename.as_ref().map(PathBuf::from))
         .unwrap_or_else(|| PathBuf::from("lancer.png"));
     check_output(&output)?;
+    if let Some(p) = &args.preview {
+        if ImageFormat::from_path(p) != Some(ImageFormat::Png) {
+            return Err(CliError::input(format!(
+                "{}: the preview is written as PNG; name it .png",
+                p.display()
+            )));
+        }
+        check_output(p)?;
+        if !(args.preview_every.is_finite() && args.preview_every > 0.0) {
+            return Err(CliError::input(
+                "--preview-every must be a positive number of seconds",
+            ));
+        }
+    }
     let bounds = pixel_bounds(&desc);
     if bounds.is_empty() {
         return Err(CliError::input("the crop window selects no pixel"));
@@ -175,7 +203,9 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         .num_threads(args.threads.unwrap_or(0))
         .build()
         .map_err(|e| CliError::runtime(format!("cannot start worker threads: {e}")))?;
+    let t_build = Instant::now();
     let scene = Scene::build(&desc).map_err(|e| CliError::input(format!("scene: {e}")))?;
+    let build_s = t_build.elapsed().as_secs_f64();
     let load_s = t0.elapsed().as_secs_f64();
 
     let settings = RenderSettings {
@@ -193,13 +223,31 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     let bar = progress::bar(bounds.area(), args.quiet);
     let cancel = AtomicBool::new(false);
     let t1 = Instant::now();
-    let stats = pool.install(|| render(&scene, &settings, &mut film, &|n| bar.inc(n), &cancel));
+    let live = preview::LiveOutputs::start(
+        bounds,
+        desc.film.scale,
+        args.preview
+            .clone()
+            .map(|p| (p, std::time::Duration::from_secs_f64(args.preview_every))),
+        args.display_server
+            .clone()
+            .map(|a| (a, output.display().to_string())),
+    );
+    let on_tile = |tile: &PixelBounds, sums: &[lancer::film::PixelSum]| {
+        bar.inc(tile.area());
+        live.tile(tile, sums);
+    };
+    let stats = pool.install(|| render_observed(&scene, &settings, &mut film, &on_tile, &cancel));
     bar.finish_and_clear();
     let render_s = t1.elapsed().as_secs_f64();
 
+    let t_write = Instant::now();
     let pixels = film.image(desc.film.scale);
-    write_image(&output, bounds.width(), bounds.height(), &pixels)
-        .map_err(|e| CliError::runtime(e.to_string()))?;
+    let written = write_image(&output, bounds.width(), bounds.height(), &pixels)
+        .map_err(|e| CliError::runtime(e.to_string()));
+    let write_s = t_write.elapsed().as_secs_f64();
+    live.finish(&pixels);
+    written?;
     if !args.quiet {
         eprintln!(
             "{}: {}x{} pixels, {} spp in {:.2} s (+{:.2} s loading): {:.2} M samples/s, {:.2} M rays/s",
@@ -212,6 +260,26 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
             stats.samples as f64 / render_s / 1e6,
             stats.rays as f64 / render_s / 1e6,
         );
+    }
+    if args.stats == Some(stats::StatsFormat::Json) {
+        let summary = stats::RenderSummary {
+            scene: args.scene.as_ref().map(|p| p.display().to_string()),
+            output: output.display().to_string(),
+            size: (bounds.width(), bounds.height()),
+            spp: desc.sampler.spp,
+            threads: pool.current_num_threads(),
+            samples: stats.samples,
+            rays: stats.rays,
+        };
+        let phases = stats::Phases {
+            parse: parse_s,
+            build: build_s,
+            render: render_s,
+            write: write_s,
+            total: t0.elapsed().as_secs_f64(),
+        };
+        let mem = stats::SceneMemory::of(&scene);
+        println!("{}", stats::render_json(&summary, &phases, &mem));
     }
     Ok(())
 }

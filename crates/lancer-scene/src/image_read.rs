@@ -140,29 +140,60 @@ fn check_size(path: &Path, width: u64, height: u64) -> Result<(u32, u32), ImageR
     Ok((width as u32, height as u32))
 }
 
-/// Reads an image file, its format chosen by the extension (`.png`, `.jpg`/`.jpeg`, `.exr`);
-/// `encoding` applies to PNG only (see the module's notes).
-pub fn read_image(path: &Path, encoding: Encoding) -> Result<DecodedImage, ImageReadError> {
+/// The image formats lancer reads.
+#[derive(Clone, Copy)]
+enum Format {
+    Png,
+    Jpeg,
+    Exr,
+}
+
+/// The format named by `path`'s extension.
+fn format_of(path: &Path) -> Result<Format, ImageReadError> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
-    let kind = match ext.as_deref() {
-        Some("png") => 0,
-        Some("jpg") | Some("jpeg") => 1,
-        Some("exr") => 2,
-        _ => {
-            return Err(err(
-                path,
-                "unknown image format (lancer reads .png, .jpg, .jpeg and .exr)",
-            ));
-        }
-    };
+    match ext.as_deref() {
+        Some("png") => Ok(Format::Png),
+        Some("jpg") | Some("jpeg") => Ok(Format::Jpeg),
+        Some("exr") => Ok(Format::Exr),
+        _ => Err(err(
+            path,
+            "unknown image format (lancer reads .png, .jpg, .jpeg and .exr)",
+        )),
+    }
+}
+
+/// Reads an image file, its format chosen by the extension (`.png`, `.jpg`/`.jpeg`, `.exr`);
+/// `encoding` applies to PNG only (see the module's notes).
+pub fn read_image(path: &Path, encoding: Encoding) -> Result<DecodedImage, ImageReadError> {
+    let format = format_of(path)?;
+    crate::files_read::record(path);
     let bytes = std::fs::read(path).map_err(|e| err(path, format!("cannot read: {e}")))?;
-    let (width, height, texels, alpha) = match kind {
-        0 => read_png(path, &bytes, encoding)?,
-        1 => read_jpeg(path, &bytes)?,
-        _ => read_exr(path, &bytes)?,
+    decode(path, &bytes, format, encoding)
+}
+
+/// Decodes an image held in memory, its format chosen by `path`'s extension as
+/// [`read_image`] does; `path` only names the image in messages.
+pub fn decode_image(
+    path: &Path,
+    bytes: &[u8],
+    encoding: Encoding,
+) -> Result<DecodedImage, ImageReadError> {
+    decode(path, bytes, format_of(path)?, encoding)
+}
+
+fn decode(
+    path: &Path,
+    bytes: &[u8],
+    format: Format,
+    encoding: Encoding,
+) -> Result<DecodedImage, ImageReadError> {
+    let (width, height, texels, alpha) = match format {
+        Format::Png => read_png(path, bytes, encoding)?,
+        Format::Jpeg => read_jpeg(path, bytes)?,
+        Format::Exr => read_exr(path, bytes)?,
     };
     let alpha = alpha.filter(|a| a.iter().any(|&v| v != 1.0));
     let rgb =

@@ -6,6 +6,7 @@
 //! lancer reads but does not do yet is a [`Warning`] saying what it does instead.
 
 pub mod error;
+pub mod files_read;
 pub mod image_read;
 pub mod mesh_scene;
 pub mod obj;
@@ -18,7 +19,7 @@ pub use error::{Location, SceneError, Warning};
 use lancer::SceneDesc;
 use pbrt::parser::Parser;
 use std::collections::HashMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// A scene read from a file, and what the reader had to warn about.
 #[derive(Debug)]
@@ -27,12 +28,20 @@ pub struct LoadedScene {
     pub desc: SceneDesc,
     /// Warnings, in file order; repeats of the same message are folded into the first.
     pub warnings: Vec<Warning>,
+    /// Every file read (scene, includes, meshes, textures, spectra), absolute, in first-read
+    /// order; filled by [`load`] and [`load_pbrt_str`] (see [`files_read`]).
+    pub files: Vec<PathBuf>,
 }
 
 /// Reads a scene file, its format chosen by the extension: `.pbrt` (or none) a pbrt-v4
 /// scene; `.obj`, `.ply` or `.ply.gz` a bare mesh, with the camera, lights and film of
 /// [`mesh_scene::defaults`] around it.
 pub fn load(path: &Path) -> Result<LoadedScene, SceneError> {
+    let (result, files) = files_read::recording(|| load_unrecorded(path));
+    result.map(|loaded| LoadedScene { files, ..loaded })
+}
+
+fn load_unrecorded(path: &Path) -> Result<LoadedScene, SceneError> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -60,16 +69,19 @@ pub fn load(path: &Path) -> Result<LoadedScene, SceneError> {
 
 fn fold(loaded: LoadedScene) -> LoadedScene {
     LoadedScene {
-        desc: loaded.desc,
         warnings: fold_repeats(loaded.warnings),
+        ..loaded
     }
 }
 
 /// Reads pbrt-v4 scene text held in memory; `name` names it in messages and `dir` is where its
 /// relative file names point.
 pub fn load_pbrt_str(text: &str, name: &str, dir: &Path) -> Result<LoadedScene, SceneError> {
-    let mut parser = Parser::from_str(text, name, dir);
-    finish(pbrt::builder::build(&mut parser), &parser)
+    let (result, files) = files_read::recording(|| {
+        let mut parser = Parser::from_str(text, name, dir);
+        finish(pbrt::builder::build(&mut parser), &parser)
+    });
+    result.map(|loaded| LoadedScene { files, ..loaded })
 }
 
 fn finish(
@@ -80,6 +92,7 @@ fn finish(
         Ok((desc, warnings)) => Ok(LoadedScene {
             desc,
             warnings: fold_repeats(warnings),
+            files: Vec::new(),
         }),
         Err(mut e) => {
             if e.source_line.is_none()

@@ -78,6 +78,7 @@ pub fn load_ply_scene(path: &Path) -> Result<LoadedScene, SceneError> {
     Ok(LoadedScene {
         desc: scene_around(&name, parts, vec![material])?,
         warnings,
+        files: Vec::new(),
     })
 }
 
@@ -195,7 +196,11 @@ pub fn load_obj_scene(path: &Path) -> Result<LoadedScene, SceneError> {
     }
     let mut desc = scene_around(&name, parts, materials)?;
     desc.spectrum_textures = textures;
-    Ok(LoadedScene { desc, warnings })
+    Ok(LoadedScene {
+        desc,
+        warnings,
+        files: Vec::new(),
+    })
 }
 
 /// A diffuse texture: the sRGB image at `path`, tiled, looked up bilinearly with the OBJ's

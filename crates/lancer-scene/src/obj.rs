@@ -152,6 +152,7 @@ pub fn read_obj(path: &Path) -> Result<ObjFile, ObjError> {
 }
 
 fn read_text(path: &Path, name: &str) -> Result<String, ObjError> {
+    crate::files_read::record(path);
     let bytes = std::fs::read(path).map_err(|e| ObjError {
         file: name.to_string(),
         line: None,

@@ -52,6 +52,7 @@ pub fn read_ply(path: &Path) -> Result<PlyMesh, PlyError> {
         file: name.clone(),
         message,
     };
+    crate::files_read::record(path);
     let raw = std::fs::read(path).map_err(|e| fail(format!("cannot read the file: {e}")))?;
     let gz = path
         .extension()

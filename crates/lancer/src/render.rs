@@ -122,6 +122,18 @@ pub fn render_tile(
     (sums, rays_traced() - rays0)
 }
 
+/// The film's sums over `tile` (a part of its bounds), row-major.
+fn tile_sums(film: &Film, tile: &PixelBounds) -> Vec<PixelSum> {
+    let fw = film.bounds.width() as usize;
+    let mut out = Vec::with_capacity(tile.area() as usize);
+    for y in tile.y0..tile.y1 {
+        let row = (y - film.bounds.y0) as usize * fw;
+        let a = row + (tile.x0 - film.bounds.x0) as usize;
+        out.extend_from_slice(&film.pixels[a..a + tile.width() as usize]);
+    }
+    out
+}
+
 /// Renders `settings.bounds` into `film` on the current rayon pool. `progress(pixels)` is
 /// called as tiles finish; `cancel` stops the render between tiles (the film then holds the
 /// finished tiles only).
@@ -130,6 +142,27 @@ pub fn render(
     settings: &RenderSettings,
     film: &mut Film,
     progress: &(dyn Fn(u64) + Sync),
+    cancel: &AtomicBool,
+) -> RenderStats {
+    render_observed(
+        scene,
+        settings,
+        film,
+        &|tile, _| progress(tile.area()),
+        cancel,
+    )
+}
+
+/// Called as each tile finishes, with the tile and the film's sums over it after the tile was
+/// added (row-major over the tile), for live previews. Calls come from the worker threads.
+pub type TileHook<'a> = &'a (dyn Fn(&PixelBounds, &[PixelSum]) + Sync);
+
+/// [`render`], with `on_tile` called for every finished tile instead of a pixel count.
+pub fn render_observed(
+    scene: &Scene,
+    settings: &RenderSettings,
+    film: &mut Film,
+    on_tile: TileHook<'_>,
     cancel: &AtomicBool,
 ) -> RenderStats {
     let tiles = tiles(&settings.bounds.intersect(&film.bounds), settings.tile_size);
@@ -141,12 +174,16 @@ pub fn render(
             return;
         }
         let (sums, rays) = render_tile(scene, settings, tile);
-        film.lock().unwrap().merge_tile(tile, &sums);
+        let merged = {
+            let mut f = film.lock().unwrap();
+            f.merge_tile(tile, &sums);
+            tile_sums(&f, tile)
+        };
         let mut t = totals.lock().unwrap();
         t.rays += rays;
         t.samples += tile.area() * settings.samples.len() as u64;
         drop(t);
-        progress(tile.area());
+        on_tile(tile, &merged);
     });
     totals.into_inner().unwrap()
 }

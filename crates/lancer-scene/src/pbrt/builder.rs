@@ -26,6 +26,10 @@ enum MaterialRef {
     Named(String, Location),
 }
 
+/// The deepest nesting of attribute, transform and object blocks accepted: far beyond any real
+/// scene, and a bound on the memory the saved graphics states take.
+pub const MAX_NESTING: usize = 10_000;
+
 /// What `AttributeBegin` saves.
 #[derive(Clone, Debug)]
 struct GraphicsState {
@@ -315,8 +319,8 @@ impl Builder {
                 "motion blur is not supported yet: lancer uses the transformations at the shutter's opening",
             ),
             D::ReverseOrientation => self.gs.reverse_orientation ^= true,
-            D::AttributeBegin => self.stack.push((Block::Attribute, self.gs.clone(), loc)),
-            D::TransformBegin => self.stack.push((Block::Transform, self.gs.clone(), loc)),
+            D::AttributeBegin => self.begin_block(Block::Attribute, loc)?,
+            D::TransformBegin => self.begin_block(Block::Transform, loc)?,
             D::AttributeEnd => self.end_block(Block::Attribute, &loc)?,
             D::TransformEnd => self.end_block(Block::Transform, &loc)?,
             D::Attribute(target, params) => {
@@ -490,6 +494,20 @@ impl Builder {
                 self.pending_instances.push((name, self.gs.ctm, loc));
             }
         }
+        Ok(())
+    }
+
+    /// Saves the graphics state at the opening of a block, refusing nesting deeper than
+    /// [`MAX_NESTING`] (each level holds a copy of the state).
+    fn begin_block(&mut self, block: Block, loc: Location) -> Result<(), SceneError> {
+        if self.stack.len() >= MAX_NESTING {
+            let (open, _) = block.names();
+            return Err(SceneError::at(
+                loc,
+                format!("{open} nested more than {MAX_NESTING} blocks deep"),
+            ));
+        }
+        self.stack.push((block, self.gs.clone(), loc));
         Ok(())
     }
 

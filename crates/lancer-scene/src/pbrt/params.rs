@@ -714,6 +714,7 @@ fn named_or_file_spectrum(name: &str, dir: &SearchPath) -> Result<Spectrum, Stri
         return Ok(s);
     }
     let path = dir.resolve(name);
+    crate::files_read::record(&path);
     match std::fs::read_to_string(&path) {
         Ok(text) => parse_spd(&text).map_err(|e| format!("spectrum file {}: {e}", path.display())),
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => Err(format!(

@@ -165,6 +165,7 @@ pub struct Parser {
 
 /// Reads a file as UTF-8 text; `at` is where it was asked for (an `Include`), if anywhere.
 fn read_text(path: &Path, name: &Arc<str>, at: Option<&Location>) -> Result<String, SceneError> {
+    crate::files_read::record(path);
     let bytes = std::fs::read(path).map_err(|e| {
         let what = if at.is_some() {
             "cannot read included file"

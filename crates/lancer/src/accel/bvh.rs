@@ -147,6 +147,19 @@ impl Bvh {
         self.bounds
     }
 
+    /// Number of nodes of the tree (wide nodes; leaves are stored in their parents' slots).
+    pub fn node_count(&self) -> usize {
+        self.wide.len()
+    }
+
+    /// Heap and inline memory the tree holds, in bytes: nodes and primitive indices.
+    pub fn memory_bytes(&self) -> usize {
+        std::mem::size_of::<Bvh>()
+            + self.nodes.capacity() * std::mem::size_of::<Node>()
+            + self.wide.capacity() * std::mem::size_of::<Node4>()
+            + self.indices.capacity() * std::mem::size_of::<u32>()
+    }
+
     fn build_rec(&mut self, prims: &mut [BuildPrim], depth: u32) -> usize {
         let bounds = prims.iter().fold(Bounds3::EMPTY, |b, p| b.union(&p.bounds));
         let node_index = self.nodes.len();

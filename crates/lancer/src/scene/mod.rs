@@ -452,6 +452,11 @@ impl Scene {
         self.bounds
     }
 
+    /// The acceleration structure over the primitives (for statistics).
+    pub fn bvh(&self) -> &Bvh {
+        &self.bvh
+    }
+
     /// The course's "keep the nearest valid hit": the smallest t with 0 < t < t_max over all
     /// primitives, found through the BVH.
     pub fn intersect(&self, ray: &Ray) -> Option<SceneHit> {

@@ -1,0 +1,384 @@
+//! `lancer info SCENE`: what a scene holds, without rendering it — camera, film, sampler,
+//! integrator, shapes and lights by kind, materials, triangles, world bounds, the loader's
+//! warnings, memory (mesh + BVH, bytes per triangle) and, with `--files`, every file read.
+
+use crate::cli_error::CliError;
+use crate::input;
+use crate::stats::SceneMemory;
+use clap::Args;
+use lancer::scene::desc::{Geometry, LightDesc, Projection, ShapeDesc};
+use lancer::{Scene, SceneDesc};
+use serde_json::{Value, json};
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Options of `lancer info`.
+#[derive(Args, Debug)]
+pub struct InfoArgs {
+    /// Scene file (.pbrt), or a bare mesh (.obj, .ply).
+    pub scene: PathBuf,
+    /// List every file the loader read (scene, includes, meshes, textures), absolute.
+    #[arg(long)]
+    pub files: bool,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// The kind of a shape's geometry, as pbrt names it (lancer's extensions by their names).
+pub fn geometry_kind(g: &Geometry) -> &'static str {
+    match g {
+        Geometry::Sphere { .. } => "sphere",
+        Geometry::Disk { .. } => "disk",
+        Geometry::Cylinder { .. } => "cylinder",
+        Geometry::Cone { .. } => "cone",
+        Geometry::Paraboloid { .. } => "paraboloid",
+        Geometry::Hyperboloid { .. } => "hyperboloid",
+        Geometry::Box { .. } => "box",
+        Geometry::Plane { .. } => "plane",
+        Geometry::TriangleMesh(_) => "trianglemesh",
+        #[allow(unreachable_patterns)]
+        _ => "other",
+    }
+}
+
+/// The kind of a light, as pbrt names it.
+pub fn light_kind(l: &LightDesc) -> &'static str {
+    match l {
+        LightDesc::Point { .. } => "point",
+        LightDesc::Spot { .. } => "spot",
+        LightDesc::Distant { .. } => "distant",
+        LightDesc::Infinite { image: Some(_), .. } => "infinite (image)",
+        LightDesc::Infinite { .. } => "infinite",
+        #[allow(unreachable_patterns)]
+        _ => "other",
+    }
+}
+
+/// A value's enum variant name from its debug form (`Diffuse { .. }` → `Diffuse`).
+fn variant_name<T: std::fmt::Debug>(v: &T) -> String {
+    let s = format!("{v:?}");
+    s.split([' ', '{', '(']).next().unwrap_or("").to_string()
+}
+
+/// Counts of what the scene description holds.
+#[derive(Debug, Default)]
+pub struct Counts {
+    /// Shapes by kind, placed directly in the world.
+    pub shapes: BTreeMap<&'static str, u64>,
+    /// Shapes by kind inside object definitions (instanced).
+    pub object_shapes: BTreeMap<&'static str, u64>,
+    /// Area lights (shapes that emit).
+    pub area_lights: u64,
+    /// Triangles of world shapes.
+    pub triangles: u64,
+    /// Triangles of all instances (each instance counted with its object's triangles).
+    pub instanced_triangles: u64,
+}
+
+fn count_shapes(shapes: &[ShapeDesc], kinds: &mut BTreeMap<&'static str, u64>) -> (u64, u64) {
+    let (mut tris, mut area) = (0, 0);
+    for s in shapes {
+        *kinds.entry(geometry_kind(&s.geometry)).or_default() += 1;
+        if let Geometry::TriangleMesh(m) = &s.geometry {
+            tris += m.triangle_count() as u64;
+        }
+        area += s.area_light.is_some() as u64;
+    }
+    (tris, area)
+}
+
+/// Counts shapes, triangles and area lights of `desc`.
+pub fn counts(desc: &SceneDesc) -> Counts {
+    let mut c = Counts::default();
+    let (tris, area) = count_shapes(&desc.shapes, &mut c.shapes);
+    c.triangles = tris;
+    c.area_lights = area;
+    let mut per_object = Vec::new();
+    for o in &desc.objects {
+        let (t, a) = count_shapes(&o.shapes, &mut c.object_shapes);
+        per_object.push(t);
+        c.area_lights += a;
+    }
+    c.instanced_triangles = desc
+        .instances
+        .iter()
+        .filter_map(|i| per_object.get(i.object as usize))
+        .sum();
+    c
+}
+
+/// Everything `lancer info` reports, as JSON.
+pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
+    let t0 = Instant::now();
+    let loaded = input::load(Some(&args.scene))?;
+    let parse_s = t0.elapsed().as_secs_f64();
+    let desc = &loaded.desc;
+    let t1 = Instant::now();
+    let scene = Scene::build(desc).map_err(|e| CliError::input(format!("scene: {e}")))?;
+    let build_s = t1.elapsed().as_secs_f64();
+    let mem = SceneMemory::of(&scene);
+    let c = counts(desc);
+
+    let world_from_camera = desc.camera.camera_from_world.inverse();
+    let eye = world_from_camera.point(lancer::math::Vec3::ZERO);
+    let forward = world_from_camera.vector(lancer::math::Vec3::new(0.0, 0.0, 1.0));
+    let projection = match desc.camera.projection {
+        Projection::Perspective { fov } => json!({ "kind": "perspective", "fov": fov }),
+        Projection::Orthographic => json!({ "kind": "orthographic" }),
+    };
+    let mut lights: BTreeMap<&str, u64> = BTreeMap::new();
+    for l in &desc.lights {
+        *lights.entry(light_kind(l)).or_default() += 1;
+    }
+    if c.area_lights > 0 {
+        lights.insert("area (shapes)", c.area_lights);
+    }
+    let mut materials: BTreeMap<String, u64> = BTreeMap::new();
+    for m in &desc.materials {
+        *materials.entry(variant_name(m)).or_default() += 1;
+    }
+    let b = scene.bounds();
+    let bounds = if b.is_empty() {
+        Value::Null
+    } else {
+        json!({ "min": [b.min.x, b.min.y, b.min.z], "max": [b.max.x, b.max.y, b.max.z] })
+    };
+    let crop = crate::render::pixel_bounds(desc);
+    let mut v = json!({
+        "scene": args.scene.display().to_string(),
+        "camera": {
+            "projection": projection,
+            "position": [eye.x, eye.y, eye.z],
+            "direction": [forward.x, forward.y, forward.z],
+            "lens_radius": desc.camera.lens_radius,
+            "focal_distance": desc.camera.focal_distance,
+        },
+        "film": {
+            "width": desc.film.xresolution,
+            "height": desc.film.yresolution,
+            "pixel_bounds": [crop.x0, crop.x1, crop.y0, crop.y1],
+            "filename": desc.film.filename,
+        },
+        "sampler": {
+            "kind": variant_name(&desc.sampler.kind),
+            "spp": desc.sampler.spp,
+            "seed": desc.sampler.seed,
+        },
+        "integrator": format!("{:?}", desc.integrator),
+        "shapes": c.shapes,
+        "objects": desc.objects.len(),
+        "object_shapes": c.object_shapes,
+        "instances": desc.instances.len(),
+        "triangles": c.triangles,
+        "instanced_triangles": c.instanced_triangles,
+        "scene_triangles": mem.triangles,
+        "primitives": mem.primitives,
+        "lights": lights,
+        "materials": { "count": desc.materials.len(), "by_kind": materials },
+        "textures": desc.float_textures.len() + desc.spectrum_textures.len(),
+        "world_bounds": bounds,
+        "warnings": loaded.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>(),
+        "memory": mem.to_json(),
+        "bvh": { "nodes": mem.bvh_nodes, "bytes": mem.bvh_bytes },
+        "time_s": { "parse": parse_s, "build": build_s },
+    });
+    if args.files {
+        v["files"] = json!(
+            loaded
+                .files
+                .iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+        );
+    }
+    Ok(v)
+}
+
+fn bytes(n: u64) -> String {
+    if n >= 1 << 30 {
+        format!("{:.2} GiB", n as f64 / (1u64 << 30) as f64)
+    } else if n >= 1 << 20 {
+        format!("{:.2} MiB", n as f64 / (1u64 << 20) as f64)
+    } else if n >= 1 << 10 {
+        format!("{:.1} KiB", n as f64 / 1024.0)
+    } else {
+        format!("{n} B")
+    }
+}
+
+fn kinds(v: &Value) -> String {
+    match v.as_object() {
+        Some(m) if !m.is_empty() => m
+            .iter()
+            .map(|(k, n)| format!("{n} {k}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        _ => "none".to_string(),
+    }
+}
+
+/// The report as text, one fact per line.
+pub fn text(v: &Value) -> String {
+    let mut out = String::new();
+    let mut line = |k: &str, s: String| out.push_str(&format!("{k:<14}{s}\n"));
+    let f = |x: &Value| x.as_f64().unwrap_or(0.0);
+    let u = |x: &Value| x.as_u64().unwrap_or(0);
+    line("scene", v["scene"].as_str().unwrap_or("").to_string());
+    let cam = &v["camera"];
+    let proj = match cam["projection"]["kind"].as_str() {
+        Some("perspective") => format!("perspective, fov {:.2}°", f(&cam["projection"]["fov"])),
+        Some(k) => k.to_string(),
+        None => String::new(),
+    };
+    let vec3 = |x: &Value| {
+        let a: Vec<String> = (0..3).map(|i| format!("{:.4}", f(&x[i]))).collect();
+        format!("({})", a.join(", "))
+    };
+    line(
+        "camera",
+        format!(
+            "{proj} at {} looking along {}",
+            vec3(&cam["position"]),
+            vec3(&cam["direction"])
+        ),
+    );
+    let film = &v["film"];
+    let pb = &film["pixel_bounds"];
+    line(
+        "film",
+        format!(
+            "{}x{}, pixels [{}, {}) x [{}, {}){}",
+            u(&film["width"]),
+            u(&film["height"]),
+            pb[0],
+            pb[1],
+            pb[2],
+            pb[3],
+            film["filename"]
+                .as_str()
+                .map(|n| format!(", file {n}"))
+                .unwrap_or_default()
+        ),
+    );
+    line(
+        "sampler",
+        format!(
+            "{}, {} spp, seed {}",
+            v["sampler"]["kind"].as_str().unwrap_or(""),
+            u(&v["sampler"]["spp"]),
+            u(&v["sampler"]["seed"])
+        ),
+    );
+    line("integrator", v["integrator"].as_str().unwrap_or("").into());
+    line("shapes", kinds(&v["shapes"]));
+    if u(&v["objects"]) > 0 {
+        line(
+            "objects",
+            format!(
+                "{} ({}), {} instances",
+                u(&v["objects"]),
+                kinds(&v["object_shapes"]),
+                u(&v["instances"])
+            ),
+        );
+    }
+    line(
+        "triangles",
+        format!(
+            "{} in world shapes, {} in instances, {} built",
+            u(&v["triangles"]),
+            u(&v["instanced_triangles"]),
+            u(&v["scene_triangles"])
+        ),
+    );
+    line("primitives", u(&v["primitives"]).to_string());
+    line("lights", kinds(&v["lights"]));
+    line(
+        "materials",
+        format!(
+            "{} ({})",
+            u(&v["materials"]["count"]),
+            kinds(&v["materials"]["by_kind"])
+        ),
+    );
+    line("textures", u(&v["textures"]).to_string());
+    let wb = &v["world_bounds"];
+    line(
+        "bounds",
+        if wb.is_null() {
+            "empty".into()
+        } else {
+            format!("{} to {}", vec3(&wb["min"]), vec3(&wb["max"]))
+        },
+    );
+    let m = &v["memory"];
+    line(
+        "memory",
+        format!(
+            "meshes {}, primitive records {}, BVH {} ({} nodes), textures {}, total {}",
+            bytes(u(&m["mesh_bytes"])),
+            bytes(u(&m["primitive_bytes"])),
+            bytes(u(&m["bvh_bytes"])),
+            u(&v["bvh"]["nodes"]),
+            bytes(u(&m["texture_bytes"])),
+            bytes(u(&m["total_bytes"]))
+        ),
+    );
+    if let Some(bpt) = m["bytes_per_triangle"].as_f64() {
+        line(
+            "per triangle",
+            format!("{bpt:.1} bytes (mesh + primitive records + BVH)"),
+        );
+    }
+    let warnings = v["warnings"].as_array().cloned().unwrap_or_default();
+    line("warnings", warnings.len().to_string());
+    for w in &warnings {
+        out.push_str(&format!("  {}\n", w.as_str().unwrap_or("")));
+    }
+    if let Some(files) = v["files"].as_array() {
+        out.push_str(&format!("files read ({}):\n", files.len()));
+        for p in files {
+            out.push_str(&format!("  {}\n", p.as_str().unwrap_or("")));
+        }
+    }
+    out
+}
+
+/// Runs `lancer info`.
+pub fn run(args: InfoArgs) -> Result<(), CliError> {
+    let v = describe(&args)?;
+    if args.json {
+        println!("{v}");
+    } else {
+        print!("{}", text(&v));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn variant_names_come_from_debug() {
+        #[derive(Debug)]
+        #[allow(dead_code)]
+        enum E {
+            Unit,
+            Tuple(u8),
+            Named { a: u8 },
+        }
+        assert_eq!(variant_name(&E::Unit), "Unit");
+        assert_eq!(variant_name(&E::Tuple(1)), "Tuple");
+        assert_eq!(variant_name(&E::Named { a: 1 }), "Named");
+    }
+
+    #[test]
+    fn human_sizes() {
+        assert_eq!(bytes(512), "512 B");
+        assert_eq!(bytes(2048), "2.0 KiB");
+        assert_eq!(bytes(3 << 20), "3.00 MiB");
+    }
+}

@@ -1,0 +1,233 @@
+//! `--stats json`: a machine-readable summary of a render, and the memory estimate of a built
+//! scene that `lancer info` reports too.
+
+use lancer::Scene;
+use lancer::shape::Shape;
+use lancer::texture::{FloatTexture, SpectrumTexture};
+use serde_json::{Value, json};
+use std::collections::HashSet;
+use std::mem::size_of;
+
+/// Output formats of `--stats`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StatsFormat {
+    /// One JSON object on stdout when the render ends.
+    Json,
+}
+
+/// Where a built scene's memory goes, in bytes (what the arrays hold, capacity included).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SceneMemory {
+    /// Triangle meshes: positions, normals, uvs, indices.
+    pub mesh_bytes: u64,
+    /// Primitive records: one shape and one material/emission record per primitive (a
+    /// triangle's record holds its three world-space vertices).
+    pub primitive_bytes: u64,
+    /// The acceleration structure.
+    pub bvh_bytes: u64,
+    /// Texture images (each shared image once).
+    pub texture_bytes: u64,
+    /// Lights, materials, and texture records.
+    pub other_bytes: u64,
+    /// Triangles in the scene.
+    pub triangles: u64,
+    /// Primitives (triangles and other shapes).
+    pub primitives: u64,
+    /// Nodes of the acceleration structure.
+    pub bvh_nodes: u64,
+}
+
+impl SceneMemory {
+    /// Measures `scene`.
+    pub fn of(scene: &Scene) -> SceneMemory {
+        let vec = |cap: usize, elem: usize| (cap * elem) as u64;
+        let mesh_bytes = scene
+            .meshes
+            .iter()
+            .map(|m| {
+                vec(m.positions.capacity(), size_of::<lancer::math::Vec3>())
+                    + vec(m.normals.capacity(), size_of::<lancer::math::Vec3>())
+                    + vec(m.uvs.capacity(), size_of::<lancer::math::Vec2>())
+                    + vec(m.indices.capacity(), size_of::<u32>())
+            })
+            .sum();
+        let boxed: u64 = scene.shapes.iter().map(boxed_shape_bytes).sum();
+        let primitive_bytes = vec(scene.shapes.capacity(), size_of::<Shape>())
+            + boxed
+            + vec(scene.prims.capacity(), size_of::<lancer::scene::PrimInfo>());
+        let mut seen = HashSet::new();
+        let mut texture_bytes = 0u64;
+        let images = scene
+            .float_textures
+            .iter()
+            .filter_map(|t| match t {
+                FloatTexture::Image(i) => Some(&i.image),
+                _ => None,
+            })
+            .chain(scene.spectrum_textures.iter().filter_map(|t| match t {
+                SpectrumTexture::Image(i) => Some(&i.image),
+                _ => None,
+            }));
+        for img in images {
+            if seen.insert(std::sync::Arc::as_ptr(img)) {
+                texture_bytes += vec(img.texels.capacity(), size_of::<lancer::math::Rgb>());
+            }
+        }
+        let other_bytes = vec(scene.lights.capacity(), size_of::<lancer::light::Light>())
+            + vec(
+                scene.materials.capacity(),
+                size_of::<lancer::material::Material>(),
+            )
+            + vec(scene.float_textures.capacity(), size_of::<FloatTexture>())
+            + vec(
+                scene.spectrum_textures.capacity(),
+                size_of::<SpectrumTexture>(),
+            );
+        SceneMemory {
+            mesh_bytes,
+            primitive_bytes,
+            bvh_bytes: scene.bvh().memory_bytes() as u64,
+            texture_bytes,
+            other_bytes,
+            triangles: scene.meshes.iter().map(|m| m.triangle_count() as u64).sum(),
+            primitives: scene.shapes.len() as u64,
+            bvh_nodes: scene.bvh().node_count() as u64,
+        }
+    }
+
+    /// Everything counted.
+    pub fn total(&self) -> u64 {
+        self.mesh_bytes
+            + self.primitive_bytes
+            + self.bvh_bytes
+            + self.texture_bytes
+            + self.other_bytes
+    }
+
+    /// Geometry memory per triangle: (mesh + primitive records + BVH) / triangles; `None`
+    /// without triangles.
+    pub fn bytes_per_triangle(&self) -> Option<f64> {
+        (self.triangles > 0).then(|| {
+            (self.mesh_bytes + self.primitive_bytes + self.bvh_bytes) as f64 / self.triangles as f64
+        })
+    }
+
+    /// As a JSON object.
+    pub fn to_json(self) -> Value {
+        json!({
+            "mesh_bytes": self.mesh_bytes,
+            "primitive_bytes": self.primitive_bytes,
+            "bvh_bytes": self.bvh_bytes,
+            "texture_bytes": self.texture_bytes,
+            "other_bytes": self.other_bytes,
+            "total_bytes": self.total(),
+            "bytes_per_triangle": self.bytes_per_triangle(),
+        })
+    }
+}
+
+/// Heap bytes behind a boxed shape (triangles are stored inline).
+fn boxed_shape_bytes(s: &Shape) -> u64 {
+    (match s {
+        Shape::Sphere(b) => size_of_val(&**b),
+        Shape::Disk(b) => size_of_val(&**b),
+        Shape::Cylinder(b) => size_of_val(&**b),
+        Shape::Cone(b) => size_of_val(&**b),
+        Shape::Paraboloid(b) => size_of_val(&**b),
+        Shape::Hyperboloid(b) => size_of_val(&**b),
+        Shape::Box(b) => size_of_val(&**b),
+        Shape::Plane(b) => size_of_val(&**b),
+        _ => 0,
+    }) as u64
+}
+
+/// Seconds spent in each phase of a render.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Phases {
+    /// Reading the scene files.
+    pub parse: f64,
+    /// Building the scene (BVH, lights).
+    pub build: f64,
+    /// Rendering.
+    pub render: f64,
+    /// Encoding and writing the image.
+    pub write: f64,
+    /// Wall-clock time of the whole command.
+    pub total: f64,
+}
+
+/// What the summary reports about the render itself.
+#[derive(Clone, Debug)]
+pub struct RenderSummary {
+    /// Scene file (`None`: the built-in scene).
+    pub scene: Option<String>,
+    /// Output image.
+    pub output: String,
+    /// Rendered width and height in pixels.
+    pub size: (u32, u32),
+    /// Samples per pixel.
+    pub spp: u32,
+    /// Worker threads.
+    pub threads: usize,
+    /// Camera samples taken.
+    pub samples: u64,
+    /// Rays traced (all kinds: the renderer counts them together).
+    pub rays: u64,
+}
+
+/// The `--stats json` object.
+pub fn render_json(r: &RenderSummary, t: &Phases, mem: &SceneMemory) -> Value {
+    let per_s = |n: u64| {
+        if t.render > 0.0 {
+            n as f64 / t.render
+        } else {
+            0.0
+        }
+    };
+    json!({
+        "scene": r.scene,
+        "output": r.output,
+        "width": r.size.0,
+        "height": r.size.1,
+        "spp": r.spp,
+        "threads": r.threads,
+        "time_s": {
+            "total": t.total,
+            "parse": t.parse,
+            "build": t.build,
+            "render": t.render,
+            "write": t.write,
+        },
+        "samples": r.samples,
+        "samples_per_s": per_s(r.samples),
+        "rays": { "total": r.rays },
+        "rays_per_s": per_s(r.rays),
+        "primitives": mem.primitives,
+        "triangles": mem.triangles,
+        "bvh": { "nodes": mem.bvh_nodes, "bytes": mem.bvh_bytes },
+        "memory": mem.to_json(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bytes_per_triangle_counts_mesh_records_and_bvh() {
+        let m = SceneMemory {
+            mesh_bytes: 1000,
+            primitive_bytes: 500,
+            bvh_bytes: 500,
+            texture_bytes: 7,
+            other_bytes: 3,
+            triangles: 40,
+            primitives: 40,
+            bvh_nodes: 5,
+        };
+        assert_eq!(m.bytes_per_triangle(), Some(50.0));
+        assert_eq!(m.total(), 2010);
+        assert_eq!(SceneMemory::default().bytes_per_triangle(), None);
+        assert_eq!(m.to_json()["bytes_per_triangle"].as_f64(), Some(50.0));
+    }
+}

@@ -1,0 +1,121 @@
+//! The record of every file a load reads (scene, includes, meshes, textures, spectra), for
+//! `lancer info --files`: scenes may name files anywhere (absolute paths, `..`), and users
+//! want to know exactly what a render depends on.
+//!
+//! Readers call [`record`] wherever they open a file. The record is per thread: [`recording`]
+//! collects what the closure it runs reads. A loader that reads files on other threads carries
+//! the record there with [`current`] and [`with`].
+
+use std::cell::RefCell;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+
+/// A shared list of the files read so far, in first-read order, without repeats.
+#[derive(Clone, Debug, Default)]
+pub struct Recorder(Arc<Mutex<Vec<PathBuf>>>);
+
+impl Recorder {
+    /// Adds `path`, made absolute, unless it is already listed.
+    pub fn add(&self, path: &Path) {
+        let abs = absolute(path);
+        let mut files = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        if !files.contains(&abs) {
+            files.push(abs);
+        }
+    }
+
+    /// The files listed so far.
+    pub fn files(&self) -> Vec<PathBuf> {
+        self.0.lock().unwrap_or_else(|e| e.into_inner()).clone()
+    }
+}
+
+thread_local! {
+    static CURRENT: RefCell<Option<Recorder>> = const { RefCell::new(None) };
+}
+
+/// `path` as an absolute path: canonical when it exists (symbolic links and `..` resolved),
+/// else joined to the current folder.
+pub fn absolute(path: &Path) -> PathBuf {
+    std::fs::canonicalize(path).unwrap_or_else(|_| {
+        std::env::current_dir()
+            .map(|d| d.join(path))
+            .unwrap_or_else(|_| path.to_path_buf())
+    })
+}
+
+/// Notes that `path` was read, if this thread is recording.
+pub fn record(path: &Path) {
+    CURRENT.with(|c| {
+        if let Some(r) = &*c.borrow() {
+            r.add(path);
+        }
+    });
+}
+
+/// This thread's recorder, to hand to worker threads.
+pub fn current() -> Option<Recorder> {
+    CURRENT.with(|c| c.borrow().clone())
+}
+
+/// Runs `f` with `recorder` (or none) as this thread's recorder, then restores the previous one.
+pub fn with<T>(recorder: Option<Recorder>, f: impl FnOnce() -> T) -> T {
+    let previous = CURRENT.with(|c| c.replace(recorder));
+    struct Restore(Option<Recorder>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            let prev = self.0.take();
+            CURRENT.with(|c| *c.borrow_mut() = prev);
+        }
+    }
+    let _restore = Restore(previous);
+    f()
+}
+
+/// Runs `f` and returns its result with the files read meanwhile on this thread (and on threads
+/// it handed the recorder to). Nested recordings also report to the outer one.
+pub fn recording<T>(f: impl FnOnce() -> T) -> (T, Vec<PathBuf>) {
+    let outer = current();
+    let recorder = Recorder::default();
+    let out = with(Some(recorder.clone()), f);
+    let files = recorder.files();
+    if let Some(o) = outer {
+        for p in &files {
+            o.add(p);
+        }
+    }
+    (out, files)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn records_only_inside_a_recording_and_without_repeats() {
+        record(Path::new("outside.txt"));
+        let dir = std::env::temp_dir();
+        let a = dir.join("lancer-files-read-a");
+        let ((), files) = recording(|| {
+            record(&a);
+            record(Path::new("relative/b.ply"));
+            record(&a);
+        });
+        assert_eq!(files.len(), 2);
+        assert_eq!(files[0], absolute(&a));
+        assert!(files[1].is_absolute());
+        assert!(files[1].ends_with("relative/b.ply"));
+        assert!(current().is_none());
+    }
+
+    #[test]
+    fn worker_threads_report_through_the_handed_recorder() {
+        let ((), files) = recording(|| {
+            let r = current();
+            std::thread::spawn(move || with(r, || record(Path::new("/tmp/from-worker"))))
+                .join()
+                .unwrap();
+        });
+        assert_eq!(files, vec![absolute(Path::new("/tmp/from-worker"))]);
+    }
+}
