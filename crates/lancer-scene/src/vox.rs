@@ -92,6 +92,7 @@ pub fn linear_palette(p: &[[u8; 4]; 256]) -> [Rgb; 256] {
 
 /// Reads a `.vox` file.
 pub fn read_vox(path: &Path) -> Result<VoxModel, VoxError> {
+    crate::files_read::record(path);
     let name = path.display().to_string();
     let data = std::fs::read(path).map_err(|e| VoxError {
         file: name.clone(),

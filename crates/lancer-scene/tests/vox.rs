@@ -257,8 +257,14 @@ fn pbrt_voxel_errors() {
 #[test]
 fn the_shipped_voxel_scene_loads() {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes/voxels.pbrt");
-    let loaded = lancer_scene::load(&path).unwrap();
+    let (loaded, files) = lancer_scene::files_read::recording(|| lancer_scene::load(&path));
+    let loaded = loaded.unwrap();
     assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
+    // `lancer info --files` lists the model.
+    assert!(
+        files.iter().any(|f| f.ends_with("voxels/island.vox")),
+        "{files:?}"
+    );
     let g = loaded
         .desc
         .shapes
