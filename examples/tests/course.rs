@@ -17,6 +17,8 @@ mod step4;
 mod step5;
 #[path = "../08_renderer.rs"]
 mod step8;
+#[path = "../09_sdf.rs"]
+mod step9;
 use step8::step7;
 use step8::step7::step6;
 
@@ -217,4 +219,72 @@ fn step8_renderer_reproduces_the_hand_written_loop() {
     }
     // Silhouette pixels may differ by rounding of the ray direction; nothing else may.
     assert!(differ <= (w * h) as usize / 200, "{differ} pixels differ");
+}
+
+#[test]
+fn step9_sdf_scene_has_objects_lit_floor_umbra_and_penumbra() {
+    let (objects, all) = step9::scene();
+    let l = step9::light_dir();
+    let k = step9::PENUMBRA_K;
+    // Below the sphere's centre along the light: the umbra. Far off to the side: full light.
+    let c = Vec3::new(0.0, 0.7, 0.0);
+    let umbra = c - l * (c.y / l.y);
+    assert_eq!(step9::soft_shadow(&all, umbra, l, k), 0.0);
+    let far = Vec3::new(-3.0, 0.0, 3.0);
+    assert_eq!(step9::soft_shadow(&all, far, l, k), 1.0);
+    // Walking from the umbra sideways out of the shadow, the estimate rises through a
+    // penumbra (values strictly between 0 and 1) and never falls back.
+    let side = l.cross(Vec3::Y).normalize();
+    let values: Vec<f32> = (0..=60)
+        .map(|i| step9::soft_shadow(&all, umbra + side * (i as f32 * 0.05), l, k))
+        .collect();
+    assert!(values.iter().any(|&v| v > 0.2 && v < 0.8), "{values:?}");
+    assert_eq!(*values.last().unwrap(), 1.0, "{values:?}");
+
+    // The image: pink object pixels, floor pixels fully lit, in umbra and in penumbra, each
+    // checked against the shading formula with the shadow recomputed independently.
+    let (w, h) = (160, 90);
+    let img = step9::render(w, h);
+    let ambient = 0.6 * 0.15;
+    let lit = 0.6 * (0.15 + 1.2 * l.y);
+    let (mut pink, mut full, mut dark, mut half) = (0, 0, 0, 0);
+    for j in 0..h {
+        for i in 0..w {
+            let px = img.get(i, j);
+            let d = step9::ray_dir(i, j, w, h);
+            let Some(t) = step9::march(&all, step9::EYE, d, 40.0) else {
+                continue;
+            };
+            let p = step9::EYE + d * t;
+            if objects.eval(p.as_dvec3()) < p.y as f64 {
+                if px.x > 1.5 * px.y {
+                    pink += 1;
+                }
+                continue;
+            }
+            // A floor pixel: grey, and ambient + direct·shadow with the floor's normal +y.
+            assert!((px.x - px.y).abs() < 1e-4, "floor pixel ({i}, {j}) {px}");
+            let s = step9::soft_shadow(&all, p + Vec3::Y * 2e-3, l, k);
+            assert!(
+                (px.y - (ambient + 0.6 * 1.2 * l.y * s)).abs() < 0.02,
+                "({i}, {j}) {px} vs shadow {s}"
+            );
+            // Independent hard shadow: a ray marched to the light meets an object.
+            let blocked = step9::march(&objects, p + Vec3::Y * 2e-3, l, 20.0).is_some();
+            if blocked {
+                assert!(px.y < ambient + 0.05, "({i}, {j}) is blocked but lit: {px}");
+            }
+            if (px.y - lit).abs() < 0.01 {
+                full += 1;
+            } else if (px.y - ambient).abs() < 0.01 {
+                dark += 1;
+            } else {
+                half += 1;
+            }
+        }
+    }
+    assert!(
+        pink > 800 && full > 3000 && dark > 100 && half > 100,
+        "pink {pink}, lit {full}, umbra {dark}, penumbra {half}"
+    );
 }

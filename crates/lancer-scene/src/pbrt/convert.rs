@@ -617,6 +617,8 @@ impl Reader<'_> {
                     n,
                 }
             }
+            // lancer extension: a signed-distance object, sphere-traced.
+            "sdf" => super::sdf::sdf_geometry(p)?,
             "trianglemesh" => Geometry::TriangleMesh(Arc::new(self.triangle_mesh(ty)?)),
             // pbrt's subdivision surface: the control mesh refined `levels` times (default 3)
             // and moved to the limit surface.

@@ -10,3 +10,4 @@ pub mod convert;
 pub mod lexer;
 pub mod params;
 pub mod parser;
+pub mod sdf;

@@ -126,6 +126,8 @@ pub struct Param {
     pub name: String,
     /// Where its declaration string starts.
     pub loc: Location,
+    /// Where its first value starts (for a string, its opening quote).
+    pub value_loc: Location,
     /// Values.
     pub values: Values,
     used: Cell<bool>,
@@ -256,6 +258,7 @@ impl Param {
         Ok(Param {
             ty,
             name: name.to_string(),
+            value_loc: raw[0].1.clone(),
             loc,
             values,
             used: Cell::new(false),

@@ -315,6 +315,13 @@ pub enum Geometry {
     TriangleMesh(Arc<TriangleMesh>),
     /// lancer's `voxels`: a voxel grid (shared, never copied per voxel).
     Voxels(Arc<crate::shape::VoxelGrid>),
+    /// lancer's `sdf`: a signed-distance expression, optionally clipped to a box.
+    Sdf {
+        /// The parsed expression.
+        function: Arc<crate::shape::SdfFunction>,
+        /// Object-space box (`min`, `max`) clipping the solid; required when it is unbounded.
+        bounds: Option<(Vec3, Vec3)>,
+    },
 }
 
 /// A diffuse area light attached to a shape.

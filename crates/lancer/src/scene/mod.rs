@@ -9,7 +9,7 @@ use crate::material::Material;
 use crate::math::{Bounds3, Frame, Rgb, Vec3};
 use crate::ray::Ray;
 use crate::shape::{
-    Cone, Cuboid, Cylinder, Disk, Hyperboloid, Paraboloid, Placement, Plane, Shape, Sphere,
+    Cone, Cuboid, Cylinder, Disk, Hyperboloid, Paraboloid, Placement, Plane, Sdf, Shape, Sphere,
     SurfaceInteraction, Triangle, TriangleMesh, TriangleRay, is_degenerate,
 };
 use crate::texture::{FloatTex, FloatTexture, SpectrumTexture, TexCoord, TextureEval};
@@ -206,6 +206,16 @@ fn shapes_of(
                 BuildError::Invalid(format!("shape {index}: plane normal is zero"))
             })?;
             out.push(Shape::Plane(Box::new(plane)));
+        }
+        Geometry::Sdf { function, bounds } => {
+            if sd.area_light.is_some() {
+                return Err(BuildError::Invalid(format!(
+                    "shape {index}: an sdf shape cannot be an area light (its area has no closed form)"
+                )));
+            }
+            let sdf = Sdf::new(placement, function.clone(), *bounds)
+                .map_err(|e| BuildError::Invalid(format!("shape {index}: {e}")))?;
+            out.push(Shape::Sdf(Box::new(sdf)));
         }
         Geometry::TriangleMesh(m) => {
             m.validate().map_err(|message| BuildError::BadMesh {

@@ -15,6 +15,7 @@ mod loop_subdiv;
 mod paraboloid;
 mod plane;
 mod sample;
+pub mod sdf;
 mod sphere;
 mod triangle;
 mod voxels;
@@ -28,6 +29,7 @@ pub use loop_subdiv::loop_subdivide;
 pub use paraboloid::Paraboloid;
 pub use plane::Plane;
 pub use sample::ShapeSample;
+pub use sdf::{Sdf, SdfFunction};
 pub use sphere::Sphere;
 pub use triangle::{
     Triangle, TriangleMesh, TriangleRay, intersect_triangle, intersect_triangle_with, is_degenerate,
@@ -236,6 +238,8 @@ pub enum Shape {
     Triangle(Triangle),
     /// A voxel grid (lancer extension).
     Voxels(Box<Voxels>),
+    /// A signed-distance object, sphere-traced (lancer extension).
+    Sdf(Box<Sdf>),
 }
 
 impl Shape {
@@ -254,6 +258,7 @@ impl Shape {
             }
             Shape::Triangle(t) => t.bounds(),
             Shape::Voxels(v) => v.bounds(),
+            Shape::Sdf(s) => s.bounds(),
         }
     }
 
@@ -284,6 +289,7 @@ impl Shape {
             Shape::Box(s) => s.intersect(ray),
             Shape::Plane(s) => s.intersect(ray),
             Shape::Voxels(v) => v.intersect(ray),
+            Shape::Sdf(s) => s.intersect(ray),
         }
     }
 
@@ -304,6 +310,7 @@ impl Shape {
             Shape::Box(s) => s.interaction(ray, hit),
             Shape::Plane(s) => s.interaction(ray, hit),
             Shape::Triangle(t) => t.interaction(ray, hit, &meshes[t.mesh as usize]),
+            Shape::Sdf(s) => s.interaction(ray, hit),
             Shape::Voxels(v) => v.interaction(ray, hit),
         }
     }

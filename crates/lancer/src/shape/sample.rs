@@ -58,7 +58,8 @@ impl Shape {
             Shape::Paraboloid(p) => p.object_area() * area_scale(&p.placement),
             Shape::Hyperboloid(h) => h.object_area() * area_scale(&h.placement),
             Shape::Box(b) => b.area(),
-            Shape::Plane(_) => 0.0,
+            // No closed form: SDF objects cannot emit (the scene builder refuses them).
+            Shape::Plane(_) | Shape::Sdf(_) => 0.0,
             // Voxel grids cannot emit (Scene::build refuses them as area lights).
             Shape::Voxels(_) => 0.0,
             // A = |(p₁ − p₀) × (p₂ − p₀)| / 2.
@@ -66,7 +67,7 @@ impl Shape {
         }
     }
 
-    /// A point uniform by area on the shape; `None` for planes and voxel grids.
+    /// A point uniform by area on the shape; `None` for planes, voxel grids and SDF objects.
     pub fn sample_area(&self, u: Vec2, meshes: &[TriangleMesh]) -> Option<ShapeSample> {
         match self {
             Shape::Sphere(s) => {
@@ -111,7 +112,7 @@ impl Shape {
                 let (p, n) = b.sample_object(u);
                 Some(placed(&b.placement, p, n))
             }
-            Shape::Plane(_) | Shape::Voxels(_) => None,
+            Shape::Plane(_) | Shape::Voxels(_) | Shape::Sdf(_) => None,
             Shape::Triangle(t) => {
                 let [b0, b1, b2] = sample_uniform_triangle(u);
                 let [p0, p1, p2] = t.p;

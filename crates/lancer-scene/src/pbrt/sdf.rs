@@ -1,0 +1,69 @@
+//! lancer's `Shape "sdf"`: a signed-distance expression (`"string expr"`), optionally clipped to
+//! an object-space box (`"point3 min"`, `"point3 max"`, required when the expression is
+//! unbounded: planes, endless repetition).
+//!
+//! Expression errors point into the scene file: the line of the string, and its column plus
+//! the error's offset in the expression (exact unless escape sequences such as `\"` come
+//! before the error in the string).
+
+use super::params::{ParamList, ParamType};
+use crate::error::{Location, SceneError};
+use lancer::math::Vec3;
+use lancer::scene::desc::Geometry;
+use lancer::shape::SdfFunction;
+use std::sync::Arc;
+
+/// The geometry of `Shape "sdf"` from its parameters.
+pub fn sdf_geometry(p: &ParamList) -> Result<Geometry, SceneError> {
+    let Some(param) = p.find("expr", &[ParamType::String])? else {
+        return Err(SceneError::general(
+            "an \"sdf\" shape needs its expression, \"string expr\" \"…\" (for example \
+             \"sphere(1)\")",
+        ));
+    };
+    let src = p.string("expr")?.unwrap_or_default();
+    let function = SdfFunction::parse(&src).map_err(|e| {
+        // The value's token starts at its opening quote: the text starts one column later.
+        let loc = Location {
+            col: param.value_loc.col + 1 + e.offset as u32,
+            ..param.value_loc.clone()
+        };
+        SceneError::at(loc, format!("in the sdf expression: {}", e.message))
+    })?;
+    let bounds = match (p.has("min"), p.has("max")) {
+        (false, false) => None,
+        (true, true) => {
+            let (min, max) = (p.point3("min", Vec3::ZERO)?, p.point3("max", Vec3::ZERO)?);
+            if !min.cmplt(max).all() {
+                let loc = p.location("max").cloned();
+                let msg = format!(
+                    "the sdf's \"min\" {min} must be below its \"max\" {max} on every axis"
+                );
+                return Err(match loc {
+                    Some(l) => SceneError::at(l, msg),
+                    None => SceneError::general(msg),
+                });
+            }
+            Some((min, max))
+        }
+        _ => {
+            let name = if p.has("min") { "min" } else { "max" };
+            let msg = "an sdf's box needs both \"point3 min\" and \"point3 max\"";
+            return Err(match p.location(name).cloned() {
+                Some(l) => SceneError::at(l, msg),
+                None => SceneError::general(msg),
+            });
+        }
+    };
+    if bounds.is_none() && !function.bounds().is_finite() {
+        return Err(SceneError::at(
+            param.loc.clone(),
+            "this sdf expression is unbounded (a plane or an endless repeat): give its box \
+             with \"point3 min\" [...] and \"point3 max\" [...]",
+        ));
+    }
+    Ok(Geometry::Sdf {
+        function: Arc::new(function),
+        bounds,
+    })
+}
