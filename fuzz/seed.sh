@@ -20,6 +20,7 @@ files() { find "$shared/scenes" ../crates ../scenes -type f -iname "$1" 2>/dev/n
 seed pbrt $(files '*.pbrt')
 seed ply $(files '*.ply')
 seed obj $(files '*.obj') $(files '*.mtl')
+seed vox $(files '*.vox')
 # The image target's first byte picks the decoder: 0 PNG, 1 JPEG, 2 EXR.
 mkdir -p corpus/image
 for f in $(files '*.png') $(files '*.jpg') $(files '*.exr'); do

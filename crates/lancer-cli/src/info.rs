@@ -38,6 +38,7 @@ pub fn geometry_kind(g: &Geometry) -> &'static str {
         Geometry::Box { .. } => "box",
         Geometry::Plane { .. } => "plane",
         Geometry::TriangleMesh(_) => "trianglemesh",
+        Geometry::Voxels(_) => "voxels",
         #[allow(unreachable_patterns)]
         _ => "other",
     }

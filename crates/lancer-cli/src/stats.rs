@@ -137,6 +137,9 @@ fn boxed_shape_bytes(s: &Shape) -> u64 {
         Shape::Hyperboloid(b) => size_of_val(&**b),
         Shape::Box(b) => size_of_val(&**b),
         Shape::Plane(b) => size_of_val(&**b),
+        // The cells (a byte each, shared by instances of one grid but counted per instance)
+        // and the bricks.
+        Shape::Voxels(b) => size_of_val(&**b) + b.heap_bytes(),
         _ => 0,
     }) as u64
 }

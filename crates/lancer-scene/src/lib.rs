@@ -13,6 +13,7 @@ pub mod mesh_scene;
 pub mod obj;
 pub mod pbrt;
 pub mod ply;
+pub mod vox;
 
 pub use error::{Location, SceneError, Warning};
 

@@ -954,6 +954,12 @@ impl Builder {
             ));
         }
         let mut area_light = self.gs.area_light;
+        if area_light.is_some() && matches!(geometry, lancer::scene::desc::Geometry::Voxels(_)) {
+            return Err(SceneError::at(
+                loc.clone(),
+                "a \"voxels\" shape cannot be an area light (AttributeBegin/AttributeEnd around the AreaLightSource keeps it from the voxels)",
+            ));
+        }
         if area_light.is_some() && self.current_object.is_some() {
             self.warn_once(
                 "instanced-area-light",

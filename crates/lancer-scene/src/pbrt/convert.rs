@@ -11,6 +11,7 @@ use crate::error::{Location, SceneError};
 use crate::image_read::{Encoding, ImageCache};
 use crate::obj::read_obj;
 use crate::ply::read_ply;
+use crate::vox::{default_palette, linear_palette, read_vox};
 use lancer::material::Material;
 use lancer::math::{Rgb, Vec3};
 use lancer::sampling::SamplerKind;
@@ -640,6 +641,14 @@ impl Reader<'_> {
                     }
                 }
             }
+            // lancer extension: a voxel grid, from a MagicaVoxel file or inline.
+            "voxels" => {
+                let (grid, warnings) = self.voxel_grid()?;
+                if !warnings.is_empty() {
+                    note = Some(warnings.join("; "));
+                }
+                Geometry::Voxels(Arc::new(grid))
+            }
             "curve" => {
                 let (desc, ignored_normals) = self.curve()?;
                 if ignored_normals {
@@ -666,6 +675,85 @@ impl Reader<'_> {
             None => Converted::Done((geometry, alpha)),
             Some(warning) => Converted::Unsupported(warning, Some((geometry, alpha))),
         })
+    }
+
+    /// lancer's `voxels`: the first model of the MagicaVoxel file `filename`, or the inline
+    /// grid `integer dims` [nx ny nz] with `integer indices` (nx·ny·nz palette indices, x
+    /// fastest, 0 = empty) and an optional `float palette` (linear r, g, b of indices 1, 2, …;
+    /// indices it does not reach keep MagicaVoxel's default palette; `float` because pbrt's
+    /// `rgb` holds one colour).
+    fn voxel_grid(&self) -> Result<(lancer::shape::VoxelGrid, Vec<String>), SceneError> {
+        let p = self.params;
+        if let Some(name) = p.string("filename")? {
+            let path = self.dir.resolve(&name);
+            let model = read_vox(&path).map_err(|e| SceneError::general(e.to_string()))?;
+            let warnings = model
+                .warnings
+                .iter()
+                .map(|w| format!("{}: {w}", path.display()))
+                .collect();
+            return Ok((model.grid, warnings));
+        }
+        let err = |name: &str, msg: String| match p.location(name).cloned() {
+            Some(l) => SceneError::at(l, msg),
+            None => SceneError::general(msg),
+        };
+        let Some((dims, dloc)) = p.ints("dims")? else {
+            return Err(SceneError::general(
+                "a \"voxels\" shape needs \"string filename\" or \"integer dims\" with \"integer indices\"",
+            ));
+        };
+        if dims.len() != 3 || dims.iter().any(|&d| d <= 0) {
+            return Err(SceneError::at(
+                dloc,
+                format!("\"integer dims\" must be three positive values, got {dims:?}"),
+            ));
+        }
+        let dims = [dims[0] as u32, dims[1] as u32, dims[2] as u32];
+        let Some((indices, iloc)) = p.ints("indices")? else {
+            return Err(err(
+                "dims",
+                "a \"voxels\" shape with \"integer dims\" needs \"integer indices\"".into(),
+            ));
+        };
+        let count = dims.iter().map(|&d| d as u64).product::<u64>();
+        if indices.len() as u64 != count {
+            return Err(SceneError::at(
+                iloc,
+                format!(
+                    "\"integer indices\" holds {} values for {}×{}×{} = {count} cells",
+                    indices.len(),
+                    dims[0],
+                    dims[1],
+                    dims[2]
+                ),
+            ));
+        }
+        if let Some(bad) = indices.iter().find(|&&i| !(0..=255).contains(&i)) {
+            return Err(SceneError::at(
+                iloc,
+                format!("palette index {bad} in \"integer indices\" is not in 0..=255"),
+            ));
+        }
+        let cells = indices.iter().map(|&i| i as u8).collect();
+        let mut palette = linear_palette(&default_palette());
+        if let Some(values) = p.floats("palette")? {
+            if values.len() % 3 != 0 || values.len() > 3 * 255 {
+                return Err(err(
+                    "palette",
+                    format!(
+                        "\"float palette\" holds {} values: it needs 3 (r, g, b) per colour, at most 255 colours",
+                        values.len()
+                    ),
+                ));
+            }
+            for (i, c) in values.chunks_exact(3).enumerate() {
+                palette[i + 1] = Rgb::new(c[0], c[1], c[2]);
+            }
+        }
+        let grid =
+            lancer::shape::VoxelGrid::new(dims, cells, palette).map_err(|m| err("dims", m))?;
+        Ok((grid, Vec::new()))
     }
 
     /// pbrt-v4's `objmesh`: every triangle of the OBJ file `filename` in one mesh (objects,

@@ -107,7 +107,11 @@ pub(crate) fn bsdf_at(scene: &Scene, hit: &SceneHit) -> Option<Bsdf> {
                 };
             }
             mat => {
-                let bxdf = mat.bxdf(&tex, &tc)?;
+                let mut bxdf = mat.bxdf(&tex, &tc)?;
+                // A shape's own colour (voxels) replaces a diffuse material's reflectance.
+                if let (Some(c), Material::Diffuse { .. }) = (hit.albedo, mat) {
+                    bxdf = crate::material::BxDF::diffuse(c.clamp(Rgb::ZERO, Rgb::ONE));
+                }
                 return Some(Bsdf::new(bxdf, hit.si.shading.n, hit.si.shading.dpdu));
             }
         }

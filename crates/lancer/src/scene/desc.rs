@@ -313,6 +313,8 @@ pub enum Geometry {
     },
     /// A triangle mesh (`trianglemesh`, `plymesh`, `objmesh`, glTF, …).
     TriangleMesh(Arc<TriangleMesh>),
+    /// lancer's `voxels`: a voxel grid (shared, never copied per voxel).
+    Voxels(Arc<crate::shape::VoxelGrid>),
     /// lancer's `sdf`: a signed-distance expression, optionally clipped to a box.
     Sdf {
         /// The parsed expression.

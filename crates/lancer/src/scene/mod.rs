@@ -44,6 +44,9 @@ pub struct SceneHit {
     pub si: SurfaceInteraction,
     /// Index of the primitive hit.
     pub prim: u32,
+    /// Reflectance given by the shape itself (a voxel's palette colour), which a `diffuse`
+    /// material uses instead of its own.
+    pub albedo: Option<Rgb>,
 }
 
 /// Why a scene description could not be built.
@@ -262,6 +265,17 @@ fn shapes_of(
                 }
             }
             meshes.push(world);
+        }
+        Geometry::Voxels(grid) => {
+            if sd.area_light.is_some() {
+                return Err(BuildError::Invalid(format!(
+                    "shape {index}: a voxel grid cannot be an area light"
+                )));
+            }
+            // An empty grid has nothing to hit: no primitive.
+            if let Some(v) = crate::shape::Voxels::new(placement, grid.clone()) {
+                out.push(Shape::Voxels(Box::new(v)));
+            }
         }
     }
     Ok(())
@@ -496,8 +510,10 @@ impl Scene {
             Some(h.t)
         });
         let (h, prim) = best?;
-        let si = self.shapes[prim as usize].interaction(ray, &h, &self.meshes);
-        Some(SceneHit { si, prim })
+        let shape = &self.shapes[prim as usize];
+        let si = shape.interaction(ray, &h, &self.meshes);
+        let albedo = shape.hit_albedo(&h);
+        Some(SceneHit { si, prim, albedo })
     }
 
     /// Primitive `i`'s hit by `ray`, unless its alpha cuts the surface away there.

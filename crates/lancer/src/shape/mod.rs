@@ -20,6 +20,7 @@ mod sample;
 pub mod sdf;
 mod sphere;
 mod triangle;
+mod voxels;
 
 pub use bilinear::{BilinearMesh, BilinearPatch, bilinear_point, intersect_bilinear};
 pub use cone::Cone;
@@ -37,6 +38,7 @@ pub use sphere::Sphere;
 pub use triangle::{
     Triangle, TriangleMesh, TriangleRay, intersect_triangle, intersect_triangle_with, is_degenerate,
 };
+pub use voxels::{BRICK, VoxelGrid, Voxels, srgb8_to_linear};
 
 use crate::math::{Bounds3, Transform, Vec2, Vec3, gamma};
 use crate::ray::Ray;
@@ -238,6 +240,8 @@ pub enum Shape {
     Plane(Box<Plane>),
     /// One triangle of a mesh.
     Triangle(Triangle),
+    /// A voxel grid (lancer extension).
+    Voxels(Box<Voxels>),
     /// A signed-distance object, sphere-traced (lancer extension).
     Sdf(Box<Sdf>),
     /// A piece of a curve (pbrt's `curve`).
@@ -261,6 +265,7 @@ impl Shape {
                 Bounds3::new(Vec3::splat(f32::NEG_INFINITY), Vec3::splat(f32::INFINITY))
             }
             Shape::Triangle(t) => t.bounds(),
+            Shape::Voxels(v) => v.bounds(),
             Shape::Sdf(s) => s.bounds(),
             Shape::Curve(c) => c.bounds(),
             Shape::Bilinear(b) => b.bounds(),
@@ -293,6 +298,7 @@ impl Shape {
             Shape::Hyperboloid(s) => s.intersect(ray),
             Shape::Box(s) => s.intersect(ray),
             Shape::Plane(s) => s.intersect(ray),
+            Shape::Voxels(v) => v.intersect(ray),
             Shape::Sdf(s) => s.intersect(ray),
             Shape::Curve(c) => c.intersect(ray),
             Shape::Bilinear(b) => b.intersect(ray),
@@ -319,6 +325,18 @@ impl Shape {
             Shape::Sdf(s) => s.interaction(ray, hit),
             Shape::Curve(c) => c.interaction(ray, hit),
             Shape::Bilinear(b) => b.interaction(ray, hit),
+            Shape::Voxels(v) => v.interaction(ray, hit),
+        }
+    }
+
+    /// The reflectance the shape itself gives a hit found by [`Shape::intersect`], which a
+    /// `diffuse` material uses instead of its own: a voxel's palette colour. `None` for
+    /// every other shape.
+    #[inline]
+    pub fn hit_albedo(&self, hit: &ShapeHit) -> Option<crate::math::Rgb> {
+        match self {
+            Shape::Voxels(v) => Some(v.hit_albedo(hit)),
+            _ => None,
         }
     }
 }

@@ -60,6 +60,8 @@ impl Shape {
             Shape::Box(b) => b.area(),
             // No closed form: SDF objects cannot emit (the scene builder refuses them).
             Shape::Plane(_) | Shape::Sdf(_) => 0.0,
+            // Voxel grids cannot emit (Scene::build refuses them as area lights).
+            Shape::Voxels(_) => 0.0,
             // A = |(p₁ − p₀) × (p₂ − p₀)| / 2.
             Shape::Triangle(t) => 0.5 * (t.p[1] - t.p[0]).cross(t.p[2] - t.p[0]).length(),
             // pbrt's approximation: control polygon length × mean width.
@@ -69,8 +71,8 @@ impl Shape {
         }
     }
 
-    /// A point uniform by area on the shape; `None` for planes, SDF objects and curves (which
-    /// pbrt-v4 cannot sample either).
+    /// A point uniform by area on the shape; `None` for planes, voxel grids, SDF objects and
+    /// curves (which pbrt-v4 cannot sample either).
     pub fn sample_area(&self, u: Vec2, meshes: &[TriangleMesh]) -> Option<ShapeSample> {
         match self {
             Shape::Sphere(s) => {
@@ -115,7 +117,7 @@ impl Shape {
                 let (p, n) = b.sample_object(u);
                 Some(placed(&b.placement, p, n))
             }
-            Shape::Plane(_) | Shape::Sdf(_) | Shape::Curve(_) => None,
+            Shape::Plane(_) | Shape::Voxels(_) | Shape::Sdf(_) | Shape::Curve(_) => None,
             Shape::Bilinear(b) => {
                 let (p, uv) = b.sample_uv(u);
                 Some(ShapeSample {
