@@ -13,7 +13,9 @@ use lancer::math::{Rgb, Transform, Vec3};
 use lancer::ray::Ray;
 use lancer::sampling::Pcg32;
 use lancer::scene::desc::{Geometry, SceneDesc, ShapeDesc};
-use lancer::shape::{TriangleMesh, VoxelGrid};
+use lancer::shape::{
+    BilinearMesh, CurveBasis, CurveDesc, CurveType, SdfFunction, TriangleMesh, VoxelGrid,
+};
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -30,6 +32,9 @@ fn kinds() -> Vec<(&'static str, Geometry)> {
         ("box", cuboid()),
         ("triangle", triangle()),
         ("voxels 16³ ball", voxel_ball(16)),
+        ("bilinear patch", bilinear_patch()),
+        ("curve (cylinder)", curve()),
+        ("sdf smooth union", sdf()),
     ]
 }
 
@@ -111,6 +116,52 @@ fn triangle() -> Geometry {
         indices: vec![0, 1, 2],
         ..TriangleMesh::default()
     }))
+}
+
+/// A twisted bilinear patch (a saddle).
+fn bilinear_patch() -> Geometry {
+    Geometry::BilinearMesh(Arc::new(BilinearMesh {
+        positions: vec![
+            Vec3::new(-0.5, -0.5, 0.2),
+            Vec3::new(0.5, -0.5, -0.2),
+            Vec3::new(-0.5, 0.5, -0.2),
+            Vec3::new(0.5, 0.5, 0.2),
+        ],
+        indices: vec![0, 1, 2, 3],
+        ..BilinearMesh::default()
+    }))
+}
+
+/// A bent hair-like cubic Bézier curve, tapering, shaded as a tube (pbrt's default split
+/// depth: 8 BVH primitives).
+fn curve() -> Geometry {
+    Geometry::Curve(Arc::new(CurveDesc {
+        points: vec![
+            Vec3::new(0.0, -0.5, 0.0),
+            Vec3::new(0.3, -0.1, 0.1),
+            Vec3::new(-0.3, 0.2, -0.1),
+            Vec3::new(0.1, 0.5, 0.0),
+        ],
+        basis: CurveBasis::Bezier,
+        degree: 3,
+        kind: CurveType::Cylinder,
+        width0: 0.1,
+        width1: 0.03,
+        normals: Vec::new(),
+        split_depth: 3,
+    }))
+}
+
+/// The shapes scene's signed-distance object: a sphere smoothly joined to a torus.
+fn sdf() -> Geometry {
+    let function = SdfFunction::parse(
+        "scale(0.4, smooth_union(sphere(0.6), translate([0, 0.5, 0], torus(0.7, 0.18)), 0.25))",
+    )
+    .expect("a valid expression");
+    Geometry::Sdf {
+        function: Arc::new(function),
+        bounds: None,
+    }
 }
 
 /// A ball of voxels `n` cells across, scaled to one unit by its placement's share (the grid
