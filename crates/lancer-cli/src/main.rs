@@ -5,6 +5,7 @@
 //! malformed scene, a missing file, bad options), 1 when something else fails (writing the
 //! image, an interrupted render).
 
+mod bench;
 mod cli_error;
 mod input;
 mod progress;
@@ -24,6 +25,9 @@ struct Cli {
 enum Command {
     /// Render a scene to an image (PNG or EXR, chosen by the extension).
     Render(render::RenderArgs),
+    /// Measure the renderer's parts (`bench rays MESH`: BVH build and ray throughput).
+    #[command(subcommand)]
+    Bench(bench::BenchCommand),
 }
 
 /// A binary built for x86-64-v3 (see `.cargo/config.toml`) dies of an illegal instruction on
@@ -45,6 +49,7 @@ fn main() {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => render::run(args),
+        Command::Bench(cmd) => bench::run(cmd),
     };
     if let Err(e) = result {
         e.report();

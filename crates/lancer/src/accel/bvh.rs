@@ -142,6 +142,13 @@ impl Bvh {
         }
     }
 
+    /// Bytes the tree occupies (nodes and primitive indices).
+    pub fn memory_bytes(&self) -> usize {
+        std::mem::size_of::<Bvh>()
+            + self.wide.capacity() * std::mem::size_of::<Node4>()
+            + self.indices.capacity() * 4
+    }
+
     /// Bounds of everything in the tree.
     pub fn bounds(&self) -> Bounds3 {
         self.bounds

@@ -2,5 +2,7 @@
 //! testing every object.
 
 mod bvh;
+mod mesh;
 
 pub use bvh::Bvh;
+pub use mesh::MeshBvh;
