@@ -3,6 +3,9 @@
 
 mod bvh;
 mod mesh;
+mod simd;
+mod tri4;
 
-pub use bvh::Bvh;
+pub use bvh::{Bvh, MAX_LEAF};
 pub use mesh::MeshBvh;
+pub use tri4::Tri4;

@@ -2,7 +2,7 @@
 
 pub mod desc;
 
-use crate::accel::Bvh;
+use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
 use crate::light::{Light, LightDistribution};
 use crate::material::Material;
@@ -97,6 +97,9 @@ pub struct Scene {
     /// The camera.
     pub camera: Camera,
     bvh: Bvh,
+    /// Per leaf of `bvh`: its triangles as a packet, or an empty packet when the leaf holds
+    /// other shapes or alpha-tested triangles (those go through [`Shape::intersect_with`]).
+    packets: Vec<Tri4>,
     /// Primitives without finite bounds (infinite planes), tested on every ray.
     unbounded: Vec<u32>,
     bounds: Bounds3,
@@ -332,6 +335,21 @@ impl Scene {
             *idx = k as u32;
         }
         let unbounded: Vec<u32> = (n_bounded..shapes.len() as u32).collect();
+        let packets = (0..bvh.leaf_count() as u32)
+            .map(|leaf| {
+                let mut lanes = Vec::with_capacity(4);
+                for k in bvh.leaf_range(leaf) {
+                    let i = bvh.indices[k];
+                    match &shapes[i as usize] {
+                        Shape::Triangle(t) if prims[i as usize].alpha.is_none() => {
+                            lanes.push((t.p, i))
+                        }
+                        _ => return Tri4::EMPTY,
+                    }
+                }
+                Tri4::new(&lanes)
+            })
+            .collect();
         let mut bounds = bvh.bounds();
         if bounds.is_empty() {
             bounds = Bounds3::from_point(Vec3::ZERO);
@@ -428,6 +446,7 @@ impl Scene {
             spectrum_textures: desc.spectrum_textures.clone(),
             camera,
             bvh,
+            packets,
             unbounded,
             bounds,
         })
@@ -451,10 +470,24 @@ impl Scene {
                 best = Some((h, i));
             }
         }
-        self.bvh.intersect(&r, |i, r| {
-            let h = self.hit(i, r, &pre)?;
-            best = Some((h, i));
-            Some(h.t)
+        self.bvh.intersect_leaves(&r, |leaf, r| {
+            let p = &self.packets[leaf as usize];
+            if !p.is_empty() {
+                let (lane, h) = p.intersect(r, &pre)?;
+                best = Some((h, p.ids[lane]));
+                return Some(h.t);
+            }
+            let mut r = *r;
+            let mut found = None;
+            for k in self.bvh.leaf_range(leaf) {
+                let i = self.bvh.indices[k];
+                if let Some(h) = self.hit(i, &r, &pre) {
+                    r.t_max = h.t;
+                    best = Some((h, i));
+                    found = Some(h.t);
+                }
+            }
+            found
         });
         let (h, prim) = best?;
         let si = self.shapes[prim as usize].interaction(ray, &h, &self.meshes);
@@ -506,9 +539,15 @@ impl Scene {
         self.unbounded
             .iter()
             .any(|&i| self.hit(i, ray, &pre).is_some())
-            || self
-                .bvh
-                .intersect_any(ray, |i, r| self.hit(i, r, &pre).is_some())
+            || self.bvh.intersect_any_leaves(ray, |leaf, r| {
+                let p = &self.packets[leaf as usize];
+                if !p.is_empty() {
+                    return p.intersect_any(r, &pre);
+                }
+                self.bvh
+                    .leaf_range(leaf)
+                    .any(|k| self.hit(self.bvh.indices[k], r, &pre).is_some())
+            })
     }
 
     /// Texture evaluation against this scene's textures.
