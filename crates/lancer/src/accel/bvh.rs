@@ -32,7 +32,8 @@ const EMPTY: u32 = u32::MAX;
 /// Four children's boxes side by side (one array per axis and side), so that one ray is
 /// tested against all four at once with 4-wide vector instructions.
 #[derive(Clone, Copy, Debug)]
-#[repr(C, align(16))]
+// Aligned to cache lines: a node is exactly two of them.
+#[repr(C, align(64))]
 struct Node4 {
     /// Lower corners: `min[axis][child]`.
     min: [[f32; 4]; 3],

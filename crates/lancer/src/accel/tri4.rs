@@ -147,6 +147,11 @@ impl Tri4 {
         // Same signs: not (some negative and some positive).
         let some_neg = e0.lt(zero).or(e1.lt(zero)).or(e2.lt(zero));
         let some_pos = e0.gt(zero).or(e1.gt(zero)).or(e2.gt(zero));
+        let edges_ok = some_neg.and(some_pos).bits() ^ 0xf;
+        if edges_ok & used & !redo == 0 {
+            // The ray passes outside every triangle (the common case): stop early.
+            return (0, [0.0; 4], [0.0; 4], [0.0; 4], redo);
+        }
         let det = e0.add(e1).add(e2);
         let (p0z, p1z, p2z) = (p0z.mul(sz), p1z.mul(sz), p2z.mul(sz));
         // t_scaled = e₀z₀ + e₁z₁ + e₂z₂, compared with t_max·det on det's side.

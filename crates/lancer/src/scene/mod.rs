@@ -1,6 +1,7 @@
 //! The built scene: immutable, shared by all render threads.
 
 pub mod desc;
+pub mod instance;
 
 use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
@@ -100,6 +101,8 @@ pub struct Scene {
     /// Per leaf of `bvh`: its triangles as a packet, or an empty packet when the leaf holds
     /// other shapes or alpha-tested triangles (those go through [`Shape::intersect_with`]).
     packets: Vec<Tri4>,
+    /// Instanced objects and their placements (the two-level part of the scene).
+    pub instances: instance::Instances,
     /// Primitives without finite bounds (infinite planes), tested on every ray.
     unbounded: Vec<u32>,
     bounds: Bounds3,
@@ -259,19 +262,41 @@ impl Scene {
             .enumerate()
             .map(|(i, s)| (i, s, crate::math::Transform::IDENTITY))
             .collect();
-        // Instances are flattened for now: each copy becomes shapes of its own.
-        for inst in &desc.instances {
-            let obj = desc.objects.get(inst.object as usize).ok_or_else(|| {
-                BuildError::Invalid(format!("instance of unknown object {}", inst.object))
-            })?;
-            for s in &obj.shapes {
-                all.push((desc.shapes.len(), s, inst.object_to_world));
-            }
-        }
         let mut materials = desc.materials.clone();
         if materials.is_empty() {
             materials.push(Material::default());
         }
+        // Objects of plain triangle meshes get a BVH of their own, shared by their instances;
+        // the others (emitting, alpha-tested or non-mesh shapes) are flattened: each copy
+        // becomes shapes of its own. Their PrimInfo entries come after the shapes' ones.
+        let mut object_slot: Vec<Option<u32>> = vec![None; desc.objects.len()];
+        let mut objects = Vec::new();
+        let mut placements = Vec::new();
+        let mut object_prims = Vec::new();
+        for inst in &desc.instances {
+            let obj = desc.objects.get(inst.object as usize).ok_or_else(|| {
+                BuildError::Invalid(format!("instance of unknown object {}", inst.object))
+            })?;
+            let slot = &mut object_slot[inst.object as usize];
+            if slot.is_none()
+                && let Some(acc) =
+                    instance::ObjectAccel::build(obj, &mut object_prims, materials.len())?
+            {
+                *slot = Some(objects.len() as u32);
+                objects.push(acc);
+            }
+            if let Some(object) = *slot {
+                placements.push(instance::Instance {
+                    object,
+                    to_world: inst.object_to_world,
+                });
+                continue;
+            }
+            for s in &obj.shapes {
+                all.push((desc.shapes.len(), s, inst.object_to_world));
+            }
+        }
+        let instances = instance::Instances::new(objects, placements);
         for (index, sd, instance_xf) in all {
             if sd.material as usize >= materials.len() {
                 return Err(BuildError::BadMaterial {
@@ -350,7 +375,7 @@ impl Scene {
                 Tri4::new(&lanes)
             })
             .collect();
-        let mut bounds = bvh.bounds();
+        let mut bounds = bvh.bounds().union(&instances.bounds());
         if bounds.is_empty() {
             bounds = Bounds3::from_point(Vec3::ZERO);
         }
@@ -428,6 +453,13 @@ impl Scene {
         }
         let powers: Vec<f32> = lights.iter().map(Light::power).collect();
         let light_distribution = LightDistribution::new(&powers);
+        // The instanced meshes' entries, renumbered to follow the shapes'.
+        let base = prims.len() as u32;
+        prims.extend(object_prims);
+        let mut instances = instances;
+        for o in &mut instances.objects {
+            o.offset_prims(base);
+        }
         let infinite_lights = (0..lights.len() as u32)
             .filter(|&i| lights[i as usize].is_infinite())
             .collect();
@@ -447,6 +479,7 @@ impl Scene {
             camera,
             bvh,
             packets,
+            instances,
             unbounded,
             bounds,
         })
@@ -489,6 +522,15 @@ impl Scene {
             }
             found
         });
+        if !self.instances.is_empty() {
+            if let Some(b) = best {
+                r.t_max = b.0.t;
+            }
+            if let Some(ih) = self.instances.intersect(&r) {
+                let (si, prim) = self.instances.interaction(ray, &ih);
+                return Some(SceneHit { si, prim });
+            }
+        }
         let (h, prim) = best?;
         let si = self.shapes[prim as usize].interaction(ray, &h, &self.meshes);
         Some(SceneHit { si, prim })
@@ -548,6 +590,7 @@ impl Scene {
                     .leaf_range(leaf)
                     .any(|k| self.hit(self.bvh.indices[k], r, &pre).is_some())
             })
+            || (!self.instances.is_empty() && self.instances.intersect_any(ray))
     }
 
     /// Texture evaluation against this scene's textures.
