@@ -1,14 +1,14 @@
-//! A 4-wide bounding volume hierarchy built with the binned surface area heuristic.
+//! An 8-wide bounding volume hierarchy built with the binned surface area heuristic.
 //!
-//! Build: top-down over primitive references; each node opens up to four children by
+//! Build: top-down over primitive references; each node opens up to eight children by
 //! repeated binary splits of its largest child, each split chosen by the binned SAH (32 bins
 //! over the centroids, all three axes). Large subtrees are built in parallel (rayon). A leaf
 //! holds at most [`MAX_LEAF`] primitives, so that a leaf of triangles fits one 4-wide packet.
 //!
-//! Traversal: one ray against a node's four boxes at once (4-wide SIMD slab test), children
+//! Traversal: one ray against a node's eight boxes at once (8-wide AVX slab test), children
 //! visited nearest first, farther ones kept on a fixed stack with their entry distance.
 
-use super::simd::F4;
+use super::simd::F8;
 use crate::math::{Bounds3, Vec3, Vec4, gamma};
 use crate::ray::Ray;
 use rayon::prelude::*;
@@ -22,32 +22,35 @@ const PARALLEL_MIN: usize = 16 * 1024;
 /// Beyond this depth (of the 4-wide tree) splits are median splits, which at least halve
 /// every child: the depth, hence the traversal stack, stays bounded whatever the input.
 const MAX_SAH_DEPTH: u32 = 24;
-/// Size of the traversal stack: three entries per level at most.
-const STACK: usize = 128;
+/// Children per node.
+const WIDTH: usize = 8;
+/// Size of the traversal stack: WIDTH − 1 entries per level at most, over at most
+/// MAX_SAH_DEPTH levels of SAH splits and 32 of median splits (each at least halves).
+const STACK: usize = (WIDTH - 1) * (MAX_SAH_DEPTH as usize + 32) + 1;
 /// Flag of a child reference naming a leaf (the rest is the leaf's index).
 const LEAF: u32 = 1 << 31;
 /// Child reference of an unused slot (its box is empty and never crossed).
 const EMPTY: u32 = u32::MAX;
 
-/// Four children's boxes side by side (one array per axis and side), so that one ray is
-/// tested against all four at once with 4-wide vector instructions.
+/// Eight children's boxes side by side (one array per axis and side), so that one ray is
+/// tested against all eight at once with 8-wide vector instructions.
 #[derive(Clone, Copy, Debug)]
-// Aligned to cache lines: a node is exactly two of them.
+// Aligned to cache lines: a node is exactly four of them.
 #[repr(C, align(64))]
-struct Node4 {
+struct Node {
     /// Lower corners: `min[axis][child]`.
-    min: [[f32; 4]; 3],
+    min: [[f32; WIDTH]; 3],
     /// Upper corners: `max[axis][child]`.
-    max: [[f32; 4]; 3],
+    max: [[f32; WIDTH]; 3],
     /// Child references: a node's index, `LEAF | leaf index`, or `EMPTY`.
-    child: [u32; 4],
+    child: [u32; WIDTH],
 }
 
-impl Node4 {
-    const UNUSED: Node4 = Node4 {
-        min: [[f32::INFINITY; 4]; 3],
-        max: [[f32::NEG_INFINITY; 4]; 3],
-        child: [EMPTY; 4],
+impl Node {
+    const UNUSED: Node = Node {
+        min: [[f32::INFINITY; WIDTH]; 3],
+        max: [[f32::NEG_INFINITY; WIDTH]; 3],
+        child: [EMPTY; WIDTH],
     };
 }
 
@@ -56,7 +59,7 @@ impl Node4 {
 /// shape (and packets of triangles, stored by the caller per leaf).
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
-    nodes: Vec<Node4>,
+    nodes: Vec<Node>,
     /// Each leaf's range in `indices`: (first, count).
     leaves: Vec<[u32; 2]>,
     /// Bounds of everything.
@@ -321,7 +324,7 @@ fn split(refs: &mut [PrimRef], depth: u32) -> (usize, Box4, Box4) {
 /// The nodes and leaves of a subtree, references relative to its own arrays.
 #[derive(Default)]
 struct Out {
-    nodes: Vec<Node4>,
+    nodes: Vec<Node>,
     leaves: Vec<[u32; 2]>,
 }
 
@@ -355,13 +358,13 @@ fn build_rec(out: &mut Out, refs: &mut [PrimRef], first: usize, bounds: Box4, de
         out.leaves.push([first as u32, n as u32]);
         return LEAF | (out.leaves.len() as u32 - 1);
     }
-    // Open up to four children: split the largest (by area) splittable one until four.
+    // Open up to WIDTH children: split the largest (by area) splittable one until WIDTH.
     let mut kids = vec![Range {
         start: 0,
         end: n,
         bounds,
     }];
-    while kids.len() < 4 {
+    while kids.len() < WIDTH {
         let pick = kids
             .iter()
             .enumerate()
@@ -384,8 +387,8 @@ fn build_rec(out: &mut Out, refs: &mut [PrimRef], first: usize, bounds: Box4, de
     }
     kids.sort_by_key(|k| k.start);
     let index = out.nodes.len();
-    out.nodes.push(Node4::UNUSED);
-    let mut refs_of_kids: Vec<&mut [PrimRef]> = Vec::with_capacity(4);
+    out.nodes.push(Node::UNUSED);
+    let mut refs_of_kids: Vec<&mut [PrimRef]> = Vec::with_capacity(WIDTH);
     let mut rest = refs;
     let mut at = 0;
     for k in &kids {
@@ -455,7 +458,7 @@ impl Bvh {
     /// Bytes the tree occupies (nodes, leaf table and primitive indices).
     pub fn memory_bytes(&self) -> usize {
         std::mem::size_of::<Bvh>()
-            + self.nodes.capacity() * std::mem::size_of::<Node4>()
+            + self.nodes.capacity() * std::mem::size_of::<Node>()
             + self.leaves.capacity() * 8
             + self.indices.capacity() * 4
     }
@@ -494,8 +497,9 @@ impl Bvh {
             let p = self.nodes.as_ptr().wrapping_add(c as usize) as *const i8;
             // SAFETY: a prefetch never faults, whatever the address; `c` is a node index.
             unsafe {
-                _mm_prefetch::<_MM_HINT_T0>(p);
-                _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(64));
+                for line in 0..std::mem::size_of::<Node>() / 64 {
+                    _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(64 * line));
+                }
             }
         }
     }
@@ -532,7 +536,7 @@ impl Bvh {
                     _ => {
                         // Order the crossed children by entry distance: push the farther
                         // ones (farthest first), descend into the nearest.
-                        let mut hits = [(0.0f32, 0u32); 4];
+                        let mut hits = [(0.0f32, 0u32); WIDTH];
                         let mut n = 0;
                         while mask != 0 {
                             let k = mask.trailing_zeros() as usize;
@@ -618,8 +622,8 @@ impl Bvh {
 /// A ray prepared for slab tests: its origin, 1/d, and for each axis whether d is negative
 /// (then the box's near side on that axis is its max).
 struct Slabs {
-    o: [F4; 3],
-    inv_d: [F4; 3],
+    o: [F8; 3],
+    inv_d: [F8; 3],
     neg: [bool; 3],
 }
 
@@ -628,34 +632,34 @@ impl Slabs {
     fn new(ray: &Ray) -> Slabs {
         let inv: Vec3 = ray.d.recip();
         Slabs {
-            o: [F4::splat(ray.o.x), F4::splat(ray.o.y), F4::splat(ray.o.z)],
-            inv_d: [F4::splat(inv.x), F4::splat(inv.y), F4::splat(inv.z)],
+            o: [F8::splat(ray.o.x), F8::splat(ray.o.y), F8::splat(ray.o.z)],
+            inv_d: [F8::splat(inv.x), F8::splat(inv.y), F8::splat(inv.z)],
             neg: [inv.x < 0.0, inv.y < 0.0, inv.z < 0.0],
         }
     }
 
-    /// The slab test against a node's four boxes at once: per axis t = (b − o)·(1/d);
+    /// The slab test against a node's eight boxes at once: per axis t = (b − o)·(1/d);
     /// t_near = max(0, entry distances), t_far = min(t_max, exit distances·(1 + 2γ₃)) (the
     /// enlargement keeps rounding from culling a box the ray crosses); a box is crossed when
     /// t_near ≤ t_far. Returns the entry distances and the mask of crossed boxes (bit k for
     /// child k). NaNs (0·∞ when the origin lies on a slab plane) leave the bound unchanged.
     #[inline(always)]
-    fn test(&self, node: &Node4, t_max: f32) -> ([f32; 4], u32) {
-        let mut t0 = F4::splat(0.0);
-        let mut t1 = F4::splat(t_max);
-        let grow = F4::splat(1.0 + 2.0 * gamma(3));
+    fn test(&self, node: &Node, t_max: f32) -> ([f32; WIDTH], u32) {
+        let mut t0 = F8::splat(0.0);
+        let mut t1 = F8::splat(t_max);
+        let grow = F8::splat(1.0 + 2.0 * gamma(3));
         for a in 0..3 {
             let (near, far) = if self.neg[a] {
                 (&node.max[a], &node.min[a])
             } else {
                 (&node.min[a], &node.max[a])
             };
-            let tn = F4::load(near).sub(self.o[a]).mul(self.inv_d[a]);
-            let tf = F4::load(far).sub(self.o[a]).mul(self.inv_d[a]).mul(grow);
+            let tn = F8::load(near).sub(self.o[a]).mul(self.inv_d[a]);
+            let tf = F8::load(far).sub(self.o[a]).mul(self.inv_d[a]).mul(grow);
             t0 = tn.max(t0);
             t1 = tf.min(t1);
         }
-        (t0.to_array(), t0.le(t1).bits())
+        (t0.to_array(), t0.le_bits(t1))
     }
 }
 

@@ -59,11 +59,6 @@ mod imp {
         pub fn mul_sub(self, b: F4, c: F4) -> F4 {
             F4(unsafe { _mm_fmsub_ps(self.0, b.0, c.0) })
         }
-        /// Lane-wise `if self < o { self } else { o }` (so `o` when either is NaN).
-        #[inline(always)]
-        pub fn min(self, o: F4) -> F4 {
-            F4(unsafe { _mm_min_ps(self.0, o.0) })
-        }
         /// Lane-wise `if self > o { self } else { o }` (so `o` when either is NaN).
         #[inline(always)]
         pub fn max(self, o: F4) -> F4 {
@@ -196,10 +191,6 @@ mod imp {
             F4(r)
         }
         #[inline(always)]
-        pub fn min(self, o: F4) -> F4 {
-            map2(self, o, |a, b| if a < b { a } else { b })
-        }
-        #[inline(always)]
         pub fn max(self, o: F4) -> F4 {
             map2(self, o, |a, b| if a > b { a } else { b })
         }
@@ -254,3 +245,117 @@ mod imp {
 }
 
 pub(crate) use imp::{F4, M4};
+
+// Eight `f32` lanes (AVX on x86-64-v3, arrays elsewhere): only what the 8-wide slab test
+// needs.
+#[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+mod imp8 {
+    //! SAFETY (every `unsafe` block below): the intrinsics need AVX, which the `cfg` of this
+    //! module guarantees the build enables.
+    use std::arch::x86_64::*;
+
+    /// Eight floats.
+    #[derive(Clone, Copy, Debug)]
+    pub struct F8(__m256);
+
+    impl F8 {
+        #[inline(always)]
+        pub fn splat(v: f32) -> F8 {
+            F8(unsafe { _mm256_set1_ps(v) })
+        }
+        #[inline(always)]
+        pub fn load(a: &[f32; 8]) -> F8 {
+            // SAFETY: `a` is eight readable floats; the load has no alignment requirement.
+            F8(unsafe { _mm256_loadu_ps(a.as_ptr()) })
+        }
+        #[inline(always)]
+        pub fn to_array(self) -> [f32; 8] {
+            let mut out = [0.0f32; 8];
+            // SAFETY: `out` is eight writable floats; the store has no alignment requirement.
+            unsafe { _mm256_storeu_ps(out.as_mut_ptr(), self.0) };
+            out
+        }
+        #[inline(always)]
+        pub fn sub(self, o: F8) -> F8 {
+            F8(unsafe { _mm256_sub_ps(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn mul(self, o: F8) -> F8 {
+            F8(unsafe { _mm256_mul_ps(self.0, o.0) })
+        }
+        /// Lane-wise `if self < o { self } else { o }` (so `o` when either is NaN).
+        #[inline(always)]
+        pub fn min(self, o: F8) -> F8 {
+            F8(unsafe { _mm256_min_ps(self.0, o.0) })
+        }
+        /// Lane-wise `if self > o { self } else { o }` (so `o` when either is NaN).
+        #[inline(always)]
+        pub fn max(self, o: F8) -> F8 {
+            F8(unsafe { _mm256_max_ps(self.0, o.0) })
+        }
+        /// Bit k set where lane k of `self` ≤ lane k of `o`.
+        #[inline(always)]
+        pub fn le_bits(self, o: F8) -> u32 {
+            (unsafe { _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(self.0, o.0)) }) as u32
+        }
+    }
+}
+
+#[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
+mod imp8 {
+    /// Eight floats.
+    #[derive(Clone, Copy, Debug)]
+    pub struct F8([f32; 8]);
+
+    impl F8 {
+        #[inline(always)]
+        pub fn splat(v: f32) -> F8 {
+            F8([v; 8])
+        }
+        #[inline(always)]
+        pub fn load(a: &[f32; 8]) -> F8 {
+            F8(*a)
+        }
+        #[inline(always)]
+        pub fn to_array(self) -> [f32; 8] {
+            self.0
+        }
+        #[inline(always)]
+        pub fn sub(self, o: F8) -> F8 {
+            F8(std::array::from_fn(|k| self.0[k] - o.0[k]))
+        }
+        #[inline(always)]
+        pub fn mul(self, o: F8) -> F8 {
+            F8(std::array::from_fn(|k| self.0[k] * o.0[k]))
+        }
+        #[inline(always)]
+        pub fn min(self, o: F8) -> F8 {
+            F8(std::array::from_fn(|k| {
+                if self.0[k] < o.0[k] {
+                    self.0[k]
+                } else {
+                    o.0[k]
+                }
+            }))
+        }
+        #[inline(always)]
+        pub fn max(self, o: F8) -> F8 {
+            F8(std::array::from_fn(|k| {
+                if self.0[k] > o.0[k] {
+                    self.0[k]
+                } else {
+                    o.0[k]
+                }
+            }))
+        }
+        #[inline(always)]
+        pub fn le_bits(self, o: F8) -> u32 {
+            (0..8)
+                .filter(|&k| self.0[k] <= o.0[k])
+                .map(|k| 1u32 << k)
+                .sum()
+        }
+    }
+}
+
+pub(crate) use imp8::F8;
