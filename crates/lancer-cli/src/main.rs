@@ -5,6 +5,7 @@
 //! malformed scene, a missing file, bad options), 1 when something else fails (writing the
 //! image, an interrupted render).
 
+mod bench;
 mod checkpoint;
 mod cli_error;
 mod info;
@@ -35,6 +36,9 @@ enum Command {
     Info(info::InfoArgs),
     /// Merge the parts of a split render (`render --split i/N`) into the final image.
     Merge(merge::MergeArgs),
+    /// Measure the renderer's parts (`bench rays MESH`: BVH build and ray throughput).
+    #[command(subcommand)]
+    Bench(bench::BenchCommand),
 }
 
 /// A binary built for x86-64-v3 (see `.cargo/config.toml`) dies of an illegal instruction on
@@ -58,6 +62,7 @@ fn main() {
         Command::Render(args) => render::run(args),
         Command::Info(args) => info::run(args),
         Command::Merge(args) => merge::run(args),
+        Command::Bench(cmd) => bench::run(cmd),
     };
     if let Err(e) = result {
         e.report();

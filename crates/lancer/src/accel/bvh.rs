@@ -1,145 +1,479 @@
-//! A bounding volume hierarchy built with the binned surface area heuristic.
+//! An 8-wide bounding volume hierarchy built with the binned surface area heuristic.
+//!
+//! Build: top-down over primitive references; each node opens up to eight children by
+//! repeated binary splits of its largest child, each split chosen by the binned SAH (32 bins
+//! over the centroids, all three axes). Large subtrees are built in parallel (rayon). A leaf
+//! holds at most [`MAX_LEAF`] primitives, so that a leaf of triangles fits one 4-wide packet.
+//!
+//! Traversal: one ray against a node's eight boxes at once (8-wide AVX slab test), children
+//! visited nearest first, farther ones kept on a fixed stack with their entry distance.
 
-use crate::math::{Bounds3, Vec3};
+use super::simd::F8;
+use crate::math::{Bounds3, Vec3, Vec4, gamma};
 use crate::ray::Ray;
+use rayon::prelude::*;
 
-/// One node of the flattened tree. Interior nodes store their second child's index (the first
-/// child follows them); leaves store a range of primitive indices.
+/// Most primitives in one leaf.
+pub const MAX_LEAF: usize = 4;
+/// Bins of the SAH split search, per axis.
+const BINS: usize = 32;
+/// Below this many primitives a subtree is built on the calling thread.
+const PARALLEL_MIN: usize = 16 * 1024;
+/// Beyond this depth (of the 4-wide tree) splits are median splits, which at least halve
+/// every child: the depth, hence the traversal stack, stays bounded whatever the input.
+const MAX_SAH_DEPTH: u32 = 24;
+/// Children per node.
+const WIDTH: usize = 8;
+/// Size of the traversal stack: WIDTH − 1 entries per level at most, over at most
+/// MAX_SAH_DEPTH levels of SAH splits and 32 of median splits (each at least halves).
+const STACK: usize = (WIDTH - 1) * (MAX_SAH_DEPTH as usize + 32) + 1;
+/// Flag of a child reference naming a leaf (the rest is the leaf's index).
+const LEAF: u32 = 1 << 31;
+/// Child reference of an unused slot (its box is empty and never crossed).
+const EMPTY: u32 = u32::MAX;
+
+/// Eight children's boxes side by side (one array per axis and side), so that one ray is
+/// tested against all eight at once with 8-wide vector instructions.
 #[derive(Clone, Copy, Debug)]
+// Aligned to cache lines: a node is exactly four of them.
+#[repr(C, align(64))]
 struct Node {
-    bounds: Bounds3,
-    /// Leaf: first primitive; interior: index of the second child.
-    offset: u32,
-    /// Leaf: primitive count (> 0); interior: 0.
-    count: u16,
-}
-
-/// Four children's boxes side by side (one array per axis and side), so that one ray is
-/// tested against all four at once with 4-wide vector instructions.
-#[derive(Clone, Copy, Debug)]
-#[repr(C, align(32))]
-struct Node4 {
     /// Lower corners: `min[axis][child]`.
-    min: [[f32; 4]; 3],
+    min: [[f32; WIDTH]; 3],
     /// Upper corners: `max[axis][child]`.
-    max: [[f32; 4]; 3],
-    /// Interior child: index of its node; leaf child: its first primitive.
-    child: [u32; 4],
-    /// Leaf child: its primitive count; interior child: 0; empty slot: 0 with an empty box.
-    count: [u32; 4],
+    max: [[f32; WIDTH]; 3],
+    /// Child references: a node's index, `LEAF | leaf index`, or `EMPTY`.
+    child: [u32; WIDTH],
 }
 
-/// A child reference on the traversal stack: a node (count 0) or a leaf's primitive range.
-#[derive(Clone, Copy, Debug, Default)]
-struct ChildRef {
-    index: u32,
-    count: u32,
+impl Node {
+    const UNUSED: Node = Node {
+        min: [[f32::INFINITY; WIDTH]; 3],
+        max: [[f32::NEG_INFINITY; WIDTH]; 3],
+        child: [EMPTY; WIDTH],
+    };
 }
 
 /// A BVH over primitives given by their bounds. It stores primitive indices only; the caller
-/// intersects primitives through a closure, so the same tree serves every kind of shape.
-///
-/// The tree is built binary (binned SAH) and then collapsed into a 4-wide tree: each node
-/// holds up to four children, and a ray tests their four boxes at once.
+/// intersects a leaf's primitives through a closure, so the same tree serves every kind of
+/// shape (and packets of triangles, stored by the caller per leaf).
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
-    /// The binary tree, only while building.
     nodes: Vec<Node>,
+    /// Each leaf's range in `indices`: (first, count).
+    leaves: Vec<[u32; 2]>,
     /// Bounds of everything.
     bounds: Bounds3,
-    wide: Vec<Node4>,
-    /// The root: a node, or a leaf when the tree has a single leaf.
-    root: ChildRef,
+    /// The root reference (a node or a leaf).
+    root: u32,
+    /// Number of primitives in the tree.
+    len: usize,
     /// Primitive indices in leaf order.
     pub indices: Vec<u32>,
 }
 
-const BINS: usize = 12;
-const MAX_LEAF: usize = 2;
+/// A primitive reference during the build: its box, with its index in `lo.w`'s bits.
+#[derive(Clone, Copy, Debug)]
+struct PrimRef {
+    lo: Vec4,
+    hi: Vec4,
+}
 
-struct BuildPrim {
-    bounds: Bounds3,
-    centroid: Vec3,
-    index: u32,
+impl PrimRef {
+    /// Twice the centroid (min + max), enough for binning.
+    #[inline(always)]
+    fn c2(&self) -> Vec4 {
+        self.lo + self.hi
+    }
+    #[inline(always)]
+    fn index(&self) -> u32 {
+        self.lo.w.to_bits()
+    }
+}
+
+/// Box of a build range as two `Vec4` (w unused).
+#[derive(Clone, Copy, Debug)]
+struct Box4 {
+    lo: Vec4,
+    hi: Vec4,
+}
+
+impl Box4 {
+    const EMPTY: Box4 = Box4 {
+        lo: Vec4::splat(f32::INFINITY),
+        hi: Vec4::splat(f32::NEG_INFINITY),
+    };
+    #[inline(always)]
+    fn grow(&mut self, r: &PrimRef) {
+        self.lo = self.lo.min(r.lo);
+        self.hi = self.hi.max(r.hi);
+    }
+    #[inline(always)]
+    fn union(&self, o: &Box4) -> Box4 {
+        Box4 {
+            lo: self.lo.min(o.lo),
+            hi: self.hi.max(o.hi),
+        }
+    }
+    /// Half the surface area, dx·dy + dy·dz + dz·dx (0 for an empty box).
+    #[inline(always)]
+    fn half_area(&self) -> f32 {
+        let d = (self.hi - self.lo).max(Vec4::ZERO);
+        d.x * d.y + d.y * d.z + d.z * d.x
+    }
+    fn bounds3(&self) -> Bounds3 {
+        Bounds3 {
+            min: self.lo.truncate(),
+            max: self.hi.truncate(),
+        }
+    }
+}
+
+fn fold_box(refs: &[PrimRef]) -> Box4 {
+    if refs.len() > 64 * 1024 {
+        return refs
+            .par_chunks(16 * 1024)
+            .map(fold_box)
+            .reduce(|| Box4::EMPTY, |a, b| a.union(&b));
+    }
+    let mut b = Box4::EMPTY;
+    for r in refs {
+        b.grow(r);
+    }
+    b
+}
+
+/// Bounds of the centroids (doubled) of a range.
+fn fold_centroids(refs: &[PrimRef]) -> Box4 {
+    if refs.len() > 64 * 1024 {
+        return refs
+            .par_chunks(16 * 1024)
+            .map(fold_centroids)
+            .reduce(|| Box4::EMPTY, |a, b| a.union(&b));
+    }
+    let (mut lo, mut hi) = (Vec4::splat(f32::INFINITY), Vec4::splat(f32::NEG_INFINITY));
+    for r in refs {
+        let c = r.c2();
+        lo = lo.min(c);
+        hi = hi.max(c);
+    }
+    Box4 { lo, hi }
+}
+
+/// Per-axis bins: counts and boxes.
+#[derive(Clone, Copy)]
+struct Bins {
+    count: [[u32; BINS]; 3],
+    bounds: [[Box4; BINS]; 3],
+}
+
+impl Bins {
+    fn new() -> Bins {
+        Bins {
+            count: [[0; BINS]; 3],
+            bounds: [[Box4::EMPTY; BINS]; 3],
+        }
+    }
+    fn merge(mut self, o: &Bins) -> Bins {
+        for a in 0..3 {
+            for b in 0..BINS {
+                self.count[a][b] += o.count[a][b];
+                self.bounds[a][b] = self.bounds[a][b].union(&o.bounds[a][b]);
+            }
+        }
+        self
+    }
+}
+
+/// Maps doubled centroids to bins: bin = ⌊(c − lo)·scale⌋ clamped to [0, BINS − 1].
+#[derive(Clone, Copy)]
+struct Binner {
+    lo: Vec4,
+    scale: Vec4,
+}
+
+impl Binner {
+    #[inline(always)]
+    fn bins(&self, c: Vec4) -> [usize; 3] {
+        let b = ((c - self.lo) * self.scale)
+            .max(Vec4::ZERO)
+            .min(Vec4::splat((BINS - 1) as f32));
+        [b.x as usize, b.y as usize, b.z as usize]
+    }
+    // The axis indexes several parallel arrays at once.
+    #[allow(clippy::needless_range_loop)]
+    fn fill(&self, refs: &[PrimRef]) -> Bins {
+        if refs.len() > 64 * 1024 {
+            return refs
+                .par_chunks(16 * 1024)
+                .map(|c| self.fill(c))
+                .reduce(Bins::new, |a, b| a.merge(&b));
+        }
+        let mut bins = Bins::new();
+        for r in refs {
+            let b = self.bins(r.c2());
+            for a in 0..3 {
+                bins.count[a][b[a]] += 1;
+                bins.bounds[a][b[a]].grow(r);
+            }
+        }
+        bins
+    }
+}
+
+/// A range of the reference array with its box, while a node's children are being opened.
+#[derive(Clone, Copy)]
+struct Range {
+    start: usize,
+    end: usize,
+    bounds: Box4,
+}
+
+/// Splits `refs` in two (both non-empty, `refs.len()` ≥ 2): returns the size of the first
+/// part and both parts' boxes.
+// Axis and bin index several parallel arrays at once.
+#[allow(clippy::needless_range_loop)]
+fn split(refs: &mut [PrimRef], depth: u32) -> (usize, Box4, Box4) {
+    let n = refs.len();
+    let cb = fold_centroids(refs);
+    let ext = cb.hi - cb.lo;
+    let axis = if ext.x >= ext.y && ext.x >= ext.z {
+        0
+    } else if ext.y >= ext.z {
+        1
+    } else {
+        2
+    };
+    if depth < MAX_SAH_DEPTH && ext[axis] > 0.0 {
+        // Binned SAH: cost(split) = A_left·⌈N_left/4⌉ + A_right·⌈N_right/4⌉ (leaves are
+        // tested four primitives at a time); the least over the BINS − 1 planes of each axis
+        // wins.
+        let scale = Vec4::from_array([0, 1, 2, 3].map(|a| {
+            if a < 3 && ext[a] > 0.0 {
+                BINS as f32 * (1.0 - 1e-6) / ext[a]
+            } else {
+                0.0
+            }
+        }));
+        let binner = Binner { lo: cb.lo, scale };
+        let bins = binner.fill(refs);
+        let mut best = (f32::INFINITY, 0usize, 0usize);
+        for a in 0..3 {
+            if ext[a] <= 0.0 {
+                continue;
+            }
+            // Right-to-left sweep: right_cost[b] for the planes between bins b − 1 and b.
+            let mut right_cost = [0.0f32; BINS];
+            let (mut rb, mut rn) = (Box4::EMPTY, 0u32);
+            for b in (1..BINS).rev() {
+                rb = rb.union(&bins.bounds[a][b]);
+                rn += bins.count[a][b];
+                right_cost[b] = if rn > 0 {
+                    rb.half_area() * rn.div_ceil(4) as f32
+                } else {
+                    f32::NAN
+                };
+            }
+            let (mut lb, mut ln) = (Box4::EMPTY, 0u32);
+            for b in 1..BINS {
+                lb = lb.union(&bins.bounds[a][b - 1]);
+                ln += bins.count[a][b - 1];
+                if ln == 0 || ln as usize == n {
+                    continue;
+                }
+                let cost = lb.half_area() * ln.div_ceil(4) as f32 + right_cost[b];
+                if cost < best.0 {
+                    best = (cost, a, b);
+                }
+            }
+        }
+        if best.0.is_finite() {
+            let (_, a, plane) = best;
+            // Partition: references in bins below the plane first.
+            let (mut i, mut j) = (0usize, n);
+            while i < j {
+                if binner.bins(refs[i].c2())[a] < plane {
+                    i += 1;
+                } else {
+                    j -= 1;
+                    refs.swap(i, j);
+                }
+            }
+            let (mut lb, mut rb) = (Box4::EMPTY, Box4::EMPTY);
+            for b in 0..BINS {
+                if b < plane {
+                    lb = lb.union(&bins.bounds[a][b]);
+                } else {
+                    rb = rb.union(&bins.bounds[a][b]);
+                }
+            }
+            if i > 0 && i < n {
+                return (i, lb, rb);
+            }
+        }
+    }
+    // Median split along the widest centroid axis (or anywhere, when the centroids coincide).
+    let mid = n / 2;
+    if ext[axis] > 0.0 {
+        refs.select_nth_unstable_by(mid, |p, q| p.c2()[axis].total_cmp(&q.c2()[axis]));
+    }
+    let (l, r) = refs.split_at(mid);
+    (mid, fold_box(l), fold_box(r))
+}
+
+/// The nodes and leaves of a subtree, references relative to its own arrays.
+#[derive(Default)]
+struct Out {
+    nodes: Vec<Node>,
+    leaves: Vec<[u32; 2]>,
+}
+
+impl Out {
+    /// Appends another subtree's arrays, returning its root reference relocated.
+    fn append(&mut self, o: Out, root: u32) -> u32 {
+        let (dn, dl) = (self.nodes.len() as u32, self.leaves.len() as u32);
+        let reloc = |c: u32| {
+            if c == EMPTY {
+                c
+            } else if c & LEAF != 0 {
+                LEAF | ((c & !LEAF) + dl)
+            } else {
+                c + dn
+            }
+        };
+        self.nodes.extend(o.nodes.into_iter().map(|mut n| {
+            n.child = n.child.map(reloc);
+            n
+        }));
+        self.leaves.extend(o.leaves);
+        reloc(root)
+    }
+}
+
+/// Builds the subtree over `refs` (which start at `first` in the final index array) and
+/// returns its root reference.
+fn build_rec(out: &mut Out, refs: &mut [PrimRef], first: usize, bounds: Box4, depth: u32) -> u32 {
+    let n = refs.len();
+    if n <= MAX_LEAF {
+        out.leaves.push([first as u32, n as u32]);
+        return LEAF | (out.leaves.len() as u32 - 1);
+    }
+    // Open up to WIDTH children: split the largest (by area) splittable one until WIDTH.
+    let mut kids = vec![Range {
+        start: 0,
+        end: n,
+        bounds,
+    }];
+    while kids.len() < WIDTH {
+        let pick = kids
+            .iter()
+            .enumerate()
+            .filter(|(_, k)| k.end - k.start > MAX_LEAF)
+            .max_by(|a, b| a.1.bounds.half_area().total_cmp(&b.1.bounds.half_area()))
+            .map(|(i, _)| i);
+        let Some(i) = pick else { break };
+        let k = kids[i];
+        let (mid, lb, rb) = split(&mut refs[k.start..k.end], depth);
+        kids[i] = Range {
+            start: k.start,
+            end: k.start + mid,
+            bounds: lb,
+        };
+        kids.push(Range {
+            start: k.start + mid,
+            end: k.end,
+            bounds: rb,
+        });
+    }
+    kids.sort_by_key(|k| k.start);
+    let index = out.nodes.len();
+    out.nodes.push(Node::UNUSED);
+    let mut refs_of_kids: Vec<&mut [PrimRef]> = Vec::with_capacity(WIDTH);
+    let mut rest = refs;
+    let mut at = 0;
+    for k in &kids {
+        let (a, b) = rest.split_at_mut(k.end - at);
+        refs_of_kids.push(a);
+        rest = b;
+        at = k.end;
+    }
+    let children: Vec<u32> = if n >= PARALLEL_MIN {
+        let subs: Vec<(Out, u32)> = refs_of_kids
+            .into_par_iter()
+            .zip(kids.par_iter())
+            .map(|(r, k)| {
+                let mut o = Out::default();
+                let root = build_rec(&mut o, r, first + k.start, k.bounds, depth + 1);
+                (o, root)
+            })
+            .collect();
+        subs.into_iter().map(|(o, r)| out.append(o, r)).collect()
+    } else {
+        refs_of_kids
+            .into_iter()
+            .zip(kids.iter())
+            .map(|(r, k)| build_rec(out, r, first + k.start, k.bounds, depth + 1))
+            .collect()
+    };
+    let node = &mut out.nodes[index];
+    for (slot, (k, c)) in kids.iter().zip(children).enumerate() {
+        for a in 0..3 {
+            node.min[a][slot] = k.bounds.lo[a];
+            node.max[a][slot] = k.bounds.hi[a];
+        }
+        node.child[slot] = c;
+    }
+    index as u32
 }
 
 impl Bvh {
-    /// Builds the tree over `bounds[i]` for every primitive `i` (binned SAH, 12 bins).
+    /// Builds the tree over `bounds[i]` for every primitive `i` (binned SAH, in parallel on
+    /// the current rayon pool).
     pub fn build(bounds: &[Bounds3]) -> Bvh {
-        let mut prims: Vec<BuildPrim> = bounds
-            .iter()
+        let mut refs: Vec<PrimRef> = bounds
+            .par_iter()
             .enumerate()
-            .map(|(i, b)| BuildPrim {
-                bounds: *b,
-                centroid: b.centroid(),
-                index: i as u32,
+            .map(|(i, b)| PrimRef {
+                lo: b.min.extend(f32::from_bits(i as u32)),
+                hi: b.max.extend(0.0),
             })
             .collect();
-        let mut bvh = Bvh {
-            nodes: Vec::with_capacity(2 * prims.len().max(1)),
-            bounds: Bounds3::EMPTY,
-            wide: Vec::new(),
-            root: ChildRef::default(),
-            indices: Vec::with_capacity(prims.len()),
-        };
-        if !prims.is_empty() {
-            bvh.build_rec(&mut prims, 0);
-            bvh.root = bvh.collapse(0);
-            bvh.bounds = bvh.nodes[0].bounds;
-            bvh.nodes = Vec::new();
+        if refs.is_empty() {
+            return Bvh::default();
         }
-        bvh
+        let all = fold_box(&refs);
+        let mut out = Out::default();
+        let root = build_rec(&mut out, &mut refs, 0, all, 0);
+        let indices = refs.par_iter().map(PrimRef::index).collect();
+        Bvh {
+            nodes: out.nodes,
+            leaves: out.leaves,
+            bounds: all.bounds3(),
+            root,
+            len: bounds.len(),
+            indices,
+        }
     }
 
-    /// The binary node `n` as a child reference of the wide tree, its subtree collapsed.
-    fn collapse(&mut self, n: usize) -> ChildRef {
-        let node = self.nodes[n];
-        if node.count > 0 {
-            return ChildRef {
-                index: node.offset,
-                count: node.count as u32,
-            };
-        }
-        // Open the children with the largest boxes until there are four (or only leaves).
-        let mut kids: Vec<usize> = vec![n + 1, node.offset as usize];
-        while kids.len() < 4 {
-            let widest = kids
-                .iter()
-                .enumerate()
-                .filter(|(_, k)| self.nodes[**k].count == 0)
-                .max_by(|a, b| {
-                    let sa = self.nodes[*a.1].bounds.surface_area();
-                    let sb = self.nodes[*b.1].bounds.surface_area();
-                    sa.total_cmp(&sb)
-                })
-                .map(|(i, _)| i);
-            let Some(i) = widest else { break };
-            let k = kids.swap_remove(i);
-            kids.push(k + 1);
-            kids.push(self.nodes[k].offset as usize);
-        }
-        let index = self.wide.len();
-        self.wide.push(Node4 {
-            min: [[f32::INFINITY; 4]; 3],
-            max: [[f32::NEG_INFINITY; 4]; 3],
-            child: [0; 4],
-            count: [0; 4],
-        });
-        for (slot, &k) in kids.iter().enumerate() {
-            let b = self.nodes[k].bounds;
-            let c = self.collapse(k);
-            let w = &mut self.wide[index];
-            for a in 0..3 {
-                w.min[a][slot] = b.min[a];
-                w.max[a][slot] = b.max[a];
-            }
-            w.child[slot] = c.index;
-            w.count[slot] = c.count;
-        }
-        ChildRef {
-            index: index as u32,
-            count: 0,
-        }
+    /// Number of nodes of the tree (wide nodes; leaves are stored in their parents' slots).
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Bytes the tree occupies (nodes, leaf table and primitive indices).
+    pub fn memory_bytes(&self) -> usize {
+        std::mem::size_of::<Bvh>()
+            + self.nodes.capacity() * std::mem::size_of::<Node>()
+            + self.leaves.capacity() * 8
+            + self.indices.capacity() * 4
+    }
+
+    /// Frees the leaf table and the index array, for callers that keep their own data per
+    /// leaf (packets): afterwards only the leaf-level queries ([`Bvh::intersect_leaves`],
+    /// [`Bvh::intersect_any_leaves`]) may be used.
+    pub fn drop_leaf_table(&mut self) {
+        self.leaves = Vec::new();
+        self.indices = Vec::new();
     }
 
     /// Bounds of everything in the tree.
@@ -147,244 +481,190 @@ impl Bvh {
         self.bounds
     }
 
-    /// Number of nodes of the tree (wide nodes; leaves are stored in their parents' slots).
-    pub fn node_count(&self) -> usize {
-        self.wide.len()
+    /// Number of leaves; leaf ids run from 0 to this.
+    pub fn leaf_count(&self) -> usize {
+        self.leaves.len()
     }
 
-    /// Heap and inline memory the tree holds, in bytes: nodes and primitive indices.
-    pub fn memory_bytes(&self) -> usize {
-        std::mem::size_of::<Bvh>()
-            + self.nodes.capacity() * std::mem::size_of::<Node>()
-            + self.wide.capacity() * std::mem::size_of::<Node4>()
-            + self.indices.capacity() * std::mem::size_of::<u32>()
+    /// Positions in [`Bvh::indices`] of leaf `leaf`'s primitives.
+    #[inline(always)]
+    pub fn leaf_range(&self, leaf: u32) -> std::ops::Range<usize> {
+        let [first, count] = self.leaves[leaf as usize];
+        first as usize..(first + count) as usize
     }
 
-    fn build_rec(&mut self, prims: &mut [BuildPrim], depth: u32) -> usize {
-        let bounds = prims.iter().fold(Bounds3::EMPTY, |b, p| b.union(&p.bounds));
-        let node_index = self.nodes.len();
-        self.nodes.push(Node {
-            bounds,
-            offset: 0,
-            count: 0,
-        });
-        let make_leaf = |bvh: &mut Bvh, prims: &[BuildPrim]| {
-            let first = bvh.indices.len() as u32;
-            bvh.indices.extend(prims.iter().map(|p| p.index));
-            bvh.nodes[node_index].offset = first;
-            bvh.nodes[node_index].count = prims.len() as u16;
-        };
-        if prims.len() <= MAX_LEAF {
-            make_leaf(self, prims);
-            return node_index;
-        }
-        let cb = prims
-            .iter()
-            .fold(Bounds3::EMPTY, |b, p| b.union_point(p.centroid));
-        let axis = cb.max_extent();
-        let (lo, hi) = (cb.min[axis], cb.max[axis]);
-        // Deep in the tree, split by count so the depth stays below the traversal stack's size.
-        let mid = if hi > lo && depth < 32 {
-            // Bin centroids along the axis and pick the split of least SAH cost:
-            // cost = N_left·A_left + N_right·A_right (relative to the parent's area).
-            let mut counts = [0usize; BINS];
-            let mut bb = [Bounds3::EMPTY; BINS];
-            let scale = BINS as f32 / (hi - lo);
-            let bin_of = |c: f32| (((c - lo) * scale) as usize).min(BINS - 1);
-            for p in prims.iter() {
-                let b = bin_of(p.centroid[axis]);
-                counts[b] += 1;
-                bb[b] = bb[b].union(&p.bounds);
-            }
-            let mut best = (f32::INFINITY, 0);
-            for split in 1..BINS {
-                let (mut bl, mut nl, mut br, mut nr) = (Bounds3::EMPTY, 0, Bounds3::EMPTY, 0);
-                for i in 0..split {
-                    bl = bl.union(&bb[i]);
-                    nl += counts[i];
+    /// Asks the memory system for a node the traversal will visit soon.
+    #[inline(always)]
+    fn prefetch(&self, c: u32) {
+        #[cfg(target_arch = "x86_64")]
+        if c & LEAF == 0 {
+            use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+            let p = self.nodes.as_ptr().wrapping_add(c as usize) as *const i8;
+            // SAFETY: a prefetch never faults, whatever the address; `c` is a node index.
+            unsafe {
+                for line in 0..std::mem::size_of::<Node>() / 64 {
+                    _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(64 * line));
                 }
-                for i in split..BINS {
-                    br = br.union(&bb[i]);
-                    nr += counts[i];
-                }
-                let cost = nl as f32 * bl.surface_area() + nr as f32 * br.surface_area();
-                if nl > 0 && nr > 0 && cost < best.0 {
-                    best = (cost, split);
-                }
-            }
-            let leaf_cost = prims.len() as f32 * bounds.surface_area();
-            if best.1 == 0 || (prims.len() <= 16 && best.0 >= leaf_cost) {
-                prims.len() / 2
-            } else {
-                let split = best.1;
-                let mut i = 0;
-                for j in 0..prims.len() {
-                    if bin_of(prims[j].centroid[axis]) < split {
-                        prims.swap(i, j);
-                        i += 1;
-                    }
-                }
-                i
-            }
-        } else {
-            prims.len() / 2
-        };
-        if hi <= lo || mid == 0 || mid == prims.len() {
-            // All centroids coincide: split in the middle of the list.
-            if prims.len() <= u16::MAX as usize && hi <= lo && prims.len() <= 2 * MAX_LEAF {
-                make_leaf(self, prims);
-                return node_index;
             }
         }
-        let mid = if mid == 0 || mid == prims.len() {
-            prims.len() / 2
-        } else {
-            mid
-        };
-        let (left, right) = prims.split_at_mut(mid);
-        self.build_rec(left, depth + 1);
-        let second = self.build_rec(right, depth + 1);
-        self.nodes[node_index].offset = second as u32;
-        node_index
     }
 
-    /// Visits the primitives whose bounds the ray crosses, nearest subtree first. `hit(i, ray)`
-    /// tests primitive `i` and returns the new `t_max` if it found a closer hit; the ray is
-    /// shortened as hits are found, so farther subtrees are culled.
+    /// Visits the leaves whose boxes the ray crosses, nearest first. `leaf(id, ray)` tests a
+    /// leaf's primitives and returns the new `t_max` if it found a closer hit; farther
+    /// subtrees are then culled (a returned −∞ ends the traversal at once: the any-hit query).
+    /// Returns true if some leaf reported a hit.
     #[inline]
-    pub fn intersect<F: FnMut(u32, &Ray) -> Option<f32>>(&self, ray: &Ray, mut hit: F) -> bool {
-        if self.indices.is_empty() {
+    pub fn intersect_leaves<F: FnMut(u32, &Ray) -> Option<f32>>(
+        &self,
+        ray: &Ray,
+        mut leaf: F,
+    ) -> bool {
+        if self.len == 0 {
             return false;
         }
-        let mut ray = *ray;
-        let slabs = Slabs::new(&ray);
-        // Entries carry the distance at which the ray enters their box, so that a subtree
-        // found to lie beyond a closer hit is skipped when it is popped.
-        let mut stack = [(ChildRef::default(), 0.0f32); 128];
-        stack[0] = (self.root, 0.0);
-        let mut sp = 1usize;
+        let slabs = Slabs::new(ray);
+        let mut r = *ray;
+        let mut stack = [(0u32, 0.0f32); STACK];
+        let mut sp = 0usize;
+        let mut cur = self.root;
         let mut found = false;
-        while sp > 0 {
-            sp -= 1;
-            let (c, t_enter) = stack[sp];
-            if t_enter > ray.t_max {
-                continue;
-            }
-            if c.count > 0 {
-                for k in c.index..c.index + c.count {
-                    if let Some(t) = hit(self.indices[k as usize], &ray) {
-                        ray.t_max = t;
-                        found = true;
+        loop {
+            if cur & LEAF == 0 {
+                let node = &self.nodes[cur as usize];
+                let (t_near, mut mask) = slabs.test(node, r.t_max);
+                match mask.count_ones() {
+                    0 => {}
+                    1 => {
+                        cur = node.child[mask.trailing_zeros() as usize];
+                        continue;
+                    }
+                    _ => {
+                        // Order the crossed children by entry distance: push the farther
+                        // ones (farthest first), descend into the nearest.
+                        let mut hits = [(0.0f32, 0u32); WIDTH];
+                        let mut n = 0;
+                        while mask != 0 {
+                            let k = mask.trailing_zeros() as usize;
+                            mask &= mask - 1;
+                            let mut j = n;
+                            while j > 0 && hits[j - 1].0 < t_near[k] {
+                                hits[j] = hits[j - 1];
+                                j -= 1;
+                            }
+                            hits[j] = (t_near[k], node.child[k]);
+                            n += 1;
+                        }
+                        for &(t, c) in &hits[..n - 1] {
+                            self.prefetch(c);
+                            stack[sp] = (c, t);
+                            sp += 1;
+                        }
+                        cur = hits[n - 1].1;
+                        continue;
                     }
                 }
-                continue;
+            } else if let Some(t) = leaf(cur & !LEAF, &r) {
+                // −∞ is the any-hit query's "stop": nothing can be nearer.
+                if t == f32::NEG_INFINITY {
+                    return true;
+                }
+                r.t_max = t;
+                found = true;
             }
-            let node = &self.wide[c.index as usize];
-            let (t_near, mask) = slabs.test(node, ray.t_max);
-            // Push the children crossed, farthest first, so the nearest is visited next.
-            let mut order = [(0.0f32, 0usize); 4];
-            let mut n = 0;
-            for k in 0..4 {
-                if mask[k] {
-                    order[n] = (t_near[k], k);
-                    n += 1;
+            // Pop the next subtree that may still hold a closer hit.
+            loop {
+                if sp == 0 {
+                    return found;
+                }
+                sp -= 1;
+                let (c, t) = stack[sp];
+                if t <= r.t_max {
+                    cur = c;
+                    break;
                 }
             }
-            order[..n].sort_unstable_by(|a, b| b.0.total_cmp(&a.0));
-            for &(t, k) in &order[..n] {
-                stack[sp] = (
-                    ChildRef {
-                        index: node.child[k],
-                        count: node.count[k],
-                    },
-                    t,
-                );
-                sp += 1;
-            }
         }
-        found
+    }
+
+    /// True as soon as `leaf(id, ray)` reports a hit in a leaf the ray crosses (shadow rays).
+    /// Children are still visited nearest first: an occluder, when there is one, tends to be
+    /// found after fewer leaves.
+    #[inline]
+    pub fn intersect_any_leaves<F: FnMut(u32, &Ray) -> bool>(
+        &self,
+        ray: &Ray,
+        mut leaf: F,
+    ) -> bool {
+        self.intersect_leaves(ray, |id, r| leaf(id, r).then_some(f32::NEG_INFINITY))
+    }
+
+    /// Visits the primitives whose leaves the ray crosses, nearest leaf first. `hit(i, ray)`
+    /// tests primitive `i` and returns the new `t_max` if it found a closer hit.
+    #[inline]
+    pub fn intersect<F: FnMut(u32, &Ray) -> Option<f32>>(&self, ray: &Ray, mut hit: F) -> bool {
+        self.intersect_leaves(ray, |leaf, r| {
+            let mut r = *r;
+            let mut found = None;
+            for k in self.leaf_range(leaf) {
+                if let Some(t) = hit(self.indices[k], &r) {
+                    r.t_max = t;
+                    found = Some(t);
+                }
+            }
+            found
+        })
     }
 
     /// True as soon as `hit(i, ray)` reports a hit (shadow rays).
     #[inline]
     pub fn intersect_any<F: FnMut(u32, &Ray) -> bool>(&self, ray: &Ray, mut hit: F) -> bool {
-        if self.indices.is_empty() {
-            return false;
-        }
-        let slabs = Slabs::new(ray);
-        let mut stack = [ChildRef::default(); 128];
-        stack[0] = self.root;
-        let mut sp = 1usize;
-        while sp > 0 {
-            sp -= 1;
-            let c = stack[sp];
-            if c.count > 0 {
-                for k in c.index..c.index + c.count {
-                    if hit(self.indices[k as usize], ray) {
-                        return true;
-                    }
-                }
-                continue;
-            }
-            let node = &self.wide[c.index as usize];
-            let (_, mask) = slabs.test(node, ray.t_max);
-            for (k, _) in mask.iter().enumerate().filter(|(_, m)| **m) {
-                stack[sp] = ChildRef {
-                    index: node.child[k],
-                    count: node.count[k],
-                };
-                sp += 1;
-            }
-        }
-        false
+        self.intersect_any_leaves(ray, |leaf, r| {
+            self.leaf_range(leaf).any(|k| hit(self.indices[k], r))
+        })
     }
 }
 
 /// A ray prepared for slab tests: its origin, 1/d, and for each axis whether d is negative
-/// (then the box's far side on that axis is its min).
+/// (then the box's near side on that axis is its max).
 struct Slabs {
-    o: [f32; 3],
-    inv_d: [f32; 3],
+    o: [F8; 3],
+    inv_d: [F8; 3],
     neg: [bool; 3],
 }
 
 impl Slabs {
     #[inline(always)]
     fn new(ray: &Ray) -> Slabs {
-        let inv = ray.d.recip();
+        let inv: Vec3 = ray.d.recip();
         Slabs {
-            o: ray.o.to_array(),
-            inv_d: inv.to_array(),
+            o: [F8::splat(ray.o.x), F8::splat(ray.o.y), F8::splat(ray.o.z)],
+            inv_d: [F8::splat(inv.x), F8::splat(inv.y), F8::splat(inv.z)],
             neg: [inv.x < 0.0, inv.y < 0.0, inv.z < 0.0],
         }
     }
 
-    /// The slab test against a node's four boxes at once: t_near = max over axes of the
-    /// entry distances, t_far = min of the exit distances (enlarged by 2γ₃ so that rounding
-    /// never culls a box the ray crosses); a box is crossed when t_near ≤ t_far, t_far ≥ 0
-    /// and t_near < t_max.
+    /// The slab test against a node's eight boxes at once: per axis t = (b − o)·(1/d);
+    /// t_near = max(0, entry distances), t_far = min(t_max, exit distances·(1 + 2γ₃)) (the
+    /// enlargement keeps rounding from culling a box the ray crosses); a box is crossed when
+    /// t_near ≤ t_far. Returns the entry distances and the mask of crossed boxes (bit k for
+    /// child k). NaNs (0·∞ when the origin lies on a slab plane) leave the bound unchanged.
     #[inline(always)]
-    fn test(&self, node: &Node4, t_max: f32) -> ([f32; 4], [bool; 4]) {
-        let mut t0 = [0.0f32; 4];
-        let mut t1 = [t_max; 4];
+    fn test(&self, node: &Node, t_max: f32) -> ([f32; WIDTH], u32) {
+        let mut t0 = F8::splat(0.0);
+        let mut t1 = F8::splat(t_max);
+        let grow = F8::splat(1.0 + 2.0 * gamma(3));
         for a in 0..3 {
             let (near, far) = if self.neg[a] {
                 (&node.max[a], &node.min[a])
             } else {
                 (&node.min[a], &node.max[a])
             };
-            for k in 0..4 {
-                let tn = (near[k] - self.o[a]) * self.inv_d[a];
-                let tf = (far[k] - self.o[a]) * self.inv_d[a] * (1.0 + 2.0 * crate::math::gamma(3));
-                t0[k] = if tn > t0[k] { tn } else { t0[k] };
-                t1[k] = if tf < t1[k] { tf } else { t1[k] };
-            }
+            let tn = F8::load(near).sub(self.o[a]).mul(self.inv_d[a]);
+            let tf = F8::load(far).sub(self.o[a]).mul(self.inv_d[a]).mul(grow);
+            t0 = tn.max(t0);
+            t1 = tf.min(t1);
         }
-        let mut mask = [false; 4];
-        for k in 0..4 {
-            mask[k] = t0[k] <= t1[k];
-        }
-        (t0, mask)
+        (t0.to_array(), t0.le_bits(t1))
     }
 }
 
@@ -399,38 +679,65 @@ mod tests {
 
     #[test]
     fn bvh_finds_the_same_nearest_box_as_brute_force() {
-        let boxes: Vec<Bounds3> = (0..500)
-            .map(|i| {
-                let c = Vec3::new(rnd(3 * i), rnd(3 * i + 1), rnd(3 * i + 2)) * 10.0;
-                Bounds3::new(c, c + Vec3::splat(0.3))
-            })
-            .collect();
-        let bvh = Bvh::build(&boxes);
-        for k in 0..300u64 {
-            let o = Vec3::new(rnd(10_000 + k), rnd(20_000 + k), rnd(30_000 + k)) * 12.0 - 1.0;
-            let d = Vec3::new(
-                rnd(40_000 + k) - 0.5,
-                rnd(50_000 + k) - 0.5,
-                rnd(60_000 + k) - 0.5,
-            )
-            .normalize();
-            let ray = Ray::new(o, d);
-            let brute = boxes
-                .iter()
-                .enumerate()
-                .filter_map(|(i, b)| b.intersect_p(&ray).map(|(t0, _)| (t0, i as u32)))
-                .min_by(|a, b| a.0.total_cmp(&b.0));
-            let mut best: Option<(f32, u32)> = None;
-            bvh.intersect(&ray, |i, r| {
-                let (t0, _) = boxes[i as usize].intersect_p(r)?;
-                best = Some((t0, i));
-                Some(t0)
-            });
-            assert_eq!(best.map(|b| b.1), brute.map(|b| b.1), "ray {k}");
+        for n in [0usize, 1, 3, 4, 5, 17, 500, 20_000] {
+            let boxes: Vec<Bounds3> = (0..n as u64)
+                .map(|i| {
+                    let c = Vec3::new(rnd(3 * i), rnd(3 * i + 1), rnd(3 * i + 2)) * 10.0;
+                    Bounds3::new(c, c + Vec3::splat(0.3))
+                })
+                .collect();
+            let bvh = Bvh::build(&boxes);
+            let mut seen = bvh.indices.clone();
+            seen.sort_unstable();
             assert_eq!(
-                bvh.intersect_any(&ray, |i, r| boxes[i as usize].intersect_p(r).is_some()),
-                brute.is_some()
+                seen,
+                (0..n as u32).collect::<Vec<_>>(),
+                "each primitive once"
             );
+            for k in 0..300u64 {
+                let o = Vec3::new(rnd(10_000 + k), rnd(20_000 + k), rnd(30_000 + k)) * 12.0 - 1.0;
+                let d = Vec3::new(
+                    rnd(40_000 + k) - 0.5,
+                    rnd(50_000 + k) - 0.5,
+                    rnd(60_000 + k) - 0.5,
+                )
+                .normalize();
+                let ray = Ray::new(o, d);
+                let brute = boxes
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(i, b)| b.intersect_p(&ray).map(|(t0, _)| (t0, i as u32)))
+                    .min_by(|a, b| a.0.total_cmp(&b.0));
+                let mut best: Option<(f32, u32)> = None;
+                bvh.intersect(&ray, |i, r| {
+                    let (t0, _) = boxes[i as usize].intersect_p(r)?;
+                    if t0 >= r.t_max {
+                        return None;
+                    }
+                    best = Some((t0, i));
+                    Some(t0)
+                });
+                assert_eq!(best.map(|b| b.0), brute.map(|b| b.0), "n {n} ray {k}");
+                assert_eq!(
+                    bvh.intersect_any(&ray, |i, r| boxes[i as usize].intersect_p(r).is_some()),
+                    brute.is_some()
+                );
+            }
         }
+    }
+
+    #[test]
+    fn coincident_centroids_still_build_a_shallow_tree() {
+        let boxes = vec![Bounds3::new(Vec3::ZERO, Vec3::ONE); 10_000];
+        let bvh = Bvh::build(&boxes);
+        assert_eq!(bvh.indices.len(), 10_000);
+        assert!(bvh.leaf_count() >= 10_000 / MAX_LEAF);
+        let ray = Ray::new(Vec3::new(0.5, 0.5, -1.0), Vec3::Z);
+        let mut n = 0;
+        bvh.intersect_any(&ray, |_, _| {
+            n += 1;
+            false
+        });
+        assert_eq!(n, 10_000, "every primitive visited once");
     }
 }

@@ -2,5 +2,10 @@
 //! testing every object.
 
 mod bvh;
+mod mesh;
+mod simd;
+mod tri4;
 
-pub use bvh::Bvh;
+pub use bvh::{Bvh, MAX_LEAF};
+pub use mesh::MeshBvh;
+pub use tri4::Tri4;

@@ -1,8 +1,9 @@
 //! The built scene: immutable, shared by all render threads.
 
 pub mod desc;
+pub mod instance;
 
-use crate::accel::Bvh;
+use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
 use crate::light::{Light, LightDistribution};
 use crate::material::Material;
@@ -100,6 +101,11 @@ pub struct Scene {
     /// The camera.
     pub camera: Camera,
     bvh: Bvh,
+    /// Per leaf of `bvh`: its triangles as a packet, or an empty packet when the leaf holds
+    /// other shapes or alpha-tested triangles (those go through [`Shape::intersect_with`]).
+    packets: Vec<Tri4>,
+    /// Instanced objects and their placements (the two-level part of the scene).
+    pub instances: instance::Instances,
     /// Primitives without finite bounds (infinite planes), tested on every ray.
     unbounded: Vec<u32>,
     bounds: Bounds3,
@@ -304,19 +310,41 @@ impl Scene {
             .enumerate()
             .map(|(i, s)| (i, s, crate::math::Transform::IDENTITY))
             .collect();
-        // Instances are flattened for now: each copy becomes shapes of its own.
-        for inst in &desc.instances {
-            let obj = desc.objects.get(inst.object as usize).ok_or_else(|| {
-                BuildError::Invalid(format!("instance of unknown object {}", inst.object))
-            })?;
-            for s in &obj.shapes {
-                all.push((desc.shapes.len(), s, inst.object_to_world));
-            }
-        }
         let mut materials = desc.materials.clone();
         if materials.is_empty() {
             materials.push(Material::default());
         }
+        // Objects of plain triangle meshes get a BVH of their own, shared by their instances;
+        // the others (emitting, alpha-tested or non-mesh shapes) are flattened: each copy
+        // becomes shapes of its own. Their PrimInfo entries come after the shapes' ones.
+        let mut object_slot: Vec<Option<u32>> = vec![None; desc.objects.len()];
+        let mut objects = Vec::new();
+        let mut placements = Vec::new();
+        let mut object_prims = Vec::new();
+        for inst in &desc.instances {
+            let obj = desc.objects.get(inst.object as usize).ok_or_else(|| {
+                BuildError::Invalid(format!("instance of unknown object {}", inst.object))
+            })?;
+            let slot = &mut object_slot[inst.object as usize];
+            if slot.is_none()
+                && let Some(acc) =
+                    instance::ObjectAccel::build(obj, &mut object_prims, materials.len())?
+            {
+                *slot = Some(objects.len() as u32);
+                objects.push(acc);
+            }
+            if let Some(object) = *slot {
+                placements.push(instance::Instance {
+                    object,
+                    to_world: inst.object_to_world,
+                });
+                continue;
+            }
+            for s in &obj.shapes {
+                all.push((desc.shapes.len(), s, inst.object_to_world));
+            }
+        }
+        let instances = instance::Instances::new(objects, placements);
         for (index, sd, instance_xf) in all {
             if sd.material as usize >= materials.len() {
                 return Err(BuildError::BadMaterial {
@@ -380,7 +408,22 @@ impl Scene {
             *idx = k as u32;
         }
         let unbounded: Vec<u32> = (n_bounded..shapes.len() as u32).collect();
-        let mut bounds = bvh.bounds();
+        let packets = (0..bvh.leaf_count() as u32)
+            .map(|leaf| {
+                let mut lanes = Vec::with_capacity(4);
+                for k in bvh.leaf_range(leaf) {
+                    let i = bvh.indices[k];
+                    match &shapes[i as usize] {
+                        Shape::Triangle(t) if prims[i as usize].alpha.is_none() => {
+                            lanes.push((t.p, i))
+                        }
+                        _ => return Tri4::EMPTY,
+                    }
+                }
+                Tri4::new(&lanes)
+            })
+            .collect();
+        let mut bounds = bvh.bounds().union(&instances.bounds());
         if bounds.is_empty() {
             bounds = Bounds3::from_point(Vec3::ZERO);
         }
@@ -458,6 +501,13 @@ impl Scene {
         }
         let powers: Vec<f32> = lights.iter().map(Light::power).collect();
         let light_distribution = LightDistribution::new(&powers);
+        // The instanced meshes' entries, renumbered to follow the shapes'.
+        let base = prims.len() as u32;
+        prims.extend(object_prims);
+        let mut instances = instances;
+        for o in &mut instances.objects {
+            o.offset_prims(base);
+        }
         let infinite_lights = (0..lights.len() as u32)
             .filter(|&i| lights[i as usize].is_infinite())
             .collect();
@@ -476,6 +526,8 @@ impl Scene {
             spectrum_textures: desc.spectrum_textures.clone(),
             camera,
             bvh,
+            packets,
+            instances,
             unbounded,
             bounds,
         })
@@ -504,11 +556,39 @@ impl Scene {
                 best = Some((h, i));
             }
         }
-        self.bvh.intersect(&r, |i, r| {
-            let h = self.hit(i, r, &pre)?;
-            best = Some((h, i));
-            Some(h.t)
+        self.bvh.intersect_leaves(&r, |leaf, r| {
+            let p = &self.packets[leaf as usize];
+            if !p.is_empty() {
+                let (lane, h) = p.intersect(r, &pre)?;
+                best = Some((h, p.ids[lane]));
+                return Some(h.t);
+            }
+            let mut r = *r;
+            let mut found = None;
+            for k in self.bvh.leaf_range(leaf) {
+                let i = self.bvh.indices[k];
+                if let Some(h) = self.hit(i, &r, &pre) {
+                    r.t_max = h.t;
+                    best = Some((h, i));
+                    found = Some(h.t);
+                }
+            }
+            found
         });
+        if !self.instances.is_empty() {
+            if let Some(b) = best {
+                r.t_max = b.0.t;
+            }
+            if let Some(ih) = self.instances.intersect(&r) {
+                let (si, prim) = self.instances.interaction(ray, &ih);
+                // Instanced objects are triangle meshes, which carry no colour of their own.
+                return Some(SceneHit {
+                    si,
+                    prim,
+                    albedo: None,
+                });
+            }
+        }
         let (h, prim) = best?;
         let shape = &self.shapes[prim as usize];
         let si = shape.interaction(ray, &h, &self.meshes);
@@ -561,9 +641,16 @@ impl Scene {
         self.unbounded
             .iter()
             .any(|&i| self.hit(i, ray, &pre).is_some())
-            || self
-                .bvh
-                .intersect_any(ray, |i, r| self.hit(i, r, &pre).is_some())
+            || self.bvh.intersect_any_leaves(ray, |leaf, r| {
+                let p = &self.packets[leaf as usize];
+                if !p.is_empty() {
+                    return p.intersect_any(r, &pre);
+                }
+                self.bvh
+                    .leaf_range(leaf)
+                    .any(|k| self.hit(self.bvh.indices[k], r, &pre).is_some())
+            })
+            || (!self.instances.is_empty() && self.instances.intersect_any(ray))
     }
 
     /// Texture evaluation against this scene's textures.

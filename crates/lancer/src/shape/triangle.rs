@@ -245,6 +245,19 @@ impl TriangleRay {
         pre
     }
 
+    /// The axis kz along which the ray's direction is largest (0, 1, 2 for x, y, z); the
+    /// permutation is (kx, ky, kz) = (kz + 1, kz + 2, kz) mod 3.
+    #[inline(always)]
+    pub fn kz(&self) -> usize {
+        self.kz as usize
+    }
+
+    /// The shear (S_x, S_y, S_z) = (−d_x/d_z, −d_y/d_z, 1/d_z) of the permuted direction.
+    #[inline(always)]
+    pub fn shear(&self) -> Vec3 {
+        self.shear
+    }
+
     /// (v[kx], v[ky], v[kz]) with kx, ky the two other axes in cyclic order.
     #[inline(always)]
     fn permute(&self, v: Vec3) -> Vec3 {

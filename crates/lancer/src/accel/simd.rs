@@ -1,0 +1,361 @@
+//! Four `f32` lanes: SSE/FMA registers on x86-64 (lancer is built for x86-64-v3), plain arrays
+//! elsewhere. Every operation is the IEEE one of the scalar code (fused where named), so a
+//! lane computes bit for bit what the scalar expression computes.
+
+#[cfg(all(
+    target_arch = "x86_64",
+    target_feature = "sse4.1",
+    target_feature = "fma"
+))]
+mod imp {
+    //! SAFETY (every `unsafe` block below): the intrinsics need SSE4.1 and FMA, which the
+    //! `cfg` of this module guarantees the build enables.
+    use std::arch::x86_64::*;
+
+    /// Four floats.
+    #[derive(Clone, Copy, Debug)]
+    pub struct F4(__m128);
+
+    impl F4 {
+        #[inline(always)]
+        pub fn splat(v: f32) -> F4 {
+            F4(unsafe { _mm_set1_ps(v) })
+        }
+        #[inline(always)]
+        pub fn load(a: &[f32; 4]) -> F4 {
+            // SAFETY: `a` is four readable floats; the load has no alignment requirement.
+            F4(unsafe { _mm_loadu_ps(a.as_ptr()) })
+        }
+        #[inline(always)]
+        pub fn to_array(self) -> [f32; 4] {
+            let mut out = [0.0f32; 4];
+            // SAFETY: `out` is four writable floats; the store has no alignment requirement.
+            unsafe { _mm_storeu_ps(out.as_mut_ptr(), self.0) };
+            out
+        }
+        #[inline(always)]
+        pub fn add(self, o: F4) -> F4 {
+            F4(unsafe { _mm_add_ps(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn sub(self, o: F4) -> F4 {
+            F4(unsafe { _mm_sub_ps(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn mul(self, o: F4) -> F4 {
+            F4(unsafe { _mm_mul_ps(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn div(self, o: F4) -> F4 {
+            F4(unsafe { _mm_div_ps(self.0, o.0) })
+        }
+        /// −(self·b) + c, rounded once.
+        #[inline(always)]
+        pub fn neg_mul_add(self, b: F4, c: F4) -> F4 {
+            F4(unsafe { _mm_fnmadd_ps(self.0, b.0, c.0) })
+        }
+        /// self·b − c, rounded once.
+        #[inline(always)]
+        pub fn mul_sub(self, b: F4, c: F4) -> F4 {
+            F4(unsafe { _mm_fmsub_ps(self.0, b.0, c.0) })
+        }
+        /// Lane-wise `if self > o { self } else { o }` (so `o` when either is NaN).
+        #[inline(always)]
+        pub fn max(self, o: F4) -> F4 {
+            F4(unsafe { _mm_max_ps(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn abs(self) -> F4 {
+            F4(unsafe { _mm_andnot_ps(_mm_set1_ps(-0.0), self.0) })
+        }
+        #[inline(always)]
+        pub fn lt(self, o: F4) -> M4 {
+            M4(unsafe { _mm_cmplt_ps(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn le(self, o: F4) -> M4 {
+            M4(unsafe { _mm_cmple_ps(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn gt(self, o: F4) -> M4 {
+            M4(unsafe { _mm_cmpgt_ps(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn ge(self, o: F4) -> M4 {
+            M4(unsafe { _mm_cmpge_ps(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn eq(self, o: F4) -> M4 {
+            M4(unsafe { _mm_cmpeq_ps(self.0, o.0) })
+        }
+    }
+
+    /// Four lane masks.
+    #[derive(Clone, Copy, Debug)]
+    pub struct M4(__m128);
+
+    impl M4 {
+        #[inline(always)]
+        pub fn and(self, o: M4) -> M4 {
+            M4(unsafe { _mm_and_ps(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn or(self, o: M4) -> M4 {
+            M4(unsafe { _mm_or_ps(self.0, o.0) })
+        }
+        /// `self and not o`.
+        #[inline(always)]
+        pub fn and_not(self, o: M4) -> M4 {
+            M4(unsafe { _mm_andnot_ps(o.0, self.0) })
+        }
+        /// Bit k set when lane k is true.
+        #[inline(always)]
+        pub fn bits(self) -> u32 {
+            (unsafe { _mm_movemask_ps(self.0) }) as u32
+        }
+    }
+}
+
+#[cfg(not(all(
+    target_arch = "x86_64",
+    target_feature = "sse4.1",
+    target_feature = "fma"
+)))]
+mod imp {
+    /// Four floats.
+    #[derive(Clone, Copy, Debug)]
+    pub struct F4([f32; 4]);
+
+    #[inline(always)]
+    fn map2(a: F4, b: F4, f: impl Fn(f32, f32) -> f32) -> F4 {
+        F4([
+            f(a.0[0], b.0[0]),
+            f(a.0[1], b.0[1]),
+            f(a.0[2], b.0[2]),
+            f(a.0[3], b.0[3]),
+        ])
+    }
+    #[inline(always)]
+    fn cmp(a: F4, b: F4, f: impl Fn(f32, f32) -> bool) -> M4 {
+        M4([
+            f(a.0[0], b.0[0]),
+            f(a.0[1], b.0[1]),
+            f(a.0[2], b.0[2]),
+            f(a.0[3], b.0[3]),
+        ])
+    }
+
+    impl F4 {
+        #[inline(always)]
+        pub fn splat(v: f32) -> F4 {
+            F4([v; 4])
+        }
+        #[inline(always)]
+        pub fn load(a: &[f32; 4]) -> F4 {
+            F4(*a)
+        }
+        #[inline(always)]
+        pub fn to_array(self) -> [f32; 4] {
+            self.0
+        }
+        #[inline(always)]
+        pub fn add(self, o: F4) -> F4 {
+            map2(self, o, |a, b| a + b)
+        }
+        #[inline(always)]
+        pub fn sub(self, o: F4) -> F4 {
+            map2(self, o, |a, b| a - b)
+        }
+        #[inline(always)]
+        pub fn mul(self, o: F4) -> F4 {
+            map2(self, o, |a, b| a * b)
+        }
+        #[inline(always)]
+        pub fn div(self, o: F4) -> F4 {
+            map2(self, o, |a, b| a / b)
+        }
+        #[inline(always)]
+        pub fn neg_mul_add(self, b: F4, c: F4) -> F4 {
+            let mut r = [0.0; 4];
+            for k in 0..4 {
+                r[k] = (-self.0[k]).mul_add(b.0[k], c.0[k]);
+            }
+            F4(r)
+        }
+        #[inline(always)]
+        pub fn mul_sub(self, b: F4, c: F4) -> F4 {
+            let mut r = [0.0; 4];
+            for k in 0..4 {
+                r[k] = self.0[k].mul_add(b.0[k], -c.0[k]);
+            }
+            F4(r)
+        }
+        #[inline(always)]
+        pub fn max(self, o: F4) -> F4 {
+            map2(self, o, |a, b| if a > b { a } else { b })
+        }
+        #[inline(always)]
+        pub fn abs(self) -> F4 {
+            F4(self.0.map(f32::abs))
+        }
+        #[inline(always)]
+        pub fn lt(self, o: F4) -> M4 {
+            cmp(self, o, |a, b| a < b)
+        }
+        #[inline(always)]
+        pub fn le(self, o: F4) -> M4 {
+            cmp(self, o, |a, b| a <= b)
+        }
+        #[inline(always)]
+        pub fn gt(self, o: F4) -> M4 {
+            cmp(self, o, |a, b| a > b)
+        }
+        #[inline(always)]
+        pub fn ge(self, o: F4) -> M4 {
+            cmp(self, o, |a, b| a >= b)
+        }
+        #[inline(always)]
+        pub fn eq(self, o: F4) -> M4 {
+            cmp(self, o, |a, b| a == b)
+        }
+    }
+
+    /// Four lane masks.
+    #[derive(Clone, Copy, Debug)]
+    pub struct M4([bool; 4]);
+
+    impl M4 {
+        #[inline(always)]
+        pub fn and(self, o: M4) -> M4 {
+            M4([0, 1, 2, 3].map(|k| self.0[k] && o.0[k]))
+        }
+        #[inline(always)]
+        pub fn or(self, o: M4) -> M4 {
+            M4([0, 1, 2, 3].map(|k| self.0[k] || o.0[k]))
+        }
+        #[inline(always)]
+        pub fn and_not(self, o: M4) -> M4 {
+            M4([0, 1, 2, 3].map(|k| self.0[k] && !o.0[k]))
+        }
+        #[inline(always)]
+        pub fn bits(self) -> u32 {
+            (0..4).filter(|&k| self.0[k]).map(|k| 1u32 << k).sum()
+        }
+    }
+}
+
+pub(crate) use imp::{F4, M4};
+
+// Eight `f32` lanes (AVX on x86-64-v3, arrays elsewhere): only what the 8-wide slab test
+// needs.
+#[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+mod imp8 {
+    //! SAFETY (every `unsafe` block below): the intrinsics need AVX, which the `cfg` of this
+    //! module guarantees the build enables.
+    use std::arch::x86_64::*;
+
+    /// Eight floats.
+    #[derive(Clone, Copy, Debug)]
+    pub struct F8(__m256);
+
+    impl F8 {
+        #[inline(always)]
+        pub fn splat(v: f32) -> F8 {
+            F8(unsafe { _mm256_set1_ps(v) })
+        }
+        #[inline(always)]
+        pub fn load(a: &[f32; 8]) -> F8 {
+            // SAFETY: `a` is eight readable floats; the load has no alignment requirement.
+            F8(unsafe { _mm256_loadu_ps(a.as_ptr()) })
+        }
+        #[inline(always)]
+        pub fn to_array(self) -> [f32; 8] {
+            let mut out = [0.0f32; 8];
+            // SAFETY: `out` is eight writable floats; the store has no alignment requirement.
+            unsafe { _mm256_storeu_ps(out.as_mut_ptr(), self.0) };
+            out
+        }
+        #[inline(always)]
+        pub fn sub(self, o: F8) -> F8 {
+            F8(unsafe { _mm256_sub_ps(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn mul(self, o: F8) -> F8 {
+            F8(unsafe { _mm256_mul_ps(self.0, o.0) })
+        }
+        /// Lane-wise `if self < o { self } else { o }` (so `o` when either is NaN).
+        #[inline(always)]
+        pub fn min(self, o: F8) -> F8 {
+            F8(unsafe { _mm256_min_ps(self.0, o.0) })
+        }
+        /// Lane-wise `if self > o { self } else { o }` (so `o` when either is NaN).
+        #[inline(always)]
+        pub fn max(self, o: F8) -> F8 {
+            F8(unsafe { _mm256_max_ps(self.0, o.0) })
+        }
+        /// Bit k set where lane k of `self` ≤ lane k of `o`.
+        #[inline(always)]
+        pub fn le_bits(self, o: F8) -> u32 {
+            (unsafe { _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(self.0, o.0)) }) as u32
+        }
+    }
+}
+
+#[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
+mod imp8 {
+    /// Eight floats.
+    #[derive(Clone, Copy, Debug)]
+    pub struct F8([f32; 8]);
+
+    impl F8 {
+        #[inline(always)]
+        pub fn splat(v: f32) -> F8 {
+            F8([v; 8])
+        }
+        #[inline(always)]
+        pub fn load(a: &[f32; 8]) -> F8 {
+            F8(*a)
+        }
+        #[inline(always)]
+        pub fn to_array(self) -> [f32; 8] {
+            self.0
+        }
+        #[inline(always)]
+        pub fn sub(self, o: F8) -> F8 {
+            F8(std::array::from_fn(|k| self.0[k] - o.0[k]))
+        }
+        #[inline(always)]
+        pub fn mul(self, o: F8) -> F8 {
+            F8(std::array::from_fn(|k| self.0[k] * o.0[k]))
+        }
+        #[inline(always)]
+        pub fn min(self, o: F8) -> F8 {
+            F8(std::array::from_fn(|k| {
+                if self.0[k] < o.0[k] {
+                    self.0[k]
+                } else {
+                    o.0[k]
+                }
+            }))
+        }
+        #[inline(always)]
+        pub fn max(self, o: F8) -> F8 {
+            F8(std::array::from_fn(|k| {
+                if self.0[k] > o.0[k] {
+                    self.0[k]
+                } else {
+                    o.0[k]
+                }
+            }))
+        }
+        #[inline(always)]
+        pub fn le_bits(self, o: F8) -> u32 {
+            (0..8)
+                .filter(|&k| self.0[k] <= o.0[k])
+                .map(|k| 1u32 << k)
+                .sum()
+        }
+    }
+}
+
+pub(crate) use imp8::F8;

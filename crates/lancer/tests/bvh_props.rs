@@ -1,0 +1,239 @@
+//! Property tests of the BVH: over thousands of random meshes and rays (a seeded generator),
+//! the tree's closest hit is brute force's closest hit (same triangle, or one at exactly the
+//! same t when triangles coincide; t equal bit for bit) and its any-hit answer is brute
+//! force's. Brute force runs the scalar watertight test, which the BVH's 4-triangle packets
+//! must reproduce exactly. A scene mixing every kind of shape is checked the same way.
+
+use lancer::accel::MeshBvh;
+use lancer::math::{Transform, Vec3};
+use lancer::ray::Ray;
+use lancer::sampling::Pcg32;
+use lancer::scene::desc::{Geometry, ShapeDesc};
+use lancer::shape::{ShapeHit, TriangleMesh, TriangleRay, intersect_triangle};
+use lancer::{Scene, SceneDesc};
+
+fn v3(rng: &mut Pcg32) -> Vec3 {
+    Vec3::new(rng.uniform(), rng.uniform(), rng.uniform())
+}
+
+/// A random mesh of one of several kinds: uniform triangles, tight clusters, degenerate
+/// (zero-area) triangles mixed in, exact duplicates, a single triangle, none.
+fn random_mesh(rng: &mut Pcg32, case: u32) -> Vec<[Vec3; 3]> {
+    let kind = case % 6;
+    let n = match kind {
+        4 => 1,
+        5 => 0,
+        _ => 1 + (rng.next_u32() % 300) as usize,
+    };
+    let mut tris = Vec::with_capacity(n);
+    let centres: Vec<Vec3> = (0..4).map(|_| v3(rng) * 10.0 - 5.0).collect();
+    while tris.len() < n {
+        let size = if rng.uniform() < 0.2 { 3.0 } else { 0.4 };
+        let c = match kind {
+            1 => centres[(rng.next_u32() % 4) as usize] + (v3(rng) - 0.5) * 0.5,
+            _ => v3(rng) * 10.0 - 5.0,
+        };
+        let a = c + (v3(rng) - 0.5) * size;
+        let b = c + (v3(rng) - 0.5) * size;
+        let mut t = [a, b, c + (v3(rng) - 0.5) * size];
+        if kind == 2 && rng.uniform() < 0.3 {
+            // Zero area: a repeated vertex or three collinear points.
+            t[2] = if rng.uniform() < 0.5 {
+                a
+            } else {
+                a + 2.0 * (b - a)
+            };
+        }
+        tris.push(t);
+        if kind == 3 && rng.uniform() < 0.4 && tris.len() < n {
+            tris.push(t);
+        }
+    }
+    tris
+}
+
+/// Rays from around the mesh towards it (mostly) or anywhere, some with a short `t_max`.
+fn random_ray(rng: &mut Pcg32) -> Ray {
+    let o = v3(rng) * 16.0 - 8.0;
+    let d = if rng.uniform() < 0.7 {
+        (v3(rng) * 8.0 - 4.0) - o
+    } else {
+        v3(rng) - 0.5
+    };
+    let t_max = if rng.uniform() < 0.3 {
+        rng.uniform() * 1.5
+    } else {
+        f32::INFINITY
+    };
+    Ray { o, d, t_max }
+}
+
+/// Brute force: every triangle in turn with the scalar test, the ray shortened by each hit.
+fn brute(tris: &[[Vec3; 3]], ray: &Ray) -> Option<(u32, ShapeHit)> {
+    let mut r = *ray;
+    let mut best = None;
+    for (i, [a, b, c]) in tris.iter().enumerate() {
+        if let Some(h) = intersect_triangle(&r, *a, *b, *c) {
+            r.t_max = h.t;
+            best = Some((i as u32, h));
+        }
+    }
+    best
+}
+
+#[test]
+fn mesh_bvh_equals_brute_force() {
+    let mut rng = Pcg32::new(7, 0);
+    let (mut hits, mut rays) = (0, 0);
+    for case in 0..600 {
+        let tris = random_mesh(&mut rng, case);
+        let bvh = MeshBvh::build(&tris);
+        for _ in 0..40 {
+            let ray = random_ray(&mut rng);
+            let pre = TriangleRay::new(&ray);
+            let want = brute(&tris, &ray);
+            let got = bvh.intersect(&ray, &pre);
+            rays += 1;
+            match (want, got) {
+                (None, None) => {}
+                (Some((wi, wh)), Some((gi, gh))) => {
+                    hits += 1;
+                    assert_eq!(
+                        wh.t.to_bits(),
+                        gh.t.to_bits(),
+                        "case {case}: t {} vs brute force {}",
+                        gh.t,
+                        wh.t
+                    );
+                    if wi != gi {
+                        // Only a coincident triangle may stand in for brute force's.
+                        let [a, b, c] = tris[gi as usize];
+                        let alone = intersect_triangle(&ray, a, b, c).map(|h| h.t);
+                        assert_eq!(alone, Some(wh.t), "case {case}: triangle {gi} vs {wi}");
+                    } else {
+                        assert_eq!((wh.u, wh.v), (gh.u, gh.v), "case {case}: barycentrics");
+                    }
+                }
+                (w, g) => panic!("case {case}: brute force {w:?}, BVH {g:?}"),
+            }
+            assert_eq!(
+                bvh.intersect_any(&ray, &pre),
+                want.is_some(),
+                "case {case}: any-hit"
+            );
+        }
+    }
+    // The generator must actually exercise hits and misses.
+    assert!(
+        hits > rays / 20 && hits < rays * 19 / 20,
+        "{hits} hits of {rays}"
+    );
+}
+
+fn shape(geometry: Geometry, at: Vec3) -> ShapeDesc {
+    ShapeDesc {
+        geometry,
+        object_to_world: Transform::translate(at),
+        reverse_orientation: false,
+        material: 0,
+        area_light: None,
+        alpha: None,
+    }
+}
+
+/// A scene of every kind of shape, scattered.
+fn mixed_scene(rng: &mut Pcg32) -> SceneDesc {
+    let mut desc = SceneDesc::default();
+    for k in 0..120 {
+        let at = v3(rng) * 10.0 - 5.0;
+        let r = 0.2 + rng.uniform();
+        let g = match k % 8 {
+            0 => Geometry::Sphere {
+                radius: r,
+                z_min: -r,
+                z_max: r * 0.5,
+                phi_max: 300.0,
+            },
+            1 => Geometry::Disk {
+                height: 0.1,
+                radius: r,
+                inner_radius: 0.1,
+                phi_max: 360.0,
+            },
+            2 => Geometry::Cylinder {
+                radius: r,
+                z_min: -0.3,
+                z_max: 0.4,
+                phi_max: 360.0,
+            },
+            3 => Geometry::Cone {
+                radius: r,
+                height: 0.7,
+                phi_max: 360.0,
+            },
+            4 => Geometry::Paraboloid {
+                radius: r,
+                z_min: 0.0,
+                z_max: 0.8,
+                phi_max: 360.0,
+            },
+            5 => Geometry::Hyperboloid {
+                p1: Vec3::new(r, 0.0, -0.3),
+                p2: Vec3::new(0.2, r, 0.4),
+                phi_max: 360.0,
+            },
+            6 => Geometry::Box {
+                min: Vec3::splat(-0.3 * r),
+                max: Vec3::splat(0.3 * r),
+            },
+            _ => {
+                let tris = random_mesh(rng, 0);
+                let tris = &tris[..tris.len().min(20)];
+                Geometry::TriangleMesh(std::sync::Arc::new(TriangleMesh {
+                    positions: tris.iter().flatten().map(|p| *p * 0.3).collect(),
+                    indices: (0..3 * tris.len() as u32).collect(),
+                    ..TriangleMesh::default()
+                }))
+            }
+        };
+        desc.shapes.push(shape(g, at));
+    }
+    desc.shapes.push(shape(
+        Geometry::Plane {
+            p: Vec3::new(0.0, 0.0, -7.0),
+            n: Vec3::Z,
+        },
+        Vec3::ZERO,
+    ));
+    desc
+}
+
+#[test]
+fn scene_of_mixed_shapes_equals_brute_force() {
+    let mut rng = Pcg32::new(11, 0);
+    let mut hits = 0;
+    for case in 0..10 {
+        let scene = Scene::build(&mixed_scene(&mut rng)).expect("valid scene");
+        for _ in 0..2000 {
+            let ray = random_ray(&mut rng);
+            let mut r = ray;
+            let mut want = None;
+            for (i, s) in scene.shapes.iter().enumerate() {
+                if let Some(h) = s.intersect(&r) {
+                    r.t_max = h.t;
+                    want = Some((i as u32, h.t));
+                }
+            }
+            let got = scene.intersect(&ray).map(|h| (h.prim, h.si.t));
+            if let (Some((wi, wt)), Some((gi, gt))) = (want, got) {
+                hits += 1;
+                assert_eq!(wt.to_bits(), gt.to_bits(), "case {case}: t");
+                assert_eq!(wi, gi, "case {case}: primitive");
+            } else {
+                assert_eq!(want, got, "case {case}");
+            }
+            assert_eq!(scene.intersect_p(&ray), want.is_some(), "case {case}");
+        }
+    }
+    assert!(hits > 2000, "{hits} hits");
+}
