@@ -31,7 +31,7 @@ struct Cli {
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Render a scene to an image (PNG or EXR, chosen by the extension).
-    Render(render::RenderArgs),
+    Render(Box<render::RenderArgs>),
     /// Describe a scene without rendering it: camera, counts, lights, bounds, memory, files.
     Info(info::InfoArgs),
     /// Merge the parts of a split render (`render --split i/N`) into the final image.
@@ -59,7 +59,7 @@ fn main() {
     check_cpu();
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Render(args) => render::run(args),
+        Command::Render(args) => render::run(*args),
         Command::Info(args) => info::run(args),
         Command::Merge(args) => merge::run(args),
         Command::Bench(cmd) => bench::run(cmd),
