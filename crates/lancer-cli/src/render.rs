@@ -59,6 +59,11 @@ pub struct RenderArgs {
     /// No progress bar, no summary.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Debugging: report the first camera sample whose radiance is NaN or infinite (in row,
+    /// column, sample order) with every vertex of its path, and exit with status 1 if there is
+    /// one. Without it such samples are dropped (they add black) with a one-line warning.
+    #[arg(long)]
+    pub check_nan: bool,
     /// Stream the image as it converges to the tev viewer listening at HOST:PORT (tev's
     /// default port is 14158); an unreachable viewer is only a warning.
     #[arg(long, value_name = "HOST:PORT")]
@@ -406,8 +411,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
                 &scene, &settings, &mut film, &units, &mut done, &on_unit, &stop,
             )
         });
-        stats.samples += s.samples;
-        stats.rays += s.rays;
+        stats.add(&s);
         if done.iter().all(|&d| d) {
             break;
         }
@@ -493,6 +497,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
             spp: desc.sampler.spp,
             threads: pool.current_num_threads(),
             samples: stats.samples,
+            nonfinite: stats.nonfinite,
             rays: stats.rays,
         };
         let phases = stats::Phases {
@@ -505,7 +510,49 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         let mem = stats::SceneMemory::of(&scene);
         println!("{}", stats::render_json(&summary, &phases, &mem));
     }
-    Ok(())
+    report_nonfinite(&scene, &settings, &stats, args.check_nan)
+}
+
+/// Says how many samples were NaN or infinite; with `--check-nan`, replays the first one and
+/// prints its path, and fails.
+fn report_nonfinite(
+    scene: &Scene,
+    settings: &RenderSettings,
+    stats: &RenderStats,
+    check_nan: bool,
+) -> Result<(), CliError> {
+    let Some(id) = stats.first_nonfinite else {
+        return Ok(());
+    };
+    let what = format!(
+        "{} camera sample{} gave NaN or infinite radiance and {} dropped; the first is sample {} \
+         of pixel ({}, {})",
+        stats.nonfinite,
+        if stats.nonfinite == 1 { "" } else { "s" },
+        if stats.nonfinite == 1 { "was" } else { "were" },
+        id.sample,
+        id.x,
+        id.y
+    );
+    if !check_nan {
+        eprintln!("warning: {what} (--check-nan shows its path)");
+        return Ok(());
+    }
+    let (l, path) = lancer::render::trace_sample(scene, settings, id);
+    eprintln!("{what}; its radiance is {l:?}; its path:");
+    for v in &path {
+        eprintln!(
+            "  bounce {}: primitive {} at {:?}, n {:?}, shading n {:?}, wo {:?}; sampled wi {:?}, \
+             f {:?}, pdf {:?}; throughput before {:?}, radiance so far {:?}",
+            v.depth, v.prim, v.p, v.n, v.ns, v.wo, v.wi, v.f, v.pdf, v.beta, v.l
+        );
+    }
+    if path.is_empty() {
+        eprintln!("  (no surface vertex recorded: the camera ray or a light gave it)");
+    }
+    Err(CliError::runtime(
+        "--check-nan: a sample was not finite (see above)",
+    ))
 }
 
 #[cfg(test)]

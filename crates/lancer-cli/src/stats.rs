@@ -174,6 +174,8 @@ pub struct RenderSummary {
     pub threads: usize,
     /// Camera samples taken.
     pub samples: u64,
+    /// Camera samples whose radiance was NaN or infinite (dropped).
+    pub nonfinite: u64,
     /// Rays traced (all kinds: the renderer counts them together).
     pub rays: u64,
 }
@@ -202,6 +204,7 @@ pub fn render_json(r: &RenderSummary, t: &Phases, mem: &SceneMemory) -> Value {
             "write": t.write,
         },
         "samples": r.samples,
+        "nonfinite_samples": r.nonfinite,
         "samples_per_s": per_s(r.samples),
         "rays": { "total": r.rays },
         "rays_per_s": per_s(r.rays),

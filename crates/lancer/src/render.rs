@@ -59,6 +59,37 @@ pub struct RenderStats {
     pub rays: u64,
     /// True if the render stopped early because it was cancelled.
     pub cancelled: bool,
+    /// Camera samples whose radiance was NaN or infinite: each is a bug upstream, counted and
+    /// dropped (it adds black) so that it cannot poison its pixel.
+    pub nonfinite: u64,
+    /// The first of them in (row, column, sample index) order, whatever the thread count or
+    /// tiling, for `lancer render --check-nan` to replay.
+    pub first_nonfinite: Option<SampleId>,
+}
+
+impl RenderStats {
+    /// Adds the totals of another part of the render.
+    pub fn add(&mut self, o: &RenderStats) {
+        self.samples += o.samples;
+        self.rays += o.rays;
+        self.cancelled |= o.cancelled;
+        self.nonfinite += o.nonfinite;
+        self.first_nonfinite = match (self.first_nonfinite, o.first_nonfinite) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        };
+    }
+}
+
+/// One camera sample: pixel (`x`, `y`) and sample index. Ordered by row, column, then index.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub struct SampleId {
+    /// Row.
+    pub y: i32,
+    /// Column.
+    pub x: i32,
+    /// Sample index within the pixel.
+    pub sample: u32,
 }
 
 /// The tiles covering `bounds`, in scanline order.
@@ -82,18 +113,8 @@ pub fn tiles(bounds: &PixelBounds, size: u32) -> Vec<PixelBounds> {
     out
 }
 
-/// Renders one tile: every pixel's samples `settings.samples`, in order. Returns the tile's
-/// sums and the number of rays traced.
-pub fn render_tile(
-    scene: &Scene,
-    settings: &RenderSettings,
-    tile: &PixelBounds,
-) -> (Vec<PixelSum>, u64) {
-    render_tile_samples(scene, settings, tile, settings.samples.clone())
-}
-
 /// Renders sample indices `samples` of every pixel of `tile`, in order. Returns the tile's
-/// sums and the number of rays traced. Each sample depends only on (seed, pixel, index), and
+/// sums and its totals (samples, rays, non-finite samples). Each sample depends only on (seed, pixel, index), and
 /// the sums are fixed-point integers, so any partition of the samples into ranges adds up to
 /// the same sums bit for bit.
 pub fn render_tile_samples(
@@ -101,8 +122,9 @@ pub fn render_tile_samples(
     settings: &RenderSettings,
     tile: &PixelBounds,
     samples: std::ops::Range<u32>,
-) -> (Vec<PixelSum>, u64) {
+) -> (Vec<PixelSum>, RenderStats) {
     let rays0 = rays_traced();
+    let mut stats = RenderStats::default();
     let mut sampler = Sampler::new(settings.sampler, settings.spp, settings.seed);
     let mut sums = vec![PixelSum::default(); tile.area() as usize];
     let w = tile.width() as usize;
@@ -110,16 +132,15 @@ pub fn render_tile_samples(
         for x in tile.x0..tile.x1 {
             let sum = &mut sums[(y - tile.y0) as usize * w + (x - tile.x0) as usize];
             for s in samples.clone() {
-                sampler.start_pixel_sample(x, y, s as u64);
-                let (offset, weight) = settings.filter.sample(sampler.get_pixel_2d());
-                let p_film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
-                let p_lens = sampler.get_2d();
-                let ray = scene.camera.generate_ray(p_film, p_lens);
-                let l = settings.integrator.li(scene, &ray, &mut sampler);
+                let (l, weight) = camera_sample(scene, settings, &mut sampler, x, y, s);
                 // A non-finite sample is a bug upstream; it must not poison the pixel.
                 let l = if l.is_finite() {
                     l
                 } else {
+                    stats.nonfinite += 1;
+                    if stats.first_nonfinite.is_none() {
+                        stats.first_nonfinite = Some(SampleId { y, x, sample: s });
+                    }
                     crate::math::Rgb::ZERO
                 };
                 let m = l.max_element();
@@ -132,7 +153,56 @@ pub fn render_tile_samples(
             }
         }
     }
-    (sums, rays_traced() - rays0)
+    stats.samples = tile.area() * samples.len() as u64;
+    stats.rays = rays_traced() - rays0;
+    (sums, stats)
+}
+
+/// One camera sample of pixel (`x`, `y`): its radiance and filter weight. A pure function of
+/// (scene, settings, pixel, sample index).
+fn camera_sample(
+    scene: &Scene,
+    settings: &RenderSettings,
+    sampler: &mut Sampler,
+    x: i32,
+    y: i32,
+    s: u32,
+) -> (crate::math::Rgb, f32) {
+    let ray = camera_ray(scene, settings, sampler, x, y, s);
+    (settings.integrator.li(scene, &ray.0, sampler), ray.1)
+}
+
+/// The camera ray of sample `s` of pixel (`x`, `y`) and its filter weight, leaving `sampler`
+/// ready for the integrator's dimensions.
+fn camera_ray(
+    scene: &Scene,
+    settings: &RenderSettings,
+    sampler: &mut Sampler,
+    x: i32,
+    y: i32,
+    s: u32,
+) -> (crate::ray::Ray, f32) {
+    sampler.start_pixel_sample(x, y, s as u64);
+    let (offset, weight) = settings.filter.sample(sampler.get_pixel_2d());
+    let p_film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
+    let p_lens = sampler.get_2d();
+    (scene.camera.generate_ray(p_film, p_lens), weight)
+}
+
+/// Replays one camera sample, recording the path the integrator followed (for
+/// `--check-nan`): the same radiance as the render computed for it, and its vertices.
+pub fn trace_sample(
+    scene: &Scene,
+    settings: &RenderSettings,
+    id: SampleId,
+) -> (crate::math::Rgb, Vec<crate::integrator::PathVertex>) {
+    let mut sampler = Sampler::new(settings.sampler, settings.spp, settings.seed);
+    let (ray, _) = camera_ray(scene, settings, &mut sampler, id.x, id.y, id.sample);
+    let mut path = Vec::new();
+    let l = settings
+        .integrator
+        .li_traced(scene, &ray, &mut sampler, &mut path);
+    (l, path)
 }
 
 /// The film's sums over `tile` (a part of its bounds), row-major.
@@ -251,18 +321,15 @@ pub fn render_units(
                 return;
             }
             let u = &units[i];
-            let (sums, rays) = render_tile_samples(scene, settings, &u.tile, u.samples.clone());
+            let (sums, tile_stats) =
+                render_tile_samples(scene, settings, &u.tile, u.samples.clone());
             let merged = {
                 let mut st = state.lock().unwrap();
                 st.0.merge_tile(&u.tile, &sums);
                 st.1[i] = true;
                 tile_sums(st.0, &u.tile)
             };
-            let n = u.tile.area() * u.samples.len() as u64;
-            let mut t = totals.lock().unwrap();
-            t.rays += rays;
-            t.samples += n;
-            drop(t);
+            totals.lock().unwrap().add(&tile_stats);
             on_unit(u, &merged);
         });
         if totals.lock().unwrap().cancelled {

@@ -64,6 +64,24 @@ impl Integrator {
         }
     }
 
+    /// [`Integrator::li`], recording the path's vertices in `path` (path tracing only; the
+    /// other integrators record nothing).
+    pub fn li_traced(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        sampler: &mut Sampler,
+        path: &mut Vec<PathVertex>,
+    ) -> Rgb {
+        match *self {
+            Integrator::Path {
+                max_depth,
+                regularize,
+            } => path::li_observed(scene, ray, sampler, max_depth, regularize, path),
+            _ => self.li(scene, ray, sampler),
+        }
+    }
+
     /// Radiance arriving at the camera along `ray`.
     pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut Sampler) -> Rgb {
         match *self {
@@ -80,6 +98,34 @@ impl Integrator {
             } => debug::ambient_occlusion(scene, ray, sampler, cos_sample, max_distance),
         }
     }
+}
+
+/// One surface a path met, as `--check-nan` reports it: where, the geometry, and the state of
+/// the path when its next direction was sampled there.
+#[derive(Clone, Copy, Debug)]
+pub struct PathVertex {
+    /// Bounce number (1 at the first surface).
+    pub depth: u32,
+    /// Primitive hit.
+    pub prim: u32,
+    /// Hit point.
+    pub p: Vec3,
+    /// Geometric normal.
+    pub n: Vec3,
+    /// Shading normal.
+    pub ns: Vec3,
+    /// Direction back along the incoming ray.
+    pub wo: Vec3,
+    /// Sampled next direction, if the BSDF gave one.
+    pub wi: Option<Vec3>,
+    /// BSDF value for it.
+    pub f: Option<Rgb>,
+    /// Its density.
+    pub pdf: Option<f32>,
+    /// Path throughput before this bounce.
+    pub beta: Rgb,
+    /// Radiance gathered so far.
+    pub l: Rgb,
 }
 
 /// The BSDF at a hit, with `Mix` materials resolved (the choice is a deterministic hash of the

@@ -1,6 +1,6 @@
 //! Unidirectional path tracing with next-event estimation and multiple importance sampling.
 
-use super::{bsdf_at, emitted};
+use super::{PathVertex, bsdf_at, emitted};
 use crate::light::LightSampleContext;
 use crate::material::TransportMode;
 use crate::math::Rgb;
@@ -17,6 +17,37 @@ pub fn li(
     sampler: &mut Sampler,
     max_depth: u32,
     regularize: bool,
+) -> Rgb {
+    li_observed(scene, ray, sampler, max_depth, regularize, &mut ())
+}
+
+/// Receives the vertices of a path as [`li_observed`] follows it.
+pub trait PathObserver {
+    /// Called at each surface the path meets, after the bounce was decided.
+    fn vertex(&mut self, v: PathVertex);
+}
+
+/// Observes nothing: [`li`]'s observer, compiled away.
+impl PathObserver for () {
+    #[inline(always)]
+    fn vertex(&mut self, _: PathVertex) {}
+}
+
+/// Records every vertex (`--check-nan`).
+impl PathObserver for Vec<PathVertex> {
+    fn vertex(&mut self, v: PathVertex) {
+        self.push(v);
+    }
+}
+
+/// [`li`], reporting each vertex of the path to `obs`.
+pub fn li_observed<O: PathObserver>(
+    scene: &Scene,
+    ray: &Ray,
+    sampler: &mut Sampler,
+    max_depth: u32,
+    regularize: bool,
+    obs: &mut O,
 ) -> Rgb {
     let mut l = Rgb::ZERO;
     let mut beta = Rgb::ONE;
@@ -116,7 +147,21 @@ pub fn li(
         }
         let uc = sampler.get_1d();
         let u = sampler.get_2d();
-        let Some(bs) = bsdf.sample_f(wo, uc, u, TransportMode::Radiance) else {
+        let bs = bsdf.sample_f(wo, uc, u, TransportMode::Radiance);
+        obs.vertex(PathVertex {
+            depth,
+            prim: hit.prim,
+            p: si.p,
+            n: si.n,
+            ns: si.shading.n,
+            wo,
+            wi: bs.as_ref().map(|b| b.wi),
+            f: bs.as_ref().map(|b| b.f),
+            pdf: bs.as_ref().map(|b| b.pdf),
+            beta,
+            l,
+        });
+        let Some(bs) = bs else {
             break;
         };
         beta *= bs.f * bs.wi.dot(si.shading.n).abs() / bs.pdf;
