@@ -59,6 +59,11 @@ pub struct RenderArgs {
     /// No progress bar, no summary.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Where to save the image if writing the output fails after rendering (the folder was
+    /// removed, the disk filled up): the render is never lost. Default: the system's
+    /// temporary folder.
+    #[arg(long, value_name = "DIR")]
+    pub on_write_error: Option<PathBuf>,
     /// Debugging: report the first camera sample whose radiance is NaN or infinite (in row,
     /// column, sample order) with every vertex of its path, and exit with status 1 if there is
     /// one. Without it such samples are dropped (they add black) with a one-line warning.
@@ -165,6 +170,12 @@ pub fn check_output(path: &Path) -> Result<(), CliError> {
     if ImageFormat::from_path(path).is_none() {
         return Err(CliError::input(format!(
             "{}: unknown image format (use .png or .exr)",
+            path.display()
+        )));
+    }
+    if path.is_dir() {
+        return Err(CliError::input(format!(
+            "{}: cannot write: it is a folder",
             path.display()
         )));
     }
@@ -462,12 +473,17 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
 
     let t_write = Instant::now();
     let pixels = film.image(desc.film.scale);
-    let written = if plan.is_part {
-        write_part(&output, &film, &part_meta).map_err(|e| CliError::runtime(e.to_string()))
-    } else {
-        write_image(&output, bounds.width(), bounds.height(), &pixels)
-            .map_err(|e| CliError::runtime(e.to_string()))
-    };
+    let fallback_dir = args
+        .on_write_error
+        .clone()
+        .unwrap_or_else(std::env::temp_dir);
+    let written = write_with_fallback(&output, &fallback_dir, |path| {
+        if plan.is_part {
+            write_part(path, &film, &part_meta).map_err(|e| e.to_string())
+        } else {
+            write_image(path, bounds.width(), bounds.height(), &pixels).map_err(|e| e.to_string())
+        }
+    });
     let write_s = t_write.elapsed().as_secs_f64();
     live.finish(&pixels);
     written?;
@@ -511,6 +527,34 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         println!("{}", stats::render_json(&summary, &phases, &mem));
     }
     report_nonfinite(&scene, &settings, &stats, args.check_nan)
+}
+
+/// Writes the result with `write` to `output`; if that fails (a write error the checks before
+/// rendering could not foresee), writes it into `fallback_dir` under a name of its own instead,
+/// and reports both, so that hours of rendering are not lost to a full disk.
+fn write_with_fallback(
+    output: &Path,
+    fallback_dir: &Path,
+    write: impl Fn(&Path) -> Result<(), String>,
+) -> Result<(), CliError> {
+    let Err(first) = write(output) else {
+        return Ok(());
+    };
+    let name = output
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "lancer.exr".into());
+    let rescue = fallback_dir.join(format!("lancer-rescued-{}-{name}", std::process::id()));
+    match write(&rescue) {
+        Ok(()) => Err(CliError::runtime(format!(
+            "{first}; the image was saved to {} instead",
+            rescue.display()
+        ))),
+        Err(second) => Err(CliError::runtime(format!(
+            "{first}; saving it to {} failed too: {second}",
+            rescue.display()
+        ))),
+    }
 }
 
 /// Says how many samples were NaN or infinite; with `--check-nan`, replays the first one and
@@ -558,6 +602,29 @@ fn report_nonfinite(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_failed_write_falls_back_to_the_rescue_folder() {
+        let dir = std::env::temp_dir().join(format!("lancer-rescue-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let out = Path::new("/no/such/folder/image.exr");
+        let write =
+            |p: &Path| std::fs::write(p, b"pixels").map_err(|e| format!("{}: {e}", p.display()));
+        let e = write_with_fallback(out, &dir, write).unwrap_err();
+        let rescued = dir.join(format!("lancer-rescued-{}-image.exr", std::process::id()));
+        assert_eq!(std::fs::read(&rescued).unwrap(), b"pixels");
+        let msg = e.message;
+        assert!(msg.contains("/no/such/folder/image.exr"), "{msg}");
+        assert!(msg.contains(&rescued.display().to_string()), "{msg}");
+        // Both failing: the message says so, and names both places.
+        let e = write_with_fallback(out, Path::new("/no/such/rescue"), write).unwrap_err();
+        assert!(e.message.contains("failed too"), "{}", e.message);
+        // A write that works goes to the output only.
+        let ok = dir.join("ok.exr");
+        write_with_fallback(&ok, &dir, write).unwrap();
+        assert!(ok.exists());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 
     #[test]
     fn resolutions_parse_and_absurd_ones_are_refused() {
