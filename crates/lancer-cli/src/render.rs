@@ -59,6 +59,9 @@ pub struct RenderArgs {
     /// No progress bar, no summary.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Largest film memory accepted, in GiB: a bigger image is refused before rendering.
+    #[arg(long, value_name = "GIB", default_value_t = MAX_FILM_GIB)]
+    pub max_film_gib: u64,
     /// Where to save the image if writing the output fails after rendering (the folder was
     /// removed, the disk filled up): the render is never lost. Default: the system's
     /// temporary folder.
@@ -87,9 +90,10 @@ pub struct RenderArgs {
 /// Largest image side accepted, in pixels: the scene reader's limit.
 pub const MAX_RESOLUTION: u32 = lancer_scene::pbrt::convert::MAX_RESOLUTION as u32;
 
-/// Largest film accepted, in bytes of accumulators and output pixels: a render that could not
-/// fit in memory is refused before it starts rather than killed by the allocator.
-pub const MAX_FILM_BYTES: u64 = 16 << 30;
+/// Largest film accepted by default, in GiB of accumulators and output pixels: a render that
+/// could not fit in memory is refused before it starts rather than killed by the allocator
+/// (`--max-film-gib` raises it on a bigger machine).
+pub const MAX_FILM_GIB: u64 = 16;
 
 /// Memory a film over `bounds` needs: the accumulators and the finished image.
 pub fn film_bytes(bounds: &PixelBounds) -> u64 {
@@ -287,16 +291,6 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     if render_bounds.is_empty() {
         return Err(CliError::input("the crop window selects no pixel"));
     }
-    if film_bytes(&render_bounds) > MAX_FILM_BYTES {
-        return Err(CliError::input(format!(
-            "a {}x{} image would need {:.1} GiB of memory for its film (the limit is {} GiB); \
-             render it in parts with the film's \"cropwindow\"",
-            render_bounds.width(),
-            render_bounds.height(),
-            film_bytes(&render_bounds) as f64 / (1u64 << 30) as f64,
-            MAX_FILM_BYTES >> 30
-        )));
-    }
     if desc.sampler.spp == 0 {
         return Err(CliError::input("samples per pixel must be at least 1"));
     }
@@ -313,6 +307,16 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         )));
     }
     let bounds = plan.bounds;
+    if film_bytes(&bounds) > args.max_film_gib.saturating_mul(1 << 30) {
+        return Err(CliError::input(format!(
+            "a {}x{} image would need {:.1} GiB of memory for its film (the limit is {} GiB, \
+             --max-film-gib to change it); render it in parts with --split or --crop",
+            bounds.width(),
+            bounds.height(),
+            film_bytes(&bounds) as f64 / (1u64 << 30) as f64,
+            args.max_film_gib
+        )));
+    }
     let scene_hash = split::scene_hash(&desc);
     let units = work_units(&bounds, TILE_SIZE, plan.samples.clone(), SAMPLES_PER_PASS);
     let ckpt_path = args
