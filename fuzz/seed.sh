@@ -21,6 +21,18 @@ seed pbrt $(files '*.pbrt')
 seed ply $(files '*.ply')
 seed obj $(files '*.obj') $(files '*.mtl')
 seed vox $(files '*.vox')
+seed gltf $(files '*.glb') $(files '*.gltf')
+# The SDF language: every expression of the scenes, one per file.
+mkdir -p corpus/sdf
+i=0
+for f in $(files '*.pbrt'); do
+  grep -o '"string expr" *\[* *"[^"]*"' "$f" | sed 's/.*"\([^"]*\)"$/\1/' | while read -r e; do
+    printf '%s' "$e" > "corpus/sdf/$(name "$f")-$RANDOM"
+  done || true
+done
+printf '%s' 'smooth_union(sphere(0.6), translate([0, 0.5, 0], torus(0.7, 0.18)), 0.25)' > corpus/sdf/readme-1
+printf '%s' 'difference(round_box([1, 0.5, 0.5], 0.1), repeat([0.4, 0.4, 0.4], [1, 1, 1], sphere(0.1)))' > corpus/sdf/readme-2
+printf '%s' 'twist(1.5, rotate(30, [0, 1, 0], union(capsule([0, 0, 0], [0, 1, 0], 0.2), cone(0.5, 1), ellipsoid([1, 0.5, 0.3]), cylinder(0.5, 0.2))))' > corpus/sdf/readme-3
 # The image target's first byte picks the decoder: 0 PNG, 1 JPEG, 2 EXR.
 mkdir -p corpus/image
 for f in $(files '*.png') $(files '*.jpg') $(files '*.exr'); do

@@ -778,3 +778,18 @@ fn shared_samples_load() {
     };
     assert!((l - Vec3::splat(3.0)).length() < 1e-4, "{l}");
 }
+
+/// Files the fuzzer found crashing the reader (`fuzz/fuzz_targets/gltf.rs`): each must now be a
+/// clear error naming the file.
+#[test]
+fn fuzz_regressions_are_clear_errors() {
+    for (file, words) in [(
+        "fuzz/position-accessor-out-of-range.gltf",
+        "refers to accessor",
+    )] {
+        let path = data(file);
+        let e = lancer_scene::load(&path).expect_err(file).to_string();
+        assert!(e.contains(file.rsplit('/').next().unwrap()), "{e}");
+        assert!(e.contains(words), "{e}");
+    }
+}

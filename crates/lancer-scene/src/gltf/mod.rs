@@ -77,6 +77,26 @@ pub const LUMENS_PER_WATT: f32 = 683.0;
 /// Longest side of the image made for a camera's aspect ratio, pixels.
 const MAX_FILM_SIDE: f32 = 4096.0;
 
+/// Refuses primitives whose attributes or indices name an accessor that does not exist. The
+/// `gltf` crate's validation reads the POSITION accessor without checking its index first (a
+/// panic found by fuzzing), so this runs before it.
+fn check_accessor_references(root: &::gltf::json::Root) -> Result<(), String> {
+    let count = root.accessors.len();
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            let attributes = prim.attributes.values().map(|a| a.value());
+            for a in attributes.chain(prim.indices.iter().map(|i| i.value())) {
+                if a >= count {
+                    return Err(format!(
+                        "mesh {m}, primitive {p} refers to accessor {a}, but the file has {count}"
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Reads a `.gltf` or `.glb` file into a scene.
 pub fn load_gltf_scene(path: &Path) -> Result<LoadedScene, SceneError> {
     let name = path.display().to_string();
@@ -109,6 +129,7 @@ pub fn load_gltf_scene(path: &Path) -> Result<LoadedScene, SceneError> {
             }
         )));
     }
+    check_accessor_references(&root).map_err(fail)?;
     let doc = Document::from_json(root).map_err(|e| fail(e.to_string()))?;
     let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
     let buffers = data::load_buffers(&doc, bin, &dir).map_err(fail)?;
