@@ -16,7 +16,7 @@ use std::time::Instant;
 /// Options of `lancer info`.
 #[derive(Args, Debug)]
 pub struct InfoArgs {
-    /// Scene file (.pbrt), or a bare mesh (.obj, .ply).
+    /// Scene file (.pbrt), glTF model (.gltf, .glb) or bare mesh (.obj, .ply).
     pub scene: PathBuf,
     /// List every file the loader read (scene, includes, meshes, textures), absolute.
     #[arg(long)]

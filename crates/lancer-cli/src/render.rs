@@ -17,7 +17,8 @@ use std::time::{Duration, Instant};
 /// Options of `lancer render`.
 #[derive(Args, Debug)]
 pub struct RenderArgs {
-    /// Scene file (.pbrt), or a bare mesh (.obj, .ply) to frame and light; without it, the built-in default scene.
+    /// Scene file (.pbrt), glTF model (.gltf, .glb) or bare mesh (.obj, .ply), framed and lit
+    /// when it has no camera or light; without it, the built-in default scene.
     pub scene: Option<PathBuf>,
     /// Output image (.png or .exr); defaults to the scene's Film filename, else lancer.png.
     #[arg(short, long)]
