@@ -11,88 +11,20 @@
 //!
 //! Patches are kept in world space (the mesh is transformed once when the scene is built).
 
-use super::{Shading, ShapeHit, SurfaceInteraction};
-use crate::math::{Bounds3, Frame, Transform, Vec2, Vec3, gamma, solve_quadratic};
+use super::{IndexedMesh, Shading, ShapeHit, SurfaceInteraction};
+use crate::math::{Bounds3, Frame, Vec2, Vec3, gamma, solve_quadratic};
 use crate::ray::Ray;
 use glam::DVec3;
 use std::sync::Arc;
 
-/// A mesh of bilinear patches: shared vertices, four indices per patch (p₀₀, p₁₀, p₀₁, p₁₁).
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct BilinearMesh {
-    /// Vertex positions.
-    pub positions: Vec<Vec3>,
-    /// Per-vertex shading normals (empty: none).
-    pub normals: Vec<Vec3>,
-    /// Per-vertex texture coordinates (empty: the patch's own (u, v)).
-    pub uvs: Vec<Vec2>,
-    /// Four vertex indices per patch.
-    pub indices: Vec<u32>,
-    /// Geometric normals flipped: reverse orientation xor a handedness-swapping transform
-    /// (ignored where per-vertex normals decide the side, as in pbrt).
-    pub flip_normal: bool,
-}
+/// A mesh of bilinear patches: shared vertices, four indices per patch (p₀₀, p₁₀, p₀₁, p₁₁);
+/// without `uvs`, each patch's own (u, v).
+pub type BilinearMesh = IndexedMesh<4>;
 
 impl BilinearMesh {
     /// Number of patches.
     pub fn patch_count(&self) -> usize {
-        self.indices.len() / 4
-    }
-
-    /// Checks that indices come in fours and are in range, and that per-vertex arrays match
-    /// the positions.
-    pub fn validate(&self) -> Result<(), String> {
-        if !self.indices.len().is_multiple_of(4) {
-            return Err(format!(
-                "{} indices is not a multiple of 4",
-                self.indices.len()
-            ));
-        }
-        let n = self.positions.len();
-        if let Some(&bad) = self.indices.iter().find(|&&i| i as usize >= n) {
-            return Err(format!("index {bad} out of range for {n} vertices"));
-        }
-        if !self.normals.is_empty() && self.normals.len() != n {
-            return Err(format!("{} normals for {n} vertices", self.normals.len()));
-        }
-        if !self.uvs.is_empty() && self.uvs.len() != n {
-            return Err(format!("{} uvs for {n} vertices", self.uvs.len()));
-        }
-        if self.positions.iter().any(|p| !p.is_finite()) {
-            return Err("vertex positions must be finite".into());
-        }
-        Ok(())
-    }
-
-    /// The mesh moved to world space: positions as points, normals by the inverse transpose
-    /// (normalised, and flipped under `ReverseOrientation` as pbrt does).
-    pub fn transformed(&self, t: &Transform, reverse_orientation: bool) -> BilinearMesh {
-        BilinearMesh {
-            positions: self.positions.iter().map(|&p| t.point(p)).collect(),
-            normals: self
-                .normals
-                .iter()
-                .map(|&n| {
-                    let n = t.normal(n).normalize_or_zero();
-                    if reverse_orientation { -n } else { n }
-                })
-                .collect(),
-            uvs: self.uvs.clone(),
-            indices: self.indices.clone(),
-            flip_normal: reverse_orientation ^ t.swaps_handedness(),
-        }
-    }
-
-    /// The four vertex indices of patch `i`: p₀₀, p₁₀, p₀₁, p₁₁.
-    #[inline]
-    pub fn vertices(&self, i: u32) -> [usize; 4] {
-        let b = 4 * i as usize;
-        [
-            self.indices[b] as usize,
-            self.indices[b + 1] as usize,
-            self.indices[b + 2] as usize,
-            self.indices[b + 3] as usize,
-        ]
+        self.face_count()
     }
 
     /// Every patch of a world-space mesh, as primitives.

@@ -1,83 +1,17 @@
 //! Triangles and triangle meshes: the watertight ray–triangle test.
 
-use super::{Shading, ShapeHit, SurfaceInteraction};
-use crate::math::{Bounds3, Frame, Transform, Vec2, Vec3, difference_of_products, gamma};
+use super::{IndexedMesh, Shading, ShapeHit, SurfaceInteraction};
+use crate::math::{Bounds3, Frame, Vec2, Vec3, difference_of_products, gamma};
 use crate::ray::Ray;
 
-/// A triangle mesh: shared vertices and three indices per triangle.
-///
-/// In a scene description the positions are in object space; once the scene is built they are
-/// in world space (the transform is applied once, not per ray).
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct TriangleMesh {
-    /// Vertex positions.
-    pub positions: Vec<Vec3>,
-    /// Per-vertex shading normals (empty: none).
-    pub normals: Vec<Vec3>,
-    /// Per-vertex (u, v) (empty: pbrt's default (0,0), (1,0), (1,1) per triangle).
-    pub uvs: Vec<Vec2>,
-    /// Three vertex indices per triangle.
-    pub indices: Vec<u32>,
-    /// Geometric normals flipped: reverse orientation xor a handedness-swapping transform
-    /// (pbrt's rule; ignored where per-vertex normals decide the side).
-    pub flip_normal: bool,
-}
+/// A triangle mesh: shared vertices and three indices per triangle ((0,0), (1,0), (1,1) is
+/// each triangle's own (u, v) when the mesh has none).
+pub type TriangleMesh = IndexedMesh<3>;
 
 impl TriangleMesh {
     /// Number of triangles.
     pub fn triangle_count(&self) -> usize {
-        self.indices.len() / 3
-    }
-
-    /// Checks that indices are in range and arrays have matching lengths.
-    pub fn validate(&self) -> Result<(), String> {
-        if !self.indices.len().is_multiple_of(3) {
-            return Err(format!(
-                "{} indices is not a multiple of 3",
-                self.indices.len()
-            ));
-        }
-        let n = self.positions.len();
-        if let Some(&bad) = self.indices.iter().find(|&&i| i as usize >= n) {
-            return Err(format!("index {bad} out of range for {n} vertices"));
-        }
-        if !self.normals.is_empty() && self.normals.len() != n {
-            return Err(format!("{} normals for {n} vertices", self.normals.len()));
-        }
-        if !self.uvs.is_empty() && self.uvs.len() != n {
-            return Err(format!("{} uvs for {n} vertices", self.uvs.len()));
-        }
-        Ok(())
-    }
-
-    /// The mesh moved to world space: positions as points, normals by the inverse transpose
-    /// (normalised, and flipped under `ReverseOrientation` as pbrt does).
-    pub fn transformed(&self, t: &Transform, reverse_orientation: bool) -> TriangleMesh {
-        TriangleMesh {
-            positions: self.positions.iter().map(|&p| t.point(p)).collect(),
-            normals: self
-                .normals
-                .iter()
-                .map(|&n| {
-                    let n = t.normal(n).normalize_or_zero();
-                    if reverse_orientation { -n } else { n }
-                })
-                .collect(),
-            uvs: self.uvs.clone(),
-            indices: self.indices.clone(),
-            flip_normal: reverse_orientation ^ t.swaps_handedness(),
-        }
-    }
-
-    /// The three vertex indices of triangle `i`.
-    #[inline]
-    pub fn vertices(&self, i: u32) -> [usize; 3] {
-        let b = 3 * i as usize;
-        [
-            self.indices[b] as usize,
-            self.indices[b + 1] as usize,
-            self.indices[b + 2] as usize,
-        ]
+        self.face_count()
     }
 }
 

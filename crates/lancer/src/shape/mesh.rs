@@ -1,0 +1,93 @@
+//! Indexed meshes: shared vertices and `N` indices per face, the data behind triangle meshes
+//! (`N` = 3) and bilinear-patch meshes (`N` = 4).
+
+use crate::math::{Transform, Vec2, Vec3};
+
+/// Shared vertices and `N` vertex indices per face.
+///
+/// In a scene description the positions are in object space; once the scene is built they are
+/// in world space (the transform is applied once, not per ray).
+#[derive(Clone, Debug, PartialEq)]
+pub struct IndexedMesh<const N: usize> {
+    /// Vertex positions.
+    pub positions: Vec<Vec3>,
+    /// Per-vertex shading normals (empty: none).
+    pub normals: Vec<Vec3>,
+    /// Per-vertex (u, v) (empty: each face's own parameterisation, as pbrt does).
+    pub uvs: Vec<Vec2>,
+    /// `N` vertex indices per face.
+    pub indices: Vec<u32>,
+    /// Geometric normals flipped: reverse orientation xor a handedness-swapping transform
+    /// (pbrt's rule; ignored where per-vertex normals decide the side).
+    pub flip_normal: bool,
+}
+
+impl<const N: usize> Default for IndexedMesh<N> {
+    fn default() -> Self {
+        IndexedMesh {
+            positions: Vec::new(),
+            normals: Vec::new(),
+            uvs: Vec::new(),
+            indices: Vec::new(),
+            flip_normal: false,
+        }
+    }
+}
+
+impl<const N: usize> IndexedMesh<N> {
+    /// Number of faces.
+    pub fn face_count(&self) -> usize {
+        self.indices.len() / N
+    }
+
+    /// Checks that indices come in groups of `N` and are in range, that per-vertex arrays match
+    /// the positions, and that positions are finite.
+    pub fn validate(&self) -> Result<(), String> {
+        if !self.indices.len().is_multiple_of(N) {
+            return Err(format!(
+                "{} indices is not a multiple of {N}",
+                self.indices.len()
+            ));
+        }
+        let n = self.positions.len();
+        if let Some(&bad) = self.indices.iter().find(|&&i| i as usize >= n) {
+            return Err(format!("index {bad} out of range for {n} vertices"));
+        }
+        if !self.normals.is_empty() && self.normals.len() != n {
+            return Err(format!("{} normals for {n} vertices", self.normals.len()));
+        }
+        if !self.uvs.is_empty() && self.uvs.len() != n {
+            return Err(format!("{} uvs for {n} vertices", self.uvs.len()));
+        }
+        if self.positions.iter().any(|p| !p.is_finite()) {
+            return Err("vertex positions must be finite".into());
+        }
+        Ok(())
+    }
+
+    /// The mesh moved to world space: positions as points, normals by the inverse transpose
+    /// (normalised, and flipped under `ReverseOrientation` as pbrt does).
+    pub fn transformed(&self, t: &Transform, reverse_orientation: bool) -> IndexedMesh<N> {
+        IndexedMesh {
+            positions: self.positions.iter().map(|&p| t.point(p)).collect(),
+            normals: self
+                .normals
+                .iter()
+                .map(|&n| {
+                    let n = t.normal(n).normalize_or_zero();
+                    if reverse_orientation { -n } else { n }
+                })
+                .collect(),
+            uvs: self.uvs.clone(),
+            indices: self.indices.clone(),
+            flip_normal: reverse_orientation ^ t.swaps_handedness(),
+        }
+    }
+
+    /// The `N` vertex indices of face `i`.
+    #[inline]
+    pub fn vertices(&self, i: u32) -> [usize; N] {
+        let b = N * i as usize;
+        std::array::from_fn(|k| self.indices[b + k] as usize)
+    }
+}
