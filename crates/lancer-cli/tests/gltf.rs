@@ -1,5 +1,5 @@
 //! `lancer render model.gltf|model.glb`: a glTF model renders with no scene file, through its
-//! own camera; a file lancer cannot read fails with exit status 2 and a message naming it.
+//! own camera, Draco-compressed or not; a file lancer cannot read fails with exit status 2 and a message naming it.
 
 mod common;
 use common::*;
@@ -46,17 +46,55 @@ fn a_gltf_model_renders_through_its_own_camera() {
 }
 
 #[test]
-fn an_unsupported_gltf_fails_with_a_clear_message() {
+fn a_draco_compressed_glb_renders() {
     let dir = temp_dir("gltf-draco");
-    let file = model("Box.glb");
-    let o = run_in(
-        &dir,
-        &["render", file.to_str().unwrap(), "-o", "x.png", "--quiet"],
+    let out = dir.join("box.exr");
+    render_ok(&dir, &model("Box.glb"), &out, &["--spp", "4"]);
+    let img = read_exr(&out);
+    // The red cube (base colour (0.8, 0, 0)) fills the middle of the framed image: red there,
+    // the grey sky (radiance 0.5 in every channel) at the top corners.
+    let (w, h) = (img.width, img.height);
+    let mean = |x0: f64, x1: f64, y0: f64, y1: f64| {
+        let mut s = [0.0; 3];
+        let mut n = 0.0;
+        for y in (y0 * h as f64) as usize..(y1 * h as f64) as usize {
+            for x in (x0 * w as f64) as usize..(x1 * w as f64) as usize {
+                for (acc, v) in s.iter_mut().zip(img.rgb[y * w + x]) {
+                    *acc += v;
+                }
+                n += 1.0;
+            }
+        }
+        s.map(|v| v / n)
+    };
+    let centre = mean(0.4, 0.6, 0.4, 0.6);
+    assert!(
+        centre[0] > 0.1 && centre[1] < 0.2 * centre[0] && centre[2] < 0.2 * centre[0],
+        "{centre:?}"
     );
+    let corner = mean(0.0, 0.1, 0.0, 0.1);
+    for c in corner {
+        assert!((c - 0.5).abs() < 0.02, "{corner:?}");
+    }
+}
+
+#[test]
+fn an_unsupported_gltf_fails_with_a_clear_message() {
+    let dir = temp_dir("gltf-unsupported");
+    let text = std::fs::read_to_string(model("Triangle/Triangle.gltf"))
+        .unwrap()
+        .replacen('{', r#"{ "extensionsRequired": ["EXT_not_in_lancer"],"#, 1);
+    std::fs::write(dir.join("t.gltf"), text).unwrap();
+    std::fs::copy(
+        model("Triangle/simpleTriangle.bin"),
+        dir.join("simpleTriangle.bin"),
+    )
+    .unwrap();
+    let o = run_in(&dir, &["render", "t.gltf", "-o", "x.png", "--quiet"]);
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
-        err.contains("Box.glb") && err.contains("KHR_draco_mesh_compression"),
+        err.contains("t.gltf") && err.contains("EXT_not_in_lancer"),
         "{err}"
     );
     assert!(!dir.join("x.png").exists());

@@ -674,7 +674,7 @@ fn a_glb_reads_its_buffer_from_the_binary_chunk() {
     let json = quad_gltf(r#"[{"mesh": 0, "translation": [0, 0, 2]}]"#, "", "")
         .replace(&format!(r#", "uri": "{uri}""#), "");
     let mut json = json.into_bytes();
-    while json.len() % 4 != 0 {
+    while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
     let mut glb = b"glTF".to_vec();
@@ -747,8 +747,215 @@ fn broken_files_give_clear_errors() {
     expect_err(&write(&dir, "short.gltf", &text), "600");
     // Not JSON.
     expect_err(&write(&dir, "junk.gltf", "{ nope"), "JSON");
-    // Draco compression is named.
-    expect_err(&data("Box.glb"), "KHR_draco_mesh_compression");
+    // A required extension lancer does not know is named.
+    let text = quad_gltf(
+        r#"[{"mesh": 0}]"#,
+        "",
+        r#""extensionsRequired": ["EXT_nope"],"#,
+    );
+    expect_err(&write(&dir, "ext.gltf", &text), "EXT_nope");
+}
+
+/// Box.glb with its GLB chunks rebuilt: the JSON passed through `edit_json`, and the binary
+/// chunk through `edit_bin`.
+fn edited_box(
+    dir: &Path,
+    name: &str,
+    edit_json: impl Fn(&str) -> String,
+    edit_bin: impl Fn(&mut Vec<u8>),
+) -> PathBuf {
+    let b = std::fs::read(data("Box.glb")).unwrap();
+    let jlen = u32::from_le_bytes(b[12..16].try_into().unwrap()) as usize;
+    let json = edit_json(std::str::from_utf8(&b[20..20 + jlen]).unwrap());
+    let mut json = json.into_bytes();
+    while !json.len().is_multiple_of(4) {
+        json.push(b' ');
+    }
+    let bstart = 20 + jlen;
+    let blen = u32::from_le_bytes(b[bstart..bstart + 4].try_into().unwrap()) as usize;
+    let mut bin = b[bstart + 8..bstart + 8 + blen].to_vec();
+    edit_bin(&mut bin);
+    let mut out = b"glTF".to_vec();
+    out.extend(2u32.to_le_bytes());
+    out.extend(((12 + 8 + json.len() + 8 + bin.len()) as u32).to_le_bytes());
+    out.extend((json.len() as u32).to_le_bytes());
+    out.extend(0x4E4F_534Au32.to_le_bytes());
+    out.extend(&json);
+    out.extend((bin.len() as u32).to_le_bytes());
+    out.extend(0x004E_4942u32.to_le_bytes());
+    out.extend(&bin);
+    let p = dir.join(name);
+    std::fs::write(&p, out).unwrap();
+    p
+}
+
+#[test]
+fn draco_box_decodes_to_the_unit_cube() {
+    let d = load_ok(&data("Box.glb"));
+    assert_eq!(d.shapes.len(), 1);
+    let m = mesh(&d, 0);
+    // The Khronos Box: 6 faces × 2 triangles over 24 vertices (4 per face, for flat normals).
+    assert_eq!(m.triangle_count(), 12);
+    assert_eq!(m.positions.len(), 24);
+    // The unit cube centred at the origin: every coordinate is ±0.5 (Draco quantizes
+    // positions, hence the tolerance), and both signs occur on every axis.
+    for p in &m.positions {
+        for c in p.to_array() {
+            assert!((c.abs() - 0.5).abs() < 1e-3, "{p}");
+        }
+    }
+    let lo = m.positions.iter().fold(Vec3::INFINITY, |a, &p| a.min(p));
+    let hi = m
+        .positions
+        .iter()
+        .fold(Vec3::NEG_INFINITY, |a, &p| a.max(p));
+    assert!((lo + Vec3::splat(0.5)).length() < 2e-3, "{lo}");
+    assert!((hi - Vec3::splat(0.5)).length() < 2e-3, "{hi}");
+    // Every corner of the cube is there (3 vertices each, one per face meeting there).
+    for corner in 0..8 {
+        let c = Vec3::new(
+            if corner & 1 == 0 { -0.5 } else { 0.5 },
+            if corner & 2 == 0 { -0.5 } else { 0.5 },
+            if corner & 4 == 0 { -0.5 } else { 0.5 },
+        );
+        let n = m
+            .positions
+            .iter()
+            .filter(|p| (**p - c).length() < 2e-3)
+            .count();
+        assert_eq!(n, 3, "corner {c}");
+    }
+    // Normals are unit axis vectors, and each triangle's vertices share its face's normal,
+    // which points out of the cube (away from the centre) and agrees with the winding.
+    assert_eq!(m.normals.len(), 24);
+    for n in &m.normals {
+        let a = n.abs();
+        assert!(
+            (a.max_element() - 1.0).abs() < 1e-2 && a.min_element() < 1e-2,
+            "{n}"
+        );
+        assert!((n.length() - 1.0).abs() < 1e-2, "{n}");
+    }
+    let mut faces_seen = Vec::new();
+    for t in m.indices.chunks_exact(3) {
+        let [a, b, c] = [0, 1, 2].map(|k| m.positions[t[k] as usize]);
+        let geo = (b - a).cross(c - a).normalize();
+        let centre = (a + b + c) / 3.0;
+        for &i in t {
+            assert!(m.normals[i as usize].dot(geo) > 0.99, "{t:?}");
+        }
+        assert!(geo.dot(centre) > 0.0, "{t:?} faces inwards");
+        faces_seen.push(geo.round());
+    }
+    for axis in [Vec3::X, Vec3::Y, Vec3::Z, -Vec3::X, -Vec3::Y, -Vec3::Z] {
+        assert_eq!(
+            faces_seen.iter().filter(|f| **f == axis).count(),
+            2,
+            "{axis}"
+        );
+    }
+    // Not textured: no uvs.
+    assert!(m.uvs.is_empty());
+}
+
+#[test]
+fn draco_box_textured_has_its_uvs() {
+    let d = load_ok(&data("BoxTextured.glb"));
+    let m = mesh(&d, 0);
+    assert_eq!(m.triangle_count(), 12);
+    assert_eq!(m.uvs.len(), 24);
+    // The file's TEXCOORD_0 accessor declares min (0, 0) and max (6, 1): u repeats the
+    // texture across the faces; the decoded values must fill that range (v' = 1 − v stays
+    // in [0, 1]).
+    let lo = m.uvs.iter().fold(glam::Vec2::INFINITY, |a, &p| a.min(p));
+    let hi = m
+        .uvs
+        .iter()
+        .fold(glam::Vec2::NEG_INFINITY, |a, &p| a.max(p));
+    assert!(lo.abs().max_element() < 1e-3, "{lo}");
+    assert!((hi - glam::Vec2::new(6.0, 1.0)).length() < 1e-2, "{hi}");
+    // Each face maps one unit tile of the texture (u in [k, k+1], v in [0, 1]) onto its square:
+    // each triangle is half of it, |(b − a) ⊥ (c − a)| = 2 · ½ = 1, and its corners lie on
+    // the tile's corners.
+    for t in m.indices.chunks_exact(3) {
+        let [a, b, c] = [0, 1, 2].map(|k| m.uvs[t[k] as usize]);
+        assert!(((b - a).perp_dot(c - a).abs() - 1.0).abs() < 1e-2, "{t:?}");
+        let k = a.x.min(b.x).min(c.x).round();
+        for p in [a, b, c] {
+            assert!(
+                (p.x - k).abs() < 2e-3 || (p.x - k - 1.0).abs() < 2e-3,
+                "{p}"
+            );
+            assert!(p.y.abs() < 2e-3 || (p.y - 1.0).abs() < 2e-3, "{p}");
+        }
+    }
+    // The material samples the embedded image.
+    assert!(
+        format!("{:?}", d.materials[0]).contains("Tex("),
+        "{:?}",
+        d.materials[0]
+    );
+    assert!(
+        d.spectrum_textures
+            .iter()
+            .any(|t| matches!(t, lancer::texture::SpectrumTexture::Image(_)))
+    );
+}
+
+#[test]
+fn broken_draco_data_gives_clear_errors() {
+    let dir = temp_dir("draco");
+    let expect_err = |p: &Path, needles: &[&str]| {
+        let e = load(p).expect_err("must fail").to_string();
+        assert!(e.contains(&p.display().to_string()), "{e}");
+        for needle in needles {
+            assert!(e.contains(needle), "'{needle}' not in: {e}");
+        }
+    };
+    // The Draco stream truncated to 40 of its 118 bytes.
+    let p = edited_box(
+        &dir,
+        "truncated.glb",
+        |j| j.replace(r#""byteLength":118"#, r#""byteLength":40"#),
+        |_| {},
+    );
+    expect_err(&p, &["mesh 0 'Mesh' primitive 0", "Draco", "40 bytes"]);
+    // Its body overwritten with junk after the header.
+    let p = edited_box(
+        &dir,
+        "corrupt.glb",
+        |j| j.to_string(),
+        |b| {
+            for (i, x) in b[11..118].iter_mut().enumerate() {
+                *x = (i as u8).wrapping_mul(97) ^ 0xA5;
+            }
+        },
+    );
+    expect_err(&p, &["mesh 0 'Mesh' primitive 0", "Draco"]);
+    // Not Draco at all (the magic is wrong).
+    let p = edited_box(
+        &dir,
+        "magic.glb",
+        |j| j.to_string(),
+        |b| b[..5].copy_from_slice(b"NOPE!"),
+    );
+    expect_err(&p, &["Draco"]);
+    // An accessor count the decoded data does not match.
+    let p = edited_box(
+        &dir,
+        "count.glb",
+        |j| j.replace(r#""count":36"#, r#""count":30"#),
+        |_| {},
+    );
+    expect_err(&p, &["declares 30", "36"]);
+    // An attribute id the stream does not have.
+    let p = edited_box(
+        &dir,
+        "attr.glb",
+        |j| j.replace(r#""POSITION":1}"#, r#""POSITION":7}"#),
+        |_| {},
+    );
+    expect_err(&p, &["POSITION", "attribute 7"]);
 }
 
 #[test]
@@ -765,6 +972,8 @@ fn shared_samples_load() {
         "Duck/glTF/Duck.gltf",
         "MetalRoughSpheresNoTextures/glTF/MetalRoughSpheresNoTextures.gltf",
         "spot.glb",
+        "Box.glb",
+        "BoxTextured.glb",
     ] {
         let d = load_ok(&root.join(model));
         assert!(!d.shapes.is_empty(), "{model}");

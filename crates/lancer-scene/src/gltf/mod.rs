@@ -12,14 +12,16 @@
 //!   into triangles), indexed or not, with POSITION, NORMAL and TEXCOORD_0 (glTF's v runs down
 //!   the image, lancer's up: v' = 1 − v); points and lines are skipped with a warning. A mesh
 //!   that several nodes use is stored once and placed by each;
+//! - Draco-compressed primitives (`KHR_draco_mesh_compression`, decoded in [`draco`]), which
+//!   then go the same way as uncompressed ones;
 //! - the first camera met in the hierarchy (depth first), perspective (`yfov` is the vertical
 //!   field of view; `aspectRatio` sets the image's shape) or orthographic (`xmag`, `ymag`);
 //! - `KHR_lights_punctual` point, spot and directional lights;
 //! - `KHR_texture_transform`'s offset and scale (not its rotation).
 //!
 //! Not read (a warning says so): normal maps, vertex colours, skins (the bind pose is shown),
-//! morph targets (the base shape), texture coordinate sets other than 0; Draco-compressed
-//! meshes (`KHR_draco_mesh_compression`) and other required extensions are refused.
+//! morph targets (the base shape), texture coordinate sets other than 0; other required
+//! extensions are refused.
 //!
 //! **Handedness.** glTF's world is right-handed, +y up, and a camera looks down its local −z
 //! with +x to the right of the image. lancer's camera space is pbrt's: looking down +z, +y up,
@@ -42,6 +44,7 @@
 //! bare meshes (not glTF's default white metal, which renders as a mirror-grey blur).
 
 pub mod data;
+pub mod draco;
 pub mod material;
 
 use crate::LoadedScene;
@@ -65,6 +68,7 @@ use std::sync::Arc;
 
 /// Extensions lancer reads (a file requiring any other is refused).
 const SUPPORTED_EXTENSIONS: &[&str] = &[
+    "KHR_draco_mesh_compression",
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
     "KHR_texture_transform",
@@ -119,18 +123,13 @@ pub fn load_gltf_scene(path: &Path) -> Result<LoadedScene, SceneError> {
         .collect();
     if !unsupported.is_empty() {
         return Err(fail(format!(
-            "the file requires glTF extension{} {}, which lancer does not support{}",
+            "the file requires glTF extension{} {}, which lancer does not support",
             if unsupported.len() > 1 { "s" } else { "" },
             unsupported.join(", "),
-            if unsupported.contains(&"KHR_draco_mesh_compression") {
-                " (its meshes are Draco-compressed; re-export them uncompressed)"
-            } else {
-                ""
-            }
         )));
     }
     check_accessor_references(&root).map_err(fail)?;
-    let doc = Document::from_json(root).map_err(|e| fail(e.to_string()))?;
+    let doc = validated(root).map_err(|e| fail(e.to_string()))?;
     let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
     let buffers = data::load_buffers(&doc, bin, &dir).map_err(fail)?;
     let mut loader = GltfLoader {
@@ -158,6 +157,44 @@ pub fn load_gltf_scene(path: &Path) -> Result<LoadedScene, SceneError> {
         warnings: loader.warnings,
         files: Vec::new(),
     })
+}
+
+/// The document checked by the `gltf` crate's validation, less the two complaints a Draco
+/// file always draws from it: that `KHR_draco_mesh_compression` is required (the crate does
+/// not know it; lancer does), and that the accessors of Draco primitives have no buffer view
+/// (their data is in the Draco stream).
+fn validated(root: ::gltf::json::Root) -> Result<Document, ::gltf::Error> {
+    use ::gltf::json::validation::{Error, Validate};
+    let mut draco_accessors = HashSet::new();
+    for prim in root.meshes.iter().flat_map(|m| &m.primitives) {
+        let is_draco = prim
+            .extensions
+            .as_ref()
+            .is_some_and(|e| e.others.contains_key(draco::EXTENSION));
+        if is_draco {
+            draco_accessors.extend(prim.attributes.values().map(|a| a.value()));
+            draco_accessors.extend(prim.indices.map(|a| a.value()));
+        }
+    }
+    let mut errors = Vec::new();
+    root.validate(&root, ::gltf::json::Path::new, &mut |path, error| {
+        let path = path();
+        let text = path.to_string();
+        let draco_required =
+            text.starts_with("extensionsRequired[") && text.contains(draco::EXTENSION);
+        let draco_accessor = matches!(error, Error::Missing)
+            && draco_accessors
+                .iter()
+                .any(|i| text == format!("accessors[{i}].bufferView"));
+        if !draco_required && !draco_accessor {
+            errors.push((path, error));
+        }
+    });
+    if errors.is_empty() {
+        Ok(Document::from_json_without_validation(root))
+    } else {
+        Err(::gltf::Error::Validation(errors))
+    }
 }
 
 /// The state of one load: the document, its bytes, and the scene as it is built.
@@ -335,37 +372,48 @@ impl GltfLoader<'_> {
                 "{label}: vertex colours (COLOR_0) are not supported; ignored"
             ));
         }
+        let e = |msg: String| format!("{label}: {msg}");
+        // A Draco primitive's accessors hold no bytes: its arrays come from the decoder.
+        let decoded = match prim.extension_value(draco::EXTENSION) {
+            Some(ext) => {
+                Some(draco::decode_primitive(&self.buffers, self.doc, prim, ext).map_err(e)?)
+            }
+            None => None,
+        };
         let Some(pos) = prim.get(&Semantic::Positions) else {
             self.warn(format!("{label}: no POSITION attribute; skipped"));
             return Ok(None);
         };
-        let e = |msg: String| format!("{label}: {msg}");
-        let positions: Vec<Vec3> = data::read_vecs::<3>(&self.buffers, &pos)
-            .map_err(e)?
-            .into_iter()
-            .map(Vec3::from)
-            .collect();
+        let positions: Vec<Vec3> = match &decoded {
+            Some(d) => d.positions.clone(),
+            None => data::read_vecs::<3>(&self.buffers, &pos).map_err(e)?,
+        }
+        .into_iter()
+        .map(Vec3::from)
+        .collect();
         if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
             return Err(e(format!(
                 "vertex {i} has a coordinate that is not a finite number"
             )));
         }
         let n = positions.len();
-        let order: Vec<u32> = match prim.indices() {
-            Some(a) => data::read_indices(&self.buffers, &a).map_err(e)?,
-            None => (0..n as u32).collect(),
+        let order: Vec<u32> = match (&decoded, prim.indices()) {
+            (Some(d), _) => d.indices.clone(),
+            (None, Some(a)) => data::read_indices(&self.buffers, &a).map_err(e)?,
+            (None, None) => (0..n as u32).collect(),
         };
         if let Some(&bad) = order.iter().find(|&&i| i as usize >= n) {
             return Err(e(format!("index {bad} is out of range for {n} vertices")));
         }
         let indices = triangulate(mode, &order);
-        let normals = match prim.get(&Semantic::Normals) {
-            Some(a) => {
-                let v: Vec<Vec3> = data::read_vecs::<3>(&self.buffers, &a)
-                    .map_err(e)?
-                    .into_iter()
-                    .map(Vec3::from)
-                    .collect();
+        let raw_normals = match (&decoded, prim.get(&Semantic::Normals)) {
+            (Some(d), _) => Some(d.normals.clone()).filter(|v| !v.is_empty()),
+            (None, Some(a)) => Some(data::read_vecs::<3>(&self.buffers, &a).map_err(e)?),
+            (None, None) => None,
+        };
+        let normals = match raw_normals {
+            Some(raw) => {
+                let v: Vec<Vec3> = raw.into_iter().map(Vec3::from).collect();
                 if v.len() != n || v.iter().any(|v| !v.is_finite() || *v == Vec3::ZERO) {
                     self.warn(format!(
                         "{label}: NORMAL has a wrong count or zero or non-finite normals; the flat normals are used"
@@ -377,10 +425,14 @@ impl GltfLoader<'_> {
             }
             None => Vec::new(),
         };
-        let uvs = match prim.get(&Semantic::TexCoords(0)) {
-            Some(a) => {
-                let v: Vec<Vec2> = data::read_vecs::<2>(&self.buffers, &a)
-                    .map_err(e)?
+        let raw_uvs = match (&decoded, prim.get(&Semantic::TexCoords(0))) {
+            (Some(d), _) => Some(d.uvs.clone()).filter(|v| !v.is_empty()),
+            (None, Some(a)) => Some(data::read_vecs::<2>(&self.buffers, &a).map_err(e)?),
+            (None, None) => None,
+        };
+        let uvs = match raw_uvs {
+            Some(raw) => {
+                let v: Vec<Vec2> = raw
                     .into_iter()
                     // glTF's v = 0 is the image's top row, lancer's its bottom.
                     .map(|[s, t]| Vec2::new(s, 1.0 - t))
