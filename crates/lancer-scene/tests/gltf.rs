@@ -991,10 +991,16 @@ fn shared_samples_load() {
 /// Files the fuzzer found crashing the reader (`fuzz/fuzz_targets/gltf.rs`): each must now be a
 /// clear error naming the file.
 /// (file under tests/data/gltf, words the error must contain)
-const FUZZ_REGRESSIONS: &[(&str, &str)] = &[(
-    "fuzz/position-accessor-out-of-range.gltf",
-    "refers to accessor",
-)];
+const FUZZ_REGRESSIONS: &[(&str, &str)] = &[
+    (
+        "fuzz/position-accessor-out-of-range.gltf",
+        "refers to accessor",
+    ),
+    (
+        "fuzz/image-without-source.glb",
+        "has neither a uri nor a bufferView",
+    ),
+];
 
 #[test]
 fn fuzz_regressions_are_clear_errors() {

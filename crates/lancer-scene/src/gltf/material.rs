@@ -103,17 +103,26 @@ impl GltfLoader<'_> {
         if let Some(d) = self.images.get(&key) {
             return Ok(d.clone());
         }
+        // The image's JSON, read directly: the `gltf` crate's `Image::source` unwraps a
+        // missing `uri` or `mimeType` (a panic found by fuzzing), and the format is told by
+        // the bytes anyway.
         let img = self
             .doc
-            .images()
-            .nth(index)
+            .as_json()
+            .images
+            .get(index)
             .ok_or_else(|| format!("image {index} does not exist"))?;
-        let (bytes, name) = match img.source() {
-            ::gltf::image::Source::View { view, .. } => (
-                super::data::view_bytes(&self.buffers, &view)?.to_vec(),
-                PathBuf::from(format!("{} (image {index})", self.name)),
-            ),
-            ::gltf::image::Source::Uri { uri, .. } => {
+        let (bytes, name) = match (&img.buffer_view, &img.uri) {
+            (Some(view), _) => {
+                let view = self.doc.views().nth(view.value()).ok_or_else(|| {
+                    format!("image {index}: buffer view {} does not exist", view.value())
+                })?;
+                (
+                    super::data::view_bytes(&self.buffers, &view)?.to_vec(),
+                    PathBuf::from(format!("{} (image {index})", self.name)),
+                )
+            }
+            (None, Some(uri)) => {
                 let bytes = super::data::read_uri(uri, &self.dir)
                     .map_err(|e| format!("image {index}: {e}"))?;
                 let name = if uri.starts_with("data:") {
@@ -122,6 +131,9 @@ impl GltfLoader<'_> {
                     self.dir.join(uri)
                 };
                 (bytes, name)
+            }
+            (None, None) => {
+                return Err(format!("image {index} has neither a uri nor a bufferView"));
             }
         };
         let decoded = Arc::new(decode_image(&name, &bytes, encoding).map_err(|e| e.to_string())?);
