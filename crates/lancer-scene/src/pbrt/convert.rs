@@ -848,30 +848,7 @@ impl Reader<'_> {
         };
         let p_loc = p.location("P").cloned().expect("given");
         let indices: Vec<u32> = match p.ints("indices")? {
-            Some((idx, loc)) => {
-                if idx.len() % 3 != 0 {
-                    return Err(SceneError::at(
-                        loc,
-                        format!(
-                            "\"integer indices\" holds {} values, not a multiple of 3",
-                            idx.len()
-                        ),
-                    ));
-                }
-                if let Some(bad) = idx
-                    .iter()
-                    .find(|&&i| i < 0 || i as usize >= positions.len())
-                {
-                    return Err(SceneError::at(
-                        loc,
-                        format!(
-                            "index {bad} in \"integer indices\" is out of range for {} vertices",
-                            positions.len()
-                        ),
-                    ));
-                }
-                idx.into_iter().map(|i| i as u32).collect()
-            }
+            Some((idx, loc)) => face_indices(idx, loc, 3, positions.len())?,
             None if positions.len() == 3 => vec![0, 1, 2],
             None => {
                 return Err(SceneError::at(
@@ -996,30 +973,10 @@ impl Reader<'_> {
             ));
         };
         let indices: Vec<u32> = match p.ints("indices")? {
-            Some((idx, loc)) => {
-                if idx.is_empty() || idx.len() % 4 != 0 {
-                    return Err(SceneError::at(
-                        loc,
-                        format!(
-                            "\"integer indices\" holds {} values, not a (non-zero) multiple of 4",
-                            idx.len()
-                        ),
-                    ));
-                }
-                if let Some(bad) = idx
-                    .iter()
-                    .find(|&&i| i < 0 || i as usize >= positions.len())
-                {
-                    return Err(SceneError::at(
-                        loc,
-                        format!(
-                            "index {bad} in \"integer indices\" is out of range for {} vertices",
-                            positions.len()
-                        ),
-                    ));
-                }
-                idx.into_iter().map(|i| i as u32).collect()
+            Some((idx, loc)) if idx.is_empty() => {
+                return Err(SceneError::at(loc, "\"integer indices\" is empty"));
             }
+            Some((idx, loc)) => face_indices(idx, loc, 4, positions.len())?,
             None if positions.len() == 4 => vec![0, 1, 2, 3],
             None => {
                 return Err(self.error_at(
@@ -1183,4 +1140,29 @@ impl Reader<'_> {
         };
         Ok(Converted::Done(f))
     }
+}
+
+/// A mesh's `"integer indices"`: `corners` per face, each naming one of `vertices` vertices.
+fn face_indices(
+    idx: Vec<i32>,
+    loc: Location,
+    corners: usize,
+    vertices: usize,
+) -> Result<Vec<u32>, SceneError> {
+    if !idx.len().is_multiple_of(corners) {
+        return Err(SceneError::at(
+            loc,
+            format!(
+                "\"integer indices\" holds {} values, not a multiple of {corners}",
+                idx.len()
+            ),
+        ));
+    }
+    if let Some(bad) = idx.iter().find(|&&i| i < 0 || i as usize >= vertices) {
+        return Err(SceneError::at(
+            loc,
+            format!("index {bad} in \"integer indices\" is out of range for {vertices} vertices"),
+        ));
+    }
+    Ok(idx.into_iter().map(|i| i as u32).collect())
 }
