@@ -34,7 +34,10 @@ pub struct Sampler {
     kind: SamplerKind,
     seed: u64,
     spp: u32,
+    pixel: (i32, i32),
     pixel_hash: u64,
+    /// Hash of (pixel, sample index): the seed of the sample's independent dimensions.
+    sample_hash: u64,
     index: u64,
     dim: u32,
 }
@@ -88,7 +91,9 @@ impl Sampler {
             kind,
             seed,
             spp: spp.max(1),
-            pixel_hash: 0,
+            pixel: (0, 0),
+            pixel_hash: hash_u64(&[0, 0, seed]),
+            sample_hash: 0,
             index: 0,
             dim: 0,
         }
@@ -107,7 +112,12 @@ impl Sampler {
     /// Positions the sampler at sample `index` of pixel `(x, y)`, dimension 0.
     #[inline]
     pub fn start_pixel_sample(&mut self, x: i32, y: i32, index: u64) {
-        self.pixel_hash = hash_u64(&[x as u32 as u64, y as u32 as u64, self.seed]);
+        // A pixel's samples are taken in a row: its hash is reused between them.
+        if self.pixel != (x, y) {
+            self.pixel = (x, y);
+            self.pixel_hash = hash_u64(&[x as u32 as u64, y as u32 as u64, self.seed]);
+        }
+        self.sample_hash = mix_bits(self.pixel_hash ^ index.wrapping_mul(0xd6e8_feb8_6659_fd93));
         self.index = index;
         self.dim = 0;
     }
@@ -144,7 +154,11 @@ impl Sampler {
         self.dim += 2;
         let h = mix_bits(self.pixel_hash ^ (d as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15));
         match self.kind {
-            SamplerKind::Independent => Vec2::new(self.independent(d), self.independent(d + 1)),
+            SamplerKind::Independent => {
+                // Both coordinates from the two halves of one 64-bit hash.
+                let h = self.independent_bits(d);
+                Vec2::new(u32_to_unit_f32(h as u32), u32_to_unit_f32((h >> 32) as u32))
+            }
             SamplerKind::Stratified {
                 xsamples,
                 ysamples,
@@ -180,10 +194,19 @@ impl Sampler {
         self.get_2d()
     }
 
+    /// 64 random bits for dimension `d`: the `d`-th output of a SplitMix64 stream seeded by the
+    /// sample's hash (one mixing round per dimension).
+    #[inline]
+    fn independent_bits(&self, d: u32) -> u64 {
+        mix_bits(
+            self.sample_hash
+                .wrapping_add((d as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15)),
+        )
+    }
+
     #[inline]
     fn independent(&self, d: u32) -> f32 {
-        let h = hash_u64(&[self.pixel_hash, self.index, d as u64]);
-        u32_to_unit_f32(h as u32)
+        u32_to_unit_f32(self.independent_bits(d) as u32)
     }
 }
 
