@@ -1,8 +1,9 @@
 //! An 8-wide bounding volume hierarchy built with the binned surface area heuristic.
 //!
 //! Build: top-down over primitive references; each node opens up to eight children by
-//! repeated binary splits of its largest child, each split chosen by the binned SAH (32 bins
-//! over the centroids, all three axes). Large subtrees are built in parallel (rayon). A leaf
+//! repeated binary splits, greedily the one saving the most SAH cost, each chosen by the
+//! binned SAH (32 bins over the centroids, all three axes); free slots also split small
+//! leaves whose parts' boxes are much smaller than their common one. Large subtrees are built in parallel (rayon). A leaf
 //! holds at most [`MAX_LEAF`] primitives, so that a leaf of triangles fits one 4-wide packet.
 //!
 //! Traversal: one ray against a node's eight boxes at once (8-wide AVX slab test), children
@@ -22,6 +23,10 @@ const PARALLEL_MIN: usize = 16 * 1024;
 /// Beyond this depth (of the 4-wide tree) splits are median splits, which at least halve
 /// every child: the depth, hence the traversal stack, stays bounded whatever the input.
 const MAX_SAH_DEPTH: u32 = 24;
+/// Two leaves replace one only when their boxes' areas sum to at most 75 % of the one's: the
+/// rooms and walls this is for save a third, while splitting a mesh's compact leaves would
+/// only add half-empty packets (memory) for a few percent.
+const LEAF_SPLIT_MIN_GAIN: f32 = 0.25;
 /// Children per node.
 const WIDTH: usize = 8;
 /// Size of the traversal stack: WIDTH − 1 entries per level at most, over at most
@@ -321,6 +326,60 @@ fn split(refs: &mut [PrimRef], depth: u32) -> (usize, Box4, Box4) {
     (mid, fold_box(l), fold_box(r))
 }
 
+/// A split planned for a child while a node is opened: `refs` are already ordered for it.
+#[derive(Clone, Copy)]
+struct Split {
+    /// SAH cost saved: A·⌈n/4⌉ − (A_l·⌈n_l/4⌉ + A_r·⌈n_r/4⌉).
+    gain: f32,
+    mid: usize,
+    lb: Box4,
+    rb: Box4,
+}
+
+/// Plans the split of `refs` (box `bounds`): the SAH split above leaf size, the best of the
+/// few orderings at leaf size, nothing for one primitive.
+fn plan_split(refs: &mut [PrimRef], bounds: &Box4, depth: u32) -> Option<Split> {
+    let n = refs.len();
+    let packets = |m: usize| m.div_ceil(MAX_LEAF) as f32;
+    let (mid, lb, rb) = if n > MAX_LEAF {
+        split(refs, depth)
+    } else {
+        let (_, axis, mid) = leaf_split(refs, bounds)?;
+        refs.sort_by(|p, q| p.c2()[axis].total_cmp(&q.c2()[axis]));
+        (mid, fold_box(&refs[..mid]), fold_box(&refs[mid..]))
+    };
+    let gain = bounds.half_area() * packets(n)
+        - (lb.half_area() * packets(mid) + rb.half_area() * packets(n - mid));
+    Some(Split { gain, mid, lb, rb })
+}
+
+/// The best split of a leaf's few primitives into two leaves, if SAH prefers it: a leaf's
+/// packet costs its box's area whatever it holds, so two leaves win when their areas sum to
+/// less than the whole's, A_left + A_right < A (e.g. two walls of a room, whose common box
+/// every ray inside the room would otherwise cross). Returns (area saved, axis, size of the
+/// first part when sorted by centroid along the axis).
+fn leaf_split(refs: &[PrimRef], bounds: &Box4) -> Option<(f32, usize, usize)> {
+    let n = refs.len();
+    if !(2..=MAX_LEAF).contains(&n) {
+        return None;
+    }
+    let whole = bounds.half_area();
+    let mut best: Option<(f32, usize, usize)> = None;
+    for axis in 0..3 {
+        let mut sorted = [refs[0]; MAX_LEAF];
+        sorted[..n].copy_from_slice(refs);
+        sorted[..n].sort_by(|p, q| p.c2()[axis].total_cmp(&q.c2()[axis]));
+        for mid in 1..n {
+            let cost = fold_box(&sorted[..mid]).half_area() + fold_box(&sorted[mid..n]).half_area();
+            let gain = whole - cost;
+            if gain > LEAF_SPLIT_MIN_GAIN * whole && best.is_none_or(|b| gain > b.0) {
+                best = Some((gain, axis, mid));
+            }
+        }
+    }
+    best
+}
+
 /// The nodes and leaves of a subtree, references relative to its own arrays.
 #[derive(Default)]
 struct Out {
@@ -352,46 +411,76 @@ impl Out {
 
 /// Builds the subtree over `refs` (which start at `first` in the final index array) and
 /// returns its root reference.
-fn build_rec(out: &mut Out, refs: &mut [PrimRef], first: usize, bounds: Box4, depth: u32) -> u32 {
+fn build_rec(
+    out: &mut Out,
+    refs: &mut [PrimRef],
+    first: usize,
+    bounds: Box4,
+    depth: u32,
+    plan: Option<Split>,
+) -> u32 {
     let n = refs.len();
     if n <= MAX_LEAF {
         out.leaves.push([first as u32, n as u32]);
         return LEAF | (out.leaves.len() as u32 - 1);
     }
-    // Open up to WIDTH children: split the largest (by area) splittable one until WIDTH.
-    let mut kids = vec![Range {
-        start: 0,
-        end: n,
-        bounds,
-    }];
+    // Open up to WIDTH children, greedily: each step makes the split that saves the most SAH
+    // cost, counting A·⌈n/4⌉ for n primitives in a box of area A (what they cost as packets).
+    // Small leaves are split too while slots are free, when two thin boxes beat their common
+    // one (two walls of a room, whose shared box every ray inside would otherwise cross).
+    let mut kids: Vec<(Range, Option<Split>)> = Vec::with_capacity(WIDTH);
+    let first_split = plan.or_else(|| plan_split(&mut refs[..], &bounds, depth));
+    kids.push((
+        Range {
+            start: 0,
+            end: n,
+            bounds,
+        },
+        first_split,
+    ));
     while kids.len() < WIDTH {
-        let pick = kids
+        let best = kids
             .iter()
             .enumerate()
-            .filter(|(_, k)| k.end - k.start > MAX_LEAF)
-            .max_by(|a, b| a.1.bounds.half_area().total_cmp(&b.1.bounds.half_area()))
-            .map(|(i, _)| i);
-        let Some(i) = pick else { break };
-        let k = kids[i];
-        let (mid, lb, rb) = split(&mut refs[k.start..k.end], depth);
-        kids[i] = Range {
-            start: k.start,
-            end: k.start + mid,
-            bounds: lb,
-        };
-        kids.push(Range {
-            start: k.start + mid,
-            end: k.end,
-            bounds: rb,
-        });
+            .filter_map(|(i, (k, sp))| {
+                let sp = sp.as_ref()?;
+                // A kid too big for a leaf must be split eventually: it always may be.
+                (sp.gain > 0.0 || k.end - k.start > MAX_LEAF).then_some((i, sp.gain))
+            })
+            .max_by(|a, b| a.1.total_cmp(&b.1));
+        let Some((i, _)) = best else { break };
+        let (k, sp) = kids[i];
+        let sp = sp.expect("planned");
+        let (l, r) = refs[k.start..k.end].split_at_mut(sp.mid);
+        let (ls, rs) = (
+            // Planned as the next level's: a kid left with many primitives becomes a node.
+            plan_split(l, &sp.lb, depth + 1),
+            plan_split(r, &sp.rb, depth + 1),
+        );
+        kids[i] = (
+            Range {
+                start: k.start,
+                end: k.start + sp.mid,
+                bounds: sp.lb,
+            },
+            ls,
+        );
+        kids.push((
+            Range {
+                start: k.start + sp.mid,
+                end: k.end,
+                bounds: sp.rb,
+            },
+            rs,
+        ));
     }
-    kids.sort_by_key(|k| k.start);
+    kids.sort_by_key(|k| k.0.start);
     let index = out.nodes.len();
     out.nodes.push(Node::UNUSED);
     let mut refs_of_kids: Vec<&mut [PrimRef]> = Vec::with_capacity(WIDTH);
     let mut rest = refs;
     let mut at = 0;
-    for k in &kids {
+    for (k, _) in &kids {
         let (a, b) = rest.split_at_mut(k.end - at);
         refs_of_kids.push(a);
         rest = b;
@@ -403,7 +492,8 @@ fn build_rec(out: &mut Out, refs: &mut [PrimRef], first: usize, bounds: Box4, de
             .zip(kids.par_iter())
             .map(|(r, k)| {
                 let mut o = Out::default();
-                let root = build_rec(&mut o, r, first + k.start, k.bounds, depth + 1);
+                let (k, plan) = *k;
+                let root = build_rec(&mut o, r, first + k.start, k.bounds, depth + 1, plan);
                 (o, root)
             })
             .collect();
@@ -412,11 +502,11 @@ fn build_rec(out: &mut Out, refs: &mut [PrimRef], first: usize, bounds: Box4, de
         refs_of_kids
             .into_iter()
             .zip(kids.iter())
-            .map(|(r, k)| build_rec(out, r, first + k.start, k.bounds, depth + 1))
+            .map(|(r, &(k, plan))| build_rec(out, r, first + k.start, k.bounds, depth + 1, plan))
             .collect()
     };
     let node = &mut out.nodes[index];
-    for (slot, (k, c)) in kids.iter().zip(children).enumerate() {
+    for (slot, ((k, _), c)) in kids.iter().zip(children).enumerate() {
         for a in 0..3 {
             node.min[a][slot] = k.bounds.lo[a];
             node.max[a][slot] = k.bounds.hi[a];
@@ -443,7 +533,7 @@ impl Bvh {
         }
         let all = fold_box(&refs);
         let mut out = Out::default();
-        let root = build_rec(&mut out, &mut refs, 0, all, 0);
+        let root = build_rec(&mut out, &mut refs, 0, all, 0, None);
         let indices = refs.par_iter().map(PrimRef::index).collect();
         Bvh {
             nodes: out.nodes,
@@ -677,6 +767,29 @@ mod tests {
 
     fn rnd(i: u64) -> f32 {
         u32_to_unit_f32(hash_u64(&[i]) as u32)
+    }
+
+    #[test]
+    fn a_room_gets_one_leaf_per_wall() {
+        // Six walls of a 2³ room, two triangles' boxes each (the same box twice). Pairing two
+        // walls in a leaf would give a box every ray inside the room crosses.
+        let walls: Vec<Bounds3> = (0..6)
+            .map(|w| {
+                let (axis, side) = (w / 2, if w % 2 == 0 { -1.0 } else { 1.0 });
+                let (mut lo, mut hi) = (Vec3::splat(-1.0), Vec3::splat(1.0));
+                lo[axis] = side;
+                hi[axis] = side;
+                Bounds3::new(lo, hi)
+            })
+            .collect();
+        let boxes: Vec<Bounds3> = walls.iter().flat_map(|b| [*b, *b]).collect();
+        let bvh = Bvh::build(&boxes);
+        for leaf in 0..bvh.leaf_count() as u32 {
+            let wall = |k: usize| bvh.indices[k] / 2;
+            let r = bvh.leaf_range(leaf);
+            let w0 = wall(r.start);
+            assert!(r.clone().all(|k| wall(k) == w0), "leaf {leaf} mixes walls");
+        }
     }
 
     #[test]
