@@ -79,7 +79,7 @@ pub fn li_observed<O: PathObserver>(
             }
             break;
         };
-        let si = hit.si;
+        let si = &hit.si;
         let wo = si.wo;
         // An area light hit by a BSDF-sampled ray: weighted against the chance that light
         // sampling picked the same point.
