@@ -3,13 +3,15 @@
 //! surface again, areas agree with Crofton's formula, and sampled points carry the
 //! intersection's normal.
 
+mod common;
+
+use common::shapes::{azimuth, placement, scene_of};
 use glam::DVec3;
-use lancer::Scene;
 use lancer::math::{Transform, Vec2, Vec3};
 use lancer::ray::Ray;
 use lancer::sampling::Pcg32;
-use lancer::scene::desc::{Geometry, SceneDesc, ShapeDesc};
-use lancer::shape::{Placement, Shape};
+use lancer::scene::desc::Geometry;
+use lancer::shape::Shape;
 use std::f64::consts::PI;
 
 fn geometries() -> Vec<Geometry> {
@@ -82,36 +84,6 @@ fn placements() -> Vec<(Transform, bool)> {
     ]
 }
 
-fn scene_of(geometry: Geometry, to_world: Transform, reverse: bool) -> Scene {
-    Scene::build(&SceneDesc {
-        shapes: vec![ShapeDesc {
-            geometry,
-            object_to_world: to_world,
-            reverse_orientation: reverse,
-            material: 0,
-            area_light: None,
-            alpha: None,
-        }],
-        ..SceneDesc::default()
-    })
-    .unwrap()
-}
-
-fn placement(s: &Shape) -> &Placement {
-    match s {
-        Shape::Cone(c) => &c.placement,
-        Shape::Paraboloid(p) => &p.placement,
-        Shape::Hyperboloid(h) => &h.placement,
-        Shape::Box(b) => &b.placement,
-        _ => unreachable!(),
-    }
-}
-
-fn phi_of(x: f64, y: f64) -> f64 {
-    let phi = y.atan2(x);
-    if phi < 0.0 { phi + 2.0 * PI } else { phi }
-}
-
 /// The implicit function F (zero on the surface), its gradient, whether the point lies inside
 /// the shape's cuts, and the sign s with ∂p/∂u × ∂p/∂v ∝ s·∇F. Written from the shapes'
 /// definitions, independently of the shape code.
@@ -126,7 +98,7 @@ fn implicit(g: &Geometry, p: DVec3) -> (f64, DVec3, bool, f64) {
             let k = (r / h).powi(2);
             let f = p.x * p.x + p.y * p.y - k * (p.z - h).powi(2);
             let grad = DVec3::new(2.0 * p.x, 2.0 * p.y, -2.0 * k * (p.z - h));
-            let ok = (0.0..=h).contains(&p.z) && phi_of(p.x, p.y) <= (phi_max as f64).to_radians();
+            let ok = (0.0..=h).contains(&p.z) && azimuth(p.x, p.y) <= (phi_max as f64).to_radians();
             (f, grad, ok, 1.0)
         }
         Geometry::Paraboloid {
@@ -139,7 +111,7 @@ fn implicit(g: &Geometry, p: DVec3) -> (f64, DVec3, bool, f64) {
             let f = k * (p.x * p.x + p.y * p.y) - p.z;
             let grad = DVec3::new(2.0 * k * p.x, 2.0 * k * p.y, -1.0);
             let ok = (z_min as f64..=z_max as f64).contains(&p.z)
-                && phi_of(p.x, p.y) <= (phi_max as f64).to_radians();
+                && azimuth(p.x, p.y) <= (phi_max as f64).to_radians();
             (f, grad, ok, 1.0)
         }
         Geometry::Hyperboloid { p1, p2, phi_max } => {
@@ -153,7 +125,7 @@ fn implicit(g: &Geometry, p: DVec3) -> (f64, DVec3, bool, f64) {
             let dr2 = 2.0 * pr.truncate().dot(e) / dz;
             let grad = DVec3::new(2.0 * p.x, 2.0 * p.y, -dr2);
             // The angle turning the segment's point onto p.
-            let turn = phi_of(pr.x * p.x + pr.y * p.y, pr.x * p.y - pr.y * p.x);
+            let turn = azimuth(pr.x * p.x + pr.y * p.y, pr.x * p.y - pr.y * p.x);
             let ok = (0.0..=1.0).contains(&s) && turn <= (phi_max as f64).to_radians();
             (f, grad, ok, dz.signum())
         }

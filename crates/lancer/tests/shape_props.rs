@@ -15,13 +15,12 @@
 mod common;
 
 use common::chi2::{chi2_survival, pooled_chi2, sidak};
+use common::shapes::{azimuth, placement, scene_of};
 use glam::DVec3;
-use lancer::Scene;
 use lancer::math::{Transform, Vec2, Vec3};
 use lancer::ray::Ray;
 use lancer::sampling::Pcg32;
-use lancer::scene::desc::{Geometry, SceneDesc, ShapeDesc};
-use lancer::shape::{Placement, Shape};
+use lancer::scene::desc::Geometry;
 use std::f64::consts::PI;
 
 fn geometries() -> Vec<Geometry> {
@@ -109,40 +108,6 @@ fn random_placement(rng: &mut Pcg32, similarity: bool) -> (Transform, bool) {
             * Transform::rotate(360.0 * rng.uniform(), axis).unwrap()
             * Transform::scale(scale).unwrap();
     (t, rng.uniform() < 0.3)
-}
-
-fn scene_of(geometry: Geometry, to_world: Transform, reverse: bool) -> Scene {
-    Scene::build(&SceneDesc {
-        shapes: vec![ShapeDesc {
-            geometry,
-            object_to_world: to_world,
-            reverse_orientation: reverse,
-            material: 0,
-            area_light: None,
-            alpha: None,
-        }],
-        ..SceneDesc::default()
-    })
-    .unwrap()
-}
-
-fn placement(s: &Shape) -> &Placement {
-    match s {
-        Shape::Sphere(x) => &x.placement,
-        Shape::Disk(x) => &x.placement,
-        Shape::Cylinder(x) => &x.placement,
-        Shape::Cone(x) => &x.placement,
-        Shape::Paraboloid(x) => &x.placement,
-        Shape::Hyperboloid(x) => &x.placement,
-        Shape::Box(x) => &x.placement,
-        _ => unreachable!(),
-    }
-}
-
-/// Azimuth in [0, 2π).
-fn azimuth(x: f64, y: f64) -> f64 {
-    let a = y.atan2(x);
-    if a < 0.0 { a + 2.0 * PI } else { a }
 }
 
 /// The surface by its definition: F(p) (zero on the surface), ∇F, whether p is inside the

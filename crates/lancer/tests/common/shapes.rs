@@ -1,0 +1,43 @@
+//! Helpers of the analytic-shape tests: a one-shape scene, a shape's placement, azimuths.
+
+use lancer::Scene;
+use lancer::math::Transform;
+use lancer::scene::desc::{Geometry, SceneDesc, ShapeDesc};
+use lancer::shape::{Placement, Shape};
+use std::f64::consts::PI;
+
+/// A scene holding only `geometry`, placed by `to_world` (orientation reversed if asked).
+pub fn scene_of(geometry: Geometry, to_world: Transform, reverse: bool) -> Scene {
+    Scene::build(&SceneDesc {
+        shapes: vec![ShapeDesc {
+            geometry,
+            object_to_world: to_world,
+            reverse_orientation: reverse,
+            material: 0,
+            area_light: None,
+            alpha: None,
+        }],
+        ..SceneDesc::default()
+    })
+    .unwrap()
+}
+
+/// The placement (object ↔ world transforms) of an analytic shape.
+pub fn placement(s: &Shape) -> &Placement {
+    match s {
+        Shape::Sphere(x) => &x.placement,
+        Shape::Disk(x) => &x.placement,
+        Shape::Cylinder(x) => &x.placement,
+        Shape::Cone(x) => &x.placement,
+        Shape::Paraboloid(x) => &x.placement,
+        Shape::Hyperboloid(x) => &x.placement,
+        Shape::Box(x) => &x.placement,
+        _ => unreachable!("not an analytic shape"),
+    }
+}
+
+/// Azimuth φ = atan2(y, x) in [0, 2π).
+pub fn azimuth(x: f64, y: f64) -> f64 {
+    let a = y.atan2(x);
+    if a < 0.0 { a + 2.0 * PI } else { a }
+}
