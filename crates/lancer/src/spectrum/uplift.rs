@@ -1,0 +1,228 @@
+//! RGB → spectrum: the sigmoid-polynomial spectra of Jakob & Hanika 2019 ("A Low-Dimensional
+//! Function Space for Efficient Spectral Upsampling", Computer Graphics Forum 38(2)), as
+//! pbrt-v4 uses them for its spectral rendering.
+//!
+//! A colour becomes the smooth spectrum
+//!
+//! s(λ) = S(c₀t² + c₁t + c₂),  t = (λ − 360 nm)/(830 nm − 360 nm),  S(x) = ½ + x/(2√(1 + x²)),
+//!
+//! whose values lie in (0, 1). The three coefficients are fitted by Gauss–Newton so that the
+//! spectrum, seen under D65 (the white of sRGB) and reduced to linear sRGB by the same rules as
+//! [`super::spectrum_to_rgb`] with [`super::SpectrumKind::Albedo`], reproduces the colour:
+//!
+//! rgb(s) = M_XYZ→sRGB · Σ_λ s(λ)·D65(λ)·(x̄, ȳ, z̄)(λ) / Σ_λ D65(λ)·ȳ(λ)  (1 nm steps).
+//!
+//! pbrt-v4 precomputes the coefficients on a 64³×3 grid and interpolates; lancer fits each
+//! distinct colour exactly when it first meets it and caches the result per thread (a fit takes
+//! well under a millisecond; scenes whose colours are constants need a handful). Image
+//! textures and environment maps would need one fit per distinct texel colour: correct but slow
+//! the first time; a precomputed table would be the remedy if spectral mode met them often.
+//!
+//! Three uses, as pbrt-v4's `RGBAlbedoSpectrum`, `RGBUnboundedSpectrum` and
+//! `RGBIlluminantSpectrum`:
+//!
+//! - a reflectance, clamped to [0, 1], is fitted as it is;
+//! - an unbounded value with largest component m is written 2m · s(λ), s fitted to rgb/(2m)
+//!   (whose components are at most ½, comfortably inside what a sigmoid spectrum can reach);
+//! - an illuminant is the unbounded spectrum times D65(λ), divided by Σ D65·ȳ / Σ ȳ so that
+//!   RGB (1, 1, 1) has luminance 1 on the film (lancer's light normalisation, pbrt-v4's for RGB
+//!   lights): see [`super::sampled`].
+
+use std::cell::RefCell;
+use std::collections::HashMap;
+
+use glam::{DMat3, DVec3};
+
+use super::{INTEGRATION_RANGE, cie, weights, xyz_to_srgb_f64};
+use crate::math::Rgb;
+
+/// A spectrum s(λ) = S(c₀t² + c₁t + c₂) of the Jakob–Hanika family, or one of its limits.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SigmoidSpectrum {
+    /// The same value everywhere (greys, including black and white, are fitted exactly so).
+    Constant(f32),
+    /// Coefficients `[c₀, c₁, c₂]` of the polynomial in t = (λ − 360)/470.
+    Poly([f32; 3]),
+}
+
+/// S(x) = ½ + x/(2√(1 + x²)): a sigmoid from 0 (x → −∞) to 1 (x → +∞).
+#[inline]
+fn sigmoid(x: f64) -> f64 {
+    if x.is_infinite() {
+        return if x > 0.0 { 1.0 } else { 0.0 };
+    }
+    0.5 + x / (2.0 * (1.0 + x * x).sqrt())
+}
+
+/// dS/dx = 1 / (2 (1 + x²)^{3/2}).
+#[inline]
+fn sigmoid_derivative(x: f64) -> f64 {
+    let q = 1.0 + x * x;
+    0.5 / (q * q.sqrt())
+}
+
+/// Wavelength (nm) → the fit's normalised t ∈ [0, 1].
+#[inline]
+fn normalised(lambda: f64) -> f64 {
+    (lambda - cie::LAMBDA_MIN) / (cie::LAMBDA_MAX - cie::LAMBDA_MIN)
+}
+
+impl SigmoidSpectrum {
+    /// The value at `lambda` (nm), in [0, 1].
+    #[inline]
+    pub fn eval(&self, lambda: f32) -> f32 {
+        match *self {
+            SigmoidSpectrum::Constant(v) => v,
+            SigmoidSpectrum::Poly([c0, c1, c2]) => {
+                let t = normalised(lambda as f64);
+                // Horner: (c₀t + c₁)t + c₂.
+                sigmoid((c0 as f64 * t + c1 as f64) * t + c2 as f64) as f32
+            }
+        }
+    }
+
+    /// The spectrum's colour: linear sRGB of s seen under D65 (the reduction the fit inverts).
+    pub fn to_rgb(&self) -> Rgb {
+        match *self {
+            SigmoidSpectrum::Constant(v) => Rgb::splat(v),
+            SigmoidSpectrum::Poly(c) => reduce(c.map(f64::from), false).0.as_vec3(),
+        }
+    }
+}
+
+/// rgb(s) for coefficients `c` (see the module documentation) and, when `jacobian`, its
+/// derivatives with respect to c₀, c₁, c₂ (the matrix's columns).
+fn reduce(c: [f64; 3], jacobian: bool) -> (DVec3, DMat3) {
+    let w = weights();
+    let mut xyz = DVec3::ZERO;
+    let mut d = [DVec3::ZERO; 3];
+    for (l, wc) in INTEGRATION_RANGE.zip(&w.d65_cmf) {
+        let t = normalised(l as f64);
+        let x = (c[0] * t + c[1]) * t + c[2];
+        let wc = DVec3::from(*wc);
+        xyz += wc * sigmoid(x);
+        if jacobian {
+            // ∂s/∂cₖ = S'(x) · t^{2−k}.
+            let ds = wc * sigmoid_derivative(x);
+            d[0] += ds * (t * t);
+            d[1] += ds * t;
+            d[2] += ds;
+        }
+    }
+    let to_rgb = |v: DVec3| xyz_to_srgb_f64(v / w.d65_y);
+    (
+        to_rgb(xyz),
+        DMat3::from_cols(to_rgb(d[0]), to_rgb(d[1]), to_rgb(d[2])),
+    )
+}
+
+/// The inverse of S: S(x) = v for v ∈ (0, 1) at x = (v − ½)/√(v(1 − v)).
+fn sigmoid_inverse(v: f64) -> f64 {
+    (v - 0.5) / (v * (1.0 - v)).sqrt()
+}
+
+/// Fits coefficients to a target colour in [0, 1]³ (not all equal): Gauss–Newton on
+/// ‖rgb(s) − target‖², walking from the grey of the same mean to the target in a few steps
+/// (each solution starts the next fit, as pbrt-v4's table is filled outwards from grey), with
+/// step halving whenever a step would not reduce the residual. Colours a sigmoid spectrum
+/// cannot reach exactly (on the edge of the gamut) end at the nearest point found.
+fn fit(target: DVec3) -> [f64; 3] {
+    let mean = ((target.x + target.y + target.z) / 3.0).clamp(0.02, 0.98);
+    let grey = DVec3::splat(mean);
+    let mut c = [0.0, 0.0, sigmoid_inverse(mean)];
+    const STEPS: u32 = 4;
+    for step in 1..=STEPS {
+        let goal = grey + (target - grey) * (step as f64 / STEPS as f64);
+        let (mut rgb, mut jac) = reduce(c, true);
+        for _ in 0..30 {
+            let r = rgb - goal;
+            let err = r.length_squared();
+            if err < 1e-14 {
+                break;
+            }
+            // Gauss–Newton step: J·δ = −r.
+            if jac.determinant().abs() < 1e-300 {
+                break;
+            }
+            let delta = jac.inverse() * -r;
+            if !delta.is_finite() {
+                break;
+            }
+            let mut scale = 1.0;
+            let mut improved = false;
+            for _ in 0..12 {
+                let trial = [
+                    c[0] + scale * delta.x,
+                    c[1] + scale * delta.y,
+                    c[2] + scale * delta.z,
+                ];
+                let (trgb, tjac) = reduce(trial, true);
+                if (trgb - goal).length_squared() < err {
+                    c = trial;
+                    rgb = trgb;
+                    jac = tjac;
+                    improved = true;
+                    break;
+                }
+                scale *= 0.5;
+            }
+            if !improved {
+                break;
+            }
+        }
+    }
+    c
+}
+
+/// The sigmoid spectrum of a reflectance (clamped to [0, 1] first, as pbrt-v4's
+/// `RGBAlbedoSpectrum` requires). Greys, black and white are constant spectra.
+pub fn fit_albedo(rgb: Rgb) -> SigmoidSpectrum {
+    let rgb = rgb.clamp(Rgb::ZERO, Rgb::ONE);
+    if rgb.x == rgb.y && rgb.y == rgb.z {
+        return SigmoidSpectrum::Constant(rgb.x);
+    }
+    SigmoidSpectrum::Poly(fit(rgb.as_dvec3()).map(|v| v as f32))
+}
+
+thread_local! {
+    /// This thread's fits, by the bits of the (clamped) colour.
+    static CACHE: RefCell<HashMap<[u32; 3], SigmoidSpectrum>> = RefCell::new(HashMap::new());
+}
+
+/// Most entries a thread's cache holds before it starts again (bounds memory on textured
+/// scenes; each entry is a few dozen bytes).
+const CACHE_LIMIT: usize = 1 << 20;
+
+/// [`fit_albedo`], cached per thread by the exact colour.
+pub fn albedo_spectrum(rgb: Rgb) -> SigmoidSpectrum {
+    let rgb = rgb.clamp(Rgb::ZERO, Rgb::ONE);
+    if rgb.x == rgb.y && rgb.y == rgb.z {
+        return SigmoidSpectrum::Constant(rgb.x);
+    }
+    let key = rgb.to_array().map(f32::to_bits);
+    CACHE.with(|c| {
+        if let Some(s) = c.borrow().get(&key) {
+            return *s;
+        }
+        let s = fit_albedo(rgb);
+        let mut c = c.borrow_mut();
+        if c.len() >= CACHE_LIMIT {
+            c.clear();
+        }
+        c.insert(key, s);
+        s
+    })
+}
+
+/// An unbounded colour (components ≥ 0, negatives clamped) as pbrt-v4's
+/// `RGBUnboundedSpectrum`: a scale 2m, m the largest component, and the albedo spectrum of
+/// rgb/(2m). Evaluate as `scale · spectrum.eval(λ)`; black is scale 0.
+pub fn unbounded_spectrum(rgb: Rgb) -> (f32, SigmoidSpectrum) {
+    let rgb = rgb.max(Rgb::ZERO);
+    let m = rgb.max_element();
+    if m.is_nan() || m <= 0.0 || m.is_infinite() {
+        return (0.0, SigmoidSpectrum::Constant(0.0));
+    }
+    let scale = 2.0 * m;
+    (scale, albedo_spectrum(rgb / scale))
+}
