@@ -179,3 +179,91 @@ pub fn unbounded_at(lambda: Option<&SampledWavelengths>, rgb: Rgb) -> Rgb {
 pub fn illuminant_at(lambda: Option<&SampledWavelengths>, rgb: Rgb) -> Rgb {
     lambda.map_or(rgb, |w| w.illuminant(rgb))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Average film colour of `f(wavelengths)` over `n` stratified wavelength samples.
+    fn film_average(n: u32, f: impl Fn(&SampledWavelengths) -> Rgb) -> Rgb {
+        let mut sum = glam::DVec3::ZERO;
+        for j in 0..n {
+            let w = SampledWavelengths::sample_visible((j as f32 + 0.5) / n as f32);
+            sum += w.to_film_rgb(f(&w)).as_dvec3();
+        }
+        (sum / n as f64).as_vec3()
+    }
+
+    #[test]
+    fn wavelength_density_is_normalised_and_matches_the_sampling() {
+        // ∫ p(λ) dλ = 1 over 360–830 nm (midpoint rule, 0.1 nm).
+        let integral: f64 = (0..4700)
+            .map(|i| visible_wavelength_pdf(360.05 + 0.1 * i as f32) as f64 * 0.1)
+            .sum();
+        assert!((integral - 1.0).abs() < 1e-4, "{integral}");
+        // pbrt-v4's constant: p(538) = 0.0039398042.
+        assert!((visible_wavelength_pdf(538.0) - 0.003_939_804).abs() < 1e-8);
+        assert_eq!(visible_wavelength_pdf(359.0), 0.0);
+        // Inverse CDF: the mass below sample(u) is u.
+        for u in [0.0f32, 0.1, 0.37, 0.5, 0.8, 0.999] {
+            let l = sample_visible_wavelength(u);
+            let n = ((l - 360.0) / 0.01) as usize;
+            let mass: f64 = (0..n)
+                .map(|i| visible_wavelength_pdf(360.005 + 0.01 * i as f32) as f64 * 0.01)
+                .sum();
+            assert!((mass - u as f64).abs() < 2e-3, "u {u}: λ {l}, mass {mass}");
+        }
+        assert_eq!(sample_visible_wavelength(0.0), 360.0);
+        assert_eq!(sample_visible_wavelength(1.0), 830.0);
+        // Three wavelengths spread a third of the CDF apart.
+        let w = SampledWavelengths::sample_visible(0.9);
+        assert_eq!(w.lambda[0], sample_visible_wavelength(0.9));
+        assert!((w.lambda[1] - sample_visible_wavelength(0.9 + 1.0 / 3.0 - 1.0)).abs() < 1e-3);
+        assert!((w.lambda[2] - sample_visible_wavelength(0.9 + 2.0 / 3.0 - 1.0)).abs() < 1e-3);
+        assert_eq!(w.pdf[1], visible_wavelength_pdf(w.lambda[1]));
+    }
+
+    #[test]
+    fn illuminants_come_back_as_their_rgb_through_the_film() {
+        for c in [
+            Rgb::ONE,
+            Rgb::new(17.0, 12.0, 4.0),
+            Rgb::new(1.0, 0.2, 0.05),
+            Rgb::new(0.1, 0.3, 2.0),
+        ] {
+            let back = film_average(3000, |w| w.illuminant(c));
+            let err = ((back - c).abs() / c).max_element();
+            assert!(err < 0.01, "{c} came back as {back} ({err:.4})");
+        }
+        // White light has luminance 1 per unit (lancer's and pbrt-v4's normalisation).
+        let y = crate::math::luminance(film_average(3000, |w| w.illuminant(Rgb::ONE)));
+        assert!((y - 1.0).abs() < 3e-3, "{y}");
+        assert_eq!(
+            SampledWavelengths::sample_visible(0.3).illuminant(Rgb::ZERO),
+            Rgb::ZERO
+        );
+    }
+
+    #[test]
+    fn reflectance_times_white_light_gives_the_reflectance() {
+        // A reflectance lit by white light, seen on film: the reflectance's colour under D65.
+        for c in [
+            Rgb::new(0.8, 0.3, 0.1),
+            Rgb::new(0.2, 0.6, 0.9),
+            Rgb::splat(0.5),
+        ] {
+            let back = film_average(3000, |w| w.albedo(c) * w.illuminant(Rgb::ONE));
+            assert!(
+                (back - c).abs().max_element() < 5e-3,
+                "{c} came back as {back}"
+            );
+        }
+        // An albedo and an unbounded value in RGB mode are the colour itself.
+        let c = Rgb::new(0.2, 3.0, 0.5);
+        assert_eq!(albedo_at(None, c), c);
+        assert_eq!(unbounded_at(None, c), c);
+        assert_eq!(illuminant_at(None, c), c);
+        let w = SampledWavelengths::sample_visible(0.25);
+        assert!(w.albedo(Rgb::new(2.0, 0.5, 0.5)).max_element() <= 1.0);
+    }
+}

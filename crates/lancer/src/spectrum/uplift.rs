@@ -226,3 +226,109 @@ pub fn unbounded_spectrum(rgb: Rgb) -> (f32, SigmoidSpectrum) {
     let scale = 2.0 * m;
     (scale, albedo_spectrum(rgb / scale))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Spectrum, SpectrumKind, spectrum_to_rgb};
+    use super::*;
+
+    /// The spectrum tabulated every 1 nm, reduced by the independent code of
+    /// [`spectrum_to_rgb`] (this also checks `eval` with the f32 coefficients), and its
+    /// extreme values.
+    fn reduce_independently(s: &SigmoidSpectrum) -> (Rgb, f32, f32) {
+        let lambda: Vec<f32> = (360..=830).map(|l| l as f32).collect();
+        let values: Vec<f32> = lambda.iter().map(|&l| s.eval(l)).collect();
+        let (lo, hi) = values
+            .iter()
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), &v| {
+                (a.min(v), b.max(v))
+            });
+        let rgb = spectrum_to_rgb(
+            &Spectrum::PiecewiseLinear { lambda, values },
+            SpectrumKind::Unbounded,
+        );
+        (rgb, lo, hi)
+    }
+
+    #[test]
+    fn albedo_spectra_reproduce_in_gamut_colours() {
+        let grid = [0.05f32, 0.2, 0.35, 0.5, 0.65, 0.8, 0.95];
+        let mut worst = 0.0f32;
+        for &r in &grid {
+            for &g in &grid {
+                for &b in &grid {
+                    let c = Rgb::new(r, g, b);
+                    let s = fit_albedo(c);
+                    let (back, lo, hi) = reduce_independently(&s);
+                    let err = (back - c).abs().max_element();
+                    worst = worst.max(err);
+                    assert!(err <= 2e-3, "{c} came back as {back} ({s:?})");
+                    assert!((0.0..=1.0).contains(&lo) && hi <= 1.0, "{c}: {lo}..{hi}");
+                    // The fit's own reduction agrees with the independent one (greys are
+                    // constants, whose independent reduction carries the ~1e-4 mismatch
+                    // between the tabulated D65 white and the sRGB matrix's).
+                    let d = (s.to_rgb() - back).abs().max_element();
+                    assert!(d < 3e-4, "{c}: {} vs {back}", s.to_rgb());
+                }
+            }
+        }
+        println!("worst round-trip error {worst:.2e}");
+    }
+
+    #[test]
+    fn saturated_colours_come_back_closely() {
+        // The bitterli-coffee scene's orange plastic, and strong primaries and secondaries.
+        for c in [
+            Rgb::new(1.0, 0.379, 0.013),
+            Rgb::new(0.9, 0.05, 0.05),
+            Rgb::new(0.05, 0.8, 0.1),
+            Rgb::new(0.05, 0.1, 0.9),
+            Rgb::new(0.95, 0.9, 0.05),
+        ] {
+            let (back, lo, hi) = reduce_independently(&fit_albedo(c));
+            assert!(
+                (back - c).abs().max_element() <= 5e-3,
+                "{c} came back as {back}"
+            );
+            assert!(lo >= 0.0 && hi <= 1.0);
+        }
+    }
+
+    #[test]
+    fn greys_are_constant_and_albedos_are_clamped() {
+        assert_eq!(fit_albedo(Rgb::ZERO), SigmoidSpectrum::Constant(0.0));
+        assert_eq!(fit_albedo(Rgb::ONE), SigmoidSpectrum::Constant(1.0));
+        assert_eq!(fit_albedo(Rgb::splat(0.3)), SigmoidSpectrum::Constant(0.3));
+        // Above 1 and below 0 are clamped first (pbrt's albedo spectra live in [0, 1]).
+        assert_eq!(fit_albedo(Rgb::splat(1.7)), SigmoidSpectrum::Constant(1.0));
+        assert_eq!(
+            albedo_spectrum(Rgb::new(1.5, -0.2, 0.5)),
+            fit_albedo(Rgb::new(1.0, 0.0, 0.5))
+        );
+        // The cache returns the fit itself.
+        let c = Rgb::new(0.3, 0.6, 0.2);
+        assert_eq!(albedo_spectrum(c), fit_albedo(c));
+        assert_eq!(albedo_spectrum(c), fit_albedo(c));
+    }
+
+    #[test]
+    fn unbounded_spectra_scale_by_twice_the_largest_component() {
+        assert_eq!(unbounded_spectrum(Rgb::ZERO).0, 0.0);
+        assert_eq!(unbounded_spectrum(Rgb::new(-1.0, f32::NAN, 0.0)).0, 0.0);
+        for c in [
+            Rgb::new(3.0, 1.5, 0.2),
+            Rgb::new(0.2, 0.9, 1.1),
+            Rgb::splat(2.5),
+        ] {
+            let (scale, s) = unbounded_spectrum(c);
+            assert_eq!(scale, 2.0 * c.max_element());
+            let (back, _, hi) = reduce_independently(&s);
+            assert!(hi <= 1.0);
+            let back = back * scale;
+            assert!(
+                (back - c).abs().max_element() <= 2e-3 * scale,
+                "{c} came back as {back}"
+            );
+        }
+    }
+}
