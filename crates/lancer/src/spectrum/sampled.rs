@@ -31,20 +31,19 @@ const VIS_A: f64 = 0.0072;
 const VIS_C: f64 = 538.0;
 
 /// tanh(A(λ − C)) at the two ends of the range: the density's CDF is
-/// (tanh(A(λ − C)) − T_MIN)/(T_MAX − T_MIN).
+/// (tanh(A(λ − C)) − T_MIN)/(T_MAX − T_MIN). Computed once.
 fn vis_tanh_range() -> (f64, f64) {
-    (
-        (VIS_A * (LAMBDA_MIN as f64 - VIS_C)).tanh(),
-        (VIS_A * (LAMBDA_MAX as f64 - VIS_C)).tanh(),
-    )
+    let n = norms();
+    (n.vis_t0, n.vis_t1)
 }
 
 /// Samples pbrt-v4's visible-wavelength density by inverting its CDF:
 /// λ = C + atanh(T_MIN + u·(T_MAX − T_MIN))/A.
 pub fn sample_visible_wavelength(u: f32) -> f32 {
     let (t0, t1) = vis_tanh_range();
-    let x = (t0 + u.clamp(0.0, 1.0) as f64 * (t1 - t0)).clamp(t0, t1);
-    (VIS_C + x.atanh() / VIS_A).clamp(LAMBDA_MIN as f64, LAMBDA_MAX as f64) as f32
+    let (t0, t1) = (t0 as f32, t1 as f32);
+    let x = (t0 + u.clamp(0.0, 1.0) * (t1 - t0)).clamp(t0, t1);
+    (VIS_C as f32 + x.atanh() * (1.0 / VIS_A as f32)).clamp(LAMBDA_MIN, LAMBDA_MAX)
 }
 
 /// The density of [`sample_visible_wavelength`] at `lambda` (per nm):
@@ -53,9 +52,9 @@ pub fn visible_wavelength_pdf(lambda: f32) -> f32 {
     if !(LAMBDA_MIN..=LAMBDA_MAX).contains(&lambda) {
         return 0.0;
     }
-    let (t0, t1) = vis_tanh_range();
-    let c = (VIS_A * (lambda as f64 - VIS_C)).cosh();
-    (VIS_A / ((t1 - t0) * c * c)) as f32
+    let n = norms();
+    let c = (VIS_A as f32 * (lambda - VIS_C as f32)).cosh();
+    n.vis_pdf_scale / (c * c)
 }
 
 /// Normalising constants of the conversions, computed once.
@@ -64,6 +63,11 @@ struct Norms {
     inv_y_integral: f64,
     /// Σ ȳ / Σ D65·ȳ: scales D65 so that an illuminant RGB (1, 1, 1) has luminance 1.
     illuminant_scale: f64,
+    /// tanh(A(360 − C)) and tanh(A(830 − C)).
+    vis_t0: f64,
+    vis_t1: f64,
+    /// A / (T_MAX − T_MIN), the visible density's numerator.
+    vis_pdf_scale: f32,
 }
 
 fn norms() -> &'static Norms {
@@ -72,9 +76,14 @@ fn norms() -> &'static Norms {
         let w = weights();
         let y_integral: f64 = w.cmf.iter().map(|c| c[1]).sum();
         debug_assert_eq!(w.cmf.len(), INTEGRATION_RANGE.count());
+        let vis_t0 = (VIS_A * (LAMBDA_MIN as f64 - VIS_C)).tanh();
+        let vis_t1 = (VIS_A * (LAMBDA_MAX as f64 - VIS_C)).tanh();
         Norms {
             inv_y_integral: 1.0 / y_integral,
             illuminant_scale: y_integral / w.d65_y,
+            vis_t0,
+            vis_t1,
+            vis_pdf_scale: (VIS_A / (vis_t1 - vis_t0)) as f32,
         }
     })
 }

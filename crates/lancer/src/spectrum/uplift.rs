@@ -74,9 +74,15 @@ impl SigmoidSpectrum {
         match *self {
             SigmoidSpectrum::Constant(v) => v,
             SigmoidSpectrum::Poly([c0, c1, c2]) => {
-                let t = normalised(lambda as f64);
+                // Single precision is plenty here (the fit's tolerance is far coarser).
+                let t = (lambda - cie::LAMBDA_MIN as f32)
+                    * (1.0 / (cie::LAMBDA_MAX - cie::LAMBDA_MIN) as f32);
                 // Horner: (c₀t + c₁)t + c₂.
-                sigmoid((c0 as f64 * t + c1 as f64) * t + c2 as f64) as f32
+                let x = (c0 * t + c1) * t + c2;
+                if x.is_infinite() {
+                    return if x > 0.0 { 1.0 } else { 0.0 };
+                }
+                0.5 + x / (2.0 * (1.0 + x * x).sqrt())
             }
         }
     }
@@ -175,41 +181,109 @@ fn fit(target: DVec3) -> [f64; 3] {
 }
 
 /// The sigmoid spectrum of a reflectance (clamped to [0, 1] first, as pbrt-v4's
-/// `RGBAlbedoSpectrum` requires). Greys, black and white are constant spectra.
+/// `RGBAlbedoSpectrum` requires; NaN as 0). Greys, black and white are constant spectra.
 pub fn fit_albedo(rgb: Rgb) -> SigmoidSpectrum {
-    let rgb = rgb.clamp(Rgb::ZERO, Rgb::ONE);
+    let rgb = clamp_albedo(rgb);
     if rgb.x == rgb.y && rgb.y == rgb.z {
         return SigmoidSpectrum::Constant(rgb.x);
     }
     SigmoidSpectrum::Poly(fit(rgb.as_dvec3()).map(|v| v as f32))
 }
 
+/// A hasher for the cache's keys (three words of colour bits): one multiply-and-rotate round
+/// per word (the Fx hash of rustc), much cheaper than the default SipHash on this hot path,
+/// and the keys are not chosen by an adversary.
+#[derive(Default)]
+struct ColourHasher(u64);
+
+impl std::hash::Hasher for ColourHasher {
+    #[inline]
+    fn write(&mut self, bytes: &[u8]) {
+        // Arrays of u32 arrive here as one slice of bytes: four at a time.
+        let mut chunks = bytes.chunks_exact(4);
+        for c in &mut chunks {
+            self.write_u32(u32::from_le_bytes([c[0], c[1], c[2], c[3]]));
+        }
+        for b in chunks.remainder() {
+            self.write_u32(*b as u32);
+        }
+    }
+
+    #[inline]
+    fn write_u32(&mut self, v: u32) {
+        self.0 = (self.0.rotate_left(5) ^ v as u64).wrapping_mul(0x51_7cc1_b727_220a_95);
+    }
+
+    #[inline]
+    fn write_usize(&mut self, v: usize) {
+        self.0 = (self.0.rotate_left(5) ^ v as u64).wrapping_mul(0x51_7cc1_b727_220a_95);
+    }
+
+    #[inline]
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+type ColourMap = HashMap<[u32; 3], SigmoidSpectrum, std::hash::BuildHasherDefault<ColourHasher>>;
+
+/// Entries of the per-thread direct-mapped cache in front of the map.
+const RECENT_SIZE: usize = 256;
+
+/// A key no clamped colour has (NaN bits), marking an empty entry of the direct-mapped cache.
+const EMPTY_KEY: [u32; 3] = [u32::MAX; 3];
+
 thread_local! {
     /// This thread's fits, by the bits of the (clamped) colour.
-    static CACHE: RefCell<HashMap<[u32; 3], SigmoidSpectrum>> = RefCell::new(HashMap::new());
+    static CACHE: RefCell<ColourMap> = RefCell::new(ColourMap::default());
+    /// A direct-mapped cache of the most recent fits, checked first: one hash and compare on
+    /// the common path (a scene's few constant colours, met at every hit).
+    static RECENT: RefCell<[([u32; 3], SigmoidSpectrum); RECENT_SIZE]> =
+        const { RefCell::new([(EMPTY_KEY, SigmoidSpectrum::Constant(0.0)); RECENT_SIZE]) };
 }
 
 /// Most entries a thread's cache holds before it starts again (bounds memory on textured
 /// scenes; each entry is a few dozen bytes).
 const CACHE_LIMIT: usize = 1 << 20;
 
+/// A colour clamped to [0, 1], NaN taken as 0.
+fn clamp_albedo(rgb: Rgb) -> Rgb {
+    Rgb::from_array(
+        rgb.to_array()
+            .map(|v| if v.is_nan() { 0.0 } else { v.clamp(0.0, 1.0) }),
+    )
+}
+
 /// [`fit_albedo`], cached per thread by the exact colour.
 pub fn albedo_spectrum(rgb: Rgb) -> SigmoidSpectrum {
-    let rgb = rgb.clamp(Rgb::ZERO, Rgb::ONE);
+    let rgb = clamp_albedo(rgb);
     if rgb.x == rgb.y && rgb.y == rgb.z {
         return SigmoidSpectrum::Constant(rgb.x);
     }
     let key = rgb.to_array().map(f32::to_bits);
-    CACHE.with(|c| {
-        if let Some(s) = c.borrow().get(&key) {
-            return *s;
+    // The slot: the top bits of a multiplicative hash of the three words.
+    let slot = (((key[0] as u64 | (key[1] as u64) << 32).wrapping_mul(0x9e37_79b9_7f4a_7c15)
+        ^ (key[2] as u64).wrapping_mul(0xc2b2_ae3d_27d4_eb4f))
+    .wrapping_mul(0x51_7cc1_b727_220a_95)
+        >> (64 - RECENT_SIZE.trailing_zeros())) as usize;
+    RECENT.with(|recent| {
+        let mut recent = recent.borrow_mut();
+        if recent[slot].0 == key {
+            return recent[slot].1;
         }
-        let s = fit_albedo(rgb);
-        let mut c = c.borrow_mut();
-        if c.len() >= CACHE_LIMIT {
-            c.clear();
-        }
-        c.insert(key, s);
+        let s = CACHE.with(|c| {
+            if let Some(s) = c.borrow().get(&key) {
+                return *s;
+            }
+            let s = fit_albedo(rgb);
+            let mut c = c.borrow_mut();
+            if c.len() >= CACHE_LIMIT {
+                c.clear();
+            }
+            c.insert(key, s);
+            s
+        });
+        recent[slot] = (key, s);
         s
     })
 }
