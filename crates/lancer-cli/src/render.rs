@@ -526,6 +526,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
             samples: stats.samples,
             nonfinite: stats.nonfinite,
             rays: stats.rays,
+            spectral: args.spectral,
         };
         let phases = stats::Phases {
             parse: parse_s,
