@@ -211,12 +211,12 @@ impl std::hash::Hasher for ColourHasher {
 
     #[inline]
     fn write_u32(&mut self, v: u32) {
-        self.0 = (self.0.rotate_left(5) ^ v as u64).wrapping_mul(0x51_7cc1_b727_220a_95);
+        self.0 = (self.0.rotate_left(5) ^ v as u64).wrapping_mul(0x517c_c1b7_2722_0a95);
     }
 
     #[inline]
     fn write_usize(&mut self, v: usize) {
-        self.0 = (self.0.rotate_left(5) ^ v as u64).wrapping_mul(0x51_7cc1_b727_220a_95);
+        self.0 = (self.0.rotate_left(5) ^ v as u64).wrapping_mul(0x517c_c1b7_2722_0a95);
     }
 
     #[inline]
@@ -264,7 +264,7 @@ pub fn albedo_spectrum(rgb: Rgb) -> SigmoidSpectrum {
     // The slot: the top bits of a multiplicative hash of the three words.
     let slot = (((key[0] as u64 | (key[1] as u64) << 32).wrapping_mul(0x9e37_79b9_7f4a_7c15)
         ^ (key[2] as u64).wrapping_mul(0xc2b2_ae3d_27d4_eb4f))
-    .wrapping_mul(0x51_7cc1_b727_220a_95)
+    .wrapping_mul(0x517c_c1b7_2722_0a95)
         >> (64 - RECENT_SIZE.trailing_zeros())) as usize;
     RECENT.with(|recent| {
         let mut recent = recent.borrow_mut();
