@@ -288,6 +288,9 @@ mod tests {
         // The mode changes pixels: spectral and RGB parts must not merge; RGB keeps the hash.
         assert_eq!(scene_hash_in_mode(&a, false), scene_hash(&a));
         assert_ne!(scene_hash_in_mode(&a, true), scene_hash(&a));
-        assert_eq!(scene_hash_in_mode(&b, true), scene_hash_in_mode(&a, true));
+        let mut e = a.clone();
+        e.film.filename = Some("spectral.exr".into());
+        assert_eq!(scene_hash_in_mode(&e, true), scene_hash_in_mode(&a, true));
+        assert_ne!(scene_hash_in_mode(&b, true), scene_hash_in_mode(&a, true));
     }
 }
