@@ -106,6 +106,7 @@ pub fn render_image(width: u32, height: u32) -> Canvas {
         integrator: Integrator::from_desc(&desc.integrator),
         tile_size: 16,
         max_component_value: f32::INFINITY,
+        spectral: false,
     };
     let mut film = Film::new(width, height, bounds);
     render(&scene, &settings, &mut film, &|_| {}, &Default::default());

@@ -125,6 +125,18 @@ pub fn scene_hash(desc: &SceneDesc) -> u64 {
     h.0
 }
 
+/// [`scene_hash`] of a render in RGB (`spectral` false: the same hash as before spectral mode
+/// existed) or spectral mode (the mode hashed after the description), so that parts and
+/// checkpoints of the two modes never merge.
+pub fn scene_hash_in_mode(desc: &SceneDesc, spectral: bool) -> u64 {
+    use std::fmt::Write;
+    let mut h = Fnv1a(scene_hash(desc));
+    if spectral {
+        let _ = write!(h, "spectral");
+    }
+    h.0
+}
+
 /// What one process renders.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Plan {
@@ -273,5 +285,12 @@ mod tests {
         let mut c = a.clone();
         c.film.scale = 2.0;
         assert_ne!(scene_hash(&a), scene_hash(&c));
+        // The mode changes pixels: spectral and RGB parts must not merge; RGB keeps the hash.
+        assert_eq!(scene_hash_in_mode(&a, false), scene_hash(&a));
+        assert_ne!(scene_hash_in_mode(&a, true), scene_hash(&a));
+        let mut e = a.clone();
+        e.film.filename = Some("spectral.exr".into());
+        assert_eq!(scene_hash_in_mode(&e, true), scene_hash_in_mode(&a, true));
+        assert_ne!(scene_hash_in_mode(&b, true), scene_hash_in_mode(&a, true));
     }
 }

@@ -178,6 +178,8 @@ pub struct RenderSummary {
     pub nonfinite: u64,
     /// Rays traced (all kinds: the renderer counts them together).
     pub rays: u64,
+    /// Rendered spectrally (`--spectral`) rather than in RGB.
+    pub spectral: bool,
 }
 
 /// The `--stats json` object.
@@ -196,6 +198,7 @@ pub fn render_json(r: &RenderSummary, t: &Phases, mem: &SceneMemory) -> Value {
         "height": r.size.1,
         "spp": r.spp,
         "threads": r.threads,
+        "mode": if r.spectral { "spectral" } else { "rgb" },
         "time_s": {
             "total": t.total,
             "parse": t.parse,

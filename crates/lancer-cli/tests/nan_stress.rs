@@ -52,7 +52,7 @@ fn degenerate_scene_gives_only_finite_samples() {
                     let p_film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
                     let p_lens = sampler.get_2d();
                     let ray = scene.camera.generate_ray(p_film, p_lens);
-                    let l = integrator.li(&scene, &ray, &mut sampler);
+                    let l = integrator.li(&scene, &ray, &mut sampler, None);
                     samples += 1;
                     if !l.is_finite() && bad.len() < 10 {
                         bad.push(format!(
@@ -114,6 +114,7 @@ fn render_with_nan_sphere(
         integrator: Integrator::from_desc(&desc.integrator),
         tile_size: tile,
         max_component_value: f32::INFINITY,
+        spectral: false,
     };
     let mut film = lancer::film::Film::new(40, 24, bounds);
     let pool = rayon::ThreadPoolBuilder::new()

@@ -130,6 +130,45 @@ fn merge_refuses_parts_that_do_not_belong_together() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Spectral mode changes pixels, so it is part of what a part records: a spectral half does
+/// not merge with an RGB half, and spectral halves merge to the whole spectral render byte for
+/// byte (the wavelengths, like every other sample dimension, depend on seed, pixel and index
+/// only).
+#[test]
+fn spectral_parts_merge_with_each_other_and_not_with_rgb_parts() {
+    let dir = temp_dir("wf-spectral");
+    let rgb0 = part(&dir, "tiles", 0, 2, &[]);
+    let spectral: Vec<PathBuf> = (0..2)
+        .map(|i| {
+            let out = dir.join(format!("spectral-{i}.exr"));
+            let split = format!("{i}/2");
+            let mut args = OPTS.to_vec();
+            args.extend_from_slice(&["--split", &split, "--split-by", "tiles", "--spectral"]);
+            render_ok(&dir, &data("pt/cbox.pbrt"), &out, &args);
+            out
+        })
+        .collect();
+    let out = dir.join("mixed.exr");
+    let o = merge(&dir, &[&rgb0, &spectral[1]], &out);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "merge accepted RGB and spectral parts");
+    assert!(err.contains("another scene"), "{err}");
+    assert!(!out.exists());
+    let whole = dir.join("whole.exr");
+    let mut args = OPTS.to_vec();
+    args.push("--spectral");
+    render_ok(&dir, &data("pt/cbox.pbrt"), &whole, &args);
+    let out = dir.join("merged.exr");
+    let o = merge(&dir, &[&spectral[1], &spectral[0]], &out);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(bytes(&out) == bytes(&whole), "merged spectral EXR differs");
+    // And the spectral image is not the RGB one.
+    let plain = dir.join("plain.exr");
+    render_ok(&dir, &data("pt/cbox.pbrt"), &plain, &OPTS);
+    assert!(bytes(&plain) != bytes(&whole));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn an_interrupted_render_resumes_to_the_uninterrupted_pixels() {
     let dir = temp_dir("wf-resume");

@@ -420,6 +420,7 @@ fn render_image(mut d: SceneDesc, w: u32, h: u32, spp: u32) -> Vec<Vec3> {
         integrator: Integrator::from_desc(&d.integrator),
         tile_size: 16,
         max_component_value: f32::INFINITY,
+        spectral: false,
     };
     let mut film = Film::new(w, h, bounds);
     render(

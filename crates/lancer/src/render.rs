@@ -48,6 +48,11 @@ pub struct RenderSettings {
     /// Largest component a sample may have; brighter samples are scaled down to it, keeping
     /// their colour (pbrt's `maxcomponentvalue`; infinity keeps every sample as it is).
     pub max_component_value: f32,
+    /// Spectral mode: each camera sample carries three wavelengths and the scene's RGB colours
+    /// are uplifted to spectra (see [`crate::spectrum::sampled`]); the samples' radiance is
+    /// converted to linear sRGB before the film, so the film is the same either way. Applies
+    /// to the radiance integrators only (path, Whitted); false is plain RGB rendering.
+    pub spectral: bool,
 }
 
 /// Totals of a render.
@@ -158,8 +163,8 @@ pub fn render_tile_samples(
     (sums, stats)
 }
 
-/// One camera sample of pixel (`x`, `y`): its radiance and filter weight. A pure function of
-/// (scene, settings, pixel, sample index).
+/// One camera sample of pixel (`x`, `y`): its radiance (linear sRGB) and filter weight. A pure
+/// function of (scene, settings, pixel, sample index).
 fn camera_sample(
     scene: &Scene,
     settings: &RenderSettings,
@@ -168,8 +173,26 @@ fn camera_sample(
     y: i32,
     s: u32,
 ) -> (crate::math::Rgb, f32) {
-    let ray = camera_ray(scene, settings, sampler, x, y, s);
-    (settings.integrator.li(scene, &ray.0, sampler), ray.1)
+    let (ray, weight) = camera_ray(scene, settings, sampler, x, y, s);
+    match sample_wavelengths(settings, sampler) {
+        None => (settings.integrator.li(scene, &ray, sampler, None), weight),
+        Some(lambda) => {
+            let l = settings.integrator.li(scene, &ray, sampler, Some(&lambda));
+            (lambda.to_film_rgb(l), weight)
+        }
+    }
+}
+
+/// In spectral mode (radiance integrators only), the sample's wavelengths, drawn from the
+/// sampler's next dimension, right after the camera's (so they are, like everything else, a
+/// pure function of seed, pixel and sample index). In RGB mode nothing: the dimension layout
+/// is the same as before spectral mode existed.
+fn sample_wavelengths(
+    settings: &RenderSettings,
+    sampler: &mut Sampler,
+) -> Option<crate::spectrum::sampled::SampledWavelengths> {
+    (settings.spectral && settings.integrator.computes_radiance())
+        .then(|| crate::spectrum::sampled::SampledWavelengths::sample_visible(sampler.get_1d()))
 }
 
 /// The camera ray of sample `s` of pixel (`x`, `y`) and its filter weight, leaving `sampler`
@@ -198,10 +221,17 @@ pub fn trace_sample(
 ) -> (crate::math::Rgb, Vec<crate::integrator::PathVertex>) {
     let mut sampler = Sampler::new(settings.sampler, settings.spp, settings.seed);
     let (ray, _) = camera_ray(scene, settings, &mut sampler, id.x, id.y, id.sample);
+    let lambda = sample_wavelengths(settings, &mut sampler);
     let mut path = Vec::new();
     let l = settings
         .integrator
-        .li_traced(scene, &ray, &mut sampler, &mut path);
+        .li_traced(scene, &ray, &mut sampler, lambda.as_ref(), &mut path);
+    // The film's colour, as the render computed it (in spectral mode the path's vertices hold
+    // values at the wavelengths).
+    let l = match lambda {
+        Some(w) => w.to_film_rgb(l),
+        None => l,
+    };
     (l, path)
 }
 

@@ -83,6 +83,7 @@ fn render_centres(desc: &SceneDesc) -> (Scene, Vec<Rgb>) {
         integrator: Integrator::from_desc(&desc.integrator),
         tile_size: 16,
         max_component_value: f32::INFINITY,
+        spectral: false,
     };
     let mut film = Film::new(W, H, bounds);
     render(&scene, &settings, &mut film, &|_| {}, &Default::default());

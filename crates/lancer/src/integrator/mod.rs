@@ -10,6 +10,7 @@ use crate::ray::Ray;
 use crate::sampling::Sampler;
 use crate::scene::desc::IntegratorDesc;
 use crate::scene::{Scene, SceneHit};
+use crate::spectrum::sampled::{SampledWavelengths, albedo_at, illuminant_at};
 
 /// The light transport algorithm, ready to run.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -64,6 +65,12 @@ impl Integrator {
         }
     }
 
+    /// True for the integrators that compute radiance (path tracing, Whitted), which spectral
+    /// mode applies to; the debug views output other quantities and always work in RGB.
+    pub fn computes_radiance(&self) -> bool {
+        matches!(self, Integrator::Whitted { .. } | Integrator::Path { .. })
+    }
+
     /// [`Integrator::li`], recording the path's vertices in `path` (path tracing only; the
     /// other integrators record nothing).
     pub fn li_traced(
@@ -71,25 +78,36 @@ impl Integrator {
         scene: &Scene,
         ray: &Ray,
         sampler: &mut Sampler,
+        lambda: Option<&SampledWavelengths>,
         path: &mut Vec<PathVertex>,
     ) -> Rgb {
         match *self {
             Integrator::Path {
                 max_depth,
                 regularize,
-            } => path::li_observed(scene, ray, sampler, max_depth, regularize, path),
-            _ => self.li(scene, ray, sampler),
+            } => path::li_observed(scene, ray, sampler, lambda, max_depth, regularize, path),
+            _ => self.li(scene, ray, sampler, lambda),
         }
     }
 
-    /// Radiance arriving at the camera along `ray`.
-    pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut Sampler) -> Rgb {
+    /// Radiance arriving at the camera along `ray`. With `lambda` (spectral mode, radiance
+    /// integrators only) the result's channels are the radiance at those three wavelengths;
+    /// otherwise it is linear sRGB.
+    pub fn li(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        sampler: &mut Sampler,
+        lambda: Option<&SampledWavelengths>,
+    ) -> Rgb {
         match *self {
-            Integrator::Whitted { max_depth } => whitted::li(scene, ray, sampler, 0, max_depth),
+            Integrator::Whitted { max_depth } => {
+                whitted::li(scene, ray, sampler, lambda, 0, max_depth)
+            }
             Integrator::Path {
                 max_depth,
                 regularize,
-            } => path::li(scene, ray, sampler, max_depth, regularize),
+            } => path::li(scene, ray, sampler, lambda, max_depth, regularize),
             Integrator::Normals => debug::normals(scene, ray),
             Integrator::Depth => debug::depth(scene, ray),
             Integrator::AmbientOcclusion {
@@ -130,8 +148,13 @@ pub struct PathVertex {
 
 /// The BSDF at a hit, with `Mix` materials resolved (the choice is a deterministic hash of the
 /// hit, as pbrt does, so it needs no sampler dimension). `None` for `interface` materials,
-/// which the ray passes straight through.
-pub(crate) fn bsdf_at(scene: &Scene, hit: &SceneHit) -> Option<Bsdf> {
+/// which the ray passes straight through. With `lambda` (spectral mode) the material's colours
+/// are evaluated at those wavelengths.
+pub(crate) fn bsdf_at(
+    scene: &Scene,
+    hit: &SceneHit,
+    lambda: Option<&SampledWavelengths>,
+) -> Option<Bsdf> {
     let mut m = scene.prims[hit.prim as usize].material;
     let tex = scene.textures();
     let tc = Scene::tex_coord(&hit.si);
@@ -153,10 +176,13 @@ pub(crate) fn bsdf_at(scene: &Scene, hit: &SceneHit) -> Option<Bsdf> {
                 };
             }
             mat => {
-                let mut bxdf = mat.bxdf(&tex, &tc)?;
+                let mut bxdf = mat.bxdf(&tex, &tc, lambda)?;
                 // A shape's own colour (voxels) replaces a diffuse material's reflectance.
                 if let (Some(c), Material::Diffuse { .. }) = (hit.albedo, mat) {
-                    bxdf = crate::material::BxDF::diffuse(c.clamp(Rgb::ZERO, Rgb::ONE));
+                    bxdf = crate::material::BxDF::diffuse(albedo_at(
+                        lambda,
+                        c.clamp(Rgb::ZERO, Rgb::ONE),
+                    ));
                 }
                 return Some(Bsdf::new(bxdf, hit.si.shading.n, hit.si.shading.dpdu));
             }
@@ -165,10 +191,16 @@ pub(crate) fn bsdf_at(scene: &Scene, hit: &SceneHit) -> Option<Bsdf> {
     None
 }
 
-/// Radiance emitted by the surface at `hit` towards `wo` (area lights).
-pub(crate) fn emitted(scene: &Scene, hit: &SceneHit, wo: Vec3) -> Rgb {
+/// Radiance emitted by the surface at `hit` towards `wo` (area lights), at the wavelengths
+/// `lambda` in spectral mode.
+pub(crate) fn emitted(
+    scene: &Scene,
+    hit: &SceneHit,
+    wo: Vec3,
+    lambda: Option<&SampledWavelengths>,
+) -> Rgb {
     match scene.prims[hit.prim as usize].emission {
-        Some(e) if e.two_sided || hit.si.n.dot(wo) > 0.0 => e.l,
+        Some(e) if e.two_sided || hit.si.n.dot(wo) > 0.0 => illuminant_at(lambda, e.l),
         _ => Rgb::ZERO,
     }
 }

@@ -7,18 +7,22 @@ use crate::math::Rgb;
 use crate::ray::Ray;
 use crate::sampling::{Sampler, power_heuristic};
 use crate::scene::Scene;
+use crate::spectrum::sampled::{SampledWavelengths, illuminant_at};
 
 /// Radiance along a camera ray, by path tracing up to `max_depth` bounces. With `regularize`,
 /// near-specular lobes met after a non-specular bounce are roughened (pbrt-v4's path
-/// regularisation: a little bias for much less noise in caustics).
+/// regularisation: a little bias for much less noise in caustics). With `lambda` (spectral
+/// mode) every colour entering transport is evaluated at those wavelengths, and so is the
+/// result.
 pub fn li(
     scene: &Scene,
     ray: &Ray,
     sampler: &mut Sampler,
+    lambda: Option<&SampledWavelengths>,
     max_depth: u32,
     regularize: bool,
 ) -> Rgb {
-    li_observed(scene, ray, sampler, max_depth, regularize, &mut ())
+    li_observed(scene, ray, sampler, lambda, max_depth, regularize, &mut ())
 }
 
 /// Receives the vertices of a path as [`li_observed`] follows it.
@@ -45,6 +49,7 @@ pub fn li_observed<O: PathObserver>(
     scene: &Scene,
     ray: &Ray,
     sampler: &mut Sampler,
+    lambda: Option<&SampledWavelengths>,
     max_depth: u32,
     regularize: bool,
     obs: &mut O,
@@ -65,6 +70,11 @@ pub fn li_observed<O: PathObserver>(
             for &i in &scene.infinite_lights {
                 let (i, light) = (i as usize, &scene.lights[i as usize]);
                 let le = light.le(ray.d);
+                let le = if le == Rgb::ZERO {
+                    le
+                } else {
+                    illuminant_at(lambda, le)
+                };
                 if le == Rgb::ZERO {
                     continue;
                 }
@@ -83,7 +93,7 @@ pub fn li_observed<O: PathObserver>(
         let wo = si.wo;
         // An area light hit by a BSDF-sampled ray: weighted against the chance that light
         // sampling picked the same point.
-        let le = emitted(scene, &hit, wo);
+        let le = emitted(scene, &hit, wo, lambda);
         if le != Rgb::ZERO {
             match (
                 depth == 0 || specular_bounce,
@@ -99,7 +109,7 @@ pub fn li_observed<O: PathObserver>(
                 _ => l += beta * le,
             }
         }
-        let Some(mut bsdf) = bsdf_at(scene, &hit) else {
+        let Some(mut bsdf) = bsdf_at(scene, &hit, lambda) else {
             // An interface between media: no surface, the ray goes on unchanged.
             ray = si.spawn_ray(ray.d);
             continue;
@@ -136,7 +146,7 @@ pub fn li_observed<O: PathObserver>(
                         } else {
                             power_heuristic(p_l, bsdf.pdf(wo, ls.wi, TransportMode::Radiance))
                         };
-                        l += beta * f * ls.l * (w / p_l);
+                        l += beta * f * illuminant_at(lambda, ls.l) * (w / p_l);
                     }
                 }
             }

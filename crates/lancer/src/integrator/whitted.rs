@@ -8,25 +8,41 @@ use crate::math::{Rgb, Vec3};
 use crate::ray::Ray;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
+use crate::spectrum::sampled::{SampledWavelengths, illuminant_at};
 
 /// Radiance along `ray`:
 ///
 /// L = Le + Σ_lights f(wo, wi) · Li · |cos θi| · V(p, light) + [specular: F·L(reflected) +
 /// (1 − F)·L(refracted)], where V is 1 when the shadow ray reaches the light unobstructed.
-pub fn li(scene: &Scene, ray: &Ray, sampler: &mut Sampler, depth: u32, max_depth: u32) -> Rgb {
+/// With `lambda` (spectral mode) colours are evaluated at those wavelengths.
+pub fn li(
+    scene: &Scene,
+    ray: &Ray,
+    sampler: &mut Sampler,
+    lambda: Option<&SampledWavelengths>,
+    depth: u32,
+    max_depth: u32,
+) -> Rgb {
     let Some(hit) = scene.intersect(ray) else {
         return scene
             .infinite_lights
             .iter()
-            .map(|&i| scene.lights[i as usize].le(ray.d))
+            .map(|&i| illuminant_at(lambda, scene.lights[i as usize].le(ray.d)))
             .sum();
     };
     let si = &hit.si;
     let wo = si.wo;
-    let mut l = emitted(scene, &hit, wo);
-    let Some(bsdf) = bsdf_at(scene, &hit) else {
+    let mut l = emitted(scene, &hit, wo, lambda);
+    let Some(bsdf) = bsdf_at(scene, &hit, lambda) else {
         // No surface (interface material): continue the ray.
-        return l + li(scene, &si.spawn_ray(ray.d), sampler, depth, max_depth);
+        return l + li(
+            scene,
+            &si.spawn_ray(ray.d),
+            sampler,
+            lambda,
+            depth,
+            max_depth,
+        );
     };
     let ctx = LightSampleContext {
         p: si.p,
@@ -48,7 +64,7 @@ pub fn li(scene: &Scene, ray: &Ray, sampler: &mut Sampler, depth: u32, max_depth
             }
             // The shadow ray: is the segment from the point to the light free?
             if !scene.intersect_p(&si.spawn_ray_to(ls.p_light)) {
-                l += f * ls.l / ls.pdf;
+                l += f * illuminant_at(lambda, ls.l) / ls.pdf;
             }
         }
     }
@@ -65,6 +81,7 @@ pub fn li(scene: &Scene, ray: &Ray, sampler: &mut Sampler, depth: u32, max_depth
                     scene,
                     &si.spawn_ray(reflect(wo)),
                     sampler,
+                    lambda,
                     depth + 1,
                     max_depth,
                 );
@@ -77,6 +94,7 @@ pub fn li(scene: &Scene, ray: &Ray, sampler: &mut Sampler, depth: u32, max_depth
                         scene,
                         &si.spawn_ray(reflect(wo)),
                         sampler,
+                        lambda,
                         depth + 1,
                         max_depth,
                     );
@@ -84,7 +102,14 @@ pub fn li(scene: &Scene, ray: &Ray, sampler: &mut Sampler, depth: u32, max_depth
                 if let Some((wt, etap)) = refract(wo, n, eta) {
                     // Radiance entering a denser medium is compressed: scale by 1/η².
                     let t = (1.0 - r) / (etap * etap);
-                    l += t * li(scene, &si.spawn_ray(wt), sampler, depth + 1, max_depth);
+                    l += t * li(
+                        scene,
+                        &si.spawn_ray(wt),
+                        sampler,
+                        lambda,
+                        depth + 1,
+                        max_depth,
+                    );
                 }
             }
             _ => {}

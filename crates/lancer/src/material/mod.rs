@@ -18,6 +18,7 @@ pub use layered::{CoatedConductorBxdf, CoatedDiffuseBxdf, LayeredBxdf};
 pub use microfacet::TrowbridgeReitz;
 
 use crate::math::Rgb;
+use crate::spectrum::sampled::{SampledWavelengths, albedo_at, unbounded_at};
 use crate::texture::{FloatTex, SpectrumTex, TexCoord, TextureEval};
 
 /// A material as given in a scene (pbrt-v4's names and parameters), plain data.
@@ -152,21 +153,27 @@ fn nonzero_eta(eta: f32) -> f32 {
 
 /// The conductor index pbrt-v4 uses: `eta`/`k` as given, or, when an artist's `reflectance`
 /// r is given instead, η = 1 and k = 2√r / √(1 − r) (r clamped to [0, 0.9999]), which makes
-/// the normal-incidence Fresnel reflectance ((η − 1)² + k²)/((η + 1)² + k²) equal r.
+/// the normal-incidence Fresnel reflectance ((η − 1)² + k²)/((η + 1)² + k²) equal r. In
+/// spectral mode (`lambda` given) `eta` and `k` are unbounded spectra and r a reflectance
+/// spectrum, evaluated at the path's wavelengths before the formula.
 fn conductor_index(
     tex: &TextureEval,
     tc: &TexCoord,
     eta: SpectrumTex,
     k: SpectrumTex,
     reflectance: Option<SpectrumTex>,
+    lambda: Option<&SampledWavelengths>,
 ) -> (Rgb, Rgb) {
     match reflectance {
         Some(r) => {
-            let r = tex.spectrum(r, tc).clamp(Rgb::ZERO, Rgb::splat(0.9999));
+            let r = albedo_at(lambda, tex.spectrum(r, tc)).clamp(Rgb::ZERO, Rgb::splat(0.9999));
             let k = 2.0 * r.map(f32::sqrt) / (Rgb::ONE - r).max(Rgb::ZERO).map(f32::sqrt);
             (Rgb::ONE, k)
         }
-        None => (tex.spectrum(eta, tc), tex.spectrum(k, tc)),
+        None => (
+            unbounded_at(lambda, tex.spectrum(eta, tc)),
+            unbounded_at(lambda, tex.spectrum(k, tc)),
+        ),
     }
 }
 
@@ -175,8 +182,19 @@ impl Material {
     /// pbrt-v4's materials build theirs: albedos clamped to [0, 1], roughness remapped to α
     /// when asked, an index of 0 taken as 1. `Mix` must be resolved by the caller first (it
     /// needs a random choice); `Interface` has none.
-    pub fn bxdf(&self, tex: &TextureEval, tc: &TexCoord) -> Option<BxDF> {
-        let albedo = |t: SpectrumTex| tex.spectrum(t, tc).clamp(Rgb::ZERO, Rgb::ONE);
+    ///
+    /// With `lambda` (spectral mode) every colour becomes its values at the path's three
+    /// wavelengths ([`SampledWavelengths`]): albedos as reflectance spectra, conductor indices as
+    /// unbounded spectra. Without it (RGB mode) colours are used as they are.
+    pub fn bxdf(
+        &self,
+        tex: &TextureEval,
+        tc: &TexCoord,
+        lambda: Option<&SampledWavelengths>,
+    ) -> Option<BxDF> {
+        // In RGB mode: clamp(t, 0, 1); in spectral mode the uplift clamps the same way first.
+        let albedo =
+            |t: SpectrumTex| albedo_at(lambda, tex.spectrum(t, tc).clamp(Rgb::ZERO, Rgb::ONE));
         let distrib = |u: FloatTex, v: FloatTex, remap: bool| {
             TrowbridgeReitz::from_roughness(tex.float(u, tc), tex.float(v, tc), remap)
         };
@@ -190,7 +208,7 @@ impl Material {
                 vroughness,
                 remap_roughness,
             } => {
-                let (eta, k) = conductor_index(tex, tc, eta, k, reflectance);
+                let (eta, k) = conductor_index(tex, tc, eta, k, reflectance, lambda);
                 BxDF::Conductor(ConductorBxdf {
                     distrib: distrib(uroughness, vroughness, remap_roughness),
                     eta,
@@ -214,8 +232,15 @@ impl Material {
                 transmittance,
                 scale,
             } => BxDF::DiffuseTransmission(DiffuseTransmissionBxdf {
-                r: (tex.spectrum(reflectance, tc) * scale).clamp(Rgb::ZERO, Rgb::ONE),
-                t: (tex.spectrum(transmittance, tc) * scale).clamp(Rgb::ZERO, Rgb::ONE),
+                // pbrt-v4: clamp(scale · ρ(λ), 0, 1), ρ a reflectance spectrum.
+                r: match lambda {
+                    None => (tex.spectrum(reflectance, tc) * scale).clamp(Rgb::ZERO, Rgb::ONE),
+                    Some(_) => (albedo(reflectance) * scale).clamp(Rgb::ZERO, Rgb::ONE),
+                },
+                t: match lambda {
+                    None => (tex.spectrum(transmittance, tc) * scale).clamp(Rgb::ZERO, Rgb::ONE),
+                    Some(_) => (albedo(transmittance) * scale).clamp(Rgb::ZERO, Rgb::ONE),
+                },
             }),
             Material::CoatedDiffuse {
                 reflectance,
@@ -259,7 +284,7 @@ impl Material {
                 remap_roughness,
             } => {
                 let ieta = nonzero_eta(interface_eta);
-                let (ce, ck) = conductor_index(tex, tc, conductor_eta, k, reflectance);
+                let (ce, ck) = conductor_index(tex, tc, conductor_eta, k, reflectance, lambda);
                 BxDF::CoatedConductor(CoatedConductorBxdf::new(
                     DielectricBxdf {
                         eta: ieta,
@@ -301,7 +326,7 @@ mod tests {
             floats: &[],
             spectra: &[],
         };
-        m.bxdf(&tex, &TexCoord::default())
+        m.bxdf(&tex, &TexCoord::default(), None)
             .expect("a surface material")
     }
 
@@ -423,7 +448,7 @@ mod tests {
         };
         assert!(
             Material::Interface
-                .bxdf(&none, &TexCoord::default())
+                .bxdf(&none, &TexCoord::default(), None)
                 .is_none()
         );
     }

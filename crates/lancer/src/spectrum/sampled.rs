@@ -1,0 +1,278 @@
+//! Spectral rendering's wavelength samples: which wavelengths a camera path carries, how the
+//! scene's RGB colours become values at them, and how the path's radiance becomes film RGB.
+//!
+//! In spectral mode (`lancer render --spectral`) each camera sample draws three wavelengths
+//! λ₀, λ₁, λ₂ and the three channels of every [`Rgb`] value in light transport hold the values
+//! at those wavelengths instead of red, green and blue. The BSDFs and the path tracer are
+//! unchanged: only the colours that enter transport (material parameters, emission) are
+//! converted, by [`SampledWavelengths::albedo`], [`SampledWavelengths::unbounded`] and
+//! [`SampledWavelengths::illuminant`], and the radiance that leaves it, by
+//! [`SampledWavelengths::to_film_rgb`].
+//!
+//! Conventions are pbrt-v4's: wavelengths follow its visible-wavelength density, RGB colours are
+//! uplifted by the Jakob–Hanika method ([`super::uplift`]), illuminants are the uplift times
+//! D65, and the film integrates against the CIE 1931 functions. Blackbody and named spectra
+//! reach this point already reduced to RGB at load, and are uplifted from that RGB like any
+//! colour; dielectrics have a constant index, so there is no dispersion.
+
+use super::uplift::{SigmoidSpectrum, albedo_spectrum, unbounded_spectrum};
+use super::{INTEGRATION_RANGE, cie_d65, cie_xyz, weights, xyz_to_srgb};
+use crate::math::Rgb;
+use std::sync::OnceLock;
+
+/// Shortest wavelength sampled (nm).
+pub const LAMBDA_MIN: f32 = 360.0;
+/// Longest wavelength sampled (nm).
+pub const LAMBDA_MAX: f32 = 830.0;
+
+/// Parameters of pbrt-v4's visible-wavelength density p(λ) ∝ 1/cosh²(A(λ − C)) on
+/// [360, 830] nm.
+const VIS_A: f64 = 0.0072;
+const VIS_C: f64 = 538.0;
+
+/// tanh(A(λ − C)) at the two ends of the range: the density's CDF is
+/// (tanh(A(λ − C)) − T_MIN)/(T_MAX − T_MIN). Computed once.
+fn vis_tanh_range() -> (f64, f64) {
+    let n = norms();
+    (n.vis_t0, n.vis_t1)
+}
+
+/// Samples pbrt-v4's visible-wavelength density by inverting its CDF:
+/// λ = C + atanh(T_MIN + u·(T_MAX − T_MIN))/A.
+pub fn sample_visible_wavelength(u: f32) -> f32 {
+    let (t0, t1) = vis_tanh_range();
+    let (t0, t1) = (t0 as f32, t1 as f32);
+    let x = (t0 + u.clamp(0.0, 1.0) * (t1 - t0)).clamp(t0, t1);
+    (VIS_C as f32 + x.atanh() * (1.0 / VIS_A as f32)).clamp(LAMBDA_MIN, LAMBDA_MAX)
+}
+
+/// The density of [`sample_visible_wavelength`] at `lambda` (per nm):
+/// p(λ) = A / ((T_MAX − T_MIN) · cosh²(A(λ − C))) on [360, 830], zero outside.
+pub fn visible_wavelength_pdf(lambda: f32) -> f32 {
+    if !(LAMBDA_MIN..=LAMBDA_MAX).contains(&lambda) {
+        return 0.0;
+    }
+    let n = norms();
+    let c = (VIS_A as f32 * (lambda - VIS_C as f32)).cosh();
+    n.vis_pdf_scale / (c * c)
+}
+
+/// Normalising constants of the conversions, computed once.
+struct Norms {
+    /// 1 / Σ ȳ (1 nm steps): the film's XYZ scale.
+    inv_y_integral: f64,
+    /// Σ ȳ / Σ D65·ȳ: scales D65 so that an illuminant RGB (1, 1, 1) has luminance 1.
+    illuminant_scale: f64,
+    /// tanh(A(360 − C)) and tanh(A(830 − C)).
+    vis_t0: f64,
+    vis_t1: f64,
+    /// A / (T_MAX − T_MIN), the visible density's numerator.
+    vis_pdf_scale: f32,
+}
+
+fn norms() -> &'static Norms {
+    static NORMS: OnceLock<Norms> = OnceLock::new();
+    NORMS.get_or_init(|| {
+        let w = weights();
+        let y_integral: f64 = w.cmf.iter().map(|c| c[1]).sum();
+        debug_assert_eq!(w.cmf.len(), INTEGRATION_RANGE.count());
+        let vis_t0 = (VIS_A * (LAMBDA_MIN as f64 - VIS_C)).tanh();
+        let vis_t1 = (VIS_A * (LAMBDA_MAX as f64 - VIS_C)).tanh();
+        Norms {
+            inv_y_integral: 1.0 / y_integral,
+            illuminant_scale: y_integral / w.d65_y,
+            vis_t0,
+            vis_t1,
+            vis_pdf_scale: (VIS_A / (vis_t1 - vis_t0)) as f32,
+        }
+    })
+}
+
+/// The three wavelengths a camera path carries and their densities.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SampledWavelengths {
+    /// Wavelengths in nm.
+    pub lambda: [f32; 3],
+    /// Density of each, per nm (each is drawn from the same density, stratified).
+    pub pdf: [f32; 3],
+}
+
+impl SampledWavelengths {
+    /// Three wavelengths from one uniform number: λᵢ from (u + i/3) mod 1 through
+    /// [`sample_visible_wavelength`], each with its own density.
+    pub fn sample_visible(u: f32) -> SampledWavelengths {
+        let mut lambda = [0.0; 3];
+        let mut pdf = [0.0; 3];
+        for i in 0..3 {
+            let mut ui = u + i as f32 / 3.0;
+            if ui >= 1.0 {
+                ui -= 1.0;
+            }
+            lambda[i] = sample_visible_wavelength(ui);
+            pdf[i] = visible_wavelength_pdf(lambda[i]);
+        }
+        SampledWavelengths { lambda, pdf }
+    }
+
+    fn eval(&self, s: &SigmoidSpectrum) -> Rgb {
+        Rgb::from_array(self.lambda.map(|l| s.eval(l)))
+    }
+
+    /// A reflectance (clamped to [0, 1]) at the three wavelengths, as pbrt-v4's
+    /// `RGBAlbedoSpectrum`.
+    pub fn albedo(&self, rgb: Rgb) -> Rgb {
+        self.eval(&albedo_spectrum(rgb))
+    }
+
+    /// An unbounded quantity (an index of refraction; negatives clamped to 0) at the three
+    /// wavelengths, as pbrt-v4's `RGBUnboundedSpectrum`: 2m · s(λ), m the largest component.
+    pub fn unbounded(&self, rgb: Rgb) -> Rgb {
+        let (scale, s) = unbounded_spectrum(rgb);
+        if scale == 0.0 {
+            return Rgb::ZERO;
+        }
+        self.eval(&s) * scale
+    }
+
+    /// Emitted radiance of RGB colour `rgb` at the three wavelengths, as pbrt-v4's
+    /// `RGBIlluminantSpectrum` with its light normalisation:
+    /// L(λ) = 2m · s(λ) · D65(λ) · Σȳ / Σ D65·ȳ, so that (1, 1, 1) gives film luminance 1 and
+    /// every colour comes back as itself through [`SampledWavelengths::to_film_rgb`] (on
+    /// average over wavelengths).
+    pub fn illuminant(&self, rgb: Rgb) -> Rgb {
+        let (scale, s) = unbounded_spectrum(rgb);
+        if scale == 0.0 {
+            return Rgb::ZERO;
+        }
+        let k = (scale as f64 * norms().illuminant_scale) as f32;
+        Rgb::from_array(std::array::from_fn(|i| {
+            let l = self.lambda[i];
+            s.eval(l) * cie_d65(l) * k
+        }))
+    }
+
+    /// The film colour of radiance `l` (its channels the values at the three wavelengths):
+    /// the Monte Carlo estimate XYZ = (1/3) Σᵢ (x̄, ȳ, z̄)(λᵢ) · L(λᵢ)/p(λᵢ) / ∫ȳ, then linear
+    /// sRGB. Wavelengths of zero density contribute nothing.
+    pub fn to_film_rgb(&self, l: Rgb) -> Rgb {
+        let mut xyz = [0.0f64; 3];
+        for i in 0..3 {
+            if self.pdf[i] <= 0.0 || l[i] == 0.0 {
+                continue;
+            }
+            let w = l[i] as f64 / self.pdf[i] as f64;
+            let c = cie_xyz(self.lambda[i]);
+            for k in 0..3 {
+                xyz[k] += c[k] as f64 * w;
+            }
+        }
+        let s = norms().inv_y_integral / 3.0;
+        xyz_to_srgb(xyz.map(|v| (v * s) as f32))
+    }
+}
+
+/// [`SampledWavelengths::albedo`] in spectral mode, the colour itself in RGB mode.
+#[inline]
+pub fn albedo_at(lambda: Option<&SampledWavelengths>, rgb: Rgb) -> Rgb {
+    lambda.map_or(rgb, |w| w.albedo(rgb))
+}
+
+/// [`SampledWavelengths::unbounded`] in spectral mode, the colour itself in RGB mode.
+#[inline]
+pub fn unbounded_at(lambda: Option<&SampledWavelengths>, rgb: Rgb) -> Rgb {
+    lambda.map_or(rgb, |w| w.unbounded(rgb))
+}
+
+/// [`SampledWavelengths::illuminant`] in spectral mode, the colour itself in RGB mode.
+#[inline]
+pub fn illuminant_at(lambda: Option<&SampledWavelengths>, rgb: Rgb) -> Rgb {
+    lambda.map_or(rgb, |w| w.illuminant(rgb))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Average film colour of `f(wavelengths)` over `n` stratified wavelength samples.
+    fn film_average(n: u32, f: impl Fn(&SampledWavelengths) -> Rgb) -> Rgb {
+        let mut sum = glam::DVec3::ZERO;
+        for j in 0..n {
+            let w = SampledWavelengths::sample_visible((j as f32 + 0.5) / n as f32);
+            sum += w.to_film_rgb(f(&w)).as_dvec3();
+        }
+        (sum / n as f64).as_vec3()
+    }
+
+    #[test]
+    fn wavelength_density_is_normalised_and_matches_the_sampling() {
+        // ∫ p(λ) dλ = 1 over 360–830 nm (midpoint rule, 0.1 nm).
+        let integral: f64 = (0..4700)
+            .map(|i| visible_wavelength_pdf(360.05 + 0.1 * i as f32) as f64 * 0.1)
+            .sum();
+        assert!((integral - 1.0).abs() < 1e-4, "{integral}");
+        // pbrt-v4's constant: p(538) = 0.0039398042.
+        assert!((visible_wavelength_pdf(538.0) - 0.003_939_804).abs() < 1e-8);
+        assert_eq!(visible_wavelength_pdf(359.0), 0.0);
+        // Inverse CDF: the mass below sample(u) is u.
+        for u in [0.0f32, 0.1, 0.37, 0.5, 0.8, 0.999] {
+            let l = sample_visible_wavelength(u);
+            let n = ((l - 360.0) / 0.01) as usize;
+            let mass: f64 = (0..n)
+                .map(|i| visible_wavelength_pdf(360.005 + 0.01 * i as f32) as f64 * 0.01)
+                .sum();
+            assert!((mass - u as f64).abs() < 2e-3, "u {u}: λ {l}, mass {mass}");
+        }
+        assert_eq!(sample_visible_wavelength(0.0), 360.0);
+        assert_eq!(sample_visible_wavelength(1.0), 830.0);
+        // Three wavelengths spread a third of the CDF apart.
+        let w = SampledWavelengths::sample_visible(0.9);
+        assert_eq!(w.lambda[0], sample_visible_wavelength(0.9));
+        assert!((w.lambda[1] - sample_visible_wavelength(0.9 + 1.0 / 3.0 - 1.0)).abs() < 1e-3);
+        assert!((w.lambda[2] - sample_visible_wavelength(0.9 + 2.0 / 3.0 - 1.0)).abs() < 1e-3);
+        assert_eq!(w.pdf[1], visible_wavelength_pdf(w.lambda[1]));
+    }
+
+    #[test]
+    fn illuminants_come_back_as_their_rgb_through_the_film() {
+        for c in [
+            Rgb::ONE,
+            Rgb::new(17.0, 12.0, 4.0),
+            Rgb::new(1.0, 0.2, 0.05),
+            Rgb::new(0.1, 0.3, 2.0),
+        ] {
+            let back = film_average(3000, |w| w.illuminant(c));
+            let err = ((back - c).abs() / c).max_element();
+            assert!(err < 0.01, "{c} came back as {back} ({err:.4})");
+        }
+        // White light has luminance 1 per unit (lancer's and pbrt-v4's normalisation).
+        let y = crate::math::luminance(film_average(3000, |w| w.illuminant(Rgb::ONE)));
+        assert!((y - 1.0).abs() < 3e-3, "{y}");
+        assert_eq!(
+            SampledWavelengths::sample_visible(0.3).illuminant(Rgb::ZERO),
+            Rgb::ZERO
+        );
+    }
+
+    #[test]
+    fn reflectance_times_white_light_gives_the_reflectance() {
+        // A reflectance lit by white light, seen on film: the reflectance's colour under D65.
+        for c in [
+            Rgb::new(0.8, 0.3, 0.1),
+            Rgb::new(0.2, 0.6, 0.9),
+            Rgb::splat(0.5),
+        ] {
+            let back = film_average(3000, |w| w.albedo(c) * w.illuminant(Rgb::ONE));
+            assert!(
+                (back - c).abs().max_element() < 5e-3,
+                "{c} came back as {back}"
+            );
+        }
+        // An albedo and an unbounded value in RGB mode are the colour itself.
+        let c = Rgb::new(0.2, 3.0, 0.5);
+        assert_eq!(albedo_at(None, c), c);
+        assert_eq!(unbounded_at(None, c), c);
+        assert_eq!(illuminant_at(None, c), c);
+        let w = SampledWavelengths::sample_visible(0.25);
+        assert!(w.albedo(Rgb::new(2.0, 0.5, 0.5)).max_element() <= 1.0);
+    }
+}
