@@ -54,34 +54,37 @@ impl Triangle {
         let [p0, p1, p2] = self.p;
         let (b1, b2) = (hit.u, hit.v);
         let b0 = 1.0 - b1 - b2;
-        let uv = if mesh.uvs.is_empty() {
-            [
-                Vec2::new(0.0, 0.0),
-                Vec2::new(1.0, 0.0),
-                Vec2::new(1.0, 1.0),
-            ]
-        } else {
-            [mesh.uvs[v[0]], mesh.uvs[v[1]], mesh.uvs[v[2]]]
-        };
-        let (duv02, duv12) = (uv[0] - uv[2], uv[1] - uv[2]);
         let (dp02, dp12) = (p0 - p2, p1 - p2);
         let mut n = dp02.cross(dp12).normalize_or_zero();
-        let det = difference_of_products(duv02.x, duv12.y, duv02.y, duv12.x);
-        let degenerate_uv = det.abs() < 1e-9;
-        let (mut dpdu, mut dpdv) = (Vec3::ZERO, Vec3::ZERO);
-        if !degenerate_uv {
-            let inv = 1.0 / det;
-            dpdu = (duv12.y * dp02 - duv02.y * dp12) * inv;
-            dpdv = (duv02.x * dp12 - duv12.x * dp02) * inv;
+        let (mut dpdu, mut dpdv, uv_hit, degenerate);
+        if mesh.uvs.is_empty() {
+            // pbrt's default corners (0, 0), (1, 0), (1, 1): the general formulas below reduce
+            // to ∂p/∂u = p₁ − p₀, ∂p/∂v = p₂ − p₁ and (u, v) = (b₁ + b₂, b₂).
+            dpdu = p1 - p0;
+            dpdv = p2 - p1;
+            uv_hit = Vec2::new(b1 + b2, b2);
+            degenerate = n == Vec3::ZERO;
+        } else {
+            let uv = [mesh.uvs[v[0]], mesh.uvs[v[1]], mesh.uvs[v[2]]];
+            let (duv02, duv12) = (uv[0] - uv[2], uv[1] - uv[2]);
+            let det = difference_of_products(duv02.x, duv12.y, duv02.y, duv12.x);
+            let degenerate_uv = det.abs() < 1e-9;
+            (dpdu, dpdv) = (Vec3::ZERO, Vec3::ZERO);
+            if !degenerate_uv {
+                let inv = 1.0 / det;
+                dpdu = (duv12.y * dp02 - duv02.y * dp12) * inv;
+                dpdv = (duv02.x * dp12 - duv12.x * dp02) * inv;
+            }
+            uv_hit = b0 * uv[0] + b1 * uv[1] + b2 * uv[2];
+            degenerate = degenerate_uv || dpdu.cross(dpdv).length_squared() == 0.0;
         }
-        if degenerate_uv || dpdu.cross(dpdv).length_squared() == 0.0 {
+        if degenerate {
             let f = Frame::from_z(n);
             dpdu = f.x;
             dpdv = f.y;
         }
         let p = b0 * p0 + b1 * p1 + b2 * p2;
         let p_error = gamma(7) * ((b0 * p0).abs() + (b1 * p1).abs() + (b2 * p2).abs());
-        let uv_hit = b0 * uv[0] + b1 * uv[1] + b2 * uv[2];
 
         let mut ns = n;
         if !mesh.normals.is_empty() {
