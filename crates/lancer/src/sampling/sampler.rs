@@ -123,10 +123,20 @@ impl Sampler {
     }
 
     /// The sample's next dimension.
-    #[inline]
+    #[inline(always)]
     pub fn get_1d(&mut self) -> f32 {
         let d = self.dim;
         self.dim += 1;
+        // The independent case inline (a few instructions), the point sets out of line.
+        match self.kind {
+            SamplerKind::Independent => self.independent(d),
+            _ => self.get_1d_at(d),
+        }
+    }
+
+    /// Dimension `d` of a stratified or Sobol sample.
+    #[inline(never)]
+    fn get_1d_at(&self, d: u32) -> f32 {
         let h = mix_bits(self.pixel_hash ^ (d as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15));
         match self.kind {
             SamplerKind::Independent => self.independent(d),
@@ -148,14 +158,26 @@ impl Sampler {
     }
 
     /// The sample's next two dimensions.
-    #[inline]
+    #[inline(always)]
     pub fn get_2d(&mut self) -> Vec2 {
         let d = self.dim;
         self.dim += 2;
-        let h = mix_bits(self.pixel_hash ^ (d as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15));
         match self.kind {
             SamplerKind::Independent => {
                 // Both coordinates from the two halves of one 64-bit hash.
+                let h = self.independent_bits(d);
+                Vec2::new(u32_to_unit_f32(h as u32), u32_to_unit_f32((h >> 32) as u32))
+            }
+            _ => self.get_2d_at(d),
+        }
+    }
+
+    /// Dimensions `d`, `d + 1` of a stratified or Sobol sample.
+    #[inline(never)]
+    fn get_2d_at(&self, d: u32) -> Vec2 {
+        let h = mix_bits(self.pixel_hash ^ (d as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15));
+        match self.kind {
+            SamplerKind::Independent => {
                 let h = self.independent_bits(d);
                 Vec2::new(u32_to_unit_f32(h as u32), u32_to_unit_f32((h >> 32) as u32))
             }
