@@ -70,7 +70,7 @@ pub fn next_float_down(v: f32) -> f32 {
 /// side `w` leaves towards. The result is then rounded away from `p` so the offset itself cannot be
 /// lost to rounding (PBRT §6.8.6). No magic epsilon: the distance is exactly what the error
 /// analysis of the intersection routine allows.
-#[inline]
+#[inline(always)]
 pub fn offset_ray_origin(p: Vec3, p_error: Vec3, n: Vec3, w: Vec3) -> Vec3 {
     let d = n.abs().dot(p_error);
     let mut offset = d * n;
