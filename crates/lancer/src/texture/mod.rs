@@ -186,70 +186,86 @@ fn checker(mapping: &UvMapping, uv: Vec2) -> bool {
 
 impl TextureEval<'_> {
     /// The value of a float parameter at `tc`.
+    #[inline(always)]
     pub fn float(&self, t: FloatTex, tc: &TexCoord) -> f32 {
+        // Constants inline (most parameters), textures out of line.
         match t {
             FloatTex::Const(v) => v,
-            FloatTex::Tex(i) => match &self.floats[i as usize] {
-                FloatTexture::Constant(v) => *v,
-                FloatTexture::Image(it) => {
-                    let v = it
-                        .image
-                        .lookup(it.mapping.map(tc.uv), it.wrap, it.nearest)
-                        .x
-                        * it.scale;
-                    if it.invert { (1.0 - v).max(0.0) } else { v }
+            FloatTex::Tex(i) => self.float_texture(i, tc),
+        }
+    }
+
+    /// The value of texture `i` at `tc`.
+    #[inline(never)]
+    fn float_texture(&self, i: u32, tc: &TexCoord) -> f32 {
+        match &self.floats[i as usize] {
+            FloatTexture::Constant(v) => *v,
+            FloatTexture::Image(it) => {
+                let v = it
+                    .image
+                    .lookup(it.mapping.map(tc.uv), it.wrap, it.nearest)
+                    .x
+                    * it.scale;
+                if it.invert { (1.0 - v).max(0.0) } else { v }
+            }
+            FloatTexture::Checkerboard {
+                mapping,
+                tex1,
+                tex2,
+            } => {
+                if checker(mapping, tc.uv) {
+                    self.float(*tex1, tc)
+                } else {
+                    self.float(*tex2, tc)
                 }
-                FloatTexture::Checkerboard {
-                    mapping,
-                    tex1,
-                    tex2,
-                } => {
-                    if checker(mapping, tc.uv) {
-                        self.float(*tex1, tc)
-                    } else {
-                        self.float(*tex2, tc)
-                    }
-                }
-                FloatTexture::Scale { tex, scale } => self.float(*tex, tc) * self.float(*scale, tc),
-                FloatTexture::Mix { tex1, tex2, amount } => {
-                    let a = self.float(*amount, tc);
-                    (1.0 - a) * self.float(*tex1, tc) + a * self.float(*tex2, tc)
-                }
-            },
+            }
+            FloatTexture::Scale { tex, scale } => self.float(*tex, tc) * self.float(*scale, tc),
+            FloatTexture::Mix { tex1, tex2, amount } => {
+                let a = self.float(*amount, tc);
+                (1.0 - a) * self.float(*tex1, tc) + a * self.float(*tex2, tc)
+            }
         }
     }
 
     /// The value of a colour parameter at `tc`.
+    #[inline(always)]
     pub fn spectrum(&self, t: SpectrumTex, tc: &TexCoord) -> Rgb {
+        // Constants inline (most parameters), textures out of line.
         match t {
             SpectrumTex::Const(v) => v,
-            SpectrumTex::Tex(i) => match &self.spectra[i as usize] {
-                SpectrumTexture::Constant(v) => *v,
-                SpectrumTexture::Image(it) => {
-                    // pbrt-v4: max(0, invert ? 1 − scale·c : scale·c).
-                    let v = it.image.lookup(it.mapping.map(tc.uv), it.wrap, it.nearest) * it.scale;
-                    let v = if it.invert { Rgb::ONE - v } else { v };
-                    v.max(Rgb::ZERO)
+            SpectrumTex::Tex(i) => self.spectrum_texture(i, tc),
+        }
+    }
+
+    /// The value of texture `i` at `tc`.
+    #[inline(never)]
+    fn spectrum_texture(&self, i: u32, tc: &TexCoord) -> Rgb {
+        match &self.spectra[i as usize] {
+            SpectrumTexture::Constant(v) => *v,
+            SpectrumTexture::Image(it) => {
+                // pbrt-v4: max(0, invert ? 1 − scale·c : scale·c).
+                let v = it.image.lookup(it.mapping.map(tc.uv), it.wrap, it.nearest) * it.scale;
+                let v = if it.invert { Rgb::ONE - v } else { v };
+                v.max(Rgb::ZERO)
+            }
+            SpectrumTexture::Checkerboard {
+                mapping,
+                tex1,
+                tex2,
+            } => {
+                if checker(mapping, tc.uv) {
+                    self.spectrum(*tex1, tc)
+                } else {
+                    self.spectrum(*tex2, tc)
                 }
-                SpectrumTexture::Checkerboard {
-                    mapping,
-                    tex1,
-                    tex2,
-                } => {
-                    if checker(mapping, tc.uv) {
-                        self.spectrum(*tex1, tc)
-                    } else {
-                        self.spectrum(*tex2, tc)
-                    }
-                }
-                SpectrumTexture::Scale { tex, scale } => {
-                    self.spectrum(*tex, tc) * self.float(*scale, tc)
-                }
-                SpectrumTexture::Mix { tex1, tex2, amount } => {
-                    let a = self.float(*amount, tc);
-                    (1.0 - a) * self.spectrum(*tex1, tc) + a * self.spectrum(*tex2, tc)
-                }
-            },
+            }
+            SpectrumTexture::Scale { tex, scale } => {
+                self.spectrum(*tex, tc) * self.float(*scale, tc)
+            }
+            SpectrumTexture::Mix { tex1, tex2, amount } => {
+                let a = self.float(*amount, tc);
+                (1.0 - a) * self.spectrum(*tex1, tc) + a * self.spectrum(*tex2, tc)
+            }
         }
     }
 }
