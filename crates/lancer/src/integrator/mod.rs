@@ -162,11 +162,7 @@ pub(crate) fn bsdf_at(
         match &scene.materials[m as usize] {
             Material::Mix { materials, amount } => {
                 let a = tex.float(*amount, &tc);
-                let u = crate::sampling::u32_to_unit_f32(crate::sampling::hash_u64(&[
-                    hit.si.p.x.to_bits() as u64,
-                    hit.si.p.y.to_bits() as u64,
-                    hit.si.p.z.to_bits() as u64,
-                ]) as u32);
+                let u = mix_choice(hit.si.p);
                 m = if a <= 0.0 {
                     materials[0]
                 } else if a >= 1.0 || u < a {
@@ -189,6 +185,19 @@ pub(crate) fn bsdf_at(
         }
     }
     None
+}
+
+/// The uniform number that picks a `mix` material's side at `p`: a hash of the point. Out of
+/// line, so that it is computed only for mixes (hoisted into `bsdf_at`'s entry, it cost every
+/// hit a hash).
+#[cold]
+#[inline(never)]
+fn mix_choice(p: Vec3) -> f32 {
+    crate::sampling::u32_to_unit_f32(crate::sampling::hash_u64(&[
+        p.x.to_bits() as u64,
+        p.y.to_bits() as u64,
+        p.z.to_bits() as u64,
+    ]) as u32)
 }
 
 /// Radiance emitted by the surface at `hit` towards `wo` (area lights), at the wavelengths
