@@ -386,6 +386,13 @@ fn ratio_grid(i: usize) -> f64 {
     smoothstep(i as f64 / (TABLE_RES - 1) as f64)
 }
 
+/// φ(z) = S⁻¹(z) = (z − ½)/√(z(1 − z)) in single precision, for the table's z_k and its
+/// lookups alike (so that a lookup at z_k has a fraction of exactly 0 or 1).
+#[inline]
+fn phi_f32(z: f32) -> f32 {
+    (z - 0.5) / (z * (1.0 - z)).sqrt()
+}
+
 /// smoothstep(x) = x²(3 − 2x).
 #[inline]
 fn smoothstep(x: f64) -> f64 {
@@ -486,7 +493,7 @@ impl CoefficientTable {
         }
         CoefficientTable {
             z: z.map(|v| v as f32),
-            phi: z.map(|v| sigmoid_inverse(v) as f32),
+            phi: z.map(|v| phi_f32(v as f32)),
             ratio: std::array::from_fn(|i| ratio_grid(i) as f32),
             coeffs,
         }
@@ -525,8 +532,7 @@ impl CoefficientTable {
         // coefficients are (0, 0, φ(z)), and tame where φ grows without bound near 0 and 1).
         let z = z.clamp(Z_MIN as f32, Z_MAX as f32);
         let k = self.z.partition_point(|&zk| zk <= z).clamp(1, n - 1) - 1;
-        let phi = (z - 0.5) / (z * (1.0 - z)).sqrt();
-        let fz = (phi - self.phi[k]) / (self.phi[k + 1] - self.phi[k]);
+        let fz = (phi_f32(z) - self.phi[k]) / (self.phi[k + 1] - self.phi[k]);
         let at = |dk: usize, dj: usize, di: usize| {
             self.coeffs[((l * n + k + dk) * n + j + dj) * n + i + di]
         };
@@ -714,6 +720,24 @@ mod tests {
         // A table whose fits or interpolation had gone wrong anywhere would show here.
         assert!(mean < 8e-4, "mean error {mean:.2e}");
         println!("worst {worst:.2e}, mean {mean:.2e}");
+        // Colours on the faces of the cube (a component exactly 0 or 1, as in 8-bit
+        // textures), not all reachable exactly: the table gives what an exact fit gives.
+        for c in [
+            Rgb::new(1.0, 0.0, 0.0),
+            Rgb::new(0.0, 1.0, 1.0),
+            Rgb::new(1.0, 0.5, 0.2),
+            Rgb::new(0.3, 1.0, 0.0),
+            Rgb::new(0.0, 0.0, 0.4),
+            Rgb::new(1.0, 1.0, 0.7),
+            Rgb::new(0.9, 0.0, 1.0),
+        ] {
+            let table_rgb = SigmoidSpectrum::Poly(table.lookup(c)).to_rgb();
+            let exact = fit_albedo(c).to_rgb();
+            assert!(
+                (table_rgb - exact).abs().max_element() <= 2e-3,
+                "{c}: table {table_rgb}, exact fit {exact}"
+            );
+        }
         // The grid's own colours come back as closely as their fits.
         for (l, k, i, j) in [
             (0, 10, 3, 30),
