@@ -115,7 +115,7 @@ impl Tri4 {
     #[inline(always)]
     fn test(&self, ray: &Ray, pre: &TriangleRay) -> (u32, [f32; 4], [f32; 4], [f32; 4], u32) {
         let kz = pre.kz();
-        let (kx, ky) = ((kz + 1) % 3, (kz + 2) % 3);
+        let (kx, ky) = pre.kxy();
         let o = ray.o.to_array();
         let (ox, oy, oz) = (F4::splat(o[kx]), F4::splat(o[ky]), F4::splat(o[kz]));
         let s = pre.shear();

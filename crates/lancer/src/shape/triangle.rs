@@ -158,6 +158,8 @@ pub fn is_degenerate(p0: Vec3, p1: Vec3, p2: Vec3) -> bool {
 #[derive(Clone, Copy, Debug)]
 pub struct TriangleRay {
     kz: u8,
+    /// (kz + 1) mod 3 and (kz + 2) mod 3, kept rather than recomputed for every packet.
+    kxy: [u8; 2],
     shear: Vec3,
 }
 
@@ -175,6 +177,7 @@ impl TriangleRay {
         };
         let mut pre = TriangleRay {
             kz,
+            kxy: [(kz + 1) % 3, (kz + 2) % 3],
             shear: Vec3::ZERO,
         };
         let d = pre.permute(ray.d);
@@ -187,6 +190,12 @@ impl TriangleRay {
     #[inline(always)]
     pub fn kz(&self) -> usize {
         self.kz as usize
+    }
+
+    /// The two other axes (kx, ky) = ((kz + 1) mod 3, (kz + 2) mod 3).
+    #[inline(always)]
+    pub fn kxy(&self) -> (usize, usize) {
+        (self.kxy[0] as usize, self.kxy[1] as usize)
     }
 
     /// The shear (S_x, S_y, S_z) = (−d_x/d_z, −d_y/d_z, 1/d_z) of the permuted direction.
