@@ -12,8 +12,6 @@ use crate::ray::Ray;
 use crate::shape::{ShapeHit, TriangleRay, intersect_triangle_with};
 
 /// Up to four triangles: `p[vertex][axis][lane]`, and an id per lane (`u32::MAX`: unused).
-/// An unused lane's vertices are NaN: every comparison with them is false, so the test below
-/// never reports it as hit nor hands it to the scalar test, with no mask to compute.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(16))]
 pub struct Tri4 {
@@ -26,7 +24,7 @@ impl Tri4 {
     /// A packet of up to four triangles `(vertices, id)`; ids must not be `u32::MAX`.
     pub fn new(tris: &[([Vec3; 3], u32)]) -> Tri4 {
         let mut t = Tri4 {
-            p: [[[f32::NAN; 4]; 3]; 3],
+            p: [[[0.0; 4]; 3]; 3],
             ids: [u32::MAX; 4],
         };
         for (lane, (v, id)) in tris.iter().take(4).enumerate() {
@@ -42,7 +40,7 @@ impl Tri4 {
 
     /// A packet that holds no triangle.
     pub const EMPTY: Tri4 = Tri4 {
-        p: [[[f32::NAN; 4]; 3]; 3],
+        p: [[[0.0; 4]; 3]; 3],
         ids: [u32::MAX; 4],
     };
 
@@ -55,6 +53,15 @@ impl Tri4 {
     #[inline]
     pub fn vertices(&self, lane: usize) -> [Vec3; 3] {
         [0, 1, 2].map(|k| Vec3::new(self.p[k][0][lane], self.p[k][1][lane], self.p[k][2][lane]))
+    }
+
+    /// Lanes holding triangles, as a mask (bit k for lane k).
+    #[inline(always)]
+    fn used(&self) -> u32 {
+        (self.ids[0] != u32::MAX) as u32
+            | ((self.ids[1] != u32::MAX) as u32) << 1
+            | ((self.ids[2] != u32::MAX) as u32) << 2
+            | ((self.ids[3] != u32::MAX) as u32) << 3
     }
 
     /// The nearest hit with 0 < t < `ray.t_max` among the four: (lane, hit). Among equal t
@@ -175,15 +182,13 @@ impl Tri4 {
         let e1 = dop(p2x, p0y, p2y, p0x);
         let e2 = dop(p0x, p1y, p0y, p1x);
         let zero = F4::splat(0.0);
-        let redo = e0.eq(zero).or(e1.eq(zero)).or(e2.eq(zero)).bits();
-        // Same signs: not (some negative and some positive), written as "all ≥ 0 or all ≤ 0"
-        // so that it is false for the NaN of an unused lane.
+        let used = self.used();
+        let redo = e0.eq(zero).or(e1.eq(zero)).or(e2.eq(zero)).bits() & used;
+        // Same signs: not (some negative and some positive).
         let some_neg = e0.lt(zero).or(e1.lt(zero)).or(e2.lt(zero));
         let some_pos = e0.gt(zero).or(e1.gt(zero)).or(e2.gt(zero));
-        let all_nonneg = e0.ge(zero).and(e1.ge(zero)).and(e2.ge(zero));
-        let all_nonpos = e0.le(zero).and(e1.le(zero)).and(e2.le(zero));
-        let edges_ok = all_nonneg.or(all_nonpos).bits();
-        if edges_ok & !redo == 0 {
+        let edges_ok = some_neg.and(some_pos).bits() ^ 0xf;
+        if edges_ok & used & !redo == 0 {
             // The ray passes outside every triangle (the common case): stop early.
             return (0, [0.0; 4], [0.0; 4], [0.0; 4], redo);
         }
@@ -195,7 +200,7 @@ impl Tri4 {
         let neg_ok = det.lt(zero).and(t_scaled.lt(zero)).and(t_scaled.ge(tmd));
         let pos_ok = det.gt(zero).and(t_scaled.gt(zero)).and(t_scaled.le(tmd));
         let inside: M4 = neg_ok.or(pos_ok).and_not(some_neg.and(some_pos));
-        let mut mask = inside.bits() & !redo;
+        let mut mask = inside.bits() & used & !redo;
         if mask == 0 {
             return (0, [0.0; 4], [0.0; 4], [0.0; 4], redo);
         }
