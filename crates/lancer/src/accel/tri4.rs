@@ -68,47 +68,7 @@ impl Tri4 {
     /// the lowest lane wins, as when the lanes are tested one after another.
     #[inline]
     pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<(usize, ShapeHit)> {
-        let (mask, t, b1, b2, redo) = self.test(ray, pre);
-        if redo != 0 {
-            return self.intersect_redo(ray, pre, mask, t, b1, b2, redo);
-        }
-        // Only the lanes hit: usually one.
-        let (mut m, mut t_max, mut best) = (mask, ray.t_max, None);
-        while m != 0 {
-            let lane = m.trailing_zeros() as usize;
-            m &= m - 1;
-            if t[lane] < t_max {
-                t_max = t[lane];
-                best = Some(lane);
-            }
-        }
-        best.map(|lane| {
-            (
-                lane,
-                ShapeHit {
-                    t: t[lane],
-                    u: b1[lane],
-                    v: b2[lane],
-                },
-            )
-        })
-    }
-
-    /// [`Tri4::intersect`] when some lanes' edge functions rounded to zero: those lanes are
-    /// redone by the scalar test, in lane order with the others.
-    #[cold]
-    #[inline(never)]
-    #[allow(clippy::too_many_arguments)]
-    fn intersect_redo(
-        &self,
-        ray: &Ray,
-        pre: &TriangleRay,
-        mut mask: u32,
-        t: [f32; 4],
-        b1: [f32; 4],
-        b2: [f32; 4],
-        redo: u32,
-    ) -> Option<(usize, ShapeHit)> {
+        let (mut mask, t, b1, b2, redo) = self.test(ray, pre);
         let mut best: Option<(usize, ShapeHit)> = None;
         let mut t_max = ray.t_max;
         for lane in 0..4 {
