@@ -10,7 +10,7 @@ use lancer::Scene;
 use lancer::math::{Transform, Vec2, Vec3};
 use lancer::ray::Ray;
 use lancer::sampling::Pcg32;
-use lancer::scene::desc::{Geometry, SceneDesc, ShapeDesc};
+use lancer::scene::desc::Geometry;
 use lancer::shape::{BilinearMesh, bilinear_point, intersect_triangle};
 use std::sync::Arc;
 
@@ -85,18 +85,7 @@ fn mesh(p: [Vec3; 4], normals: Vec<Vec3>) -> BilinearMesh {
 }
 
 fn scene_of(m: BilinearMesh, to_world: Transform, reverse: bool) -> Scene {
-    Scene::build(&SceneDesc {
-        shapes: vec![ShapeDesc {
-            geometry: Geometry::BilinearMesh(Arc::new(m)),
-            object_to_world: to_world,
-            reverse_orientation: reverse,
-            material: 0,
-            area_light: None,
-            alpha: None,
-        }],
-        ..SceneDesc::default()
-    })
-    .unwrap()
+    common::shapes::scene_of(Geometry::BilinearMesh(Arc::new(m)), to_world, reverse)
 }
 
 /// p(u, v) and its partial derivatives, in double precision, from the definition

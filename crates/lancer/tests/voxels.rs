@@ -3,6 +3,8 @@
 //! rays; a 256³ grid costs about one byte per voxel; hits carry their voxel's colour; voxels
 //! refuse to be area lights.
 
+mod common;
+
 use glam::DVec3;
 use lancer::Scene;
 use lancer::math::{Rgb, Transform, Vec3};
@@ -20,18 +22,7 @@ fn palette() -> [Rgb; 256] {
 }
 
 fn scene_of(grid: Arc<VoxelGrid>, to_world: Transform, reverse: bool) -> Scene {
-    Scene::build(&SceneDesc {
-        shapes: vec![ShapeDesc {
-            geometry: Geometry::Voxels(grid),
-            object_to_world: to_world,
-            reverse_orientation: reverse,
-            material: 0,
-            area_light: None,
-            alpha: None,
-        }],
-        ..SceneDesc::default()
-    })
-    .unwrap()
+    common::shapes::scene_of(Geometry::Voxels(grid), to_world, reverse)
 }
 
 fn voxels(scene: &Scene) -> &Voxels {
