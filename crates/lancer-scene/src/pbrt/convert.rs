@@ -888,14 +888,6 @@ impl Reader<'_> {
         })
     }
 
-    /// The error `message` at parameter `name`'s location (or without one).
-    fn error_at(&self, name: &str, message: String) -> SceneError {
-        match self.params.location(name) {
-            Some(l) => SceneError::at(l.clone(), message),
-            None => SceneError::general(message),
-        }
-    }
-
     /// pbrt-v4's `curve`: `P`, `basis` (`bezier` | `bspline`), `degree` (2 | 3), `type`
     /// (`flat` | `ribbon` | `cylinder`), `width` / `width0` / `width1`, `N` (ribbons: one per
     /// segment boundary), `splitdepth` (default 3). Also says whether `N` was given to a curve
@@ -916,7 +908,7 @@ impl Reader<'_> {
             None | Some("bezier") => CurveBasis::Bezier,
             Some("bspline") => CurveBasis::BSpline,
             Some(other) => {
-                return Err(self.error_at(
+                return Err(self.param_error(
                     "basis",
                     format!("unknown curve basis \"{other}\" (expected \"bezier\" or \"bspline\")"),
                 ));
@@ -927,7 +919,7 @@ impl Reader<'_> {
             Some("ribbon") => CurveType::Ribbon,
             Some("cylinder") => CurveType::Cylinder,
             Some(other) => {
-                return Err(self.error_at(
+                return Err(self.param_error(
                     "type",
                     format!(
                         "unknown curve type \"{other}\" (expected \"flat\", \"ribbon\" or \"cylinder\")"
@@ -951,14 +943,14 @@ impl Reader<'_> {
             normals,
             split_depth,
         };
-        desc.segment_count().map_err(|e| self.error_at("P", e))?;
+        desc.segment_count().map_err(|e| self.param_error("P", e))?;
         desc.validate().map_err(|e| {
             let at = if kind == CurveType::Ribbon && p.has("N") {
                 "N"
             } else {
                 "P"
             };
-            self.error_at(at, e)
+            self.param_error(at, e)
         })?;
         Ok((desc, ignored_normals))
     }
@@ -979,7 +971,7 @@ impl Reader<'_> {
             Some((idx, loc)) => face_indices(idx, loc, 4, positions.len())?,
             None if positions.len() == 4 => vec![0, 1, 2, 3],
             None => {
-                return Err(self.error_at(
+                return Err(self.param_error(
                     "P",
                     "a \"bilinearmesh\" with other than 4 vertices needs \"integer indices\""
                         .into(),
@@ -987,11 +979,11 @@ impl Reader<'_> {
             }
         };
         if positions.iter().any(|v| !v.is_finite()) {
-            return Err(self.error_at("P", "vertex positions must be finite".into()));
+            return Err(self.param_error("P", "vertex positions must be finite".into()));
         }
         let per_vertex = |name: &str, n: usize| -> Result<(), SceneError> {
             if n != positions.len() {
-                return Err(self.error_at(
+                return Err(self.param_error(
                     name,
                     format!(
                         "\"{name}\" has {n} entries for {} vertices",
