@@ -39,8 +39,9 @@ pub fn geometry_kind(g: &Geometry) -> &'static str {
         Geometry::Plane { .. } => "plane",
         Geometry::TriangleMesh(_) => "trianglemesh",
         Geometry::Voxels(_) => "voxels",
-        #[allow(unreachable_patterns)]
-        _ => "other",
+        Geometry::Sdf { .. } => "sdf",
+        Geometry::Curve(_) => "curve",
+        Geometry::BilinearMesh(_) => "bilinearmesh",
     }
 }
 
@@ -52,8 +53,6 @@ pub fn light_kind(l: &LightDesc) -> &'static str {
         LightDesc::Distant { .. } => "distant",
         LightDesc::Infinite { image: Some(_), .. } => "infinite (image)",
         LightDesc::Infinite { .. } => "infinite",
-        #[allow(unreachable_patterns)]
-        _ => "other",
     }
 }
 
