@@ -35,8 +35,16 @@ fn bunny_as_plymesh_and_as_objmesh_agree_with_pbrt() {
         let out = dir.join(format!("{name}.exr"));
         // 16 of the scene's 64 samples: the means are still within a fraction of a percent.
         render_ok(&dir, &s, &out, &["--spp", "16"]);
-        // Noise at 16 spp bounds the pixel-wise error, not the means.
-        compare(name, &read_exr(&out), &reference, 0.03, 0.8);
+        // Means within 3 %. Pixel by pixel, noise at 16 spp hides the picture (a flat grey at
+        // the reference's means scores better than a right render), so shapes are compared on
+        // 10 × 10 blocks: a right render scores about 0.05 there, a flat grey 0.34.
+        compare(
+            name,
+            &read_exr(&out).shrink(10),
+            &reference.shrink(10),
+            0.03,
+            0.1,
+        );
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
