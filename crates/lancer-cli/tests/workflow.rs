@@ -268,7 +268,13 @@ fn an_interrupted_render_resumes_to_the_uninterrupted_pixels() {
             "4",
         ],
     );
-    assert!(!o.status.success());
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("--resume") && err.contains("--spp"),
+        "the refusal names the clash: {err}"
+    );
+    assert!(!dir.join("x.exr").exists(), "nothing written");
     // A checkpoint whose scene changed is refused, and nothing is written.
     let text = std::fs::read_to_string(&scene).unwrap();
     std::fs::write(&scene, text.replace("maxdepth\" [7]", "maxdepth\" [3]")).unwrap();
