@@ -434,6 +434,8 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
             )
         });
         stats.add(&s);
+        // A checkpoint stop is not a cancellation: only the last call's stop counts.
+        stats.cancelled = s.cancelled;
         if done.iter().all(|&d| d) {
             break;
         }
