@@ -694,25 +694,39 @@ impl Bvh {
     /// tests primitive `i` and returns the new `t_max` if it found a closer hit.
     #[inline]
     pub fn intersect<F: FnMut(u32, &Ray) -> Option<f32>>(&self, ray: &Ray, mut hit: F) -> bool {
-        self.intersect_leaves(ray, |leaf, r| {
-            let mut r = *r;
-            let mut found = None;
-            for k in self.leaf_range(leaf) {
-                if let Some(t) = hit(self.indices[k], &r) {
-                    r.t_max = t;
-                    found = Some(t);
-                }
-            }
-            found
-        })
+        self.intersect_leaves(ray, |leaf, r| self.leaf_nearest(leaf, r, &mut hit))
     }
 
     /// True as soon as `hit(i, ray)` reports a hit (shadow rays).
     #[inline]
     pub fn intersect_any<F: FnMut(u32, &Ray) -> bool>(&self, ray: &Ray, mut hit: F) -> bool {
-        self.intersect_any_leaves(ray, |leaf, r| {
-            self.leaf_range(leaf).any(|k| hit(self.indices[k], r))
-        })
+        self.intersect_any_leaves(ray, |leaf, r| self.leaf_any(leaf, r, &mut hit))
+    }
+
+    /// Tests leaf `leaf`'s primitives one after another, each against the ray shortened to the
+    /// nearest hit so far: the new `t_max` if one was hit.
+    #[inline(always)]
+    pub fn leaf_nearest<F: FnMut(u32, &Ray) -> Option<f32>>(
+        &self,
+        leaf: u32,
+        ray: &Ray,
+        hit: &mut F,
+    ) -> Option<f32> {
+        let mut r = *ray;
+        let mut found = None;
+        for k in self.leaf_range(leaf) {
+            if let Some(t) = hit(self.indices[k], &r) {
+                r.t_max = t;
+                found = Some(t);
+            }
+        }
+        found
+    }
+
+    /// True if any of leaf `leaf`'s primitives is hit.
+    #[inline(always)]
+    pub fn leaf_any<F: FnMut(u32, &Ray) -> bool>(&self, leaf: u32, ray: &Ray, hit: &mut F) -> bool {
+        self.leaf_range(leaf).any(|k| hit(self.indices[k], ray))
     }
 }
 

@@ -563,17 +563,11 @@ impl Scene {
                 best = Some((h, p.ids[lane]));
                 return Some(h.t);
             }
-            let mut r = *r;
-            let mut found = None;
-            for k in self.bvh.leaf_range(leaf) {
-                let i = self.bvh.indices[k];
-                if let Some(h) = self.hit(i, &r, &pre) {
-                    r.t_max = h.t;
-                    best = Some((h, i));
-                    found = Some(h.t);
-                }
-            }
-            found
+            self.bvh.leaf_nearest(leaf, r, &mut |i, r| {
+                let h = self.hit(i, r, &pre)?;
+                best = Some((h, i));
+                Some(h.t)
+            })
         });
         if !self.instances.is_empty() {
             if let Some(b) = best {
@@ -647,8 +641,7 @@ impl Scene {
                     return p.intersect_any(r, &pre);
                 }
                 self.bvh
-                    .leaf_range(leaf)
-                    .any(|k| self.hit(self.bvh.indices[k], r, &pre).is_some())
+                    .leaf_any(leaf, r, &mut |i, r| self.hit(i, r, &pre).is_some())
             })
             || (!self.instances.is_empty() && self.instances.intersect_any(ray))
     }
