@@ -9,7 +9,7 @@
 use super::desc::{Geometry, ObjectDesc};
 use super::{BuildError, PrimInfo};
 use crate::accel::{Bvh, MeshBvh};
-use crate::math::{Bounds3, Frame, Transform, Vec3};
+use crate::math::{Bounds3, Frame, Transform};
 use crate::ray::Ray;
 use crate::shape::{
     Shading, ShapeHit, SurfaceInteraction, Triangle, TriangleMesh, TriangleRay, is_degenerate,
@@ -244,15 +244,7 @@ impl Instances {
             n = -n;
         }
         // Shading tangents: ∂p/∂u made perpendicular to the shading normal again.
-        let mut ss = xf.vector(si.shading.dpdu);
-        ss = (ss - ns * ns.dot(ss)).normalize_or_zero();
-        let ts = if ss == Vec3::ZERO {
-            let f = Frame::from_z(ns);
-            ss = f.x;
-            f.y
-        } else {
-            ns.cross(ss)
-        };
+        let Frame { x: ss, y: ts, .. } = Frame::from_xz(xf.vector(si.shading.dpdu), ns);
         let si = SurfaceInteraction {
             p,
             p_error,
@@ -277,6 +269,7 @@ mod tests {
     use super::super::desc::{InstanceDesc, SceneDesc, ShapeDesc};
     use super::*;
     use crate::Scene;
+    use crate::math::Vec3;
     use crate::sampling::Pcg32;
     use std::sync::Arc;
 
