@@ -374,7 +374,7 @@ impl GltfLoader<'_> {
         }
         let e = |msg: String| format!("{label}: {msg}");
         // A Draco primitive's accessors hold no bytes: its arrays come from the decoder.
-        let decoded = match prim.extension_value(draco::EXTENSION) {
+        let mut decoded = match prim.extension_value(draco::EXTENSION) {
             Some(ext) => {
                 Some(draco::decode_primitive(&self.buffers, self.doc, prim, ext).map_err(e)?)
             }
@@ -384,8 +384,9 @@ impl GltfLoader<'_> {
             self.warn(format!("{label}: no POSITION attribute; skipped"));
             return Ok(None);
         };
-        let positions: Vec<Vec3> = match &decoded {
-            Some(d) => d.positions.clone(),
+        // The decoded arrays are moved out, not copied.
+        let positions: Vec<Vec3> = match decoded.as_mut() {
+            Some(d) => std::mem::take(&mut d.positions),
             None => data::read_vecs::<3>(&self.buffers, &pos).map_err(e)?,
         }
         .into_iter()
@@ -397,8 +398,8 @@ impl GltfLoader<'_> {
             )));
         }
         let n = positions.len();
-        let order: Vec<u32> = match (&decoded, prim.indices()) {
-            (Some(d), _) => d.indices.clone(),
+        let order: Vec<u32> = match (decoded.as_mut(), prim.indices()) {
+            (Some(d), _) => std::mem::take(&mut d.indices),
             (None, Some(a)) => data::read_indices(&self.buffers, &a).map_err(e)?,
             (None, None) => (0..n as u32).collect(),
         };
@@ -406,8 +407,8 @@ impl GltfLoader<'_> {
             return Err(e(format!("index {bad} is out of range for {n} vertices")));
         }
         let indices = triangulate(mode, &order);
-        let raw_normals = match (&decoded, prim.get(&Semantic::Normals)) {
-            (Some(d), _) => Some(d.normals.clone()).filter(|v| !v.is_empty()),
+        let raw_normals = match (decoded.as_mut(), prim.get(&Semantic::Normals)) {
+            (Some(d), _) => Some(std::mem::take(&mut d.normals)).filter(|v| !v.is_empty()),
             (None, Some(a)) => Some(data::read_vecs::<3>(&self.buffers, &a).map_err(e)?),
             (None, None) => None,
         };
@@ -425,8 +426,8 @@ impl GltfLoader<'_> {
             }
             None => Vec::new(),
         };
-        let raw_uvs = match (&decoded, prim.get(&Semantic::TexCoords(0))) {
-            (Some(d), _) => Some(d.uvs.clone()).filter(|v| !v.is_empty()),
+        let raw_uvs = match (decoded.as_mut(), prim.get(&Semantic::TexCoords(0))) {
+            (Some(d), _) => Some(std::mem::take(&mut d.uvs)).filter(|v| !v.is_empty()),
             (None, Some(a)) => Some(data::read_vecs::<2>(&self.buffers, &a).map_err(e)?),
             (None, None) => None,
         };
