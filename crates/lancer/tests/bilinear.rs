@@ -5,6 +5,8 @@
 
 mod common;
 
+use common::shapes::uniform3;
+
 use common::chi2::{chi2_survival, pooled_chi2, sidak};
 use lancer::Scene;
 use lancer::math::{Transform, Vec2, Vec3};
@@ -131,14 +133,6 @@ fn invert(p: &[Vec3; 4], x: Vec3) -> (f64, f64, f64) {
         }
     }
     best
-}
-
-fn uniform3(rng: &mut Pcg32, lo: f32, hi: f32) -> Vec3 {
-    Vec3::new(
-        lo + (hi - lo) * rng.uniform(),
-        lo + (hi - lo) * rng.uniform(),
-        lo + (hi - lo) * rng.uniform(),
-    )
 }
 
 /// A ray from a random point 4 units away towards a random point near the patch.

@@ -2,6 +2,10 @@
 //! against the analytic closest approach of the ray and the axis, ribbons against the
 //! rectangle they sweep, and a bent curve against a dense brute-force sampling of its spine.
 
+mod common;
+
+use common::shapes::uniform3;
+
 use lancer::Scene;
 use lancer::math::{Transform, Vec3};
 use lancer::ray::Ray;
@@ -11,18 +15,7 @@ use lancer::shape::{CurveBasis, CurveDesc, CurveType, bezier_eval};
 use std::sync::Arc;
 
 fn scene_of(curve: CurveDesc, to_world: Transform) -> Scene {
-    Scene::build(&SceneDesc {
-        shapes: vec![ShapeDesc {
-            geometry: Geometry::Curve(Arc::new(curve)),
-            object_to_world: to_world,
-            reverse_orientation: false,
-            material: 0,
-            area_light: None,
-            alpha: None,
-        }],
-        ..SceneDesc::default()
-    })
-    .unwrap()
+    common::shapes::scene_of(Geometry::Curve(Arc::new(curve)), to_world, false)
 }
 
 /// A straight cubic from a to b with evenly spaced control points (so that u is linear
@@ -42,14 +35,6 @@ fn straight(a: Vec3, b: Vec3, kind: CurveType, w0: f32, w1: f32) -> CurveDesc {
         },
         split_depth: 3,
     }
-}
-
-fn uniform3(rng: &mut Pcg32, lo: f32, hi: f32) -> Vec3 {
-    Vec3::new(
-        lo + (hi - lo) * rng.uniform(),
-        lo + (hi - lo) * rng.uniform(),
-        lo + (hi - lo) * rng.uniform(),
-    )
 }
 
 /// Closest approach of the lines o + t·d and a + s·c: (t, s, distance, side), side the sign

@@ -1,7 +1,8 @@
 //! Helpers of the analytic-shape tests: a one-shape scene, a shape's placement, azimuths.
 
 use lancer::Scene;
-use lancer::math::Transform;
+use lancer::math::{Transform, Vec3};
+use lancer::sampling::Pcg32;
 use lancer::scene::desc::{Geometry, SceneDesc, ShapeDesc};
 use lancer::shape::{Placement, Shape};
 use std::f64::consts::PI;
@@ -40,4 +41,13 @@ pub fn placement(s: &Shape) -> &Placement {
 pub fn azimuth(x: f64, y: f64) -> f64 {
     let a = y.atan2(x);
     if a < 0.0 { a + 2.0 * PI } else { a }
+}
+
+/// A point uniform in the cube [lo, hi)³.
+pub fn uniform3(rng: &mut Pcg32, lo: f32, hi: f32) -> Vec3 {
+    Vec3::new(
+        lo + (hi - lo) * rng.uniform(),
+        lo + (hi - lo) * rng.uniform(),
+        lo + (hi - lo) * rng.uniform(),
+    )
 }
