@@ -17,6 +17,7 @@
 //! ```
 
 use lancer::film::{Film, PixelBounds, PixelSum};
+use lancer::image_io::PartError;
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -36,27 +37,6 @@ pub struct Checkpoint {
     pub done: Vec<bool>,
     /// The film so far.
     pub film: Film,
-}
-
-/// Why a checkpoint could not be read or written.
-#[derive(Debug, thiserror::Error)]
-pub enum CheckpointError {
-    /// The file system refused.
-    #[error("{path}: {source}")]
-    Io {
-        /// The path.
-        path: PathBuf,
-        /// The error.
-        source: std::io::Error,
-    },
-    /// The file is not a checkpoint, or is damaged.
-    #[error("{path}: {message}")]
-    Format {
-        /// The path.
-        path: PathBuf,
-        /// What is wrong.
-        message: String,
-    },
 }
 
 /// Bytes of one pixel's sums in the file.
@@ -96,20 +76,20 @@ impl Checkpoint {
     }
 
     /// Writes the checkpoint atomically (temporary file, then rename).
-    pub fn write(&self, path: &Path) -> Result<(), CheckpointError> {
-        lancer::image_io::write_atomic(path, &self.encode()).map_err(|source| CheckpointError::Io {
+    pub fn write(&self, path: &Path) -> Result<(), PartError> {
+        lancer::image_io::write_atomic(path, &self.encode()).map_err(|source| PartError::Io {
             path: path.to_path_buf(),
             source,
         })
     }
 
     /// Reads a checkpoint, checking its structure; errors name the file (and the header line).
-    pub fn read(path: &Path) -> Result<Checkpoint, CheckpointError> {
-        let bytes = std::fs::read(path).map_err(|source| CheckpointError::Io {
+    pub fn read(path: &Path) -> Result<Checkpoint, PartError> {
+        let bytes = std::fs::read(path).map_err(|source| PartError::Io {
             path: path.to_path_buf(),
             source,
         })?;
-        Self::decode(&bytes).map_err(|message| CheckpointError::Format {
+        Self::decode(&bytes).map_err(|message| PartError::Format {
             path: path.to_path_buf(),
             message,
         })

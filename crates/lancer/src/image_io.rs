@@ -186,7 +186,8 @@ pub struct PartMeta {
     pub scale: f32,
 }
 
-/// Why a partial film could not be read or written.
+/// Why a partial film (a split part, or `lancer render`'s checkpoint) could not be read or
+/// written.
 #[derive(Debug, thiserror::Error)]
 pub enum PartError {
     /// The file system refused.
