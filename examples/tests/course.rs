@@ -242,7 +242,9 @@ fn step9_sdf_scene_has_objects_lit_floor_umbra_and_penumbra() {
     assert_eq!(*values.last().unwrap(), 1.0, "{values:?}");
 
     // The image: pink object pixels, floor pixels fully lit, in umbra and in penumbra, each
-    // checked against the shading formula with the shadow recomputed independently.
+    // checked against the shading formula (with the example's own soft-shadow function: this
+    // checks the shading, while the probes above and the hard-shadow march below check the
+    // shadows independently).
     let (w, h) = (160, 90);
     let img = step9::render(w, h);
     let ambient = 0.6 * 0.15;
