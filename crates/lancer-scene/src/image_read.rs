@@ -454,14 +454,7 @@ impl ImageCache {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn temp_dir(name: &str) -> PathBuf {
-        let dir =
-            std::env::temp_dir().join(format!("lancer-imgread-{}-{name}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        dir
-    }
+    use crate::scratch::ScratchDir;
 
     /// Writes a PNG of `w × h` texels with the given colour type, depth and raw samples.
     fn write_png(
@@ -485,7 +478,7 @@ mod tests {
 
     #[test]
     fn png_8_bit_goes_through_its_encoding() {
-        let dir = temp_dir("png8");
+        let dir = ScratchDir::new("imgread-png8");
         let path = dir.join("t.png");
         // 2×1: (0, 128, 255) then (64, 32, 200).
         let data = [0u8, 128, 255, 64, 32, 200];
@@ -517,7 +510,7 @@ mod tests {
 
     #[test]
     fn png_16_bit_grey_and_alpha() {
-        let dir = temp_dir("png16");
+        let dir = ScratchDir::new("imgread-png16");
         let path = dir.join("g.png");
         // 2×1 grey + alpha, 16 bits big-endian: (32768, 65535) then (65535, 16384).
         let data = [0x80u8, 0x00, 0xff, 0xff, 0xff, 0xff, 0x40, 0x00];
@@ -546,7 +539,7 @@ mod tests {
 
     #[test]
     fn opaque_alpha_is_dropped_and_float_is_the_average() {
-        let dir = temp_dir("rgba");
+        let dir = ScratchDir::new("imgread-rgba");
         let path = dir.join("a.png");
         let data = [255u8, 0, 0, 255, 0, 0, 255, 255];
         write_png(
@@ -566,7 +559,7 @@ mod tests {
 
     #[test]
     fn exr_float_values_are_read_as_they_are() {
-        let dir = temp_dir("exr");
+        let dir = ScratchDir::new("imgread-exr");
         let path = dir.join("e.exr");
         let values = [(2.5f32, 0.125f32, 1000.0f32), (0.0, 7.0, 0.001)];
         exr::prelude::write_rgb_file(&path, 2, 1, |x, _| values[x]).unwrap();
@@ -589,7 +582,7 @@ mod tests {
 
     #[test]
     fn absurd_headers_are_refused_before_allocating() {
-        let dir = temp_dir("absurd");
+        let dir = ScratchDir::new("imgread-absurd");
         let path = dir.join("huge.png");
         // A PNG signature and an IHDR that claims 100000 × 100000 texels, and nothing else.
         let mut b = vec![0x89, b'P', b'N', b'G', 0x0d, 0x0a, 0x1a, 0x0a, 0, 0, 0, 13];
@@ -615,7 +608,7 @@ mod tests {
 
     #[test]
     fn bad_files_give_errors_naming_them() {
-        let dir = temp_dir("bad");
+        let dir = ScratchDir::new("imgread-bad");
         let missing = dir.join("nowhere.png");
         let e = read_image(&missing, Encoding::Srgb).unwrap_err();
         assert!(
@@ -664,7 +657,7 @@ mod tests {
 
     #[test]
     fn the_cache_decodes_a_file_once() {
-        let dir = temp_dir("cache");
+        let dir = ScratchDir::new("imgread-cache");
         let path = dir.join("c.png");
         write_png(
             &path,

@@ -1168,8 +1168,7 @@ end_header
         use flate2::Compression;
         use flate2::write::GzEncoder;
         use std::io::Write;
-        let dir = std::env::temp_dir().join(format!("lancer-ply-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = crate::scratch::ScratchDir::new("ply-gzip");
         let path = dir.join("square.ply.gz");
         let mut enc = GzEncoder::new(Vec::new(), Compression::default());
         enc.write_all(SQUARE.as_bytes()).unwrap();
@@ -1182,7 +1181,6 @@ end_header
         let e = read_ply(&bad).unwrap_err();
         assert_eq!(e.file, bad.display().to_string());
         assert_contains(&e.message, "cannot decompress the file");
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

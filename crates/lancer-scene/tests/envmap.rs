@@ -1,19 +1,14 @@
 //! pbrt-v4's `LightSource "infinite" "string filename"`: the image read beside the scene, its
 //! layout checked, `scale` and `illuminance` applied as pbrt-v4 does, and the light built.
 
+mod common;
+
+use common::ScratchDir;
 use glam::Vec3;
 use lancer::Scene;
 use lancer::light::{EnvMapping, Light};
 use lancer::scene::desc::LightDesc;
 use lancer_scene::load;
-use std::path::PathBuf;
-
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lancer-envmap-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 fn write_exr(path: &std::path::Path, w: usize, h: usize, f: impl Fn(usize, usize) -> f32 + Sync) {
     exr::prelude::write_rgb_file(path, w, h, |x, y| {
@@ -35,7 +30,7 @@ fn scene_with(dir: &std::path::Path, light: &str) -> Result<lancer_scene::Loaded
 
 #[test]
 fn infinite_lights_read_their_image() {
-    let dir = temp_dir("read");
+    let dir = ScratchDir::new("read");
     write_exr(&dir.join("sky.exr"), 8, 8, |x, y| (x + y) as f32);
     let loaded = scene_with(
         &dir,
@@ -69,7 +64,7 @@ fn infinite_lights_read_their_image() {
 
 #[test]
 fn illuminance_scales_as_pbrt_does() {
-    let dir = temp_dir("illum");
+    let dir = ScratchDir::new("illum");
     write_exr(&dir.join("flat.exr"), 64, 64, |_, _| 1.0);
     write_exr(&dir.join("latlong.exr"), 64, 32, |_, _| 1.0);
     for f in ["flat.exr", "latlong.exr"] {
@@ -92,7 +87,7 @@ fn illuminance_scales_as_pbrt_does() {
 
 #[test]
 fn bad_environment_images_are_errors_naming_the_file() {
-    let dir = temp_dir("bad");
+    let dir = ScratchDir::new("bad");
     write_exr(&dir.join("wide.exr"), 12, 4, |_, _| 1.0);
     let e = scene_with(
         &dir,

@@ -2,6 +2,9 @@
 //! punctual lights, the texture and image orientation of a rendered model, and clear errors on
 //! broken files.
 
+mod common;
+
+use common::ScratchDir;
 use glam::Vec3;
 use lancer::Scene;
 use lancer::film::{Film, PixelBounds};
@@ -19,13 +22,6 @@ fn data(rel: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/data/gltf")
         .join(rel)
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lancer-gltf-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
 }
 
 fn load_ok(path: &Path) -> SceneDesc {
@@ -141,7 +137,7 @@ fn triangle_and_shared_meshes_load_with_their_transforms() {
 
 #[test]
 fn node_hierarchy_composes_trs_and_matrices() {
-    let dir = temp_dir("hierarchy");
+    let dir = ScratchDir::new("hierarchy");
     // Parent: a matrix translating by (0, 0, −5) (column-major); child: rotation of 90° about
     // +z (quaternion (0, 0, sin 45°, cos 45°)), scale 2, translation (1, 0, 0):
     // world = parent · T · R · S.
@@ -161,7 +157,7 @@ fn node_hierarchy_composes_trs_and_matrices() {
 
 #[test]
 fn strips_fans_and_lines() {
-    let dir = temp_dir("modes");
+    let dir = ScratchDir::new("modes");
     // As a strip, indices 0 1 2 0 2 3 give 4 triangles; as a fan, 4 as well; lines are skipped.
     let strip = load_ok(&write(
         &dir,
@@ -236,7 +232,7 @@ fn cameras_are_read_from_their_nodes() {
     let text = std::fs::read_to_string(data("Cameras/Cameras.gltf"))
         .unwrap()
         .replace(r#""nodes" : [ 0, 1, 2 ]"#, r#""nodes" : [ 0, 2, 1 ]"#);
-    let dir = temp_dir("ortho");
+    let dir = ScratchDir::new("ortho");
     std::fs::copy(
         data("Cameras/simpleSquare.bin"),
         dir.join("simpleSquare.bin"),
@@ -250,7 +246,7 @@ fn cameras_are_read_from_their_nodes() {
 
 #[test]
 fn metallic_roughness_materials_map_to_lancer_materials() {
-    let dir = temp_dir("materials");
+    let dir = ScratchDir::new("materials");
     let nodes =
         r#"[{"children": [1, 2, 3, 4]}, {"mesh": 0}, {"mesh": 1}, {"mesh": 2}, {"mesh": 3}]"#;
     let materials = r#""materials": [
@@ -347,7 +343,7 @@ fn metallic_roughness_materials_map_to_lancer_materials() {
 
 #[test]
 fn punctual_lights_are_placed_by_their_nodes() {
-    let dir = temp_dir("lights");
+    let dir = ScratchDir::new("lights");
     let extra = r#""extensionsUsed": ["KHR_lights_punctual"],
       "extensions": {"KHR_lights_punctual": {"lights": [
         {"type": "point", "color": [1, 0.5, 0.25], "intensity": 683},
@@ -627,7 +623,7 @@ fn embedded_images_are_decoded_and_placed_by_texcoords() {
         b64 = base64(&buf),
         png_len = png.len()
     );
-    let dir = temp_dir("embedded");
+    let dir = ScratchDir::new("embedded");
     let d = load_ok(&write(&dir, "e.gltf", &text));
     let scene = Scene::build(&d).unwrap();
     let colour_at = |x: f32, y: f32| {
@@ -687,7 +683,7 @@ fn a_glb_reads_its_buffer_from_the_binary_chunk() {
     glb.extend((bin.len() as u32).to_le_bytes());
     glb.extend(b"BIN\0");
     glb.extend(&bin);
-    let dir = temp_dir("glb");
+    let dir = ScratchDir::new("glb");
     let p = dir.join("quad.glb");
     std::fs::write(&p, &glb).unwrap();
     let d = load_ok(&p);
@@ -699,7 +695,7 @@ fn a_glb_reads_its_buffer_from_the_binary_chunk() {
 
 #[test]
 fn broken_files_give_clear_errors() {
-    let dir = temp_dir("broken");
+    let dir = ScratchDir::new("broken");
     let expect_err = |p: &Path, needle: &str| {
         let e = load(p).expect_err("must fail").to_string();
         assert!(e.contains(&p.display().to_string()), "{e}");
@@ -905,7 +901,7 @@ fn draco_box_textured_has_its_uvs() {
 
 #[test]
 fn broken_draco_data_gives_clear_errors() {
-    let dir = temp_dir("draco");
+    let dir = ScratchDir::new("draco");
     let expect_err = |p: &Path, needles: &[&str]| {
         let e = load(p).expect_err("must fail").to_string();
         assert!(e.contains(&p.display().to_string()), "{e}");

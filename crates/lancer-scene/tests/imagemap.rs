@@ -2,21 +2,17 @@
 //! many textures name it, looked up with pbrt's (u, v) conventions; errors placed at the
 //! directive and naming the file.
 
+mod common;
+
+use common::ScratchDir;
 use glam::{Vec2, Vec3};
 use lancer::image_io::srgb_to_linear;
 use lancer::texture::{
     FloatTex, FloatTexture, SpectrumTex, SpectrumTexture, TexCoord, TextureEval, WrapMode,
 };
 use lancer_scene::load;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
-
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lancer-imagemap-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 /// A 2×2 8-bit RGB PNG: top row red, green; bottom row blue, white (values 200 where lit).
 fn quad_png(path: &Path) {
@@ -37,7 +33,7 @@ fn close(a: Vec3, b: Vec3) -> bool {
 
 #[test]
 fn imagemap_textures_read_the_png_beside_the_scene() {
-    let dir = temp_dir("load");
+    let dir = ScratchDir::new("load");
     std::fs::create_dir_all(dir.join("tex")).unwrap();
     quad_png(&dir.join("tex/quad.png"));
     let scene = dir.join("s.pbrt");
@@ -111,7 +107,7 @@ Shape "sphere"
 
 #[test]
 fn imagemap_errors_name_the_file_and_the_directive() {
-    let dir = temp_dir("errors");
+    let dir = ScratchDir::new("errors");
     let scene = dir.join("s.pbrt");
     std::fs::write(
         &scene,

@@ -2,17 +2,13 @@
 //! way round, lights, materials from the MTL; and (when the shared scene folder is there) the
 //! real meshes.
 
+mod common;
+
+use common::ScratchDir;
 use glam::Vec3;
 use lancer::scene::desc::{CameraDesc, Geometry, LightDesc, Projection, SceneDesc};
 use lancer_scene::load;
 use std::path::{Path, PathBuf};
-
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lancer-meshscene-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 /// Where a world point lands on the image, in pixels (x right, y down), or `None` behind the
 /// camera. pbrt's perspective: the fov spans the shorter axis.
@@ -96,7 +92,7 @@ fn check_framing(d: &SceneDesc) {
 
 #[test]
 fn an_obj_file_becomes_a_framed_lit_scene() {
-    let dir = temp_dir("obj");
+    let dir = ScratchDir::new("obj");
     // A box 2 × 1 × 1 off the origin.
     let mut text = String::new();
     for i in 0..8 {
@@ -116,12 +112,11 @@ fn an_obj_file_becomes_a_framed_lit_scene() {
     };
     assert_eq!(m.triangle_count(), 12);
     check_framing(d);
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn a_ply_file_becomes_a_framed_lit_scene() {
-    let dir = temp_dir("ply");
+    let dir = ScratchDir::new("ply");
     std::fs::write(
         dir.join("tri.ply"),
         "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
@@ -131,12 +126,11 @@ fn a_ply_file_becomes_a_framed_lit_scene() {
     .unwrap();
     let loaded = load(&dir.join("tri.ply")).unwrap_or_else(|e| panic!("{e}"));
     check_framing(&loaded.desc);
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn mtl_materials_split_the_mesh_and_emit() {
-    let dir = temp_dir("mtl");
+    let dir = ScratchDir::new("mtl");
     std::fs::write(
         dir.join("m.mtl"),
         "newmtl red\nKd 0.8 0.1 0.1\nmap_Kd red.png\nnewmtl lamp\nKd 0 0 0\nKe 5 5 5\n",
@@ -167,12 +161,11 @@ fn mtl_materials_split_the_mesh_and_emit() {
             .any(|w| w.contains("m.obj:10:1: material 'nothere'")),
         "{w:?}"
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn bad_mesh_files_are_errors_naming_them() {
-    let dir = temp_dir("bad");
+    let dir = ScratchDir::new("bad");
     let e = load(&dir.join("missing.obj")).unwrap_err();
     assert!(e.to_string().contains("missing.obj: cannot read"), "{e}");
     let e = load(&dir.join("missing.ply")).unwrap_err();
@@ -187,7 +180,6 @@ fn bad_mesh_files_are_errors_naming_them() {
     std::fs::write(dir.join("bad.obj"), "v 0 0 0\nv 1 0 0\nf 1 2 3\n").unwrap();
     let e = load(&dir.join("bad.obj")).unwrap_err();
     assert!(e.to_string().contains("bad.obj:3: position index 3"), "{e}");
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 fn shared() -> PathBuf {
@@ -234,7 +226,7 @@ fn the_shared_mcguire_cornell_box_loads_with_its_materials() {
 
 #[test]
 fn map_kd_images_become_textures_when_the_faces_have_uvs() {
-    let dir = temp_dir("map");
+    let dir = ScratchDir::new("map");
     // A 2 × 1 sRGB PNG: white, black.
     {
         let file = std::fs::File::create(dir.join("wb.png")).unwrap();
@@ -281,12 +273,11 @@ fn map_kd_images_become_textures_when_the_faces_have_uvs() {
         w[0].contains("t.obj:10:1: material 'gone': texture map_Kd nothere.png not used"),
         "{w:?}"
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn several_material_libraries_on_one_mtllib_line() {
-    let dir = temp_dir("libs");
+    let dir = ScratchDir::new("libs");
     std::fs::write(dir.join("a.mtl"), "newmtl a\nKd 1 0 0\n").unwrap();
     std::fs::write(dir.join("b.mtl"), "newmtl b\nKd 0 1 0\n").unwrap();
     std::fs::write(
@@ -304,5 +295,4 @@ fn several_material_libraries_on_one_mtllib_line() {
         m => panic!("{m:?}"),
     };
     assert_eq!((kd(0), kd(1)), (Vec3::Y, Vec3::X));
-    let _ = std::fs::remove_dir_all(&dir);
 }

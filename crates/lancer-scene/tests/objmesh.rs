@@ -1,16 +1,11 @@
 //! pbrt-v4's `Shape "objmesh"`: OBJ files found next to the scene, merged into one mesh, their
 //! errors placed at the Shape directive.
 
+mod common;
+
+use common::ScratchDir;
 use lancer::scene::desc::Geometry;
 use lancer_scene::load;
-use std::path::PathBuf;
-
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lancer-objmesh-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 /// A unit quad in two groups with two materials, and a triangle using negative indices.
 const TWO_GROUPS: &str = "mtllib nowhere.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n\
@@ -19,7 +14,7 @@ const TWO_GROUPS: &str = "mtllib nowhere.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0
 
 #[test]
 fn objmesh_reads_the_file_beside_the_scene_as_one_mesh() {
-    let dir = temp_dir("load");
+    let dir = ScratchDir::new("load");
     std::fs::create_dir_all(dir.join("models")).unwrap();
     std::fs::write(dir.join("models/two.obj"), TWO_GROUPS).unwrap();
     std::fs::write(
@@ -48,12 +43,11 @@ fn objmesh_reads_the_file_beside_the_scene_as_one_mesh() {
         glam::Vec3::new(0.0, 0.0, 1.0)
     );
     assert!(m.validate().is_ok());
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn objmesh_errors_are_placed_at_the_shape() {
-    let dir = temp_dir("errors");
+    let dir = ScratchDir::new("errors");
     std::fs::write(dir.join("bad.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n").unwrap();
     std::fs::write(
         dir.join("scene.pbrt"),
@@ -100,5 +94,4 @@ fn objmesh_errors_are_placed_at_the_shape() {
     let loaded = load(&dir.join("scene.pbrt")).unwrap_or_else(|e| panic!("{e}"));
     assert!(loaded.desc.shapes.is_empty());
     assert!(loaded.warnings[0].message.contains("has no faces"));
-    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -2,13 +2,16 @@
 //! transformation matrix and its blocks, named coordinate systems, defaults, light
 //! normalisation, named materials, instancing, film exposure and relative file names.
 
+mod common;
+
+use common::ScratchDir;
 use glam::Vec3;
 use lancer::material::Material;
 use lancer::sampling::SamplerKind;
 use lancer::scene::desc::{Geometry, IntegratorDesc, LightDesc, Projection, SceneDesc};
 use lancer::texture::SpectrumTex;
 use lancer_scene::{load, load_pbrt_str};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 fn scene(text: &str) -> SceneDesc {
     load_pbrt_str(text, "t.pbrt", Path::new("."))
@@ -445,17 +448,9 @@ fn area_lights_follow_their_shapes() {
     assert!(d.shapes[1].area_light.is_none());
 }
 
-/// A fresh folder for files written by one test.
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lancer-sem-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 #[test]
 fn relative_names_resolve_against_the_scene_folder_then_the_including_file() {
-    let dir = temp_dir("include");
+    let dir = ScratchDir::new("include");
     std::fs::create_dir_all(dir.join("geometry")).unwrap();
     std::fs::write(
         dir.join("main.pbrt"),
@@ -476,12 +471,11 @@ fn relative_names_resolve_against_the_scene_folder_then_the_including_file() {
         .desc;
     assert!(matches!(d.shapes[0].geometry, Geometry::Sphere { .. }));
     assert!(matches!(d.shapes[1].geometry, Geometry::Disk { .. }));
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn spectrum_files_resolve_like_includes() {
-    let dir = temp_dir("spd");
+    let dir = ScratchDir::new("spd");
     std::fs::create_dir_all(dir.join("spds")).unwrap();
     std::fs::write(dir.join("spds/flat.spd"), "400 2\n700 2\n").unwrap();
     std::fs::write(
@@ -498,7 +492,6 @@ fn spectrum_files_resolve_like_includes() {
     // A flat spectrum normalised to luminance 1: nearly white (illuminant E is a bit pink
     // in sRGB's D65 white).
     assert!((luminance(intensity) - 1.0).abs() < 0.01, "{intensity}");
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]

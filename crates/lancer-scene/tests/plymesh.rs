@@ -1,19 +1,15 @@
 //! pbrt-v4's `Shape "plymesh"`: PLY files found next to the scene, their errors placed at the
 //! Shape directive, and (when the shared scene folder is there) the real scenes that use them.
 
+mod common;
+
+use common::ScratchDir;
 use lancer::scene::desc::{Geometry, SceneDesc};
 use lancer::shape::TriangleMesh;
 use lancer_scene::load;
 use lancer_scene::ply::read_ply;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lancer-plymesh-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 /// A binary little-endian PLY of `quads` unit squares side by side along x, each one quad.
 fn quads_ply(quads: u32) -> Vec<u8> {
@@ -55,7 +51,7 @@ fn meshes(d: &SceneDesc) -> Vec<&Arc<TriangleMesh>> {
 
 #[test]
 fn plymesh_reads_the_file_beside_the_scene() {
-    let dir = temp_dir("load");
+    let dir = ScratchDir::new("load");
     std::fs::create_dir_all(dir.join("models")).unwrap();
     std::fs::write(dir.join("models/strip.ply"), quads_ply(3)).unwrap();
     std::fs::write(
@@ -82,12 +78,11 @@ fn plymesh_reads_the_file_beside_the_scene() {
     assert_eq!(m.positions.len(), 8);
     assert_eq!(&m.indices[..6], &[0, 2, 3, 0, 3, 1]);
     assert!(!m.flip_normal);
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn plymesh_errors_are_placed_at_the_shape() {
-    let dir = temp_dir("errors");
+    let dir = ScratchDir::new("errors");
     let mut bad = quads_ply(2);
     // The last index of the last face: 9000, with 6 vertices.
     let n = bad.len();
@@ -128,12 +123,11 @@ fn plymesh_errors_are_placed_at_the_shape() {
     let e = load(&dir.join("scene.pbrt")).unwrap_err();
     assert_eq!(e.location.map(|l| l.line), Some(2));
     assert!(e.message.contains("\"string filename\""), "{}", e.message);
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn displacement_is_warned_about_and_the_mesh_kept() {
-    let dir = temp_dir("displacement");
+    let dir = ScratchDir::new("displacement");
     std::fs::write(dir.join("q.ply"), quads_ply(1)).unwrap();
     std::fs::write(
         dir.join("scene.pbrt"),
@@ -150,12 +144,11 @@ fn displacement_is_warned_about_and_the_mesh_kept() {
     assert!(w[0].contains("displacement of a \"plymesh\" is not supported yet"));
     assert!(w[1].contains("\"edgelength\" only matters with \"displacement\""));
     assert_eq!(loaded.warnings[0].location.line, 3);
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn a_ply_without_faces_is_skipped_with_a_warning() {
-    let dir = temp_dir("points");
+    let dir = ScratchDir::new("points");
     std::fs::write(
         dir.join("points.ply"),
         "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n\
@@ -171,7 +164,6 @@ fn a_ply_without_faces_is_skipped_with_a_warning() {
     assert!(loaded.desc.shapes.is_empty());
     assert_eq!(loaded.warnings.len(), 1);
     assert!(loaded.warnings[0].message.contains("has no faces"));
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// The shared scene folder beside the worktree, if it is there.

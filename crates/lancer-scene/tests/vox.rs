@@ -2,6 +2,9 @@
 //! file has none, clear errors (naming the file) for truncated, lying or inconsistent files,
 //! and `Shape "voxels"` in pbrt scenes, from a file or inline.
 
+mod common;
+
+use common::ScratchDir;
 use lancer::math::Rgb;
 use lancer::scene::desc::Geometry;
 use lancer::shape::srgb8_to_linear;
@@ -188,17 +191,11 @@ fn extra_models_and_scene_graph_chunks() {
     assert!(w.contains("1 voxels of colour index 0"), "{w}");
 }
 
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("lancer-vox-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 const HEAD: &str = "Camera \"perspective\"\nWorldBegin\n";
 
 #[test]
 fn pbrt_voxels_from_a_file_and_inline() {
-    let dir = temp_dir("pbrt");
+    let dir = ScratchDir::new("pbrt");
     let (dims, cells) = model();
     std::fs::write(dir.join("m.vox"), write_vox(dims, &cells, None)).unwrap();
     let text = format!("{HEAD}Shape \"voxels\" \"string filename\" \"m.vox\"\n");
@@ -221,12 +218,11 @@ fn pbrt_voxels_from_a_file_and_inline() {
     assert_eq!(g.palette()[1], Rgb::new(0.5, 0.25, 0.125));
     // Index 2 keeps the default palette's colour (ff, ff, cc).
     assert_eq!(g.palette()[2], Rgb::new(1.0, 1.0, srgb8_to_linear(0xcc)));
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]
 fn pbrt_voxel_errors() {
-    let dir = temp_dir("errors");
+    let dir = ScratchDir::new("errors");
     let fails = |body: &str| {
         load_pbrt_str(&format!("{HEAD}{body}\n"), "s.pbrt", &dir)
             .unwrap_err()
@@ -251,7 +247,6 @@ fn pbrt_voxel_errors() {
          Shape \"voxels\" \"integer dims\" [1 1 1] \"integer indices\" [1]",
     );
     assert!(e.contains("area light"), "{e}");
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]
