@@ -619,8 +619,7 @@ mod tests {
 
     #[test]
     fn a_failed_write_falls_back_to_the_rescue_folder() {
-        let dir = std::env::temp_dir().join(format!("lancer-rescue-test-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = crate::scratch::ScratchDir::new("rescue");
         let out = Path::new("/no/such/folder/image.exr");
         let write =
             |p: &Path| std::fs::write(p, b"pixels").map_err(|e| format!("{}: {e}", p.display()));
@@ -637,7 +636,6 @@ mod tests {
         let ok = dir.join("ok.exr");
         write_with_fallback(&ok, &dir, write).unwrap();
         assert!(ok.exists());
-        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]

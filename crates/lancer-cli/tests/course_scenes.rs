@@ -9,7 +9,7 @@ use common::*;
 /// box filter (which averages most of the noise away; a misplaced object or shadow fails).
 #[test]
 fn course_scenes_agree_with_pbrt() {
-    let dir = temp_dir("course");
+    let dir = ScratchDir::new("course");
     for name in [
         "01-sphere",
         "02-plane",
@@ -28,7 +28,7 @@ fn course_scenes_agree_with_pbrt() {
 
 #[test]
 fn thread_count_does_not_change_a_single_byte() {
-    let dir = temp_dir("threads");
+    let dir = ScratchDir::new("threads");
     let scene = data("course/04-shadows.pbrt");
     let mut outputs = Vec::new();
     for threads in ["1", "2", "3"] {
@@ -58,7 +58,7 @@ fn thread_count_does_not_change_a_single_byte() {
 
 #[test]
 fn default_scene_renders_a_sensible_png() {
-    let dir = temp_dir("default");
+    let dir = ScratchDir::new("default");
     let o = run_in(&dir, &["render", "--quiet"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let png =

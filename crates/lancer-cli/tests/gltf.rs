@@ -27,7 +27,7 @@ fn region_mean(img: &Img, x0: f64, x1: f64, y0: f64, y1: f64) -> f64 {
 
 #[test]
 fn a_gltf_model_renders_through_its_own_camera() {
-    let dir = temp_dir("gltf-cameras");
+    let dir = ScratchDir::new("gltf-cameras");
     let out = dir.join("cameras.exr");
     render_ok(&dir, &model("Cameras/Cameras.gltf"), &out, &["--spp", "4"]);
     let img = read_exr(&out);
@@ -47,7 +47,7 @@ fn a_gltf_model_renders_through_its_own_camera() {
 
 #[test]
 fn a_draco_compressed_glb_renders() {
-    let dir = temp_dir("gltf-draco");
+    let dir = ScratchDir::new("gltf-draco");
     let out = dir.join("box.exr");
     render_ok(&dir, &model("Box.glb"), &out, &["--spp", "4"]);
     let img = read_exr(&out);
@@ -80,7 +80,7 @@ fn a_draco_compressed_glb_renders() {
 
 #[test]
 fn an_unsupported_gltf_fails_with_a_clear_message() {
-    let dir = temp_dir("gltf-unsupported");
+    let dir = ScratchDir::new("gltf-unsupported");
     let text = std::fs::read_to_string(model("Triangle/Triangle.gltf"))
         .unwrap()
         .replacen('{', r#"{ "extensionsRequired": ["EXT_not_in_lancer"],"#, 1);

@@ -277,7 +277,7 @@ fn hostile_inputs_fail_cleanly_and_cheaply() {
         words,
     } in cases()
     {
-        let dir = temp_dir(&format!("hostile-{name}"));
+        let dir = ScratchDir::new(&format!("hostile-{name}"));
         for (file, bytes) in &files {
             std::fs::File::create(dir.join(file))
                 .and_then(|mut f| f.write_all(bytes))
@@ -309,7 +309,6 @@ fn hostile_inputs_fail_cleanly_and_cheaply() {
                 err.trim()
             ));
         }
-        let _ = std::fs::remove_dir_all(&dir);
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

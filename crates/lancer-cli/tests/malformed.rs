@@ -144,7 +144,7 @@ fn check_failure(dir: &Path, scene: &str, at: &str, words: &str) {
 
 #[test]
 fn every_malformed_scene_is_reported_at_its_place() {
-    let dir = temp_dir("malformed");
+    let dir = ScratchDir::new("malformed");
     for (scene, _, _) in CASES {
         std::fs::copy(data(&format!("bad/{scene}")), dir.join(scene)).unwrap();
     }
@@ -158,7 +158,7 @@ fn every_malformed_scene_is_reported_at_its_place() {
 
 #[test]
 fn non_utf8_bytes_are_located() {
-    let dir = temp_dir("utf8");
+    let dir = ScratchDir::new("utf8");
     let mut bytes = b"LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n".to_vec();
     bytes.extend_from_slice(b"Shape \"sph\xe9re\"\n");
     std::fs::write(dir.join("latin1.pbrt"), bytes).unwrap();
@@ -167,7 +167,7 @@ fn non_utf8_bytes_are_located() {
 
 #[test]
 fn a_missing_scene_or_unknown_format_fails_cleanly() {
-    let dir = temp_dir("missing");
+    let dir = ScratchDir::new("missing");
     std::fs::write(dir.join("keep.png"), OLD_IMAGE).unwrap();
     for scene in ["nowhere.pbrt", "model.xyz", "nowhere.obj", "nowhere.ply"] {
         let o = run_in(&dir, &["render", scene, "-o", "keep.png", "--quiet"]);
@@ -183,7 +183,7 @@ fn a_missing_scene_or_unknown_format_fails_cleanly() {
 
 #[test]
 fn absurd_command_line_values_are_refused() {
-    let dir = temp_dir("absurd");
+    let dir = ScratchDir::new("absurd");
     let scene = data("course/01-sphere.pbrt");
     let scene = scene.to_str().unwrap();
     for args in [
@@ -205,7 +205,7 @@ fn absurd_command_line_values_are_refused() {
 
 #[test]
 fn unsupported_features_warn_with_their_line_and_still_render() {
-    let dir = temp_dir("warnings");
+    let dir = ScratchDir::new("warnings");
     std::fs::write(
         dir.join("warn.pbrt"),
         "Film \"rgb\" \"integer xresolution\" [16] \"integer yresolution\" [16]\n\

@@ -14,7 +14,7 @@ fn bunny_as_plymesh_and_as_objmesh_agree_with_pbrt() {
     };
     let scene = shared.join("scenes/meshes/bunny.pbrt");
     let reference = read_exr(&shared.join("references/meshes/bunny.exr"));
-    let dir = temp_dir("bunny");
+    let dir = ScratchDir::new("bunny");
     let text = std::fs::read_to_string(&scene).unwrap();
     let ply_line = "\"plymesh\" \"string filename\" \"bunny.ply\"";
     assert!(
@@ -46,5 +46,4 @@ fn bunny_as_plymesh_and_as_objmesh_agree_with_pbrt() {
             0.1,
         );
     }
-    let _ = std::fs::remove_dir_all(&dir);
 }

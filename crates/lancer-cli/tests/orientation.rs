@@ -52,7 +52,7 @@ fn sum(img: &Img, c: usize, keep: impl Fn(usize, usize) -> bool) -> f64 {
 
 #[test]
 fn world_x_is_on_the_left_and_y_on_top_as_in_pbrt() {
-    let dir = temp_dir("orientation");
+    let dir = ScratchDir::new("orientation");
     let img = render(&dir, "pbrt", "");
     let w = img.width;
     let (red_left, red_right) = (
@@ -84,7 +84,6 @@ fn world_x_is_on_the_left_and_y_on_top_as_in_pbrt() {
     );
     let blue_top = sum(&img, 2, |_, y| y < h / 2);
     assert!(blue_top > 1.0, "mirrored blue stays on top");
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// A quad of side `s` centred at (x, y, 0), facing +z, as OBJ lines (vertices counted back).
@@ -105,7 +104,7 @@ fn quad(x: f32, y: f32, s: f32, material: &str) -> String {
 
 #[test]
 fn a_bare_obj_is_framed_with_x_on_the_right_and_y_on_top() {
-    let dir = temp_dir("bare-obj");
+    let dir = ScratchDir::new("bare-obj");
     std::fs::write(
         dir.join("m.mtl"),
         "newmtl red\nKd 0.9 0 0\nnewmtl blue\nKd 0 0 0.9\n",
@@ -161,5 +160,4 @@ fn a_bare_obj_is_framed_with_x_on_the_right_and_y_on_top() {
         blue_top > 1.0 && blue_bottom < 0.01 * blue_top,
         "blue: top {blue_top}, bottom {blue_bottom}"
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }

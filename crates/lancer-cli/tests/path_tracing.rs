@@ -11,13 +11,12 @@ use common::*;
 /// is), which leaves the RMSE to catch misplaced light or shadows.
 #[test]
 fn cornell_box_agrees_with_mitsuba() {
-    let dir = temp_dir("cbox");
+    let dir = ScratchDir::new("cbox");
     let out = dir.join("cbox.exr");
     render_ok(&dir, &data("pt/cbox.pbrt"), &out, &["--spp", "64"]);
     let img = read_exr(&out).shrink(4);
     let reference = read_exr(&data("references/pt/cbox-mitsuba.exr"));
     compare("cbox", &img, &reference, 0.015, 0.06);
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// Spectral mode against pbrt-v4 (which renders spectrally; its 256 × 256 reference,
@@ -29,7 +28,7 @@ fn cornell_box_agrees_with_mitsuba() {
 /// needs its means: 64 × 64 at 64 spp.
 #[test]
 fn spectral_cornell_box_agrees_with_pbrt_v4() {
-    let dir = temp_dir("cbox-spectral");
+    let dir = ScratchDir::new("cbox-spectral");
     let reference = read_exr(&data("references/pt/cbox-pbrt.exr"));
     let mre = |img: &Img| {
         let (mt, mr) = (img.means(), reference.means());
@@ -61,13 +60,12 @@ fn spectral_cornell_box_agrees_with_pbrt_v4() {
         rgb_mre > 0.02,
         "RGB mode should miss pbrt-v4 by > 2 %: {rgb_mre:.4}"
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// The acceptance's long render: 512 × 512 at 256 spp.
 #[test]
 fn long_render_has_no_nan_and_nothing_brighter_than_the_light() {
-    let dir = temp_dir("cbox-long");
+    let dir = ScratchDir::new("cbox-long");
     let out = dir.join("long.exr");
     render_ok(
         &dir,
@@ -99,5 +97,4 @@ fn long_render_has_no_nan_and_nothing_brighter_than_the_light() {
     }
     // The light is seen directly, so some pixels are at least as bright as its emission.
     assert!(on_light > 100, "only {on_light} pixels show the light");
-    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{data, read_exr, run_in, temp_dir};
+use common::{ScratchDir, data, read_exr, run_in};
 use std::collections::HashMap;
 use std::io::Read;
 use std::net::TcpListener;
@@ -122,7 +122,7 @@ fn parse_tev(mut bytes: &[u8]) -> Vec<TevPacket> {
 
 #[test]
 fn display_server_streams_every_pixel_in_tevs_protocol() {
-    let dir = temp_dir("tev");
+    let dir = ScratchDir::new("tev");
     let listener = TcpListener::bind("127.0.0.1:0").unwrap();
     let port = listener.local_addr().unwrap().port();
     let reader = std::thread::spawn(move || {
@@ -238,7 +238,7 @@ fn display_server_streams_every_pixel_in_tevs_protocol() {
 
 #[test]
 fn an_unreachable_display_server_is_a_warning() {
-    let dir = temp_dir("tev-down");
+    let dir = ScratchDir::new("tev-down");
     let port = {
         let l = TcpListener::bind("127.0.0.1:0").unwrap();
         l.local_addr().unwrap().port()
@@ -277,7 +277,7 @@ fn png_pixels(path: &Path) -> (u32, u32, Vec<u8>) {
 
 #[test]
 fn preview_leaves_the_final_image_as_a_valid_png() {
-    let dir = temp_dir("preview");
+    let dir = ScratchDir::new("preview");
     let out = dir.join("out.png");
     let prev = dir.join("prev.png");
     let o = run_in(
@@ -315,7 +315,7 @@ fn preview_leaves_the_final_image_as_a_valid_png() {
 
 #[test]
 fn preview_must_be_a_png_in_a_writable_folder() {
-    let dir = temp_dir("preview-bad");
+    let dir = ScratchDir::new("preview-bad");
     for (prev, needle) in [
         (dir.join("prev.exr"), "PNG"),
         (dir.join("missing/prev.png"), "does not exist"),
@@ -339,7 +339,7 @@ fn preview_must_be_a_png_in_a_writable_folder() {
 
 #[test]
 fn stats_json_reports_the_render() {
-    let dir = temp_dir("stats");
+    let dir = ScratchDir::new("stats");
     let out = dir.join("cbox.exr");
     let o = run_in(
         &dir,
@@ -434,7 +434,7 @@ fn write_mesh_scene(dir: &Path) -> std::path::PathBuf {
 
 #[test]
 fn info_counts_triangles_and_lists_every_file_read() {
-    let dir = temp_dir("info");
+    let dir = ScratchDir::new("info");
     let scene = write_mesh_scene(&dir);
     let o = run_in(
         &dir,
@@ -497,7 +497,7 @@ fn info_counts_triangles_and_lists_every_file_read() {
 
 #[test]
 fn info_reads_a_bare_mesh_and_refuses_a_broken_scene() {
-    let dir = temp_dir("info-ply");
+    let dir = ScratchDir::new("info-ply");
     write_mesh_scene(&dir);
     let o = run_in(&dir, &["info", "geo/parts.ply", "--json", "--files"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));

@@ -25,7 +25,7 @@ fn shapes_scene_renders_its_sdf_object() {
         return;
     };
     let scene = shared.join("scenes/shapes/lancer-shapes.pbrt");
-    let dir = temp_dir("sdf-shapes");
+    let dir = ScratchDir::new("sdf-shapes");
     let out = dir.join("shapes.exr");
     render_ok(
         &dir,

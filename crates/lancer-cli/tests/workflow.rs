@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{data, read_exr, render_ok, run_in, temp_dir};
+use common::{ScratchDir, data, read_exr, render_ok, run_in};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -41,7 +41,7 @@ fn bytes(p: &Path) -> Vec<u8> {
 
 #[test]
 fn tile_and_sample_splits_merge_to_the_whole_render_byte_for_byte() {
-    let dir = temp_dir("wf-splits");
+    let dir = ScratchDir::new("wf-splits");
     let scene = data("pt/cbox.pbrt");
     let whole = dir.join("whole.exr");
     let whole_png = dir.join("whole.png");
@@ -74,12 +74,11 @@ fn tile_and_sample_splits_merge_to_the_whole_render_byte_for_byte() {
     assert_eq!(p1.rgb[..], w.rgb[16 * 40..32 * 40]);
     let mean = p1.means();
     assert!(mean.iter().all(|&m| m > 0.01 && m.is_finite()), "{mean:?}");
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn merge_refuses_parts_that_do_not_belong_together() {
-    let dir = temp_dir("wf-refuse");
+    let dir = ScratchDir::new("wf-refuse");
     let tiles: Vec<PathBuf> = (0..2).map(|i| part(&dir, "tiles", i, 2, &[])).collect();
     let other_seed = dir.join("seed.exr");
     let mut args = vec!["--spp", "8", "--seed", "6", "--resolution", "40x72"];
@@ -127,7 +126,6 @@ fn merge_refuses_parts_that_do_not_belong_together() {
     assert!(!out.exists());
     // Sanity: the two tile halves alone do merge.
     assert!(merge(&dir, &[&tiles[0], &tiles[1]], &out).status.success());
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// Spectral mode changes pixels, so it is part of what a part records: a spectral half does
@@ -136,7 +134,7 @@ fn merge_refuses_parts_that_do_not_belong_together() {
 /// only).
 #[test]
 fn spectral_parts_merge_with_each_other_and_not_with_rgb_parts() {
-    let dir = temp_dir("wf-spectral");
+    let dir = ScratchDir::new("wf-spectral");
     let rgb0 = part(&dir, "tiles", 0, 2, &[]);
     let spectral: Vec<PathBuf> = (0..2)
         .map(|i| {
@@ -166,12 +164,11 @@ fn spectral_parts_merge_with_each_other_and_not_with_rgb_parts() {
     let plain = dir.join("plain.exr");
     render_ok(&dir, &data("pt/cbox.pbrt"), &plain, &OPTS);
     assert!(bytes(&plain) != bytes(&whole));
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn an_interrupted_render_resumes_to_the_uninterrupted_pixels() {
-    let dir = temp_dir("wf-resume");
+    let dir = ScratchDir::new("wf-resume");
     // The scene is a copy, so that the test can change it afterwards.
     let scene = dir.join("cbox.pbrt");
     std::fs::copy(data("pt/cbox.pbrt"), &scene).unwrap();
@@ -285,5 +282,4 @@ fn an_interrupted_render_resumes_to_the_uninterrupted_pixels() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && err.contains("changed"), "{err}");
     assert!(!dir.join("y.exr").exists());
-    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -1,10 +1,15 @@
 //! Helpers shared by the command-line tests: running `lancer`, reading EXR images, comparing
-//! them the way the team's acceptance scripts do.
+//! them the way the team's acceptance scripts do, scratch folders that go away.
 
 #![allow(dead_code)]
 
+pub mod scratch;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+
+#[allow(unused_imports)] // as dead_code above: not every test writes files
+pub use scratch::ScratchDir;
 
 /// The `lancer` binary built for these tests.
 pub fn lancer() -> Command {
@@ -38,14 +43,6 @@ pub fn render_ok(dir: &Path, scene: &Path, out: &Path, extra: &[&str]) {
         scene.display(),
         String::from_utf8_lossy(&o.stderr)
     );
-}
-
-/// A fresh temporary folder for one test.
-pub fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("lancer-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
 }
 
 /// Test data shipped with the crate.
