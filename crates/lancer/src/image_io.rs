@@ -493,8 +493,7 @@ mod tests {
             },
             scale: 0.1,
         };
-        let dir = std::env::temp_dir().join(format!("lancer-part-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = crate::scratch::ScratchDir::new("part");
         let path = dir.join("p.exr");
         write_part(&path, &film, &meta).unwrap();
         let (f2, m2) = read_part(&path).unwrap();
@@ -508,6 +507,5 @@ mod tests {
             e.contains("plain.exr") && e.contains("not a lancer part"),
             "{e}"
         );
-        let _ = std::fs::remove_dir_all(&dir);
     }
 }
