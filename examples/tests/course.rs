@@ -2,6 +2,9 @@
 
 #![allow(dead_code)]
 
+mod common;
+
+use common::ScratchDir;
 use lancer::math::{INV_PI, Rgb, Vec3};
 use lancer_examples::Canvas;
 
@@ -28,8 +31,7 @@ fn close(a: Rgb, b: Rgb, tol: f32) -> bool {
 
 /// Saves a canvas in a temporary folder, reads the PNG back and returns its top-left pixel.
 fn saved_top_left(c: &Canvas, name: &str) -> [u8; 3] {
-    let dir = std::env::temp_dir().join(format!("lancer-examples-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = ScratchDir::new(&format!("save-{name}"));
     let path = dir.join(name);
     c.save(&path).unwrap();
     let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&path).unwrap()));

@@ -1,9 +1,9 @@
 //! Scratch folders for tests, removed when the test is done.
 //!
-//! One copy per crate (`tests/common/scratch.rs` in `lancer`, `lancer-scene`, `lancer-cli` and
-//! the examples), shared by that crate's integration tests through `mod common;` and by its unit
-//! tests through a `#[path]` module: a crate of its own would be a dependency for a few lines.
-//! Keep the copies identical.
+//! Each crate has this file at `tests/common/scratch.rs` (`lancer`, `lancer-scene`,
+//! `lancer-cli`, the examples); its integration tests reach it through `mod common;`, its unit
+//! tests through a `#[path]` module at the crate root. A crate of its own, shared by all, would
+//! be one more dependency for a few lines; keep the copies identical instead.
 
 use std::ops::Deref;
 use std::path::{Path, PathBuf};
@@ -13,8 +13,8 @@ use std::path::{Path, PathBuf};
 pub const KEEP_TEST_FILES: &str = "LANCER_KEEP_TEST_FILES";
 
 /// A fresh, empty folder in the system's temporary directory for one test, removed with
-/// everything in it when the guard is dropped, also when the test panics: test runs used to
-/// leave about a hundred folders behind each, and they piled up to gigabytes.
+/// everything in it when the guard is dropped, also when the test panics. (Each run of the
+/// tests used to leave dozens of folders behind; they piled up to gigabytes.)
 ///
 /// The folder is `lancer-test-<test crate>-<process id>-<name>`; `name` must be unique among
 /// the tests of one test binary, or two tests running at once would share (and remove) it.

@@ -1,0 +1,5 @@
+//! Helpers for the course test.
+
+pub mod scratch;
+
+pub use scratch::ScratchDir;
