@@ -18,11 +18,6 @@ mod split;
 mod stats;
 mod tev;
 
-/// Scratch folders for the unit tests, shared with the integration tests.
-#[cfg(test)]
-#[path = "../tests/common/scratch.rs"]
-mod scratch;
-
 use clap::{Parser, Subcommand};
 
 /// lancer — a physically based ray tracer.

@@ -619,7 +619,7 @@ mod tests {
 
     #[test]
     fn a_failed_write_falls_back_to_the_rescue_folder() {
-        let dir = crate::scratch::ScratchDir::new("rescue");
+        let dir = lancer_testing::ScratchDir::new("rescue");
         let out = Path::new("/no/such/folder/image.exr");
         let write =
             |p: &Path| std::fs::write(p, b"pixels").map_err(|e| format!("{}: {e}", p.display()));

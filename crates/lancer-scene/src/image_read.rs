@@ -454,7 +454,7 @@ impl ImageCache {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scratch::ScratchDir;
+    use lancer_testing::ScratchDir;
 
     /// Writes a PNG of `w × h` texels with the given colour type, depth and raw samples.
     fn write_png(

@@ -15,11 +15,6 @@ pub mod pbrt;
 pub mod ply;
 pub mod vox;
 
-/// Scratch folders for the unit tests, shared with the integration tests.
-#[cfg(test)]
-#[path = "../tests/common/scratch.rs"]
-mod scratch;
-
 pub use error::{Location, SceneError, Warning};
 
 use lancer::SceneDesc;

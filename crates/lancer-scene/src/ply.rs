@@ -1168,7 +1168,7 @@ end_header
         use flate2::Compression;
         use flate2::write::GzEncoder;
         use std::io::Write;
-        let dir = crate::scratch::ScratchDir::new("ply-gzip");
+        let dir = lancer_testing::ScratchDir::new("ply-gzip");
         let path = dir.join("square.ply.gz");
         let mut enc = GzEncoder::new(Vec::new(), Compression::default());
         enc.write_all(SQUARE.as_bytes()).unwrap();

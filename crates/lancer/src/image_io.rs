@@ -493,7 +493,7 @@ mod tests {
             },
             scale: 0.1,
         };
-        let dir = crate::scratch::ScratchDir::new("part");
+        let dir = lancer_testing::ScratchDir::new("part");
         let path = dir.join("p.exr");
         write_part(&path, &film, &meta).unwrap();
         let (f2, m2) = read_part(&path).unwrap();

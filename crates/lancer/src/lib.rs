@@ -27,10 +27,5 @@ pub mod shape;
 pub mod spectrum;
 pub mod texture;
 
-/// Scratch folders for the unit tests.
-#[cfg(test)]
-#[path = "../tests/common/scratch.rs"]
-mod scratch;
-
 pub use scene::Scene;
 pub use scene::desc::SceneDesc;

@@ -1,5 +1,3 @@
 //! Helpers for the course test.
 
-pub mod scratch;
-
-pub use scratch::ScratchDir;
+pub use lancer_testing::ScratchDir;

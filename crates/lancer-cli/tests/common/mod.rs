@@ -3,13 +3,11 @@
 
 #![allow(dead_code)]
 
-pub mod scratch;
-
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 #[allow(unused_imports)] // as dead_code above: not every test writes files
-pub use scratch::ScratchDir;
+pub use lancer_testing::ScratchDir;
 
 /// The `lancer` binary built for these tests.
 pub fn lancer() -> Command {

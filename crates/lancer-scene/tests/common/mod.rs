@@ -1,5 +1,3 @@
 //! Helpers shared by the scene readers' integration tests.
 
-pub mod scratch;
-
-pub use scratch::ScratchDir;
+pub use lancer_testing::ScratchDir;

@@ -1,9 +1,5 @@
-//! Scratch folders for tests, removed when the test is done.
-//!
-//! Each crate has this file at `tests/common/scratch.rs` (`lancer`, `lancer-scene`,
-//! `lancer-cli`, the examples); its integration tests reach it through `mod common;`, its unit
-//! tests through a `#[path]` module at the crate root. A crate of its own, shared by all, would
-//! be one more dependency for a few lines; keep the copies identical instead.
+//! Helpers for lancer's own tests, shared by every crate of the workspace as a
+//! dev-dependency: scratch folders removed when the test is done.
 
 use std::ops::Deref;
 use std::path::{Path, PathBuf};
@@ -16,7 +12,7 @@ pub const KEEP_TEST_FILES: &str = "LANCER_KEEP_TEST_FILES";
 /// everything in it when the guard is dropped, also when the test panics. (Each run of the
 /// tests used to leave dozens of folders behind; they piled up to gigabytes.)
 ///
-/// The folder is `lancer-test-<test crate>-<process id>-<name>`; `name` must be unique among
+/// The folder is `lancer-test-<test binary>-<process id>-<name>`; `name` must be unique among
 /// the tests of one test binary, or two tests running at once would share (and remove) it.
 /// When [`KEEP_TEST_FILES`] is set, the folder is kept and its path printed (shown with a
 /// failing test's output).
@@ -34,11 +30,15 @@ impl ScratchDir {
     /// Creates the folder for the test `name`, emptying what an earlier process with the same
     /// id may have left there.
     pub fn new(name: &str) -> ScratchDir {
-        let path = std::env::temp_dir().join(format!(
-            "lancer-test-{}-{}-{name}",
-            env!("CARGO_CRATE_NAME"),
-            std::process::id()
-        ));
+        // The test binary's name (e.g. `gltf-0123abcd`) says which suite left a kept folder.
+        let exe = std::env::current_exe().ok();
+        let suite = exe
+            .as_deref()
+            .and_then(|p| p.file_stem())
+            .and_then(|s| s.to_str())
+            .unwrap_or("tests");
+        let path =
+            std::env::temp_dir().join(format!("lancer-test-{suite}-{}-{name}", std::process::id()));
         let _ = std::fs::remove_dir_all(&path);
         std::fs::create_dir_all(&path)
             .unwrap_or_else(|e| panic!("cannot create {}: {e}", path.display()));
