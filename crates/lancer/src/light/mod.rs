@@ -50,8 +50,8 @@ pub enum Light {
     Spot {
         /// Position.
         p: Vec3,
-        /// Frame whose z is the spot's axis.
-        frame: Frame,
+        /// Unit axis: the direction of full intensity.
+        axis: Vec3,
         /// Intensity on the axis.
         intensity: Rgb,
         /// cos of the angle where the falloff starts (full intensity inside).
@@ -189,7 +189,7 @@ impl Light {
             }
             Light::Spot {
                 p,
-                frame,
+                axis,
                 intensity,
                 cos_falloff_start,
                 cos_falloff_end,
@@ -200,7 +200,7 @@ impl Light {
                     return None;
                 }
                 let wi = d / r2.sqrt();
-                let cos_theta = frame.z.dot(-wi);
+                let cos_theta = axis.dot(-wi);
                 let falloff = smooth_step(cos_theta, *cos_falloff_end, *cos_falloff_start);
                 if falloff == 0.0 {
                     return None;

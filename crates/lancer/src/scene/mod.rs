@@ -7,7 +7,7 @@ use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
 use crate::light::{Light, LightDistribution};
 use crate::material::Material;
-use crate::math::{Bounds3, Frame, Rgb, Vec3};
+use crate::math::{Bounds3, Rgb, Vec3};
 use crate::ray::Ray;
 use crate::shape::{
     Cone, Cuboid, Cylinder, Disk, Hyperboloid, Paraboloid, Placement, Plane, Sdf, Shape, Sphere,
@@ -448,7 +448,7 @@ impl Scene {
                     })?;
                     Light::Spot {
                         p: *from,
-                        frame: Frame::from_z(axis),
+                        axis,
                         intensity: *intensity,
                         cos_falloff_end: cone_angle.to_radians().cos(),
                         cos_falloff_start: (cone_angle - cone_delta_angle).to_radians().cos(),
