@@ -4,13 +4,13 @@
 //! Pixel (i, j)'s centre maps to x = −1 + (2i + 1)/w, y = −1 + (2j + 1)/h. Here each pixel
 //! shows the direction d = (x, y, −1)/|(x, y, −1)| as a colour (d + 1)/2.
 
-use lancer::math::Rgb;
+use lancer::math::{Rgb, normalize};
 use lancer_examples::{Canvas, image_plane_point, save_or_exit};
 
 /// The image of this step.
 pub fn render(width: u32, height: u32) -> Canvas {
     Canvas::fill(width, height, |i, j| {
-        let d = image_plane_point(i, j, width, height).normalize();
+        let d = normalize(image_plane_point(i, j, width, height));
         (d + Rgb::ONE) * 0.5
     })
 }

@@ -14,7 +14,7 @@
 //! This program marches the library's distance function itself (`SdfFunction::eval`), as a
 //! Shadertoy shader would, rather than going through the path tracer.
 
-use lancer::math::{Rgb, Vec3};
+use lancer::math::{Rgb, Vec3, cross, normalize};
 use lancer::shape::SdfFunction;
 use lancer_examples::{Canvas, image_plane_point, save_or_exit};
 
@@ -26,7 +26,7 @@ pub const OBJECTS: &str = "smooth_union(\
 
 /// Direction towards the (distant) light, unit length.
 pub fn light_dir() -> Vec3 {
-    Vec3::new(-0.7, 0.55, 0.5).normalize()
+    normalize(Vec3::new(-0.7, 0.55, 0.5))
 }
 
 /// Sharpness of the penumbra, k in k·h/t (a light about 1/k radians wide).
@@ -48,9 +48,9 @@ pub fn scene() -> (SdfFunction, SdfFunction) {
 /// Camera basis (right, up, backward): the course's camera (looking down −z) turned to look
 /// from [`EYE`] at [`LOOK_AT`].
 fn basis() -> (Vec3, Vec3, Vec3) {
-    let w = (EYE - LOOK_AT).normalize();
-    let u = Vec3::Y.cross(w).normalize();
-    (u, w.cross(u), w)
+    let w = normalize(EYE - LOOK_AT);
+    let u = normalize(cross(Vec3::Y, w));
+    (u, cross(w, u), w)
 }
 
 /// Half the image plane's shorter side, at distance 1: tan(fov/2) (fov ≈ 45°).
@@ -60,7 +60,7 @@ pub const ZOOM: f32 = 0.42;
 pub fn ray_dir(i: u32, j: u32, width: u32, height: u32) -> Vec3 {
     let q = image_plane_point(i, j, width, height) * Vec3::new(ZOOM, ZOOM, 1.0);
     let (u, v, w) = basis();
-    (u * q.x + v * q.y + w * q.z).normalize()
+    normalize(u * q.x + v * q.y + w * q.z)
 }
 
 /// The pixel where the world point p is seen (the inverse of [`ray_dir`]).

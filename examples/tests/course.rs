@@ -5,7 +5,7 @@
 mod common;
 
 use common::ScratchDir;
-use lancer::math::{INV_PI, Rgb, Vec3};
+use lancer::math::{INV_PI, Rgb, Vec3, cross, normalize};
 use lancer_examples::Canvas;
 
 #[path = "../01_image.rs"]
@@ -57,7 +57,7 @@ fn step2_directions_point_through_the_image_plane() {
     // The centre pixel looks straight down −z: colour (0.5, 0.5, 0).
     assert!(close(c.get(32, 32), Rgb::new(0.5, 0.5, 0.0), 1e-6));
     // The bottom-left corner looks towards (−1, −1, −1) (minus half a pixel).
-    let d = Vec3::new(-1.0 + 1.0 / 65.0, -1.0 + 1.0 / 65.0, -1.0).normalize();
+    let d = normalize(Vec3::new(-1.0 + 1.0 / 65.0, -1.0 + 1.0 / 65.0, -1.0));
     assert!(close(c.get(0, 0), (d + Rgb::ONE) * 0.5, 1e-6));
 }
 
@@ -236,7 +236,7 @@ fn step9_sdf_scene_has_objects_lit_floor_umbra_and_penumbra() {
     assert_eq!(step9::soft_shadow(&all, far, l, k), 1.0);
     // Walking from the umbra sideways out of the shadow, the estimate rises through a
     // penumbra (values strictly between 0 and 1) and never falls back.
-    let side = l.cross(Vec3::Y).normalize();
+    let side = normalize(cross(l, Vec3::Y));
     let values: Vec<f32> = (0..=60)
         .map(|i| step9::soft_shadow(&all, umbra + side * (i as f32 * 0.05), l, k))
         .collect();

@@ -5,7 +5,7 @@
 use crate::cli_error::CliError;
 use clap::{Args, Subcommand};
 use lancer::accel::MeshBvh;
-use lancer::math::{Bounds3, Vec2, Vec3};
+use lancer::math::{Bounds3, Vec2, Vec3, normalize};
 use lancer::ray::Ray;
 use lancer::sampling::{Pcg32, sample_uniform_sphere};
 use lancer::shape::{TriangleMesh, TriangleRay};
@@ -171,7 +171,7 @@ fn primary_rays(b: &Bounds3, n: usize) -> Vec<Ray> {
     let coord = |i: usize| ((i as f64 + 0.5) / side as f64 * 2.0 - 1.0) as f32;
     for j in 0..side {
         for i in 0..side {
-            let d = Vec3::new(coord(i) * 0.45, coord(j) * 0.45, -1.0).normalize();
+            let d = normalize(Vec3::new(coord(i) * 0.45, coord(j) * 0.45, -1.0));
             out.push(Ray::new(eye, d));
         }
     }

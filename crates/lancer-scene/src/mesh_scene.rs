@@ -14,7 +14,7 @@ use crate::image_read::{Encoding, ImageCache};
 use crate::obj::{ObjError, read_mtl, read_obj};
 use crate::ply::read_ply;
 use lancer::material::Material;
-use lancer::math::{Rgb, Transform, Vec3};
+use lancer::math::{Rgb, Transform, Vec3, normalize};
 use lancer::scene::desc::{
     AreaLightDesc, CameraDesc, FilmDesc, Geometry, IntegratorDesc, LightDesc, Projection,
     SceneDesc, ShapeDesc,
@@ -321,7 +321,7 @@ pub fn framing_camera(lo: Vec3, hi: Vec3) -> CameraDesc {
     let radius = ((hi - lo).length() * 0.5).max(1e-3) * defaults::FRAME_MARGIN;
     let half_fov = (defaults::FOV_DEGREES * 0.5).to_radians();
     let distance = radius / half_fov.sin();
-    let eye = centre + defaults::VIEW_FROM.normalize() * distance;
+    let eye = centre + normalize(defaults::VIEW_FROM) * distance;
     // pbrt's camera space is left-handed: LookAt alone puts world +x on the image's left when
     // looking down −z. Mirroring camera x (pbrt's `Scale -1 1 1` before `LookAt`) puts it on
     // the right, as people expect of a model seen from the front.

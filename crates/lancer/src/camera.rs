@@ -4,7 +4,7 @@
 //! [−1, 1] (see [`Camera::course`]); scene files use pbrt's `perspective` camera, where the same
 //! picture comes from a screen window, a field of view and a camera-to-world transform.
 
-use crate::math::{Transform, Vec2, Vec3};
+use crate::math::{Transform, Vec2, Vec3, normalize};
 use crate::ray::Ray;
 use crate::sampling::sample_uniform_disk_concentric;
 use crate::scene::desc::{CameraDesc, Projection};
@@ -74,7 +74,7 @@ impl Camera {
     pub fn generate_ray(&self, p_film: Vec2, p_lens: Vec2) -> Ray {
         let p_camera = self.camera_from_raster.point(p_film.extend(0.0));
         let mut ray = if self.perspective {
-            Ray::new(Vec3::ZERO, p_camera.normalize())
+            Ray::new(Vec3::ZERO, normalize(p_camera))
         } else {
             Ray::new(Vec3::new(p_camera.x, p_camera.y, 0.0), Vec3::Z)
         };
@@ -88,10 +88,10 @@ impl Camera {
                 ray.o.x += p_camera.x;
                 ray.o.y += p_camera.y;
             }
-            ray.d = (focus - ray.o).normalize();
+            ray.d = normalize(focus - ray.o);
         }
         let o = self.world_from_camera.point(ray.o);
-        let d = self.world_from_camera.vector(ray.d).normalize();
+        let d = normalize(self.world_from_camera.vector(ray.d));
         Ray::new(o, d)
     }
 }
@@ -108,10 +108,10 @@ mod tests {
         assert!(r.o.length() < 1e-6 && (r.d - -Vec3::Z).length() < 1e-5);
         // The top-left corner of the image is the image-plane point (−1, 1, −1).
         let c = cam.generate_ray(Vec2::new(0.0, 0.0), Vec2::ZERO);
-        assert!((c.d - Vec3::new(-1.0, 1.0, -1.0).normalize()).length() < 1e-5);
+        assert!((c.d - normalize(Vec3::new(-1.0, 1.0, -1.0))).length() < 1e-5);
         // The bottom-right corner is (1, −1, −1).
         let c = cam.generate_ray(Vec2::new(100.0, 100.0), Vec2::ZERO);
-        assert!((c.d - Vec3::new(1.0, -1.0, -1.0).normalize()).length() < 1e-5);
+        assert!((c.d - normalize(Vec3::new(1.0, -1.0, -1.0))).length() < 1e-5);
     }
 
     #[test]

@@ -9,7 +9,7 @@ use common::shapes::uniform3;
 
 use common::chi2::{chi2_survival, pooled_chi2, sidak};
 use lancer::Scene;
-use lancer::math::{Transform, Vec2, Vec3};
+use lancer::math::{Transform, Vec2, Vec3, cross, normalize};
 use lancer::ray::Ray;
 use lancer::sampling::Pcg32;
 use lancer::scene::desc::Geometry;
@@ -140,7 +140,7 @@ fn random_ray(rng: &mut Pcg32, p: &[Vec3; 4]) -> Ray {
     let (u, v) = (rng.uniform() * 1.2 - 0.1, rng.uniform() * 1.2 - 0.1);
     let target = bilinear_point(p, u, v) + uniform3(rng, -0.05, 0.05);
     let o = target + uniform3(rng, -1.0, 1.0).normalize_or_zero() * 4.0;
-    Ray::new(o, (target - o).normalize())
+    Ray::new(o, normalize(target - o))
 }
 
 /// Every hit is on the patch: the (u, v) recovered by Newton from the hit point gives back
@@ -241,7 +241,7 @@ fn hits_agree_with_a_fine_tessellation() {
                     excused += 1;
                 }
                 (None, Some((t, tri))) => {
-                    let n = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+                    let n = cross(tri[1] - tri[0], tri[2] - tri[0]);
                     assert!(
                         near_border(ray.at(t)) || grazing(n),
                         "{name} {i}: missed the tessellation's hit at {}",
@@ -277,7 +277,7 @@ fn normals_follow_pbrts_orientation_rules() {
     assert!((rev.n + want).length() < 1e-4, "reverse orientation flips");
     let mirror = Transform::scale(Vec3::new(-1.0, 1.0, 1.0)).unwrap();
     let m = n_of(mesh(p, vec![]), mirror, false);
-    let want_m = mirror.normal(want).normalize();
+    let want_m = normalize(mirror.normal(want));
     // Mirrored, ∂p/∂u × ∂p/∂v turns over, and pbrt flips it back for a handedness-swapping
     // transform: the normal is the object-space one, transformed.
     assert!(

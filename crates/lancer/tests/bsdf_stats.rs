@@ -19,7 +19,7 @@ use lancer::material::{
     DiffuseBxdf, DiffuseTransmissionBxdf, ThinDielectricBxdf, TransportMode, TrowbridgeReitz,
     fresnel_complex, fresnel_dielectric,
 };
-use lancer::math::{Rgb, Vec2, Vec3};
+use lancer::math::{Rgb, Vec2, Vec3, normalize};
 use lancer::sampling::Pcg32;
 use std::f64::consts::PI;
 
@@ -46,7 +46,7 @@ fn sample(b: &BxDF, wo: Vec3, rng: &mut Pcg32, mode: TransportMode) -> Option<Bs
 /// Chi-square test of `sample_f`'s directions against `pdf`, plus the checks that `pdf`
 /// integrates to at most 1 and to the fraction of samples that succeed.
 fn chi2_sampling(name: &str, b: &BxDF, wo: Vec3, n: usize, seed: u64) {
-    let wo = wo.normalize();
+    let wo = normalize(wo);
     let mut rng = Pcg32::new(seed, 0);
     let mut obs = vec![0.0; N_BINS];
     let mut ok = 0usize;

@@ -7,7 +7,7 @@ mod common;
 use common::shapes::uniform3;
 
 use lancer::Scene;
-use lancer::math::{Transform, Vec3};
+use lancer::math::{Transform, Vec3, cross, normalize};
 use lancer::ray::Ray;
 use lancer::sampling::Pcg32;
 use lancer::scene::desc::{AreaLightDesc, Geometry, SceneDesc, ShapeDesc};
@@ -102,9 +102,9 @@ fn straight_curves_match_the_closest_approach_of_ray_and_axis() {
             assert!((si.uv.x as f64 - s).abs() < 1e-4, "u {} vs {s}", si.uv.x);
             let v = 0.5 + side * dist / w;
             assert!((si.uv.y as f64 - v).abs() < 1e-3, "v {} vs {v}", si.uv.y);
-            let axis = (b - a).normalize();
+            let axis = normalize(b - a);
             assert!(si.n.dot(axis).abs() < 1e-3, "normal along the axis");
-            let dperp = (ray.d - axis * ray.d.dot(axis)).normalize();
+            let dperp = normalize(ray.d - axis * ray.d.dot(axis));
             let cos = si.n.dot(dperp).abs() as f64;
             let want = match kind {
                 CurveType::Cylinder => (std::f64::consts::PI * (v - 0.5)).cos().abs(),
@@ -213,8 +213,8 @@ fn a_bent_curve_agrees_with_its_sampled_spine() {
             let k = (rng.uniform() * N as f32) as usize;
             let target = spine[k].0 + uniform3(&mut rng, -0.2, 0.2);
             let o = target + uniform3(&mut rng, -1.0, 1.0).normalize_or_zero() * 6.0;
-            let d = (target - o).normalize();
-            let dist = |p: Vec3| (p - o).cross(d).length();
+            let d = normalize(target - o);
+            let dist = |p: Vec3| cross(p - o, d).length();
             let ds: Vec<f32> = spine.iter().map(|&(p, _)| dist(p)).collect();
             let tol = 0.05 * w0;
             let mut must_hit_depth = f32::INFINITY;
@@ -233,7 +233,7 @@ fn a_bent_curve_agrees_with_its_sampled_spine() {
                 let depth = (p - o).dot(d);
                 // Rays running nearly along the spine see pbrt's camera-facing ribbon edge-on
                 // (its projection is shorter than wide): no decision there.
-                let tangent = (spine[j + 1].0 - spine[j - 1].0).normalize();
+                let tangent = normalize(spine[j + 1].0 - spine[j - 1].0);
                 let grazing = tangent.dot(d).abs() > 0.9;
                 if ds[j] < w / 2.0 - tol && !grazing {
                     if depth < must_hit_depth {
@@ -267,7 +267,7 @@ fn a_bent_curve_agrees_with_its_sampled_spine() {
                 // each leaf of its subdivision as straight, the hit being the curve point at
                 // the chord's closest approach: its depth may differ from the true closest
                 // approach by a fraction of the width.
-                let crossing = must_hit_tangent.normalize().cross(d).length() > 0.5;
+                let crossing = cross(normalize(must_hit_tangent), d).length() > 0.5;
                 if unsure_depth > must_hit_depth && crossing {
                     assert!(
                         (h.si.t - must_hit_depth).abs() < 0.1,

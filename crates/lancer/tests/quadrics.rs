@@ -7,7 +7,7 @@ mod common;
 
 use common::shapes::{azimuth, placement, scene_of};
 use glam::DVec3;
-use lancer::math::{Transform, Vec2, Vec3};
+use lancer::math::{Transform, Vec2, Vec3, cross, normalize};
 use lancer::ray::Ray;
 use lancer::sampling::Pcg32;
 use lancer::scene::desc::Geometry;
@@ -267,13 +267,13 @@ fn hit_points_and_normals_follow_the_implicit_surface() {
                 for dp in [si.dpdu, si.dpdv] {
                     assert!(si.n.dot(dp).abs() <= 2e-5 * dp.length(), "{what}: n·dp");
                 }
-                let cross = si.dpdu.cross(si.dpdv).normalize();
+                let n_uv = normalize(cross(si.dpdu, si.dpdv));
                 // M·a × M·b = det M · M⁻ᵀ(a × b), and n is M⁻ᵀ(a × b), flipped as placed.
                 let det_sign = if xf.swaps_handedness() { -1.0 } else { 1.0 };
                 let want = if pl.flip_normal { -det_sign } else { det_sign };
                 assert!(
-                    si.n.dot(cross) * want > 0.9999,
-                    "{what}: n {} but ∂p/∂u × ∂p/∂v {cross}",
+                    si.n.dot(n_uv) * want > 0.9999,
+                    "{what}: n {} but ∂p/∂u × ∂p/∂v {n_uv}",
                     si.n
                 );
                 // ∇F moves to the world as a normal: by the inverse transpose.
@@ -306,8 +306,8 @@ fn spawned_rays_never_find_their_own_surface_again() {
             // Rays from nearby, and from 10³ away, where o + t·d cancels most of its digits.
             let mut rays = random_rays(shape, &mut rng, 800);
             for r in random_rays(shape, &mut rng, 400) {
-                let d = r.d.normalize();
-                rays.push(Ray::new(r.o + 1000.0 * (r.o - r.at(1.0)).normalize(), d));
+                let d = normalize(r.d);
+                rays.push(Ray::new(r.o + 1000.0 * normalize(r.o - r.at(1.0)), d));
             }
             for ray in rays {
                 let Some(hit) = scene.intersect(&ray) else {

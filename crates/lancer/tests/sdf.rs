@@ -3,7 +3,7 @@
 //! hits and normals against analytic sphere, box and torus intersections on thousands of rays.
 
 use glam::{DMat3, DVec3};
-use lancer::math::{Transform, Vec3};
+use lancer::math::{Transform, Vec3, normalize};
 use lancer::ray::Ray;
 use lancer::sampling::Pcg32;
 use lancer::shape::sdf::{Aabb, SdfFunction};
@@ -385,7 +385,7 @@ fn compare_with(
                 // The implicit function's gradient at the shape's own hit point.
                 let p_obj = pl.to_object.transform_point3(si.p.as_dvec3());
                 let n = (normal_to_world * gradient(p_obj)).normalize().as_vec3();
-                let d = ray.d.normalize();
+                let d = normalize(ray.d);
                 let cos = n.dot(d).abs().max(1e-3) as f64;
                 let dist = t * ray.d.length() as f64;
                 let tol = 1e-4 * t + 2.0 * (1e-5 * dist + 1e-5) / cos / ray.d.length() as f64;

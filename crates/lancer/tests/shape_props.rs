@@ -17,7 +17,7 @@ mod common;
 use common::chi2::{chi2_survival, pooled_chi2, sidak};
 use common::shapes::{azimuth, placement, scene_of};
 use glam::DVec3;
-use lancer::math::{Transform, Vec2, Vec3};
+use lancer::math::{Transform, Vec2, Vec3, normalize};
 use lancer::ray::Ray;
 use lancer::sampling::Pcg32;
 use lancer::scene::desc::Geometry;
@@ -263,7 +263,7 @@ fn random_unit(rng: &mut Pcg32) -> Vec3 {
     loop {
         let v = Vec3::new(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0 - 1.0;
         if v.length_squared() <= 1.0 && v.length_squared() > 1e-6 {
-            return v.normalize();
+            return normalize(v);
         }
     }
 }

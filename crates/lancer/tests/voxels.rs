@@ -7,7 +7,7 @@ mod common;
 
 use glam::DVec3;
 use lancer::Scene;
-use lancer::math::{Rgb, Transform, Vec3};
+use lancer::math::{Rgb, Transform, Vec3, normalize};
 use lancer::ray::Ray;
 use lancer::sampling::Pcg32;
 use lancer::scene::desc::{AreaLightDesc, Geometry, SceneDesc, ShapeDesc};
@@ -158,7 +158,7 @@ fn random_unit(rng: &mut Pcg32) -> Vec3 {
     loop {
         let v = Vec3::new(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0 - 1.0;
         if v.length_squared() <= 1.0 && v.length_squared() > 1e-4 {
-            return v.normalize();
+            return normalize(v);
         }
     }
 }
@@ -237,7 +237,7 @@ fn dda_matches_brute_force_on_random_grids() {
                         -Vec3::AXES[k]
                     };
                     let flip = reverse ^ to_world.swaps_handedness();
-                    let mut n = to_world.normal(n_obj).normalize();
+                    let mut n = normalize(to_world.normal(n_obj));
                     if flip {
                         n = -n;
                     }

@@ -777,6 +777,7 @@ impl Slabs {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::normalize;
     use crate::sampling::{hash_u64, u32_to_unit_f32};
 
     fn rnd(i: u64) -> f32 {
@@ -825,12 +826,11 @@ mod tests {
             );
             for k in 0..300u64 {
                 let o = Vec3::new(rnd(10_000 + k), rnd(20_000 + k), rnd(30_000 + k)) * 12.0 - 1.0;
-                let d = Vec3::new(
+                let d = normalize(Vec3::new(
                     rnd(40_000 + k) - 0.5,
                     rnd(50_000 + k) - 0.5,
                     rnd(60_000 + k) - 0.5,
-                )
-                .normalize();
+                ));
                 let ray = Ray::new(o, d);
                 let brute = boxes
                     .iter()

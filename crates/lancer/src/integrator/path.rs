@@ -3,7 +3,7 @@
 use super::{PathVertex, bsdf_at, emitted};
 use crate::light::LightSampleContext;
 use crate::material::TransportMode;
-use crate::math::Rgb;
+use crate::math::{Rgb, normalize};
 use crate::ray::Ray;
 use crate::sampling::{Sampler, power_heuristic};
 use crate::scene::Scene;
@@ -81,7 +81,7 @@ pub fn li_observed<O: PathObserver>(
                 match (depth == 0 || specular_bounce, prev_ctx) {
                     (false, Some(ctx)) => {
                         let p_l = scene.light_distribution.pmf(i)
-                            * light.pdf_li(&ctx, ray.d.normalize(), None);
+                            * light.pdf_li(&ctx, normalize(ray.d), None);
                         l += beta * power_heuristic(p_b, p_l) * le;
                     }
                     _ => l += beta * le,
@@ -103,7 +103,7 @@ pub fn li_observed<O: PathObserver>(
                 (false, Some(ctx), Some(e)) => {
                     let light = &scene.lights[e.light as usize];
                     let p_l = scene.light_distribution.pmf(e.light as usize)
-                        * light.pdf_li(&ctx, ray.d.normalize(), Some((si.p, si.n)));
+                        * light.pdf_li(&ctx, normalize(ray.d), Some((si.p, si.n)));
                     l += beta * power_heuristic(p_b, p_l) * le;
                 }
                 _ => l += beta * le,

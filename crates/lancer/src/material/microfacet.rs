@@ -1,7 +1,7 @@
 //! The Trowbridge–Reitz (GGX) microfacet distribution, anisotropic, in the local shading frame
 //! (z = macro-normal), with visible-normal sampling (Heitz 2018) as pbrt-v4 uses it.
 
-use crate::math::{PI, Vec2, Vec3, lerp, safe_sqrt};
+use crate::math::{PI, Vec2, Vec3, cross, lerp, normalize, safe_sqrt};
 use crate::sampling::sample_uniform_disk_polar;
 
 /// cos²θ of a local direction.
@@ -176,17 +176,17 @@ impl TrowbridgeReitz {
     /// Always returns a normal with positive z.
     pub fn sample_wm(&self, w: Vec3, u: Vec2) -> Vec3 {
         // Stretched direction, on the +z side.
-        let mut wh = Vec3::new(self.alpha_x * w.x, self.alpha_y * w.y, w.z).normalize();
+        let mut wh = normalize(Vec3::new(self.alpha_x * w.x, self.alpha_y * w.y, w.z));
         if wh.z < 0.0 {
             wh = -wh;
         }
         // Basis around wh.
         let t1 = if wh.z < 0.99999 {
-            Vec3::Z.cross(wh).normalize()
+            normalize(cross(Vec3::Z, wh))
         } else {
             Vec3::X
         };
-        let t2 = wh.cross(t1);
+        let t2 = cross(wh, t1);
         // Uniform disk point, its far half warped onto the visible part of the projection.
         let mut p = sample_uniform_disk_polar(u);
         let h = (1.0 - p.x * p.x).max(0.0).sqrt();
@@ -195,7 +195,11 @@ impl TrowbridgeReitz {
         // the inverse transpose of the stretch, i.e. multiply x and y by α.
         let pz = safe_sqrt(1.0 - p.length_squared());
         let nh = p.x * t1 + p.y * t2 + pz * wh;
-        Vec3::new(self.alpha_x * nh.x, self.alpha_y * nh.y, nh.z.max(1e-6)).normalize()
+        normalize(Vec3::new(
+            self.alpha_x * nh.x,
+            self.alpha_y * nh.y,
+            nh.z.max(1e-6),
+        ))
     }
 }
 
@@ -238,7 +242,7 @@ mod tests {
         for w in [
             Vec3::new(0.0, 0.0, 1.0),
             Vec3::new(0.6, 0.0, 0.8),
-            Vec3::new(-0.3, 0.9, 0.3163).normalize(),
+            normalize(Vec3::new(-0.3, 0.9, 0.3163)),
         ] {
             let s = integrate_hemisphere(800, |m| {
                 if w.dot(m) > 0.0 {
@@ -270,7 +274,7 @@ mod tests {
         // checked for the normal's z and x² components, whose integrals are computed by
         // quadrature. 2·10⁵ samples give standard errors near 10⁻³.
         let d = TrowbridgeReitz::new(0.4, 0.2);
-        let w = Vec3::new(0.5, 0.3, 0.812).normalize();
+        let w = normalize(Vec3::new(0.5, 0.3, 0.812));
         let mut rng = Pcg32::new(3, 0);
         let n = 200_000;
         let (mut sz, mut sx2) = (0.0f64, 0.0f64);

@@ -14,8 +14,28 @@ pub use frame::Frame;
 pub use glam::{Mat3, Mat4, UVec2, Vec2, Vec3, Vec3A, Vec4};
 pub use transform::Transform;
 
+use glam::Vec3Swizzles;
+
 /// Linear RGB (the sRGB/Rec.709 primaries, D65 white): radiance, reflectance, any colour.
 pub type Rgb = Vec3;
+
+/// The cross product `a × b`, each component rounded as two products and a difference:
+/// `(a.y·b.z − b.y·a.z, a.z·b.x − b.z·a.x, a.x·b.y − b.x·a.y)`, never fused into an FMA.
+///
+/// lancer calls this rather than a vector type's own method so that its rounding, and so the
+/// renders, stay the same whatever the vector type (a SIMD type may fuse one product).
+#[inline(always)]
+pub fn cross(a: Vec3, b: Vec3) -> Vec3 {
+    (a.zxy() * b - b.zxy() * a).zxy()
+}
+
+/// `v` scaled to unit length as `v · (1/|v|)` (infinite or NaN for a zero vector; see
+/// `normalize_or_zero` and `try_normalize`). Like [`cross`], a function so that the rounding
+/// is lancer's choice: `v / |v|`, which a SIMD type computes, can differ in the last bit.
+#[inline(always)]
+pub fn normalize(v: Vec3) -> Vec3 {
+    v * v.length_recip()
+}
 
 /// π.
 pub const PI: f32 = std::f32::consts::PI;

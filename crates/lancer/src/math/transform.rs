@@ -1,6 +1,6 @@
 //! Affine and projective transforms that carry their inverse: the course's "repère du monde".
 
-use super::{Bounds3, Vec3, gamma};
+use super::{Bounds3, Vec3, cross, gamma};
 use crate::ray::Ray;
 use glam::{Mat4, Vec4};
 
@@ -81,8 +81,8 @@ impl Transform {
     /// up and +x is `cross(up, dir)`, which makes the frame left-handed.
     pub fn look_at(eye: Vec3, look: Vec3, up: Vec3) -> Option<Transform> {
         let dir = (look - eye).try_normalize()?;
-        let right = up.try_normalize()?.cross(dir).try_normalize()?;
-        let new_up = dir.cross(right);
+        let right = cross(up.try_normalize()?, dir).try_normalize()?;
+        let new_up = cross(dir, right);
         let world_from_camera = Mat4::from_cols(
             right.extend(0.0),
             new_up.extend(0.0),

@@ -9,7 +9,7 @@
 use super::desc::{Geometry, ObjectDesc};
 use super::{BuildError, PrimInfo};
 use crate::accel::{Bvh, MeshBvh};
-use crate::math::{Bounds3, Frame, Transform};
+use crate::math::{Bounds3, Frame, Transform, normalize};
 use crate::ray::Ray;
 use crate::shape::{
     Shading, ShapeHit, SurfaceInteraction, Triangle, TriangleMesh, TriangleRay, is_degenerate,
@@ -257,7 +257,7 @@ impl Instances {
                 dpdu: ss,
                 dpdv: ts,
             },
-            wo: -ray.d.normalize(),
+            wo: -normalize(ray.d),
             t: h.hit.t,
         };
         (si, obj.prim[mesh as usize])

@@ -12,7 +12,7 @@
 //! Patches are kept in world space (the mesh is transformed once when the scene is built).
 
 use super::{IndexedMesh, Shading, ShapeHit, SurfaceInteraction};
-use crate::math::{Bounds3, Frame, Vec2, Vec3, gamma, solve_quadratic};
+use crate::math::{Bounds3, Frame, Vec2, Vec3, cross, gamma, normalize, solve_quadratic};
 use crate::ray::Ray;
 use glam::DVec3;
 use std::sync::Arc;
@@ -84,7 +84,7 @@ pub fn bilinear_point(p: &[Vec3; 4], u: f32, v: f32) -> Vec3 {
 #[inline]
 fn jacobian(p: &[Vec3; 4], u: f32, v: f32) -> f32 {
     let (du, dv) = partials(p, u, v);
-    du.cross(dv).length()
+    cross(du, dv).length()
 }
 
 /// Nodes and weights of 4-point Gauss–Legendre quadrature on [0, 1].
@@ -171,20 +171,20 @@ impl BilinearPatch {
             let (dudt, dvdt) = (inv(dstdu.y), inv(dstdv.y));
             let dpds = dpdu * duds + dpdv * dvds;
             let mut dpdt = dpdu * dudt + dpdv * dvdt;
-            let cross = dpds.cross(dpdt);
-            if cross != Vec3::ZERO {
-                if dpdu.cross(dpdv).dot(cross) < 0.0 {
+            let n_st = cross(dpds, dpdt);
+            if n_st != Vec3::ZERO {
+                if cross(dpdu, dpdv).dot(n_st) < 0.0 {
                     dpdt = -dpdt;
                 }
                 dpdu = dpds;
                 dpdv = dpdt;
             }
         }
-        let mut n = dpdu.cross(dpdv).normalize_or_zero();
+        let mut n = cross(dpdu, dpdv).normalize_or_zero();
         if n == Vec3::ZERO {
             // A corner where two edges are parallel: the normal of the whole patch.
             let (du, dv) = partials(&self.p, 0.5, 0.5);
-            n = du.cross(dv).normalize_or_zero();
+            n = cross(du, dv).normalize_or_zero();
         }
         let mut ns = n;
         if let Some(s) = self.shading_normal(u, v) {
@@ -198,9 +198,9 @@ impl BilinearPatch {
         }
         // Shading tangents: ∂p/∂u made perpendicular to the shading normal.
         let mut ss = dpdu.normalize_or_zero();
-        let mut ts = ns.cross(ss);
+        let mut ts = cross(ns, ss);
         if ts.length_squared() > 0.0 {
-            ss = ts.cross(ns);
+            ss = cross(ts, ns);
         } else {
             let f = Frame::from_z(ns);
             ss = f.x;
@@ -219,7 +219,7 @@ impl BilinearPatch {
                 dpdu: ss,
                 dpdv: ts,
             },
-            wo: -ray.d.normalize(),
+            wo: -normalize(ray.d),
             t: hit.t,
         }
     }
@@ -237,10 +237,10 @@ impl BilinearPatch {
     /// The geometric normal at (u, v), oriented as [`BilinearPatch::interaction`] orients it.
     pub fn normal_at(&self, u: f32, v: f32) -> Vec3 {
         let (du, dv) = partials(&self.p, u, v);
-        let mut n = du.cross(dv).normalize_or_zero();
+        let mut n = cross(du, dv).normalize_or_zero();
         if n == Vec3::ZERO {
             let (du, dv) = partials(&self.p, 0.5, 0.5);
-            n = du.cross(dv).normalize_or_zero();
+            n = cross(du, dv).normalize_or_zero();
         }
         match self.shading_normal(u, v) {
             Some(ns) if n.dot(ns) < 0.0 => -n,
@@ -259,15 +259,15 @@ impl BilinearPatch {
     pub fn sample_uv(&self, u: Vec2) -> (Vec3, Vec2) {
         // N(u, v) = ∂p/∂u × ∂p/∂v = N₀₀ + u·(N₁₀ − N₀₀) + v·(N₀₁ − N₀₀) (linear); J = |N| is
         // convex, so J_max is a corner's. J is constant only when N is (a parallelogram).
-        let cross = |u: f32, v: f32| {
+        let n_at = |u: f32, v: f32| {
             let (du, dv) = partials(&self.p, u, v);
-            du.cross(dv)
+            cross(du, dv)
         };
         let (n00, n10, n01, n11) = (
-            cross(0.0, 0.0),
-            cross(1.0, 0.0),
-            cross(0.0, 1.0),
-            cross(1.0, 1.0),
+            n_at(0.0, 0.0),
+            n_at(1.0, 0.0),
+            n_at(0.0, 1.0),
+            n_at(1.0, 1.0),
         );
         let j_max = n00
             .length()

@@ -3,7 +3,7 @@
 use super::{
     Placement, ShapeHit, SurfaceInteraction, phi_of, quadric_error, quadric_hit, quadric_t,
 };
-use crate::math::{Bounds3, Vec2, Vec3, solve_quadratic};
+use crate::math::{Bounds3, Vec2, Vec3, normalize, solve_quadratic};
 use crate::ray::Ray;
 
 /// pbrt's cone around the object-space z axis: base circle of radius `r` at z = 0, apex at
@@ -96,7 +96,7 @@ impl Cone {
             dpdu,
             dpdv,
             self.placement.flip_normal,
-            -ray.d.normalize(),
+            -normalize(ray.d),
             hit.t,
         )
     }
@@ -116,7 +116,7 @@ impl Cone {
         let phi = u.y * self.phi_max;
         let (sin, cos) = phi.sin_cos();
         let p = Vec3::new(rho * cos, rho * sin, z);
-        let n = Vec3::new(self.height * cos, self.height * sin, self.radius).normalize();
+        let n = normalize(Vec3::new(self.height * cos, self.height * sin, self.radius));
         (p, n)
     }
 }

@@ -1,7 +1,7 @@
 //! lancer's box: the axis-aligned box [min, max] of object space, placed by the CTM.
 
 use super::{Placement, ShapeHit, SurfaceInteraction};
-use crate::math::{Bounds3, Vec2, Vec3, gamma};
+use crate::math::{Bounds3, Vec2, Vec3, cross, gamma, normalize};
 use crate::ray::Ray;
 
 /// A box, axis-aligned in object space, with outward normals (`Shape "box"`).
@@ -26,7 +26,7 @@ impl Cuboid {
             let (i, j) = ((k + 1) % 3, (k + 2) % 3);
             let a = m.vector(Vec3::AXES[i] * ext[i]);
             let b = m.vector(Vec3::AXES[j] * ext[j]);
-            a.cross(b).length()
+            cross(a, b).length()
         });
         Cuboid {
             min,
@@ -126,7 +126,7 @@ impl Cuboid {
             Vec3::AXES[i] * ext[i],
             Vec3::AXES[j] * ext[j],
             self.placement.flip_normal,
-            -ray.d.normalize(),
+            -normalize(ray.d),
             hit.t,
         )
     }

@@ -22,7 +22,7 @@
 //! object-space curve exactly for similarity transforms.
 
 use super::{Shading, ShapeHit, SurfaceInteraction};
-use crate::math::{Bounds3, Transform, Vec2, Vec3, lerp};
+use crate::math::{Bounds3, Transform, Vec2, Vec3, cross, lerp, normalize};
 use crate::ray::Ray;
 use std::sync::Arc;
 
@@ -414,8 +414,8 @@ impl Curve {
         }
         let cp_world = bezier_piece(&c.cp, self.u_min, self.u_max);
         let z = ray.d / len;
-        let (x, y) = match ray.d.cross(cp_world[3] - cp_world[0]).try_normalize() {
-            Some(y) => (y.cross(z), y),
+        let (x, y) = match cross(ray.d, cp_world[3] - cp_world[0]).try_normalize() {
+            Some(y) => (cross(y, z), y),
             None => {
                 let f = crate::math::Frame::from_z(z);
                 (f.x, f.y)
@@ -542,24 +542,24 @@ impl Curve {
     pub fn interaction(&self, ray: &Ray, hit: &ShapeHit) -> SurfaceInteraction {
         let c = &*self.common;
         let (u, v) = (hit.u, hit.v);
-        let dir = ray.d.normalize();
+        let dir = normalize(ray.d);
         let (_, dpdu) = bezier_eval(&c.cp, u);
         let mut hit_width = c.width_at(u);
         let dpdv = if c.kind == CurveType::Ribbon {
             let n = c.ribbon_normal(u);
             hit_width *= n.dot(dir).abs();
-            n.cross(dpdu).normalize_or_zero() * hit_width
+            cross(n, dpdu).normalize_or_zero() * hit_width
         } else {
-            let plane = dir.cross(dpdu).normalize_or_zero() * hit_width;
+            let plane = cross(dir, dpdu).normalize_or_zero() * hit_width;
             if c.kind == CurveType::Cylinder {
                 let phi = -lerp(v, -90.0f32, 90.0).to_radians();
                 let k = dpdu.normalize_or_zero();
-                plane * phi.cos() + k.cross(plane) * phi.sin()
+                plane * phi.cos() + cross(k, plane) * phi.sin()
             } else {
                 plane
             }
         };
-        let mut n = dpdu.cross(dpdv).normalize_or_zero();
+        let mut n = cross(dpdu, dpdv).normalize_or_zero();
         if c.flip_normal {
             n = -n;
         }

@@ -1,7 +1,7 @@
 //! The cylinder: x² + y² = r² between `zmin` and `zmax`, swept to `phimax` (open ends).
 
 use super::{Placement, ShapeHit, SurfaceInteraction, phi_of};
-use crate::math::{Bounds3, Vec2, Vec3, gamma};
+use crate::math::{Bounds3, Vec2, Vec3, gamma, normalize};
 use crate::ray::Ray;
 
 /// An open cylinder around the object-space z axis.
@@ -119,7 +119,7 @@ impl Cylinder {
             dpdu,
             dpdv,
             self.placement.flip_normal,
-            -ray.d.normalize(),
+            -normalize(ray.d),
             hit.t,
         )
     }

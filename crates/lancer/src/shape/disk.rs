@@ -1,7 +1,7 @@
 //! The disk: the plane z = h inside radius r (and outside `innerradius`), swept to `phimax`.
 
 use super::{Placement, ShapeHit, SurfaceInteraction, phi_of};
-use crate::math::{Bounds3, Vec2, Vec3};
+use crate::math::{Bounds3, Vec2, Vec3, cross, normalize};
 use crate::ray::Ray;
 
 /// A disk (or annulus) at height `height` in object space, normal +z.
@@ -95,7 +95,7 @@ impl Disk {
         } else {
             dpdu
         };
-        let dpdv = if dpdu.cross(dpdv).length_squared() == 0.0 {
+        let dpdv = if cross(dpdu, dpdv).length_squared() == 0.0 {
             Vec3::new(-1.0, 0.0, 0.0)
         } else {
             dpdv
@@ -108,7 +108,7 @@ impl Disk {
             dpdu,
             dpdv,
             self.placement.flip_normal,
-            -ray.d.normalize(),
+            -normalize(ray.d),
             hit.t,
         )
     }

@@ -2,7 +2,7 @@
 //! `phimax`.
 
 use super::{Placement, ShapeHit, SurfaceInteraction, quadric_error, quadric_hit, quadric_t};
-use crate::math::{Bounds3, Vec2, Vec3, solve_quadratic};
+use crate::math::{Bounds3, Vec2, Vec3, normalize, solve_quadratic};
 use crate::ray::Ray;
 use glam::{DVec2, DVec3};
 
@@ -135,7 +135,7 @@ impl Hyperboloid {
             dpdu,
             dpdv,
             self.placement.flip_normal,
-            -ray.d.normalize(),
+            -normalize(ray.d),
             hit.t,
         )
     }

@@ -15,7 +15,7 @@
 //! Non-manifold edges (more than two faces) are treated like boundary edges.
 
 use super::TriangleMesh;
-use crate::math::Vec3;
+use crate::math::{Vec3, cross};
 use std::collections::HashMap;
 
 /// Faces across an edge: its (up to two) opposite vertices and how many faces share it.
@@ -149,7 +149,7 @@ pub fn loop_subdivide(mesh: &TriangleMesh, levels: u32) -> TriangleMesh {
     let mut normals = vec![Vec3::ZERO; limit.len()];
     for f in idx.chunks_exact(3) {
         let [a, b, c] = [f[0] as usize, f[1] as usize, f[2] as usize];
-        let n = (limit[b] - limit[a]).cross(limit[c] - limit[a]);
+        let n = cross(limit[b] - limit[a], limit[c] - limit[a]);
         normals[a] += n;
         normals[b] += n;
         normals[c] += n;

@@ -42,7 +42,7 @@ pub use triangle::{
 };
 pub use voxels::{BRICK, VoxelGrid, Voxels, srgb8_to_linear};
 
-use crate::math::{Bounds3, Transform, Vec2, Vec3, gamma};
+use crate::math::{Bounds3, Transform, Vec2, Vec3, cross, gamma};
 use crate::ray::Ray;
 use glam::{DMat4, DVec3};
 
@@ -123,7 +123,7 @@ impl SurfaceInteraction {
         wo: Vec3,
         t: f32,
     ) -> SurfaceInteraction {
-        let mut n_obj = dpdu.cross(dpdv).normalize_or_zero();
+        let mut n_obj = cross(dpdu, dpdv).normalize_or_zero();
         if flip {
             n_obj = -n_obj;
         }

@@ -3,7 +3,7 @@
 use super::{
     Placement, ShapeHit, SurfaceInteraction, phi_of, quadric_error, quadric_hit, quadric_t,
 };
-use crate::math::{Bounds3, Vec2, Vec3, solve_quadratic};
+use crate::math::{Bounds3, Vec2, Vec3, normalize, solve_quadratic};
 use crate::ray::Ray;
 
 /// pbrt's paraboloid around the object-space z axis: its rim of radius `r` is at z = `zmax`,
@@ -113,7 +113,7 @@ impl Paraboloid {
             dpdu,
             dpdv,
             self.placement.flip_normal,
-            -ray.d.normalize(),
+            -normalize(ray.d),
             hit.t,
         )
     }

@@ -1,7 +1,7 @@
 //! The infinite plane of the course (a lancer extension to pbrt's shapes).
 
 use super::{Shading, ShapeHit, SurfaceInteraction};
-use crate::math::{Frame, Vec2, Vec3, gamma};
+use crate::math::{Frame, Vec2, Vec3, gamma, normalize};
 use crate::ray::Ray;
 use glam::DVec3;
 
@@ -66,7 +66,7 @@ impl Plane {
                 dpdu: self.frame.x,
                 dpdv: self.frame.y,
             },
-            wo: -ray.d.normalize(),
+            wo: -normalize(ray.d),
             t: hit.t,
         }
     }

@@ -6,7 +6,7 @@
 //! assumes the transform scales uniformly.
 
 use super::{Placement, Shape, TriangleMesh};
-use crate::math::{Vec2, Vec3};
+use crate::math::{Vec2, Vec3, cross};
 use crate::sampling::sample_uniform_triangle;
 
 /// A point on a shape's surface.
@@ -63,7 +63,7 @@ impl Shape {
             // Voxel grids cannot emit (Scene::build refuses them as area lights).
             Shape::Voxels(_) => 0.0,
             // A = |(p₁ − p₀) × (p₂ − p₀)| / 2.
-            Shape::Triangle(t) => 0.5 * (t.p[1] - t.p[0]).cross(t.p[2] - t.p[0]).length(),
+            Shape::Triangle(t) => 0.5 * cross(t.p[1] - t.p[0], t.p[2] - t.p[0]).length(),
             // pbrt's approximation: control polygon length × mean width.
             Shape::Curve(c) => c.area(),
             // A = ∫∫ |∂p/∂u × ∂p/∂v| du dv.
@@ -131,7 +131,7 @@ impl Shape {
                 let p = b0 * p0 + b1 * p1 + b2 * p2;
                 // The same orientation rule as Triangle::interaction.
                 let mesh = &meshes[t.mesh as usize];
-                let mut n = (p0 - p2).cross(p1 - p2).normalize_or_zero();
+                let mut n = cross(p0 - p2, p1 - p2).normalize_or_zero();
                 if !mesh.normals.is_empty() {
                     let v = mesh.vertices(t.index);
                     let ns =

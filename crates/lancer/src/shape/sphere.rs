@@ -1,7 +1,7 @@
 //! The sphere: x² + y² + z² = r², optionally cut by `zmin`/`zmax` and swept to `phimax`.
 
 use super::{Placement, ShapeHit, SurfaceInteraction, phi_of};
-use crate::math::{Bounds3, Vec2, Vec3, gamma};
+use crate::math::{Bounds3, Vec2, Vec3, gamma, normalize};
 use crate::ray::Ray;
 use glam::DVec3;
 
@@ -149,7 +149,7 @@ impl Sphere {
             dpdu,
             dpdv,
             self.placement.flip_normal,
-            -ray.d.normalize(),
+            -normalize(ray.d),
             hit.t,
         )
     }

@@ -1,7 +1,7 @@
 //! Triangles and triangle meshes: the watertight ray–triangle test.
 
 use super::{IndexedMesh, Shading, ShapeHit, SurfaceInteraction};
-use crate::math::{Bounds3, Frame, Vec2, Vec3, difference_of_products, gamma};
+use crate::math::{Bounds3, Frame, Vec2, Vec3, cross, difference_of_products, gamma, normalize};
 use crate::ray::Ray;
 
 /// A triangle mesh: shared vertices and three indices per triangle ((0,0), (1,0), (1,1) is
@@ -55,7 +55,7 @@ impl Triangle {
         let (b1, b2) = (hit.u, hit.v);
         let b0 = 1.0 - b1 - b2;
         let (dp02, dp12) = (p0 - p2, p1 - p2);
-        let mut n = dp02.cross(dp12).normalize_or_zero();
+        let mut n = cross(dp02, dp12).normalize_or_zero();
         let (mut dpdu, mut dpdv, uv_hit, degenerate);
         if mesh.uvs.is_empty() {
             // pbrt's default corners (0, 0), (1, 0), (1, 1): the general formulas below reduce
@@ -76,7 +76,7 @@ impl Triangle {
                 dpdv = (duv02.x * dp12 - duv12.x * dp02) * inv;
             }
             uv_hit = b0 * uv[0] + b1 * uv[1] + b2 * uv[2];
-            degenerate = degenerate_uv || dpdu.cross(dpdv).length_squared() == 0.0;
+            degenerate = degenerate_uv || cross(dpdu, dpdv).length_squared() == 0.0;
         }
         if degenerate {
             let f = Frame::from_z(n);
@@ -100,9 +100,9 @@ impl Triangle {
         }
         // Shading tangents: ∂p/∂u made perpendicular to the shading normal.
         let mut ss = dpdu.normalize_or_zero();
-        let mut ts = ns.cross(ss);
+        let mut ts = cross(ns, ss);
         if ts.length_squared() > 0.0 {
-            ss = ts.cross(ns);
+            ss = cross(ts, ns);
         } else {
             let f = Frame::from_z(ns);
             ss = f.x;
@@ -120,7 +120,7 @@ impl Triangle {
                 dpdu: ss,
                 dpdv: ts,
             },
-            wo: -ray.d.normalize(),
+            wo: -normalize(ray.d),
             t: hit.t,
         }
     }
@@ -149,7 +149,7 @@ pub fn intersect_triangle(ray: &Ray, p0: Vec3, p1: Vec3, p2: Vec3) -> Option<Sha
 /// True for a triangle of zero area, which no ray can hit.
 #[inline]
 pub fn is_degenerate(p0: Vec3, p1: Vec3, p2: Vec3) -> bool {
-    (p2 - p0).cross(p1 - p0).length_squared() == 0.0
+    cross(p2 - p0, p1 - p0).length_squared() == 0.0
 }
 
 /// The part of the watertight test that depends on the ray alone, computed once per ray

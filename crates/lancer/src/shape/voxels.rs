@@ -17,7 +17,7 @@
 //! A voxel grid is not an emitter: `Scene::build` refuses an area light on it.
 
 use super::{Placement, ShapeHit, SurfaceInteraction};
-use crate::math::{Bounds3, Rgb, Vec2, Vec3, gamma};
+use crate::math::{Bounds3, Rgb, Vec2, Vec3, gamma, normalize};
 use crate::ray::Ray;
 use glam::DVec3;
 use std::sync::Arc;
@@ -393,7 +393,7 @@ impl Voxels {
             Vec3::AXES[i],
             Vec3::AXES[j],
             self.placement.flip_normal,
-            -ray.d.normalize(),
+            -normalize(ray.d),
             hit.t,
         )
     }

@@ -17,7 +17,7 @@ pub use expr::SdfError;
 pub use node::{Aabb, FUNCTIONS, Node};
 
 use super::{Placement, ShapeHit, SurfaceInteraction, quadric_hit, quadric_t};
-use crate::math::{Bounds3, Vec2, Vec3, gamma};
+use crate::math::{Bounds3, Vec2, Vec3, gamma, normalize};
 use crate::ray::Ray;
 use glam::DVec3;
 use std::sync::Arc;
@@ -301,7 +301,7 @@ impl Sdf {
             dpdu.as_vec3(),
             dpdv.as_vec3(),
             self.placement.flip_normal,
-            -ray.d.normalize(),
+            -normalize(ray.d),
             hit.t,
         )
     }
