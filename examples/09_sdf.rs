@@ -124,7 +124,7 @@ pub fn shade(objects: &SdfFunction, all: &SdfFunction, o: Vec3, d: Vec3) -> Rgb 
         return Rgb::new(0.55, 0.7, 0.9) - Rgb::splat(0.3 * d.y.max(0.0));
     };
     let p = o + d * t;
-    let n = all.gradient(p.as_dvec3(), 1e-4).normalize().as_vec3();
+    let n = all.gradient(p.as_dvec3(), 1e-4).normalize().as_vec3a();
     // The nearer of the objects and the floor gives the colour.
     let albedo = if objects.eval(p.as_dvec3()) < p.y as f64 {
         Rgb::new(0.85, 0.35, 0.55)

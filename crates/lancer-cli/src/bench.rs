@@ -5,7 +5,7 @@
 use crate::cli_error::CliError;
 use clap::{Args, Subcommand};
 use lancer::accel::MeshBvh;
-use lancer::math::{Bounds3, Vec2, Vec3, normalize};
+use lancer::math::{Bounds3, PackedVec3, Vec2, Vec3, normalize};
 use lancer::ray::Ray;
 use lancer::sampling::{Pcg32, sample_uniform_sphere};
 use lancer::shape::{TriangleMesh, TriangleRay};
@@ -64,7 +64,7 @@ fn rays(args: RaysArgs) -> Result<(), CliError> {
     let mesh = load_mesh(&args.mesh)?;
     mesh.validate()
         .map_err(|m| CliError::input(format!("{}: {m}", args.mesh.display())))?;
-    let tris: Vec<[Vec3; 3]> = (0..mesh.triangle_count() as u32)
+    let tris: Vec<[PackedVec3; 3]> = (0..mesh.triangle_count() as u32)
         .map(|i| mesh.vertices(i).map(|v| mesh.positions[v]))
         .collect();
     let threads = args.threads.unwrap_or(0);
@@ -93,7 +93,7 @@ fn rays(args: RaysArgs) -> Result<(), CliError> {
     let bounds = mesh
         .positions
         .iter()
-        .fold(Bounds3::EMPTY, |b, &p| b.union_point(p));
+        .fold(Bounds3::EMPTY, |b, &p| b.union_point(p.into()));
     if bounds.is_empty() {
         return Err(CliError::input(format!(
             "{}: the mesh has no vertices",

@@ -45,8 +45,10 @@ impl SceneMemory {
             .meshes
             .iter()
             .map(|m| {
-                vec(m.positions.capacity(), size_of::<lancer::math::Vec3>())
-                    + vec(m.normals.capacity(), size_of::<lancer::math::Vec3>())
+                vec(
+                    m.positions.capacity(),
+                    size_of::<lancer::math::PackedVec3>(),
+                ) + vec(m.normals.capacity(), size_of::<lancer::math::PackedVec3>())
                     + vec(m.uvs.capacity(), size_of::<lancer::math::Vec2>())
                     + vec(m.indices.capacity(), size_of::<u32>())
             })
@@ -70,7 +72,7 @@ impl SceneMemory {
             }));
         for img in images {
             if seen.insert(std::sync::Arc::as_ptr(img)) {
-                texture_bytes += vec(img.texels.capacity(), size_of::<lancer::math::Rgb>());
+                texture_bytes += vec(img.texels.capacity(), size_of::<lancer::math::PackedRgb>());
             }
         }
         let other_bytes = vec(scene.lights.capacity(), size_of::<lancer::light::Light>())

@@ -14,7 +14,7 @@
 
 use lancer::image::Image;
 use lancer::image_io::srgb_to_linear;
-use lancer::math::Rgb;
+use lancer::math::PackedRgb;
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::fmt;
@@ -112,12 +112,12 @@ impl DecodedImage {
     pub fn float_image(&self, nearest: bool) -> Image {
         let rgb = &self.rgb;
         let texels = match (&self.alpha, nearest) {
-            (Some(a), false) => a.iter().map(|&v| Rgb::splat(v)).collect(),
-            (_, true) => rgb.texels.iter().map(|c| Rgb::splat(c.x)).collect(),
+            (Some(a), false) => a.iter().map(|&v| PackedRgb::splat(v)).collect(),
+            (_, true) => rgb.texels.iter().map(|c| PackedRgb::splat(c.x)).collect(),
             (None, false) => rgb
                 .texels
                 .iter()
-                .map(|c| Rgb::splat((c.x + c.y + c.z) / 3.0))
+                .map(|c| PackedRgb::splat((c.x + c.y + c.z) / 3.0))
                 .collect(),
         };
         Image::new(rgb.width, rgb.height, texels).expect("same size as the decoded image")
@@ -214,7 +214,7 @@ fn decode(
     })
 }
 
-type Decoded = (u32, u32, Vec<Rgb>, Option<Vec<f32>>);
+type Decoded = (u32, u32, Vec<PackedRgb>, Option<Vec<f32>>);
 
 /// Width and height from a PNG's IHDR chunk, which the format puts first.
 fn png_header_size(path: &Path, bytes: &[u8]) -> Result<(u32, u32), ImageReadError> {
@@ -279,8 +279,8 @@ fn split_channels(w: u32, h: u32, channels: usize, samples: &[f32]) -> Decoded {
     let rgb = px
         .clone()
         .map(|s| match channels {
-            1 | 2 => Rgb::splat(s[0]),
-            _ => Rgb::new(s[0], s[1], s[2]),
+            1 | 2 => PackedRgb::splat(s[0]),
+            _ => PackedRgb::new(s[0], s[1], s[2]),
         })
         .collect();
     let alpha = matches!(channels, 2 | 4).then(|| px.map(|s| s[channels - 1]).collect());
@@ -372,8 +372,8 @@ fn read_exr(path: &Path, bytes: &[u8]) -> Result<Decoded, ImageReadError> {
         .collect::<std::result::Result<_, _>>()?;
     let rgb = (0..n)
         .map(|k| match planes.len() {
-            1 => Rgb::splat(planes[0][k]),
-            _ => Rgb::new(planes[0][k], planes[1][k], planes[2][k]),
+            1 => PackedRgb::splat(planes[0][k]),
+            _ => PackedRgb::new(planes[0][k], planes[1][k], planes[2][k]),
         })
         .collect();
     let alpha = alpha.map(channel).transpose()?;

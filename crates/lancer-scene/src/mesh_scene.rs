@@ -254,7 +254,7 @@ fn scene_around(
             continue;
         }
         for &i in &part.mesh.indices {
-            let p = part.mesh.positions[i as usize];
+            let p = part.mesh.position(i as usize);
             if !p.is_finite() {
                 return Err(SceneError::general(format!(
                     "{name}: vertex {i} has a coordinate that is not a finite number"

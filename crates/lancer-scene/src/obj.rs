@@ -16,7 +16,7 @@
 //! Errors name the file and line: numbers that do not parse or are not finite, index 0, and
 //! indices out of range for the vertices the file holds.
 
-use lancer::math::{Rgb, Vec2, Vec3};
+use lancer::math::{PackedVec3, Rgb, Vec2};
 use lancer::shape::TriangleMesh;
 use std::collections::HashMap;
 use std::fmt;
@@ -63,9 +63,9 @@ struct Tri {
 /// An OBJ file as read: its vertex data and triangles, not yet turned into meshes.
 #[derive(Clone, Debug, Default)]
 pub struct ObjFile {
-    positions: Vec<Vec3>,
+    positions: Vec<PackedVec3>,
     uvs: Vec<Vec2>,
-    normals: Vec<Vec3>,
+    normals: Vec<PackedVec3>,
     tris: Vec<Tri>,
     /// Material names in the order `usemtl` first named them.
     pub material_names: Vec<String>,
@@ -213,7 +213,7 @@ pub fn parse_obj(text: &str, name: &str) -> Result<ObjFile, ObjError> {
             "v" => {
                 let [x, y, z] =
                     floats::<3>(&mut words, "a position \"v\"").map_err(|m| fail(line_no, m))?;
-                obj.positions.push(Vec3::new(x, y, z));
+                obj.positions.push(PackedVec3::new(x, y, z));
             }
             "vt" => {
                 // `v` (and `w`) may be left out; u alone means v = 0.
@@ -234,7 +234,7 @@ pub fn parse_obj(text: &str, name: &str) -> Result<ObjFile, ObjError> {
             "vn" => {
                 let [x, y, z] =
                     floats::<3>(&mut words, "a normal \"vn\"").map_err(|m| fail(line_no, m))?;
-                obj.normals.push(Vec3::new(x, y, z));
+                obj.normals.push(PackedVec3::new(x, y, z));
             }
             "f" => {
                 corners.clear();
@@ -483,7 +483,10 @@ mod tests {
     fn a_triangle_is_read_as_it_is() {
         let o = obj("# a triangle\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
         let m = o.merged_mesh();
-        assert_eq!(m.positions, vec![Vec3::ZERO, Vec3::X, Vec3::Y]);
+        assert_eq!(
+            m.positions,
+            vec![PackedVec3::ZERO, PackedVec3::X, PackedVec3::Y]
+        );
         assert_eq!(m.indices, vec![0, 1, 2]);
         assert!(m.normals.is_empty() && m.uvs.is_empty());
         assert!(m.validate().is_ok());
@@ -502,12 +505,15 @@ mod tests {
     fn negative_indices_count_back_from_the_last_read() {
         let o = obj("v 9 9 9\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n");
         let m = o.merged_mesh();
-        assert_eq!(m.positions, vec![Vec3::ZERO, Vec3::X, Vec3::Y]);
+        assert_eq!(
+            m.positions,
+            vec![PackedVec3::ZERO, PackedVec3::X, PackedVec3::Y]
+        );
         // Relative to the vertices read *so far*, not to the whole file.
         let o = obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nv 5 5 5\n");
         assert_eq!(
             o.merged_mesh().positions,
-            vec![Vec3::ZERO, Vec3::X, Vec3::Y]
+            vec![PackedVec3::ZERO, PackedVec3::X, PackedVec3::Y]
         );
     }
 
@@ -523,8 +529,8 @@ mod tests {
         assert_eq!(m.positions.len(), 6);
         assert_eq!(m.uvs.len(), 6);
         assert_eq!(m.normals.len(), 6);
-        assert_eq!(m.normals[m.indices[0] as usize], Vec3::Z);
-        assert_eq!(m.normals[m.indices[3] as usize], -Vec3::Z);
+        assert_eq!(m.normals[m.indices[0] as usize], PackedVec3::Z);
+        assert_eq!(m.normals[m.indices[3] as usize], -PackedVec3::Z);
         assert_eq!(m.uvs[m.indices[3] as usize], Vec2::new(0.5, 0.5));
 
         // v//vn: normals without uvs.
@@ -567,7 +573,7 @@ mod tests {
     #[test]
     fn continuations_and_comments() {
         let o = obj("v 0 0 0 # origin\nv 1 \\\n 0 0\nv 0 1 0\nf 1 2 \\\n3\n");
-        assert_eq!(o.merged_mesh().positions[1], Vec3::X);
+        assert_eq!(o.merged_mesh().positions[1], PackedVec3::X);
         assert_eq!(o.triangle_count(), 1);
     }
 

@@ -13,7 +13,7 @@
 //! header's word alone: before any element is read, the header's counts are checked against
 //! the bytes that follow it.
 
-use lancer::math::{Vec2, Vec3};
+use lancer::math::{PackedVec3, Vec2};
 use lancer::shape::TriangleMesh;
 use std::fmt;
 use std::io::Read;
@@ -632,7 +632,7 @@ fn read_vertices<B: Body>(
             ));
         }
         mesh.positions
-            .push(Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32));
+            .push(PackedVec3::new(v[0] as f32, v[1] as f32, v[2] as f32));
         if layout.normals {
             if !finite(&v[3..6]) {
                 return Err(format!(
@@ -641,7 +641,7 @@ fn read_vertices<B: Body>(
                 ));
             }
             mesh.normals
-                .push(Vec3::new(v[3] as f32, v[4] as f32, v[5] as f32));
+                .push(PackedVec3::new(v[3] as f32, v[4] as f32, v[5] as f32));
         }
         if layout.uvs {
             if !finite(&v[6..8]) {
@@ -848,10 +848,10 @@ end_header
         assert_eq!(
             m.positions,
             vec![
-                Vec3::new(0.0, 0.0, 0.0),
-                Vec3::new(1.0, 0.0, 0.0),
-                Vec3::new(1.0, 1.0, 0.0),
-                Vec3::new(0.0, 1.0, 0.0),
+                PackedVec3::new(0.0, 0.0, 0.0),
+                PackedVec3::new(1.0, 0.0, 0.0),
+                PackedVec3::new(1.0, 1.0, 0.0),
+                PackedVec3::new(0.0, 1.0, 0.0),
             ]
         );
         assert_eq!(m.indices, vec![0, 1, 2, 0, 2, 3]);
@@ -886,7 +886,7 @@ end_header
                  0 0 0 0 0 1 0 0\n1 0 0 0 0 1 1 0\n0 1 0 0 0 1 0.25 0.75\n3 0 1 2\n"
             );
             let m = mesh(&text);
-            assert_eq!(m.normals, vec![Vec3::Z; 3], "{u} {v}");
+            assert_eq!(m.normals, vec![PackedVec3::Z; 3], "{u} {v}");
             assert_eq!(
                 m.uvs,
                 vec![
@@ -936,9 +936,9 @@ end_header
         assert_eq!(
             m.positions,
             vec![
-                Vec3::ZERO,
-                Vec3::new(1.0, 0.0, 0.0),
-                Vec3::new(0.0, 1.0, 0.0)
+                PackedVec3::ZERO,
+                PackedVec3::new(1.0, 0.0, 0.0),
+                PackedVec3::new(0.0, 1.0, 0.0)
             ]
         );
         assert_eq!(m.indices, vec![0, 1, 2]);
@@ -1003,9 +1003,9 @@ end_header
             let m = parse_ply(&binary_square(be), "t.ply")
                 .unwrap_or_else(|e| panic!("{e}"))
                 .mesh;
-            assert_eq!(m.positions[2], Vec3::new(1.0, 1.0, 0.0), "be {be}");
-            assert_eq!(m.positions[3], Vec3::new(0.0, 1.0, 0.0), "be {be}");
-            assert_eq!(m.normals, vec![Vec3::Z; 4], "be {be}");
+            assert_eq!(m.positions[2], PackedVec3::new(1.0, 1.0, 0.0), "be {be}");
+            assert_eq!(m.positions[3], PackedVec3::new(0.0, 1.0, 0.0), "be {be}");
+            assert_eq!(m.normals, vec![PackedVec3::Z; 4], "be {be}");
             assert_eq!(m.indices, vec![0, 1, 2, 0, 2, 3], "be {be}");
         }
     }

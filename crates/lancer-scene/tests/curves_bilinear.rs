@@ -1,8 +1,8 @@
 //! pbrt-v4's `curve` and `bilinearmesh` directives: parameters and defaults as pbrt reads
 //! them, and errors at the line and column where the bad parameter is written.
 
-use glam::Vec3;
 use lancer::Scene;
+use lancer::math::Vec3;
 use lancer::scene::desc::Geometry;
 use lancer::shape::{CurveBasis, CurveType, Shape};
 use lancer_scene::{LoadedScene, load_pbrt_str};

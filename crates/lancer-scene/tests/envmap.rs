@@ -4,9 +4,9 @@
 mod common;
 
 use common::ScratchDir;
-use glam::Vec3;
 use lancer::Scene;
 use lancer::light::{EnvMapping, Light};
+use lancer::math::{PackedRgb, Vec3};
 use lancer::scene::desc::LightDesc;
 use lancer_scene::load;
 
@@ -43,7 +43,7 @@ fn infinite_lights_read_their_image() {
     };
     let image = image.as_ref().expect("an image");
     assert_eq!((image.width, image.height), (8, 8));
-    assert_eq!(image.texels[8 + 3], Vec3::new(4.0, 2.0, 1.0));
+    assert_eq!(image.texels[8 + 3], PackedRgb::new(4.0, 2.0, 1.0));
     assert_eq!(*l, Vec3::splat(2.0));
 
     // Built: an importance-sampled image light that escaping rays see.

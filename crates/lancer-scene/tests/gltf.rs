@@ -5,13 +5,12 @@
 mod common;
 
 use common::ScratchDir;
-use glam::Vec3;
 use lancer::Scene;
 use lancer::film::{Film, PixelBounds};
 use lancer::filter::Filter;
 use lancer::integrator::Integrator;
 use lancer::material::Material;
-use lancer::math::{cross, normalize};
+use lancer::math::{PackedVec3, Vec3, cross, normalize};
 use lancer::render::{RenderSettings, render};
 use lancer::scene::desc::{CameraDesc, Geometry, LightDesc, Projection, SceneDesc};
 use lancer::texture::{FloatTex, SpectrumTex};
@@ -111,7 +110,10 @@ fn triangle_and_shared_meshes_load_with_their_transforms() {
     assert_eq!(d.shapes.len(), 1);
     let m = mesh(&d, 0);
     assert_eq!(m.triangle_count(), 1);
-    assert_eq!(m.positions, [Vec3::ZERO, Vec3::X, Vec3::Y]);
+    assert_eq!(
+        m.positions,
+        [PackedVec3::ZERO, PackedVec3::X, PackedVec3::Y]
+    );
     assert_eq!(m.indices, [0, 1, 2]);
     // No light in the file: the default sky and key light.
     assert_eq!(d.lights.len(), 2);
@@ -441,7 +443,7 @@ fn texture_coordinate_test_renders_the_right_way_round() {
         .map(|i| {
             let m = mesh(&d, i);
             let t = d.shapes[i].object_to_world;
-            let ps: Vec<Vec3> = m.positions.iter().map(|&p| t.point(p)).collect();
+            let ps: Vec<Vec3> = m.positions.iter().map(|&p| t.point(p.into())).collect();
             let lo = ps.iter().fold(Vec3::INFINITY, |a, &p| a.min(p));
             let hi = ps.iter().fold(Vec3::NEG_INFINITY, |a, &p| a.max(p));
             (lo, hi)
@@ -509,21 +511,25 @@ fn texture_lookups_follow_gltf_uv_orientation() {
     let texel = |u: f32, v: f32| {
         let x = ((u * png.width as f32) as u32).min(png.width - 1);
         let y = ((v * png.height as f32) as u32).min(png.height - 1);
-        png.texels[(y * png.width + x) as usize] * Vec3::new(0.8, 0.8, 0.0)
+        Vec3::from(png.texels[(y * png.width + x) as usize]) * Vec3::new(0.8, 0.8, 0.0)
     };
     let i = (0..d.shapes.len())
         .filter(|&i| !mesh(&d, i).uvs.is_empty())
         .min_by(|&a, &b| {
             let key = |i: usize| {
                 let t = d.shapes[i].object_to_world;
-                let c = t.point(mesh(&d, i).positions[0]);
+                let c = t.point(mesh(&d, i).position(0));
                 c.x - c.y
             };
             key(a).total_cmp(&key(b))
         })
         .unwrap();
     let t = d.shapes[i].object_to_world;
-    let ps: Vec<Vec3> = mesh(&d, i).positions.iter().map(|&p| t.point(p)).collect();
+    let ps: Vec<Vec3> = mesh(&d, i)
+        .positions
+        .iter()
+        .map(|&p| t.point(p.into()))
+        .collect();
     let lo = ps.iter().fold(Vec3::INFINITY, |a, &p| a.min(p));
     let hi = ps.iter().fold(Vec3::NEG_INFINITY, |a, &p| a.max(p));
     let (mut err_right, mut err_flipped, mut n) = (0.0, 0.0, 0);
@@ -689,7 +695,7 @@ fn a_glb_reads_its_buffer_from_the_binary_chunk() {
     std::fs::write(&p, &glb).unwrap();
     let d = load_ok(&p);
     assert_eq!(mesh(&d, 0).triangle_count(), 2);
-    assert_eq!(mesh(&d, 0).positions[2], Vec3::new(1.0, 1.0, 0.0));
+    assert_eq!(mesh(&d, 0).position(2), Vec3::new(1.0, 1.0, 0.0));
     let q = d.shapes[0].object_to_world.point(Vec3::ONE);
     assert!((q - Vec3::new(1.0, 1.0, 3.0)).length() < 1e-6, "{q}");
 }
@@ -802,11 +808,14 @@ fn draco_box_decodes_to_the_unit_cube() {
             assert!((c.abs() - 0.5).abs() < 1e-3, "{p}");
         }
     }
-    let lo = m.positions.iter().fold(Vec3::INFINITY, |a, &p| a.min(p));
+    let lo = m
+        .positions
+        .iter()
+        .fold(Vec3::INFINITY, |a, &p| a.min(p.into()));
     let hi = m
         .positions
         .iter()
-        .fold(Vec3::NEG_INFINITY, |a, &p| a.max(p));
+        .fold(Vec3::NEG_INFINITY, |a, &p| a.max(p.into()));
     assert!((lo + Vec3::splat(0.5)).length() < 2e-3, "{lo}");
     assert!((hi - Vec3::splat(0.5)).length() < 2e-3, "{hi}");
     // Every corner of the cube is there (3 vertices each, one per face meeting there).
@@ -819,7 +828,7 @@ fn draco_box_decodes_to_the_unit_cube() {
         let n = m
             .positions
             .iter()
-            .filter(|p| (**p - c).length() < 2e-3)
+            .filter(|&&p| (Vec3::from(p) - c).length() < 2e-3)
             .count();
         assert_eq!(n, 3, "corner {c}");
     }
@@ -836,11 +845,11 @@ fn draco_box_decodes_to_the_unit_cube() {
     }
     let mut faces_seen = Vec::new();
     for t in m.indices.chunks_exact(3) {
-        let [a, b, c] = [0, 1, 2].map(|k| m.positions[t[k] as usize]);
+        let [a, b, c] = [0, 1, 2].map(|k| m.position(t[k] as usize));
         let geo = normalize(cross(b - a, c - a));
         let centre = (a + b + c) / 3.0;
         for &i in t {
-            assert!(m.normals[i as usize].dot(geo) > 0.99, "{t:?}");
+            assert!(m.normal(i as usize).dot(geo) > 0.99, "{t:?}");
         }
         assert!(geo.dot(centre) > 0.0, "{t:?} faces inwards");
         faces_seen.push(geo.round());

@@ -5,8 +5,8 @@
 mod common;
 
 use common::ScratchDir;
-use glam::{Vec2, Vec3};
 use lancer::image_io::srgb_to_linear;
+use lancer::math::{Vec2, Vec3};
 use lancer::texture::{
     FloatTex, FloatTexture, SpectrumTex, SpectrumTexture, TexCoord, TextureEval, WrapMode,
 };

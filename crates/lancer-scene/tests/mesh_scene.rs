@@ -5,7 +5,7 @@
 mod common;
 
 use common::ScratchDir;
-use glam::Vec3;
+use lancer::math::Vec3;
 use lancer::scene::desc::{CameraDesc, Geometry, LightDesc, Projection, SceneDesc};
 use lancer_scene::load;
 use std::path::{Path, PathBuf};
@@ -42,8 +42,8 @@ fn bounds(d: &SceneDesc) -> (Vec3, Vec3) {
             panic!("not a mesh")
         };
         for &p in &m.positions {
-            lo = lo.min(p);
-            hi = hi.max(p);
+            lo = lo.min(p.into());
+            hi = hi.max(p.into());
         }
     }
     (lo, hi)

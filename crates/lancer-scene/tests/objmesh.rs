@@ -29,8 +29,8 @@ fn objmesh_reads_the_file_beside_the_scene_as_one_mesh() {
     assert_eq!(d.shapes.len(), 1, "groups and materials merged");
     let s = &d.shapes[0];
     assert_eq!(
-        s.object_to_world.point(glam::Vec3::ZERO),
-        glam::Vec3::Z * 5.0
+        s.object_to_world.point(lancer::math::Vec3::ZERO),
+        lancer::math::Vec3::Z * 5.0
     );
     let Geometry::TriangleMesh(m) = &s.geometry else {
         panic!("not a triangle mesh: {:?}", s.geometry)

@@ -5,9 +5,8 @@
 mod common;
 
 use common::ScratchDir;
-use glam::Vec3;
 use lancer::material::Material;
-use lancer::math::normalize;
+use lancer::math::{Vec3, normalize};
 use lancer::sampling::SamplerKind;
 use lancer::scene::desc::{Geometry, IntegratorDesc, LightDesc, Projection, SceneDesc};
 use lancer::texture::SpectrumTex;

@@ -68,8 +68,8 @@ fn plymesh_reads_the_file_beside_the_scene() {
     // Like a trianglemesh: object space in the mesh, orientation and transform on the shape.
     assert!(s.reverse_orientation);
     assert_eq!(
-        s.object_to_world.point(glam::Vec3::ZERO),
-        glam::Vec3::Z * 5.0
+        s.object_to_world.point(lancer::math::Vec3::ZERO),
+        lancer::math::Vec3::Z * 5.0
     );
     let Geometry::TriangleMesh(m) = &s.geometry else {
         panic!("not a triangle mesh: {:?}", s.geometry)

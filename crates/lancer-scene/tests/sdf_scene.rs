@@ -33,8 +33,8 @@ fn sdf_shape_reaches_the_scene() {
     assert_eq!(
         *bounds,
         Some((
-            glam::Vec3::new(-5.0, -1.0, -5.0),
-            glam::Vec3::new(5.0, 1.0, 5.0)
+            lancer::math::Vec3::new(-5.0, -1.0, -5.0),
+            lancer::math::Vec3::new(5.0, 1.0, 5.0)
         ))
     );
 }

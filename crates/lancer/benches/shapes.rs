@@ -9,7 +9,7 @@
 //! actually ran (Linux's /proc/thread-self/schedstat), which stays meaningful on a busy machine.
 
 use lancer::Scene;
-use lancer::math::{Rgb, Transform, Vec3};
+use lancer::math::{PackedVec3, Rgb, Transform, Vec3};
 use lancer::ray::Ray;
 use lancer::sampling::Pcg32;
 use lancer::scene::desc::{Geometry, SceneDesc, ShapeDesc};
@@ -109,9 +109,9 @@ fn cuboid() -> Geometry {
 fn triangle() -> Geometry {
     Geometry::TriangleMesh(Arc::new(TriangleMesh {
         positions: vec![
-            Vec3::new(-0.5, -0.4, 0.0),
-            Vec3::new(0.5, -0.4, 0.0),
-            Vec3::new(0.0, 0.6, 0.0),
+            PackedVec3::new(-0.5, -0.4, 0.0),
+            PackedVec3::new(0.5, -0.4, 0.0),
+            PackedVec3::new(0.0, 0.6, 0.0),
         ],
         indices: vec![0, 1, 2],
         ..TriangleMesh::default()
@@ -122,10 +122,10 @@ fn triangle() -> Geometry {
 fn bilinear_patch() -> Geometry {
     Geometry::BilinearMesh(Arc::new(BilinearMesh {
         positions: vec![
-            Vec3::new(-0.5, -0.5, 0.2),
-            Vec3::new(0.5, -0.5, -0.2),
-            Vec3::new(-0.5, 0.5, -0.2),
-            Vec3::new(0.5, 0.5, 0.2),
+            PackedVec3::new(-0.5, -0.5, 0.2),
+            PackedVec3::new(0.5, -0.5, -0.2),
+            PackedVec3::new(-0.5, 0.5, -0.2),
+            PackedVec3::new(0.5, 0.5, 0.2),
         ],
         indices: vec![0, 1, 2, 3],
         ..BilinearMesh::default()
@@ -137,10 +137,10 @@ fn bilinear_patch() -> Geometry {
 fn curve() -> Geometry {
     Geometry::Curve(Arc::new(CurveDesc {
         points: vec![
-            Vec3::new(0.0, -0.5, 0.0),
-            Vec3::new(0.3, -0.1, 0.1),
-            Vec3::new(-0.3, 0.2, -0.1),
-            Vec3::new(0.1, 0.5, 0.0),
+            PackedVec3::new(0.0, -0.5, 0.0),
+            PackedVec3::new(0.3, -0.1, 0.1),
+            PackedVec3::new(-0.3, 0.2, -0.1),
+            PackedVec3::new(0.1, 0.5, 0.0),
         ],
         basis: CurveBasis::Bezier,
         degree: 3,

@@ -72,7 +72,9 @@ impl Camera {
     /// a uniform sample for the lens.
     #[inline]
     pub fn generate_ray(&self, p_film: Vec2, p_lens: Vec2) -> Ray {
-        let p_camera = self.camera_from_raster.point(p_film.extend(0.0));
+        let p_camera = self
+            .camera_from_raster
+            .point(Vec3::new(p_film.x, p_film.y, 0.0));
         let mut ray = if self.perspective {
             Ray::new(Vec3::ZERO, normalize(p_camera))
         } else {

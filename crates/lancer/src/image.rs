@@ -1,6 +1,6 @@
 //! In-memory images: linear float texels, for textures and environment maps.
 
-use crate::math::{Rgb, Vec2};
+use crate::math::{PackedRgb, Rgb, Vec2};
 use crate::texture::WrapMode;
 
 /// A linear RGB image, row 0 at the top, stored row-major as `width × height` texels.
@@ -10,13 +10,13 @@ pub struct Image {
     pub width: u32,
     /// Height in texels.
     pub height: u32,
-    /// Texels, `y·width + x`.
-    pub texels: Vec<Rgb>,
+    /// Texels, `y·width + x` (packed: 12 bytes a texel).
+    pub texels: Vec<PackedRgb>,
 }
 
 impl Image {
     /// An image from its texels; `None` if the sizes disagree or the image is empty.
-    pub fn new(width: u32, height: u32, texels: Vec<Rgb>) -> Option<Image> {
+    pub fn new(width: u32, height: u32, texels: Vec<PackedRgb>) -> Option<Image> {
         (width > 0 && height > 0 && texels.len() == width as usize * height as usize).then_some(
             Image {
                 width,
@@ -47,7 +47,7 @@ impl Image {
             }
             // Further than one image away (or a 1-texel side) only clamping makes sense.
             let (x, y) = (x.clamp(0, w - 1), y.clamp(0, h - 1));
-            return self.texels[(y * w + x) as usize];
+            return self.texels[(y * w + x) as usize].into();
         }
         let fix = |v: i64, n: i64| -> Option<i64> {
             match wrap {
@@ -62,7 +62,7 @@ impl Image {
             }
         };
         match (fix(x, w), fix(y, h)) {
-            (Some(x), Some(y)) => self.texels[(y * w + x) as usize],
+            (Some(x), Some(y)) => self.texels[(y * w + x) as usize].into(),
             _ => Rgb::ZERO,
         }
     }
@@ -96,7 +96,7 @@ mod tests {
     /// A 3×3 image whose texel (x, y) holds (x, y, 0).
     fn grid() -> Image {
         let texels = (0..9)
-            .map(|i| Rgb::new((i % 3) as f32, (i / 3) as f32, 0.0))
+            .map(|i| PackedRgb::new((i % 3) as f32, (i / 3) as f32, 0.0))
             .collect();
         Image::new(3, 3, texels).unwrap()
     }

@@ -4,7 +4,7 @@
 
 use lancer::Scene;
 use lancer::light::{Light, LightSampleContext};
-use lancer::math::{Rgb, Transform, Vec2, Vec3};
+use lancer::math::{PackedVec3, Rgb, Transform, Vec2, Vec3};
 use lancer::ray::Ray;
 use lancer::scene::desc::{AreaLightDesc, Geometry, SceneDesc, ShapeDesc};
 use lancer::shape::TriangleMesh;
@@ -48,10 +48,10 @@ fn all_shapes() -> Vec<ShapeDesc> {
         * Transform::rotate(30.0, Vec3::new(1.0, 1.0, 0.0)).unwrap();
     let quad = TriangleMesh {
         positions: vec![
-            Vec3::new(-1.0, -1.0, 0.0),
-            Vec3::new(1.0, -1.0, 0.0),
-            Vec3::new(1.0, 1.0, 0.0),
-            Vec3::new(-1.0, 1.0, 0.0),
+            PackedVec3::new(-1.0, -1.0, 0.0),
+            PackedVec3::new(1.0, -1.0, 0.0),
+            PackedVec3::new(1.0, 1.0, 0.0),
+            PackedVec3::new(-1.0, 1.0, 0.0),
         ],
         normals: vec![],
         uvs: vec![],
@@ -59,7 +59,7 @@ fn all_shapes() -> Vec<ShapeDesc> {
         flip_normal: false,
     };
     let mut with_normals = quad.clone();
-    with_normals.normals = vec![Vec3::new(0.0, 0.0, -1.0); 4];
+    with_normals.normals = vec![PackedVec3::new(0.0, 0.0, -1.0); 4];
     let mut out = Vec::new();
     for (xf, reverse) in [
         (Transform::IDENTITY, false),

@@ -9,7 +9,7 @@ use common::shapes::uniform3;
 
 use common::chi2::{chi2_survival, pooled_chi2, sidak};
 use lancer::Scene;
-use lancer::math::{Transform, Vec2, Vec3, cross, normalize};
+use lancer::math::{PackedVec3, Transform, Vec2, Vec3, cross, normalize};
 use lancer::ray::Ray;
 use lancer::sampling::Pcg32;
 use lancer::scene::desc::Geometry;
@@ -78,8 +78,8 @@ fn patches() -> Vec<(&'static str, [Vec3; 4])> {
 
 fn mesh(p: [Vec3; 4], normals: Vec<Vec3>) -> BilinearMesh {
     BilinearMesh {
-        positions: p.to_vec(),
-        normals,
+        positions: p.map(PackedVec3::from).to_vec(),
+        normals: normals.into_iter().map(PackedVec3::from).collect(),
         uvs: vec![],
         indices: vec![0, 1, 2, 3],
         flip_normal: false,
@@ -174,7 +174,7 @@ fn hits_satisfy_the_patch_equation_and_normals_are_the_cross_product() {
             let (_, du, dv) = eval(&p, u, v);
             let n = du.cross(dv);
             if n.length() > 1e-3 {
-                let n = n.normalize().as_vec3();
+                let n = n.normalize().as_vec3a();
                 assert!((si.n - n).length() < 1e-3, "{name} {i}: n {} vs {n}", si.n);
             }
         }
@@ -271,7 +271,7 @@ fn normals_follow_pbrts_orientation_rules() {
     let plain = n_of(mesh(p, vec![]), Transform::IDENTITY, false);
     let (u, v, _) = invert(&p, plain.p);
     let (_, du, dv) = eval(&p, u, v);
-    let want = du.cross(dv).normalize().as_vec3();
+    let want = du.cross(dv).normalize().as_vec3a();
     assert!((plain.n - want).length() < 1e-4);
     let rev = n_of(mesh(p, vec![]), Transform::IDENTITY, true);
     assert!((rev.n + want).length() < 1e-4, "reverse orientation flips");

@@ -19,7 +19,7 @@ use lancer::material::{
     DiffuseBxdf, DiffuseTransmissionBxdf, ThinDielectricBxdf, TransportMode, TrowbridgeReitz,
     fresnel_complex, fresnel_dielectric,
 };
-use lancer::math::{Rgb, Vec2, Vec3, normalize};
+use lancer::math::{PackedRgb, Rgb, Vec2, Vec3, normalize};
 use lancer::sampling::Pcg32;
 use std::f64::consts::PI;
 
@@ -93,8 +93,8 @@ fn diffuse(r: f32) -> BxDF {
 fn conductor(ax: f32, ay: f32, eta: Rgb, k: Rgb) -> BxDF {
     BxDF::Conductor(ConductorBxdf {
         distrib: TrowbridgeReitz::new(ax, ay),
-        eta,
-        k,
+        eta: eta.into(),
+        k: k.into(),
     })
 }
 
@@ -122,8 +122,8 @@ fn dielectric(eta: f32, ax: f32, ay: f32) -> BxDF {
 
 fn diffuse_transmission(r: f32, t: f32) -> BxDF {
     BxDF::DiffuseTransmission(DiffuseTransmissionBxdf {
-        r: Rgb::splat(r),
-        t: Rgb::splat(t),
+        r: PackedRgb::splat(r),
+        t: PackedRgb::splat(t),
     })
 }
 
@@ -133,7 +133,9 @@ fn coated_diffuse(r: f32, alpha: f32, thickness: f32, max_depth: u32, n_samples:
             eta: 1.5,
             distrib: TrowbridgeReitz::new(alpha, alpha),
         },
-        DiffuseBxdf { r: Rgb::splat(r) },
+        DiffuseBxdf {
+            r: PackedRgb::splat(r),
+        },
         thickness,
         Rgb::ZERO,
         0.0,
@@ -150,8 +152,8 @@ fn coated_conductor(alpha_top: f32, alpha_bottom: f32, albedo: f32, g: f32) -> B
         },
         ConductorBxdf {
             distrib: TrowbridgeReitz::new(alpha_bottom, alpha_bottom),
-            eta: Rgb::new(0.2, 0.9, 1.1) / 1.5,
-            k: Rgb::new(3.9, 2.4, 1.6) / 1.5,
+            eta: PackedRgb::new(0.2, 0.9, 1.1) / 1.5,
+            k: PackedRgb::new(3.9, 2.4, 1.6) / 1.5,
         },
         0.01,
         Rgb::splat(albedo),
@@ -785,8 +787,8 @@ fn smooth_coatings_sample_what_they_evaluate() {
             },
             ConductorBxdf {
                 distrib: TrowbridgeReitz::new(bottom_alpha, bottom_alpha),
-                eta: Rgb::splat(0.2),
-                k: Rgb::splat(3.0),
+                eta: PackedRgb::splat(0.2),
+                k: PackedRgb::splat(3.0),
             },
             thickness,
             Rgb::splat(albedo),

@@ -5,7 +5,7 @@
 //! must reproduce exactly. A scene mixing every kind of shape is checked the same way.
 
 use lancer::accel::MeshBvh;
-use lancer::math::{Transform, Vec3};
+use lancer::math::{PackedVec3, Transform, Vec3};
 use lancer::ray::Ray;
 use lancer::sampling::Pcg32;
 use lancer::scene::desc::{Geometry, ShapeDesc};
@@ -87,7 +87,8 @@ fn mesh_bvh_equals_brute_force() {
     let (mut hits, mut rays) = (0, 0);
     for case in 0..600 {
         let tris = random_mesh(&mut rng, case);
-        let bvh = MeshBvh::build(&tris);
+        let packed: Vec<[PackedVec3; 3]> = tris.iter().map(|t| t.map(PackedVec3::from)).collect();
+        let bvh = MeshBvh::build(&packed);
         for _ in 0..40 {
             let ray = random_ray(&mut rng);
             let pre = TriangleRay::new(&ray);
@@ -190,7 +191,7 @@ fn mixed_scene(rng: &mut Pcg32) -> SceneDesc {
                 let tris = random_mesh(rng, 0);
                 let tris = &tris[..tris.len().min(20)];
                 Geometry::TriangleMesh(std::sync::Arc::new(TriangleMesh {
-                    positions: tris.iter().flatten().map(|p| *p * 0.3).collect(),
+                    positions: tris.iter().flatten().map(|p| (*p * 0.3).into()).collect(),
                     indices: (0..3 * tris.len() as u32).collect(),
                     ..TriangleMesh::default()
                 }))

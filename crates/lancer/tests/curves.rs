@@ -7,7 +7,7 @@ mod common;
 use common::shapes::uniform3;
 
 use lancer::Scene;
-use lancer::math::{Transform, Vec3, cross, normalize};
+use lancer::math::{PackedVec3, Transform, Vec3, cross, normalize};
 use lancer::ray::Ray;
 use lancer::sampling::Pcg32;
 use lancer::scene::desc::{AreaLightDesc, Geometry, SceneDesc, ShapeDesc};
@@ -22,14 +22,16 @@ fn scene_of(curve: CurveDesc, to_world: Transform) -> Scene {
 /// along the axis).
 fn straight(a: Vec3, b: Vec3, kind: CurveType, w0: f32, w1: f32) -> CurveDesc {
     CurveDesc {
-        points: vec![a, a.lerp(b, 1.0 / 3.0), a.lerp(b, 2.0 / 3.0), b],
+        points: [a, a.lerp(b, 1.0 / 3.0), a.lerp(b, 2.0 / 3.0), b]
+            .map(PackedVec3::from)
+            .to_vec(),
         basis: CurveBasis::Bezier,
         degree: 3,
         kind,
         width0: w0,
         width1: w1,
         normals: if kind == CurveType::Ribbon {
-            vec![Vec3::Z, Vec3::Z]
+            vec![PackedVec3::Z, PackedVec3::Z]
         } else {
             vec![]
         },
@@ -190,7 +192,7 @@ fn a_bent_curve_agrees_with_its_sampled_spine() {
     let (w0, w1) = (0.3f32, 0.05f32);
     for kind in [CurveType::Cylinder, CurveType::Flat] {
         let desc = CurveDesc {
-            points: cp.to_vec(),
+            points: cp.map(PackedVec3::from).to_vec(),
             basis: CurveBasis::Bezier,
             degree: 3,
             kind,

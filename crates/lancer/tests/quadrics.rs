@@ -620,8 +620,8 @@ fn rays_outside_the_cuts_miss() {
         let scene = scene_of(g, Transform::IDENTITY, false);
         let n = grad.normalize();
         for side in [1.0, -1.0] {
-            let o = (p + 0.3 * side * n).as_vec3();
-            let ray = Ray::new(o, p.as_vec3() - o);
+            let o = (p + 0.3 * side * n).as_vec3a();
+            let ray = Ray::new(o, p.as_vec3a() - o);
             if let Some(h) = scene.intersect(&ray) {
                 assert!(
                     (h.si.p.as_dvec3() - p).length() > 1e-2,

@@ -9,7 +9,7 @@ use common::chi2::*;
 use lancer::Scene;
 use lancer::image::Image;
 use lancer::light::{Light, LightSampleContext};
-use lancer::math::{Rgb, Transform, Vec2, Vec3, normalize};
+use lancer::math::{PackedRgb, PackedVec3, Rgb, Transform, Vec2, Vec3, normalize};
 use lancer::ray::Ray;
 use lancer::sampling::{
     Pcg32, PiecewiseConstant2D, cosine_hemisphere_pdf, equal_area_square_to_sphere,
@@ -287,10 +287,10 @@ fn scene_with(shapes: Vec<ShapeDesc>) -> SceneDesc {
 fn chi2_area_lights() {
     let quad = TriangleMesh {
         positions: vec![
-            Vec3::new(-1.0, -0.5, 1.0),
-            Vec3::new(1.5, -0.5, 1.2),
-            Vec3::new(1.0, 1.0, 0.8),
-            Vec3::new(-1.2, 1.0, 0.6),
+            PackedVec3::new(-1.0, -0.5, 1.0),
+            PackedVec3::new(1.5, -0.5, 1.2),
+            PackedVec3::new(1.0, 1.0, 0.8),
+            PackedVec3::new(-1.2, 1.0, 0.6),
         ],
         normals: vec![],
         uvs: vec![],
@@ -382,7 +382,7 @@ fn sky_image(w: u32, h: u32) -> Arc<Image> {
             if x > 0.85 && y > 0.8 {
                 c = Rgb::ZERO;
             }
-            c
+            PackedRgb::from(c)
         })
         .collect();
     Arc::new(Image::new(w, h, texels).unwrap())

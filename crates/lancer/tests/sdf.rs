@@ -335,11 +335,11 @@ fn rays(n: usize, seed: u64, c: Vec3, r: f32) -> Vec<Ray> {
     let mut rng = Pcg32::new(seed, 0);
     (0..n)
         .map(|i| {
-            let target = c + rnd_point(&mut rng, r as f64).as_vec3();
+            let target = c + rnd_point(&mut rng, r as f64).as_vec3a();
             let o = if i % 5 == 0 {
-                c + rnd_point(&mut rng, 0.2 * r as f64).as_vec3()
+                c + rnd_point(&mut rng, 0.2 * r as f64).as_vec3a()
             } else {
-                c + rnd_dir(&mut rng).as_vec3() * rnd(&mut rng, 3.0, 6.0) as f32 * r
+                c + rnd_dir(&mut rng).as_vec3a() * rnd(&mut rng, 3.0, 6.0) as f32 * r
             };
             let mut ray = Ray::new(o, (target - o) * rnd(&mut rng, 0.3, 2.0) as f32);
             if i % 7 == 0 {
@@ -384,7 +384,7 @@ fn compare_with(
                 let si = sdf.interaction(ray, &h, &[]);
                 // The implicit function's gradient at the shape's own hit point.
                 let p_obj = pl.to_object.transform_point3(si.p.as_dvec3());
-                let n = (normal_to_world * gradient(p_obj)).normalize().as_vec3();
+                let n = (normal_to_world * gradient(p_obj)).normalize().as_vec3a();
                 let d = normalize(ray.d);
                 let cos = n.dot(d).abs().max(1e-3) as f64;
                 let dist = t * ray.d.length() as f64;
@@ -573,9 +573,9 @@ fn rays_leaving_the_surface_do_not_find_it_again() {
             }
             // Outward: a convex solid is never met again; any solid is not met at t ≈ 0.
             // Directions at least 11° off the tangent plane, so that inward chords are long.
-            let mut w = rnd_dir(&mut rng).as_vec3();
+            let mut w = rnd_dir(&mut rng).as_vec3a();
             while w.dot(si.n).abs() < 0.2 {
-                w = rnd_dir(&mut rng).as_vec3();
+                w = rnd_dir(&mut rng).as_vec3a();
             }
             if w.dot(si.n) < 0.0 {
                 w = -w;

@@ -91,7 +91,7 @@ fn map_texels(d: &DecodedImage, f: impl Fn(Rgb, f32) -> Rgb) -> Image {
         .texels
         .iter()
         .enumerate()
-        .map(|(i, &c)| f(c, d.alpha.as_ref().map_or(1.0, |a| a[i])))
+        .map(|(i, &c)| f(c.into(), d.alpha.as_ref().map_or(1.0, |a| a[i])).into())
         .collect();
     Image::new(d.rgb.width, d.rgb.height, texels).expect("same size as the decoded image")
 }
@@ -339,7 +339,12 @@ impl GltfLoader<'_> {
             let what = format!("{label} emissiveTexture");
             let (img, _) = self.texture(&info, &what, Encoding::Srgb)?;
             let n = img.rgb.texels.len().max(1) as f32;
-            let mean = img.rgb.texels.iter().fold(Rgb::ZERO, |s, &c| s + c) / n;
+            let mean = img
+                .rgb
+                .texels
+                .iter()
+                .fold(Rgb::ZERO, |s, &c| s + Rgb::from(c))
+                / n;
             emission *= mean;
             self.warn(format!(
                 "{what}: lancer's area lights are uniform; the texture's mean colour is used"

@@ -54,7 +54,7 @@ use crate::mesh_scene::{default_lights, defaults, framing_camera};
 use ::gltf::Document;
 use ::gltf::mesh::{Mode, Semantic};
 use lancer::material::Material;
-use lancer::math::{Mat4, Rgb, Transform, Vec2, Vec3, Vec4};
+use lancer::math::{Mat4, PackedVec3, Rgb, Transform, Vec2, Vec3, Vec4};
 use lancer::scene::desc::{
     AreaLightDesc, CameraDesc, FilmDesc, Geometry, IntegratorDesc, LightDesc, Projection,
     SceneDesc, ShapeDesc,
@@ -321,7 +321,7 @@ impl GltfLoader<'_> {
             };
             let Some(tri) = tri else { continue };
             for p in &tri.positions {
-                let w = world.transform_point3(*p);
+                let w = world.transform_point3a((*p).into());
                 self.lo = self.lo.min(w);
                 self.hi = self.hi.max(w);
             }
@@ -385,12 +385,12 @@ impl GltfLoader<'_> {
             return Ok(None);
         };
         // The decoded arrays are moved out, not copied.
-        let positions: Vec<Vec3> = match decoded.as_mut() {
+        let positions: Vec<PackedVec3> = match decoded.as_mut() {
             Some(d) => std::mem::take(&mut d.positions),
             None => data::read_vecs::<3>(&self.buffers, &pos).map_err(e)?,
         }
         .into_iter()
-        .map(Vec3::from)
+        .map(PackedVec3::from)
         .collect();
         if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
             return Err(e(format!(
@@ -414,8 +414,8 @@ impl GltfLoader<'_> {
         };
         let normals = match raw_normals {
             Some(raw) => {
-                let v: Vec<Vec3> = raw.into_iter().map(Vec3::from).collect();
-                if v.len() != n || v.iter().any(|v| !v.is_finite() || *v == Vec3::ZERO) {
+                let v: Vec<PackedVec3> = raw.into_iter().map(PackedVec3::from).collect();
+                if v.len() != n || v.iter().any(|v| !v.is_finite() || *v == PackedVec3::ZERO) {
                     self.warn(format!(
                         "{label}: NORMAL has a wrong count or zero or non-finite normals; the flat normals are used"
                     ));
@@ -545,8 +545,8 @@ impl GltfLoader<'_> {
     /// node's origin and shines down the node's −z axis.
     fn place_light(&mut self, light: &::gltf::khr_lights_punctual::Light, world: Mat4) {
         use ::gltf::khr_lights_punctual::Kind;
-        let from = world.w_axis.truncate();
-        let dir = (-world.z_axis.truncate()).normalize_or_zero();
+        let from = Vec3::from_vec4(world.w_axis);
+        let dir = Vec3::from_vec4(-world.z_axis).normalize_or_zero();
         // cd → W/sr and lux → W/m²: divide by 683 lm/W.
         let power = Rgb::from(light.color()) * (light.intensity() / LUMENS_PER_WATT);
         if !power.is_finite() || dir == Vec3::ZERO {

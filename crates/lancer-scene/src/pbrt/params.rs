@@ -7,7 +7,7 @@
 
 use super::parser::SearchPath;
 use crate::error::{Location, SceneError, Warning};
-use lancer::math::{Rgb, Vec2, Vec3};
+use lancer::math::{PackedVec3, Rgb, Vec2, Vec3};
 use lancer::spectrum::{Spectrum, SpectrumKind, parse_spd, spectrum_to_rgb};
 use std::cell::Cell;
 
@@ -497,11 +497,16 @@ impl ParamList {
             }))
     }
 
-    fn vec3s(&self, name: &str, types: &[ParamType]) -> Result<Option<Vec<Vec3>>, SceneError> {
+    /// Triples, packed: meshes keep them as their vertex arrays.
+    fn vec3s(
+        &self,
+        name: &str,
+        types: &[ParamType],
+    ) -> Result<Option<Vec<PackedVec3>>, SceneError> {
         Ok(self.find(name, types)?.map(|p| {
             p.numbers()
                 .chunks_exact(3)
-                .map(|c| Vec3::new(c[0], c[1], c[2]))
+                .map(|c| PackedVec3::new(c[0], c[1], c[2]))
                 .collect()
         }))
     }
@@ -509,7 +514,7 @@ impl ParamList {
     fn one_vec3(&self, name: &str, types: &[ParamType]) -> Result<Option<Vec3>, SceneError> {
         match self.vec3s(name, types)? {
             None => Ok(None),
-            Some(v) if v.len() == 1 => Ok(Some(v[0])),
+            Some(v) if v.len() == 1 => Ok(Some(v[0].into())),
             Some(v) => {
                 let p = self.find(name, types)?.expect("given");
                 Err(p.error(format!(
@@ -535,13 +540,13 @@ impl ParamList {
             .unwrap_or(default))
     }
 
-    /// `point3` values.
-    pub fn point3s(&self, name: &str) -> Result<Option<Vec<Vec3>>, SceneError> {
+    /// `point3` values (packed).
+    pub fn point3s(&self, name: &str) -> Result<Option<Vec<PackedVec3>>, SceneError> {
         self.vec3s(name, &[ParamType::Point3])
     }
 
-    /// `normal` values.
-    pub fn normals(&self, name: &str) -> Result<Option<Vec<Vec3>>, SceneError> {
+    /// `normal` values (packed).
+    pub fn normals(&self, name: &str) -> Result<Option<Vec<PackedVec3>>, SceneError> {
         self.vec3s(name, &[ParamType::Normal])
     }
 

@@ -128,8 +128,8 @@ impl Box4 {
     }
     fn bounds3(&self) -> Bounds3 {
         Bounds3 {
-            min: self.lo.truncate(),
-            max: self.hi.truncate(),
+            min: Vec3::from_vec4(self.lo),
+            max: Vec3::from_vec4(self.hi),
         }
     }
 }

@@ -2,7 +2,7 @@
 //! accelerator of `lancer bench rays` and of instanced objects.
 
 use super::{Bvh, Tri4};
-use crate::math::{Bounds3, Vec3};
+use crate::math::{Bounds3, PackedVec3, Vec3};
 use crate::ray::Ray;
 use crate::shape::{ShapeHit, TriangleRay, is_degenerate};
 use rayon::prelude::*;
@@ -19,17 +19,17 @@ pub struct MeshBvh {
 
 impl MeshBvh {
     /// Builds the tree over `tris` (in parallel on the current rayon pool).
-    pub fn build(tris: &[[Vec3; 3]]) -> MeshBvh {
+    pub fn build(tris: &[[PackedVec3; 3]]) -> MeshBvh {
         let kept: Vec<u32> = (0..tris.len() as u32)
             .filter(|&i| {
-                let [a, b, c] = tris[i as usize];
+                let [a, b, c] = tris[i as usize].map(Vec3::from);
                 !is_degenerate(a, b, c)
             })
             .collect();
         let bounds: Vec<Bounds3> = kept
             .par_iter()
             .map(|&i| {
-                let [a, b, c] = tris[i as usize];
+                let [a, b, c] = tris[i as usize].map(Vec3::from);
                 Bounds3::from_point(a).union_point(b).union_point(c)
             })
             .collect();
@@ -37,7 +37,7 @@ impl MeshBvh {
         let packets = (0..bvh.leaf_count() as u32)
             .into_par_iter()
             .map(|leaf| {
-                let mut lanes = [([Vec3::ZERO; 3], 0u32); 4];
+                let mut lanes = [([PackedVec3::ZERO; 3], 0u32); 4];
                 let range = bvh.leaf_range(leaf);
                 let n = range.len();
                 for (lane, k) in range.enumerate() {

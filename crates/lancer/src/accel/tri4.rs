@@ -7,7 +7,7 @@
 //! precision, are handed to the scalar test itself.
 
 use super::simd::{F4, M4};
-use crate::math::{Vec3, gamma};
+use crate::math::{PackedVec3, Vec3, gamma};
 use crate::ray::Ray;
 use crate::shape::{ShapeHit, TriangleRay, intersect_triangle_with};
 
@@ -22,7 +22,7 @@ pub struct Tri4 {
 
 impl Tri4 {
     /// A packet of up to four triangles `(vertices, id)`; ids must not be `u32::MAX`.
-    pub fn new(tris: &[([Vec3; 3], u32)]) -> Tri4 {
+    pub fn new(tris: &[([PackedVec3; 3], u32)]) -> Tri4 {
         let mut t = Tri4 {
             p: [[[0.0; 4]; 3]; 3],
             ids: [u32::MAX; 4],

@@ -209,7 +209,7 @@ pub(crate) fn emitted(
     lambda: Option<&SampledWavelengths>,
 ) -> Rgb {
     match scene.prims[hit.prim as usize].emission {
-        Some(e) if e.two_sided || hit.si.n.dot(wo) > 0.0 => illuminant_at(lambda, e.l),
+        Some(e) if e.two_sided || hit.si.n.dot(wo) > 0.0 => illuminant_at(lambda, e.l.into()),
         _ => Rgb::ZERO,
     }
 }

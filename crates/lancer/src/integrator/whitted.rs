@@ -76,7 +76,7 @@ pub fn li(
             // The course's recursion follows perfect mirrors and refractions only; rough
             // interfaces are lit directly above and nothing more.
             BxDF::Conductor(c) if c.distrib.effectively_smooth() => {
-                let f = fresnel_complex(wo_l.z.abs(), c.eta, c.k);
+                let f = fresnel_complex(wo_l.z.abs(), c.eta.into(), c.k.into());
                 l += f * li(
                     scene,
                     &si.spawn_ray(reflect(wo)),

@@ -111,7 +111,7 @@ impl EnvMapping {
                 if dir.z <= 0.0 {
                     continue;
                 }
-                let c = image.texels[(y * w + x) as usize];
+                let c = Rgb::from(image.texels[(y * w + x) as usize]);
                 sum += (luminance(c) * dir.z) as f64 * domega;
             }
         }
@@ -167,7 +167,7 @@ impl ImageInfiniteLight {
                 EnvMapping::LatLong => (PI * (y as f32 + 0.5) / h as f32).sin(),
             };
             for x in 0..w {
-                let c = image.texels[(y * w + x) as usize];
+                let c = Rgb::from(image.texels[(y * w + x) as usize]);
                 // pbrt-v4 weighs each texel by its channel average.
                 weights.push((c.x + c.y + c.z) / 3.0 * sin_theta);
                 let l = (c.max(Rgb::ZERO) * scale).max(Rgb::ZERO);
@@ -199,7 +199,7 @@ impl ImageInfiniteLight {
         let (w, h) = (self.image.width, self.image.height);
         let x = ((uv.x * w as f32) as u32).min(w - 1);
         let y = ((uv.y * h as f32) as u32).min(h - 1);
-        self.image.texels[(y * w + x) as usize].max(Rgb::ZERO) * self.scale
+        Rgb::from(self.image.texels[(y * w + x) as usize]).max(Rgb::ZERO) * self.scale
     }
 
     /// The unit light-space direction of a world direction (zero if `d` is).
@@ -263,6 +263,7 @@ impl ImageInfiniteLight {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::PackedRgb;
     use crate::sampling::{hash_u64, u32_to_unit_f32};
 
     fn rand2(i: u64, seed: u64) -> Vec2 {
@@ -299,7 +300,7 @@ mod tests {
         let l = Rgb::new(0.5, 0.7, 0.9);
         let scale = Rgb::splat(2.0);
         for (w, h) in [(16, 16), (32, 16)] {
-            let image = Arc::new(Image::new(w, h, vec![l; (w * h) as usize]).unwrap());
+            let image = Arc::new(Image::new(w, h, vec![l.into(); (w * h) as usize]).unwrap());
             let light = ImageInfiniteLight::new(rotated(), image, scale, 1.0).unwrap();
             let e = irradiance(&light, 100_000);
             let want = PI * l * scale;
@@ -320,7 +321,7 @@ mod tests {
             // pbrt-v4's illuminance convention: half the true π for L = 1 (up to the texel
             // centres' discretisation).
             let (w, h) = (4 * w, 4 * h);
-            let one = Image::new(w, h, vec![Rgb::ONE; (w * h) as usize]).unwrap();
+            let one = Image::new(w, h, vec![PackedRgb::ONE; (w * h) as usize]).unwrap();
             let e_pbrt = light.mapping().pbrt_illuminance(&one);
             assert!((e_pbrt - PI / 2.0).abs() < 0.005 * PI, "{w}×{h}: {e_pbrt}");
         }
@@ -331,7 +332,13 @@ mod tests {
         // Lat-long, top half 1 and bottom half 0: E(+z) = π exactly, and nothing from below.
         let (w, h) = (64u32, 32u32);
         let texels = (0..w * h)
-            .map(|i| if i / w < h / 2 { Rgb::ONE } else { Rgb::ZERO })
+            .map(|i| {
+                if i / w < h / 2 {
+                    PackedRgb::ONE
+                } else {
+                    PackedRgb::ZERO
+                }
+            })
             .collect();
         let image = Arc::new(Image::new(w, h, texels).unwrap());
         let light = ImageInfiniteLight::new(Transform::IDENTITY, image, Rgb::ONE, 1.0).unwrap();
@@ -356,8 +363,8 @@ mod tests {
     fn equal_area_texels_are_where_pbrt_puts_them() {
         // A 4×4 equal-area image with one lit texel at column 2, row 1: pbrt-v4 reads texel
         // (x, y) = (⌊u·w⌋, ⌊v·h⌋) at (u, v) = EqualAreaSphereToSquare(ω), no flip.
-        let mut texels = vec![Rgb::ZERO; 16];
-        texels[4 + 2] = Rgb::ONE;
+        let mut texels = vec![PackedRgb::ZERO; 16];
+        texels[4 + 2] = PackedRgb::ONE;
         let image = Arc::new(Image::new(4, 4, texels).unwrap());
         let light = ImageInfiniteLight::new(Transform::IDENTITY, image, Rgb::ONE, 1.0).unwrap();
         let centre = equal_area_square_to_sphere(Vec2::new(2.5 / 4.0, 1.5 / 4.0));
@@ -378,7 +385,7 @@ mod tests {
     #[test]
     fn bad_images_are_refused() {
         let image = |w: u32, h: u32, v: f32| {
-            Arc::new(Image::new(w, h, vec![Rgb::splat(v); (w * h) as usize]).unwrap())
+            Arc::new(Image::new(w, h, vec![PackedRgb::splat(v); (w * h) as usize]).unwrap())
         };
         assert!(
             ImageInfiniteLight::new(Transform::IDENTITY, image(3, 2, 1.0), Rgb::ONE, 1.0).is_err()

@@ -9,7 +9,7 @@ mod image_infinite;
 pub use distribution::LightDistribution;
 pub use image_infinite::{EnvMapping, ImageInfiniteLight};
 
-use crate::math::{Frame, INV_PI, Rgb, Vec2, Vec3, smooth_step};
+use crate::math::{Frame, INV_PI, PackedRgb, PackedVec3, Rgb, Vec2, Vec3, smooth_step};
 use crate::shape::{Shape, TriangleMesh};
 
 /// The point being lit.
@@ -69,18 +69,19 @@ pub enum Light {
         scene_radius: f32,
     },
     /// A diffuse area light: a primitive of the scene that emits radiance L from its surface.
+    /// There is one per emitting primitive, so its vectors are packed.
     Area {
         /// Index of the primitive in the scene's shapes.
         prim: u32,
         /// Emitted radiance.
-        l: Rgb,
+        l: PackedRgb,
         /// Emits from both sides (otherwise only from the side its normal faces).
         two_sided: bool,
         /// Surface area, world space.
         area: f32,
         /// Centre and radius of a whole sphere, which is sampled by the cone of directions it
         /// subtends rather than by area.
-        sphere: Option<(Vec3, f32)>,
+        sphere: Option<(PackedVec3, f32)>,
     },
     /// Constant-radiance environment ("sky").
     UniformInfinite {
@@ -129,11 +130,12 @@ impl Light {
                 sphere,
             } => {
                 if let Some((c, r)) = *sphere
-                    && let Some(cone) = SphereCone::new(ctx.p, c, r)
+                    && let Some(cone) = SphereCone::new(ctx.p, c.into(), r)
                 {
                     // Seen from outside, a sphere fills a cone of half-angle θmax with
                     // sin θmax = r/d: sample directions uniformly inside it, then find where
                     // the direction meets the sphere.
+                    let c = Vec3::from(c);
                     let local = crate::sampling::sample_uniform_cone(u, cone.cos_theta_max);
                     let wi = cone.frame.from_local(local);
                     let p = cone.hit(ctx.p, wi, c, r);
@@ -147,7 +149,7 @@ impl Light {
                         return None;
                     }
                     return Some(LightLiSample {
-                        l: *l,
+                        l: (*l).into(),
                         wi,
                         pdf: crate::sampling::uniform_cone_pdf(cone.cos_theta_max),
                         p_light: p,
@@ -168,7 +170,7 @@ impl Light {
                 }
                 let pdf = d2 / (cos_light.abs() * area);
                 pdf.is_finite().then_some(LightLiSample {
-                    l: *l,
+                    l: (*l).into(),
                     wi,
                     pdf,
                     p_light: ss.p,
@@ -247,7 +249,7 @@ impl Light {
         match self {
             Light::Area { area, sphere, .. } => {
                 if let Some((c, r)) = *sphere
-                    && let Some(cone) = SphereCone::new(ctx.p, c, r)
+                    && let Some(cone) = SphereCone::new(ctx.p, c.into(), r)
                 {
                     return crate::sampling::uniform_cone_pdf(cone.cos_theta_max);
                 }
@@ -293,7 +295,7 @@ impl Light {
             // Φ = π·A·L per emitting side.
             Light::Area {
                 l, two_sided, area, ..
-            } => PI * area * avg(*l) * if *two_sided { 2.0 } else { 1.0 },
+            } => PI * area * avg((*l).into()) * if *two_sided { 2.0 } else { 1.0 },
             // Φ = 4π²·r²·L.
             Light::UniformInfinite { l, scene_radius } => {
                 4.0 * PI * PI * scene_radius * scene_radius * avg(*l)
@@ -355,6 +357,6 @@ impl SphereCone {
         let q = p.as_dvec3() + t * w;
         // Put the point exactly on the sphere.
         let c = c.as_dvec3();
-        (c + (q - c).normalize() * r as f64).as_vec3()
+        (c + (q - c).normalize() * r as f64).as_vec3a()
     }
 }

@@ -272,7 +272,7 @@ impl BxDF {
     /// Lambert with albedo `r`.
     #[inline]
     pub fn diffuse(r: Rgb) -> BxDF {
-        BxDF::Diffuse(DiffuseBxdf { r })
+        BxDF::Diffuse(DiffuseBxdf { r: r.into() })
     }
 
     /// The kinds of lobes this BxDF has.

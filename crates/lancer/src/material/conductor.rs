@@ -6,7 +6,7 @@ use super::bxdf::{
 };
 use super::fresnel::{fresnel_complex, reflect};
 use super::microfacet::TrowbridgeReitz;
-use crate::math::{Rgb, Vec2, Vec3, face_forward};
+use crate::math::{PackedRgb, Rgb, Vec2, Vec3, face_forward};
 
 /// A conductor with index `eta + i·k` per channel.
 ///
@@ -18,10 +18,10 @@ use crate::math::{Rgb, Vec2, Vec3, face_forward};
 pub struct ConductorBxdf {
     /// Microfacet distribution.
     pub distrib: TrowbridgeReitz,
-    /// Real part of the index, per channel.
-    pub eta: Rgb,
-    /// Imaginary part (absorption), per channel.
-    pub k: Rgb,
+    /// Real part of the index, per channel (packed, as every colour of a BxDF).
+    pub eta: PackedRgb,
+    /// Imaginary part (absorption), per channel (packed).
+    pub k: PackedRgb,
 }
 
 impl Scatter for ConductorBxdf {
@@ -44,7 +44,7 @@ impl Scatter for ConductorBxdf {
         let Some(wm) = (wi + wo).try_normalize() else {
             return Rgb::ZERO;
         };
-        let fr = fresnel_complex(wo.dot(wm).abs(), self.eta, self.k);
+        let fr = fresnel_complex(wo.dot(wm).abs(), self.eta.into(), self.k.into());
         // f = D F G / (4 cos θo cos θi)
         self.distrib.d(wm) * fr * self.distrib.g(wo, wi) / (4.0 * cos_i * cos_o)
     }
@@ -67,7 +67,7 @@ impl Scatter for ConductorBxdf {
                 return None;
             }
             return Some(BsdfSample::new(
-                fresnel_complex(c, self.eta, self.k) / c,
+                fresnel_complex(c, self.eta.into(), self.k.into()) / c,
                 wi,
                 1.0,
                 BxdfFlags::REFLECTION | BxdfFlags::SPECULAR,
@@ -87,7 +87,7 @@ impl Scatter for ConductorBxdf {
         if cos_i == 0.0 || cos_o == 0.0 {
             return None;
         }
-        let fr = fresnel_complex(wo.dot(wm).abs(), self.eta, self.k);
+        let fr = fresnel_complex(wo.dot(wm).abs(), self.eta.into(), self.k.into());
         let f = self.distrib.d(wm) * fr * self.distrib.g(wo, wi) / (4.0 * cos_i * cos_o);
         Some(BsdfSample::new(
             f,

@@ -3,19 +3,20 @@
 use super::bxdf::{
     BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode, abs_cos_theta, same_hemisphere,
 };
-use crate::math::{INV_PI, Rgb, Vec2, Vec3};
+use crate::math::{INV_PI, PackedRgb, Rgb, Vec2, Vec3};
 use crate::sampling::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 
 /// Lambert: f = ρ/π on the side of `wo`, sampled with density |cos θi|/π.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DiffuseBxdf {
-    /// Albedo ρ.
-    pub r: Rgb,
+    /// Albedo ρ (packed, as every colour of a BxDF, so that a [`BxDF`](super::BxDF) stays
+    /// small enough to copy).
+    pub r: PackedRgb,
 }
 
 impl Scatter for DiffuseBxdf {
     fn flags(&self) -> BxdfFlags {
-        if self.r == Rgb::ZERO {
+        if self.r == PackedRgb::ZERO {
             BxdfFlags::NONE
         } else {
             BxdfFlags::REFLECTION | BxdfFlags::DIFFUSE
@@ -24,7 +25,7 @@ impl Scatter for DiffuseBxdf {
 
     fn f(&self, wo: Vec3, wi: Vec3, _mode: TransportMode) -> Rgb {
         if same_hemisphere(wo, wi) {
-            self.r * INV_PI
+            Rgb::from(self.r) * INV_PI
         } else {
             Rgb::ZERO
         }
@@ -38,7 +39,7 @@ impl Scatter for DiffuseBxdf {
         _mode: TransportMode,
         mask: ReflTrans,
     ) -> Option<BsdfSample> {
-        if !mask.reflection() || self.r == Rgb::ZERO {
+        if !mask.reflection() || self.r == PackedRgb::ZERO {
             return None;
         }
         let mut wi = sample_cosine_hemisphere(u);
@@ -48,7 +49,7 @@ impl Scatter for DiffuseBxdf {
         let pdf = cosine_hemisphere_pdf(abs_cos_theta(wi));
         (pdf > 0.0).then(|| {
             BsdfSample::new(
-                self.r * INV_PI,
+                Rgb::from(self.r) * INV_PI,
                 wi,
                 pdf,
                 BxdfFlags::REFLECTION | BxdfFlags::DIFFUSE,
@@ -70,10 +71,10 @@ impl Scatter for DiffuseBxdf {
 /// pdf = p_side · |cos θi|/π with p_R = max R / (max R + max T).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DiffuseTransmissionBxdf {
-    /// Reflectance R.
-    pub r: Rgb,
-    /// Transmittance T.
-    pub t: Rgb,
+    /// Reflectance R (packed).
+    pub r: PackedRgb,
+    /// Transmittance T (packed).
+    pub t: PackedRgb,
 }
 
 impl DiffuseTransmissionBxdf {
@@ -97,10 +98,10 @@ impl DiffuseTransmissionBxdf {
 impl Scatter for DiffuseTransmissionBxdf {
     fn flags(&self) -> BxdfFlags {
         let mut fl = BxdfFlags::NONE;
-        if self.r != Rgb::ZERO {
+        if self.r != PackedRgb::ZERO {
             fl |= BxdfFlags::REFLECTION | BxdfFlags::DIFFUSE;
         }
-        if self.t != Rgb::ZERO {
+        if self.t != PackedRgb::ZERO {
             fl |= BxdfFlags::TRANSMISSION | BxdfFlags::DIFFUSE;
         }
         fl
@@ -108,9 +109,9 @@ impl Scatter for DiffuseTransmissionBxdf {
 
     fn f(&self, wo: Vec3, wi: Vec3, _mode: TransportMode) -> Rgb {
         if same_hemisphere(wo, wi) {
-            self.r * INV_PI
+            Rgb::from(self.r) * INV_PI
         } else {
-            self.t * INV_PI
+            Rgb::from(self.t) * INV_PI
         }
     }
 

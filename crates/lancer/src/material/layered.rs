@@ -17,7 +17,7 @@ use super::bxdf::{
 use super::conductor::ConductorBxdf;
 use super::dielectric::DielectricBxdf;
 use super::diffuse::DiffuseBxdf;
-use crate::math::{INV_4PI, Rgb, Vec2, Vec3, lerp};
+use crate::math::{INV_4PI, PackedRgb, Rgb, Vec2, Vec3, lerp};
 use crate::sampling::{
     Pcg32, hash_u64, henyey_greenstein, power_heuristic, sample_exponential,
     sample_henyey_greenstein,
@@ -41,8 +41,9 @@ pub struct LayeredBxdf<B> {
     pub thickness: f32,
     /// Henyey–Greenstein asymmetry of the medium.
     pub g: f32,
-    /// Single-scattering albedo of the medium (zero: the slab only absorbs, by e^(−d/|cos θ|)).
-    pub albedo: Rgb,
+    /// Single-scattering albedo of the medium (zero: the slab only absorbs, by e^(−d/|cos θ|));
+    /// packed, as every colour of a BxDF.
+    pub albedo: PackedRgb,
     /// Maximum number of scattering events in one random walk.
     pub max_depth: u32,
     /// Number of random walks averaged per evaluation.
@@ -148,7 +149,7 @@ impl<B: Scatter> LayeredBxdf<B> {
             bottom,
             thickness: thickness.max(f32::MIN_POSITIVE),
             g,
-            albedo,
+            albedo: albedo.into(),
             max_depth,
             n_samples: n_samples.max(1),
         }
@@ -157,7 +158,7 @@ impl<B: Scatter> LayeredBxdf<B> {
     /// True when the slab holds a scattering medium.
     #[inline]
     fn has_medium(&self) -> bool {
-        self.albedo != Rgb::ZERO
+        self.albedo != PackedRgb::ZERO
     }
 }
 
@@ -261,7 +262,12 @@ impl<B: Scatter> Scatter for LayeredBxdf<B> {
                         } else {
                             power_heuristic(wis.pdf, p_wis)
                         };
-                        f += beta * self.albedo * p_wis * wt * tr(zp - exit_z, wis.wi) * wis.f
+                        f += beta
+                            * Rgb::from(self.albedo)
+                            * p_wis
+                            * wt
+                            * tr(zp - exit_z, wis.wi)
+                            * wis.f
                             / wis.pdf;
                         // Continue in a direction from the phase function.
                         let (wp, p) = sample_henyey_greenstein(-w, self.g, Vec2::new(r(), r()));
@@ -269,7 +275,7 @@ impl<B: Scatter> Scatter for LayeredBxdf<B> {
                             continue;
                         }
                         // The phase function is sampled exactly: p/pdf = 1.
-                        beta *= self.albedo;
+                        beta *= Rgb::from(self.albedo);
                         w = wp;
                         z = zp;
                         // Heading for the exit: connect through it along w.
@@ -401,7 +407,7 @@ impl<B: Scatter> Scatter for LayeredBxdf<B> {
                     if p == 0.0 || wp.z == 0.0 {
                         return None;
                     }
-                    f *= self.albedo * p;
+                    f *= Rgb::from(self.albedo) * p;
                     pdf *= p;
                     specular_path = false;
                     w = wp;

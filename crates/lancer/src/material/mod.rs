@@ -211,8 +211,8 @@ impl Material {
                 let (eta, k) = conductor_index(tex, tc, eta, k, reflectance, lambda);
                 BxDF::Conductor(ConductorBxdf {
                     distrib: distrib(uroughness, vroughness, remap_roughness),
-                    eta,
-                    k,
+                    eta: eta.into(),
+                    k: k.into(),
                 })
             }
             Material::Dielectric {
@@ -236,11 +236,13 @@ impl Material {
                 r: match lambda {
                     None => (tex.spectrum(reflectance, tc) * scale).clamp(Rgb::ZERO, Rgb::ONE),
                     Some(_) => (albedo(reflectance) * scale).clamp(Rgb::ZERO, Rgb::ONE),
-                },
+                }
+                .into(),
                 t: match lambda {
                     None => (tex.spectrum(transmittance, tc) * scale).clamp(Rgb::ZERO, Rgb::ONE),
                     Some(_) => (albedo(transmittance) * scale).clamp(Rgb::ZERO, Rgb::ONE),
-                },
+                }
+                .into(),
             }),
             Material::CoatedDiffuse {
                 reflectance,
@@ -259,7 +261,7 @@ impl Material {
                     distrib: distrib(uroughness, vroughness, remap_roughness),
                 },
                 DiffuseBxdf {
-                    r: albedo(reflectance),
+                    r: albedo(reflectance).into(),
                 },
                 tex.float(thickness, tc),
                 albedo(medium_albedo),
@@ -302,8 +304,8 @@ impl Material {
                             conductor_vroughness,
                             remap_roughness,
                         ),
-                        eta: ce / ieta,
-                        k: ck / ieta,
+                        eta: (ce / ieta).into(),
+                        k: (ck / ieta).into(),
                     },
                     tex.float(thickness, tc),
                     albedo(medium_albedo),
@@ -320,6 +322,7 @@ impl Material {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::PackedRgb;
 
     fn eval(m: &Material) -> BxDF {
         let tex = TextureEval {
@@ -354,7 +357,7 @@ mod tests {
         // α = √roughness.
         assert_eq!((b.distrib.alpha_x(), b.distrib.alpha_y()), (0.5, 0.2));
         // η = 1, k = 2√r/√(1 − r): the normal-incidence reflectance is r.
-        let f0 = fresnel_complex(1.0, b.eta, b.k);
+        let f0 = fresnel_complex(1.0, b.eta.into(), b.k.into());
         assert!(
             (f0 - Rgb::new(0.9, 0.5, 0.1)).abs().max_element() < 1e-4,
             "{f0}"
@@ -372,7 +375,7 @@ mod tests {
             panic!("not a conductor")
         };
         assert!(b.distrib.effectively_smooth());
-        assert_eq!((b.eta, b.k), (Rgb::splat(0.2), Rgb::splat(3.0)));
+        assert_eq!((b.eta, b.k), (PackedRgb::splat(0.2), PackedRgb::splat(3.0)));
     }
 
     #[test]
@@ -396,7 +399,7 @@ mod tests {
             scale: 2.0,
         });
         assert!(
-            matches!(dt, BxDF::DiffuseTransmission(b) if b.r == Rgb::splat(0.6) && b.t == Rgb::ONE)
+            matches!(dt, BxDF::DiffuseTransmission(b) if b.r == PackedRgb::splat(0.6) && b.t == PackedRgb::ONE)
         );
         let cd = eval(&Material::CoatedDiffuse {
             reflectance: rgb(1.5),
@@ -413,11 +416,11 @@ mod tests {
         let BxDF::CoatedDiffuse(l) = cd else {
             panic!("not a coated diffuse")
         };
-        assert_eq!(l.bottom.r, Rgb::ONE);
+        assert_eq!(l.bottom.r, PackedRgb::ONE);
         assert_eq!((l.top.eta, l.thickness, l.g), (1.5, 0.01, 1.0));
         assert_eq!(
             (l.albedo, l.max_depth, l.n_samples),
-            (Rgb::splat(0.2), 10, 2)
+            (PackedRgb::splat(0.2), 10, 2)
         );
         // Under its coating the conductor's index is relative to the coating's.
         let cc = eval(&Material::CoatedConductor {
@@ -439,8 +442,8 @@ mod tests {
         let BxDF::CoatedConductor(l) = cc else {
             panic!("not a coated conductor")
         };
-        assert!((l.bottom.eta - Rgb::splat(0.2)).abs().max_element() < 1e-6);
-        assert!((l.bottom.k - Rgb::splat(2.0)).abs().max_element() < 1e-6);
+        assert!((l.bottom.eta - PackedRgb::splat(0.2)).abs().max_element() < 1e-6);
+        assert!((l.bottom.k - PackedRgb::splat(2.0)).abs().max_element() < 1e-6);
         assert!((l.bottom.distrib.alpha_x() - 0.4).abs() < 1e-6);
         let none = TextureEval {
             floats: &[],

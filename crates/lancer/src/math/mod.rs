@@ -11,27 +11,45 @@ mod transform;
 
 pub use bounds::Bounds3;
 pub use frame::Frame;
-pub use glam::{Mat3, Mat4, UVec2, Vec2, Vec3, Vec3A, Vec4};
+pub use glam::{Mat3, Mat4, UVec2, Vec2, Vec4};
 pub use transform::Transform;
 
 use glam::Vec3Swizzles;
 
+/// The 3-vector that all computation uses: glam's `Vec3A`, three `f32` in one 16-byte SIMD
+/// register, so that a vector add, multiply or min is one instruction instead of three.
+///
+/// Its arithmetic gives the same bits as three scalar operations, except for two glam methods
+/// that round differently: use [`cross`] and [`normalize`] instead of `Vec3::cross` and
+/// `Vec3::normalize` (clippy forbids those). Being 16 bytes, it is not used for data stored per
+/// vertex, per triangle or per texel: that is [`PackedVec3`].
+pub type Vec3 = glam::Vec3A;
+
+/// A 3-vector for data stored in bulk (mesh vertices, triangles, texels): glam's `Vec3`, three
+/// `f32` in 12 bytes. Convert with `Vec3::from` / `PackedVec3::from` to compute with it.
+pub type PackedVec3 = glam::Vec3;
+
 /// Linear RGB (the sRGB/Rec.709 primaries, D65 white): radiance, reflectance, any colour.
 pub type Rgb = Vec3;
 
+/// [`Rgb`] as stored in bulk (texels, per-primitive emission): 12 bytes.
+pub type PackedRgb = PackedVec3;
+
 /// The cross product `a × b`, each component rounded as two products and a difference:
-/// `(a.y·b.z − b.y·a.z, a.z·b.x − b.z·a.x, a.x·b.y − b.x·a.y)`, never fused into an FMA.
+/// `(a.y·b.z − b.y·a.z, a.z·b.x − b.z·a.x, a.x·b.y − b.x·a.y)`.
 ///
-/// lancer calls this rather than a vector type's own method so that its rounding, and so the
-/// renders, stay the same whatever the vector type (a SIMD type may fuse one product).
+/// glam's `Vec3A::cross` fuses one product into the difference when the target has FMA (as
+/// x86-64-v3 does), which rounds differently from the scalar formula and from a build without
+/// FMA. This one gives the same bits everywhere, and the same as glam's scalar `Vec3::cross`.
 #[inline(always)]
 pub fn cross(a: Vec3, b: Vec3) -> Vec3 {
     (a.zxy() * b - b.zxy() * a).zxy()
 }
 
-/// `v` scaled to unit length as `v · (1/|v|)` (infinite or NaN for a zero vector; see
-/// `normalize_or_zero` and `try_normalize`). Like [`cross`], a function so that the rounding
-/// is lancer's choice: `v / |v|`, which a SIMD type computes, can differ in the last bit.
+/// `v` scaled to unit length as `v · (1/|v|)`, the rounding of glam's scalar
+/// `Vec3::normalize` (glam's `Vec3A::normalize` divides by `|v|` instead, which can differ in
+/// the last bit). Infinite or NaN for a zero vector, as glam's; see `normalize_or_zero` and
+/// `try_normalize`, which round the same way in both.
 #[inline(always)]
 pub fn normalize(v: Vec3) -> Vec3 {
     v * v.length_recip()

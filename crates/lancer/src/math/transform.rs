@@ -49,8 +49,8 @@ impl Transform {
     /// Translation by `d`.
     pub fn translate(d: Vec3) -> Transform {
         Transform {
-            m: Mat4::from_translation(d),
-            m_inv: Mat4::from_translation(-d),
+            m: Mat4::from_translation(d.into()),
+            m_inv: Mat4::from_translation((-d).into()),
         }
     }
 
@@ -60,8 +60,8 @@ impl Transform {
             return None;
         }
         Some(Transform {
-            m: Mat4::from_scale(s),
-            m_inv: Mat4::from_scale(s.recip()),
+            m: Mat4::from_scale(s.into()),
+            m_inv: Mat4::from_scale(s.recip().into()),
         })
     }
 
@@ -69,7 +69,7 @@ impl Transform {
     /// axis towards the origin), as pbrt's `Rotate`. `None` for a zero axis.
     pub fn rotate(degrees: f32, axis: Vec3) -> Option<Transform> {
         let a = axis.try_normalize()?;
-        let m = Mat4::from_axis_angle(a, degrees.to_radians());
+        let m = Mat4::from_axis_angle(a.into(), degrees.to_radians());
         Some(Transform {
             m,
             m_inv: m.transpose(),
@@ -133,9 +133,9 @@ impl Transform {
     pub fn point(&self, p: Vec3) -> Vec3 {
         let r = self.m * p.extend(1.0);
         if r.w == 1.0 {
-            r.truncate()
+            Vec3::from_vec4(r)
         } else {
-            r.truncate() / r.w
+            Vec3::from_vec4(r) / r.w
         }
     }
 
@@ -143,9 +143,9 @@ impl Transform {
     /// result: |error| ≤ γ₃ (|m₀₀x| + |m₀₁y| + |m₀₂z| + |m₀₃|) per component (PBRT §6.8.3).
     #[inline]
     pub fn point_with_error(&self, p: Vec3) -> (Vec3, Vec3) {
-        let r = self.m.transform_point3(p);
+        let r = self.m.transform_point3a(p);
         let a = self.m.abs();
-        let err = gamma(3) * (a.transform_point3(p.abs()));
+        let err = gamma(3) * (a.transform_point3a(p.abs()));
         (r, err)
     }
 
@@ -153,23 +153,23 @@ impl Transform {
     /// the incoming error and the rounding of this transform (PBRT §6.8.3).
     #[inline]
     pub fn point_with_error_in(&self, p: Vec3, p_err: Vec3) -> (Vec3, Vec3) {
-        let r = self.m.transform_point3(p);
+        let r = self.m.transform_point3a(p);
         let a = self.m.abs();
-        let err =
-            (gamma(3) + 1.0) * a.transform_vector3(p_err) + gamma(3) * a.transform_point3(p.abs());
+        let err = (gamma(3) + 1.0) * a.transform_vector3a(p_err)
+            + gamma(3) * a.transform_point3a(p.abs());
         (r, err)
     }
 
     /// Transforms a vector (ignores translation).
     #[inline]
     pub fn vector(&self, v: Vec3) -> Vec3 {
-        self.m.transform_vector3(v)
+        self.m.transform_vector3a(v)
     }
 
     /// Transforms a normal by the inverse transpose; the result is not normalised.
     #[inline]
     pub fn normal(&self, n: Vec3) -> Vec3 {
-        self.m_inv.transpose().transform_vector3(n)
+        self.m_inv.transpose().transform_vector3a(n)
     }
 
     /// Transforms a ray: origin as a point, direction as a vector; `t_max` is kept, so that

@@ -9,7 +9,7 @@
 use super::desc::{Geometry, ObjectDesc};
 use super::{BuildError, PrimInfo};
 use crate::accel::{Bvh, MeshBvh};
-use crate::math::{Bounds3, Frame, Transform, normalize};
+use crate::math::{Bounds3, Frame, Transform, Vec3, normalize};
 use crate::ray::Ray;
 use crate::shape::{
     Shading, ShapeHit, SurfaceInteraction, Triangle, TriangleMesh, TriangleRay, is_degenerate,
@@ -72,7 +72,8 @@ impl ObjectAccel {
                     local.positions[v[1]],
                     local.positions[v[2]],
                 ];
-                if !is_degenerate(p[0], p[1], p[2]) {
+                let [a, b, c] = p.map(Vec3::from);
+                if !is_degenerate(a, b, c) {
                     verts.push(p);
                     tris.push((mi, i));
                 }
@@ -187,8 +188,8 @@ impl Instances {
     fn object_ray(&self, i: u32, ray: &Ray) -> Ray {
         let inv = &self.instances[i as usize].to_world.m_inv;
         Ray {
-            o: inv.transform_point3(ray.o),
-            d: inv.transform_vector3(ray.d),
+            o: inv.transform_point3a(ray.o),
+            d: inv.transform_vector3a(ray.d),
             t_max: ray.t_max,
         }
     }
@@ -284,8 +285,8 @@ mod tests {
             let c = (v3(rng) - 0.5).normalize_or_zero();
             for _ in 0..3 {
                 let p = c + (v3(rng) - 0.5) * 0.3;
-                m.positions.push(p);
-                m.normals.push(p.normalize_or_zero());
+                m.positions.push(p.into());
+                m.normals.push(p.normalize_or_zero().into());
             }
             m.indices.extend([3 * i, 3 * i + 1, 3 * i + 2]);
         }

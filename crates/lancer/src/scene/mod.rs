@@ -7,7 +7,7 @@ use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
 use crate::light::{Light, LightDistribution};
 use crate::material::Material;
-use crate::math::{Bounds3, Rgb, Vec3};
+use crate::math::{Bounds3, PackedRgb, PackedVec3, Rgb, Vec3};
 use crate::ray::Ray;
 use crate::shape::{
     Cone, Cuboid, Cylinder, Disk, Hyperboloid, Paraboloid, Placement, Plane, Sdf, Shape, Sphere,
@@ -30,8 +30,8 @@ pub struct PrimInfo {
 /// A primitive's emission.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AreaEmission {
-    /// Radiance.
-    pub l: Rgb,
+    /// Radiance (packed, so that [`PrimInfo`], one per primitive, stays 32 bytes).
+    pub l: PackedRgb,
     /// Emits from both sides.
     pub two_sided: bool,
     /// Index of the light in [`Scene::lights`].
@@ -262,7 +262,8 @@ fn shapes_of(
                     world.positions[v[2]],
                 ];
                 // A triangle of zero area can never be hit: leave it out.
-                if !is_degenerate(p[0], p[1], p[2]) {
+                let [a, b, c] = p.map(Vec3::from);
+                if !is_degenerate(a, b, c) {
                     out.push(Shape::Triangle(Triangle {
                         p,
                         mesh: mesh_index,
@@ -288,13 +289,13 @@ fn shapes_of(
 }
 
 /// The world centre and radius of a shape that is a whole sphere (no cut, full sweep).
-fn whole_sphere(shape: &Shape) -> Option<(Vec3, f32)> {
+fn whole_sphere(shape: &Shape) -> Option<(PackedVec3, f32)> {
     let Shape::Sphere(s) = shape else { return None };
     let whole =
         s.z_min <= -s.radius && s.z_max >= s.radius && s.phi_max >= 2.0 * std::f32::consts::PI;
     let t = &s.placement.to_world;
     let scale = glam::Mat3::from_mat4(t.m).determinant().abs().cbrt();
-    whole.then(|| (t.point(Vec3::ZERO), s.radius * scale))
+    whole.then(|| (t.point(Vec3::ZERO).into(), s.radius * scale))
 }
 
 impl Scene {
@@ -367,7 +368,7 @@ impl Scene {
             let info = PrimInfo {
                 material: sd.material,
                 emission: sd.area_light.map(|a| AreaEmission {
-                    l: a.l,
+                    l: a.l.into(),
                     two_sided: a.two_sided,
                     light: 0,
                 }),
@@ -487,7 +488,7 @@ impl Scene {
                 continue;
             };
             let area = shape.area();
-            if !(area > 0.0 && area.is_finite()) || e.l == Rgb::ZERO {
+            if !(area > 0.0 && area.is_finite()) || e.l == PackedRgb::ZERO {
                 continue;
             }
             e.light = lights.len() as u32;

@@ -12,7 +12,9 @@
 //! Patches are kept in world space (the mesh is transformed once when the scene is built).
 
 use super::{IndexedMesh, Shading, ShapeHit, SurfaceInteraction};
-use crate::math::{Bounds3, Frame, Vec2, Vec3, cross, gamma, normalize, solve_quadratic};
+use crate::math::{
+    Bounds3, Frame, PackedVec3, Vec2, Vec3, cross, gamma, normalize, solve_quadratic,
+};
 use crate::ray::Ray;
 use glam::DVec3;
 use std::sync::Arc;
@@ -50,8 +52,8 @@ impl BilinearMesh {
 /// One bilinear patch of a world-space mesh; its corners are copied in for intersection.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BilinearPatch {
-    /// Corners p₀₀, p₁₀, p₀₁, p₁₁, world space.
-    pub p: [Vec3; 4],
+    /// Corners p₀₀, p₁₀, p₀₁, p₁₁, world space (packed, as the mesh's vertices).
+    pub p: [PackedVec3; 4],
     /// The mesh it belongs to (normals, uvs, orientation).
     pub mesh: Arc<BilinearMesh>,
     /// Its index in the mesh.
@@ -97,7 +99,7 @@ const GAUSS4: [(f64, f64); 4] = [
 
 impl BilinearPatch {
     /// A patch from its corners (p₀₀, p₁₀, p₀₁, p₁₁); its area is computed once.
-    pub fn new(p: [Vec3; 4], mesh: Arc<BilinearMesh>, index: u32) -> BilinearPatch {
+    pub fn new(p: [PackedVec3; 4], mesh: Arc<BilinearMesh>, index: u32) -> BilinearPatch {
         let mut patch = BilinearPatch {
             p,
             mesh,
@@ -120,12 +122,18 @@ impl BilinearPatch {
                     for &(xv, wv) in &GAUSS4 {
                         let u = (ci as f64 + xu) * h;
                         let v = (cj as f64 + xv) * h;
-                        sum += wu * wv * jacobian(&self.p, u as f32, v as f32) as f64;
+                        sum += wu * wv * jacobian(&self.corners(), u as f32, v as f32) as f64;
                     }
                 }
             }
         }
         (sum * h * h) as f32
+    }
+
+    /// The corners, unpacked for computing.
+    #[inline]
+    pub fn corners(&self) -> [Vec3; 4] {
+        self.p.map(Vec3::from)
     }
 
     /// Surface area.
@@ -135,16 +143,17 @@ impl BilinearPatch {
 
     /// World-space bounds: the box of the corners (the patch lies in their convex hull).
     pub fn bounds(&self) -> Bounds3 {
-        Bounds3::from_point(self.p[0])
-            .union_point(self.p[1])
-            .union_point(self.p[2])
-            .union_point(self.p[3])
+        let [p00, p10, p01, p11] = self.corners();
+        Bounds3::from_point(p00)
+            .union_point(p10)
+            .union_point(p01)
+            .union_point(p11)
     }
 
     /// Nearest hit (see [`intersect_bilinear`]); (u, v) are kept for the interaction.
     #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<ShapeHit> {
-        let (t, u, v) = intersect_bilinear(ray, &self.p)?;
+        let (t, u, v) = intersect_bilinear(ray, &self.corners())?;
         Some(ShapeHit { t, u, v })
     }
 
@@ -157,8 +166,8 @@ impl BilinearPatch {
         let (u, v) = (hit.u, hit.v);
         let mesh = &*self.mesh;
         let vi = mesh.vertices(self.index);
-        let p = bilinear_point(&self.p, u, v);
-        let (mut dpdu, mut dpdv) = partials(&self.p, u, v);
+        let p = bilinear_point(&self.corners(), u, v);
+        let (mut dpdu, mut dpdv) = partials(&self.corners(), u, v);
         let mut uv = Vec2::new(u, v);
         if !mesh.uvs.is_empty() {
             let [t00, t10, t01, t11] = vi.map(|i| mesh.uvs[i]);
@@ -183,7 +192,7 @@ impl BilinearPatch {
         let mut n = cross(dpdu, dpdv).normalize_or_zero();
         if n == Vec3::ZERO {
             // A corner where two edges are parallel: the normal of the whole patch.
-            let (du, dv) = partials(&self.p, 0.5, 0.5);
+            let (du, dv) = partials(&self.corners(), 0.5, 0.5);
             n = cross(du, dv).normalize_or_zero();
         }
         let mut ns = n;
@@ -206,7 +215,7 @@ impl BilinearPatch {
             ss = f.x;
             ts = f.y;
         }
-        let p_error = gamma(6) * self.p.iter().map(|q| q.abs()).sum::<Vec3>();
+        let p_error = gamma(6) * self.corners().iter().map(|q| q.abs()).sum::<Vec3>();
         SurfaceInteraction {
             p,
             p_error,
@@ -230,16 +239,16 @@ impl BilinearPatch {
         if mesh.normals.is_empty() {
             return None;
         }
-        let [n00, n10, n01, n11] = mesh.vertices(self.index).map(|i| mesh.normals[i]);
+        let [n00, n10, n01, n11] = mesh.vertices(self.index).map(|i| mesh.normal(i));
         n00.lerp(n01, v).lerp(n10.lerp(n11, v), u).try_normalize()
     }
 
     /// The geometric normal at (u, v), oriented as [`BilinearPatch::interaction`] orients it.
     pub fn normal_at(&self, u: f32, v: f32) -> Vec3 {
-        let (du, dv) = partials(&self.p, u, v);
+        let (du, dv) = partials(&self.corners(), u, v);
         let mut n = cross(du, dv).normalize_or_zero();
         if n == Vec3::ZERO {
-            let (du, dv) = partials(&self.p, 0.5, 0.5);
+            let (du, dv) = partials(&self.corners(), 0.5, 0.5);
             n = cross(du, dv).normalize_or_zero();
         }
         match self.shading_normal(u, v) {
@@ -259,8 +268,9 @@ impl BilinearPatch {
     pub fn sample_uv(&self, u: Vec2) -> (Vec3, Vec2) {
         // N(u, v) = ∂p/∂u × ∂p/∂v = N₀₀ + u·(N₁₀ − N₀₀) + v·(N₀₁ − N₀₀) (linear); J = |N| is
         // convex, so J_max is a corner's. J is constant only when N is (a parallelogram).
+        let corners = self.corners();
         let n_at = |u: f32, v: f32| {
-            let (du, dv) = partials(&self.p, u, v);
+            let (du, dv) = partials(&corners, u, v);
             cross(du, dv)
         };
         let (n00, n10, n01, n11) = (
@@ -280,13 +290,13 @@ impl BilinearPatch {
             let seed = ((u.x.to_bits() as u64) << 32) | u.y.to_bits() as u64;
             for k in 0..256u64 {
                 let r = hash_pair(seed, 2 * k);
-                if r.x * j_max <= jacobian(&self.p, cand.x, cand.y) {
+                if r.x * j_max <= jacobian(&self.corners(), cand.x, cand.y) {
                     break;
                 }
                 cand = hash_pair(seed, 2 * k + 1);
             }
         }
-        (bilinear_point(&self.p, cand.x, cand.y), cand)
+        (bilinear_point(&self.corners(), cand.x, cand.y), cand)
     }
 }
 
@@ -354,7 +364,7 @@ mod tests {
 
     fn mesh_of(p: [Vec3; 4]) -> Arc<BilinearMesh> {
         Arc::new(BilinearMesh {
-            positions: p.to_vec(),
+            positions: p.map(PackedVec3::from).to_vec(),
             indices: vec![0, 1, 2, 3],
             ..Default::default()
         })
@@ -368,7 +378,7 @@ mod tests {
             Vec3::new(0.0, 1.0, 0.0),
             Vec3::new(2.0, 1.0, 0.0),
         ];
-        let patch = BilinearPatch::new(p, mesh_of(p), 0);
+        let patch = BilinearPatch::new(p.map(PackedVec3::from), mesh_of(p), 0);
         assert!((patch.area() - 2.0).abs() < 1e-6);
         let r = Ray::new(Vec3::new(0.5, 0.25, 3.0), -Vec3::Z);
         let h = patch.intersect(&r).unwrap();
@@ -401,7 +411,7 @@ mod tests {
             Vec3::new(0.0, 1.0, 0.0),
             Vec3::new(1.0, 1.0, 1.0),
         ];
-        let patch = BilinearPatch::new(p, mesh_of(p), 0);
+        let patch = BilinearPatch::new(p.map(PackedVec3::from), mesh_of(p), 0);
         assert!(
             (patch.area() - 1.280_789_3).abs() < 1e-5,
             "{}",

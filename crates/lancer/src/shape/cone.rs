@@ -74,7 +74,7 @@ impl Cone {
         let t = quadric_t(hit);
         let p64 = o + t * d;
         let phi = phi_of(p64) as f32;
-        let p = p64.as_vec3();
+        let p = p64.as_vec3a();
         let u = phi / self.phi_max;
         let v = (p.z / self.height).clamp(0.0, 1.0);
         let dpdu = Vec3::new(-self.phi_max * p.y, self.phi_max * p.x, 0.0);

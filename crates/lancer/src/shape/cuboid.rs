@@ -108,7 +108,7 @@ impl Cuboid {
         let (o, d) = self.placement.object_ray(ray);
         let face = hit.u as usize;
         let (k, is_max) = (face % 3, face >= 3);
-        let mut p = (o + hit.t as f64 * d).as_vec3().clamp(self.min, self.max);
+        let mut p = (o + hit.t as f64 * d).as_vec3a().clamp(self.min, self.max);
         p[k] = if is_max { self.max[k] } else { self.min[k] };
         let mut p_err = gamma(3) * p.abs();
         p_err[k] = 0.0;

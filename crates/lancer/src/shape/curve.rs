@@ -22,7 +22,7 @@
 //! object-space curve exactly for similarity transforms.
 
 use super::{Shading, ShapeHit, SurfaceInteraction};
-use crate::math::{Bounds3, Transform, Vec2, Vec3, cross, lerp, normalize};
+use crate::math::{Bounds3, PackedVec3, Transform, Vec2, Vec3, cross, lerp, normalize};
 use crate::ray::Ray;
 use std::sync::Arc;
 
@@ -49,8 +49,8 @@ pub enum CurveBasis {
 /// A curve as a scene describes it, in object space, before it is split into primitives.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CurveDesc {
-    /// Control points (`P`).
-    pub points: Vec<Vec3>,
+    /// Control points (`P`), packed.
+    pub points: Vec<PackedVec3>,
     /// Their basis.
     pub basis: CurveBasis,
     /// Polynomial degree: 2 or 3.
@@ -62,7 +62,7 @@ pub struct CurveDesc {
     /// Width at its end.
     pub width1: f32,
     /// Ribbon normals, one per segment boundary (segments + 1); empty for other types.
-    pub normals: Vec<Vec3>,
+    pub normals: Vec<PackedVec3>,
     /// Each segment is split into 2^`split_depth` primitives.
     pub split_depth: u32,
 }
@@ -137,23 +137,23 @@ impl CurveDesc {
     pub fn bezier_segments(&self) -> Result<Vec<[Vec3; 4]>, String> {
         let n = self.segment_count()?;
         let d = self.degree as usize;
-        let p = &self.points;
+        let p = |i: usize| Vec3::from(self.points[i]);
         let mut out = Vec::with_capacity(n);
         for seg in 0..n {
             let cubic = match (self.basis, d) {
                 (CurveBasis::Bezier, 3) => {
                     let b = 3 * seg;
-                    [p[b], p[b + 1], p[b + 2], p[b + 3]]
+                    [p(b), p(b + 1), p(b + 2), p(b + 3)]
                 }
                 (CurveBasis::Bezier, _) => {
                     let b = 2 * seg;
-                    elevate([p[b], p[b + 1], p[b + 2]])
+                    elevate([p(b), p(b + 1), p(b + 2)])
                 }
                 // Uniform cubic B-spline B₀..B₃ → Bézier:
                 // P₀ = (B₀ + 4B₁ + B₂)/6, P₁ = (2B₁ + B₂)/3, P₂ = (B₁ + 2B₂)/3,
                 // P₃ = (B₁ + 4B₂ + B₃)/6.
                 (CurveBasis::BSpline, 3) => {
-                    let [b0, b1, b2, b3] = [p[seg], p[seg + 1], p[seg + 2], p[seg + 3]];
+                    let [b0, b1, b2, b3] = [p(seg), p(seg + 1), p(seg + 2), p(seg + 3)];
                     [
                         (b0 + 4.0 * b1 + b2) / 6.0,
                         (2.0 * b1 + b2) / 3.0,
@@ -164,7 +164,7 @@ impl CurveDesc {
                 // Uniform quadratic B-spline B₀..B₂ → Bézier:
                 // Q₀ = (B₀ + B₁)/2, Q₁ = B₁, Q₂ = (B₁ + B₂)/2; then elevated.
                 (CurveBasis::BSpline, _) => {
-                    let [b0, b1, b2] = [p[seg], p[seg + 1], p[seg + 2]];
+                    let [b0, b1, b2] = [p(seg), p(seg + 1), p(seg + 2)];
                     elevate([(b0 + b1) * 0.5, b1, (b1 + b2) * 0.5])
                 }
             };
@@ -193,8 +193,8 @@ impl CurveDesc {
             ];
             let normals = if self.kind == CurveType::Ribbon {
                 Some([
-                    to_world.normal(self.normals[seg]),
-                    to_world.normal(self.normals[seg + 1]),
+                    to_world.normal(self.normals[seg].into()),
+                    to_world.normal(self.normals[seg + 1].into()),
                 ])
             } else {
                 None
@@ -234,12 +234,12 @@ fn elevate(q: [Vec3; 3]) -> [Vec3; 4] {
 pub struct CurveCommon {
     /// Flat, ribbon or cylinder.
     pub kind: CurveType,
-    /// The segment's cubic Bézier control points, world space.
-    pub cp: [Vec3; 4],
+    /// The segment's cubic Bézier control points, world space (packed; see [`CurveCommon::cp`]).
+    pub cp: [PackedVec3; 4],
     /// Width at u = 0 and u = 1 (world units).
     pub width: [f32; 2],
-    /// Ribbon normals at u = 0 and u = 1, unit length (unused by the other types).
-    pub n: [Vec3; 2],
+    /// Ribbon normals at u = 0 and u = 1, unit length (unused by the other types), packed.
+    pub n: [PackedVec3; 2],
     /// Angle between the two ribbon normals.
     normal_angle: f32,
     /// 1 / sin(normal_angle).
@@ -269,13 +269,19 @@ impl CurveCommon {
         };
         CurveCommon {
             kind,
-            cp,
+            cp: cp.map(PackedVec3::from),
             width,
-            n,
+            n: n.map(PackedVec3::from),
             normal_angle,
             inv_sin_normal_angle: 1.0 / normal_angle.sin(),
             flip_normal,
         }
+    }
+
+    /// The control points, unpacked for computing.
+    #[inline]
+    pub fn cp(&self) -> [Vec3; 4] {
+        self.cp.map(Vec3::from)
     }
 
     /// Width at u: w(u) = (1 − u)·w₀ + u·w₁.
@@ -289,11 +295,11 @@ impl CurveCommon {
     #[inline]
     fn ribbon_normal(&self, u: f32) -> Vec3 {
         if self.normal_angle == 0.0 {
-            return self.n[0];
+            return self.n[0].into();
         }
         let s0 = ((1.0 - u) * self.normal_angle).sin() * self.inv_sin_normal_angle;
         let s1 = (u * self.normal_angle).sin() * self.inv_sin_normal_angle;
-        s0 * self.n[0] + s1 * self.n[1]
+        s0 * Vec3::from(self.n[0]) + s1 * Vec3::from(self.n[1])
     }
 }
 
@@ -381,7 +387,7 @@ impl Curve {
     /// half its largest width.
     pub fn bounds(&self) -> Bounds3 {
         let c = &self.common;
-        let cp = bezier_piece(&c.cp, self.u_min, self.u_max);
+        let cp = bezier_piece(&c.cp(), self.u_min, self.u_max);
         let half = 0.5 * c.width_at(self.u_min).max(c.width_at(self.u_max));
         let b = Bounds3::from_point(cp[0])
             .union_point(cp[1])
@@ -394,7 +400,7 @@ impl Curve {
     /// its mean width.
     pub fn area(&self) -> f32 {
         let c = &self.common;
-        let cp = bezier_piece(&c.cp, self.u_min, self.u_max);
+        let cp = bezier_piece(&c.cp(), self.u_min, self.u_max);
         let length: f32 = (0..3).map(|i| cp[i].distance(cp[i + 1])).sum();
         length * 0.5 * (c.width_at(self.u_min) + c.width_at(self.u_max))
     }
@@ -412,7 +418,7 @@ impl Curve {
         if max_width <= 0.0 {
             return None;
         }
-        let cp_world = bezier_piece(&c.cp, self.u_min, self.u_max);
+        let cp_world = bezier_piece(&c.cp(), self.u_min, self.u_max);
         let z = ray.d / len;
         let (x, y) = match cross(ray.d, cp_world[3] - cp_world[0]).try_normalize() {
             Some(y) => (cross(y, z), y),
@@ -543,7 +549,7 @@ impl Curve {
         let c = &*self.common;
         let (u, v) = (hit.u, hit.v);
         let dir = normalize(ray.d);
-        let (_, dpdu) = bezier_eval(&c.cp, u);
+        let (_, dpdu) = bezier_eval(&c.cp(), u);
         let mut hit_width = c.width_at(u);
         let dpdv = if c.kind == CurveType::Ribbon {
             let n = c.ribbon_normal(u);
@@ -583,7 +589,7 @@ mod tests {
 
     fn desc(points: Vec<Vec3>, basis: CurveBasis, degree: u32) -> CurveDesc {
         CurveDesc {
-            points,
+            points: points.into_iter().map(PackedVec3::from).collect(),
             basis,
             degree,
             kind: CurveType::Flat,
@@ -612,7 +618,7 @@ mod tests {
         let mut ribbon = desc(pts(7), CurveBasis::Bezier, 3);
         ribbon.kind = CurveType::Ribbon;
         assert!(ribbon.validate().is_err());
-        ribbon.normals = vec![Vec3::Z; 3];
+        ribbon.normals = vec![PackedVec3::Z; 3];
         assert!(ribbon.validate().is_ok());
     }
 

@@ -105,7 +105,7 @@ impl Cylinder {
         p.x *= self.radius as f64 / hit_rad;
         p.y *= self.radius as f64 / hit_rad;
         let phi = phi_of(p) as f32;
-        let p = p.as_vec3();
+        let p = p.as_vec3a();
         let u = phi / self.phi_max;
         let v = (p.z - self.z_min) / (self.z_max - self.z_min);
         let dpdu = Vec3::new(-self.phi_max * p.y, self.phi_max * p.x, 0.0);

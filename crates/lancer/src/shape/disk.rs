@@ -78,7 +78,7 @@ impl Disk {
     /// ∂p/∂v = (x, y, 0)(r_i − r)/r_hit. The point lies exactly on the plane (no error in z).
     pub fn interaction(&self, ray: &Ray, hit: &ShapeHit) -> SurfaceInteraction {
         let (o, d) = self.placement.object_ray(ray);
-        let mut p = (o + hit.t as f64 * d).as_vec3();
+        let mut p = (o + hit.t as f64 * d).as_vec3a();
         p.z = self.height;
         let dist = (p.x * p.x + p.y * p.y).sqrt();
         let u = phi_of(p.as_dvec3()) as f32 / self.phi_max;

@@ -124,9 +124,9 @@ impl Hyperboloid {
         let phi = self.phi_at(p64, s);
         let (sin, cos) = phi.sin_cos();
         let (_, e, dz) = self.segment();
-        let p = p64.as_vec3();
+        let p = p64.as_vec3a();
         let dpdu = Vec3::new(-self.phi_max * p.y, self.phi_max * p.x, 0.0);
-        let dpdv = DVec3::new(e.x * cos - e.y * sin, e.x * sin + e.y * cos, dz).as_vec3();
+        let dpdv = DVec3::new(e.x * cos - e.y * sin, e.x * sin + e.y * cos, dz).as_vec3a();
         SurfaceInteraction::from_object(
             &self.placement.to_world,
             p,
@@ -212,6 +212,6 @@ impl Hyperboloid {
         let rot = |v: DVec3| DVec3::new(v.x * cos - v.y * sin, v.x * sin + v.y * cos, v.z);
         let p = rot(DVec3::new(r.x, r.y, self.p1.z as f64 + s * dz));
         let n = rot(DVec3::new(r.x * dz, r.y * dz, -r.dot(e))).normalize_or_zero();
-        (p.as_vec3(), n.as_vec3())
+        (p.as_vec3a(), n.as_vec3a())
     }
 }

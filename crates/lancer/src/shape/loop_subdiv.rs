@@ -15,7 +15,7 @@
 //! Non-manifold edges (more than two faces) are treated like boundary edges.
 
 use super::TriangleMesh;
-use crate::math::{Vec3, cross};
+use crate::math::{PackedVec3, Vec3, cross};
 use std::collections::HashMap;
 
 /// Faces across an edge: its (up to two) opposite vertices and how many faces share it.
@@ -112,7 +112,7 @@ impl Topology {
 /// `mesh` subdivided `levels` times and moved to the limit surface, with smooth normals.
 /// Per-vertex normals and (u, v) of the input are not carried over (pbrt does the same).
 pub fn loop_subdivide(mesh: &TriangleMesh, levels: u32) -> TriangleMesh {
-    let mut p = mesh.positions.clone();
+    let mut p: Vec<Vec3> = mesh.positions.iter().map(|&q| q.into()).collect();
     let mut idx = mesh.indices.clone();
     for _ in 0..levels {
         let topo = Topology::new(p.len(), &idx);
@@ -159,12 +159,12 @@ pub fn loop_subdivide(mesh: &TriangleMesh, levels: u32) -> TriangleMesh {
     }
     // A vertex whose faces cancel out gets no normal; then the mesh has none at all.
     let normals = if normals.iter().all(|n| *n != Vec3::ZERO) {
-        normals
+        normals.into_iter().map(PackedVec3::from).collect()
     } else {
         Vec::new()
     };
     TriangleMesh {
-        positions: limit,
+        positions: limit.into_iter().map(PackedVec3::from).collect(),
         normals,
         uvs: Vec::new(),
         indices: idx,
@@ -179,10 +179,10 @@ mod tests {
     fn tetrahedron() -> TriangleMesh {
         TriangleMesh {
             positions: vec![
-                Vec3::new(1.0, 1.0, 1.0),
-                Vec3::new(1.0, -1.0, -1.0),
-                Vec3::new(-1.0, 1.0, -1.0),
-                Vec3::new(-1.0, -1.0, 1.0),
+                PackedVec3::new(1.0, 1.0, 1.0),
+                PackedVec3::new(1.0, -1.0, -1.0),
+                PackedVec3::new(-1.0, 1.0, -1.0),
+                PackedVec3::new(-1.0, -1.0, 1.0),
             ],
             normals: vec![],
             uvs: vec![],
@@ -224,7 +224,7 @@ mod tests {
             .fold((f32::MAX, 0.0f32), |(l, h), &x| (l.min(x), h.max(x)));
         assert!(hi < 3f32.sqrt(), "outside the hull: {hi}");
         assert!(lo > 0.2 && hi / lo < 1.5, "radii {lo}..{hi}");
-        let centre: Vec3 = s.positions.iter().sum::<Vec3>() / s.positions.len() as f32;
+        let centre = s.positions.iter().sum::<PackedVec3>() / s.positions.len() as f32;
         assert!(centre.length() < 1e-4, "{centre}");
         // Normals point outwards, as the faces do.
         for (p, n) in s.positions.iter().zip(&s.normals) {
@@ -239,10 +239,10 @@ mod tests {
         // edges stay straight.
         let quad = TriangleMesh {
             positions: vec![
-                Vec3::new(0.0, 0.0, 0.0),
-                Vec3::new(1.0, 0.0, 0.0),
-                Vec3::new(1.0, 1.0, 0.0),
-                Vec3::new(0.0, 1.0, 0.0),
+                PackedVec3::new(0.0, 0.0, 0.0),
+                PackedVec3::new(1.0, 0.0, 0.0),
+                PackedVec3::new(1.0, 1.0, 0.0),
+                PackedVec3::new(0.0, 1.0, 0.0),
             ],
             normals: vec![],
             uvs: vec![],

@@ -1,7 +1,7 @@
 //! Indexed meshes: shared vertices and `N` indices per face, the data behind triangle meshes
 //! (`N` = 3) and bilinear-patch meshes (`N` = 4).
 
-use crate::math::{Transform, Vec2, Vec3};
+use crate::math::{PackedVec3, Transform, Vec2, Vec3};
 
 /// Shared vertices and `N` vertex indices per face.
 ///
@@ -9,10 +9,10 @@ use crate::math::{Transform, Vec2, Vec3};
 /// in world space (the transform is applied once, not per ray).
 #[derive(Clone, Debug, PartialEq)]
 pub struct IndexedMesh<const N: usize> {
-    /// Vertex positions.
-    pub positions: Vec<Vec3>,
+    /// Vertex positions (packed: 12 bytes a vertex).
+    pub positions: Vec<PackedVec3>,
     /// Per-vertex shading normals (empty: none).
-    pub normals: Vec<Vec3>,
+    pub normals: Vec<PackedVec3>,
     /// Per-vertex (u, v) (empty: each face's own parameterisation, as pbrt does).
     pub uvs: Vec<Vec2>,
     /// `N` vertex indices per face.
@@ -69,19 +69,35 @@ impl<const N: usize> IndexedMesh<N> {
     /// (normalised, and flipped under `ReverseOrientation` as pbrt does).
     pub fn transformed(&self, t: &Transform, reverse_orientation: bool) -> IndexedMesh<N> {
         IndexedMesh {
-            positions: self.positions.iter().map(|&p| t.point(p)).collect(),
+            positions: self
+                .positions
+                .iter()
+                .map(|&p| t.point(p.into()).into())
+                .collect(),
             normals: self
                 .normals
                 .iter()
                 .map(|&n| {
-                    let n = t.normal(n).normalize_or_zero();
-                    if reverse_orientation { -n } else { n }
+                    let n = t.normal(n.into()).normalize_or_zero();
+                    (if reverse_orientation { -n } else { n }).into()
                 })
                 .collect(),
             uvs: self.uvs.clone(),
             indices: self.indices.clone(),
             flip_normal: reverse_orientation ^ t.swaps_handedness(),
         }
+    }
+
+    /// Position of vertex `i`, unpacked for computing.
+    #[inline]
+    pub fn position(&self, i: usize) -> Vec3 {
+        self.positions[i].into()
+    }
+
+    /// Shading normal of vertex `i`, unpacked for computing (the mesh must have normals).
+    #[inline]
+    pub fn normal(&self, i: usize) -> Vec3 {
+        self.normals[i].into()
     }
 
     /// The `N` vertex indices of face `i`.

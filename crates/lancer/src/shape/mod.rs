@@ -214,7 +214,7 @@ pub(crate) fn quadric_t(hit: &ShapeHit) -> f64 {
 /// the double-precision error of the root and of o + t·d, per axis.
 #[inline]
 pub(crate) fn quadric_error(o: DVec3, d: DVec3, t: f64, p: Vec3) -> Vec3 {
-    gamma(3) * p.abs() + (1e-12 * (o.abs() + (t * d).abs())).as_vec3()
+    gamma(3) * p.abs() + (1e-12 * (o.abs() + (t * d).abs())).as_vec3a()
 }
 
 /// Every kind of shape lancer intersects.

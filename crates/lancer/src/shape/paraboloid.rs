@@ -91,7 +91,7 @@ impl Paraboloid {
         let t = quadric_t(hit);
         let p64 = o + t * d;
         let phi = phi_of(p64) as f32;
-        let p = p64.as_vec3();
+        let p = p64.as_vec3a();
         let u = phi / self.phi_max;
         let dz = self.z_max - self.z_min;
         let v = (p.z - self.z_min) / dz;
@@ -142,6 +142,6 @@ impl Paraboloid {
         let (sin, cos) = phi.sin_cos();
         let p = glam::DVec3::new(rho * cos, rho * sin, z);
         let n = glam::DVec3::new(p.x, p.y, -0.5 / k).normalize();
-        (p.as_vec3(), n.as_vec3())
+        (p.as_vec3a(), n.as_vec3a())
     }
 }

@@ -51,7 +51,7 @@ impl Plane {
         let a = self.a.as_dvec3();
         let mut p: DVec3 = ray.o.as_dvec3() + hit.t as f64 * ray.d.as_dvec3();
         p -= n * n.dot(p - a);
-        let p32 = p.as_vec3();
+        let p32 = p.as_vec3a();
         let local = self.frame.to_local(p32 - self.a);
         let p_error = gamma(2) * p32.abs() + gamma(2) * self.a.abs();
         SurfaceInteraction {

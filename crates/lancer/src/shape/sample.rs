@@ -63,7 +63,10 @@ impl Shape {
             // Voxel grids cannot emit (Scene::build refuses them as area lights).
             Shape::Voxels(_) => 0.0,
             // A = |(p₁ − p₀) × (p₂ − p₀)| / 2.
-            Shape::Triangle(t) => 0.5 * cross(t.p[1] - t.p[0], t.p[2] - t.p[0]).length(),
+            Shape::Triangle(t) => {
+                let [p0, p1, p2] = t.vertices();
+                0.5 * cross(p1 - p0, p2 - p0).length()
+            }
             // pbrt's approximation: control polygon length × mean width.
             Shape::Curve(c) => c.area(),
             // A = ∫∫ |∂p/∂u × ∂p/∂v| du dv.
@@ -127,7 +130,7 @@ impl Shape {
             }
             Shape::Triangle(t) => {
                 let [b0, b1, b2] = sample_uniform_triangle(u);
-                let [p0, p1, p2] = t.p;
+                let [p0, p1, p2] = t.vertices();
                 let p = b0 * p0 + b1 * p1 + b2 * p2;
                 // The same orientation rule as Triangle::interaction.
                 let mesh = &meshes[t.mesh as usize];
@@ -135,7 +138,7 @@ impl Shape {
                 if !mesh.normals.is_empty() {
                     let v = mesh.vertices(t.index);
                     let ns =
-                        b0 * mesh.normals[v[0]] + b1 * mesh.normals[v[1]] + b2 * mesh.normals[v[2]];
+                        b0 * mesh.normal(v[0]) + b1 * mesh.normal(v[1]) + b2 * mesh.normal(v[2]);
                     if n.dot(ns) < 0.0 {
                         n = -n;
                     }

@@ -128,7 +128,7 @@ impl Sphere {
     pub fn interaction(&self, ray: &Ray, hit: &ShapeHit) -> SurfaceInteraction {
         let (o, d) = self.placement.object_ray(ray);
         let (p, phi) = self.point_at(o, d, hit.t as f64);
-        let p = p.as_vec3();
+        let p = p.as_vec3a();
         let phi = phi as f32;
         let u = phi / self.phi_max;
         let cos_theta = (p.z / self.radius).clamp(-1.0, 1.0);

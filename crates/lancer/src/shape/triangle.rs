@@ -1,7 +1,9 @@
 //! Triangles and triangle meshes: the watertight ray–triangle test.
 
 use super::{IndexedMesh, Shading, ShapeHit, SurfaceInteraction};
-use crate::math::{Bounds3, Frame, Vec2, Vec3, cross, difference_of_products, gamma, normalize};
+use crate::math::{
+    Bounds3, Frame, PackedVec3, Vec2, Vec3, cross, difference_of_products, gamma, normalize,
+};
 use crate::ray::Ray;
 
 /// A triangle mesh: shared vertices and three indices per triangle ((0,0), (1,0), (1,1) is
@@ -18,8 +20,8 @@ impl TriangleMesh {
 /// One triangle of a world-space mesh; its vertex positions are copied in for intersection.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Triangle {
-    /// Vertex positions, world space.
-    pub p: [Vec3; 3],
+    /// Vertex positions, world space (packed, so that a triangle stays 44 bytes).
+    pub p: [PackedVec3; 3],
     /// Index of the mesh in the scene.
     pub mesh: u32,
     /// Index of the triangle in its mesh.
@@ -27,18 +29,24 @@ pub struct Triangle {
 }
 
 impl Triangle {
+    /// The vertex positions, unpacked for computing.
+    #[inline]
+    pub fn vertices(&self) -> [Vec3; 3] {
+        self.p.map(Vec3::from)
+    }
+
     /// World-space bounds.
     pub fn bounds(&self) -> Bounds3 {
-        Bounds3::from_point(self.p[0])
-            .union_point(self.p[1])
-            .union_point(self.p[2])
+        let [p0, p1, p2] = self.vertices();
+        Bounds3::from_point(p0).union_point(p1).union_point(p2)
     }
 
     /// Nearest hit (see [`intersect_triangle`]); degenerate triangles are left out of scenes
     /// when they are built.
     #[inline]
     pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<ShapeHit> {
-        intersect_triangle_with(ray, pre, self.p[0], self.p[1], self.p[2])
+        let [p0, p1, p2] = self.vertices();
+        intersect_triangle_with(ray, pre, p0, p1, p2)
     }
 
     /// Full interaction: p = b₀p₀ + b₁p₁ + b₂p₂ with error ≤ γ₇ Σ|bᵢpᵢ|; ∂p/∂u, ∂p/∂v from the
@@ -51,7 +59,7 @@ impl Triangle {
         mesh: &TriangleMesh,
     ) -> SurfaceInteraction {
         let v = mesh.vertices(self.index);
-        let [p0, p1, p2] = self.p;
+        let [p0, p1, p2] = self.vertices();
         let (b1, b2) = (hit.u, hit.v);
         let b0 = 1.0 - b1 - b2;
         let (dp02, dp12) = (p0 - p2, p1 - p2);
@@ -88,8 +96,7 @@ impl Triangle {
 
         let mut ns = n;
         if !mesh.normals.is_empty() {
-            let interp =
-                b0 * mesh.normals[v[0]] + b1 * mesh.normals[v[1]] + b2 * mesh.normals[v[2]];
+            let interp = b0 * mesh.normal(v[0]) + b1 * mesh.normal(v[1]) + b2 * mesh.normal(v[2]);
             if let Some(s) = interp.try_normalize() {
                 ns = s;
             }
@@ -228,11 +235,7 @@ pub fn intersect_triangle_with(
     let mut p0t = pre.permute(p0 - ray.o);
     let mut p1t = pre.permute(p1 - ray.o);
     let mut p2t = pre.permute(p2 - ray.o);
-    let Vec3 {
-        x: sx,
-        y: sy,
-        z: sz,
-    } = pre.shear;
+    let (sx, sy, sz) = (pre.shear.x, pre.shear.y, pre.shear.z);
     p0t.x += sx * p0t.z;
     p0t.y += sy * p0t.z;
     p1t.x += sx * p1t.z;

@@ -218,7 +218,7 @@ impl Voxels {
 
     /// Object-space box of the filled cells.
     pub fn object_bounds(&self) -> Bounds3 {
-        let off = self.offset.as_vec3();
+        let off = self.offset.as_vec3a();
         let lo = Vec3::new(self.lo[0] as f32, self.lo[1] as f32, self.lo[2] as f32) - off;
         let hi = Vec3::new(self.hi[0] as f32, self.hi[1] as f32, self.hi[2] as f32) - off;
         Bounds3::new(lo, hi)
@@ -382,7 +382,7 @@ impl Voxels {
         }
         let uv = Vec2::new((g[i] - cell[i]) as f32, (g[j] - cell[j]) as f32);
         // Grid and object space differ by a half-integer offset: p[k] stays exact.
-        let p = (g - self.offset).as_vec3();
+        let p = (g - self.offset).as_vec3a();
         let mut p_err = gamma(3) * p.abs();
         p_err[k] = 0.0;
         SurfaceInteraction::from_object(

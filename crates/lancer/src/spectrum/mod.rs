@@ -165,7 +165,7 @@ const XYZ_TO_SRGB: [[f64; 3]; 3] = [
 
 /// CIE XYZ → linear sRGB (D65 white), the standard matrix of IEC 61966-2-1.
 pub fn xyz_to_srgb(xyz: [f32; 3]) -> Rgb {
-    xyz_to_srgb_f64(DVec3::from(xyz.map(f64::from))).as_vec3()
+    xyz_to_srgb_f64(DVec3::from(xyz.map(f64::from))).as_vec3a()
 }
 
 fn xyz_to_srgb_f64(xyz: DVec3) -> DVec3 {
@@ -233,7 +233,7 @@ fn integrate(s: &Spectrum, w: &[[f64; 3]]) -> DVec3 {
 /// ∫ s(λ)·(x̄, ȳ, z̄)(λ) dλ over 360–830 nm (1 nm steps, λ in nm). A constant 1 gives
 /// Y ≈ 106.857.
 pub fn spectrum_to_xyz_unnormalised(s: &Spectrum) -> [f32; 3] {
-    integrate(s, &weights().cmf).as_vec3().to_array()
+    integrate(s, &weights().cmf).as_vec3a().to_array()
 }
 
 /// Reduces a spectrum to linear sRGB according to what it describes (see the module
@@ -250,11 +250,11 @@ pub fn spectrum_to_rgb(s: &Spectrum, kind: SpectrumKind) -> Rgb {
             if xyz.y.is_nan() || xyz.y <= 0.0 {
                 return Rgb::ZERO;
             }
-            xyz_to_srgb_f64(xyz / xyz.y).as_vec3()
+            xyz_to_srgb_f64(xyz / xyz.y).as_vec3a()
         }
         (_, SpectrumKind::Albedo | SpectrumKind::Unbounded) => {
             let w = weights();
-            xyz_to_srgb_f64(integrate(s, &w.d65_cmf) / w.d65_y).as_vec3()
+            xyz_to_srgb_f64(integrate(s, &w.d65_cmf) / w.d65_y).as_vec3a()
         }
     };
     let rgb = rgb.max(Rgb::ZERO);

@@ -200,7 +200,7 @@ mod tests {
             let w = SampledWavelengths::sample_visible((j as f32 + 0.5) / n as f32);
             sum += w.to_film_rgb(f(&w)).as_dvec3();
         }
-        (sum / n as f64).as_vec3()
+        (sum / n as f64).as_vec3a()
     }
 
     #[test]

@@ -81,7 +81,7 @@ impl SigmoidSpectrum {
     pub fn to_rgb(&self) -> Rgb {
         match *self {
             SigmoidSpectrum::Constant(v) => Rgb::splat(v),
-            SigmoidSpectrum::Poly(c) => reduce(c.map(f64::from), false).0.as_vec3(),
+            SigmoidSpectrum::Poly(c) => reduce(c.map(f64::from), false).0.as_vec3a(),
         }
     }
 }
@@ -746,7 +746,7 @@ mod tests {
             (0, 1, 5, 5),
         ] {
             let z = table.z[k] as f64;
-            let c = CoefficientTable::grid_colour(z, l, i, j).as_vec3();
+            let c = CoefficientTable::grid_colour(z, l, i, j).as_vec3a();
             let back = SigmoidSpectrum::Poly(table.lookup(c)).to_rgb();
             assert!(
                 (back - c).abs().max_element() < 1e-5,

@@ -171,7 +171,7 @@ impl Sdf {
 
     /// The object-space box the march is clipped to.
     pub fn object_bounds(&self) -> Bounds3 {
-        Bounds3::new(self.lo.as_vec3(), self.hi.as_vec3())
+        Bounds3::new(self.lo.as_vec3a(), self.hi.as_vec3a())
     }
 
     /// World-space bounds.
@@ -291,15 +291,15 @@ impl Sdf {
         let a = if n.y.abs() < 0.9 { DVec3::Y } else { DVec3::X };
         let dpdu = a.cross(n).normalize();
         let dpdv = n.cross(dpdu);
-        let pf = p.as_vec3();
+        let pf = p.as_vec3a();
         let p_err = Vec3::splat(4.0 * tau as f32) + gamma(3) * pf.abs();
         SurfaceInteraction::from_object(
             &self.placement.to_world,
             pf,
             p_err,
             uv,
-            dpdu.as_vec3(),
-            dpdv.as_vec3(),
+            dpdu.as_vec3a(),
+            dpdv.as_vec3a(),
             self.placement.flip_normal,
             -normalize(ray.d),
             hit.t,
