@@ -114,6 +114,15 @@ impl Img {
         }
         m.map(|v| v / self.rgb.len() as f64)
     }
+
+    /// The largest relative error of a channel mean against `reference`'s (the acceptance
+    /// scripts' "mre"); the images may differ in size.
+    pub fn mean_rel_error(&self, reference: &Img) -> f64 {
+        let (mt, mr) = (self.means(), reference.means());
+        (0..3)
+            .map(|c| (mt[c] - mr[c]).abs() / mr[c].max(1e-4))
+            .fold(0.0, f64::max)
+    }
 }
 
 /// The acceptance scripts' comparison: per-channel relative error of the means, and the RMSE
@@ -129,9 +138,7 @@ pub fn compare(name: &str, test: &Img, reference: &Img, max_mre: f64, max_nrmse:
         "{name}: non-finite pixels"
     );
     let (mt, mr) = (test.means(), reference.means());
-    let mre = (0..3)
-        .map(|c| (mt[c] - mr[c]).abs() / mr[c].max(1e-4))
-        .fold(0.0, f64::max);
+    let mre = test.mean_rel_error(reference);
     let m = (mr.iter().sum::<f64>() / 3.0).max(1e-6);
     let se: f64 = test
         .rgb
