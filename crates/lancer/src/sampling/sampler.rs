@@ -163,11 +163,7 @@ impl Sampler {
         let d = self.dim;
         self.dim += 2;
         match self.kind {
-            SamplerKind::Independent => {
-                // Both coordinates from the two halves of one 64-bit hash.
-                let h = self.independent_bits(d);
-                Vec2::new(u32_to_unit_f32(h as u32), u32_to_unit_f32((h >> 32) as u32))
-            }
+            SamplerKind::Independent => self.independent_2d(d),
             _ => self.get_2d_at(d),
         }
     }
@@ -177,10 +173,7 @@ impl Sampler {
     fn get_2d_at(&self, d: u32) -> Vec2 {
         let h = mix_bits(self.pixel_hash ^ (d as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15));
         match self.kind {
-            SamplerKind::Independent => {
-                let h = self.independent_bits(d);
-                Vec2::new(u32_to_unit_f32(h as u32), u32_to_unit_f32((h >> 32) as u32))
-            }
+            SamplerKind::Independent => self.independent_2d(d),
             SamplerKind::Stratified {
                 xsamples,
                 ysamples,
@@ -229,6 +222,13 @@ impl Sampler {
     #[inline]
     fn independent(&self, d: u32) -> f32 {
         u32_to_unit_f32(self.independent_bits(d) as u32)
+    }
+
+    /// Dimensions `d`, `d + 1` of an independent sample: the two halves of one 64-bit hash.
+    #[inline(always)]
+    fn independent_2d(&self, d: u32) -> Vec2 {
+        let h = self.independent_bits(d);
+        Vec2::new(u32_to_unit_f32(h as u32), u32_to_unit_f32((h >> 32) as u32))
     }
 }
 
