@@ -116,13 +116,14 @@ impl BilinearPatch {
         const CELLS: usize = 4;
         let h = 1.0 / CELLS as f64;
         let mut sum = 0.0f64;
+        let corners = self.corners();
         for ci in 0..CELLS {
             for cj in 0..CELLS {
                 for &(xu, wu) in &GAUSS4 {
                     for &(xv, wv) in &GAUSS4 {
                         let u = (ci as f64 + xu) * h;
                         let v = (cj as f64 + xv) * h;
-                        sum += wu * wv * jacobian(&self.corners(), u as f32, v as f32) as f64;
+                        sum += wu * wv * jacobian(&corners, u as f32, v as f32) as f64;
                     }
                 }
             }
@@ -166,8 +167,9 @@ impl BilinearPatch {
         let (u, v) = (hit.u, hit.v);
         let mesh = &*self.mesh;
         let vi = mesh.vertices(self.index);
-        let p = bilinear_point(&self.corners(), u, v);
-        let (mut dpdu, mut dpdv) = partials(&self.corners(), u, v);
+        let corners = self.corners();
+        let p = bilinear_point(&corners, u, v);
+        let (mut dpdu, mut dpdv) = partials(&corners, u, v);
         let mut uv = Vec2::new(u, v);
         if !mesh.uvs.is_empty() {
             let [t00, t10, t01, t11] = vi.map(|i| mesh.uvs[i]);
@@ -192,7 +194,7 @@ impl BilinearPatch {
         let mut n = cross(dpdu, dpdv).normalize_or_zero();
         if n == Vec3::ZERO {
             // A corner where two edges are parallel: the normal of the whole patch.
-            let (du, dv) = partials(&self.corners(), 0.5, 0.5);
+            let (du, dv) = partials(&corners, 0.5, 0.5);
             n = cross(du, dv).normalize_or_zero();
         }
         let mut ns = n;
@@ -215,7 +217,7 @@ impl BilinearPatch {
             ss = f.x;
             ts = f.y;
         }
-        let p_error = gamma(6) * self.corners().iter().map(|q| q.abs()).sum::<Vec3>();
+        let p_error = gamma(6) * corners.iter().map(|q| q.abs()).sum::<Vec3>();
         SurfaceInteraction {
             p,
             p_error,
@@ -245,10 +247,11 @@ impl BilinearPatch {
 
     /// The geometric normal at (u, v), oriented as [`BilinearPatch::interaction`] orients it.
     pub fn normal_at(&self, u: f32, v: f32) -> Vec3 {
-        let (du, dv) = partials(&self.corners(), u, v);
+        let corners = self.corners();
+        let (du, dv) = partials(&corners, u, v);
         let mut n = cross(du, dv).normalize_or_zero();
         if n == Vec3::ZERO {
-            let (du, dv) = partials(&self.corners(), 0.5, 0.5);
+            let (du, dv) = partials(&corners, 0.5, 0.5);
             n = cross(du, dv).normalize_or_zero();
         }
         match self.shading_normal(u, v) {
@@ -290,13 +293,13 @@ impl BilinearPatch {
             let seed = ((u.x.to_bits() as u64) << 32) | u.y.to_bits() as u64;
             for k in 0..256u64 {
                 let r = hash_pair(seed, 2 * k);
-                if r.x * j_max <= jacobian(&self.corners(), cand.x, cand.y) {
+                if r.x * j_max <= jacobian(&corners, cand.x, cand.y) {
                     break;
                 }
                 cand = hash_pair(seed, 2 * k + 1);
             }
         }
-        (bilinear_point(&self.corners(), cand.x, cand.y), cand)
+        (bilinear_point(&corners, cand.x, cand.y), cand)
     }
 }
 
