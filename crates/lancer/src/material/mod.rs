@@ -231,19 +231,21 @@ impl Material {
                 reflectance,
                 transmittance,
                 scale,
-            } => BxDF::DiffuseTransmission(DiffuseTransmissionBxdf {
-                // pbrt-v4: clamp(scale · ρ(λ), 0, 1), ρ a reflectance spectrum.
-                r: match lambda {
-                    None => (tex.spectrum(reflectance, tc) * scale).clamp(Rgb::ZERO, Rgb::ONE),
-                    Some(_) => (albedo(reflectance) * scale).clamp(Rgb::ZERO, Rgb::ONE),
-                }
-                .into(),
-                t: match lambda {
-                    None => (tex.spectrum(transmittance, tc) * scale).clamp(Rgb::ZERO, Rgb::ONE),
-                    Some(_) => (albedo(transmittance) * scale).clamp(Rgb::ZERO, Rgb::ONE),
-                }
-                .into(),
-            }),
+            } => {
+                // pbrt-v4: clamp(scale · ρ(λ), 0, 1), ρ a reflectance spectrum (in RGB mode the
+                // colour is scaled before it is clamped, so scale < 1 can tame a colour > 1).
+                let scaled = |t: SpectrumTex| {
+                    let rho = match lambda {
+                        None => tex.spectrum(t, tc),
+                        Some(_) => albedo(t),
+                    };
+                    (rho * scale).clamp(Rgb::ZERO, Rgb::ONE).into()
+                };
+                BxDF::DiffuseTransmission(DiffuseTransmissionBxdf {
+                    r: scaled(reflectance),
+                    t: scaled(transmittance),
+                })
+            }
             Material::CoatedDiffuse {
                 reflectance,
                 uroughness,
