@@ -30,18 +30,12 @@ pub const LAMBDA_MAX: f32 = 830.0;
 const VIS_A: f64 = 0.0072;
 const VIS_C: f64 = 538.0;
 
-/// tanh(A(λ − C)) at the two ends of the range: the density's CDF is
-/// (tanh(A(λ − C)) − T_MIN)/(T_MAX − T_MIN). Computed once.
-fn vis_tanh_range() -> (f64, f64) {
-    let n = norms();
-    (n.vis_t0, n.vis_t1)
-}
-
 /// Samples pbrt-v4's visible-wavelength density by inverting its CDF:
 /// λ = C + atanh(T_MIN + u·(T_MAX − T_MIN))/A.
 pub fn sample_visible_wavelength(u: f32) -> f32 {
-    let (t0, t1) = vis_tanh_range();
-    let (t0, t1) = (t0 as f32, t1 as f32);
+    // The density's CDF is (tanh(A(λ − C)) − t₀)/(t₁ − t₀), tᵢ = tanh at the range's ends.
+    let n = norms();
+    let (t0, t1) = (n.vis_t0 as f32, n.vis_t1 as f32);
     let x = (t0 + u.clamp(0.0, 1.0) * (t1 - t0)).clamp(t0, t1);
     (VIS_C as f32 + x.atanh() * (1.0 / VIS_A as f32)).clamp(LAMBDA_MIN, LAMBDA_MAX)
 }
