@@ -15,9 +15,9 @@
 mod common;
 
 use common::chi2::{chi2_survival, pooled_chi2, sidak};
-use common::shapes::{azimuth, placement, scene_of};
+use common::shapes::{azimuth, placement, random_unit, scene_of};
 use glam::DVec3;
-use lancer::math::{Transform, Vec2, Vec3, normalize};
+use lancer::math::{Transform, Vec2, Vec3};
 use lancer::ray::Ray;
 use lancer::sampling::Pcg32;
 use lancer::scene::desc::Geometry;
@@ -257,15 +257,6 @@ fn first_root(
 fn incidence(g: &Geometry, o: DVec3, d: DVec3, t: f64) -> f64 {
     let grad = implicit(g, o + t * d, 0.0).1;
     (grad.normalize().dot(d.normalize())).abs()
-}
-
-fn random_unit(rng: &mut Pcg32) -> Vec3 {
-    loop {
-        let v = Vec3::new(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0 - 1.0;
-        if v.length_squared() <= 1.0 && v.length_squared() > 1e-6 {
-            return normalize(v);
-        }
-    }
 }
 
 #[test]

@@ -4,6 +4,7 @@
 //! refuse to be area lights.
 
 mod common;
+use common::shapes::random_unit;
 
 use glam::DVec3;
 use lancer::Scene;
@@ -152,15 +153,6 @@ fn brute_force(
         }
     }
     best.map(|(t, c, f)| (t, c, f, second))
-}
-
-fn random_unit(rng: &mut Pcg32) -> Vec3 {
-    loop {
-        let v = Vec3::new(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0 - 1.0;
-        if v.length_squared() <= 1.0 && v.length_squared() > 1e-4 {
-            return normalize(v);
-        }
-    }
 }
 
 #[test]

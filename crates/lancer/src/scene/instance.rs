@@ -270,7 +270,6 @@ mod tests {
     use super::super::desc::{InstanceDesc, SceneDesc, ShapeDesc};
     use super::*;
     use crate::Scene;
-    use crate::math::Vec3;
     use crate::sampling::Pcg32;
     use std::sync::Arc;
 

@@ -1,7 +1,7 @@
 //! Helpers of the analytic-shape tests: a one-shape scene, a shape's placement, azimuths.
 
 use lancer::Scene;
-use lancer::math::{Transform, Vec3};
+use lancer::math::{Transform, Vec3, normalize};
 use lancer::sampling::Pcg32;
 use lancer::scene::desc::{Geometry, SceneDesc, ShapeDesc};
 use lancer::shape::{Placement, Shape};
@@ -50,4 +50,15 @@ pub fn uniform3(rng: &mut Pcg32, lo: f32, hi: f32) -> Vec3 {
         lo + (hi - lo) * rng.uniform(),
         lo + (hi - lo) * rng.uniform(),
     )
+}
+
+/// A uniformly random unit direction (rejection from the cube into the ball; near-zero
+/// vectors are rejected too, so the normalisation is accurate).
+pub fn random_unit(rng: &mut Pcg32) -> Vec3 {
+    loop {
+        let v = uniform3(rng, -1.0, 1.0);
+        if v.length_squared() <= 1.0 && v.length_squared() > 1e-4 {
+            return normalize(v);
+        }
+    }
 }
