@@ -11,7 +11,8 @@
 //!
 //! Patches are kept in world space (the mesh is transformed once when the scene is built).
 
-use super::{IndexedMesh, Shading, ShapeHit, SurfaceInteraction};
+use super::hit::{Shading, ShapeHit, SurfaceInteraction};
+use super::mesh::IndexedMesh;
 use crate::math::{
     Bounds3, Frame, PackedVec3, Vec2, Vec3, cross, gamma, normalize, solve_quadratic,
 };

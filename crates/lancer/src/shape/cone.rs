@@ -1,8 +1,7 @@
 //! The cone: x² + y² = (r/h)²·(z − h)² for 0 ≤ z ≤ h (apex at z = h), swept to `phimax`.
 
-use super::{
-    Placement, ShapeHit, SurfaceInteraction, phi_of, quadric_error, quadric_hit, quadric_t,
-};
+use super::hit::{ShapeHit, SurfaceInteraction};
+use super::placement::{Placement, phi_of, quadric_error, quadric_hit, quadric_t};
 use crate::math::{Bounds3, Vec2, Vec3, normalize, solve_quadratic};
 use crate::ray::Ray;
 

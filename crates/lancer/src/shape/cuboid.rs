@@ -1,6 +1,7 @@
 //! lancer's box: the axis-aligned box [min, max] of object space, placed by the CTM.
 
-use super::{Placement, ShapeHit, SurfaceInteraction};
+use super::hit::{ShapeHit, SurfaceInteraction};
+use super::placement::Placement;
 use crate::math::{Bounds3, Vec2, Vec3, cross, gamma, normalize};
 use crate::ray::Ray;
 

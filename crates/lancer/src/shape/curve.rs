@@ -21,7 +21,7 @@
 //! scene is built; widths scaled by the transform's mean scale |det M|^(1/3)); this is pbrt's
 //! object-space curve exactly for similarity transforms.
 
-use super::{Shading, ShapeHit, SurfaceInteraction};
+use super::hit::{Shading, ShapeHit, SurfaceInteraction};
 use crate::math::{Bounds3, PackedVec3, Transform, Vec2, Vec3, cross, lerp, normalize};
 use crate::ray::Ray;
 use std::sync::Arc;

@@ -1,6 +1,7 @@
 //! The cylinder: x² + y² = r² between `zmin` and `zmax`, swept to `phimax` (open ends).
 
-use super::{Placement, ShapeHit, SurfaceInteraction, phi_of};
+use super::hit::{ShapeHit, SurfaceInteraction};
+use super::placement::{Placement, phi_of};
 use crate::math::{Bounds3, Vec2, Vec3, gamma, normalize};
 use crate::ray::Ray;
 
@@ -122,5 +123,19 @@ impl Cylinder {
             -normalize(ray.d),
             hit.t,
         )
+    }
+
+    /// Surface area, object space: A = (zmax − zmin)·r·φmax.
+    pub fn object_area(&self) -> f32 {
+        (self.z_max - self.z_min) * self.radius * self.phi_max
+    }
+
+    /// A point uniform by area and its outward normal (x, y, 0)/r, object space: z uniform in
+    /// [zmin, zmax], φ = u₁·φmax.
+    pub fn sample_object(&self, u: Vec2) -> (Vec3, Vec3) {
+        let z = self.z_min + u.x * (self.z_max - self.z_min);
+        let phi = u.y * self.phi_max;
+        let (x, y) = (self.radius * phi.cos(), self.radius * phi.sin());
+        (Vec3::new(x, y, z), Vec3::new(x, y, 0.0) / self.radius)
     }
 }

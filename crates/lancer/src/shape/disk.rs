@@ -1,6 +1,7 @@
 //! The disk: the plane z = h inside radius r (and outside `innerradius`), swept to `phimax`.
 
-use super::{Placement, ShapeHit, SurfaceInteraction, phi_of};
+use super::hit::{ShapeHit, SurfaceInteraction};
+use super::placement::{Placement, phi_of};
 use crate::math::{Bounds3, Vec2, Vec3, cross, normalize};
 use crate::ray::Ray;
 
@@ -111,5 +112,23 @@ impl Disk {
             -normalize(ray.d),
             hit.t,
         )
+    }
+
+    /// Surface area, object space: A = φmax/2 · (r² − rᵢ²).
+    pub fn object_area(&self) -> f32 {
+        0.5 * self.phi_max * (self.radius * self.radius - self.inner_radius * self.inner_radius)
+    }
+
+    /// A point uniform by area and its normal +z, object space: ρ² uniform between rᵢ² and r²
+    /// is uniform by area on the annulus, φ = u₁·φmax.
+    pub fn sample_object(&self, u: Vec2) -> (Vec3, Vec3) {
+        let (ri2, r2) = (
+            self.inner_radius * self.inner_radius,
+            self.radius * self.radius,
+        );
+        let r = (ri2 + u.x * (r2 - ri2)).sqrt();
+        let phi = u.y * self.phi_max;
+        let p = Vec3::new(r * phi.cos(), r * phi.sin(), self.height);
+        (p, Vec3::Z)
     }
 }

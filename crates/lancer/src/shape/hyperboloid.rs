@@ -1,7 +1,8 @@
 //! The hyperboloid: the surface swept by the segment p₁p₂ turning about the z axis, up to
 //! `phimax`.
 
-use super::{Placement, ShapeHit, SurfaceInteraction, quadric_error, quadric_hit, quadric_t};
+use super::hit::{ShapeHit, SurfaceInteraction};
+use super::placement::{Placement, quadric_error, quadric_hit, quadric_t};
 use crate::math::{Bounds3, Vec2, Vec3, normalize, solve_quadratic};
 use crate::ray::Ray;
 use glam::{DVec2, DVec3};

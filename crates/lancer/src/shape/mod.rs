@@ -5,6 +5,11 @@
 //! distance `t` (and whatever the shape needs later, such as barycentrics) as cheaply as
 //! possible; [`Shape::interaction`] then computes the full [`SurfaceInteraction`] (point, error
 //! bounds, normals, (u, v), derivatives) once, for the closest hit only.
+//!
+//! The vocabulary every shape file shares lives in two leaf modules, re-exported here: `hit`
+//! (the hit and interaction records, [`ShapeSample`]) and `placement` ([`Placement`] and the
+//! quadrics' numeric helpers). This file only gathers the shapes into [`Shape`]; `sample`
+//! adds its area and area sampling.
 
 mod bilinear;
 mod cone;
@@ -12,10 +17,12 @@ mod cuboid;
 mod curve;
 mod cylinder;
 mod disk;
+mod hit;
 mod hyperboloid;
 mod loop_subdiv;
 mod mesh;
 mod paraboloid;
+mod placement;
 mod plane;
 mod sample;
 pub mod sdf;
@@ -29,12 +36,13 @@ pub use cuboid::Cuboid;
 pub use curve::{Curve, CurveBasis, CurveCommon, CurveDesc, CurveType, bezier_eval, bezier_piece};
 pub use cylinder::Cylinder;
 pub use disk::Disk;
+pub use hit::{Shading, ShapeHit, ShapeSample, SurfaceInteraction};
 pub use hyperboloid::Hyperboloid;
 pub use loop_subdiv::loop_subdivide;
 pub use mesh::IndexedMesh;
 pub use paraboloid::Paraboloid;
+pub use placement::Placement;
 pub use plane::Plane;
-pub use sample::ShapeSample;
 pub use sdf::{Sdf, SdfFunction};
 pub use sphere::Sphere;
 pub use triangle::{
@@ -42,180 +50,8 @@ pub use triangle::{
 };
 pub use voxels::{BRICK, VoxelGrid, Voxels, srgb8_to_linear};
 
-use crate::math::{Bounds3, Transform, Vec2, Vec3, cross, gamma};
+use crate::math::{Bounds3, Vec3};
 use crate::ray::Ray;
-use glam::{DMat4, DVec3};
-
-/// The result of [`Shape::intersect`]: the distance along the ray and two shape-specific
-/// values kept for [`Shape::interaction`] (barycentrics b₁, b₂ for triangles).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ShapeHit {
-    /// Parametric distance: the hit point is `ray.at(t)`.
-    pub t: f32,
-    /// Shape-specific (triangles: barycentric b₁).
-    pub u: f32,
-    /// Shape-specific (triangles: barycentric b₂).
-    pub v: f32,
-}
-
-/// The local differential geometry used for shading (may differ from the true geometry:
-/// interpolated vertex normals, normal maps).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Shading {
-    /// Shading normal, unit length, on the same side as the geometric normal.
-    pub n: Vec3,
-    /// Shading ∂p/∂u.
-    pub dpdu: Vec3,
-    /// Shading ∂p/∂v.
-    pub dpdv: Vec3,
-}
-
-/// Everything known about a ray's hit on a surface.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SurfaceInteraction {
-    /// The hit point, world space.
-    pub p: Vec3,
-    /// Bound on the absolute rounding error of `p`, per axis: the true point lies in
-    /// `p ± p_error`. Spawned rays are offset by it.
-    pub p_error: Vec3,
-    /// Geometric normal, unit length. Its side follows pbrt: the shape's natural orientation,
-    /// flipped by `ReverseOrientation` (and by handedness changes as pbrt does).
-    pub n: Vec3,
-    /// Surface parameterisation (u, v).
-    pub uv: Vec2,
-    /// ∂p/∂u.
-    pub dpdu: Vec3,
-    /// ∂p/∂v.
-    pub dpdv: Vec3,
-    /// Shading geometry.
-    pub shading: Shading,
-    /// Direction towards the ray's origin (−d, normalised).
-    pub wo: Vec3,
-    /// Parametric distance along the ray.
-    pub t: f32,
-}
-
-impl SurfaceInteraction {
-    /// A ray leaving this point in direction `d`.
-    #[inline]
-    pub fn spawn_ray(&self, d: Vec3) -> Ray {
-        Ray::spawn(self.p, self.p_error, self.n, d)
-    }
-
-    /// A shadow ray from this point to `target` (stopping just short of it).
-    #[inline]
-    pub fn spawn_ray_to(&self, target: Vec3) -> Ray {
-        Ray::spawn_to(self.p, self.p_error, self.n, target)
-    }
-
-    /// Builds an interaction from object-space differential geometry, applying the pbrt rules:
-    /// `n = normalize(∂p/∂u × ∂p/∂v)`, flipped when `flip` (reverse orientation xor a
-    /// handedness-swapping transform), then everything moved to world space by `to_world`.
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn from_object(
-        to_world: &Transform,
-        p_obj: Vec3,
-        p_err_obj: Vec3,
-        uv: Vec2,
-        dpdu: Vec3,
-        dpdv: Vec3,
-        flip: bool,
-        wo: Vec3,
-        t: f32,
-    ) -> SurfaceInteraction {
-        let mut n_obj = cross(dpdu, dpdv).normalize_or_zero();
-        if flip {
-            n_obj = -n_obj;
-        }
-        let (p, p_error) = to_world.point_with_error_in(p_obj, p_err_obj);
-        let n = to_world.normal(n_obj).normalize_or_zero();
-        let (dpdu, dpdv) = (to_world.vector(dpdu), to_world.vector(dpdv));
-        SurfaceInteraction {
-            p,
-            p_error,
-            n,
-            uv,
-            dpdu,
-            dpdv,
-            shading: Shading { n, dpdu, dpdv },
-            wo,
-            t,
-        }
-    }
-}
-
-/// Where a quadric sits: its object-to-world transform and orientation.
-///
-/// Rays are moved into object space in double precision: the rounding error of that transform
-/// is then negligible next to the single-precision error bounds by which spawned rays are
-/// offset, so a ray leaving a quadric can never find it again at a tiny positive `t`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Placement {
-    /// Object space → world space.
-    pub to_world: Transform,
-    /// World space → object space, in double precision.
-    pub to_object: DMat4,
-    /// Normals flipped (reverse orientation xor the transform swaps handedness).
-    pub flip_normal: bool,
-}
-
-impl Placement {
-    /// A placement from a transform and pbrt's `ReverseOrientation` state.
-    pub fn new(to_world: Transform, reverse_orientation: bool) -> Placement {
-        Placement {
-            to_world,
-            to_object: to_world.m.as_dmat4().inverse(),
-            flip_normal: reverse_orientation ^ to_world.swaps_handedness(),
-        }
-    }
-
-    /// The ray in object space, double precision: (origin, direction).
-    #[inline]
-    pub fn object_ray(&self, ray: &Ray) -> (DVec3, DVec3) {
-        (
-            self.to_object.transform_point3(ray.o.as_dvec3()),
-            self.to_object.transform_vector3(ray.d.as_dvec3()),
-        )
-    }
-}
-
-/// The azimuth φ = atan2(y, x) of an object-space point, in [0, 2π).
-#[inline]
-pub(crate) fn phi_of(p: DVec3) -> f64 {
-    let phi = p.y.atan2(p.x);
-    if phi < 0.0 {
-        phi + 2.0 * std::f64::consts::PI
-    } else {
-        phi
-    }
-}
-
-/// A quadric's hit at the double-precision distance `t`: `t` rounded to `f32`, and the
-/// rounding residual kept in `u` so that [`quadric_t`] recovers `t` to about 48 bits.
-#[inline]
-pub(crate) fn quadric_hit(t: f64) -> ShapeHit {
-    let tf = t as f32;
-    ShapeHit {
-        t: tf,
-        u: (t - tf as f64) as f32,
-        v: 0.0,
-    }
-}
-
-/// The double-precision distance stored by [`quadric_hit`].
-#[inline]
-pub(crate) fn quadric_t(hit: &ShapeHit) -> f64 {
-    hit.t as f64 + hit.u as f64
-}
-
-/// Error bound of the object-space point p = o + t·d computed in double precision from the
-/// root t and rounded to `f32`, for quadrics whose hit points are not reprojected onto the
-/// surface: γ₃·|p| covers the rounding to `f32` with room to spare, and 10⁻¹²·(|o| + |t·d|)
-/// the double-precision error of the root and of o + t·d, per axis.
-#[inline]
-pub(crate) fn quadric_error(o: DVec3, d: DVec3, t: f64, p: Vec3) -> Vec3 {
-    gamma(3) * p.abs() + (1e-12 * (o.abs() + (t * d).abs())).as_vec3a()
-}
 
 /// Every kind of shape lancer intersects.
 ///

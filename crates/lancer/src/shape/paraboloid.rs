@@ -1,8 +1,7 @@
 //! The paraboloid: z = zmax·(x² + y²)/r² between `zmin` and `zmax`, swept to `phimax`.
 
-use super::{
-    Placement, ShapeHit, SurfaceInteraction, phi_of, quadric_error, quadric_hit, quadric_t,
-};
+use super::hit::{ShapeHit, SurfaceInteraction};
+use super::placement::{Placement, phi_of, quadric_error, quadric_hit, quadric_t};
 use crate::math::{Bounds3, Vec2, Vec3, normalize, solve_quadratic};
 use crate::ray::Ray;
 

@@ -1,6 +1,6 @@
 //! The infinite plane of the course (a lancer extension to pbrt's shapes).
 
-use super::{Shading, ShapeHit, SurfaceInteraction};
+use super::hit::{Shading, ShapeHit, SurfaceInteraction};
 use crate::math::{Frame, Vec2, Vec3, gamma, normalize};
 use crate::ray::Ray;
 use glam::DVec3;

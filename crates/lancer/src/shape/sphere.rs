@@ -1,6 +1,7 @@
 //! The sphere: x² + y² + z² = r², optionally cut by `zmin`/`zmax` and swept to `phimax`.
 
-use super::{Placement, ShapeHit, SurfaceInteraction, phi_of};
+use super::hit::{ShapeHit, SurfaceInteraction};
+use super::placement::{Placement, phi_of};
 use crate::math::{Bounds3, Vec2, Vec3, gamma, normalize};
 use crate::ray::Ray;
 use glam::DVec3;
@@ -152,5 +153,21 @@ impl Sphere {
             -normalize(ray.d),
             hit.t,
         )
+    }
+
+    /// Surface area, object space: a sphere zone's area depends only on its height,
+    /// A = φmax·r·(zmax − zmin) (Archimedes).
+    pub fn object_area(&self) -> f32 {
+        self.phi_max * self.radius * (self.z_max - self.z_min)
+    }
+
+    /// A point uniform by area and its outward normal p/r, object space: z uniform in
+    /// [zmin, zmax] and φ = u₁·φmax are uniform by area on a sphere zone (Archimedes again).
+    pub fn sample_object(&self, u: Vec2) -> (Vec3, Vec3) {
+        let z = self.z_min + u.x * (self.z_max - self.z_min);
+        let phi = u.y * self.phi_max;
+        let rho = (self.radius * self.radius - z * z).max(0.0).sqrt();
+        let p = Vec3::new(rho * phi.cos(), rho * phi.sin(), z);
+        (p, p / self.radius)
     }
 }

@@ -1,6 +1,7 @@
 //! Triangles and triangle meshes: the watertight ray–triangle test.
 
-use super::{IndexedMesh, Shading, ShapeHit, SurfaceInteraction};
+use super::hit::{Shading, ShapeHit, SurfaceInteraction};
+use super::mesh::IndexedMesh;
 use crate::math::{
     Bounds3, Frame, PackedVec3, Vec2, Vec3, cross, difference_of_products, gamma, normalize,
 };

@@ -16,7 +16,8 @@
 //!
 //! A voxel grid is not an emitter: `Scene::build` refuses an area light on it.
 
-use super::{Placement, ShapeHit, SurfaceInteraction};
+use super::hit::{ShapeHit, SurfaceInteraction};
+use super::placement::Placement;
 use crate::math::{Bounds3, Rgb, Vec2, Vec3, gamma, normalize};
 use crate::ray::Ray;
 use glam::DVec3;

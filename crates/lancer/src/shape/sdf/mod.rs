@@ -16,9 +16,10 @@ pub mod node;
 pub use expr::SdfError;
 pub use node::{Aabb, FUNCTIONS, Node};
 
-use super::{Placement, ShapeHit, SurfaceInteraction, quadric_hit, quadric_t};
 use crate::math::{Bounds3, Vec2, Vec3, gamma, normalize};
 use crate::ray::Ray;
+use crate::shape::hit::{ShapeHit, SurfaceInteraction};
+use crate::shape::placement::{Placement, quadric_hit, quadric_t};
 use glam::DVec3;
 use std::sync::Arc;
 
