@@ -2,6 +2,9 @@
 //! the implicit surface, hit points and normals are right, spawned rays never find their own
 //! surface again, areas agree with Crofton's formula, and sampled points carry the
 //! intersection's normal.
+//!
+//! These are the statistical checks over all of them; each shape's hand-computed hits,
+//! normals, cuts and closed-form areas are unit tests beside it, in `src/shape/`.
 
 mod common;
 
@@ -406,64 +409,6 @@ fn areas_agree_with_crofton() {
 }
 
 #[test]
-fn closed_form_areas() {
-    let cases: Vec<(Geometry, f64)> = vec![
-        // Full cone: π·r·√(h² + r²).
-        (
-            Geometry::Cone {
-                radius: 1.2,
-                height: 1.5,
-                phi_max: 360.0,
-            },
-            PI * 1.2 * 1.5f64.hypot(1.2),
-        ),
-        // Paraboloid z = ρ² up to z = 1: π/6·(5√5 − 1).
-        (
-            Geometry::Paraboloid {
-                radius: 1.0,
-                z_min: 0.0,
-                z_max: 1.0,
-                phi_max: 360.0,
-            },
-            PI / 6.0 * (5.0 * 5f64.sqrt() - 1.0),
-        ),
-        // Half a cylinder as a hyperboloid: φmax·r·h.
-        (
-            Geometry::Hyperboloid {
-                p1: Vec3::new(0.5, 0.0, -1.0),
-                p2: Vec3::new(0.5, 0.0, 1.0),
-                phi_max: 180.0,
-            },
-            PI * 0.5 * 2.0,
-        ),
-        // A cone as a hyperboloid (segment from the apex): π·r·slant, r = √2, slant = √3.
-        (
-            Geometry::Hyperboloid {
-                p1: Vec3::ZERO,
-                p2: Vec3::ONE,
-                phi_max: 360.0,
-            },
-            PI * 2f64.sqrt() * 3f64.sqrt(),
-        ),
-        // Box: 2(ab + bc + ca).
-        (
-            Geometry::Box {
-                min: Vec3::ZERO,
-                max: Vec3::new(1.0, 2.0, 3.0),
-            },
-            22.0,
-        ),
-    ];
-    for (i, (g, want)) in cases.into_iter().enumerate() {
-        let got = scene_of(g, Transform::IDENTITY, false).shapes[0].area() as f64;
-        assert!(
-            (got - want).abs() < 1e-5 * want,
-            "case {i}: {got} vs {want}"
-        );
-    }
-}
-
-#[test]
 fn sampled_points_lie_on_the_surface_with_the_intersection_normal() {
     for (gi, g) in geometries().into_iter().enumerate() {
         for (pi, (xf, rev)) in placements().into_iter().enumerate() {
@@ -546,131 +491,4 @@ fn samples_are_uniform_by_area() {
             );
         }
     }
-}
-
-#[test]
-fn rays_outside_the_cuts_miss() {
-    // Points on the implicit surfaces but beyond a cut, approached along the surface normal.
-    let cases: Vec<(Geometry, DVec3)> = vec![
-        // Cone below its base (z < 0) and beyond its sweep.
-        (
-            Geometry::Cone {
-                radius: 1.0,
-                height: 1.0,
-                phi_max: 270.0,
-            },
-            DVec3::new(1.2, 0.0, -0.2),
-        ),
-        (
-            Geometry::Cone {
-                radius: 1.0,
-                height: 1.0,
-                phi_max: 270.0,
-            },
-            DVec3::new(
-                0.5 * (5.0f64).to_radians().cos(),
-                -0.5 * (5.0f64).to_radians().sin(),
-                0.5,
-            ),
-        ),
-        // The cone's upper nappe, above the apex.
-        (
-            Geometry::Cone {
-                radius: 1.0,
-                height: 1.0,
-                phi_max: 360.0,
-            },
-            DVec3::new(0.3, 0.0, 1.3),
-        ),
-        // Paraboloid above zmax and below zmin.
-        (
-            Geometry::Paraboloid {
-                radius: 1.0,
-                z_min: 0.25,
-                z_max: 1.0,
-                phi_max: 360.0,
-            },
-            DVec3::new(1.2, 0.0, 1.44),
-        ),
-        (
-            Geometry::Paraboloid {
-                radius: 1.0,
-                z_min: 0.25,
-                z_max: 1.0,
-                phi_max: 360.0,
-            },
-            DVec3::new(0.0, 0.3, 0.09),
-        ),
-        // Hyperboloid (x² + y² = 1 + z²... for p1 = (1, −1, 1), p2 = (1, 1, −1)) beyond z = 1.
-        (
-            Geometry::Hyperboloid {
-                p1: Vec3::new(1.0, -1.0, 1.0),
-                p2: Vec3::new(1.0, 1.0, -1.0),
-                phi_max: 360.0,
-            },
-            DVec3::new((1.0f64 + 1.5 * 1.5).sqrt(), 0.0, 1.5),
-        ),
-    ];
-    for (i, (g, p)) in cases.into_iter().enumerate() {
-        let (f, grad, ok, _) = implicit(&g, p);
-        assert!(
-            f.abs() < 1e-9 && !ok,
-            "case {i}: the point is not where it should be"
-        );
-        let scene = scene_of(g, Transform::IDENTITY, false);
-        let n = grad.normalize();
-        for side in [1.0, -1.0] {
-            let o = (p + 0.3 * side * n).as_vec3a();
-            let ray = Ray::new(o, p.as_vec3a() - o);
-            if let Some(h) = scene.intersect(&ray) {
-                assert!(
-                    (h.si.p.as_dvec3() - p).length() > 1e-2,
-                    "case {i}: hit at {} beyond the cut",
-                    h.si.p
-                );
-            }
-        }
-    }
-}
-
-#[test]
-fn box_faces_have_outward_normals_and_unit_uv() {
-    let g = Geometry::Box {
-        min: Vec3::new(-1.0, -2.0, -3.0),
-        max: Vec3::new(1.0, 2.0, 3.0),
-    };
-    let scene = scene_of(g, Transform::IDENTITY, false);
-    for k in 0..3 {
-        for side in [1.0f32, -1.0] {
-            let mut dir = Vec3::ZERO;
-            dir[k] = -side;
-            // From outside the face normal to axis k on `side`, aimed at a point off centre.
-            let mut target = Vec3::new(0.3, -0.5, 0.7);
-            target[k] = side * [1.0, 2.0, 3.0][k];
-            let o = target - 5.0 * dir;
-            let hit = scene.intersect(&Ray::new(o, dir)).unwrap();
-            assert!(
-                (hit.si.p - target).length() < 1e-5,
-                "{} vs {target}",
-                hit.si.p
-            );
-            assert!(
-                (hit.si.n + dir).length() < 1e-6,
-                "face {k}{side}: {}",
-                hit.si.n
-            );
-            assert!((hit.si.t - 5.0).abs() < 1e-5);
-            // From inside, the same face is hit with the same outward normal.
-            let inside = scene.intersect(&Ray::new(Vec3::ZERO, -dir)).unwrap();
-            assert!((inside.si.n + dir).length() < 1e-6);
-            let uv = hit.si.uv;
-            assert!(uv.cmpge(Vec2::ZERO).all() && uv.cmple(Vec2::ONE).all());
-        }
-    }
-    // A ray parallel to a face, outside the slab, misses.
-    assert!(
-        scene
-            .intersect(&Ray::new(Vec3::new(1.5, 0.0, -10.0), Vec3::Z))
-            .is_none()
-    );
 }

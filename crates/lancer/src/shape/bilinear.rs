@@ -422,4 +422,27 @@ mod tests {
             patch.area()
         );
     }
+
+    #[test]
+    fn saddle_hit_point_and_normal() {
+        // The patch p(u, v) = (u, v, uv): from (½, ½, 5) down, z = ¼ at t = 4.75, (u, v) = (½, ½).
+        // n ∝ ∂p/∂u × ∂p/∂v = (1, 0, v) × (0, 1, u) = (−v, −u, 1) = (−½, −½, 1)/√1.5.
+        let p = [
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::new(1.0, 1.0, 1.0),
+        ];
+        let patch = BilinearPatch::new(p.map(PackedVec3::from), mesh_of(p), 0);
+        let r = Ray::new(Vec3::new(0.5, 0.5, 5.0), -Vec3::Z);
+        let h = patch.intersect(&r).unwrap();
+        assert!((h.t - 4.75).abs() < 1e-5, "t {}", h.t);
+        let si = patch.interaction(&r, &h);
+        assert!((si.p - Vec3::new(0.5, 0.5, 0.25)).length() < 1e-5);
+        assert!((si.uv - Vec2::splat(0.5)).length() < 1e-5);
+        let want = Vec3::new(-0.5, -0.5, 1.0) / 1.5f32.sqrt();
+        assert!((si.n - want).length() < 1e-5, "{}", si.n);
+        // The sampler's normal at the same (u, v) agrees.
+        assert!((patch.normal_at(0.5, 0.5) - want).length() < 1e-5);
+    }
 }

@@ -119,3 +119,79 @@ impl Cone {
         (p, n)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shape::testing::{assert_cut_away, assert_near, assert_rel, identity};
+    use glam::DVec3;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn hit_point_normal_and_uv() {
+        // r = 1, h = 2: ρ = (2 − z)/2. Along −x at z = 1 (k = ¼): t² − 10t + 24.75 = 0,
+        // t = 4.5 (x = ½) or 5.5. ∂p/∂u = (0, π, 0), ∂p/∂v = (−x/(1 − v), 0, h) = (−1, 0, 2):
+        // n ∝ (2π, 0, π), i.e. (2, 0, 1)/√5 (away from the axis, tilted up); uv = (0, ½).
+        let c = Cone::new(identity(), 1.0, 2.0, 360.0);
+        let ray = Ray::new(Vec3::new(5.0, 0.0, 1.0), -Vec3::X);
+        let h = c.intersect(&ray).unwrap();
+        assert!((h.t - 4.5).abs() < 1e-6);
+        let si = c.interaction(&ray, &h);
+        assert_near(si.p, Vec3::new(0.5, 0.0, 1.0), 1e-6);
+        assert_near(si.n, Vec3::new(2.0, 0.0, 1.0) / 5f32.sqrt(), 1e-6);
+        assert!(si.uv.x.abs() < 1e-6 && (si.uv.y - 0.5).abs() < 1e-6);
+    }
+
+    #[test]
+    fn rays_outside_the_cuts_miss() {
+        // Points of x² + y² = k(z − h)² (here k = 1, h = 1) beyond a cut, approached along
+        // the gradient ∇F = (2x, 2y, −2k(z − h)).
+        let grad = |p: DVec3| DVec3::new(2.0 * p.x, 2.0 * p.y, -2.0 * (p.z - 1.0));
+        let cases = [
+            // Below the base (z < 0), φmax = 270°.
+            (270.0, DVec3::new(1.2, 0.0, -0.2)),
+            // At φ = −5° = 355°, beyond the sweep.
+            (
+                270.0,
+                DVec3::new(
+                    0.5 * 5f64.to_radians().cos(),
+                    -0.5 * 5f64.to_radians().sin(),
+                    0.5,
+                ),
+            ),
+            // The upper nappe, above the apex.
+            (360.0, DVec3::new(0.3, 0.0, 1.3)),
+        ];
+        for (phi_max, p) in cases {
+            let f = p.x * p.x + p.y * p.y - (p.z - 1.0).powi(2);
+            assert!(f.abs() < 1e-9, "{p} is not on the implicit cone");
+            let c = Cone::new(identity(), 1.0, 1.0, phi_max);
+            assert_cut_away(p, grad(p), |r| {
+                c.intersect(r).map(|h| c.interaction(r, &h).p)
+            });
+        }
+    }
+
+    #[test]
+    fn closed_form_areas() {
+        // Full cone: π·r·√(h² + r²) (the lateral surface, slant √(h² + r²)).
+        let c = Cone::new(identity(), 1.2, 1.5, 360.0);
+        assert_rel(c.object_area(), PI * 1.2 * 1.5f64.hypot(1.2), 1e-6);
+        // A sector of it, φmax = 250°: 250/360 of the lateral surface r = 0.8, h = 2.
+        let c = Cone::new(identity(), 0.8, 2.0, 250.0);
+        assert_rel(
+            c.object_area(),
+            250.0 / 360.0 * PI * 0.8 * 2f64.hypot(0.8),
+            1e-6,
+        );
+    }
+
+    #[test]
+    fn samples_lie_on_the_cone_with_the_intersection_normal() {
+        // u₀ = ¼: √u₀ = ½, ρ = ½, z = h(1 − ½) = 1; φ = 0: the point hit above, same normal.
+        let c = Cone::new(identity(), 1.0, 2.0, 360.0);
+        let (p, n) = c.sample_object(Vec2::new(0.25, 0.0));
+        assert_near(p, Vec3::new(0.5, 0.0, 1.0), 1e-6);
+        assert_near(n, Vec3::new(2.0, 0.0, 1.0) / 5f32.sqrt(), 1e-6);
+    }
+}

@@ -168,3 +168,93 @@ impl Cuboid {
         (p, n)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Transform;
+    use crate::shape::testing::{assert_near, assert_rel, identity};
+
+    /// The box [−1, 1] × [−2, 2] × [−3, 3].
+    fn box123() -> Cuboid {
+        Cuboid::new(
+            identity(),
+            Vec3::new(-1.0, -2.0, -3.0),
+            Vec3::new(1.0, 2.0, 3.0),
+        )
+    }
+
+    fn hit(b: &Cuboid, ray: &Ray) -> (ShapeHit, SurfaceInteraction) {
+        let h = b.intersect(ray).expect("a hit");
+        (h, b.interaction(ray, &h))
+    }
+
+    #[test]
+    fn hit_point_normal_and_uv_on_a_max_face() {
+        // From (5, ½, ½) along −x: the face x = 1 at t = 4, n = +x. On a max face of axis 0,
+        // (i, j) = (1, 2): u = (½ + 2)/4 = 0.625, v = (½ + 3)/6 = 7/12.
+        let (h, si) = hit(&box123(), &Ray::new(Vec3::new(5.0, 0.5, 0.5), -Vec3::X));
+        assert_eq!(h.t, 4.0);
+        assert_near(si.p, Vec3::new(1.0, 0.5, 0.5), 0.0);
+        assert_eq!(si.p.x, 1.0, "the point is put exactly on its face");
+        assert_near(si.n, Vec3::X, 0.0);
+        assert!((si.uv.x - 0.625).abs() < 1e-6 && (si.uv.y - 7.0 / 12.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn faces_have_outward_normals_and_unit_uv() {
+        let b = box123();
+        for k in 0..3 {
+            for side in [1.0f32, -1.0] {
+                let mut dir = Vec3::ZERO;
+                dir[k] = -side;
+                // From outside the face normal to axis k on `side`, aimed at a point off centre.
+                let mut target = Vec3::new(0.3, -0.5, 0.7);
+                target[k] = side * [1.0, 2.0, 3.0][k];
+                let o = target - 5.0 * dir;
+                let (h, si) = hit(&b, &Ray::new(o, dir));
+                assert_near(si.p, target, 1e-5);
+                assert_near(si.n, -dir, 1e-6);
+                assert!((h.t - 5.0).abs() < 1e-5);
+                // From inside, the same face is hit with the same outward normal.
+                let (_, inside) = hit(&b, &Ray::new(Vec3::ZERO, -dir));
+                assert_near(inside.n, -dir, 1e-6);
+                let uv = si.uv;
+                assert!(uv.cmpge(Vec2::ZERO).all() && uv.cmple(Vec2::ONE).all());
+            }
+        }
+        // A ray parallel to a face, outside the slab, misses.
+        assert!(
+            b.intersect(&Ray::new(Vec3::new(1.5, 0.0, -10.0), Vec3::Z))
+                .is_none()
+        );
+    }
+
+    #[test]
+    fn areas_under_any_affine_placement() {
+        // 2(ab + bc + ca) for the 1 × 2 × 3 box: 2(2 + 6 + 3) = 22.
+        let b = Cuboid::new(identity(), Vec3::ZERO, Vec3::new(1.0, 2.0, 3.0));
+        assert_rel(b.area(), 22.0, 1e-6);
+        // Scaled by (2, 1, 1), the 2 × 4 × 6 box becomes 4 × 4 × 6: 2(16 + 24 + 24) = 128.
+        let xf = Transform::scale(Vec3::new(2.0, 1.0, 1.0)).unwrap();
+        let b = Cuboid::new(
+            Placement::new(xf, false),
+            Vec3::new(-1.0, -2.0, -3.0),
+            Vec3::new(1.0, 2.0, 3.0),
+        );
+        assert_rel(b.area(), 128.0, 1e-6);
+    }
+
+    #[test]
+    fn samples_pick_faces_by_area() {
+        // Face areas of box123: 4·6 = 24 (x faces), 6·2 = 12 (y), 2·4 = 8 (z); total 88.
+        // u₀ = 0.6: 52.8 − 24 − 12 − 8 = 8.8 falls on the max-x face at 8.8/24 of its u:
+        // p = (1, −2 + 4·8.8/24, −3 + 6·½) = (1, −0.5333, 0), n = +x.
+        let (p, n) = box123().sample_object(Vec2::new(0.6, 0.5));
+        assert_near(p, Vec3::new(1.0, -2.0 + 4.0 * 8.8 / 24.0, 0.0), 1e-5);
+        assert_eq!(n, Vec3::X);
+        // u₀ near 0: the min-x face, normal −x.
+        let (p, n) = box123().sample_object(Vec2::new(0.01, 0.5));
+        assert_eq!((p.x, n), (-1.0, -Vec3::X));
+    }
+}

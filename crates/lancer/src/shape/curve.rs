@@ -710,4 +710,54 @@ mod tests {
         let fd = (bezier_eval(&cp, 0.301).0 - bezier_eval(&cp, 0.299).0) / 0.002;
         assert!((d - fd).length() < 1e-2 * d.length());
     }
+
+    /// A straight flat curve along x from 0 to 3, 0.2 wide (control points evenly spaced, so
+    /// p(u) = (3u, 0, 0) and p′(u) = (3, 0, 0)).
+    fn straight() -> Curve {
+        let cp = [0.0, 1.0, 2.0, 3.0].map(|x| Vec3::new(x, 0.0, 0.0));
+        Curve {
+            common: Arc::new(CurveCommon::new(
+                CurveType::Flat,
+                cp,
+                [0.2, 0.2],
+                None,
+                false,
+            )),
+            u_min: 0.0,
+            u_max: 1.0,
+        }
+    }
+
+    #[test]
+    fn a_flat_curve_is_hit_within_half_its_width() {
+        // From (1.5, 0.05, 5) down: the curve point nearest the ray is u = ½, 0.05 off the
+        // axis (< 0.1), 5 along the ray. In ray space (x, y, z) = (+x, −y, −z) the ray passes
+        // on the side where p′ × (−pc) = 3·(−0.05) < 0: v = ½ − 0.05/0.2 = ¼.
+        let c = straight();
+        let ray = Ray::new(Vec3::new(1.5, 0.05, 5.0), -Vec3::Z);
+        let h = c.intersect(&ray).unwrap();
+        assert!((h.t - 5.0).abs() < 1e-5, "t {}", h.t);
+        assert!(
+            (h.u - 0.5).abs() < 1e-5 && (h.v - 0.25).abs() < 1e-5,
+            "{h:?}"
+        );
+        let si = c.interaction(&ray, &h);
+        assert!((si.p - Vec3::new(1.5, 0.05, 0.0)).length() < 1e-5);
+        // ∂p/∂v = normalize(d̂ × p′)·w = (0, −0.2, 0), and n ∝ p′ × (d̂ × p′) = |p′|²·d̂ (as
+        // p′ ⟂ d̂): a flat curve's normal runs along the ray, (0, 0, −1) here.
+        assert!((si.dpdu - Vec3::new(3.0, 0.0, 0.0)).length() < 1e-5);
+        assert!((si.dpdv - Vec3::new(0.0, -0.2, 0.0)).length() < 1e-6);
+        assert!((si.n + Vec3::Z).length() < 1e-6, "{}", si.n);
+        // 0.15 off the axis is beyond half the width; past the end (x = 3.2) too.
+        assert!(
+            c.intersect(&Ray::new(Vec3::new(1.5, 0.15, 5.0), -Vec3::Z))
+                .is_none()
+        );
+        assert!(
+            c.intersect(&Ray::new(Vec3::new(3.2, 0.0, 5.0), -Vec3::Z))
+                .is_none()
+        );
+        // pbrt's area: control polygon length 3 × width 0.2.
+        assert!((c.area() - 0.6).abs() < 1e-6);
+    }
 }

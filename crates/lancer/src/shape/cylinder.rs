@@ -139,3 +139,82 @@ impl Cylinder {
         (Vec3::new(x, y, z), Vec3::new(x, y, 0.0) / self.radius)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shape::testing::{assert_near, assert_rel, identity};
+    use std::f64::consts::PI;
+
+    /// Radius 1 between z = −1 and z = 1, swept to `phi_max` degrees.
+    fn tube(phi_max: f32) -> Cylinder {
+        Cylinder::new(identity(), 1.0, -1.0, 1.0, phi_max)
+    }
+
+    #[test]
+    fn hit_from_outside_and_from_inside() {
+        // From (5, 0, 0.5) along −x: x = 1 at t = 4, n = +x; u = 0, v = (0.5 + 1)/2 = 0.75.
+        // ∂p/∂u = (0, 2π, 0) × ∂p/∂v = (0, 0, 2) = (4π, 0, 0): outward.
+        let c = tube(360.0);
+        let ray = Ray::new(Vec3::new(5.0, 0.0, 0.5), -Vec3::X);
+        let h = c.intersect(&ray).unwrap();
+        assert_eq!(h.t, 4.0);
+        let si = c.interaction(&ray, &h);
+        assert_near(si.p, Vec3::new(1.0, 0.0, 0.5), 1e-6);
+        assert_near(si.n, Vec3::X, 1e-6);
+        assert!(si.uv.x.abs() < 1e-6 && (si.uv.y - 0.75).abs() < 1e-6);
+        // From the axis along +y: (0, 1, 0) at t = 1, φ = 90° (u = ¼), normal still outward.
+        let inside = Ray::new(Vec3::ZERO, Vec3::Y);
+        let h = c.intersect(&inside).unwrap();
+        assert_eq!(h.t, 1.0);
+        let si = c.interaction(&inside, &h);
+        assert_near(si.n, Vec3::Y, 1e-6);
+        assert!((si.uv.x - 0.25).abs() < 1e-6);
+    }
+
+    #[test]
+    fn open_ends_and_cuts() {
+        let c = tube(360.0);
+        // Above the top: the infinite cylinder is crossed at z = 1.5, outside [−1, 1].
+        assert!(
+            c.intersect(&Ray::new(Vec3::new(5.0, 0.0, 1.5), -Vec3::X))
+                .is_none()
+        );
+        // Down the axis: never meets the wall (a = dx² + dy² = 0).
+        assert!(
+            c.intersect(&Ray::new(Vec3::new(0.0, 0.0, 5.0), -Vec3::Z))
+                .is_none()
+        );
+        // In through the open top, (0, 0, 3) + t(1, 0, −3): the wall x = 1 at t = 1, z = 0.
+        let slant = Ray::new(Vec3::new(0.0, 0.0, 3.0), Vec3::new(1.0, 0.0, -3.0));
+        let h = c.intersect(&slant).unwrap();
+        assert!((h.t - 1.0).abs() < 1e-6);
+        assert_near(c.interaction(&slant, &h).p, Vec3::new(1.0, 0.0, 0.0), 1e-6);
+        // φmax = 180°: along +y from (0, −5, 0) the near wall (φ = 270°) is cut, the far one
+        // (φ = 90°) is hit at t = 6 with its outward normal +y.
+        let half = tube(180.0);
+        let ray = Ray::new(Vec3::new(0.0, -5.0, 0.0), Vec3::Y);
+        let h = half.intersect(&ray).unwrap();
+        assert_eq!(h.t, 6.0);
+        assert_near(half.interaction(&ray, &h).n, Vec3::Y, 1e-6);
+    }
+
+    #[test]
+    fn areas_full_and_partial() {
+        // (zmax − zmin)·r·φmax: 2·1·2π = 4π; half a cylinder r = 0.5, 0 ≤ z ≤ 2: 2·0.5·π = π.
+        assert_rel(tube(360.0).object_area(), 4.0 * PI, 1e-6);
+        assert_rel(
+            Cylinder::new(identity(), 0.5, 0.0, 2.0, 180.0).object_area(),
+            PI,
+            1e-6,
+        );
+    }
+
+    #[test]
+    fn samples_lie_on_the_wall() {
+        // u = (¼, ½): z = −1 + ¼·2 = −0.5, φ = π: (−1, 0, −0.5), normal −x.
+        let (p, n) = tube(360.0).sample_object(Vec2::new(0.25, 0.5));
+        assert_near(p, Vec3::new(-1.0, 0.0, -0.5), 1e-6);
+        assert_near(n, -Vec3::X, 1e-6);
+    }
+}

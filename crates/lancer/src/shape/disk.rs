@@ -132,3 +132,84 @@ impl Disk {
         (p, Vec3::Z)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shape::testing::{assert_near, assert_rel, identity};
+    use std::f64::consts::PI;
+
+    /// An annulus 0.5 ≤ ρ ≤ 2 at height 1, swept to `phi_max` degrees.
+    fn annulus(phi_max: f32) -> Disk {
+        Disk::new(identity(), 1.0, 2.0, 0.5, phi_max)
+    }
+
+    fn down_at(x: f32, y: f32) -> Ray {
+        Ray::new(Vec3::new(x, y, 5.0), -Vec3::Z)
+    }
+
+    #[test]
+    fn hit_point_normal_and_uv() {
+        // From (1, 0, 5) down to the plane z = 1: t = 4, p = (1, 0, 1).
+        // ∂p/∂u = (0, 2π, 0), ∂p/∂v = (1, 0, 0)·(0.5 − 2)/1 = (−1.5, 0, 0): n = +z.
+        // u = φ/φmax = 0, v = (r − ρ)/(r − rᵢ) = (2 − 1)/1.5 = 2/3.
+        let d = annulus(360.0);
+        let ray = down_at(1.0, 0.0);
+        let h = d.intersect(&ray).unwrap();
+        assert_eq!(h.t, 4.0);
+        let si = d.interaction(&ray, &h);
+        assert_near(si.p, Vec3::new(1.0, 0.0, 1.0), 1e-6);
+        assert_eq!(si.p.z, 1.0, "the point is put exactly on the plane");
+        assert_near(si.n, Vec3::Z, 1e-6);
+        assert!(si.uv.x.abs() < 1e-6 && (si.uv.y - 2.0 / 3.0).abs() < 1e-6);
+        // From below the normal is still +z (one-sided orientation, not facing the ray).
+        let up = Ray::new(Vec3::new(1.0, 0.0, -1.0), Vec3::Z);
+        let h = d.intersect(&up).unwrap();
+        assert_eq!(h.t, 2.0);
+        assert_near(d.interaction(&up, &h).n, Vec3::Z, 1e-6);
+    }
+
+    #[test]
+    fn hole_rim_sweep_and_parallel_rays_miss() {
+        let d = annulus(360.0);
+        assert!(d.intersect(&down_at(0.25, 0.0)).is_none(), "in the hole");
+        assert!(d.intersect(&down_at(2.5, 0.0)).is_none(), "beyond the rim");
+        // In the plane itself: d_z = 0.
+        assert!(
+            d.intersect(&Ray::new(Vec3::new(-5.0, 0.0, 1.0), Vec3::X))
+                .is_none()
+        );
+        // φmax = 90°: (0.6, 0.8) is at φ = 53.13°, u = 53.13/90; (−1, 0) at 180° is cut.
+        let q = annulus(90.0);
+        let ray = down_at(0.6, 0.8);
+        let h = q.intersect(&ray).unwrap();
+        let u = q.interaction(&ray, &h).uv.x;
+        assert!(
+            (u - 0.8f32.atan2(0.6).to_degrees() / 90.0).abs() < 1e-5,
+            "u {u}"
+        );
+        assert!(q.intersect(&down_at(-1.0, 0.0)).is_none());
+    }
+
+    #[test]
+    fn areas_full_and_partial() {
+        // φmax/2·(r² − rᵢ²): π·(4 − 0.25) = 3.75π, a quarter of it for 90°.
+        assert_rel(annulus(360.0).object_area(), 3.75 * PI, 1e-6);
+        assert_rel(annulus(90.0).object_area(), 0.9375 * PI, 1e-6);
+        // A plain disk of radius 1: π.
+        assert_rel(
+            Disk::new(identity(), 0.0, 1.0, 0.0, 360.0).object_area(),
+            PI,
+            1e-6,
+        );
+    }
+
+    #[test]
+    fn samples_lie_on_the_annulus() {
+        // u = (½, ¼): ρ = √(0.25 + ½·(4 − 0.25)) = √2.125, φ = ¼·2π = π/2.
+        let d = annulus(360.0);
+        let (p, n) = d.sample_object(Vec2::new(0.5, 0.25));
+        assert_near(p, Vec3::new(0.0, 2.125f32.sqrt(), 1.0), 1e-5);
+        assert_eq!(n, Vec3::Z);
+    }
+}

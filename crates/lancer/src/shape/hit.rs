@@ -114,3 +114,54 @@ pub struct ShapeSample {
     /// [`Shape::interaction`](super::Shape::interaction) orients it.
     pub n: Vec3,
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn from_object_orients_and_places_the_normal() {
+        // ∂p/∂u = (2, 0, 0), ∂p/∂v = (0, 3, 0): n = normalize(∂p/∂u × ∂p/∂v) = +z, flipped to
+        // −z when asked; a translation moves p but not n, ∂p/∂u or ∂p/∂v.
+        let to_world = Transform::translate(Vec3::new(1.0, 2.0, 3.0));
+        let (dpdu, dpdv) = (Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 3.0, 0.0));
+        for (flip, n) in [(false, Vec3::Z), (true, -Vec3::Z)] {
+            let si = SurfaceInteraction::from_object(
+                &to_world,
+                Vec3::new(0.5, 0.5, 0.0),
+                Vec3::ZERO,
+                Vec2::new(0.25, 0.75),
+                dpdu,
+                dpdv,
+                flip,
+                Vec3::Z,
+                2.0,
+            );
+            assert_eq!(si.p, Vec3::new(1.5, 2.5, 3.0));
+            assert_eq!((si.n, si.shading.n), (n, n));
+            assert_eq!((si.dpdu, si.dpdv), (dpdu, dpdv));
+            assert_eq!((si.uv, si.t, si.wo), (Vec2::new(0.25, 0.75), 2.0, Vec3::Z));
+        }
+    }
+
+    #[test]
+    fn spawned_rays_leave_on_the_side_of_their_direction() {
+        let si = SurfaceInteraction::from_object(
+            &Transform::IDENTITY,
+            Vec3::new(0.0, 0.0, 1.0),
+            Vec3::splat(1e-3),
+            Vec2::ZERO,
+            Vec3::X,
+            Vec3::Y,
+            false,
+            Vec3::Z,
+            1.0,
+        );
+        // Offset by at least the error bound along ±n, towards the direction taken.
+        assert!(si.spawn_ray(Vec3::Z).o.z >= 1.0 + 1e-3);
+        assert!(si.spawn_ray(-Vec3::Z).o.z <= 1.0 - 1e-3);
+        // Towards a target: the ray ends just short of it (t = 1 would reach it).
+        let r = si.spawn_ray_to(Vec3::new(0.0, 0.0, 5.0));
+        assert!(r.t_max < 1.0 && r.at(r.t_max).z > 4.9);
+    }
+}

@@ -216,3 +216,126 @@ impl Hyperboloid {
         (p.as_vec3a(), n.as_vec3a())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shape::testing::{assert_cut_away, assert_near, assert_rel, identity};
+    use std::f64::consts::PI;
+
+    /// The segment (1, −1, 1) → (1, 1, −1) swept fully: x² + y² = 1 + z² for |z| ≤ 1 (the
+    /// segment's point at height z is (1, −z, z)), its waist the unit circle at z = 0.
+    fn classic() -> Hyperboloid {
+        Hyperboloid::new(
+            identity(),
+            Vec3::new(1.0, -1.0, 1.0),
+            Vec3::new(1.0, 1.0, -1.0),
+            360.0,
+        )
+        .unwrap()
+    }
+
+    /// A segment parallel to the axis sweeps a cylinder of radius 1 between z = ±1.
+    fn cylinder(phi_max: f32) -> Hyperboloid {
+        Hyperboloid::new(
+            identity(),
+            Vec3::new(1.0, 0.0, -1.0),
+            Vec3::new(1.0, 0.0, 1.0),
+            phi_max,
+        )
+        .unwrap()
+    }
+
+    fn hit(h: &Hyperboloid, ray: &Ray) -> (ShapeHit, SurfaceInteraction) {
+        let hit = h.intersect(ray).expect("a hit");
+        (hit, h.interaction(ray, &hit))
+    }
+
+    #[test]
+    fn a_segment_parallel_to_the_axis_is_a_cylinder() {
+        // Along −x at z = 0: t = 4, p = (1, 0, 0); ∂p/∂u = (0, 2π, 0), ∂p/∂v = p₂ − p₁ =
+        // (0, 0, 2): n ∝ (4π, 0, 0) = +x; u = 0, v = s = ½.
+        let (h, si) = hit(
+            &cylinder(360.0),
+            &Ray::new(Vec3::new(5.0, 0.0, 0.0), -Vec3::X),
+        );
+        assert!((h.t - 4.0).abs() < 1e-6);
+        assert_near(si.p, Vec3::X, 1e-6);
+        assert_near(si.n, Vec3::X, 1e-6);
+        assert!(si.uv.x.abs() < 1e-6 && (si.uv.y - 0.5).abs() < 1e-6);
+    }
+
+    #[test]
+    fn the_classic_hyperboloid_at_its_waist_and_rim() {
+        let c = classic();
+        // The waist (1, 0, 0) at t = 4: s = ½, ∂p/∂v = (0, 2, −2), and
+        // ∂p/∂u × ∂p/∂v = (0, 2π, 0) × (0, 2, −2) = (−4π, 0, 0): the segment runs down, so
+        // the natural normal points at the axis.
+        let (h, si) = hit(&c, &Ray::new(Vec3::new(5.0, 0.0, 0.0), -Vec3::X));
+        assert!((h.t - 4.0).abs() < 1e-6);
+        assert_near(si.p, Vec3::X, 1e-6);
+        assert_near(si.n, -Vec3::X, 1e-6);
+        assert!(si.uv.x.abs() < 1e-6 && (si.uv.y - 0.5).abs() < 1e-6);
+        // At z = 1: x² = 1 + 1, t = 5 − √2, s = 0; the segment's point there is (1, −1), which
+        // turns onto (√2, 0) by φ = 45°: u = ⅛.
+        let (h, si) = hit(&c, &Ray::new(Vec3::new(5.0, 0.0, 1.0), -Vec3::X));
+        assert!((h.t - (5.0 - 2f32.sqrt())).abs() < 1e-5);
+        assert!((si.uv.x - 0.125).abs() < 1e-5 && si.uv.y.abs() < 1e-5);
+        // Beyond z = 1 on x² + y² = 1 + z²: (√3.25, 0, 1.5), ∇F = (2x, 2y, −2z).
+        let p = DVec3::new(3.25f64.sqrt(), 0.0, 1.5);
+        assert!((p.x * p.x + p.y * p.y - 1.0 - p.z * p.z).abs() < 1e-9);
+        let grad = DVec3::new(2.0 * p.x, 2.0 * p.y, -2.0 * p.z);
+        assert_cut_away(p, grad, |r| c.intersect(r).map(|h| c.interaction(r, &h).p));
+    }
+
+    #[test]
+    fn flat_or_infinite_segments_are_refused() {
+        let pl = identity();
+        let (a, b) = (Vec3::new(1.0, 0.0, 0.5), Vec3::new(0.0, 1.0, 0.5));
+        assert!(Hyperboloid::new(pl, a, b, 360.0).is_none(), "same height");
+        let inf = Vec3::new(f32::INFINITY, 0.0, 1.0);
+        assert!(Hyperboloid::new(pl, Vec3::ZERO, inf, 360.0).is_none());
+    }
+
+    #[test]
+    fn closed_form_areas() {
+        // Half a cylinder r = ½, height 2: φmax·r·h = π·½·2 = π.
+        let half = Hyperboloid::new(
+            identity(),
+            Vec3::new(0.5, 0.0, -1.0),
+            Vec3::new(0.5, 0.0, 1.0),
+            180.0,
+        )
+        .unwrap();
+        assert_rel(half.object_area(), PI, 1e-5);
+        // A segment from the axis: a cone, π·r·slant with r = √2, slant = √3.
+        let cone = Hyperboloid::new(identity(), Vec3::ZERO, Vec3::ONE, 360.0).unwrap();
+        assert_rel(cone.object_area(), PI * 2f64.sqrt() * 3f64.sqrt(), 1e-5);
+        // The classic one, ρ(z) = √(1 + z²): A = 2π∫₋₁¹ ρ√(1 + ρ′²) dz = 4π∫₀¹ √(1 + 2z²) dz
+        // = 4π·(√3/2 + asinh(√2)/(2√2)).
+        let want = 4.0 * PI * (3f64.sqrt() / 2.0 + 2f64.sqrt().asinh() / (2.0 * 2f64.sqrt()));
+        assert_rel(classic().object_area(), want, 1e-5);
+    }
+
+    #[test]
+    fn samples_lie_on_the_surface() {
+        // On the cylinder the area is uniform in s: u = (½, ¼) gives s = ½, φ = π/2:
+        // (0, 1, 0), normal +y.
+        let (p, n) = cylinder(360.0).sample_object(Vec2::new(0.5, 0.25));
+        assert_near(p, Vec3::Y, 1e-6);
+        assert_near(n, Vec3::Y, 1e-6);
+        // On the classic one every sample satisfies x² + y² = 1 + z², |z| ≤ 1, with the
+        // natural normal along −∇F = −(2x, 2y, −2z).
+        let c = classic();
+        for i in 0..64 {
+            let u = Vec2::new((i % 8) as f32 / 8.0 + 0.03, (i / 8) as f32 / 8.0 + 0.03);
+            let (p, n) = c.sample_object(u);
+            assert!(
+                (p.x * p.x + p.y * p.y - 1.0 - p.z * p.z).abs() < 1e-5,
+                "{p}"
+            );
+            assert!(p.z.abs() <= 1.0 + 1e-6, "{p}");
+            assert_near(n, -normalize(Vec3::new(p.x, p.y, -p.z)), 1e-5);
+        }
+    }
+}

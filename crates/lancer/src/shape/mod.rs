@@ -27,6 +27,8 @@ mod plane;
 mod sample;
 pub mod sdf;
 mod sphere;
+#[cfg(test)]
+mod testing;
 mod triangle;
 mod voxels;
 

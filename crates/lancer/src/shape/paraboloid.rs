@@ -144,3 +144,88 @@ impl Paraboloid {
         (p.as_vec3a(), n.as_vec3a())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shape::testing::{assert_cut_away, assert_near, assert_rel, identity};
+    use glam::DVec3;
+    use std::f64::consts::PI;
+
+    /// z = x² + y² for 0 ≤ z ≤ 1 (r = 1, k = zmax/r² = 1).
+    fn bowl() -> Paraboloid {
+        Paraboloid::new(identity(), 1.0, 0.0, 1.0, 360.0)
+    }
+
+    #[test]
+    fn hits_points_normals_and_uv() {
+        let q = bowl();
+        // Down at x = ½: z = ¼, t = 5 − ¼ = 4.75 (a = 0, the linear root). The normal
+        // ∂p/∂u × ∂p/∂v ∝ (x, y, −1/(2k)) = (½, 0, −½): out of the bowl.
+        let ray = Ray::new(Vec3::new(0.5, 0.0, 5.0), -Vec3::Z);
+        let h = q.intersect(&ray).unwrap();
+        assert!((h.t - 4.75).abs() < 1e-6);
+        let si = q.interaction(&ray, &h);
+        assert_near(si.p, Vec3::new(0.5, 0.0, 0.25), 1e-6);
+        assert_near(si.n, Vec3::new(1.0, 0.0, -1.0) / 2f32.sqrt(), 1e-6);
+        assert!(si.uv.x.abs() < 1e-6 && (si.uv.y - 0.25).abs() < 1e-6);
+        // Along +x at z = ¼: t² − 10t + 24.75 = 0, t = 4.5, p = (−½, 0, ¼), φ = π (u = ½).
+        // ∂p/∂u = (0, −π, 0), ∂p/∂v = (x/(2kρ²), 0, 1) = (−1, 0, 1): n ∝ (−1, 0, −1).
+        let ray = Ray::new(Vec3::new(-5.0, 0.0, 0.25), Vec3::X);
+        let h = q.intersect(&ray).unwrap();
+        assert!((h.t - 4.5).abs() < 1e-6);
+        let si = q.interaction(&ray, &h);
+        assert_near(si.p, Vec3::new(-0.5, 0.0, 0.25), 1e-6);
+        assert_near(si.n, Vec3::new(-1.0, 0.0, -1.0) / 2f32.sqrt(), 1e-6);
+        assert!((si.uv.x - 0.5).abs() < 1e-6 && (si.uv.y - 0.25).abs() < 1e-6);
+    }
+
+    #[test]
+    fn rays_outside_the_cuts_miss() {
+        // z = x² + y² cut to ¼ ≤ z ≤ 1; ∇F = (2kx, 2ky, −1) for F = k(x² + y²) − z.
+        let q = Paraboloid::new(identity(), 1.0, 0.25, 1.0, 360.0);
+        for p in [DVec3::new(1.2, 0.0, 1.44), DVec3::new(0.0, 0.3, 0.09)] {
+            assert!(
+                (p.x * p.x + p.y * p.y - p.z).abs() < 1e-9,
+                "{p} is not on it"
+            );
+            let grad = DVec3::new(2.0 * p.x, 2.0 * p.y, -1.0);
+            assert_cut_away(p, grad, |r| q.intersect(r).map(|h| q.interaction(r, &h).p));
+        }
+    }
+
+    #[test]
+    fn areas_in_closed_form_and_by_quadrature() {
+        // z = ρ² up to z = 1: A = 2π∫₀¹ ρ√(1 + 4ρ²) dρ = π/6·(5√5 − 1).
+        assert_rel(
+            bowl().object_area(),
+            PI / 6.0 * (5.0 * 5f64.sqrt() - 1.0),
+            1e-6,
+        );
+        // A cut, partial one (r = 0.7, 0.3 ≤ z ≤ 1.4, 290°) against the midpoint rule on
+        // A = φmax·∫ ρ√(1 + 4k²ρ²) dρ from ρ = √(zmin/k) to r.
+        let q = Paraboloid::new(identity(), 0.7, 0.3, 1.4, 290.0);
+        let k = 1.4 / 0.49;
+        let (lo, hi, n) = ((0.3f64 / k).sqrt(), 0.7, 100_000);
+        let step = (hi - lo) / n as f64;
+        let integral: f64 = (0..n)
+            .map(|i| {
+                let rho = lo + (i as f64 + 0.5) * step;
+                rho * (1.0 + 4.0 * k * k * rho * rho).sqrt() * step
+            })
+            .sum();
+        assert_rel(q.object_area(), 290f64.to_radians() * integral, 1e-5);
+    }
+
+    #[test]
+    fn samples_span_apex_to_rim() {
+        // u₀ = 0 is the apex (normal −z, out of the bowl), u₀ = 1 the rim at φ = 0:
+        // (1, 0, 1), n ∝ (1, 0, −½).
+        let (p, n) = bowl().sample_object(Vec2::new(0.0, 0.0));
+        assert_near(p, Vec3::ZERO, 1e-6);
+        assert_near(n, -Vec3::Z, 1e-6);
+        let (p, n) = bowl().sample_object(Vec2::new(1.0, 0.0));
+        assert_near(p, Vec3::new(1.0, 0.0, 1.0), 1e-5);
+        assert_near(n, Vec3::new(2.0, 0.0, -1.0) / 5f32.sqrt(), 1e-5);
+    }
+}

@@ -98,3 +98,62 @@ pub(crate) fn quadric_t(hit: &ShapeHit) -> f64 {
 pub(crate) fn quadric_error(o: DVec3, d: DVec3, t: f64, p: Vec3) -> Vec3 {
     gamma(3) * p.abs() + (1e-12 * (o.abs() + (t * d).abs())).as_vec3a()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn object_rays_undo_the_placement() {
+        // Object → world: translate (1, 2, 3) after scaling by 2. The world ray from
+        // (1, 2, 7) along −z starts at (0, 0, 2) in object space, direction (0, 0, −½).
+        let xf = Transform::translate(Vec3::new(1.0, 2.0, 3.0))
+            * Transform::scale(Vec3::splat(2.0)).unwrap();
+        let pl = Placement::new(xf, false);
+        let (o, d) = pl.object_ray(&Ray::new(Vec3::new(1.0, 2.0, 7.0), -Vec3::Z));
+        assert!((o - DVec3::new(0.0, 0.0, 2.0)).length() < 1e-12);
+        assert!((d - DVec3::new(0.0, 0.0, -0.5)).length() < 1e-12);
+        assert!(!pl.flip_normal);
+    }
+
+    #[test]
+    fn flips_follow_reverse_orientation_xor_handedness() {
+        let mirror = Transform::scale(Vec3::new(-1.0, 1.0, 1.0)).unwrap();
+        for (xf, reverse, flip) in [
+            (Transform::IDENTITY, false, false),
+            (Transform::IDENTITY, true, true),
+            (mirror, false, true),
+            (mirror, true, false),
+        ] {
+            assert_eq!(Placement::new(xf, reverse).flip_normal, flip);
+        }
+        // place(): the point moved, the normal flipped and moved as a normal.
+        let pl = Placement::new(Transform::translate(Vec3::X), true);
+        let s = pl.place(Vec3::new(0.0, 0.0, 1.0), Vec3::Z);
+        assert_eq!((s.p, s.n), (Vec3::new(1.0, 0.0, 1.0), -Vec3::Z));
+    }
+
+    #[test]
+    fn area_scale_is_the_determinant_to_the_two_thirds() {
+        // Identity: 1; uniform scale 3: |27|^(2/3) = 9 = 3²; a mirror changes nothing.
+        assert_eq!(Placement::new(Transform::IDENTITY, false).area_scale(), 1.0);
+        let s3 = Transform::scale(Vec3::new(-3.0, 3.0, 3.0)).unwrap();
+        let a = Placement::new(s3, false).area_scale();
+        assert!((a - 9.0).abs() < 1e-5, "{a}");
+    }
+
+    #[test]
+    fn azimuths_and_double_precision_distances() {
+        assert_eq!(phi_of(DVec3::new(1.0, 0.0, 5.0)), 0.0);
+        assert!((phi_of(DVec3::new(0.0, -1.0, 0.0)) - 1.5 * PI).abs() < 1e-15);
+        assert!((phi_of(DVec3::new(-1.0, 1.0, 0.0)) - 0.75 * PI).abs() < 1e-15);
+        // t = 1/3 rounds to f32 with an error ~10⁻⁸; the residual kept in u recovers it to
+        // about 48 bits.
+        let t = 1.0 / 3.0;
+        let h = quadric_hit(t);
+        assert_eq!(h.t, t as f32);
+        assert!((h.t as f64 - t).abs() > 1e-9);
+        assert!((quadric_t(&h) - t).abs() < 1e-15);
+    }
+}

@@ -71,3 +71,80 @@ impl Plane {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shape::testing::assert_near;
+
+    /// The plane z = 1, its normal given unnormalised.
+    fn z1() -> Plane {
+        Plane::new(Vec3::new(0.0, 0.0, 1.0), Vec3::new(0.0, 0.0, 2.0)).unwrap()
+    }
+
+    #[test]
+    fn hits_from_either_side_with_the_same_normal() {
+        // From (0.3, 0.4, 5) down: t = n·(a − o)/n·d = (1 − 5)/(−1) = 4, p = (0.3, 0.4, 1).
+        let pl = z1();
+        assert_eq!(pl.n, Vec3::Z);
+        let ray = Ray::new(Vec3::new(0.3, 0.4, 5.0), -Vec3::Z);
+        let h = pl.intersect(&ray).unwrap();
+        assert_eq!(h.t, 4.0);
+        let si = pl.interaction(&ray, &h);
+        assert_near(si.p, Vec3::new(0.3, 0.4, 1.0), 1e-6);
+        assert_eq!(si.n, Vec3::Z);
+        // (u, v) are coordinates along ∂p/∂u, ∂p/∂v from a: p = a + u·∂p/∂u + v·∂p/∂v.
+        assert_near(pl.a + si.uv.x * si.dpdu + si.uv.y * si.dpdv, si.p, 1e-6);
+        assert!(si.dpdu.dot(si.n).abs() < 1e-6 && si.dpdv.dot(si.n).abs() < 1e-6);
+        // From below, a distance 2 away: the normal is still +z.
+        let up = Ray::new(Vec3::new(0.0, 0.0, -1.0), Vec3::new(0.0, 0.0, 2.0));
+        let h = pl.intersect(&up).unwrap();
+        assert_eq!(h.t, 1.0);
+        assert_eq!(pl.interaction(&up, &h).n, Vec3::Z);
+    }
+
+    #[test]
+    fn parallel_receding_and_short_rays_miss() {
+        let pl = z1();
+        assert!(pl.intersect(&Ray::new(Vec3::ZERO, Vec3::X)).is_none());
+        assert!(pl.intersect(&Ray::new(Vec3::ZERO, -Vec3::Z)).is_none());
+        let short = Ray {
+            t_max: 0.5,
+            ..Ray::new(Vec3::ZERO, Vec3::Z)
+        };
+        assert!(pl.intersect(&short).is_none());
+        assert!(Plane::new(Vec3::ZERO, Vec3::ZERO).is_none(), "no normal");
+    }
+
+    #[test]
+    fn spawned_rays_never_find_the_plane_again() {
+        // A tilted plane far from the origin, hit from far away: rays leaving the hit point
+        // to either side (offset by its error bound) must not re-hit it.
+        let pl = Plane::new(Vec3::new(100.0, -50.0, 30.0), Vec3::new(1.0, 2.0, 3.0)).unwrap();
+        let mut hits = 0;
+        for k in 0..50 {
+            let o = Vec3::new(300.0 + k as f32, 200.0, 400.0 - 3.0 * k as f32);
+            let ray = Ray::new(
+                o,
+                pl.a + Vec3::new(k as f32 * 0.7, -0.3 * k as f32, 0.1) - o,
+            );
+            let Some(h) = pl.intersect(&ray) else {
+                continue;
+            };
+            let si = pl.interaction(&ray, &h);
+            hits += 1;
+            for d in [
+                si.n,
+                -si.n,
+                normalize(si.n + si.dpdu),
+                normalize(si.dpdv - si.n),
+            ] {
+                assert!(
+                    pl.intersect(&si.spawn_ray(d)).is_none(),
+                    "ray {k} along {d}"
+                );
+            }
+        }
+        assert_eq!(hits, 50);
+    }
+}

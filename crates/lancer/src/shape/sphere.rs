@@ -171,3 +171,140 @@ impl Sphere {
         (p, p / self.radius)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Transform;
+    use crate::shape::testing::{assert_near, assert_rel, identity};
+    use std::f64::consts::PI;
+
+    fn full(radius: f32) -> Sphere {
+        Sphere::new(identity(), radius, -radius, radius, 360.0)
+    }
+
+    /// The hit and interaction of `ray` on `s`, which must exist.
+    fn hit(s: &Sphere, ray: &Ray) -> (ShapeHit, SurfaceInteraction) {
+        let h = s.intersect(ray).expect("a hit");
+        (h, s.interaction(ray, &h))
+    }
+
+    #[test]
+    fn ray_down_the_axis_hits_the_pole() {
+        // |(0, 0, 5 − t)| = 2 at t = 3 and t = 7: the nearer root, the pole (0, 0, 2),
+        // normal +z.
+        let s = full(2.0);
+        let ray = Ray::new(Vec3::new(0.0, 0.0, 5.0), -Vec3::Z);
+        let (h, si) = hit(&s, &ray);
+        assert_eq!(h.t, 3.0);
+        assert_near(si.p, Vec3::new(0.0, 0.0, 2.0), 1e-4);
+        assert_near(si.n, Vec3::Z, 1e-6);
+        assert_near(si.wo, Vec3::Z, 0.0);
+        // Shortened before the sphere: no hit.
+        assert!(s.intersect(&Ray { t_max: 2.9, ..ray }).is_none());
+        // Passing beside it (distance 3 > r): no hit.
+        assert!(
+            s.intersect(&Ray::new(Vec3::new(3.0, 0.0, 5.0), -Vec3::Z))
+                .is_none()
+        );
+    }
+
+    #[test]
+    fn off_axis_hit_point_normal_and_uv() {
+        // x = 1: z = √(4 − 1) = √3, t = 5 − √3 = 3.26795; n = p/r = (1/2, 0, √3/2).
+        // u = φ/φmax = 0; θ = acos(√3/2) = π/6, v = (θ − π)/(0 − π) = 5/6.
+        let s = full(2.0);
+        let ray = Ray::new(Vec3::new(1.0, 0.0, 5.0), -Vec3::Z);
+        let (h, si) = hit(&s, &ray);
+        let r3 = 3f32.sqrt();
+        assert!((h.t - (5.0 - r3)).abs() < 1e-6, "t {}", h.t);
+        assert_near(si.p, Vec3::new(1.0, 0.0, r3), 1e-6);
+        assert_near(si.n, Vec3::new(0.5, 0.0, 0.5 * r3), 1e-6);
+        assert!((si.uv.x - 0.0).abs() < 1e-6 && (si.uv.y - 5.0 / 6.0).abs() < 1e-5);
+        // ∂p/∂u = φmax·(−y, x, 0) = (0, 2π, 0).
+        assert_near(
+            si.dpdu,
+            Vec3::new(0.0, 2.0 * std::f32::consts::PI, 0.0),
+            1e-5,
+        );
+    }
+
+    #[test]
+    fn cuts_in_z_and_phi_let_the_far_side_show() {
+        // z ≤ 0.5 cuts the north pole away: the ray down the axis goes on to the south pole,
+        // t = 5 + 1 = 6, outward normal −z.
+        let s = Sphere::new(identity(), 1.0, -1.0, 0.5, 360.0);
+        let (h, si) = hit(&s, &Ray::new(Vec3::new(0.0, 0.0, 5.0), -Vec3::Z));
+        assert_eq!(h.t, 6.0);
+        assert_near(si.n, -Vec3::Z, 1e-6);
+        // φmax = 90°: along −x at y = 0.5 the near hit (√0.75, 0.5, 0) is at φ = 30°,
+        // t = 5 − √0.75 = 4.13397, u = 30/90; at y = −0.5 both roots (φ = 330°, 210°) are cut.
+        let q = Sphere::new(identity(), 1.0, -1.0, 1.0, 90.0);
+        let c = 0.75f32.sqrt();
+        let (h, si) = hit(&q, &Ray::new(Vec3::new(5.0, 0.5, 0.0), -Vec3::X));
+        assert!((h.t - (5.0 - c)).abs() < 1e-6);
+        assert!((si.uv.x - 1.0 / 3.0).abs() < 1e-5, "u {}", si.uv.x);
+        assert!(
+            q.intersect(&Ray::new(Vec3::new(5.0, -0.5, 0.0), -Vec3::X))
+                .is_none()
+        );
+        // Along +x at y = 0.5 the near root (φ = 150°) is cut: the far one, seen from inside,
+        // t = 5 + √0.75, keeps the outward normal (√0.75, 0.5, 0).
+        let (h, si) = hit(&q, &Ray::new(Vec3::new(-5.0, 0.5, 0.0), Vec3::X));
+        assert!((h.t - (5.0 + c)).abs() < 1e-5);
+        assert_near(si.n, Vec3::new(c, 0.5, 0.0), 1e-5);
+    }
+
+    #[test]
+    fn placement_moves_the_sphere_and_reverse_orientation_flips_the_normal() {
+        // Radius 1 scaled by 2 about (1, 2, 3): the top is at z = 5, t = 10 − 5 = 5.
+        let xf = Transform::translate(Vec3::new(1.0, 2.0, 3.0))
+            * Transform::scale(Vec3::splat(2.0)).unwrap();
+        let ray = Ray::new(Vec3::new(1.0, 2.0, 10.0), -Vec3::Z);
+        for (reverse, n) in [(false, Vec3::Z), (true, -Vec3::Z)] {
+            let s = Sphere::new(Placement::new(xf, reverse), 1.0, -1.0, 1.0, 360.0);
+            let (h, si) = hit(&s, &ray);
+            assert!((h.t - 5.0).abs() < 1e-5);
+            // The pole is nudged off the axis by 10⁻⁵·r in object space (φ is undefined there).
+            assert_near(si.p, Vec3::new(1.0, 2.0, 5.0), 3e-5);
+            assert_near(si.n, n, 1e-5);
+        }
+    }
+
+    #[test]
+    fn areas_full_and_partial() {
+        // Full sphere of radius 2: 4π·r² = 16π = φmax·r·(zmax − zmin) = 2π·2·4.
+        assert_rel(full(2.0).object_area(), 16.0 * PI, 1e-6);
+        // A zone −1 ≤ z ≤ 1 of a quarter sweep: (π/2)·2·2 = 2π.
+        assert_rel(
+            Sphere::new(identity(), 2.0, -1.0, 1.0, 90.0).object_area(),
+            2.0 * PI,
+            1e-6,
+        );
+        // z limits beyond the sphere are clamped to ±r: a hemisphere, 2π·r² = 2π.
+        assert_rel(
+            Sphere::new(identity(), 1.0, 0.0, 7.0, 360.0).object_area(),
+            2.0 * PI,
+            1e-6,
+        );
+    }
+
+    #[test]
+    fn samples_lie_on_the_zone_with_outward_normals() {
+        // u = (½, ½) on the full sphere of radius 2: z = −2 + ½·4 = 0, φ = π: (−2, 0, 0).
+        let s = full(2.0);
+        let (p, n) = s.sample_object(Vec2::new(0.5, 0.5));
+        assert_near(p, Vec3::new(-2.0, 0.0, 0.0), 1e-5);
+        assert_near(n, -Vec3::X, 1e-6);
+        // Every sample of a cut sphere is on it, inside the cuts, with n = p/r.
+        let q = Sphere::new(identity(), 1.5, -0.5, 1.0, 120.0);
+        for i in 0..64 {
+            let u = Vec2::new((i % 8) as f32 / 8.0 + 0.01, (i / 8) as f32 / 8.0 + 0.01);
+            let (p, n) = q.sample_object(u);
+            assert!((p.length() - 1.5).abs() < 1e-5, "{p}");
+            assert!((-0.5..=1.0).contains(&p.z), "{p}");
+            assert!(phi_of(p.as_dvec3()) <= 120f64.to_radians() + 1e-6, "{p}");
+            assert_near(n, p / 1.5, 1e-6);
+        }
+    }
+}

@@ -342,4 +342,63 @@ mod tests {
             assert!(h, "leak at {s}");
         }
     }
+
+    /// The mesh of one triangle (0, 0, 0), (1, 0, 0), (0, 1, 0) and that triangle.
+    fn one_triangle(normals: Vec<PackedVec3>, flip_normal: bool) -> (TriangleMesh, Triangle) {
+        let positions = vec![PackedVec3::ZERO, PackedVec3::X, PackedVec3::Y];
+        let tri = Triangle {
+            p: [positions[0], positions[1], positions[2]],
+            mesh: 0,
+            index: 0,
+        };
+        let mesh = TriangleMesh {
+            positions,
+            normals,
+            indices: vec![0, 1, 2],
+            flip_normal,
+            ..Default::default()
+        };
+        (mesh, tri)
+    }
+
+    #[test]
+    fn interaction_point_normal_and_default_uv() {
+        // At (¼, ¼): b₁ = b₂ = ¼, b₀ = ½, t = 1. Normal (p₀ − p₂) × (p₁ − p₂) =
+        // (0, −1, 0) × (1, −1, 0) = (0, 0, 1). Default (u, v) = (b₁ + b₂, b₂) = (½, ¼);
+        // ∂p/∂u = p₁ − p₀ = +x, ∂p/∂v = p₂ − p₁ = (−1, 1, 0).
+        let (mesh, tri) = one_triangle(vec![], false);
+        let ray = Ray::new(Vec3::new(0.25, 0.25, 1.0), -Vec3::Z);
+        let h = tri.intersect(&ray, &TriangleRay::new(&ray)).unwrap();
+        let si = tri.interaction(&ray, &h, &mesh);
+        assert!((si.t - 1.0).abs() < 1e-6);
+        assert!((si.p - Vec3::new(0.25, 0.25, 0.0)).length() < 1e-6);
+        assert_eq!(si.n, Vec3::Z);
+        assert_eq!(si.shading.n, Vec3::Z);
+        assert!((si.uv - Vec2::new(0.5, 0.25)).length() < 1e-6);
+        assert_eq!((si.dpdu, si.dpdv), (Vec3::X, Vec3::new(-1.0, 1.0, 0.0)));
+        // Reverse orientation flips both normals.
+        let (mesh, tri) = one_triangle(vec![], true);
+        let si = tri.interaction(&ray, &h, &mesh);
+        assert_eq!((si.n, si.shading.n), (-Vec3::Z, -Vec3::Z));
+    }
+
+    #[test]
+    fn vertex_normals_orient_the_geometric_normal() {
+        // Vertex normals all −z tilted differently: the shading normal is their normalised
+        // interpolation, and the geometric normal is turned to its side.
+        let ns = vec![
+            PackedVec3::new(0.0, 0.0, -1.0),
+            PackedVec3::new(0.6, 0.0, -0.8),
+            PackedVec3::new(0.0, 0.6, -0.8),
+        ];
+        let (mesh, tri) = one_triangle(ns, false);
+        let ray = Ray::new(Vec3::new(0.25, 0.25, 1.0), -Vec3::Z);
+        let h = tri.intersect(&ray, &TriangleRay::new(&ray)).unwrap();
+        let si = tri.interaction(&ray, &h, &mesh);
+        assert_eq!(si.n, -Vec3::Z);
+        // ½(0, 0, −1) + ¼(0.6, 0, −0.8) + ¼(0, 0.6, −0.8) = (0.15, 0.15, −0.9).
+        let want = normalize(Vec3::new(0.15, 0.15, -0.9));
+        assert!((si.shading.n - want).length() < 1e-6, "{}", si.shading.n);
+        assert!(si.shading.dpdu.dot(si.shading.n).abs() < 1e-6);
+    }
 }

@@ -476,3 +476,90 @@ fn walk(
         t_next[k] = plane(cell[k], step[k], k);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shape::testing::{assert_near, identity};
+
+    /// A 2 × 1 × 1 grid with only cell (0, 0, 0) filled (palette index 7). With the offset
+    /// (nx/2, ny/2, 0) = (1, ½, 0) that cell is [−1, 0] × [−½, ½] × [0, 1] in object space.
+    fn one_cell() -> Voxels {
+        let mut palette = [Rgb::ZERO; 256];
+        palette[7] = Rgb::new(0.1, 0.2, 0.3);
+        let grid = VoxelGrid::new([2, 1, 1], vec![7, 0], palette).unwrap();
+        Voxels::new(identity(), Arc::new(grid)).unwrap()
+    }
+
+    fn hit(v: &Voxels, ray: &Ray) -> (ShapeHit, SurfaceInteraction) {
+        let h = v.intersect(ray).expect("a hit");
+        (h, v.interaction(ray, &h))
+    }
+
+    #[test]
+    fn bounds_cover_the_filled_cells_only() {
+        let b = one_cell().object_bounds();
+        assert_eq!(
+            (b.min, b.max),
+            (Vec3::new(-1.0, -0.5, 0.0), Vec3::new(0.0, 0.5, 1.0))
+        );
+    }
+
+    #[test]
+    fn faces_hit_from_each_side_with_outward_normals() {
+        let v = one_cell();
+        // From −x: the min-x face x = −1 at t = 4, normal −x; a min face of axis 0 has
+        // (u, v) = (z − 0, y_grid − 0) = (½, ½).
+        let (h, si) = hit(&v, &Ray::new(Vec3::new(-5.0, 0.0, 0.5), Vec3::X));
+        assert_eq!(h.t, 4.0);
+        assert_eq!(v.hit_cell(&h), [0, 0, 0]);
+        assert_eq!(v.hit_albedo(&h), Rgb::new(0.1, 0.2, 0.3));
+        assert_near(si.p, Vec3::new(-1.0, 0.0, 0.5), 0.0);
+        assert_near(si.n, -Vec3::X, 0.0);
+        assert!(
+            (si.uv - Vec2::splat(0.5)).abs().max_element() < 1e-6,
+            "uv {}",
+            si.uv
+        );
+        // From +x: through the empty cell [0, 1] to the filled cell's max-x face x = 0, t = 5.
+        let (h, si) = hit(&v, &Ray::new(Vec3::new(5.0, 0.0, 0.5), -Vec3::X));
+        assert_eq!(h.t, 5.0);
+        assert_near(si.n, Vec3::X, 0.0);
+        // From above onto the top z = 1 at t = 4.
+        let (h, si) = hit(&v, &Ray::new(Vec3::new(-0.5, 0.0, 5.0), -Vec3::Z));
+        assert_eq!(h.t, 4.0);
+        assert_near(si.n, Vec3::Z, 0.0);
+    }
+
+    #[test]
+    fn empty_cells_and_outside_rays_miss() {
+        let v = one_cell();
+        // Straight down through the empty cell, and beside the grid.
+        assert!(
+            v.intersect(&Ray::new(Vec3::new(0.5, 0.0, 5.0), -Vec3::Z))
+                .is_none()
+        );
+        assert!(
+            v.intersect(&Ray::new(Vec3::new(-0.5, 2.0, 5.0), -Vec3::Z))
+                .is_none()
+        );
+        // Stopping short of the face.
+        let short = Ray {
+            t_max: 3.9,
+            ..Ray::new(Vec3::new(-5.0, 0.0, 0.5), Vec3::X)
+        };
+        assert!(v.intersect(&short).is_none());
+    }
+
+    #[test]
+    fn grids_are_validated() {
+        let pal = [Rgb::ZERO; 256];
+        let err = VoxelGrid::new([2, 0, 1], vec![], pal).unwrap_err();
+        assert_eq!(err, "voxel grid dimensions [2, 0, 1] must all be positive");
+        let err = VoxelGrid::new([2, 2, 1], vec![1; 3], pal).unwrap_err();
+        assert_eq!(err, "voxel grid 2×2×1 needs 4 cells, got 3");
+        // No filled cell: nothing to place.
+        let empty = VoxelGrid::new([1, 1, 1], vec![0], pal).unwrap();
+        assert!(Voxels::new(identity(), Arc::new(empty)).is_none());
+    }
+}
