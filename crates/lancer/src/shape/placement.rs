@@ -1,7 +1,7 @@
 //! Where a shape sits in the world ([`Placement`]), and the helpers the quadrics share: the
 //! azimuth of a point, the double-precision hit distance carried in a [`ShapeHit`], the error
 //! bound of a quadric's hit point, and moving object-space samples to the world. A leaf module
-//! beside [`super::hit`]: the shape files use it, it uses no shape.
+//! beside `hit`: the shape files use it, it uses no shape.
 
 use super::hit::{ShapeHit, ShapeSample};
 use crate::math::{Transform, Vec3, gamma};
