@@ -280,6 +280,21 @@ fn crop_and_box_resize_by_hand() {
         &["img", "convert", s(&src), s(&out), "--resize", "0x4"],
     );
     assert_eq!(o.status.code(), Some(2));
+    let big = [
+        "img",
+        "convert",
+        s(&src),
+        s(&out),
+        "--resize",
+        "65536x65536",
+    ];
+    let o = lancer(&dir, &big);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("at most 268435456 pixels"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 #[test]

@@ -129,10 +129,18 @@ pub fn diff_metrics(a: &[Rgb], b: &[Rgb]) -> DiffMetrics {
             compared += 1;
         }
     }
-    let n = compared as f64;
+    // With no sample finite in both images there is nothing to average: 0 (the images can
+    // then differ only where one is not finite, which `nonfinite_mismatches` counts).
+    let n = (compared as f64).max(1.0);
     let (relmse, mrse, mse, mae) = (relmse / n, mrse / n, mse / n, mae / n);
-    let mre_channels =
-        [0, 1, 2].map(|c| (means_a[c] - means_b[c]).abs() / means_b[c].max(MRE_FLOOR));
+    let mre_channels = [0, 1, 2].map(|c| {
+        let (ma, mb) = (means_a[c], means_b[c]);
+        if ma.is_nan() && mb.is_nan() {
+            0.0 // no finite value in either image's channel
+        } else {
+            (ma - mb).abs() / mb.max(MRE_FLOOR)
+        }
+    });
     DiffMetrics {
         means_a,
         means_b,
@@ -223,6 +231,13 @@ mod tests {
         let m = diff_metrics(&a, &b);
         assert_eq!((m.compared, m.skipped, m.nonfinite_mismatches), (3, 3, 1));
         assert_eq!((m.mse, m.relmse), (0.0, 0.0));
+        // Nothing finite in either image, the same non-finite values: no difference.
+        let nan = [Rgb::splat(f32::NAN)];
+        let m = diff_metrics(&nan, &nan);
+        assert_eq!(
+            (m.relmse, m.mse, m.mre, m.nonfinite_mismatches),
+            (0.0, 0.0, 0.0, 0)
+        );
         let d = difference_image(&a, &b);
         assert_eq!(d[0], Rgb::ZERO);
         assert!(d[1][1].is_nan() && d[1][0] == 0.0);

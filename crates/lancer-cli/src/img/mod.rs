@@ -18,7 +18,7 @@ use crate::cli_error::CliError;
 use clap::{Args, Subcommand, ValueEnum};
 use lancer::image_io::{ImageFormat, ImageWriteError, write_image};
 use lancer::math::Rgb;
-use lancer_scene::image_read::{Encoding, read_image};
+use lancer_scene::image_read::{Encoding, MAX_SIDE, MAX_TEXELS, read_image};
 use metrics::{ChannelStats, DiffMetrics, diff_metrics, difference_image, rgb_stats};
 use ops::{Crop, Picture, Tonemap};
 use serde_json::{Value, json};
@@ -153,14 +153,10 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
         w.trim().parse().map_err(|_| bad())?,
         h.trim().parse().map_err(|_| bad())?,
     );
-    if w == 0
-        || h == 0
-        || w > lancer_scene::image_read::MAX_SIDE
-        || h > lancer_scene::image_read::MAX_SIDE
-    {
+    // The limits of lancer's image reader: what it could not read back, it does not write.
+    if w == 0 || h == 0 || w > MAX_SIDE || h > MAX_SIDE || w as u64 * h as u64 > MAX_TEXELS {
         return Err(format!(
-            "'{s}': each side must be 1 to {}",
-            lancer_scene::image_read::MAX_SIDE
+            "'{s}': each side must be 1 to {MAX_SIDE}, and the image at most {MAX_TEXELS} pixels"
         ));
     }
     Ok((w, h))
