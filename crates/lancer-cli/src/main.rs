@@ -8,6 +8,8 @@
 mod bench;
 mod checkpoint;
 mod cli_error;
+mod completions;
+mod img;
 mod info;
 mod input;
 mod merge;
@@ -18,7 +20,7 @@ mod split;
 mod stats;
 mod tev;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, Parser, Subcommand};
 
 /// lancer — a physically based ray tracer.
 #[derive(Parser, Debug)]
@@ -39,6 +41,11 @@ enum Command {
     /// Measure the renderer's parts (`bench rays MESH`: BVH build and ray throughput).
     #[command(subcommand)]
     Bench(bench::BenchCommand),
+    /// Compare, convert and inspect images (`img diff`, `img convert`, `img info`).
+    #[command(subcommand)]
+    Img(img::ImgCommand),
+    /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
+    Completions(completions::CompletionsArgs),
 }
 
 /// A binary built for x86-64-v3 (see `.cargo/config.toml`) dies of an illegal instruction on
@@ -63,6 +70,8 @@ fn main() {
         Command::Info(args) => info::run(args),
         Command::Merge(args) => merge::run(args),
         Command::Bench(cmd) => bench::run(cmd),
+        Command::Img(cmd) => img::run(cmd),
+        Command::Completions(args) => completions::run(args, Cli::command()),
     };
     if let Err(e) = result {
         e.report();
