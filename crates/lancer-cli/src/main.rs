@@ -10,6 +10,7 @@ mod checkpoint;
 mod cli_error;
 mod info;
 mod input;
+mod live;
 mod merge;
 mod preview;
 mod progress;
