@@ -12,9 +12,11 @@ mod info;
 mod input;
 mod live;
 mod merge;
+mod output;
 mod preview;
 mod progress;
 mod render;
+mod render_args;
 mod split;
 mod stats;
 mod tev;
@@ -32,7 +34,7 @@ struct Cli {
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Render a scene to an image (PNG or EXR, chosen by the extension).
-    Render(Box<render::RenderArgs>),
+    Render(Box<render_args::RenderArgs>),
     /// Describe a scene without rendering it: camera, counts, lights, bounds, memory, files.
     Info(info::InfoArgs),
     /// Merge the parts of a split render (`render --split i/N`) into the final image.

@@ -2,7 +2,7 @@
 //! bit for bit the one a single process would have written.
 
 use crate::cli_error::CliError;
-use crate::render::check_output;
+use crate::output::check_output;
 use clap::Args;
 use lancer::film::{Film, PixelBounds};
 use lancer::image_io::{PartMeta, read_part, write_image};

@@ -1,0 +1,193 @@
+//! The options of `lancer render`, pbrt-v4's spellings of them, their overrides of the scene,
+//! and the options a resumed render takes from its checkpoint.
+
+use crate::checkpoint::Checkpoint;
+use crate::cli_error::CliError;
+use crate::{split, stats};
+use clap::Args;
+use lancer::SceneDesc;
+use std::path::{Path, PathBuf};
+
+/// Options of `lancer render`.
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// Scene file (.pbrt), glTF model (.gltf, .glb) or bare mesh (.obj, .ply), framed and lit
+    /// when it has no camera or light; without it, the built-in default scene.
+    pub scene: Option<PathBuf>,
+    /// Output image (.png or .exr); defaults to the scene's Film filename, else lancer.png.
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// Samples per pixel (overrides the scene).
+    #[arg(long, conflicts_with = "resume")]
+    pub spp: Option<u32>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Seed of the samplers (overrides the scene).
+    #[arg(long, conflicts_with = "resume")]
+    pub seed: Option<u64>,
+    /// Image size WIDTHxHEIGHT (overrides the scene).
+    #[arg(long, value_parser = parse_resolution, conflicts_with = "resume")]
+    pub resolution: Option<(u32, u32)>,
+    /// Render only the crop window x0,x1,y0,y1 (fractions of the image, pbrt's `cropwindow`).
+    #[arg(long, value_name = "X0,X1,Y0,Y1", value_parser = split::parse_crop, conflicts_with = "resume")]
+    pub crop: Option<[f32; 4]>,
+    /// Take only the sample indices a..b of each pixel; writes a part (.exr) for `lancer merge`.
+    #[arg(long, value_name = "A..B", value_parser = split::parse_samples, conflicts_with = "resume")]
+    pub samples: Option<std::ops::Range<u32>>,
+    /// Render part i of N (0-based) and write it as a part (.exr) for `lancer merge`.
+    #[arg(long, value_name = "I/N", value_parser = split::parse_split, conflicts_with = "resume")]
+    pub split: Option<split::Split>,
+    /// How --split divides the render: bands of tiles, or ranges of samples.
+    #[arg(long, value_enum, default_value_t, conflicts_with = "resume")]
+    pub split_by: split::SplitBy,
+    /// Write the image so far and a checkpoint every MINUTES (a checkpoint is also written on
+    /// SIGINT/SIGTERM).
+    #[arg(long, value_name = "MINUTES", value_parser = parse_minutes)]
+    pub checkpoint_every: Option<f64>,
+    /// Checkpoint file (default: the output path followed by .ckpt).
+    #[arg(long, value_name = "FILE")]
+    pub checkpoint: Option<PathBuf>,
+    /// Continue the render saved in this checkpoint, with its scene and options.
+    #[arg(long, value_name = "FILE")]
+    pub resume: Option<PathBuf>,
+    /// No progress bar, no summary.
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// Largest film memory accepted, in GiB: a bigger image is refused before rendering.
+    #[arg(long, value_name = "GIB", default_value_t = MAX_FILM_GIB)]
+    pub max_film_gib: u64,
+    /// Where to save the image if writing the output fails after rendering (the folder was
+    /// removed, the disk filled up): the render is never lost. Default: the system's
+    /// temporary folder.
+    #[arg(long, value_name = "DIR")]
+    pub on_write_error: Option<PathBuf>,
+    /// Debugging: report the first camera sample whose radiance is NaN or infinite (in row,
+    /// column, sample order) with every vertex of its path, and exit with status 1 if there is
+    /// one. Without it such samples are dropped (they add black) with a one-line warning.
+    #[arg(long)]
+    pub check_nan: bool,
+    /// Stream the image as it converges to the tev viewer listening at HOST:PORT (tev's
+    /// default port is 14158); an unreachable viewer is only a warning.
+    #[arg(long, value_name = "HOST:PORT")]
+    pub display_server: Option<String>,
+    /// Rewrite this PNG with the image so far every --preview-every seconds, and at the end.
+    #[arg(long, value_name = "FILE.png")]
+    pub preview: Option<PathBuf>,
+    /// Seconds between two rewrites of the --preview image.
+    #[arg(long, value_name = "SECS", default_value_t = 5.0)]
+    pub preview_every: f64,
+    /// Print a summary on stdout at the end: times per phase, samples, rays, memory.
+    #[arg(long, value_enum, value_name = "FORMAT")]
+    pub stats: Option<stats::StatsFormat>,
+    /// Render spectrally, as pbrt-v4 does: each sample carries three wavelengths and RGB
+    /// colours are uplifted to spectra; to agree with pbrt-v4's images on saturated colours.
+    /// The default (RGB) agrees with Mitsuba 3's RGB variants.
+    #[arg(long, conflicts_with = "resume")]
+    pub spectral: bool,
+}
+
+/// Largest image side accepted, in pixels: the scene reader's limit.
+pub const MAX_RESOLUTION: u32 = lancer_scene::pbrt::convert::MAX_RESOLUTION as u32;
+
+/// Largest film accepted by default, in GiB of accumulators and output pixels: a render that
+/// could not fit in memory is refused before it starts rather than killed by the allocator
+/// (`--max-film-gib` raises it on a bigger machine).
+pub const MAX_FILM_GIB: u64 = 16;
+
+fn parse_minutes(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(m) if m > 0.0 && m < 1e9 => Ok(m),
+        _ => Err(format!("'{s}' is not a positive number of minutes")),
+    }
+}
+
+fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("'{s}' is not WIDTHxHEIGHT"))?;
+    let parse = |v: &str| -> Result<u32, String> {
+        let n: u32 = v
+            .trim()
+            .parse()
+            .map_err(|_| format!("'{v}' is not a positive integer"))?;
+        if n == 0 || n > MAX_RESOLUTION {
+            return Err(format!("{n} is outside 1..={MAX_RESOLUTION}"));
+        }
+        Ok(n)
+    };
+    Ok((parse(w)?, parse(h)?))
+}
+
+/// Applies the command line's overrides to the scene.
+pub fn apply_overrides(desc: &mut SceneDesc, args: &RenderArgs) {
+    if let Some(spp) = args.spp {
+        desc.sampler.spp = spp;
+    }
+    if let Some(seed) = args.seed {
+        desc.sampler.seed = seed;
+    }
+    if let Some((w, h)) = args.resolution {
+        desc.film.xresolution = w;
+        desc.film.yresolution = h;
+        desc.film.pixel_bounds = None;
+    }
+    if let Some(c) = args.crop {
+        desc.film.crop_window = c;
+        desc.film.pixel_bounds = None;
+    }
+}
+
+/// The checkpoint a render resumes from, with where it was read.
+pub struct Resumed {
+    /// The checkpoint file.
+    pub path: PathBuf,
+    /// What it holds.
+    pub ckpt: Checkpoint,
+}
+
+/// `lancer render --resume FILE`: the checkpoint's options, with this command line's scene
+/// (if given, e.g. after moving it), output, checkpoint settings, threads and quietness.
+pub fn resume_args(args: RenderArgs, path: &Path) -> Result<(RenderArgs, Resumed), CliError> {
+    #[derive(clap::Parser)]
+    #[command(no_binary_name = true)]
+    struct Saved {
+        #[command(flatten)]
+        args: RenderArgs,
+    }
+    let ckpt = Checkpoint::read(path).map_err(|e| CliError::input(e.to_string()))?;
+    let saved = <Saved as clap::Parser>::try_parse_from(&ckpt.args).map_err(|e| {
+        CliError::input(format!(
+            "{}: the saved options do not parse: {}",
+            path.display(),
+            e.to_string().lines().next().unwrap_or_default()
+        ))
+    })?;
+    let mut a = saved.args;
+    a.scene = args.scene.or(a.scene.map(|p| ckpt.cwd.join(p)));
+    a.output = args.output.or(a.output.map(|p| ckpt.cwd.join(p)));
+    a.checkpoint = args.checkpoint.or_else(|| Some(path.to_path_buf()));
+    a.checkpoint_every = args.checkpoint_every.or(a.checkpoint_every);
+    a.threads = args.threads;
+    a.quiet = args.quiet;
+    a.resume = None;
+    let resumed = Resumed {
+        path: path.to_path_buf(),
+        ckpt,
+    };
+    Ok((a, resumed))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn resolutions_parse_and_absurd_ones_are_refused() {
+        assert_eq!(parse_resolution("640x480"), Ok((640, 480)));
+        assert!(parse_resolution("0x10").is_err());
+        assert!(parse_resolution("-5x10").is_err());
+        assert!(parse_resolution("100000x10").is_err());
+        assert!(parse_resolution("abc").is_err());
+    }
+}
