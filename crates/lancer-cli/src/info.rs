@@ -112,7 +112,8 @@ pub fn counts(desc: &SceneDesc) -> Counts {
 /// Everything `lancer info` reports, as JSON.
 pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
     let t0 = Instant::now();
-    let loaded = input::load(Some(&args.scene))?;
+    // The warnings are part of the report: read quietly, not to print them twice.
+    let loaded = input::read(Some(&args.scene))?;
     let parse_s = t0.elapsed().as_secs_f64();
     let desc = &loaded.desc;
     let t1 = Instant::now();

@@ -183,9 +183,11 @@ pub fn plan(
             let (r0, r1) = (rows * i / n, rows * (i + 1) / n);
             if r0 == r1 {
                 return Err(CliError::input(format!(
-                    "--split {}/{}: the image has only {rows} rows of {TILE_SIZE}-pixel tiles, \
+                    "--split {}/{}: the image has only {rows} {} of {TILE_SIZE}-pixel tiles, \
                      too few for {n} parts",
-                    s.index, s.count
+                    s.index,
+                    s.count,
+                    if rows == 1 { "row" } else { "rows" }
                 )));
             }
             let t = TILE_SIZE as i32;
