@@ -23,9 +23,9 @@ mod tev;
 
 use clap::{Parser, Subcommand};
 
-/// lancer — a physically based ray tracer.
+/// lancer, a physically based ray tracer: renders pbrt-v4 scenes and glTF, OBJ and PLY models.
 #[derive(Parser, Debug)]
-#[command(name = "lancer", version, about, long_about = None)]
+#[command(name = "lancer", version, propagate_version = true, long_about = None)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -60,7 +60,9 @@ fn check_cpu() {
 
 fn main() {
     check_cpu();
-    let cli = Cli::parse();
+    let cli = Cli::parse_from(render_args::bare_stats_as_text(
+        std::env::args_os().collect(),
+    ));
     let result = match cli.command {
         Command::Render(args) => render::run(*args),
         Command::Info(args) => info::run(args),

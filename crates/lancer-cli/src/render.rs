@@ -77,7 +77,7 @@ pub fn load(args: RenderArgs) -> Result<Loaded, CliError> {
         None => (args, None),
     };
     let mut desc = input::load(args.scene.as_deref())?.desc;
-    apply_overrides(&mut desc, &args);
+    apply_overrides(&mut desc, &args)?;
     Ok(Loaded {
         args,
         desc,
@@ -133,7 +133,13 @@ pub fn plan(
     check_preview(args)?;
     let render_bounds = pixel_bounds(desc);
     if render_bounds.is_empty() {
-        return Err(CliError::input("the crop window selects no pixel"));
+        return Err(CliError::input(match &args.pixelbounds {
+            Some(b) => format!(
+                "--pixelbounds {} {} {} {} selects no pixel of the {}x{} image",
+                b[0], b[1], b[2], b[3], desc.film.xresolution, desc.film.yresolution
+            ),
+            None => "the crop window selects no pixel".into(),
+        }));
     }
     if desc.sampler.spp == 0 {
         return Err(CliError::input("samples per pixel must be at least 1"));
@@ -500,7 +506,7 @@ pub struct Finished {
     pub phases: stats::Phases,
 }
 
-/// Step 6: the one-line summary on stderr (unless quiet), the `--stats json` object on stdout,
+/// Step 6: the one-line summary on stderr (unless quiet), the `--stats` summary on stdout,
 /// and the NaN report (with `--check-nan`, the first bad sample's path, and an error).
 pub fn report(
     args: &RenderArgs,
@@ -526,7 +532,7 @@ pub fn report(
             done.stats.rays as f64 / render_s / 1e6,
         );
     }
-    if args.stats == Some(stats::StatsFormat::Json) {
+    if let Some(format) = args.stats {
         let summary = stats::RenderSummary {
             scene: args.scene.as_ref().map(|p| p.display().to_string()),
             output: plan.output.display().to_string(),
@@ -539,7 +545,14 @@ pub fn report(
             spectral: args.spectral,
         };
         let mem = stats::SceneMemory::of(scene);
-        println!("{}", stats::render_json(&summary, &done.phases, &mem));
+        match format {
+            stats::StatsFormat::Json => {
+                println!("{}", stats::render_json(&summary, &done.phases, &mem))
+            }
+            stats::StatsFormat::Text => {
+                print!("{}", stats::render_text(&summary, &done.phases, &mem))
+            }
+        }
     }
     report_nonfinite(scene, settings, &done.stats, args.check_nan)
 }

@@ -6,22 +6,24 @@ use crate::cli_error::CliError;
 use crate::{split, stats};
 use clap::Args;
 use lancer::SceneDesc;
+use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
 /// Options of `lancer render`.
 #[derive(Args, Debug)]
 pub struct RenderArgs {
     /// Scene file (.pbrt), glTF model (.gltf, .glb) or bare mesh (.obj, .ply), framed and lit
-    /// when it has no camera or light; without it, the built-in default scene.
+    /// when it has no camera or light; `-` reads a pbrt scene from standard input; without it,
+    /// the built-in default scene.
     pub scene: Option<PathBuf>,
     /// Output image (.png or .exr); defaults to the scene's Film filename, else lancer.png.
-    #[arg(short, long)]
+    #[arg(short, long, visible_alias = "outfile")]
     pub output: Option<PathBuf>,
     /// Samples per pixel (overrides the scene).
     #[arg(long, conflicts_with = "resume")]
     pub spp: Option<u32>,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(long, visible_alias = "nthreads")]
     pub threads: Option<usize>,
     /// Seed of the samplers (overrides the scene).
     #[arg(long, conflicts_with = "resume")]
@@ -32,6 +34,15 @@ pub struct RenderArgs {
     /// Render only the crop window x0,x1,y0,y1 (fractions of the image, pbrt's `cropwindow`).
     #[arg(long, value_name = "X0,X1,Y0,Y1", value_parser = split::parse_crop, conflicts_with = "resume")]
     pub crop: Option<[f32; 4]>,
+    /// pbrt's spelling of --crop: the crop window as four numbers x0 x1 y0 y1.
+    #[arg(long, num_args = 4, value_names = ["X0", "X1", "Y0", "Y1"],
+          conflicts_with_all = ["crop", "resume"])]
+    pub cropwindow: Option<Vec<f32>>,
+    /// Render only the pixels x0 ≤ x < x1, y0 ≤ y < y1 (pbrt's `--pixelbounds`; overrides the
+    /// scene's crop window and pixel bounds).
+    #[arg(long, num_args = 4, value_names = ["X0", "X1", "Y0", "Y1"],
+          conflicts_with_all = ["crop", "cropwindow", "resume"])]
+    pub pixelbounds: Option<Vec<i32>>,
     /// Take only the sample indices a..b of each pixel; writes a part (.exr) for `lancer merge`.
     #[arg(long, value_name = "A..B", value_parser = split::parse_samples, conflicts_with = "resume")]
     pub samples: Option<std::ops::Range<u32>>,
@@ -77,8 +88,9 @@ pub struct RenderArgs {
     /// Seconds between two rewrites of the --preview image.
     #[arg(long, value_name = "SECS", default_value_t = 5.0)]
     pub preview_every: f64,
-    /// Print a summary on stdout at the end: times per phase, samples, rays, memory.
-    #[arg(long, value_enum, value_name = "FORMAT")]
+    /// Print a summary on stdout at the end: times per phase, samples, rays, memory; as text,
+    /// or as one JSON object with `--stats json` (a bare --stats, as in pbrt, means text).
+    #[arg(long, value_enum, value_name = "FORMAT", num_args = 0..=1, default_missing_value = "text")]
     pub stats: Option<stats::StatsFormat>,
     /// Render spectrally, as pbrt-v4 does: each sample carries three wavelengths and RGB
     /// colours are uplifted to spectra; to agree with pbrt-v4's images on saturated colours.
@@ -119,8 +131,58 @@ fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
     Ok((parse(w)?, parse(h)?))
 }
 
+/// pbrt users write `--stats` alone, often right before the scene (`--stats scene.pbrt`),
+/// where clap would take the scene for the format: a `--stats` followed by anything but a
+/// format name becomes `--stats=text`. Arguments after `--` are left alone.
+pub fn bare_stats_as_text(args: Vec<OsString>) -> Vec<OsString> {
+    use clap::ValueEnum;
+    let is_format = |a: Option<&OsString>| {
+        a.and_then(|a| a.to_str())
+            .is_some_and(|a| stats::StatsFormat::from_str(a, false).is_ok())
+    };
+    let mut out = Vec::with_capacity(args.len());
+    let mut options = true;
+    for (i, a) in args.iter().enumerate() {
+        if options && a == "--stats" && !is_format(args.get(i + 1)) {
+            out.push(OsString::from("--stats=text"));
+            continue;
+        }
+        options &= a != "--";
+        out.push(a.clone());
+    }
+    out
+}
+
+/// Four values as the command line showed them: `a b c d`.
+fn show4<T: ToString>(v: [T; 4]) -> String {
+    v.map(|x| x.to_string()).join(" ")
+}
+
+/// The crop window of `--cropwindow x0 x1 y0 y1` (pbrt's spelling of `--crop`), checked.
+fn cropwindow(args: &RenderArgs) -> Result<Option<[f32; 4]>, CliError> {
+    let Some(&[x0, x1, y0, y1]) = args.cropwindow.as_deref() else {
+        return Ok(None);
+    };
+    let c = [x0, x1, y0, y1];
+    split::check_crop(c)
+        .map(Some)
+        .map_err(|e| CliError::input(format!("--cropwindow {}: {e}", show4(c))))
+}
+
+/// The pixel bounds of `--pixelbounds x0 x1 y0 y1` (pbrt's option), checked.
+fn pixelbounds(args: &RenderArgs) -> Result<Option<[i32; 4]>, CliError> {
+    let Some(&[x0, x1, y0, y1]) = args.pixelbounds.as_deref() else {
+        return Ok(None);
+    };
+    let b = [x0, x1, y0, y1];
+    split::check_pixel_bounds(b)
+        .map(Some)
+        .map_err(|e| CliError::input(format!("--pixelbounds {}: {e}", show4(b))))
+}
+
 /// Applies the command line's overrides to the scene.
-pub fn apply_overrides(desc: &mut SceneDesc, args: &RenderArgs) {
+pub fn apply_overrides(desc: &mut SceneDesc, args: &RenderArgs) -> Result<(), CliError> {
+    let (cropwindow, pixelbounds) = (cropwindow(args)?, pixelbounds(args)?);
     if let Some(spp) = args.spp {
         desc.sampler.spp = spp;
     }
@@ -132,10 +194,14 @@ pub fn apply_overrides(desc: &mut SceneDesc, args: &RenderArgs) {
         desc.film.yresolution = h;
         desc.film.pixel_bounds = None;
     }
-    if let Some(c) = args.crop {
+    if let Some(c) = args.crop.or(cropwindow) {
         desc.film.crop_window = c;
         desc.film.pixel_bounds = None;
     }
+    if let Some(b) = pixelbounds {
+        desc.film.pixel_bounds = Some(b);
+    }
+    Ok(())
 }
 
 /// The checkpoint a render resumes from, with where it was read.
@@ -156,7 +222,8 @@ pub fn resume_args(args: RenderArgs, path: &Path) -> Result<(RenderArgs, Resumed
         args: RenderArgs,
     }
     let ckpt = Checkpoint::read(path).map_err(|e| CliError::input(e.to_string()))?;
-    let saved = <Saved as clap::Parser>::try_parse_from(&ckpt.args).map_err(|e| {
+    let saved_args = bare_stats_as_text(ckpt.args.iter().map(OsString::from).collect());
+    let saved = <Saved as clap::Parser>::try_parse_from(saved_args).map_err(|e| {
         CliError::input(format!(
             "{}: the saved options do not parse: {}",
             path.display(),
@@ -164,7 +231,14 @@ pub fn resume_args(args: RenderArgs, path: &Path) -> Result<(RenderArgs, Resumed
         ))
     })?;
     let mut a = saved.args;
-    a.scene = args.scene.or(a.scene.map(|p| ckpt.cwd.join(p)));
+    let in_cwd = |p: PathBuf| {
+        if p == Path::new("-") {
+            p
+        } else {
+            ckpt.cwd.join(p)
+        }
+    };
+    a.scene = args.scene.or(a.scene.map(in_cwd));
     a.output = args.output.or(a.output.map(|p| ckpt.cwd.join(p)));
     a.checkpoint = args.checkpoint.or_else(|| Some(path.to_path_buf()));
     a.checkpoint_every = args.checkpoint_every.or(a.checkpoint_every);
@@ -189,5 +263,20 @@ mod tests {
         assert!(parse_resolution("-5x10").is_err());
         assert!(parse_resolution("100000x10").is_err());
         assert!(parse_resolution("abc").is_err());
+    }
+
+    #[test]
+    fn a_bare_stats_means_text_and_a_format_is_kept() {
+        let v = |a: &[&str]| a.iter().map(OsString::from).collect::<Vec<_>>();
+        assert_eq!(
+            bare_stats_as_text(v(&["render", "--stats", "s.pbrt"])),
+            v(&["render", "--stats=text", "s.pbrt"])
+        );
+        assert_eq!(
+            bare_stats_as_text(v(&["render", "s.pbrt", "--stats"])),
+            v(&["render", "s.pbrt", "--stats=text"])
+        );
+        let kept = v(&["render", "--stats", "json", "s.pbrt", "--", "--stats"]);
+        assert_eq!(bare_stats_as_text(kept.clone()), kept);
     }
 }
