@@ -6,9 +6,10 @@ use crate::checkpoint::{self, Checkpoint};
 use crate::cli_error::CliError;
 use crate::output::{check_output, default_checkpoint_path, write_with_fallback};
 use crate::preview::LiveOutputs;
+use crate::progress::Progress;
 use crate::render_args::{RenderArgs, Resumed, apply_overrides, resume_args};
 use crate::split::{self, SAMPLES_PER_PASS, TILE_SIZE};
-use crate::{input, progress, stats};
+use crate::{input, stats};
 use lancer::film::{Film, PixelBounds, PixelSum};
 use lancer::filter::Filter;
 use lancer::image_io::{ImageFormat, PartMeta, write_image, write_part};
@@ -344,7 +345,7 @@ pub enum Outcome {
 }
 
 /// Step 4: renders the units of work not done yet into `plan.state`, in parallel, with the
-/// progress bar and the live outputs; stops on a signal (SIGINT, SIGTERM) or when a
+/// progress display and the live outputs; stops on a signal (SIGINT, SIGTERM) or when a
 /// checkpoint is due, saves, and goes on (or, for a signal, ends).
 pub fn render(
     scene: &Scene,
@@ -365,7 +366,7 @@ pub fn render(
         .filter(|(_, d)| !**d)
         .map(|(u, _)| u.tile.area() * u.samples.len() as u64)
         .sum();
-    let progress = progress::bar(remaining, args.quiet);
+    let progress = Progress::new(remaining, args.quiet);
     let every = args
         .checkpoint_every
         .map(|m| Duration::from_secs_f64(m * 60.0));

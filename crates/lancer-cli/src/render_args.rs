@@ -62,7 +62,7 @@ pub struct RenderArgs {
     /// Continue the render saved in this checkpoint, with its scene and options.
     #[arg(long, value_name = "FILE")]
     pub resume: Option<PathBuf>,
-    /// No progress bar, no summary.
+    /// No progress bar, no progress lines, no summary.
     #[arg(short, long)]
     pub quiet: bool,
     /// Largest film memory accepted, in GiB: a bigger image is refused before rendering.

@@ -1,7 +1,8 @@
 //! pbrt-v4's command-line habits in lancer (issue 21): its option spellings (`--outfile`,
 //! `--nthreads`, `--cropwindow`, `--pixelbounds`, a bare `--stats`), a scene on standard
-//! input, `--version`; and small fixes (`info` prints each warning once, `merge` names a
-//! missing part plainly, a one-row split says "row", `KHR_texture_transform` is read).
+//! input, `--version`, plain progress lines in a log; and small fixes (`info` prints each
+//! warning once, `merge` names a missing part plainly, a one-row split says "row",
+//! `KHR_texture_transform` is read).
 
 mod common;
 
@@ -245,6 +246,68 @@ fn a_bare_stats_prints_the_text_summary() {
     );
     assert!(lines[6].starts_with("  memory    meshes "), "{out}");
     assert_eq!(lines.len(), 7, "{out}");
+}
+
+#[test]
+fn progress_in_a_log_is_plain_lines_at_each_tenth() {
+    let dir = ScratchDir::new("pbrt-progress");
+    // 64 × 64 pixels at 16 spp: 16 tiles of 16 × 16 pixels, one unit of work each, so each
+    // finished unit adds 6.25 % and the tenths are crossed at 12.5, 25, 31.25, 43.75, 50,
+    // 62.5, 75, 81.25, 93.75 and 100 %, whatever the order the units finish in.
+    let scene = data("pt/cbox.pbrt");
+    let o = run_in(
+        &dir,
+        &[
+            "render",
+            s(&scene),
+            "-o",
+            "p.png",
+            "--resolution",
+            "64x64",
+            "--spp",
+            "16",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(!err.contains('\r') && !err.contains('\x1b'), "{err:?}");
+    let percents: Vec<&str> = err
+        .lines()
+        .filter_map(|l| l.strip_prefix("progress: "))
+        .map(|l| l.split('%').next().unwrap())
+        .collect();
+    assert_eq!(
+        percents,
+        ["12", "25", "31", "43", "50", "62", "75", "81", "93", "100"],
+        "{err}"
+    );
+    let last = err.lines().rfind(|l| l.starts_with("progress: ")).unwrap();
+    assert!(
+        last.starts_with("progress: 100% (65536 of 65536 pixel samples), "),
+        "{last}"
+    );
+    // The summary line follows, as on a terminal; --quiet silences both.
+    assert!(
+        err.lines()
+            .last()
+            .unwrap()
+            .starts_with("p.png: 64x64 pixels"),
+        "{err}"
+    );
+    let o = run_in(
+        &dir,
+        &[
+            "render",
+            s(&scene),
+            "-o",
+            "q.png",
+            "--resolution",
+            "64x64",
+            "--quiet",
+        ],
+    );
+    assert!(o.status.success());
+    assert_eq!(stderr(&o), "");
 }
 
 #[test]
