@@ -345,8 +345,8 @@ pub enum Outcome {
 }
 
 /// Step 4: renders the units of work not done yet into `plan.state`, in parallel, with the
-/// progress display and the live outputs; stops on a signal (SIGINT, SIGTERM) or when a
-/// checkpoint is due, saves, and goes on (or, for a signal, ends).
+/// progress display and the live outputs; stops on a signal (SIGINT, SIGTERM, SIGHUP unless
+/// ignored) or when a checkpoint is due, saves, and goes on (or, for a signal, ends).
 pub fn render(
     scene: &Scene,
     settings: &RenderSettings,

@@ -53,7 +53,7 @@ pub struct RenderArgs {
     #[arg(long, value_enum, default_value_t, conflicts_with = "resume")]
     pub split_by: split::SplitBy,
     /// Write the image so far and a checkpoint every MINUTES (a checkpoint is also written on
-    /// SIGINT/SIGTERM).
+    /// SIGINT/SIGTERM, and on SIGHUP unless it is ignored, as under nohup).
     #[arg(long, value_name = "MINUTES", value_parser = parse_minutes)]
     pub checkpoint_every: Option<f64>,
     /// Checkpoint file (default: the output path followed by .ckpt).

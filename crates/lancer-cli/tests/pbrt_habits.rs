@@ -1,15 +1,16 @@
-//! pbrt-v4's command-line habits in lancer (issue 21): its option spellings (`--outfile`,
-//! `--nthreads`, `--cropwindow`, `--pixelbounds`, a bare `--stats`), a scene on standard
-//! input, `--version`, plain progress lines in a log; and small fixes (`info` prints each
-//! warning once, `merge` names a missing part plainly, a one-row split says "row",
-//! `KHR_texture_transform` is read).
+//! pbrt-v4's command-line habits in lancer: its option spellings (`--outfile`, `--nthreads`,
+//! `--cropwindow`, `--pixelbounds`, a bare `--stats`), a scene on standard input, `--version`,
+//! plain progress lines in a log, renders that survive a hang-up under `nohup`; and the small
+//! fixes of issue 21 (warnings printed once by `info`, a missing part named by `merge`).
 
 mod common;
 
 use common::{ScratchDir, data, lancer, read_exr, run_in};
 use std::io::Write;
+use std::os::unix::process::CommandExt;
 use std::path::Path;
-use std::process::{Output, Stdio};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
@@ -308,6 +309,79 @@ fn progress_in_a_log_is_plain_lines_at_each_tenth() {
     );
     assert!(o.status.success());
     assert_eq!(stderr(&o), "");
+}
+
+/// Starts a long render of the Cornell box in `dir` with SIGHUP ignored (as `nohup` starts
+/// it) or at its default, waits until it is under way (its first checkpoint is written, so
+/// the signal handling is in place), sends it SIGHUP and returns how it ended.
+fn render_hung_up(dir: &Path, ignore_hangup: bool) -> Output {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_lancer"));
+    cmd.current_dir(dir)
+        .args(["render", s(&data("pt/cbox.pbrt")), "-o", "h.exr", "--quiet"])
+        .args([
+            "--spp",
+            "512",
+            "--resolution",
+            "48x48",
+            "--checkpoint-every",
+            "0.001",
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped());
+    let disposition = if ignore_hangup {
+        libc::SIG_IGN
+    } else {
+        libc::SIG_DFL
+    };
+    // SAFETY: between fork and exec the child only sets a signal disposition, which is
+    // async-signal-safe; the disposition SIG_IGN survives exec, as nohup relies on.
+    unsafe {
+        cmd.pre_exec(move || {
+            libc::signal(libc::SIGHUP, disposition);
+            Ok(())
+        });
+    }
+    let mut child = cmd.spawn().unwrap();
+    let ckpt = dir.join("h.exr.ckpt");
+    let t0 = Instant::now();
+    while !ckpt.exists() {
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "the render ended before its first checkpoint"
+        );
+        assert!(t0.elapsed() < Duration::from_secs(300), "no checkpoint");
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    let kill = Command::new("kill")
+        .args(["-HUP", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    child.wait_with_output().unwrap()
+}
+
+#[test]
+fn under_nohup_a_hangup_does_not_stop_the_render() {
+    let dir = ScratchDir::new("pbrt-nohup");
+    let o = render_hung_up(&dir, true);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("interrupted"), "{}", stderr(&o));
+    let img = read_exr(&dir.join("h.exr"));
+    assert_eq!((img.width, img.height), (48, 48));
+    assert!(img.means().iter().all(|&m| m > 0.01), "{:?}", img.means());
+    assert!(
+        !dir.join("h.exr.ckpt").exists(),
+        "a finished render leaves no checkpoint"
+    );
+}
+
+#[test]
+fn without_nohup_a_hangup_checkpoints_and_stops() {
+    let dir = ScratchDir::new("pbrt-hangup");
+    let o = render_hung_up(&dir, false);
+    assert_eq!(o.status.code(), Some(130), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--resume h.exr.ckpt"), "{}", stderr(&o));
+    assert!(dir.join("h.exr.ckpt").exists());
 }
 
 #[test]
