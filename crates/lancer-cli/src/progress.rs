@@ -45,11 +45,7 @@ impl Progress {
     pub fn inc(&self, n: u64) {
         match self {
             Progress::Bar(b) => b.inc(n),
-            Progress::Lines(l) => {
-                if let Some(line) = l.inc(n, Instant::now()) {
-                    eprintln!("{line}");
-                }
-            }
+            Progress::Lines(l) => l.inc(n, Instant::now(), |line| eprintln!("{line}")),
         }
     }
 
@@ -100,19 +96,20 @@ impl Lines {
         }
     }
 
-    /// Counts `n` more units done at `now`; returns the line to print, if one is due: the
+    /// Counts `n` more units done at `now` and hands the line to `print` if one is due: the
     /// work crossed a tenth (one line for the highest crossed), or [`LINE_INTERVAL`] passed.
-    pub fn inc(&self, n: u64, now: Instant) -> Option<String> {
+    /// `print` runs under the lock, so that lines from several threads come out in order.
+    pub fn inc(&self, n: u64, now: Instant, print: impl FnOnce(String)) {
         let mut st = self.state.lock().unwrap_or_else(|e| e.into_inner());
         st.done = (st.done + n).min(self.total);
         let tenth = (st.done * 10).checked_div(self.total).unwrap_or(10);
         let due = tenth > st.tenth || now.duration_since(st.printed) >= LINE_INTERVAL;
         if !due || st.tenth == 10 {
-            return None;
+            return;
         }
         st.tenth = tenth.max(st.tenth);
         st.printed = now;
-        Some(self.line(st.done, now))
+        print(self.line(st.done, now));
     }
 
     fn line(&self, done: u64, now: Instant) -> String {
@@ -134,29 +131,36 @@ impl Lines {
 mod tests {
     use super::*;
 
+    /// The line `inc` prints, if any.
+    fn inc(l: &Lines, n: u64, now: Instant) -> Option<String> {
+        let mut out = None;
+        l.inc(n, now, |s| out = Some(s));
+        out
+    }
+
     #[test]
     fn lines_come_at_each_tenth_and_once_a_minute() {
-        let l = Lines::new(200);
+        let l = &Lines::new(200);
         let t = l.start;
         // 5 %: no tenth crossed yet.
-        assert_eq!(l.inc(10, t), None);
+        assert_eq!(inc(l, 10, t), None);
         // 25 %: one line for the 20 % mark (10 % was crossed too, but only one line).
-        let s = l.inc(40, t + Duration::from_secs(5)).unwrap();
+        let s = inc(l, 40, t + Duration::from_secs(5)).unwrap();
         assert_eq!(
             s,
             "progress: 25% (50 of 200 pixel samples), 5.0 s elapsed, about 15.0 s left"
         );
         // 29.5 %: still in the same tenth, less than a minute later: nothing.
-        assert_eq!(l.inc(9, t + Duration::from_secs(30)), None);
+        assert_eq!(inc(l, 9, t + Duration::from_secs(30)), None);
         // A minute after the last line, a line even without a new tenth.
-        let s = l.inc(0, t + Duration::from_secs(65)).unwrap();
+        let s = inc(l, 0, t + Duration::from_secs(65)).unwrap();
         assert!(s.starts_with("progress: 29% (59 of 200"), "{s}");
         // The end: 100 %, no time left to announce, and only once.
-        let s = l.inc(141, t + Duration::from_secs(70)).unwrap();
+        let s = inc(l, 141, t + Duration::from_secs(70)).unwrap();
         assert_eq!(
             s,
             "progress: 100% (200 of 200 pixel samples), 70.0 s elapsed"
         );
-        assert_eq!(l.inc(0, t + Duration::from_secs(200)), None);
+        assert_eq!(inc(l, 0, t + Duration::from_secs(200)), None);
     }
 }
