@@ -26,7 +26,7 @@ pub struct RaysArgs {
     /// The mesh: .ply (also .ply.gz) or .obj.
     pub mesh: PathBuf,
     /// Worker threads (default: all cores); 1 runs everything on this thread.
-    #[arg(long)]
+    #[arg(long, visible_alias = "nthreads")]
     pub threads: Option<usize>,
     /// Rays per kind.
     #[arg(long, default_value_t = 4_000_000)]

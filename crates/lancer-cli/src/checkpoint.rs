@@ -1,6 +1,6 @@
 //! Checkpoints: a render's film accumulators and finished units of work, with the options
 //! that started it, so that `lancer render --resume FILE` can finish it exactly; and the
-//! signal handling that writes one on SIGINT/SIGTERM.
+//! signal handling that writes one on SIGINT/SIGTERM (and SIGHUP, unless it is ignored).
 //!
 //! The file is a short text header, `key=value` lines, then the binary data:
 //!
@@ -204,11 +204,13 @@ pub fn interrupted() -> bool {
     INTERRUPTED.load(Ordering::SeqCst)
 }
 
-/// Installs the SIGINT/SIGTERM handler: the first signal asks the render to stop handing out
-/// work (it then writes its image and checkpoint and exits with status 130); a second one
-/// exits at once with status 130 (files are only ever replaced by rename, so none is left
-/// half written).
+/// Installs the SIGINT/SIGTERM/SIGHUP handler: the first signal asks the render to stop
+/// handing out work (it then writes its image and checkpoint and exits with status 130); a
+/// second one exits at once with status 130 (files are only ever replaced by rename, so none
+/// is left half written). A SIGHUP ignored when lancer started (`nohup lancer render …`) stays
+/// ignored: the render goes on after a hang-up.
 pub fn install_handler() -> Result<(), String> {
+    let hangup_ignored = hangup_ignored();
     ctrlc::set_handler(|| {
         if INTERRUPTED.swap(true, Ordering::SeqCst) {
             eprintln!("\ninterrupted again: exiting without a checkpoint");
@@ -216,8 +218,42 @@ pub fn install_handler() -> Result<(), String> {
         }
         eprintln!("\ninterrupted: finishing the tiles in flight, then writing a checkpoint");
     })
-    .map_err(|e| format!("cannot install the interrupt handler: {e}"))
+    .map_err(|e| format!("cannot install the interrupt handler: {e}"))?;
+    // ctrlc takes SIGHUP along with SIGTERM; give nohup's SIG_IGN back at once.
+    if hangup_ignored {
+        ignore_hangup();
+    }
+    Ok(())
 }
+
+/// True when SIGHUP is ignored (as `nohup` leaves it for the program it starts).
+#[cfg(unix)]
+pub fn hangup_ignored() -> bool {
+    // SAFETY: with a null new action, sigaction only writes the current one into `old`, a
+    // plain C struct for which all zeros is a valid value.
+    unsafe {
+        let mut old: libc::sigaction = std::mem::zeroed();
+        libc::sigaction(libc::SIGHUP, std::ptr::null(), &mut old) == 0
+            && old.sa_sigaction == libc::SIG_IGN
+    }
+}
+
+/// Whether SIGHUP is ignored: never, where there is no SIGHUP.
+#[cfg(not(unix))]
+pub fn hangup_ignored() -> bool {
+    false
+}
+
+#[cfg(unix)]
+fn ignore_hangup() {
+    // SAFETY: setting a signal's disposition to SIG_IGN involves no handler code.
+    unsafe {
+        libc::signal(libc::SIGHUP, libc::SIG_IGN);
+    }
+}
+
+#[cfg(not(unix))]
+fn ignore_hangup() {}
 
 #[cfg(test)]
 mod tests {

@@ -4,7 +4,7 @@
 
 use crate::cli_error::CliError;
 use crate::input;
-use crate::stats::SceneMemory;
+use crate::stats::{SceneMemory, human_bytes};
 use clap::Args;
 use lancer::scene::desc::{Geometry, LightDesc, Projection, ShapeDesc};
 use lancer::{Scene, SceneDesc};
@@ -112,7 +112,8 @@ pub fn counts(desc: &SceneDesc) -> Counts {
 /// Everything `lancer info` reports, as JSON.
 pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
     let t0 = Instant::now();
-    let loaded = input::load(Some(&args.scene))?;
+    // The warnings are part of the report: read quietly, not to print them twice.
+    let loaded = input::read(Some(&args.scene))?;
     let parse_s = t0.elapsed().as_secs_f64();
     let desc = &loaded.desc;
     let t1 = Instant::now();
@@ -194,18 +195,6 @@ pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
         );
     }
     Ok(v)
-}
-
-fn bytes(n: u64) -> String {
-    if n >= 1 << 30 {
-        format!("{:.2} GiB", n as f64 / (1u64 << 30) as f64)
-    } else if n >= 1 << 20 {
-        format!("{:.2} MiB", n as f64 / (1u64 << 20) as f64)
-    } else if n >= 1 << 10 {
-        format!("{:.1} KiB", n as f64 / 1024.0)
-    } else {
-        format!("{n} B")
-    }
 }
 
 fn kinds(v: &Value) -> String {
@@ -318,12 +307,12 @@ pub fn text(v: &Value) -> String {
         "memory",
         format!(
             "meshes {}, primitive records {}, BVH {} ({} nodes), textures {}, total {}",
-            bytes(u(&m["mesh_bytes"])),
-            bytes(u(&m["primitive_bytes"])),
-            bytes(u(&m["bvh_bytes"])),
+            human_bytes(u(&m["mesh_bytes"])),
+            human_bytes(u(&m["primitive_bytes"])),
+            human_bytes(u(&m["bvh_bytes"])),
             u(&v["bvh"]["nodes"]),
-            bytes(u(&m["texture_bytes"])),
-            bytes(u(&m["total_bytes"]))
+            human_bytes(u(&m["texture_bytes"])),
+            human_bytes(u(&m["total_bytes"]))
         ),
     );
     if let Some(bpt) = m["bytes_per_triangle"].as_f64() {
@@ -373,12 +362,5 @@ mod tests {
         assert_eq!(variant_name(&E::Unit), "Unit");
         assert_eq!(variant_name(&E::Tuple(1)), "Tuple");
         assert_eq!(variant_name(&E::Named { a: 1 }), "Named");
-    }
-
-    #[test]
-    fn human_sizes() {
-        assert_eq!(bytes(512), "512 B");
-        assert_eq!(bytes(2048), "2.0 KiB");
-        assert_eq!(bytes(3 << 20), "3.00 MiB");
     }
 }

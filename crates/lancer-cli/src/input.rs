@@ -1,8 +1,10 @@
-//! Reading the scene: a file named on the command line, or the built-in default scene.
+//! Reading the scene: a file named on the command line, pbrt text on standard input (`-`), or
+//! the built-in default scene.
 
 use crate::cli_error::CliError;
 use lancer_scene::LoadedScene;
-use std::path::Path;
+use std::io::Read;
+use std::path::{Path, PathBuf};
 
 /// The built-in default scene (`scenes/default.pbrt` in the repository), compiled in.
 pub const DEFAULT_SCENE: &str = include_str!("../../../scenes/default.pbrt");
@@ -10,13 +12,36 @@ pub const DEFAULT_SCENE: &str = include_str!("../../../scenes/default.pbrt");
 /// Name under which the default scene's diagnostics are reported.
 pub const DEFAULT_SCENE_NAME: &str = "<default scene>";
 
-/// Loads `path`, or the built-in default scene when `None`; prints warnings on stderr.
-pub fn load(path: Option<&Path>) -> Result<LoadedScene, CliError> {
-    let loaded = match path {
+/// Name under which a scene read from standard input is reported (`<stdin>:line:column`).
+pub const STDIN_NAME: &str = "<stdin>";
+
+/// True when `path` asks for standard input (`-`).
+pub fn is_stdin(path: &Path) -> bool {
+    path == Path::new("-")
+}
+
+/// Reads `path` (a file, or pbrt text on standard input when it is `-`; relative file names in
+/// that text are relative to the current folder), or the built-in default scene when `None`.
+/// Prints nothing: the caller decides what to do with the warnings.
+pub fn read(path: Option<&Path>) -> Result<LoadedScene, CliError> {
+    match path {
+        Some(p) if is_stdin(p) => {
+            let mut text = String::new();
+            std::io::stdin()
+                .read_to_string(&mut text)
+                .map_err(|e| CliError::input(format!("{STDIN_NAME}: cannot read: {e}")))?;
+            let dir = std::env::current_dir().unwrap_or_else(|_| PathBuf::from("."));
+            lancer_scene::load_pbrt_str(&text, STDIN_NAME, &dir)
+        }
         Some(p) => lancer_scene::load(p),
         None => lancer_scene::load_pbrt_str(DEFAULT_SCENE, DEFAULT_SCENE_NAME, Path::new(".")),
     }
-    .map_err(|e| CliError::input(e.to_string()).with_detail(e.excerpt_lines()))?;
+    .map_err(|e| CliError::input(e.to_string()).with_detail(e.excerpt_lines()))
+}
+
+/// [`read`], then prints the warnings on stderr.
+pub fn load(path: Option<&Path>) -> Result<LoadedScene, CliError> {
+    let loaded = read(path)?;
     for w in &loaded.warnings {
         eprintln!("warning: {w}");
     }

@@ -12,19 +12,22 @@ mod completions;
 mod img;
 mod info;
 mod input;
+mod live;
 mod merge;
+mod output;
 mod preview;
 mod progress;
 mod render;
+mod render_args;
 mod split;
 mod stats;
 mod tev;
 
 use clap::{CommandFactory, Parser, Subcommand};
 
-/// lancer — a physically based ray tracer.
+/// lancer, a physically based ray tracer: renders pbrt-v4 scenes and glTF, OBJ and PLY models.
 #[derive(Parser, Debug)]
-#[command(name = "lancer", version, about, long_about = None)]
+#[command(name = "lancer", version, propagate_version = true, long_about = None)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -33,7 +36,7 @@ struct Cli {
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Render a scene to an image (PNG or EXR, chosen by the extension).
-    Render(Box<render::RenderArgs>),
+    Render(Box<render_args::RenderArgs>),
     /// Describe a scene without rendering it: camera, counts, lights, bounds, memory, files.
     Info(info::InfoArgs),
     /// Merge the parts of a split render (`render --split i/N`) into the final image.
@@ -64,7 +67,9 @@ fn check_cpu() {
 
 fn main() {
     check_cpu();
-    let cli = Cli::parse();
+    let cli = Cli::parse_from(render_args::bare_stats_as_text(
+        std::env::args_os().collect(),
+    ));
     let result = match cli.command {
         Command::Render(args) => render::run(*args),
         Command::Info(args) => info::run(args),

@@ -2,11 +2,11 @@
 //! bit for bit the one a single process would have written.
 
 use crate::cli_error::CliError;
-use crate::render::check_output;
+use crate::output::check_output;
 use clap::Args;
 use lancer::film::{Film, PixelBounds};
-use lancer::image_io::{PartMeta, read_part, write_image};
-use std::path::PathBuf;
+use lancer::image_io::{PartError, PartMeta, read_part, write_image};
+use std::path::{Path, PathBuf};
 
 /// Options of `lancer merge`.
 #[derive(Args, Debug)]
@@ -112,12 +112,30 @@ pub fn check_parts(parts: &[(PathBuf, Film, PartMeta)]) -> Result<(), String> {
     Ok(())
 }
 
+/// The message for a part that cannot be read: the file named, and the reason in words (not
+/// the system's `os error N`).
+fn part_error(path: &Path, e: PartError) -> String {
+    match e {
+        PartError::Io { source, .. } if source.kind() == std::io::ErrorKind::NotFound => {
+            format!("{}: no such part file", path.display())
+        }
+        PartError::Io { source, .. } => {
+            format!(
+                "{}: cannot read this part: {}",
+                path.display(),
+                source.kind()
+            )
+        }
+        e @ PartError::Format { .. } => e.to_string(),
+    }
+}
+
 /// Runs `lancer merge`: reads and checks every part before writing anything.
 pub fn run(args: MergeArgs) -> Result<(), CliError> {
     check_output(&args.output)?;
     let mut parts = Vec::new();
     for p in &args.parts {
-        let (film, meta) = read_part(p).map_err(|e| CliError::input(e.to_string()))?;
+        let (film, meta) = read_part(p).map_err(|e| CliError::input(part_error(p, e)))?;
         parts.push((p.clone(), film, meta));
     }
     check_parts(&parts).map_err(|e| CliError::input(format!("cannot merge: {e}")))?;

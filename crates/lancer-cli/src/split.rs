@@ -61,20 +61,30 @@ pub fn parse_crop(s: &str) -> Result<[f32; 4], String> {
         .collect::<Result<_, _>>()
         .map_err(|_| format!("'{s}' is not four numbers x0,x1,y0,y1"))?;
     match v[..] {
-        [x0, x1, y0, y1]
-            if (0.0..=1.0).contains(&x0)
-                && (0.0..=1.0).contains(&x1)
-                && (0.0..=1.0).contains(&y0)
-                && (0.0..=1.0).contains(&y1)
-                && x0 < x1
-                && y0 < y1 =>
-        {
-            Ok([x0, x1, y0, y1])
-        }
-        [_, _, _, _] => Err(format!(
-            "'{s}': a crop window needs 0 ≤ x0 < x1 ≤ 1 and 0 ≤ y0 < y1 ≤ 1"
-        )),
+        [x0, x1, y0, y1] => check_crop([x0, x1, y0, y1]).map_err(|e| format!("'{s}': {e}")),
         _ => Err(format!("'{s}' is not four numbers x0,x1,y0,y1")),
+    }
+}
+
+/// Checks a crop window `[x0, x1, y0, y1]`: `0 ≤ x0 < x1 ≤ 1` and `0 ≤ y0 < y1 ≤ 1`.
+pub fn check_crop(c: [f32; 4]) -> Result<[f32; 4], String> {
+    let [x0, x1, y0, y1] = c;
+    let unit = |v: f32| (0.0..=1.0).contains(&v);
+    if unit(x0) && unit(x1) && unit(y0) && unit(y1) && x0 < x1 && y0 < y1 {
+        Ok(c)
+    } else {
+        Err("a crop window needs 0 ≤ x0 < x1 ≤ 1 and 0 ≤ y0 < y1 ≤ 1".into())
+    }
+}
+
+/// Checks pixel bounds `[x0, x1, y0, y1]` (pbrt's `pixelbounds`: the pixels `x0 ≤ x < x1`,
+/// `y0 ≤ y < y1`): `0 ≤ x0 < x1` and `0 ≤ y0 < y1`.
+pub fn check_pixel_bounds(b: [i32; 4]) -> Result<[i32; 4], String> {
+    let [x0, x1, y0, y1] = b;
+    if 0 <= x0 && x0 < x1 && 0 <= y0 && y0 < y1 {
+        Ok(b)
+    } else {
+        Err("pixel bounds need 0 ≤ x0 < x1 and 0 ≤ y0 < y1".into())
     }
 }
 
@@ -183,9 +193,11 @@ pub fn plan(
             let (r0, r1) = (rows * i / n, rows * (i + 1) / n);
             if r0 == r1 {
                 return Err(CliError::input(format!(
-                    "--split {}/{}: the image has only {rows} rows of {TILE_SIZE}-pixel tiles, \
+                    "--split {}/{}: the image has only {rows} {} of {TILE_SIZE}-pixel tiles, \
                      too few for {n} parts",
-                    s.index, s.count
+                    s.index,
+                    s.count,
+                    if rows == 1 { "row" } else { "rows" }
                 )));
             }
             let t = TILE_SIZE as i32;
@@ -229,6 +241,11 @@ mod tests {
         assert_eq!(parse_crop("0,0.5,0.25,1"), Ok([0.0, 0.5, 0.25, 1.0]));
         assert!(parse_crop("0.5,0.2,0,1").is_err());
         assert!(parse_crop("0,1,0").is_err());
+        assert_eq!(check_crop([0.0, 1.0, 0.5, 0.75]), Ok([0.0, 1.0, 0.5, 0.75]));
+        assert!(check_crop([0.0, 1.5, 0.0, 1.0]).is_err());
+        assert_eq!(check_pixel_bounds([0, 10, 5, 6]), Ok([0, 10, 5, 6]));
+        assert!(check_pixel_bounds([3, 3, 0, 1]).is_err());
+        assert!(check_pixel_bounds([-1, 3, 0, 1]).is_err());
     }
 
     #[test]

@@ -1,5 +1,6 @@
-//! `--stats json`: a machine-readable summary of a render, and the memory estimate of a built
-//! scene that `lancer info` reports too.
+//! `--stats`: a summary of a render, as text (a bare `--stats`, as pbrt's) or as one JSON
+//! object (`--stats json`), and the memory estimate of a built scene that `lancer info`
+//! reports too.
 
 use lancer::Scene;
 use lancer::shape::Shape;
@@ -13,6 +14,8 @@ use std::mem::size_of;
 pub enum StatsFormat {
     /// One JSON object on stdout when the render ends.
     Json,
+    /// Lines of text on stdout when the render ends (what a bare `--stats` prints).
+    Text,
 }
 
 /// Where a built scene's memory goes, in bytes (what the arrays hold, capacity included).
@@ -220,6 +223,90 @@ pub fn render_json(r: &RenderSummary, t: &Phases, mem: &SceneMemory) -> Value {
     })
 }
 
+/// A byte count for people: B, KiB, MiB or GiB.
+pub fn human_bytes(n: u64) -> String {
+    if n >= 1 << 30 {
+        format!("{:.2} GiB", n as f64 / (1u64 << 30) as f64)
+    } else if n >= 1 << 20 {
+        format!("{:.2} MiB", n as f64 / (1u64 << 20) as f64)
+    } else if n >= 1 << 10 {
+        format!("{:.1} KiB", n as f64 / 1024.0)
+    } else {
+        format!("{n} B")
+    }
+}
+
+/// The `--stats` (text) summary: what [`render_json`] holds, one topic per line.
+pub fn render_text(r: &RenderSummary, t: &Phases, mem: &SceneMemory) -> String {
+    let per_s = |n: u64| {
+        if t.render > 0.0 {
+            n as f64 / t.render / 1e6
+        } else {
+            0.0
+        }
+    };
+    let lines = [
+        (
+            "time",
+            format!(
+                "{:.3} s in all: parse {:.3} s, build {:.3} s, render {:.3} s, write {:.3} s",
+                t.total, t.parse, t.build, t.render, t.write
+            ),
+        ),
+        (
+            "image",
+            format!(
+                "{}, {}x{} pixels, {} spp, {}, {} threads",
+                r.output,
+                r.size.0,
+                r.size.1,
+                r.spp,
+                if r.spectral { "spectral" } else { "rgb" },
+                r.threads
+            ),
+        ),
+        (
+            "samples",
+            format!(
+                "{} ({:.2} M/s), {} NaN or infinite",
+                r.samples,
+                per_s(r.samples),
+                r.nonfinite
+            ),
+        ),
+        ("rays", format!("{} ({:.2} M/s)", r.rays, per_s(r.rays))),
+        (
+            "geometry",
+            format!(
+                "{} primitives, {} triangles, BVH of {} nodes",
+                mem.primitives, mem.triangles, mem.bvh_nodes
+            ),
+        ),
+        (
+            "memory",
+            format!(
+                "meshes {}, primitive records {}, BVH {}, textures {}, other {}, total {}",
+                human_bytes(mem.mesh_bytes),
+                human_bytes(mem.primitive_bytes),
+                human_bytes(mem.bvh_bytes),
+                human_bytes(mem.texture_bytes),
+                human_bytes(mem.other_bytes),
+                human_bytes(mem.total())
+            ),
+        ),
+    ];
+    let mut out = format!(
+        "statistics of {}\n",
+        r.scene
+            .as_deref()
+            .unwrap_or(crate::input::DEFAULT_SCENE_NAME)
+    );
+    for (k, v) in lines {
+        out.push_str(&format!("  {k:<10}{v}\n"));
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -240,5 +327,12 @@ mod tests {
         assert_eq!(m.total(), 2010);
         assert_eq!(SceneMemory::default().bytes_per_triangle(), None);
         assert_eq!(m.to_json()["bytes_per_triangle"].as_f64(), Some(50.0));
+    }
+
+    #[test]
+    fn human_sizes() {
+        assert_eq!(human_bytes(512), "512 B");
+        assert_eq!(human_bytes(2048), "2.0 KiB");
+        assert_eq!(human_bytes(3 << 20), "3.00 MiB");
     }
 }

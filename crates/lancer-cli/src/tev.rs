@@ -13,7 +13,7 @@
 //! The stream runs on its own thread, reading from the [`LiveImage`]: rendering never waits for
 //! the network, and a viewer that cannot be reached is a warning, not an error.
 
-use crate::preview::LiveImage;
+use crate::live::LiveImage;
 use lancer::film::PixelBounds;
 use std::io::Write;
 use std::net::{TcpStream, ToSocketAddrs};
