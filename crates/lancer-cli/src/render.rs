@@ -6,9 +6,7 @@ use crate::split::{self, SAMPLES_PER_PASS, TILE_SIZE};
 use crate::{input, preview, progress, stats};
 use clap::Args;
 use lancer::film::{Film, PixelBounds, PixelSum};
-use lancer::filter::Filter;
 use lancer::image_io::{ImageFormat, PartMeta, write_image, write_part};
-use lancer::integrator::Integrator;
 use lancer::render::{RenderSettings, RenderStats, WorkUnit, render_units, work_units};
 use lancer::{Scene, SceneDesc};
 use std::path::{Path, PathBuf};
@@ -381,14 +379,9 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     let settings = RenderSettings {
         bounds,
         samples: plan.samples.clone(),
-        spp: desc.sampler.spp,
-        seed: desc.sampler.seed,
-        sampler: desc.sampler.kind,
-        filter: Filter::new(desc.filter),
-        integrator: Integrator::from_desc(&desc.integrator),
         tile_size: TILE_SIZE,
-        max_component_value: desc.film.max_component_value,
         spectral: args.spectral,
+        ..RenderSettings::from_desc(&desc)
     };
     let part_meta = PartMeta {
         scene_hash,

@@ -1,7 +1,23 @@
 //! In-memory images: linear float texels, for textures and environment maps.
 
 use crate::math::{PackedRgb, Rgb, Vec2};
-use crate::texture::WrapMode;
+
+/// How image lookups outside [0, 1] behave (pbrt's `wrap`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum WrapMode {
+    /// Tile the image.
+    #[default]
+    Repeat,
+    /// Clamp to the edge texel.
+    Clamp,
+    /// Black outside.
+    Black,
+    /// Mirror every other tile.
+    Mirror,
+    /// pbrt's `octahedralsphere`: the neighbours of an equal-area octahedral map's edge texels
+    /// are the texels that touch them on the sphere (mirrored across the edge's midpoint).
+    OctahedralSphere,
+}
 
 /// A linear RGB image, row 0 at the top, stored row-major as `width × height` texels.
 #[derive(Clone, Debug, PartialEq)]

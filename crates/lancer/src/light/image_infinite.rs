@@ -11,7 +11,7 @@
 //! lat-long, whose texels near the poles cover less solid angle), and
 //! p(ω) = p(u, v) / |dω/d(u, v)| with |dω/d(u, v)| = 4π (equal-area) or 2π² sin θ (lat-long).
 
-use super::{LightLiSample, LightSampleContext};
+use super::sample::{LightLiSample, LightSampleContext};
 use crate::image::Image;
 use crate::math::{PI, Rgb, Transform, Vec2, Vec3, luminance};
 use crate::sampling::{

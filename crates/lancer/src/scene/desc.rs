@@ -23,7 +23,7 @@ pub struct SceneDesc {
     /// How samples are weighted into pixels.
     pub filter: FilterDesc,
     /// How light transport is computed.
-    pub integrator: IntegratorDesc,
+    pub integrator: Integrator,
     /// Materials; shapes refer to them by index.
     pub materials: Vec<Material>,
     /// Float textures; material parameters refer to them by index.
@@ -193,9 +193,10 @@ impl Default for FilterDesc {
     }
 }
 
-/// The light transport algorithm.
+/// The light transport algorithm: what the scene asks for and what the renderer runs (its
+/// methods are in [`crate::integrator`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum IntegratorDesc {
+pub enum Integrator {
     /// The course: direct light from every light with shadows, plus perfect specular
     /// reflection and refraction up to `max_depth` levels.
     Whitted {
@@ -206,7 +207,8 @@ pub enum IntegratorDesc {
     Path {
         /// Maximum number of bounces.
         max_depth: u32,
-        /// Roughen near-specular lobes after the first diffuse bounce.
+        /// Roughen near-specular lobes after the first non-specular bounce (pbrt's
+        /// `regularize`).
         regularize: bool,
     },
     /// Ambient occlusion.
@@ -216,16 +218,16 @@ pub enum IntegratorDesc {
         /// Occluders farther than this are ignored.
         max_distance: f32,
     },
-    /// Debug view: shading normals mapped to colours.
+    /// Debug view: shading normals mapped to colours, (n + 1)/2.
     Normals,
     /// Debug view: distance to the first hit.
     Depth,
 }
 
-impl Default for IntegratorDesc {
+impl Default for Integrator {
     /// pbrt's default (`volpath`, maxdepth 5) is served by the path tracer.
     fn default() -> Self {
-        IntegratorDesc::Path {
+        Integrator::Path {
             max_depth: 5,
             regularize: false,
         }

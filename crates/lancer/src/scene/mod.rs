@@ -547,7 +547,7 @@ impl Scene {
     /// The course's "keep the nearest valid hit": the smallest t with 0 < t < t_max over all
     /// primitives, found through the BVH.
     pub fn intersect(&self, ray: &Ray) -> Option<SceneHit> {
-        crate::render::count_ray();
+        crate::counters::count_ray();
         let mut best: Option<(crate::shape::ShapeHit, u32)> = None;
         let mut r = *ray;
         let pre = TriangleRay::new(ray);
@@ -631,7 +631,7 @@ impl Scene {
 
     /// True if anything blocks the ray before `t_max` (shadow rays).
     pub fn intersect_p(&self, ray: &Ray) -> bool {
-        crate::render::count_ray();
+        crate::counters::count_ray();
         let pre = TriangleRay::new(ray);
         self.unbounded
             .iter()
