@@ -31,6 +31,11 @@ pub struct Image {
 }
 
 impl Image {
+    /// Bytes of the texels (capacity included).
+    pub fn memory_bytes(&self) -> usize {
+        self.texels.capacity() * std::mem::size_of::<PackedRgb>()
+    }
+
     /// An image from its texels; `None` if the sizes disagree or the image is empty.
     pub fn new(width: u32, height: u32, texels: Vec<PackedRgb>) -> Option<Image> {
         (width > 0 && height > 0 && texels.len() == width as usize * height as usize).then_some(

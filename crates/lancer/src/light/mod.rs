@@ -8,7 +8,7 @@ mod image_infinite;
 mod sample;
 
 pub use distribution::LightDistribution;
-pub use image_infinite::{EnvMapping, ImageInfiniteLight};
+pub use image_infinite::{EnvMapping, ImageInfiniteLight, environment_mapping};
 pub use sample::{LightLiSample, LightSampleContext};
 
 use crate::math::{Frame, INV_PI, PackedRgb, PackedVec3, Rgb, Vec2, Vec3, smooth_step};
