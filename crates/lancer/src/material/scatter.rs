@@ -140,7 +140,7 @@ pub struct BsdfSample {
     /// Relative index of refraction crossed (1 for reflection).
     pub eta: f32,
     /// True when `f/pdf` is a correct weight but `pdf` is not the density of `wi` (layered
-    /// BSDFs, sampled by a random walk): MIS must then ask [`Bsdf::pdf`] instead.
+    /// BSDFs, sampled by a random walk): MIS must then ask [`Bsdf::pdf`](super::Bsdf::pdf) instead.
     pub pdf_is_proportional: bool,
 }
 

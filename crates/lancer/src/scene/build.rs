@@ -21,9 +21,9 @@ use std::sync::Arc;
 
 impl Scene {
     /// Builds a scene: shapes moved to world space and put in a BVH, lights gathered, the
-    /// camera set up for an `xres × yres` image. The phases, each a function below:
-    /// [`flatten_instances`], [`primitives`] (meshes → triangles), [`bvh_order`],
-    /// [`packets`], [`lights`], then the camera.
+    /// camera set up for an `xres × yres` image. The phases, each a function of
+    /// `scene/build.rs`: `flatten_instances`, `primitives` (meshes → triangles), `bvh_order`,
+    /// `packets`, `lights`, then the camera.
     pub fn build(desc: &SceneDesc) -> Result<Scene, BuildError> {
         let materials = materials(desc);
         let flat = flatten_instances(desc, materials.len())?;

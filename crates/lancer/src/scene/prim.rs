@@ -11,7 +11,7 @@ use std::mem::size_of;
 /// What a primitive is made of, beside its shape.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PrimInfo {
-    /// Index into [`Scene::materials`].
+    /// Index into [`Scene::materials`](super::Scene::materials).
     pub material: u32,
     /// Emitted radiance when the primitive is an area light.
     pub emission: Option<AreaEmission>,
@@ -26,7 +26,7 @@ pub struct AreaEmission {
     pub l: PackedRgb,
     /// Emits from both sides.
     pub two_sided: bool,
-    /// Index of the light in [`Scene::lights`].
+    /// Index of the light in [`Scene::lights`](super::Scene::lights).
     pub light: u32,
 }
 
