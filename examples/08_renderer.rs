@@ -6,14 +6,12 @@
 //! `whitted` integrator (visible point, lights, shadows). Its image equals step 7's.
 
 use lancer::film::{Film, PixelBounds};
-use lancer::filter::Filter;
-use lancer::integrator::Integrator;
 use lancer::material::Material;
 use lancer::math::{Rgb, Transform, Vec3};
 use lancer::render::{RenderSettings, render};
 use lancer::sampling::SamplerKind;
 use lancer::scene::desc::{
-    CameraDesc, FilterDesc, Geometry, IntegratorDesc, LightDesc, SceneDesc, ShapeDesc,
+    CameraDesc, FilterDesc, Geometry, Integrator, LightDesc, SceneDesc, ShapeDesc,
 };
 use lancer::texture::SpectrumTex;
 use lancer_examples::{Canvas, save_or_exit};
@@ -31,7 +29,7 @@ pub fn scene_desc(width: u32, height: u32) -> SceneDesc {
             camera_from_world: Transform::scale(Vec3::new(1.0, 1.0, -1.0)).unwrap(),
             ..CameraDesc::default()
         },
-        integrator: IntegratorDesc::Whitted { max_depth: 1 },
+        integrator: Integrator::Whitted { max_depth: 1 },
         filter: FilterDesc::Box { radius: [0.5, 0.5] },
         ..SceneDesc::default()
     };
@@ -92,7 +90,6 @@ pub fn render_image(width: u32, height: u32) -> Canvas {
         y1: height as i32,
     };
     let settings = RenderSettings {
-        bounds,
         samples: 0..1,
         spp: 1,
         seed: 0,
@@ -102,11 +99,7 @@ pub fn render_image(width: u32, height: u32) -> Canvas {
             ysamples: 1,
             jitter: false,
         },
-        filter: Filter::new(desc.filter),
-        integrator: Integrator::from_desc(&desc.integrator),
-        tile_size: 16,
-        max_component_value: f32::INFINITY,
-        spectral: false,
+        ..RenderSettings::from_desc(&desc)
     };
     let mut film = Film::new(width, height, bounds);
     render(&scene, &settings, &mut film, &|_| {}, &Default::default());

@@ -11,9 +11,7 @@ use crate::render_args::{RenderArgs, Resumed, apply_overrides, resume_args};
 use crate::split::{self, SAMPLES_PER_PASS, TILE_SIZE};
 use crate::{input, stats};
 use lancer::film::{Film, PixelBounds, PixelSum};
-use lancer::filter::Filter;
 use lancer::image_io::{ImageFormat, PartMeta, write_image, write_part};
-use lancer::integrator::Integrator;
 use lancer::render::{RenderSettings, RenderStats, WorkUnit, render_units, work_units};
 use lancer::{Scene, SceneDesc};
 use std::path::{Path, PathBuf};
@@ -312,14 +310,9 @@ pub fn render_settings(desc: &SceneDesc, pixels: &split::Plan, spectral: bool) -
     RenderSettings {
         bounds: pixels.bounds,
         samples: pixels.samples.clone(),
-        spp: desc.sampler.spp,
-        seed: desc.sampler.seed,
-        sampler: desc.sampler.kind,
-        filter: Filter::new(desc.filter),
-        integrator: Integrator::from_desc(&desc.integrator),
         tile_size: TILE_SIZE,
-        max_component_value: desc.film.max_component_value,
         spectral,
+        ..RenderSettings::from_desc(desc)
     }
 }
 

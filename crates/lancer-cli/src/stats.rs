@@ -3,11 +3,7 @@
 //! reports too.
 
 use lancer::Scene;
-use lancer::shape::Shape;
-use lancer::texture::{FloatTexture, SpectrumTexture};
 use serde_json::{Value, json};
-use std::collections::HashSet;
-use std::mem::size_of;
 
 /// Output formats of `--stats`.
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -28,9 +24,9 @@ pub struct SceneMemory {
     pub primitive_bytes: u64,
     /// The acceleration structure.
     pub bvh_bytes: u64,
-    /// Texture images (each shared image once).
+    /// Texture and environment images (each shared image once).
     pub texture_bytes: u64,
-    /// Lights, materials, and texture records.
+    /// Lights, materials, texture records and instancing.
     pub other_bytes: u64,
     /// Triangles in the scene.
     pub triangles: u64,
@@ -41,59 +37,15 @@ pub struct SceneMemory {
 }
 
 impl SceneMemory {
-    /// Measures `scene`.
+    /// Measures `scene` ([`Scene::memory`]; instancing counts with the other bytes).
     pub fn of(scene: &Scene) -> SceneMemory {
-        let vec = |cap: usize, elem: usize| (cap * elem) as u64;
-        let mesh_bytes = scene
-            .meshes
-            .iter()
-            .map(|m| {
-                vec(
-                    m.positions.capacity(),
-                    size_of::<lancer::math::PackedVec3>(),
-                ) + vec(m.normals.capacity(), size_of::<lancer::math::PackedVec3>())
-                    + vec(m.uvs.capacity(), size_of::<lancer::math::Vec2>())
-                    + vec(m.indices.capacity(), size_of::<u32>())
-            })
-            .sum();
-        let boxed: u64 = scene.shapes.iter().map(boxed_shape_bytes).sum();
-        let primitive_bytes = vec(scene.shapes.capacity(), size_of::<Shape>())
-            + boxed
-            + vec(scene.prims.capacity(), size_of::<lancer::scene::PrimInfo>());
-        let mut seen = HashSet::new();
-        let mut texture_bytes = 0u64;
-        let images = scene
-            .float_textures
-            .iter()
-            .filter_map(|t| match t {
-                FloatTexture::Image(i) => Some(&i.image),
-                _ => None,
-            })
-            .chain(scene.spectrum_textures.iter().filter_map(|t| match t {
-                SpectrumTexture::Image(i) => Some(&i.image),
-                _ => None,
-            }));
-        for img in images {
-            if seen.insert(std::sync::Arc::as_ptr(img)) {
-                texture_bytes += vec(img.texels.capacity(), size_of::<lancer::math::PackedRgb>());
-            }
-        }
-        let other_bytes = vec(scene.lights.capacity(), size_of::<lancer::light::Light>())
-            + vec(
-                scene.materials.capacity(),
-                size_of::<lancer::material::Material>(),
-            )
-            + vec(scene.float_textures.capacity(), size_of::<FloatTexture>())
-            + vec(
-                scene.spectrum_textures.capacity(),
-                size_of::<SpectrumTexture>(),
-            );
+        let m = scene.memory();
         SceneMemory {
-            mesh_bytes,
-            primitive_bytes,
-            bvh_bytes: scene.bvh().memory_bytes() as u64,
-            texture_bytes,
-            other_bytes,
+            mesh_bytes: m.meshes as u64,
+            primitive_bytes: m.primitives as u64,
+            bvh_bytes: m.bvh as u64,
+            texture_bytes: m.images as u64,
+            other_bytes: (m.lights + m.materials + m.textures + m.instances) as u64,
             triangles: scene.meshes.iter().map(|m| m.triangle_count() as u64).sum(),
             primitives: scene.shapes.len() as u64,
             bvh_nodes: scene.bvh().node_count() as u64,
@@ -129,24 +81,6 @@ impl SceneMemory {
             "bytes_per_triangle": self.bytes_per_triangle(),
         })
     }
-}
-
-/// Heap bytes behind a boxed shape (triangles are stored inline).
-fn boxed_shape_bytes(s: &Shape) -> u64 {
-    (match s {
-        Shape::Sphere(b) => size_of_val(&**b),
-        Shape::Disk(b) => size_of_val(&**b),
-        Shape::Cylinder(b) => size_of_val(&**b),
-        Shape::Cone(b) => size_of_val(&**b),
-        Shape::Paraboloid(b) => size_of_val(&**b),
-        Shape::Hyperboloid(b) => size_of_val(&**b),
-        Shape::Box(b) => size_of_val(&**b),
-        Shape::Plane(b) => size_of_val(&**b),
-        // The cells (a byte each, shared by instances of one grid but counted per instance)
-        // and the bricks.
-        Shape::Voxels(b) => size_of_val(&**b) + b.heap_bytes(),
-        _ => 0,
-    }) as u64
 }
 
 /// Seconds spent in each phase of a render.

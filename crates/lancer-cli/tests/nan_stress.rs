@@ -14,7 +14,6 @@ use lancer::integrator::Integrator;
 use lancer::math::Vec2;
 use lancer::render::RenderSettings;
 use lancer::sampling::Sampler;
-use lancer::scene::desc::IntegratorDesc;
 
 #[test]
 fn degenerate_scene_gives_only_finite_samples() {
@@ -25,24 +24,23 @@ fn degenerate_scene_gives_only_finite_samples() {
     let filter = Filter::new(desc.filter);
     let integrators = [
         desc.integrator,
-        IntegratorDesc::Path {
+        Integrator::Path {
             max_depth: 8,
             regularize: true,
         },
-        IntegratorDesc::Whitted { max_depth: 5 },
-        IntegratorDesc::AmbientOcclusion {
+        Integrator::Whitted { max_depth: 5 },
+        Integrator::AmbientOcclusion {
             cos_sample: true,
             max_distance: 1.0,
         },
-        IntegratorDesc::Normals,
-        IntegratorDesc::Depth,
+        Integrator::Normals,
+        Integrator::Depth,
     ];
     let (w, h) = (desc.film.xresolution as i32, desc.film.yresolution as i32);
     let spp = desc.sampler.spp;
     let mut bad = Vec::new();
     let mut samples = 0u64;
-    for integrator_desc in &integrators {
-        let integrator = Integrator::from_desc(integrator_desc);
+    for integrator in &integrators {
         let mut sampler = Sampler::new(desc.sampler.kind, spp, desc.sampler.seed);
         for y in 0..h {
             for x in 0..w {
@@ -55,9 +53,7 @@ fn degenerate_scene_gives_only_finite_samples() {
                     let l = integrator.li(&scene, &ray, &mut sampler, None);
                     samples += 1;
                     if !l.is_finite() && bad.len() < 10 {
-                        bad.push(format!(
-                            "{integrator_desc:?} pixel ({x}, {y}) sample {s}: {l:?}"
-                        ));
+                        bad.push(format!("{integrator:?} pixel ({x}, {y}) sample {s}: {l:?}"));
                     }
                 }
             }
@@ -106,15 +102,10 @@ fn render_with_nan_sphere(
     };
     let settings = RenderSettings {
         bounds,
-        samples: 0..desc.sampler.spp,
-        spp: desc.sampler.spp,
         seed: 3,
-        sampler: desc.sampler.kind,
-        filter: Filter::new(desc.filter),
-        integrator: Integrator::from_desc(&desc.integrator),
         tile_size: tile,
         max_component_value: f32::INFINITY,
-        spectral: false,
+        ..RenderSettings::from_desc(&desc)
     };
     let mut film = lancer::film::Film::new(40, 24, bounds);
     let pool = rayon::ThreadPoolBuilder::new()

@@ -16,8 +16,8 @@ use crate::ply::read_ply;
 use lancer::material::Material;
 use lancer::math::{Rgb, Transform, Vec3, normalize};
 use lancer::scene::desc::{
-    AreaLightDesc, CameraDesc, FilmDesc, Geometry, IntegratorDesc, LightDesc, Projection,
-    SceneDesc, ShapeDesc,
+    AreaLightDesc, CameraDesc, FilmDesc, Geometry, Integrator, LightDesc, Projection, SceneDesc,
+    ShapeDesc,
 };
 use lancer::shape::TriangleMesh;
 use lancer::texture::{ImageTexture, SpectrumTex, SpectrumTexture, UvMapping, WrapMode};
@@ -287,7 +287,7 @@ fn scene_around(
             yresolution: defaults::FILM_HEIGHT,
             ..FilmDesc::default()
         },
-        integrator: IntegratorDesc::Path {
+        integrator: Integrator::Path {
             max_depth: defaults::MAX_DEPTH,
             regularize: false,
         },

@@ -7,8 +7,6 @@ mod common;
 use common::ScratchDir;
 use lancer::Scene;
 use lancer::film::{Film, PixelBounds};
-use lancer::filter::Filter;
-use lancer::integrator::Integrator;
 use lancer::material::Material;
 use lancer::math::{PackedVec3, Vec3, cross, normalize};
 use lancer::render::{RenderSettings, render};
@@ -410,16 +408,11 @@ fn render_image(mut d: SceneDesc, w: u32, h: u32, spp: u32) -> Vec<Vec3> {
         y1: h as i32,
     };
     let settings = RenderSettings {
-        bounds,
         samples: 0..spp,
         spp,
         seed: 1,
-        sampler: d.sampler.kind,
-        filter: Filter::new(d.filter),
-        integrator: Integrator::from_desc(&d.integrator),
-        tile_size: 16,
         max_component_value: f32::INFINITY,
-        spectral: false,
+        ..RenderSettings::from_desc(&d)
     };
     let mut film = Film::new(w, h, bounds);
     render(

@@ -8,7 +8,7 @@ use common::ScratchDir;
 use lancer::material::Material;
 use lancer::math::{Vec3, normalize};
 use lancer::sampling::SamplerKind;
-use lancer::scene::desc::{Geometry, IntegratorDesc, LightDesc, Projection, SceneDesc};
+use lancer::scene::desc::{Geometry, Integrator, LightDesc, Projection, SceneDesc};
 use lancer::texture::SpectrumTex;
 use lancer_scene::{load, load_pbrt_str};
 use std::path::Path;
@@ -158,7 +158,7 @@ fn defaults_are_pbrt_v4_defaults() {
     assert_eq!(d.sampler.spp, 16);
     assert!(matches!(
         d.integrator,
-        IntegratorDesc::Path { max_depth: 5, .. }
+        Integrator::Path { max_depth: 5, .. }
     ));
     // fov spans the shorter axis: the ray through the top edge's middle is 45° off axis.
     assert!((edge_angle(&d, 640.0, 0.0) - 45.0).abs() < 1e-3);

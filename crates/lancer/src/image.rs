@@ -1,7 +1,23 @@
 //! In-memory images: linear float texels, for textures and environment maps.
 
 use crate::math::{PackedRgb, Rgb, Vec2};
-use crate::texture::WrapMode;
+
+/// How image lookups outside [0, 1] behave (pbrt's `wrap`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum WrapMode {
+    /// Tile the image.
+    #[default]
+    Repeat,
+    /// Clamp to the edge texel.
+    Clamp,
+    /// Black outside.
+    Black,
+    /// Mirror every other tile.
+    Mirror,
+    /// pbrt's `octahedralsphere`: the neighbours of an equal-area octahedral map's edge texels
+    /// are the texels that touch them on the sphere (mirrored across the edge's midpoint).
+    OctahedralSphere,
+}
 
 /// A linear RGB image, row 0 at the top, stored row-major as `width × height` texels.
 #[derive(Clone, Debug, PartialEq)]
@@ -15,6 +31,11 @@ pub struct Image {
 }
 
 impl Image {
+    /// Bytes of the texels (capacity included).
+    pub fn memory_bytes(&self) -> usize {
+        self.texels.capacity() * std::mem::size_of::<PackedRgb>()
+    }
+
     /// An image from its texels; `None` if the sizes disagree or the image is empty.
     pub fn new(width: u32, height: u32, texels: Vec<PackedRgb>) -> Option<Image> {
         (width > 0 && height > 0 && texels.len() == width as usize * height as usize).then_some(

@@ -11,6 +11,7 @@
 
 pub mod accel;
 pub mod camera;
+pub mod counters;
 pub mod film;
 pub mod filter;
 pub mod image;

@@ -1,6 +1,9 @@
 //! The ray of the course: p(t) = o + t·d.
 
-use crate::math::{SHADOW_EPSILON, Vec3, offset_ray_origin};
+// One item per line: the vocabulary lives in math's leaf modules, not in `math` itself.
+use crate::math::SHADOW_EPSILON;
+use crate::math::Vec3;
+use crate::math::offset_ray_origin;
 
 /// A half-line `p(t) = o + t·d` for `0 < t < t_max`.
 ///

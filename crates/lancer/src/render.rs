@@ -6,25 +6,12 @@ use crate::integrator::Integrator;
 use crate::math::Vec2;
 use crate::sampling::{Sampler, SamplerKind};
 use crate::scene::Scene;
+use crate::scene::desc::SceneDesc;
 use rayon::prelude::*;
-use std::cell::Cell;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-thread_local! {
-    static RAYS: Cell<u64> = const { Cell::new(0) };
-}
-
-/// Counts one traced ray on this thread (for statistics).
-#[inline]
-pub fn count_ray() {
-    RAYS.with(|r| r.set(r.get() + 1));
-}
-
-/// This thread's ray count so far.
-pub fn rays_traced() -> u64 {
-    RAYS.with(|r| r.get())
-}
+pub use crate::counters::{count_ray, rays_traced};
 
 /// What to render.
 #[derive(Clone, Debug)]
@@ -53,6 +40,36 @@ pub struct RenderSettings {
     /// converted to linear sRGB before the film, so the film is the same either way. Applies
     /// to the radiance integrators only (path, Whitted); false is plain RGB rendering.
     pub spectral: bool,
+}
+
+/// Tile edge, in pixels, that [`RenderSettings::from_desc`] chooses.
+pub const DEFAULT_TILE_SIZE: u32 = 16;
+
+impl RenderSettings {
+    /// The settings a scene description asks for: the whole image (`xresolution ×
+    /// yresolution`), every sample index `0..spp`, the description's sampler, seed, filter,
+    /// integrator and `maxcomponentvalue`, tiles of [`DEFAULT_TILE_SIZE`] pixels, RGB (not
+    /// spectral) rendering. Callers that render a part of the image or of the samples, or in
+    /// spectral mode, change those fields afterwards.
+    pub fn from_desc(desc: &SceneDesc) -> RenderSettings {
+        RenderSettings {
+            bounds: PixelBounds {
+                x0: 0,
+                x1: desc.film.xresolution as i32,
+                y0: 0,
+                y1: desc.film.yresolution as i32,
+            },
+            samples: 0..desc.sampler.spp,
+            spp: desc.sampler.spp,
+            seed: desc.sampler.seed,
+            sampler: desc.sampler.kind,
+            filter: Filter::new(desc.filter),
+            integrator: desc.integrator,
+            tile_size: DEFAULT_TILE_SIZE,
+            max_component_value: desc.film.max_component_value,
+            spectral: false,
+        }
+    }
 }
 
 /// Totals of a render.

@@ -3,14 +3,12 @@
 //! Lambert's law, the Fresnel reflectance of a mirror, exact shadow tests).
 
 use lancer::film::{Film, PixelBounds};
-use lancer::filter::Filter;
-use lancer::integrator::Integrator;
 use lancer::material::{Material, fresnel_complex};
 use lancer::math::{INV_PI, Rgb, Transform, Vec2, Vec3, normalize};
 use lancer::render::{RenderSettings, render};
 use lancer::sampling::SamplerKind;
 use lancer::scene::desc::{
-    CameraDesc, FilterDesc, Geometry, IntegratorDesc, LightDesc, SceneDesc, ShapeDesc,
+    CameraDesc, FilterDesc, Geometry, Integrator, LightDesc, SceneDesc, ShapeDesc,
 };
 use lancer::texture::SpectrumTex;
 use lancer::{Scene, ray::Ray};
@@ -25,7 +23,7 @@ fn course_desc() -> SceneDesc {
             ..CameraDesc::default()
         },
         filter: FilterDesc::Box { radius: [0.5, 0.5] },
-        integrator: IntegratorDesc::Whitted { max_depth: 3 },
+        integrator: Integrator::Whitted { max_depth: 3 },
         ..SceneDesc::default()
     };
     d.film.xresolution = W;
@@ -70,7 +68,6 @@ fn render_centres(desc: &SceneDesc) -> (Scene, Vec<Rgb>) {
         y1: H as i32,
     };
     let settings = RenderSettings {
-        bounds,
         samples: 0..1,
         spp: 1,
         seed: 1,
@@ -79,11 +76,7 @@ fn render_centres(desc: &SceneDesc) -> (Scene, Vec<Rgb>) {
             ysamples: 1,
             jitter: false,
         },
-        filter: Filter::new(desc.filter),
-        integrator: Integrator::from_desc(&desc.integrator),
-        tile_size: 16,
-        max_component_value: f32::INFINITY,
-        spectral: false,
+        ..RenderSettings::from_desc(desc)
     };
     let mut film = Film::new(W, H, bounds);
     render(&scene, &settings, &mut film, &|_| {}, &Default::default());

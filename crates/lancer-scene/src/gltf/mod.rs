@@ -56,8 +56,8 @@ use ::gltf::mesh::{Mode, Semantic};
 use lancer::material::Material;
 use lancer::math::{Mat4, PackedVec3, Rgb, Transform, Vec2, Vec3, Vec4};
 use lancer::scene::desc::{
-    AreaLightDesc, CameraDesc, FilmDesc, Geometry, IntegratorDesc, LightDesc, Projection,
-    SceneDesc, ShapeDesc,
+    AreaLightDesc, CameraDesc, FilmDesc, Geometry, Integrator, LightDesc, Projection, SceneDesc,
+    ShapeDesc,
 };
 use lancer::shape::TriangleMesh;
 use lancer::texture::{FloatTexture, SpectrumTexture};
@@ -606,7 +606,7 @@ impl GltfLoader<'_> {
         Ok(SceneDesc {
             camera,
             film,
-            integrator: IntegratorDesc::Path {
+            integrator: Integrator::Path {
                 max_depth: defaults::MAX_DEPTH,
                 regularize: false,
             },

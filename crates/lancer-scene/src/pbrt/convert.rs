@@ -15,7 +15,7 @@ use crate::vox::{default_palette, linear_palette, read_vox};
 use lancer::material::Material;
 use lancer::math::{Rgb, Vec3};
 use lancer::sampling::SamplerKind;
-use lancer::scene::desc::{FilterDesc, Geometry, IntegratorDesc};
+use lancer::scene::desc::{FilterDesc, Geometry, Integrator};
 use lancer::shape::{BilinearMesh, CurveBasis, CurveDesc, CurveType, TriangleMesh};
 use lancer::spectrum::{SpectrumKind, named_spectrum, spectrum_to_rgb};
 use lancer::texture::{
@@ -1011,28 +1011,28 @@ impl Reader<'_> {
     }
 
     /// The integrator, with pbrt-v4's defaults (`maxdepth` 5).
-    pub fn integrator(&self, ty: &str) -> Result<Converted<IntegratorDesc>, SceneError> {
+    pub fn integrator(&self, ty: &str) -> Result<Converted<Integrator>, SceneError> {
         let p = self.params;
         let max_depth = p.int_in("maxdepth", 5, 0..=100_000)? as u32;
-        let path = || -> Result<IntegratorDesc, SceneError> {
-            Ok(IntegratorDesc::Path {
+        let path = || -> Result<Integrator, SceneError> {
+            Ok(Integrator::Path {
                 max_depth,
                 regularize: p.bool("regularize", false)?,
             })
         };
         let i = match ty {
-            "whitted" => IntegratorDesc::Whitted { max_depth },
+            "whitted" => Integrator::Whitted { max_depth },
             "path" | "volpath" => {
                 // The light sampler is lancer's own; pbrt's choice needs no warning.
                 let _ = p.string("lightsampler")?;
                 path()?
             }
-            "ambientocclusion" => IntegratorDesc::AmbientOcclusion {
+            "ambientocclusion" => Integrator::AmbientOcclusion {
                 cos_sample: p.bool("cossample", true)?,
                 max_distance: p.float("maxdistance", f32::INFINITY)?,
             },
-            "normals" => IntegratorDesc::Normals,
-            "depth" => IntegratorDesc::Depth,
+            "normals" => Integrator::Normals,
+            "depth" => Integrator::Depth,
             "bdpt" | "mlt" | "sppm" | "lightpath" | "randomwalk" | "simplepath"
             | "simplevolpath" | "aov" => {
                 return Ok(Converted::Unsupported(

@@ -8,63 +8,11 @@ use crate::material::{Bsdf, Material};
 use crate::math::{Rgb, Vec3};
 use crate::ray::Ray;
 use crate::sampling::Sampler;
-use crate::scene::desc::IntegratorDesc;
+pub use crate::scene::desc::Integrator;
 use crate::scene::{Scene, SceneHit};
 use crate::spectrum::sampled::{SampledWavelengths, albedo_at, illuminant_at};
 
-/// The light transport algorithm, ready to run.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Integrator {
-    /// The course (see [`IntegratorDesc::Whitted`]).
-    Whitted {
-        /// Specular recursion depth.
-        max_depth: u32,
-    },
-    /// Path tracing with next-event estimation and MIS.
-    Path {
-        /// Maximum number of bounces.
-        max_depth: u32,
-        /// Roughen near-specular lobes after the first non-specular bounce (pbrt's
-        /// `regularize`).
-        regularize: bool,
-    },
-    /// Shading normal as colour: (n + 1)/2.
-    Normals,
-    /// Distance to the first hit.
-    Depth,
-    /// Ambient occlusion.
-    AmbientOcclusion {
-        /// Cosine-weighted sampling.
-        cos_sample: bool,
-        /// Occluders farther than this are ignored.
-        max_distance: f32,
-    },
-}
-
 impl Integrator {
-    /// The integrator a description asks for.
-    pub fn from_desc(desc: &IntegratorDesc) -> Integrator {
-        match *desc {
-            IntegratorDesc::Whitted { max_depth } => Integrator::Whitted { max_depth },
-            IntegratorDesc::Path {
-                max_depth,
-                regularize,
-            } => Integrator::Path {
-                max_depth,
-                regularize,
-            },
-            IntegratorDesc::Normals => Integrator::Normals,
-            IntegratorDesc::Depth => Integrator::Depth,
-            IntegratorDesc::AmbientOcclusion {
-                cos_sample,
-                max_distance,
-            } => Integrator::AmbientOcclusion {
-                cos_sample,
-                max_distance,
-            },
-        }
-    }
-
     /// True for the integrators that compute radiance (path tracing, Whitted), which spectral
     /// mode applies to; the debug views output other quantities and always work in RGB.
     pub fn computes_radiance(&self) -> bool {

@@ -11,6 +11,11 @@ pub struct LightDistribution {
 }
 
 impl LightDistribution {
+    /// Bytes of the tables (capacity included).
+    pub fn memory_bytes(&self) -> usize {
+        (self.pmf.capacity() + self.cdf.capacity()) * std::mem::size_of::<f32>()
+    }
+
     /// The distribution proportional to `powers` (uniform when they are all zero or some is
     /// not finite).
     pub fn new(powers: &[f32]) -> LightDistribution {

@@ -11,7 +11,7 @@
 //! lat-long, whose texels near the poles cover less solid angle), and
 //! p(ω) = p(u, v) / |dω/d(u, v)| with |dω/d(u, v)| = 4π (equal-area) or 2π² sin θ (lat-long).
 
-use super::{LightLiSample, LightSampleContext};
+use super::sample::{LightLiSample, LightSampleContext};
 use crate::image::Image;
 use crate::math::{PI, Rgb, Transform, Vec2, Vec3, luminance};
 use crate::sampling::{
@@ -119,6 +119,22 @@ impl EnvMapping {
     }
 }
 
+/// The layout of an environment image, or the rule it breaks: it must be square (equal-area
+/// octahedral) or twice as wide as high (latitude-longitude), and hold finite values only.
+/// The one place these rules are checked (scene descriptions, the build, the light).
+pub fn environment_mapping(image: &Image) -> Result<EnvMapping, String> {
+    let (w, h) = (image.width, image.height);
+    let mapping = EnvMapping::of_size(w, h).ok_or_else(|| {
+        format!(
+            "an environment image must be square (equal-area octahedral) or twice as wide as high (latitude-longitude), not {w}×{h}"
+        )
+    })?;
+    if image.texels.iter().any(|c| !c.is_finite()) {
+        return Err("the environment image holds infinite or NaN values".into());
+    }
+    Ok(mapping)
+}
+
 /// An environment light of radiance `scale · image(direction)`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ImageInfiniteLight {
@@ -141,8 +157,8 @@ pub struct ImageInfiniteLight {
 }
 
 impl ImageInfiniteLight {
-    /// The light; an error when the image is neither square nor 2:1, or holds values that are
-    /// not finite.
+    /// The light; an error (from [`environment_mapping`]) when the image is neither square
+    /// nor 2:1, or holds values that are not finite.
     pub fn new(
         light_to_world: Transform,
         image: Arc<Image>,
@@ -150,14 +166,7 @@ impl ImageInfiniteLight {
         scene_radius: f32,
     ) -> Result<ImageInfiniteLight, String> {
         let (w, h) = (image.width, image.height);
-        let mapping = EnvMapping::of_size(w, h).ok_or_else(|| {
-            format!(
-                "an environment image must be square (equal-area octahedral) or twice as wide as high (latitude-longitude), not {w}×{h}"
-            )
-        })?;
-        if image.texels.iter().any(|c| !c.is_finite()) {
-            return Err("the environment image holds infinite or NaN values".into());
-        }
+        let mapping = environment_mapping(&image)?;
         let mut weights = Vec::with_capacity(image.texels.len());
         let mut integral = 0.0f64;
         for y in 0..h {
@@ -186,6 +195,16 @@ impl ImageInfiniteLight {
             scene_radius,
             radiance_integral: integral as f32,
         })
+    }
+
+    /// The environment image.
+    pub fn image(&self) -> &Arc<Image> {
+        &self.image
+    }
+
+    /// Bytes of the sampling tables (the image not included).
+    pub fn table_bytes(&self) -> usize {
+        self.distribution.memory_bytes()
     }
 
     /// The image's layout.

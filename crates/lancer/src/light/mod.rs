@@ -5,36 +5,14 @@
 
 mod distribution;
 mod image_infinite;
+mod sample;
 
 pub use distribution::LightDistribution;
-pub use image_infinite::{EnvMapping, ImageInfiniteLight};
+pub use image_infinite::{EnvMapping, ImageInfiniteLight, environment_mapping};
+pub use sample::{LightLiSample, LightSampleContext};
 
 use crate::math::{Frame, INV_PI, PackedRgb, PackedVec3, Rgb, Vec2, Vec3, smooth_step};
 use crate::shape::{Shape, TriangleMesh};
-
-/// The point being lit.
-#[derive(Clone, Copy, Debug)]
-pub struct LightSampleContext {
-    /// Position.
-    pub p: Vec3,
-    /// Geometric normal (zero for points in a medium).
-    pub n: Vec3,
-    /// Shading normal.
-    pub ns: Vec3,
-}
-
-/// Incident light from a sampled point on a light.
-#[derive(Clone, Copy, Debug)]
-pub struct LightLiSample {
-    /// Radiance arriving (for delta lights: the intensity already divided by distance²).
-    pub l: Rgb,
-    /// Unit direction from the lit point towards the light.
-    pub wi: Vec3,
-    /// Density of the sample with respect to solid angle (1 for delta lights).
-    pub pdf: f32,
-    /// The point on the light the shadow ray must reach.
-    pub p_light: Vec3,
-}
 
 /// A light source of the scene.
 #[derive(Clone, Debug, PartialEq)]

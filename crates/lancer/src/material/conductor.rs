@@ -1,11 +1,11 @@
 //! Conductors: Fresnel reflection with a complex index of refraction, from a perfect mirror or
 //! from a Trowbridge–Reitz microsurface (Torrance–Sparrow).
 
-use super::bxdf::{
-    BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode, abs_cos_theta, same_hemisphere,
-};
 use super::fresnel::{fresnel_complex, reflect};
 use super::microfacet::TrowbridgeReitz;
+use super::scatter::{
+    BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode, abs_cos_theta, same_hemisphere,
+};
 use crate::math::{PackedRgb, Rgb, Vec2, Vec3, face_forward};
 
 /// A conductor with index `eta + i·k` per channel.

@@ -1,12 +1,12 @@
 //! Dielectric interfaces: smooth or rough (Trowbridge–Reitz) Fresnel reflection and refraction,
 //! and the thin slab of a window pane.
 
-use super::bxdf::{
+use super::fresnel::{fresnel_dielectric, reflect, refract};
+use super::microfacet::TrowbridgeReitz;
+use super::scatter::{
     BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode, abs_cos_theta, cos_theta,
     same_hemisphere,
 };
-use super::fresnel::{fresnel_dielectric, reflect, refract};
-use super::microfacet::TrowbridgeReitz;
 use crate::math::{Rgb, Vec2, Vec3, face_forward};
 
 /// A dielectric interface with relative index `eta` = η_inside/η_outside (the +z side is

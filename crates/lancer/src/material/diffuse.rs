@@ -1,6 +1,6 @@
 //! Lambertian reflection, and Lambertian reflection plus transmission.
 
-use super::bxdf::{
+use super::scatter::{
     BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode, abs_cos_theta, same_hemisphere,
 };
 use crate::math::{INV_PI, PackedRgb, Rgb, Vec2, Vec3};

@@ -11,12 +11,12 @@
 //! Both sides of the surface are treated alike (pbrt's `twoSided = true`): a direction below
 //! the surface is mirrored to above first, so light always enters through the top.
 
-use super::bxdf::{
-    BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode, abs_cos_theta, same_hemisphere,
-};
 use super::conductor::ConductorBxdf;
 use super::dielectric::DielectricBxdf;
 use super::diffuse::DiffuseBxdf;
+use super::scatter::{
+    BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode, abs_cos_theta, same_hemisphere,
+};
 use crate::math::{INV_4PI, PackedRgb, Rgb, Vec2, Vec3, lerp};
 use crate::sampling::{
     Pcg32, hash_u64, henyey_greenstein, power_heuristic, sample_exponential,

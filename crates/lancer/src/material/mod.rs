@@ -8,14 +8,16 @@ mod diffuse;
 mod fresnel;
 mod layered;
 mod microfacet;
+mod scatter;
 
-pub use bxdf::{Bsdf, BsdfSample, BxDF, BxdfFlags, ReflTrans, Scatter, TransportMode};
+pub use bxdf::{Bsdf, BxDF};
 pub use conductor::ConductorBxdf;
 pub use dielectric::{DielectricBxdf, ThinDielectricBxdf};
 pub use diffuse::{DiffuseBxdf, DiffuseTransmissionBxdf};
 pub use fresnel::{fresnel_complex, fresnel_dielectric, reflect, refract};
 pub use layered::{CoatedConductorBxdf, CoatedDiffuseBxdf, LayeredBxdf};
 pub use microfacet::TrowbridgeReitz;
+pub use scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode};
 
 use crate::math::Rgb;
 use crate::spectrum::sampled::{SampledWavelengths, albedo_at, unbounded_at};

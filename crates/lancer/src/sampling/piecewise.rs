@@ -21,6 +21,11 @@ pub struct PiecewiseConstant1D {
 }
 
 impl PiecewiseConstant1D {
+    /// Bytes of the tables (capacity included).
+    pub fn memory_bytes(&self) -> usize {
+        (self.func.capacity() + self.cdf.capacity()) * std::mem::size_of::<f32>()
+    }
+
     /// The distribution proportional to |f| (uniform when f is zero or empty of finite mass).
     pub fn new(f: &[f32]) -> PiecewiseConstant1D {
         let n = f.len().max(1);
@@ -119,6 +124,17 @@ pub struct PiecewiseConstant2D {
 }
 
 impl PiecewiseConstant2D {
+    /// Bytes of the tables (capacity included).
+    pub fn memory_bytes(&self) -> usize {
+        self.conditional.capacity() * std::mem::size_of::<PiecewiseConstant1D>()
+            + self
+                .conditional
+                .iter()
+                .map(PiecewiseConstant1D::memory_bytes)
+                .sum::<usize>()
+            + self.marginal.memory_bytes()
+    }
+
     /// The distribution proportional to |f| over an `nu × nv` grid; `None` when the table's
     /// length is not `nu·nv` or a side is 0.
     pub fn new(f: &[f32], nu: usize, nv: usize) -> Option<PiecewiseConstant2D> {

@@ -23,7 +23,7 @@ pub struct SceneDesc {
     /// How samples are weighted into pixels.
     pub filter: FilterDesc,
     /// How light transport is computed.
-    pub integrator: IntegratorDesc,
+    pub integrator: Integrator,
     /// Materials; shapes refer to them by index.
     pub materials: Vec<Material>,
     /// Float textures; material parameters refer to them by index.
@@ -193,9 +193,10 @@ impl Default for FilterDesc {
     }
 }
 
-/// The light transport algorithm.
+/// The light transport algorithm: what the scene asks for and what the renderer runs (its
+/// methods are in [`crate::integrator`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum IntegratorDesc {
+pub enum Integrator {
     /// The course: direct light from every light with shadows, plus perfect specular
     /// reflection and refraction up to `max_depth` levels.
     Whitted {
@@ -206,7 +207,8 @@ pub enum IntegratorDesc {
     Path {
         /// Maximum number of bounces.
         max_depth: u32,
-        /// Roughen near-specular lobes after the first diffuse bounce.
+        /// Roughen near-specular lobes after the first non-specular bounce (pbrt's
+        /// `regularize`).
         regularize: bool,
     },
     /// Ambient occlusion.
@@ -216,16 +218,16 @@ pub enum IntegratorDesc {
         /// Occluders farther than this are ignored.
         max_distance: f32,
     },
-    /// Debug view: shading normals mapped to colours.
+    /// Debug view: shading normals mapped to colours, (n + 1)/2.
     Normals,
     /// Debug view: distance to the first hit.
     Depth,
 }
 
-impl Default for IntegratorDesc {
+impl Default for Integrator {
     /// pbrt's default (`volpath`, maxdepth 5) is served by the path tracer.
     fn default() -> Self {
-        IntegratorDesc::Path {
+        Integrator::Path {
             max_depth: 5,
             regularize: false,
         }
@@ -328,6 +330,80 @@ pub enum Geometry {
     BilinearMesh(Arc<crate::shape::BilinearMesh>),
 }
 
+/// The rule a plane breaks when its normal is zero (in its description, or once placed in the
+/// world by a degenerate transform).
+pub(crate) const ZERO_PLANE_NORMAL: &str = "plane normal is zero";
+
+/// `Ok` when `v` is finite and positive, else the rule `what` breaks.
+fn positive(v: f32, what: &str) -> Result<(), String> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(format!("{what} must be positive, got {v}"))
+    }
+}
+
+impl Geometry {
+    /// Checks the rules without which the geometry means nothing, and returns the first one
+    /// broken (one message per rule, the same whoever asks: the scene readers and
+    /// [`crate::Scene::build`]): radii, a cone's height and a paraboloid's top positive; a
+    /// hyperboloid's ends finite and at different heights; a box's `min` below its `max`; a
+    /// plane's normal not zero; meshes' indices and arrays consistent.
+    pub fn validate(&self) -> Result<(), String> {
+        match self {
+            Geometry::Sphere { radius, .. }
+            | Geometry::Disk { radius, .. }
+            | Geometry::Cylinder { radius, .. } => positive(*radius, "radius"),
+            Geometry::Cone { radius, height, .. } => {
+                positive(*radius, "radius")?;
+                positive(*height, "height")
+            }
+            Geometry::Paraboloid {
+                radius,
+                z_min,
+                z_max,
+                ..
+            } => {
+                positive(*radius, "radius")?;
+                positive(z_min.max(*z_max), "zmax")
+            }
+            Geometry::Hyperboloid { p1, p2, .. } => {
+                if p1.z != p2.z && p1.is_finite() && p2.is_finite() {
+                    Ok(())
+                } else {
+                    Err(format!(
+                        "hyperboloid p1 {p1} and p2 {p2} must be finite and at different heights"
+                    ))
+                }
+            }
+            Geometry::Box { min, max } => {
+                if min.cmplt(*max).all() && min.is_finite() && max.is_finite() {
+                    Ok(())
+                } else {
+                    Err(format!(
+                        "box min {min} must be below max {max} on every axis"
+                    ))
+                }
+            }
+            Geometry::Plane { n, .. } => match n.try_normalize() {
+                Some(_) => Ok(()),
+                None => Err(ZERO_PLANE_NORMAL.to_string()),
+            },
+            Geometry::TriangleMesh(m) => m.validate(),
+            Geometry::BilinearMesh(m) => m.validate(),
+            // Their constructors check them (the expression's bounds, the spline's pieces); an
+            // empty voxel grid is valid and makes no primitive.
+            Geometry::Voxels(_) | Geometry::Sdf { .. } | Geometry::Curve(_) => Ok(()),
+        }
+    }
+
+    /// True for the mesh geometries, whose errors [`crate::Scene::build`] reports as
+    /// [`super::BuildError::BadMesh`].
+    pub fn is_mesh(&self) -> bool {
+        matches!(self, Geometry::TriangleMesh(_) | Geometry::BilinearMesh(_))
+    }
+}
+
 /// A diffuse area light attached to a shape.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AreaLightDesc {
@@ -396,6 +472,50 @@ pub enum LightDesc {
     },
 }
 
+impl ShapeDesc {
+    /// [`Geometry::validate`], then the rules on emission: an sdf shape, a curve or a voxel
+    /// grid cannot be an area light (none of them can be sampled by area).
+    pub fn validate(&self) -> Result<(), String> {
+        self.geometry.validate()?;
+        if self.area_light.is_none() {
+            return Ok(());
+        }
+        match self.geometry {
+            Geometry::Sdf { .. } => Err(
+                "an sdf shape cannot be an area light (its area has no closed form)".to_string(),
+            ),
+            Geometry::Curve(_) => Err(
+                "a curve cannot be an area light (pbrt-v4 cannot sample curves either)".to_string(),
+            ),
+            Geometry::Voxels(_) => Err("a voxel grid cannot be an area light".to_string()),
+            _ => Ok(()),
+        }
+    }
+}
+
+impl LightDesc {
+    /// Checks the rules without which the light means nothing, and returns the first one
+    /// broken (one message per rule): a spot light's `from` and `to` apart, a distant light's
+    /// direction not zero, an environment image of a known layout with finite values
+    /// ([`crate::light::environment_mapping`]).
+    pub fn validate(&self) -> Result<(), String> {
+        match self {
+            LightDesc::Point { .. } | LightDesc::Infinite { image: None, .. } => Ok(()),
+            LightDesc::Spot { from, to, .. } => match (*to - *from).try_normalize() {
+                Some(_) => Ok(()),
+                None => Err("spot light with \"from\" equal to \"to\"".to_string()),
+            },
+            LightDesc::Distant { direction, .. } => match direction.try_normalize() {
+                Some(_) => Ok(()),
+                None => Err("distant light with \"from\" equal to \"to\"".to_string()),
+            },
+            LightDesc::Infinite {
+                image: Some(image), ..
+            } => crate::light::environment_mapping(image).map(|_| ()),
+        }
+    }
+}
+
 /// A named object definition (instancing).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ObjectDesc {
@@ -412,4 +532,134 @@ pub struct InstanceDesc {
     pub object: u32,
     /// Object space → world space.
     pub object_to_world: Transform,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sphere(radius: f32) -> Geometry {
+        Geometry::Sphere {
+            radius,
+            z_min: -1.0,
+            z_max: 1.0,
+            phi_max: 360.0,
+        }
+    }
+
+    #[test]
+    fn each_geometry_rule_has_one_message() {
+        assert_eq!(sphere(1.0).validate(), Ok(()));
+        assert_eq!(
+            sphere(0.0).validate(),
+            Err("radius must be positive, got 0".into())
+        );
+        assert_eq!(
+            sphere(f32::NAN).validate(),
+            Err("radius must be positive, got NaN".into())
+        );
+        let cone = Geometry::Cone {
+            radius: 1.0,
+            height: -2.0,
+            phi_max: 360.0,
+        };
+        assert_eq!(
+            cone.validate(),
+            Err("height must be positive, got -2".into())
+        );
+        let paraboloid = Geometry::Paraboloid {
+            radius: 1.0,
+            z_min: -3.0,
+            z_max: -1.0,
+            phi_max: 360.0,
+        };
+        assert_eq!(
+            paraboloid.validate(),
+            Err("zmax must be positive, got -1".into())
+        );
+        let flat = Geometry::Hyperboloid {
+            p1: Vec3::new(1.0, 0.0, 0.5),
+            p2: Vec3::new(0.0, 1.0, 0.5),
+            phi_max: 360.0,
+        };
+        assert_eq!(
+            flat.validate(),
+            Err("hyperboloid p1 [1, 0, 0.5] and p2 [0, 1, 0.5] must be finite and at different heights".into())
+        );
+        let inverted = Geometry::Box {
+            min: Vec3::new(0.0, 0.0, 1.0),
+            max: Vec3::ONE,
+        };
+        assert_eq!(
+            inverted.validate(),
+            Err("box min [0, 0, 1] must be below max [1, 1, 1] on every axis".into())
+        );
+        let plane = Geometry::Plane {
+            p: Vec3::ZERO,
+            n: Vec3::ZERO,
+        };
+        assert_eq!(plane.validate(), Err("plane normal is zero".into()));
+        let mut mesh = TriangleMesh::default();
+        mesh.positions.push(crate::math::PackedVec3::ZERO);
+        mesh.indices.extend([0, 0, 1]);
+        let mesh = Geometry::TriangleMesh(Arc::new(mesh));
+        assert!(mesh.is_mesh());
+        assert_eq!(
+            mesh.validate(),
+            Err("index 1 out of range for 1 vertices".into())
+        );
+    }
+
+    #[test]
+    fn emission_and_light_rules() {
+        let voxels = ShapeDesc {
+            geometry: Geometry::Voxels(Arc::new(
+                crate::shape::VoxelGrid::new([1, 1, 1], vec![1], [Rgb::ONE; 256]).unwrap(),
+            )),
+            object_to_world: Transform::IDENTITY,
+            reverse_orientation: false,
+            material: 0,
+            area_light: Some(AreaLightDesc {
+                l: Rgb::ONE,
+                two_sided: false,
+            }),
+            alpha: None,
+        };
+        assert_eq!(
+            voxels.validate(),
+            Err("a voxel grid cannot be an area light".into())
+        );
+        let spot = LightDesc::Spot {
+            from: Vec3::ONE,
+            to: Vec3::ONE,
+            intensity: Rgb::ONE,
+            cone_angle: 30.0,
+            cone_delta_angle: 5.0,
+        };
+        assert_eq!(
+            spot.validate(),
+            Err("spot light with \"from\" equal to \"to\"".into())
+        );
+        let sun = LightDesc::Distant {
+            direction: Vec3::ZERO,
+            l: Rgb::ONE,
+        };
+        assert_eq!(
+            sun.validate(),
+            Err("distant light with \"from\" equal to \"to\"".into())
+        );
+        let env = LightDesc::Infinite {
+            light_to_world: Transform::IDENTITY,
+            l: Rgb::ONE,
+            image: Some(Arc::new(crate::image::Image {
+                width: 3,
+                height: 2,
+                texels: vec![crate::math::PackedRgb::ONE; 6],
+            })),
+        };
+        assert_eq!(
+            env.validate(),
+            Err("an environment image must be square (equal-area octahedral) or twice as wide as high (latitude-longitude), not 3×2".into())
+        );
+    }
 }

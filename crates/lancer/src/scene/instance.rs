@@ -7,13 +7,11 @@
 //! moved back: points and tangents by M, normals by the inverse transpose (M⁻¹)ᵀ.
 
 use super::desc::{Geometry, ObjectDesc};
-use super::{BuildError, PrimInfo};
+use super::prim::{BuildError, PrimInfo, check_shape, mesh_bytes, mesh_triangles};
 use crate::accel::{Bvh, MeshBvh};
-use crate::math::{Bounds3, Frame, Transform, Vec3, normalize};
+use crate::math::{Bounds3, Frame, Transform, normalize};
 use crate::ray::Ray;
-use crate::shape::{
-    Shading, ShapeHit, SurfaceInteraction, Triangle, TriangleMesh, TriangleRay, is_degenerate,
-};
+use crate::shape::{Shading, ShapeHit, SurfaceInteraction, Triangle, TriangleMesh, TriangleRay};
 
 /// An object made only of triangle meshes, with its own BVH (object space).
 #[derive(Debug)]
@@ -53,30 +51,18 @@ impl ObjectAccel {
             let Geometry::TriangleMesh(m) = &sd.geometry else {
                 continue;
             };
-            m.validate().map_err(|message| BuildError::BadMesh {
-                shape: index,
-                message: format!("object \"{}\": {message}", obj.name),
+            check_shape(sd, index, n_materials).map_err(|e| match e {
+                BuildError::BadMesh { shape, message } => BuildError::BadMesh {
+                    shape,
+                    message: format!("object \"{}\": {message}", obj.name),
+                },
+                e => e,
             })?;
-            if sd.material as usize >= n_materials {
-                return Err(BuildError::BadMaterial {
-                    shape: index,
-                    material: sd.material,
-                });
-            }
             let local = m.transformed(&sd.object_to_world, sd.reverse_orientation);
             let mi = meshes.len() as u32;
-            for i in 0..local.triangle_count() as u32 {
-                let v = local.vertices(i);
-                let p = [
-                    local.positions[v[0]],
-                    local.positions[v[1]],
-                    local.positions[v[2]],
-                ];
-                let [a, b, c] = p.map(Vec3::from);
-                if !is_degenerate(a, b, c) {
-                    verts.push(p);
-                    tris.push((mi, i));
-                }
+            for (p, i) in mesh_triangles(&local) {
+                verts.push(p);
+                tris.push((mi, i));
             }
             meshes.push(local);
             prim.push(prims.len() as u32);
@@ -103,20 +89,13 @@ impl ObjectAccel {
         }
     }
 
-    /// Bytes of the tree, the meshes and the triangle table.
+    /// Bytes of the tree, the meshes, the triangle table and the record indices.
     pub fn memory_bytes(&self) -> usize {
         self.bvh.memory_bytes()
-            + self.tris.capacity() * 8
-            + self
-                .meshes
-                .iter()
-                .map(|m| {
-                    m.positions.capacity() * 12
-                        + m.normals.capacity() * 12
-                        + m.uvs.capacity() * 8
-                        + m.indices.capacity() * 4
-                })
-                .sum::<usize>()
+            + self.tris.capacity() * std::mem::size_of::<(u32, u32)>()
+            + self.prim.capacity() * std::mem::size_of::<u32>()
+            + self.meshes.capacity() * std::mem::size_of::<TriangleMesh>()
+            + self.meshes.iter().map(mesh_bytes).sum::<usize>()
     }
 }
 
@@ -175,10 +154,12 @@ impl Instances {
     /// Bytes of the objects' trees and meshes and of the top-level tree: what instancing
     /// costs, which grows with unique geometry (plus a few bytes per placement).
     pub fn memory_bytes(&self) -> usize {
-        self.objects
-            .iter()
-            .map(ObjectAccel::memory_bytes)
-            .sum::<usize>()
+        self.objects.capacity() * std::mem::size_of::<ObjectAccel>()
+            + self
+                .objects
+                .iter()
+                .map(ObjectAccel::memory_bytes)
+                .sum::<usize>()
             + self.instances.capacity() * std::mem::size_of::<Instance>()
             + self.bvh.memory_bytes()
     }
@@ -270,6 +251,7 @@ mod tests {
     use super::super::desc::{InstanceDesc, SceneDesc, ShapeDesc};
     use super::*;
     use crate::Scene;
+    use crate::math::Vec3;
     use crate::sampling::Pcg32;
     use std::sync::Arc;
 

@@ -5,6 +5,7 @@
 //! [`SpectrumTexture`]) stored in the scene's lists and evaluated by [`TextureEval`].
 
 use crate::image::Image;
+pub use crate::image::WrapMode;
 use crate::math::{Rgb, Vec2, Vec3};
 use std::sync::Arc;
 
@@ -56,23 +57,6 @@ impl UvMapping {
     pub fn map(&self, uv: Vec2) -> Vec2 {
         Vec2::new(self.su * uv.x + self.du, self.sv * uv.y + self.dv)
     }
-}
-
-/// How image lookups outside [0, 1] behave (pbrt's `wrap`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum WrapMode {
-    /// Tile the image.
-    #[default]
-    Repeat,
-    /// Clamp to the edge texel.
-    Clamp,
-    /// Black outside.
-    Black,
-    /// Mirror every other tile.
-    Mirror,
-    /// pbrt's `octahedralsphere`: the neighbours of an equal-area octahedral map's edge texels
-    /// are the texels that touch them on the sphere (mirrored across the edge's midpoint).
-    OctahedralSphere,
 }
 
 /// An image texture's parameters.

@@ -1,0 +1,28 @@
+//! What a light sample is: the point being lit and the light arriving there (a leaf module,
+//! shared by every kind of light).
+
+use crate::math::{Rgb, Vec3};
+
+/// The point being lit.
+#[derive(Clone, Copy, Debug)]
+pub struct LightSampleContext {
+    /// Position.
+    pub p: Vec3,
+    /// Geometric normal (zero for points in a medium).
+    pub n: Vec3,
+    /// Shading normal.
+    pub ns: Vec3,
+}
+
+/// Incident light from a sampled point on a light.
+#[derive(Clone, Copy, Debug)]
+pub struct LightLiSample {
+    /// Radiance arriving (for delta lights: the intensity already divided by distance²).
+    pub l: Rgb,
+    /// Unit direction from the lit point towards the light.
+    pub wi: Vec3,
+    /// Density of the sample with respect to solid angle (1 for delta lights).
+    pub pdf: f32,
+    /// The point on the light the shadow ray must reach.
+    pub p_light: Vec3,
+}

@@ -1,0 +1,567 @@
+//! [`Scene::build`], phase by phase: flatten the instances that cannot share a tree, make the
+//! primitives (meshes become triangles), lay them out in BVH order, pack the leaves' triangles,
+//! gather the lights, set up the camera. Each phase is a function of what the previous ones
+//! made; the order of every list (and so every render) is the order these phases give.
+
+use super::Scene;
+use super::desc::{Geometry, LightDesc, SceneDesc, ShapeDesc, ZERO_PLANE_NORMAL};
+use super::instance::{Instance, Instances, ObjectAccel};
+use super::prim::{AreaEmission, BuildError, PrimInfo, check_shape, mesh_triangles};
+use crate::accel::{Bvh, Tri4};
+use crate::camera::Camera;
+use crate::light::{ImageInfiniteLight, Light, LightDistribution};
+use crate::material::Material;
+use crate::math::{Bounds3, PackedRgb, PackedVec3, Transform, Vec3};
+use crate::shape::{
+    BilinearMesh, Cone, Cuboid, Cylinder, Disk, Hyperboloid, Paraboloid, Placement, Plane, Sdf,
+    Shape, Sphere, Triangle, TriangleMesh, Voxels,
+};
+use crate::texture::FloatTex;
+use std::sync::Arc;
+
+impl Scene {
+    /// Builds a scene: shapes moved to world space and put in a BVH, lights gathered, the
+    /// camera set up for an `xres × yres` image. The phases, each a function of
+    /// `scene/build.rs`: `flatten_instances`, `primitives` (meshes → triangles), `bvh_order`,
+    /// `packets`, `lights`, then the camera.
+    pub fn build(desc: &SceneDesc) -> Result<Scene, BuildError> {
+        let materials = materials(desc);
+        let flat = flatten_instances(desc, materials.len())?;
+        let made = primitives(&flat.shapes, materials.len())?;
+        let meshes = made.meshes;
+        let (shapes, mut prims, bvh, unbounded) = bvh_order(made.shapes, made.prims);
+        let packets = packets(&bvh, &shapes, &prims);
+        let mut instances = flat.instances;
+        let mut bounds = bvh.bounds().union(&instances.bounds());
+        if bounds.is_empty() {
+            bounds = Bounds3::from_point(Vec3::ZERO);
+        }
+        let (_, scene_radius) = bounds.bounding_sphere();
+        let lights = lights(desc, scene_radius, &shapes, &mut prims)?;
+        // The instanced meshes' entries, renumbered to follow the shapes'.
+        let base = prims.len() as u32;
+        prims.extend(flat.object_prims);
+        for o in &mut instances.objects {
+            o.offset_prims(base);
+        }
+        let camera = Camera::from_desc(&desc.camera, desc.film.xresolution, desc.film.yresolution)
+            .ok_or(BuildError::BadCamera)?;
+        Ok(Scene {
+            shapes,
+            prims,
+            meshes,
+            lights: lights.lights,
+            light_distribution: lights.distribution,
+            infinite_lights: lights.infinite,
+            materials,
+            float_textures: desc.float_textures.clone(),
+            spectrum_textures: desc.spectrum_textures.clone(),
+            camera,
+            bvh,
+            packets,
+            instances,
+            unbounded,
+            bounds,
+        })
+    }
+}
+
+/// The description's materials, or one default material when it has none.
+fn materials(desc: &SceneDesc) -> Vec<Material> {
+    let mut materials = desc.materials.clone();
+    if materials.is_empty() {
+        materials.push(Material::default());
+    }
+    materials
+}
+
+/// A shape to make primitives from: its index in error messages, its description, and the
+/// placement of the instance it is a copy of (identity for the world's own shapes).
+type Placed<'a> = (usize, &'a ShapeDesc, Transform);
+
+/// What flattening the instances leaves.
+struct Flattened<'a> {
+    /// The world's shapes, then the shapes of every copy of the objects that cannot be
+    /// instanced.
+    shapes: Vec<Placed<'a>>,
+    /// The objects that can, and their placements.
+    instances: Instances,
+    /// One entry per mesh of those objects, appended to the scene's list after the shapes'.
+    object_prims: Vec<PrimInfo>,
+}
+
+/// Phase 1. Objects of plain triangle meshes get a BVH of their own, shared by their instances;
+/// the others (emitting, alpha-tested or non-mesh shapes) are flattened: each copy becomes
+/// shapes of its own, reported with the index one past the world's shapes.
+fn flatten_instances(desc: &SceneDesc, n_materials: usize) -> Result<Flattened<'_>, BuildError> {
+    let mut shapes: Vec<Placed<'_>> = desc
+        .shapes
+        .iter()
+        .enumerate()
+        .map(|(i, s)| (i, s, Transform::IDENTITY))
+        .collect();
+    let mut object_slot: Vec<Option<u32>> = vec![None; desc.objects.len()];
+    let mut objects = Vec::new();
+    let mut placements = Vec::new();
+    let mut object_prims = Vec::new();
+    for inst in &desc.instances {
+        let obj = desc.objects.get(inst.object as usize).ok_or_else(|| {
+            BuildError::Invalid(format!("instance of unknown object {}", inst.object))
+        })?;
+        let slot = &mut object_slot[inst.object as usize];
+        if slot.is_none()
+            && let Some(acc) = ObjectAccel::build(obj, &mut object_prims, n_materials)?
+        {
+            *slot = Some(objects.len() as u32);
+            objects.push(acc);
+        }
+        if let Some(object) = *slot {
+            placements.push(Instance {
+                object,
+                to_world: inst.object_to_world,
+            });
+            continue;
+        }
+        for s in &obj.shapes {
+            shapes.push((desc.shapes.len(), s, inst.object_to_world));
+        }
+    }
+    Ok(Flattened {
+        shapes,
+        instances: Instances::new(objects, placements),
+        object_prims,
+    })
+}
+
+/// The primitives made from the shapes, before the BVH orders them.
+struct Primitives {
+    /// Every primitive's shape.
+    shapes: Vec<Shape>,
+    /// Its material, emission and alpha.
+    prims: Vec<PrimInfo>,
+    /// The triangle meshes, world space.
+    meshes: Vec<TriangleMesh>,
+}
+
+/// Phase 2. Each shape checked and moved to world space: meshes become their triangles, a
+/// curve its pieces, a bilinear mesh its patches, any other shape one primitive.
+fn primitives(list: &[Placed<'_>], n_materials: usize) -> Result<Primitives, BuildError> {
+    let mut out = Primitives {
+        shapes: Vec::new(),
+        prims: Vec::new(),
+        meshes: Vec::new(),
+    };
+    for &(index, sd, instance_xf) in list {
+        check_shape(sd, index, n_materials)?;
+        let placed;
+        let sd = if instance_xf.is_identity() {
+            sd
+        } else {
+            placed = ShapeDesc {
+                object_to_world: instance_xf * sd.object_to_world,
+                ..sd.clone()
+            };
+            &placed
+        };
+        let first = out.shapes.len();
+        shapes_of(sd, index, &mut out.meshes, &mut out.shapes)?;
+        let info = PrimInfo {
+            material: sd.material,
+            emission: sd.area_light.map(|a| AreaEmission {
+                l: a.l.into(),
+                two_sided: a.two_sided,
+                light: 0,
+            }),
+            // A constant alpha of 1 (pbrt's default) cuts nothing: no test needed.
+            alpha: sd.alpha.filter(|a| *a != FloatTex::Const(1.0)),
+        };
+        out.prims
+            .extend(std::iter::repeat_n(info, out.shapes.len() - first));
+    }
+    Ok(out)
+}
+
+/// The world-space primitives of a shape already checked by [`check_shape`], appended to `out`
+/// (a triangle mesh's to `meshes` too). Errors left are those only the constructors find.
+fn shapes_of(
+    sd: &ShapeDesc,
+    index: usize,
+    meshes: &mut Vec<TriangleMesh>,
+    out: &mut Vec<Shape>,
+) -> Result<(), BuildError> {
+    let placement = Placement::new(sd.object_to_world, sd.reverse_orientation);
+    let invalid = |e: String| BuildError::Invalid(format!("shape {index}: {e}"));
+    match &sd.geometry {
+        &Geometry::Sphere {
+            radius,
+            z_min,
+            z_max,
+            phi_max,
+        } => out.push(Shape::Sphere(Box::new(Sphere::new(
+            placement, radius, z_min, z_max, phi_max,
+        )))),
+        &Geometry::Disk {
+            height,
+            radius,
+            inner_radius,
+            phi_max,
+        } => out.push(Shape::Disk(Box::new(Disk::new(
+            placement,
+            height,
+            radius,
+            inner_radius,
+            phi_max,
+        )))),
+        &Geometry::Cylinder {
+            radius,
+            z_min,
+            z_max,
+            phi_max,
+        } => out.push(Shape::Cylinder(Box::new(Cylinder::new(
+            placement, radius, z_min, z_max, phi_max,
+        )))),
+        &Geometry::Cone {
+            radius,
+            height,
+            phi_max,
+        } => out.push(Shape::Cone(Box::new(Cone::new(
+            placement, radius, height, phi_max,
+        )))),
+        &Geometry::Paraboloid {
+            radius,
+            z_min,
+            z_max,
+            phi_max,
+        } => out.push(Shape::Paraboloid(Box::new(Paraboloid::new(
+            placement,
+            radius,
+            z_min,
+            z_min.max(z_max),
+            phi_max,
+        )))),
+        &Geometry::Hyperboloid { p1, p2, phi_max } => {
+            let h = Hyperboloid::new(placement, p1, p2, phi_max)
+                .expect("validated: finite ends at different heights");
+            out.push(Shape::Hyperboloid(Box::new(h)));
+        }
+        &Geometry::Box { min, max } => {
+            out.push(Shape::Box(Box::new(Cuboid::new(placement, min, max))));
+        }
+        &Geometry::Plane { p, n } => {
+            let t = &sd.object_to_world;
+            let mut n = t.normal(n);
+            if sd.reverse_orientation {
+                n = -n;
+            }
+            // A degenerate transform can still crush a valid normal.
+            let plane =
+                Plane::new(t.point(p), n).ok_or_else(|| invalid(ZERO_PLANE_NORMAL.to_string()))?;
+            out.push(Shape::Plane(Box::new(plane)));
+        }
+        Geometry::Sdf { function, bounds } => {
+            let sdf = Sdf::new(placement, function.clone(), *bounds).map_err(invalid)?;
+            out.push(Shape::Sdf(Box::new(sdf)));
+        }
+        Geometry::Curve(c) => {
+            let curves = c
+                .curves(&sd.object_to_world, sd.reverse_orientation)
+                .map_err(invalid)?;
+            out.extend(curves.into_iter().map(Shape::Curve));
+        }
+        Geometry::BilinearMesh(m) => {
+            let world = Arc::new(m.transformed(&sd.object_to_world, sd.reverse_orientation));
+            out.extend(
+                BilinearMesh::patches(&world)
+                    .into_iter()
+                    .map(|p| Shape::Bilinear(Box::new(p))),
+            );
+        }
+        Geometry::TriangleMesh(m) => {
+            let world = m.transformed(&sd.object_to_world, sd.reverse_orientation);
+            let mesh = meshes.len() as u32;
+            out.extend(
+                mesh_triangles(&world)
+                    .map(|(p, index)| Shape::Triangle(Triangle { p, mesh, index })),
+            );
+            meshes.push(world);
+        }
+        Geometry::Voxels(grid) => {
+            // An empty grid has nothing to hit: no primitive.
+            if let Some(v) = Voxels::new(placement, grid.clone()) {
+                out.push(Shape::Voxels(Box::new(v)));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Phase 3. The BVH over the bounded primitives, and the primitives laid out in its leaf order
+/// (unbounded ones last), so that the primitives of a leaf are neighbours in memory and the
+/// leaf's indices are its slots. Returns the shapes, their records, the tree and the indices
+/// of the unbounded primitives (infinite planes, tested on every ray).
+fn bvh_order(
+    shapes: Vec<Shape>,
+    prims: Vec<PrimInfo>,
+) -> (Vec<Shape>, Vec<PrimInfo>, Bvh, Vec<u32>) {
+    let (mut bounded, mut unbounded) = (Vec::new(), Vec::new());
+    for (i, s) in shapes.iter().enumerate() {
+        if s.is_unbounded() {
+            unbounded.push(i as u32);
+        } else {
+            bounded.push(i as u32);
+        }
+    }
+    let bounds_list: Vec<Bounds3> = bounded
+        .iter()
+        .map(|&i| shapes[i as usize].bounds())
+        .collect();
+    let mut bvh = Bvh::build(&bounds_list);
+    let order: Vec<u32> = bvh
+        .indices
+        .iter()
+        .map(|&k| bounded[k as usize])
+        .chain(unbounded.iter().copied())
+        .collect();
+    let mut slots: Vec<Option<Shape>> = shapes.into_iter().map(Some).collect();
+    let shapes: Vec<Shape> = order
+        .iter()
+        .map(|&i| slots[i as usize].take().expect("each primitive once"))
+        .collect();
+    let prims: Vec<PrimInfo> = order.iter().map(|&i| prims[i as usize]).collect();
+    let n_bounded = bvh.indices.len() as u32;
+    for (k, idx) in bvh.indices.iter_mut().enumerate() {
+        *idx = k as u32;
+    }
+    let unbounded: Vec<u32> = (n_bounded..shapes.len() as u32).collect();
+    (shapes, prims, bvh, unbounded)
+}
+
+/// Phase 4. Per leaf of `bvh`: its triangles as a packet, or an empty packet when the leaf
+/// holds other shapes or alpha-tested triangles (those go through [`Shape::intersect_with`]).
+fn packets(bvh: &Bvh, shapes: &[Shape], prims: &[PrimInfo]) -> Vec<Tri4> {
+    (0..bvh.leaf_count() as u32)
+        .map(|leaf| {
+            let mut lanes = Vec::with_capacity(4);
+            for k in bvh.leaf_range(leaf) {
+                let i = bvh.indices[k];
+                match &shapes[i as usize] {
+                    Shape::Triangle(t) if prims[i as usize].alpha.is_none() => lanes.push((t.p, i)),
+                    _ => return Tri4::EMPTY,
+                }
+            }
+            Tri4::new(&lanes)
+        })
+        .collect()
+}
+
+/// The scene's lights and how next-event estimation picks them.
+struct Lights {
+    /// The description's lights, then one per emitting primitive.
+    lights: Vec<Light>,
+    /// In proportion to power.
+    distribution: LightDistribution,
+    /// Indices of the environment lights.
+    infinite: Vec<u32>,
+}
+
+/// Phase 5. The description's lights (checked by [`LightDesc::validate`]), then every
+/// emitting primitive as a light of its own (a mesh light: one per triangle), whose index is
+/// written in its record.
+fn lights(
+    desc: &SceneDesc,
+    scene_radius: f32,
+    shapes: &[Shape],
+    prims: &mut [PrimInfo],
+) -> Result<Lights, BuildError> {
+    let mut lights = desc
+        .lights
+        .iter()
+        .map(|l| light_of(l, scene_radius))
+        .collect::<Result<Vec<Light>, BuildError>>()?;
+    for (i, (shape, info)) in shapes.iter().zip(prims.iter_mut()).enumerate() {
+        let Some(e) = info.emission.as_mut() else {
+            continue;
+        };
+        let area = shape.area();
+        if !(area > 0.0 && area.is_finite()) || e.l == PackedRgb::ZERO {
+            continue;
+        }
+        e.light = lights.len() as u32;
+        lights.push(Light::Area {
+            prim: i as u32,
+            l: e.l,
+            two_sided: e.two_sided,
+            area,
+            sphere: whole_sphere(shape),
+        });
+    }
+    let powers: Vec<f32> = lights.iter().map(Light::power).collect();
+    let distribution = LightDistribution::new(&powers);
+    let infinite = (0..lights.len() as u32)
+        .filter(|&i| lights[i as usize].is_infinite())
+        .collect();
+    Ok(Lights {
+        lights,
+        distribution,
+        infinite,
+    })
+}
+
+/// One light of the description, for a scene of bounding radius `scene_radius`.
+fn light_of(l: &LightDesc, scene_radius: f32) -> Result<Light, BuildError> {
+    l.validate().map_err(BuildError::Invalid)?;
+    Ok(match l {
+        LightDesc::Point { from, intensity } => Light::Point {
+            p: *from,
+            intensity: *intensity,
+        },
+        LightDesc::Spot {
+            from,
+            to,
+            intensity,
+            cone_angle,
+            cone_delta_angle,
+        } => Light::Spot {
+            p: *from,
+            axis: (*to - *from)
+                .try_normalize()
+                .expect("validated: from and to apart"),
+            intensity: *intensity,
+            cos_falloff_end: cone_angle.to_radians().cos(),
+            cos_falloff_start: (cone_angle - cone_delta_angle).to_radians().cos(),
+        },
+        LightDesc::Distant { direction, l } => Light::Distant {
+            w: direction
+                .try_normalize()
+                .expect("validated: a direction not zero"),
+            l: *l,
+            scene_radius,
+        },
+        LightDesc::Infinite { l, image: None, .. } => Light::UniformInfinite {
+            l: *l,
+            scene_radius,
+        },
+        LightDesc::Infinite {
+            light_to_world,
+            l,
+            image: Some(image),
+        } => Light::ImageInfinite(Box::new(
+            ImageInfiniteLight::new(*light_to_world, image.clone(), *l, scene_radius)
+                .map_err(BuildError::Invalid)?,
+        )),
+    })
+}
+
+/// The world centre and radius of a shape that is a whole sphere (no cut, full sweep).
+fn whole_sphere(shape: &Shape) -> Option<(PackedVec3, f32)> {
+    let Shape::Sphere(s) = shape else { return None };
+    let whole =
+        s.z_min <= -s.radius && s.z_max >= s.radius && s.phi_max >= 2.0 * std::f32::consts::PI;
+    let t = &s.placement.to_world;
+    let scale = glam::Mat3::from_mat4(t.m).determinant().abs().cbrt();
+    whole.then(|| (t.point(Vec3::ZERO).into(), s.radius * scale))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::desc::{InstanceDesc, ObjectDesc};
+
+    fn shape(geometry: Geometry) -> ShapeDesc {
+        ShapeDesc {
+            geometry,
+            object_to_world: Transform::IDENTITY,
+            reverse_orientation: false,
+            material: 0,
+            area_light: None,
+            alpha: None,
+        }
+    }
+
+    fn bad_mesh() -> Geometry {
+        let mut m = TriangleMesh::default();
+        m.positions.push(PackedVec3::ZERO);
+        m.indices.extend([0, 0, 1]);
+        Geometry::TriangleMesh(Arc::new(m))
+    }
+
+    #[test]
+    fn build_reports_the_rule_broken_with_the_shape() {
+        let sphere = Geometry::Sphere {
+            radius: 0.0,
+            z_min: -1.0,
+            z_max: 1.0,
+            phi_max: 360.0,
+        };
+        let desc = SceneDesc {
+            shapes: vec![
+                shape(Geometry::Plane {
+                    p: Vec3::ZERO,
+                    n: Vec3::Z,
+                }),
+                shape(sphere),
+            ],
+            ..SceneDesc::default()
+        };
+        let e = Scene::build(&desc).unwrap_err();
+        assert_eq!(e.to_string(), "shape 1: radius must be positive, got 0");
+        let desc = SceneDesc {
+            shapes: vec![shape(bad_mesh())],
+            ..SceneDesc::default()
+        };
+        assert_eq!(
+            Scene::build(&desc).unwrap_err(),
+            BuildError::BadMesh {
+                shape: 0,
+                message: "index 1 out of range for 1 vertices".into()
+            }
+        );
+        // The same rule inside an instanced object names the object.
+        let desc = SceneDesc {
+            objects: vec![ObjectDesc {
+                name: "o".into(),
+                shapes: vec![shape(bad_mesh())],
+            }],
+            instances: vec![InstanceDesc {
+                object: 0,
+                object_to_world: Transform::IDENTITY,
+            }],
+            ..SceneDesc::default()
+        };
+        assert_eq!(
+            Scene::build(&desc).unwrap_err().to_string(),
+            "shape 0: object \"o\": index 1 out of range for 1 vertices"
+        );
+        let desc = SceneDesc {
+            lights: vec![LightDesc::Distant {
+                direction: Vec3::ZERO,
+                l: crate::math::Rgb::ONE,
+            }],
+            ..SceneDesc::default()
+        };
+        assert_eq!(
+            Scene::build(&desc).unwrap_err().to_string(),
+            "distant light with \"from\" equal to \"to\""
+        );
+    }
+
+    #[test]
+    fn mesh_triangles_leave_out_degenerate_ones() {
+        let mut m = TriangleMesh::default();
+        m.positions.extend(
+            [
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [2.0, 0.0, 0.0],
+            ]
+            .map(PackedVec3::from),
+        );
+        // Triangle 1 is three points on the x axis: zero area.
+        m.indices.extend([0, 1, 2, 0, 1, 3, 2, 1, 0]);
+        let tris: Vec<u32> = mesh_triangles(&m).map(|(_, i)| i).collect();
+        assert_eq!(tris, [0, 2]);
+        let (p, _) = mesh_triangles(&m).nth(1).unwrap();
+        assert_eq!(p[0], PackedVec3::new(0.0, 1.0, 0.0));
+    }
+}

@@ -1,0 +1,273 @@
+//! [`Scene::memory`]: where a built scene's memory goes, buffer by buffer (what each array
+//! holds, its capacity included, and what its boxes and shared images hold, each shared
+//! buffer once).
+
+use super::Scene;
+use super::instance::Instances;
+use super::prim::{PrimInfo, mesh_bytes, vec_bytes};
+use crate::accel::Tri4;
+use crate::light::Light;
+use crate::material::Material;
+use crate::shape::Shape;
+use crate::texture::{FloatTexture, SpectrumTexture};
+use std::collections::HashSet;
+use std::sync::Arc;
+
+/// A built scene's memory, in bytes, by kind of data.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SceneMemory {
+    /// World-space meshes: positions, normals, uvs, indices (the triangle meshes, and the
+    /// bilinear meshes that patches share, each once).
+    pub meshes: usize,
+    /// Primitive records: one shape (with what its box holds: a voxel grid's cells, a curve's
+    /// shared segment) and one material/emission record per primitive, and the list of
+    /// unbounded primitives. A triangle's record holds its three world-space vertices.
+    pub primitives: usize,
+    /// The BVH over the primitives and its leaves' triangle packets.
+    pub bvh: usize,
+    /// Instancing: the objects' trees, meshes and tables, the placements and their tree.
+    pub instances: usize,
+    /// Images: textures' and environment lights', each shared image once.
+    pub images: usize,
+    /// Texture records.
+    pub textures: usize,
+    /// Lights (an environment light's sampling tables included, its image is in `images`),
+    /// the light distribution and the list of environment lights.
+    pub lights: usize,
+    /// Materials.
+    pub materials: usize,
+}
+
+impl SceneMemory {
+    /// Every byte counted.
+    pub fn total(&self) -> usize {
+        self.meshes
+            + self.primitives
+            + self.bvh
+            + self.instances
+            + self.images
+            + self.textures
+            + self.lights
+            + self.materials
+    }
+}
+
+impl Scene {
+    /// Where this scene's memory goes (see [`SceneMemory`]).
+    pub fn memory(&self) -> SceneMemory {
+        let mut seen = HashSet::new();
+        let mut meshes: usize = self.meshes.iter().map(mesh_bytes).sum();
+        let mut boxed = 0;
+        for s in &self.shapes {
+            boxed += match s {
+                Shape::Sphere(b) => size_of_val(&**b),
+                Shape::Disk(b) => size_of_val(&**b),
+                Shape::Cylinder(b) => size_of_val(&**b),
+                Shape::Cone(b) => size_of_val(&**b),
+                Shape::Paraboloid(b) => size_of_val(&**b),
+                Shape::Hyperboloid(b) => size_of_val(&**b),
+                Shape::Box(b) => size_of_val(&**b),
+                Shape::Plane(b) => size_of_val(&**b),
+                Shape::Sdf(b) => size_of_val(&**b),
+                // The cells (a byte each, shared by instances of one grid but counted per
+                // instance) and the bricks.
+                Shape::Voxels(b) => size_of_val(&**b) + b.heap_bytes(),
+                Shape::Curve(c) => {
+                    let common = Arc::as_ptr(&c.common);
+                    if seen.insert(common as usize) {
+                        size_of_val(&*c.common)
+                    } else {
+                        0
+                    }
+                }
+                Shape::Bilinear(b) => {
+                    let mesh = Arc::as_ptr(&b.mesh);
+                    if seen.insert(mesh as usize) {
+                        meshes += mesh_bytes(&*b.mesh);
+                    }
+                    size_of_val(&**b)
+                }
+                Shape::Triangle(_) => 0,
+            };
+        }
+        let primitives = vec_bytes::<Shape>(self.shapes.capacity())
+            + boxed
+            + vec_bytes::<PrimInfo>(self.prims.capacity())
+            + vec_bytes::<u32>(self.unbounded.capacity());
+        // Texture and environment images, each shared image once.
+        let mut images = 0;
+        let texture_images = self
+            .float_textures
+            .iter()
+            .filter_map(|t| match t {
+                FloatTexture::Image(i) => Some(&i.image),
+                _ => None,
+            })
+            .chain(self.spectrum_textures.iter().filter_map(|t| match t {
+                SpectrumTexture::Image(i) => Some(&i.image),
+                _ => None,
+            }))
+            .chain(self.lights.iter().filter_map(|l| match l {
+                Light::ImageInfinite(e) => Some(e.image()),
+                _ => None,
+            }));
+        for img in texture_images {
+            if seen.insert(Arc::as_ptr(img) as usize) {
+                images += img.memory_bytes();
+            }
+        }
+        let lights = vec_bytes::<Light>(self.lights.capacity())
+            + self
+                .lights
+                .iter()
+                .map(|l| match l {
+                    Light::ImageInfinite(e) => size_of_val(&**e) + e.table_bytes(),
+                    _ => 0,
+                })
+                .sum::<usize>()
+            + self.light_distribution.memory_bytes()
+            + vec_bytes::<u32>(self.infinite_lights.capacity());
+        SceneMemory {
+            meshes: meshes + vec_bytes::<crate::shape::TriangleMesh>(self.meshes.capacity()),
+            primitives,
+            bvh: self.bvh.memory_bytes() + vec_bytes::<Tri4>(self.packets.capacity()),
+            instances: Instances::memory_bytes(&self.instances),
+            images,
+            textures: vec_bytes::<FloatTexture>(self.float_textures.capacity())
+                + vec_bytes::<SpectrumTexture>(self.spectrum_textures.capacity()),
+            lights,
+            materials: vec_bytes::<Material>(self.materials.capacity()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::image::{Image, WrapMode};
+    use crate::math::{PackedRgb, PackedVec3, Transform, Vec3};
+    use crate::scene::desc::{Geometry, InstanceDesc, ObjectDesc, SceneDesc, ShapeDesc};
+    use crate::shape::TriangleMesh;
+    use crate::texture::{ImageTexture, UvMapping};
+
+    /// `n` separate unit triangles along x, none degenerate.
+    fn strip(n: u32) -> Arc<TriangleMesh> {
+        let mut m = TriangleMesh::default();
+        for i in 0..n {
+            let x = 2.0 * i as f32;
+            m.positions
+                .extend([[x, 0.0, 0.0], [x + 1.0, 0.0, 0.0], [x, 1.0, 0.0]].map(PackedVec3::from));
+            m.indices.extend([3 * i, 3 * i + 1, 3 * i + 2]);
+        }
+        Arc::new(m)
+    }
+
+    fn shape(m: &Arc<TriangleMesh>) -> ShapeDesc {
+        ShapeDesc {
+            geometry: Geometry::TriangleMesh(m.clone()),
+            object_to_world: Transform::translate(Vec3::new(0.0, 0.0, 5.0)),
+            reverse_orientation: false,
+            material: 0,
+            area_light: None,
+            alpha: None,
+        }
+    }
+
+    fn mesh_scene(n: u32) -> Scene {
+        let desc = SceneDesc {
+            shapes: vec![shape(&strip(n))],
+            ..SceneDesc::default()
+        };
+        Scene::build(&desc).unwrap()
+    }
+
+    #[test]
+    fn memory_grows_with_triangles() {
+        let (small, large) = (mesh_scene(10), mesh_scene(100));
+        // One shape record and one 32-byte PrimInfo per triangle, nothing unbounded.
+        for (n, scene) in [(10, &small), (100, &large)] {
+            let m = scene.memory();
+            assert_eq!(m.primitives, n * (size_of::<Shape>() + 32));
+            // 3 positions of 12 bytes and 3 indices of 4 bytes per triangle, at least.
+            assert!(m.meshes >= n * 3 * (12 + 4), "{m:?}");
+            // No instance: the empty top-level tree only.
+            assert!(scene.instances.objects.is_empty());
+            assert_eq!(m.instances, scene.instances.memory_bytes());
+        }
+        let (small, large) = (small.memory(), large.memory());
+        assert!(large.meshes > small.meshes && large.bvh > small.bvh);
+        // The default material, pushed into an empty vector: capacity 4.
+        assert_eq!(large.materials, 4 * size_of::<Material>());
+        assert_eq!(
+            large.total(),
+            large.meshes
+                + large.primitives
+                + large.bvh
+                + large.instances
+                + large.images
+                + large.textures
+                + large.lights
+                + large.materials
+        );
+    }
+
+    #[test]
+    fn instances_are_counted_and_geometry_once() {
+        let m = strip(50);
+        let scene = |copies: usize| {
+            let desc = SceneDesc {
+                objects: vec![ObjectDesc {
+                    name: "strip".into(),
+                    shapes: vec![shape(&m)],
+                }],
+                instances: (0..copies)
+                    .map(|k| InstanceDesc {
+                        object: 0,
+                        object_to_world: Transform::translate(Vec3::new(0.0, k as f32, 0.0)),
+                    })
+                    .collect(),
+                ..SceneDesc::default()
+            };
+            Scene::build(&desc).unwrap()
+        };
+        let (one, ten) = (scene(1), scene(10));
+        let (a, b) = (one.memory(), ten.memory());
+        // Instanced meshes are no flattened primitive: no shape, no world mesh, only the
+        // object's one PrimInfo record (in a vector of capacity 4); the rest is in `instances`.
+        assert!(one.shapes.is_empty() && ten.shapes.is_empty());
+        assert_eq!((a.primitives, a.meshes, b.primitives), (4 * 32, 0, 4 * 32));
+        assert_eq!(a.instances, one.instances.memory_bytes());
+        // The object's 50 triangles at least: 3 positions and 3 indices each.
+        assert!(a.instances > 50 * 3 * 16, "{a:?}");
+        // Nine more placements: their transforms and a bigger top-level tree, not 9 copies.
+        assert!(b.instances > a.instances && b.instances < a.instances + 9 * 1024);
+    }
+
+    #[test]
+    fn a_shared_image_is_counted_once() {
+        let image = Arc::new(Image {
+            width: 4,
+            height: 2,
+            texels: vec![PackedRgb::ONE; 8],
+        });
+        let tex = ImageTexture {
+            image: image.clone(),
+            mapping: UvMapping::default(),
+            wrap: WrapMode::Repeat,
+            scale: 1.0,
+            invert: false,
+            nearest: false,
+        };
+        let desc = SceneDesc {
+            float_textures: vec![FloatTexture::Image(tex.clone())],
+            spectrum_textures: vec![SpectrumTexture::Image(tex)],
+            ..SceneDesc::default()
+        };
+        let m = Scene::build(&desc).unwrap().memory();
+        assert_eq!(m.images, 8 * 12);
+        assert_eq!(
+            m.textures,
+            size_of::<FloatTexture>() + size_of::<SpectrumTexture>()
+        );
+    }
+}

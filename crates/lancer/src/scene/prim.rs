@@ -1,0 +1,117 @@
+//! What the build makes beside the shapes, and what it checks: the per-primitive records, the
+//! build's errors, the shape checks and the triangles of a mesh (shared by the flattened
+//! shapes and the instanced objects).
+
+use super::desc::ShapeDesc;
+use crate::math::{PackedRgb, PackedVec3, Vec2, Vec3};
+use crate::shape::{IndexedMesh, TriangleMesh, is_degenerate};
+use crate::texture::FloatTex;
+use std::mem::size_of;
+
+/// What a primitive is made of, beside its shape.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrimInfo {
+    /// Index into [`Scene::materials`](super::Scene::materials).
+    pub material: u32,
+    /// Emitted radiance when the primitive is an area light.
+    pub emission: Option<AreaEmission>,
+    /// Alpha cut-out: where it is below 1 the surface is (partly) absent.
+    pub alpha: Option<FloatTex>,
+}
+
+/// A primitive's emission.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AreaEmission {
+    /// Radiance (packed, so that [`PrimInfo`], one per primitive, stays 32 bytes).
+    pub l: PackedRgb,
+    /// Emits from both sides.
+    pub two_sided: bool,
+    /// Index of the light in [`Scene::lights`](super::Scene::lights).
+    pub light: u32,
+}
+
+/// Why a scene description could not be built.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum BuildError {
+    /// A mesh with bad indices or mismatched arrays.
+    #[error("shape {shape}: {message}")]
+    BadMesh {
+        /// Index of the shape in the description.
+        shape: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// A material index out of range.
+    #[error("shape {shape}: material {material} does not exist")]
+    BadMaterial {
+        /// Index of the shape.
+        shape: usize,
+        /// The index given.
+        material: u32,
+    },
+    /// The camera's parameters give no valid projection.
+    #[error("the camera's parameters give no valid projection")]
+    BadCamera,
+    /// A zero or non-finite parameter that makes a shape or light meaningless.
+    #[error("{0}")]
+    Invalid(String),
+}
+
+/// The error for shape `index` breaking a rule of [`ShapeDesc::validate`]: a bad mesh for the
+/// mesh geometries, an invalid parameter for the others.
+pub(crate) fn invalid_shape(sd: &ShapeDesc, index: usize, message: String) -> BuildError {
+    if sd.geometry.is_mesh() {
+        BuildError::BadMesh {
+            shape: index,
+            message,
+        }
+    } else {
+        BuildError::Invalid(format!("shape {index}: {message}"))
+    }
+}
+
+/// Checks shape `index`'s material index (below `n_materials`) and its rules
+/// ([`ShapeDesc::validate`]).
+pub(crate) fn check_shape(
+    sd: &ShapeDesc,
+    index: usize,
+    n_materials: usize,
+) -> Result<(), BuildError> {
+    if sd.material as usize >= n_materials {
+        return Err(BuildError::BadMaterial {
+            shape: index,
+            material: sd.material,
+        });
+    }
+    sd.validate().map_err(|m| invalid_shape(sd, index, m))
+}
+
+/// The triangles of a mesh that a ray can hit (one of zero area never can): each one's three
+/// vertex positions and its index in the mesh.
+pub(crate) fn mesh_triangles(
+    mesh: &TriangleMesh,
+) -> impl Iterator<Item = ([PackedVec3; 3], u32)> + '_ {
+    (0..mesh.triangle_count() as u32).filter_map(move |i| {
+        let v = mesh.vertices(i);
+        let p = [
+            mesh.positions[v[0]],
+            mesh.positions[v[1]],
+            mesh.positions[v[2]],
+        ];
+        let [a, b, c] = p.map(Vec3::from);
+        (!is_degenerate(a, b, c)).then_some((p, i))
+    })
+}
+
+/// Bytes of a `Vec` of `T` with capacity `cap`.
+pub(crate) fn vec_bytes<T>(cap: usize) -> usize {
+    cap * size_of::<T>()
+}
+
+/// Bytes of a mesh's arrays: positions, normals, uvs, indices.
+pub(crate) fn mesh_bytes<const N: usize>(m: &IndexedMesh<N>) -> usize {
+    vec_bytes::<PackedVec3>(m.positions.capacity())
+        + vec_bytes::<PackedVec3>(m.normals.capacity())
+        + vec_bytes::<Vec2>(m.uvs.capacity())
+        + vec_bytes::<u32>(m.indices.capacity())
+}
