@@ -141,7 +141,7 @@ def analyse(src: Path, verbose: bool) -> int:
         paths = []
         for body in re.findall(r"\buse\s+([^;]+);", t):
             paths += expand_use(body)
-        for inline in re.findall(r"\b((?:crate|super|self)(?:::\w+)+)(?!\w|::\{)", t):
+        for inline in re.findall(r"\b((?:crate|super|self)(?:::\w+)+)(?!\w|::)", t):
             paths.append(inline.split("::"))
         for p in paths:
             a = absolute(m, p)
