@@ -6,6 +6,7 @@ use crate::cli_error::CliError;
 use crate::input;
 use crate::stats::{SceneMemory, human_bytes};
 use clap::Args;
+use lancer::integrator::Integrator;
 use lancer::scene::desc::{Geometry, LightDesc, Projection, ShapeDesc};
 use lancer::{Scene, SceneDesc};
 use serde_json::{Value, json};
@@ -56,10 +57,29 @@ pub fn light_kind(l: &LightDesc) -> &'static str {
     }
 }
 
-/// A value's enum variant name from its debug form (`Diffuse { .. }` → `Diffuse`).
-fn variant_name<T: std::fmt::Debug>(v: &T) -> String {
-    let s = format!("{v:?}");
-    s.split([' ', '{', '(']).next().unwrap_or("").to_string()
+/// The integrator as pbrt-v4 names it and its parameters under pbrt-v4's names:
+/// `{"name": "path", "maxdepth": 5, "regularize": false}`.
+fn integrator_json(i: &Integrator) -> Value {
+    let mut v = json!({ "name": i.pbrt_name() });
+    match *i {
+        Integrator::Whitted { max_depth } => v["maxdepth"] = json!(max_depth),
+        Integrator::Path {
+            max_depth,
+            regularize,
+        } => {
+            v["maxdepth"] = json!(max_depth);
+            v["regularize"] = json!(regularize);
+        }
+        Integrator::AmbientOcclusion {
+            cos_sample,
+            max_distance,
+        } => {
+            v["cossample"] = json!(cos_sample);
+            v["maxdistance"] = json!(max_distance);
+        }
+        Integrator::Normals | Integrator::Depth => {}
+    }
+    v
 }
 
 /// Counts of what the scene description holds.
@@ -138,7 +158,7 @@ pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
     }
     let mut materials: BTreeMap<String, u64> = BTreeMap::new();
     for m in &desc.materials {
-        *materials.entry(variant_name(m)).or_default() += 1;
+        *materials.entry(m.pbrt_name().to_string()).or_default() += 1;
     }
     let b = scene.bounds();
     let bounds = if b.is_empty() {
@@ -163,11 +183,11 @@ pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
             "filename": desc.film.filename,
         },
         "sampler": {
-            "kind": variant_name(&desc.sampler.kind),
+            "kind": desc.sampler.kind.pbrt_name(),
             "spp": desc.sampler.spp,
             "seed": desc.sampler.seed,
         },
-        "integrator": format!("{:?}", desc.integrator),
+        "integrator": integrator_json(&desc.integrator),
         "shapes": c.shapes,
         "objects": desc.objects.len(),
         "object_shapes": c.object_shapes,
@@ -195,6 +215,23 @@ pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
         );
     }
     Ok(v)
+}
+
+/// `path (maxdepth 5, regularize false)` from [`integrator_json`]'s object.
+fn integrator_text(v: &Value) -> String {
+    let name = v["name"].as_str().unwrap_or("");
+    let params: Vec<String> = v
+        .as_object()
+        .into_iter()
+        .flatten()
+        .filter(|(k, _)| *k != "name")
+        .map(|(k, x)| format!("{k} {x}"))
+        .collect();
+    if params.is_empty() {
+        name.to_string()
+    } else {
+        format!("{name} ({})", params.join(", "))
+    }
 }
 
 fn kinds(v: &Value) -> String {
@@ -260,7 +297,7 @@ pub fn text(v: &Value) -> String {
             u(&v["sampler"]["seed"])
         ),
     );
-    line("integrator", v["integrator"].as_str().unwrap_or("").into());
+    line("integrator", integrator_text(&v["integrator"]));
     line("shapes", kinds(&v["shapes"]));
     if u(&v["objects"]) > 0 {
         line(
@@ -351,16 +388,21 @@ mod tests {
     use super::*;
 
     #[test]
-    fn variant_names_come_from_debug() {
-        #[derive(Debug)]
-        #[allow(dead_code)]
-        enum E {
-            Unit,
-            Tuple(u8),
-            Named { a: u8 },
-        }
-        assert_eq!(variant_name(&E::Unit), "Unit");
-        assert_eq!(variant_name(&E::Tuple(1)), "Tuple");
-        assert_eq!(variant_name(&E::Named { a: 1 }), "Named");
+    fn integrators_are_named_as_pbrt_names_them() {
+        let v = integrator_json(&Integrator::Path {
+            max_depth: 5,
+            regularize: false,
+        });
+        assert_eq!(
+            v,
+            json!({ "name": "path", "maxdepth": 5, "regularize": false })
+        );
+        assert_eq!(integrator_text(&v), "path (maxdepth 5, regularize false)");
+        let v = integrator_json(&Integrator::Whitted { max_depth: 6 });
+        assert_eq!(integrator_text(&v), "whitted (maxdepth 6)");
+        assert_eq!(
+            integrator_text(&integrator_json(&Integrator::Normals)),
+            "normals"
+        );
     }
 }

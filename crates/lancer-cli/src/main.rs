@@ -25,9 +25,19 @@ mod tev;
 
 use clap::{CommandFactory, Parser, Subcommand};
 
+/// What `--version` prints after the name: the version, the commit and the build target.
+const VERSION: &str = concat!(
+    env!("CARGO_PKG_VERSION"),
+    " (commit ",
+    env!("LANCER_COMMIT"),
+    "; ",
+    env!("LANCER_TARGET"),
+    ")"
+);
+
 /// lancer, a physically based ray tracer: renders pbrt-v4 scenes and glTF, OBJ and PLY models.
 #[derive(Parser, Debug)]
-#[command(name = "lancer", version, propagate_version = true, long_about = None)]
+#[command(name = "lancer", version = VERSION, propagate_version = true, long_about = None)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

@@ -359,7 +359,12 @@ pub fn render(
         .filter(|(_, d)| !**d)
         .map(|(u, _)| u.tile.area() * u.samples.len() as u64)
         .sum();
-    let progress = Progress::new(remaining, args.quiet);
+    let progress = Progress::new(
+        remaining,
+        args.quiet,
+        args.progress,
+        Duration::from_secs_f64(args.log_every),
+    );
     let every = args
         .checkpoint_every
         .map(|m| Duration::from_secs_f64(m * 60.0));

@@ -3,6 +3,7 @@
 
 use crate::checkpoint::Checkpoint;
 use crate::cli_error::CliError;
+use crate::progress::{LINE_INTERVAL, ProgressMode};
 use crate::{split, stats};
 use clap::Args;
 use lancer::SceneDesc;
@@ -65,6 +66,15 @@ pub struct RenderArgs {
     /// No progress bar, no progress lines, no summary.
     #[arg(short, long)]
     pub quiet: bool,
+    /// How progress is shown on stderr: `auto` (a bar on a terminal, plain lines in a log
+    /// file), `bar`, `lines`, or `json` (one JSON object per line, for programs).
+    #[arg(long, value_enum, value_name = "MODE", default_value_t)]
+    pub progress: ProgressMode,
+    /// Longest silence, in seconds, between two progress lines in a log (a line also comes at
+    /// each tenth of the work).
+    #[arg(long, value_name = "SECS", default_value_t = LINE_INTERVAL.as_secs_f64(),
+          value_parser = parse_seconds)]
+    pub log_every: f64,
     /// Largest film memory accepted, in GiB: a bigger image is refused before rendering.
     #[arg(long, value_name = "GIB", default_value_t = MAX_FILM_GIB)]
     pub max_film_gib: u64,
@@ -111,6 +121,13 @@ fn parse_minutes(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
         Ok(m) if m > 0.0 && m < 1e9 => Ok(m),
         _ => Err(format!("'{s}' is not a positive number of minutes")),
+    }
+}
+
+fn parse_seconds(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if x > 0.0 && x < 1e9 => Ok(x),
+        _ => Err(format!("'{s}' is not a positive number of seconds")),
     }
 }
 
@@ -244,6 +261,8 @@ pub fn resume_args(args: RenderArgs, path: &Path) -> Result<(RenderArgs, Resumed
     a.checkpoint_every = args.checkpoint_every.or(a.checkpoint_every);
     a.threads = args.threads;
     a.quiet = args.quiet;
+    a.progress = args.progress;
+    a.log_every = args.log_every;
     a.resume = None;
     let resumed = Resumed {
         path: path.to_path_buf(),

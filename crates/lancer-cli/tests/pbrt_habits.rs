@@ -187,9 +187,19 @@ fn a_scene_on_stdin_renders_and_its_errors_name_stdin() {
 fn version_and_help_describe_lancer() {
     let o = lancer().arg("--version").output().unwrap();
     assert!(o.status.success());
-    assert_eq!(
-        String::from_utf8_lossy(&o.stdout),
-        format!("lancer {}\n", env!("CARGO_PKG_VERSION"))
+    // `lancer 0.1.0 (commit 0123456789ab; x86_64-unknown-linux-gnu, x86-64-v3)`
+    let v = String::from_utf8_lossy(&o.stdout);
+    let prefix = format!("lancer {} (commit ", env!("CARGO_PKG_VERSION"));
+    assert!(v.starts_with(&prefix), "{v}");
+    let (commit, target) = v[prefix.len()..].trim_end().split_once("; ").unwrap();
+    assert!(
+        commit == "unknown"
+            || (commit.len() == 12 && commit.chars().all(|c| c.is_ascii_hexdigit())),
+        "{v}"
+    );
+    assert!(
+        target.starts_with(std::env::consts::ARCH) && target.ends_with(')'),
+        "{v}"
     );
     let o = lancer().arg("--help").output().unwrap();
     assert!(o.status.success());

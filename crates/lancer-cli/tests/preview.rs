@@ -448,6 +448,17 @@ fn info_counts_triangles_and_lists_every_file_read() {
     assert_eq!(v["lights"]["point"].as_u64(), Some(1));
     // pbrt's default material, then the scene's two.
     assert_eq!(v["materials"]["count"].as_u64(), Some(3));
+    // Kinds as pbrt-v4 names them, never Rust's Debug text.
+    assert_eq!(v["materials"]["by_kind"]["diffuse"].as_u64(), Some(3));
+    assert_eq!(v["integrator"]["name"], "path");
+    assert!(v["integrator"]["maxdepth"].is_u64());
+    assert!(
+        v["sampler"]["kind"]
+            .as_str()
+            .unwrap()
+            .chars()
+            .all(|c| c.is_ascii_lowercase())
+    );
     assert_eq!(v["film"]["width"].as_u64(), Some(32));
     let pos: Vec<f64> = (0..3)
         .map(|i| v["camera"]["position"][i].as_f64().unwrap())

@@ -13,6 +13,18 @@ use crate::scene::{Scene, SceneHit};
 use crate::spectrum::sampled::{SampledWavelengths, albedo_at, illuminant_at};
 
 impl Integrator {
+    /// The pbrt-v4 name of this integrator (`Integrator "…"`): `path`, `whitted`,
+    /// `ambientocclusion`, and lancer's debug views `normals` and `depth`.
+    pub fn pbrt_name(&self) -> &'static str {
+        match self {
+            Integrator::Whitted { .. } => "whitted",
+            Integrator::Path { .. } => "path",
+            Integrator::AmbientOcclusion { .. } => "ambientocclusion",
+            Integrator::Normals => "normals",
+            Integrator::Depth => "depth",
+        }
+    }
+
     /// True for the integrators that compute radiance (path tracing, Whitted), which spectral
     /// mode applies to; the debug views output other quantities and always work in RGB.
     pub fn computes_radiance(&self) -> bool {

@@ -180,6 +180,21 @@ fn conductor_index(
 }
 
 impl Material {
+    /// The pbrt-v4 name of this material (`Material "…"`): `diffuse`, `conductor`, …
+    pub fn pbrt_name(&self) -> &'static str {
+        match self {
+            Material::Diffuse { .. } => "diffuse",
+            Material::Conductor { .. } => "conductor",
+            Material::Dielectric { .. } => "dielectric",
+            Material::ThinDielectric { .. } => "thindielectric",
+            Material::DiffuseTransmission { .. } => "diffusetransmission",
+            Material::CoatedDiffuse { .. } => "coateddiffuse",
+            Material::CoatedConductor { .. } => "coatedconductor",
+            Material::Mix { .. } => "mix",
+            Material::Interface => "interface",
+        }
+    }
+
     /// The BxDF this material has at a surface point, with textures evaluated there, as
     /// pbrt-v4's materials build theirs: albedos clamped to [0, 1], roughness remapped to α
     /// when asked, an index of 0 taken as 1. `Mix` must be resolved by the caller first (it

@@ -28,6 +28,18 @@ pub enum SamplerKind {
     Sobol,
 }
 
+impl SamplerKind {
+    /// The pbrt-v4 name of this point set (`Sampler "…"`): `independent`, `stratified`,
+    /// `paddedsobol` (pbrt's `sobol` and `zsobol` are read as it too).
+    pub fn pbrt_name(&self) -> &'static str {
+        match self {
+            SamplerKind::Independent => "independent",
+            SamplerKind::Stratified { .. } => "stratified",
+            SamplerKind::Sobol => "paddedsobol",
+        }
+    }
+}
+
 /// A sampler positioned at one pixel sample; hands out the sample's dimensions in turn.
 #[derive(Clone, Debug)]
 pub struct Sampler {
