@@ -524,4 +524,4 @@ fn voxel_grid(r: &Reader) -> Result<(VoxelGrid, Vec<String>), SceneError> {
 }
 
 #[cfg(test)]
-mod tests {}
+mod tests;
