@@ -198,4 +198,350 @@ fn convert(r: &Reader, ty: &str) -> Result<Fallback<MaterialWithNames>, SceneErr
 }
 
 #[cfg(test)]
-mod tests {}
+mod tests {
+    use super::*;
+    use crate::pbrt::convert::TextureNames;
+    use crate::pbrt::convert::testing::{err, typed, unused, with_textures};
+    use lancer::texture::SpectrumTex;
+    use std::path::Path;
+
+    /// The conversion of the one `Material` of `text` against `textures`, and the messages of
+    /// the parameters it left unread.
+    fn convert_with(
+        text: &str,
+        textures: &TextureNames,
+    ) -> (Result<Fallback<MaterialWithNames>, SceneError>, Vec<String>) {
+        let (ty, params, loc) = typed(text);
+        let out = with_textures(&params, Path::new("."), textures, |r| {
+            material(r, &ty, &loc)
+        });
+        (out, unused(&params))
+    }
+
+    /// A material that converts without warnings and reads every parameter.
+    #[track_caller]
+    fn converted(text: &str) -> Material {
+        let (out, unused) = convert_with(text, &TextureNames::default());
+        let f = out.unwrap_or_else(|e| panic!("{e}"));
+        assert!(f.warnings.is_empty(), "{:?}", f.warnings);
+        assert!(unused.is_empty(), "{unused:?}");
+        assert!(f.value.mix.is_none());
+        f.value.material
+    }
+
+    #[track_caller]
+    fn error(text: &str) -> String {
+        err(convert_with(text, &TextureNames::default()).0)
+    }
+
+    fn grey(v: f32) -> SpectrumTex {
+        SpectrumTex::Const(Rgb::splat(v))
+    }
+
+    fn rgb(r: f32, g: f32, b: f32) -> SpectrumTex {
+        SpectrumTex::Const(Rgb::new(r, g, b))
+    }
+
+    const ZERO: FloatTex = FloatTex::Const(0.0);
+
+    #[test]
+    fn defaults_are_pbrt_v4s() {
+        assert_eq!(
+            converted(r#"Material "diffuse""#),
+            Material::Diffuse {
+                reflectance: grey(0.5)
+            }
+        );
+        let copper = (
+            SpectrumTex::Const(named_rgb("metal-Cu-eta")),
+            SpectrumTex::Const(named_rgb("metal-Cu-k")),
+        );
+        assert_eq!(
+            converted(r#"Material "conductor""#),
+            Material::Conductor {
+                eta: copper.0,
+                k: copper.1,
+                reflectance: None,
+                uroughness: ZERO,
+                vroughness: ZERO,
+                remap_roughness: true,
+            }
+        );
+        assert_eq!(
+            converted(r#"Material "dielectric""#),
+            Material::Dielectric {
+                eta: 1.5,
+                uroughness: ZERO,
+                vroughness: ZERO,
+                remap_roughness: true,
+            }
+        );
+        assert_eq!(
+            converted(r#"Material "thindielectric""#),
+            Material::ThinDielectric { eta: 1.5 }
+        );
+        assert_eq!(
+            converted(r#"Material "diffusetransmission""#),
+            Material::DiffuseTransmission {
+                reflectance: grey(0.25),
+                transmittance: grey(0.25),
+                scale: 1.0,
+            }
+        );
+        assert_eq!(
+            converted(r#"Material "coateddiffuse""#),
+            Material::CoatedDiffuse {
+                reflectance: grey(0.5),
+                uroughness: ZERO,
+                vroughness: ZERO,
+                thickness: FloatTex::Const(0.01),
+                eta: 1.5,
+                albedo: grey(0.0),
+                g: ZERO,
+                max_depth: 10,
+                n_samples: 1,
+                remap_roughness: true,
+            }
+        );
+        assert_eq!(
+            converted(r#"Material "coatedconductor""#),
+            Material::CoatedConductor {
+                interface_uroughness: ZERO,
+                interface_vroughness: ZERO,
+                interface_eta: 1.5,
+                conductor_eta: copper.0,
+                k: copper.1,
+                reflectance: None,
+                conductor_uroughness: ZERO,
+                conductor_vroughness: ZERO,
+                thickness: FloatTex::Const(0.01),
+                albedo: grey(0.0),
+                g: ZERO,
+                max_depth: 10,
+                n_samples: 1,
+                remap_roughness: true,
+            }
+        );
+        for ty in ["interface", "none", ""] {
+            assert_eq!(
+                converted(&format!("Material \"{ty}\"")),
+                Material::Interface
+            );
+        }
+    }
+
+    #[test]
+    fn every_parameter_is_read() {
+        assert_eq!(
+            converted(r#"Material "diffuse" "rgb reflectance" [0.1 0.2 0.3]"#),
+            Material::Diffuse {
+                reflectance: rgb(0.1, 0.2, 0.3)
+            }
+        );
+        assert_eq!(
+            converted(
+                r#"Material "conductor" "rgb eta" [0.2 0.3 0.4] "rgb k" [3 2 1]
+                   "rgb reflectance" [0.9 0.8 0.7] "float uroughness" 0.1
+                   "float vroughness" 0.2 "bool remaproughness" false"#
+            ),
+            Material::Conductor {
+                eta: rgb(0.2, 0.3, 0.4),
+                k: rgb(3.0, 2.0, 1.0),
+                reflectance: Some(rgb(0.9, 0.8, 0.7)),
+                uroughness: FloatTex::Const(0.1),
+                vroughness: FloatTex::Const(0.2),
+                remap_roughness: false,
+            }
+        );
+        // `roughness` gives both directions unless one is named.
+        assert_eq!(
+            converted(
+                r#"Material "dielectric" "float eta" 1.33 "float roughness" 0.3 "float vroughness" 0.4"#
+            ),
+            Material::Dielectric {
+                eta: 1.33,
+                uroughness: FloatTex::Const(0.3),
+                vroughness: FloatTex::Const(0.4),
+                remap_roughness: true,
+            }
+        );
+        assert_eq!(
+            converted(r#"Material "thindielectric" "float eta" 1.2"#),
+            Material::ThinDielectric { eta: 1.2 }
+        );
+        assert_eq!(
+            converted(
+                r#"Material "diffusetransmission" "rgb reflectance" [0.1 0.1 0.1]
+                   "rgb transmittance" [0.7 0.7 0.7] "float scale" 2"#
+            ),
+            Material::DiffuseTransmission {
+                reflectance: grey(0.1),
+                transmittance: grey(0.7),
+                scale: 2.0,
+            }
+        );
+        assert_eq!(
+            converted(
+                r#"Material "coateddiffuse" "rgb reflectance" [0.2 0.2 0.2] "float roughness" 0.1
+                   "float thickness" 0.2 "float eta" 1.4 "rgb albedo" [0.5 0.5 0.5] "float g" 0.3
+                   "integer maxdepth" 4 "integer nsamples" 2 "bool remaproughness" false"#
+            ),
+            Material::CoatedDiffuse {
+                reflectance: grey(0.2),
+                uroughness: FloatTex::Const(0.1),
+                vroughness: FloatTex::Const(0.1),
+                thickness: FloatTex::Const(0.2),
+                eta: 1.4,
+                albedo: grey(0.5),
+                g: FloatTex::Const(0.3),
+                max_depth: 4,
+                n_samples: 2,
+                remap_roughness: false,
+            }
+        );
+        assert_eq!(
+            converted(
+                r#"Material "coatedconductor" "float interface.roughness" 0.1
+                   "float interface.vroughness" 0.15 "float interface.eta" 1.3
+                   "rgb conductor.eta" [0.2 0.2 0.2] "rgb conductor.k" [4 4 4]
+                   "rgb reflectance" [0.9 0.9 0.9] "float conductor.uroughness" 0.2
+                   "float conductor.vroughness" 0.25 "float thickness" 0.05
+                   "rgb albedo" [0.1 0.1 0.1] "float g" -0.2 "integer maxdepth" 3
+                   "integer nsamples" 5 "bool remaproughness" false"#
+            ),
+            Material::CoatedConductor {
+                interface_uroughness: FloatTex::Const(0.1),
+                interface_vroughness: FloatTex::Const(0.15),
+                interface_eta: 1.3,
+                conductor_eta: grey(0.2),
+                k: grey(4.0),
+                reflectance: Some(grey(0.9)),
+                conductor_uroughness: FloatTex::Const(0.2),
+                conductor_vroughness: FloatTex::Const(0.25),
+                thickness: FloatTex::Const(0.05),
+                albedo: grey(0.1),
+                g: FloatTex::Const(-0.2),
+                max_depth: 3,
+                n_samples: 5,
+                remap_roughness: false,
+            }
+        );
+    }
+
+    #[test]
+    fn textures_are_found_by_name_and_kind() {
+        let mut textures = TextureNames::default();
+        textures.spectra.insert("wood".into(), 2);
+        textures.floats.insert("bumps".into(), 1);
+        let (out, _) = convert_with(
+            r#"Material "conductor" "texture reflectance" "wood" "texture roughness" "bumps""#,
+            &textures,
+        );
+        let Material::Conductor {
+            reflectance,
+            uroughness,
+            vroughness,
+            ..
+        } = out.unwrap().value.material
+        else {
+            panic!("a conductor")
+        };
+        assert_eq!(reflectance, Some(SpectrumTex::Tex(2)));
+        assert_eq!(
+            (uroughness, vroughness),
+            (FloatTex::Tex(1), FloatTex::Tex(1))
+        );
+        let (out, _) = convert_with(
+            "Material \"diffuse\"\n  \"texture reflectance\" \"bumps\"",
+            &textures,
+        );
+        assert_eq!(
+            err(out),
+            "t.pbrt:2:3: no spectrum texture named \"bumps\" (there is a float texture of that name)"
+        );
+    }
+
+    #[test]
+    fn a_mix_returns_its_names_for_later() {
+        let (out, unused) = convert_with(
+            "Material \"mix\"\n  \"string materials\" [\"a\" \"b\"] \"float amount\" 0.25",
+            &TextureNames::default(),
+        );
+        assert!(unused.is_empty());
+        let f = out.unwrap();
+        assert_eq!(
+            f.value.material,
+            Material::Mix {
+                materials: [0, 0],
+                amount: FloatTex::Const(0.25),
+            }
+        );
+        let (names, loc) = f.value.mix.expect("names");
+        assert_eq!(names, ["a", "b"]);
+        assert_eq!(loc.to_string(), "t.pbrt:2:3");
+    }
+
+    #[test]
+    fn unsupported_materials_become_diffuse_with_a_warning() {
+        let (out, unused) = convert_with(
+            r#"Material "hair" "rgb reflectance" [0.3 0.2 0.1]"#,
+            &TextureNames::default(),
+        );
+        let f = out.unwrap();
+        assert!(unused.is_empty());
+        assert_eq!(
+            f.value.material,
+            Material::Diffuse {
+                reflectance: rgb(0.3, 0.2, 0.1)
+            }
+        );
+        assert_eq!(
+            f.warnings,
+            ["material \"hair\" is not supported yet; lancer renders it as \"diffuse\""]
+        );
+        let (out, unused) = convert_with(
+            r#"Material "plastic" "float roughness" 0.1"#,
+            &TextureNames::default(),
+        );
+        let f = out.unwrap();
+        assert_eq!(f.value.material, Material::default());
+        assert_eq!(
+            f.warnings,
+            ["unknown material \"plastic\"; lancer renders it as \"diffuse\""]
+        );
+        // An unknown material reads nothing: its parameters are reported unused.
+        assert_eq!(unused.len(), 1);
+    }
+
+    #[test]
+    fn errors_are_at_their_parameter() {
+        assert_eq!(
+            error(r#"Material "mix""#),
+            "t.pbrt:1:1: material \"mix\" needs \"string materials\" [\"a\" \"b\"]"
+        );
+        assert_eq!(
+            error("Material \"mix\"\n  \"string materials\" [\"a\"]"),
+            "t.pbrt:2:3: \"string materials\" of a mix names 2 materials, not 1"
+        );
+        assert_eq!(
+            error("Material \"coateddiffuse\"\n  \"integer maxdepth\" -1"),
+            "t.pbrt:2:3: \"integer maxdepth\" must be between 0 and 1000, not -1"
+        );
+        assert_eq!(
+            error("Material \"coatedconductor\"\n  \"integer nsamples\" 0"),
+            "t.pbrt:2:3: \"integer nsamples\" must be between 1 and 1000, not 0"
+        );
+        assert_eq!(
+            error("Material \"dielectric\"\n  \"float eta\" -1"),
+            "t.pbrt:2:3: \"float eta\" must be a positive index of refraction, not -1"
+        );
+        assert_eq!(
+            error("Material \"diffuse\"\n  \"rgb reflectance\" [-1 0 0]"),
+            "t.pbrt:2:3: \"rgb reflectance\" has a negative component: -1 0 0"
+        );
+        assert_eq!(
+            error("Material \"diffuse\"\n  \"float reflectance\" 0.5"),
+            "t.pbrt:2:3: parameter 'reflectance' must be of type rgb or spectrum or blackbody, not float"
+        );
+    }
+}
