@@ -217,4 +217,344 @@ pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<IntegratorDes
 }
 
 #[cfg(test)]
-mod tests {}
+mod tests {
+    use super::*;
+    use crate::pbrt::convert::testing::{err, typed, unused};
+
+    /// Converts the one directive of `text` with `f`, and gives its unread parameters.
+    fn convert<T>(
+        text: &str,
+        f: impl FnOnce(&ParamList, &str) -> Result<T, SceneError>,
+    ) -> (Result<T, SceneError>, Vec<String>) {
+        let (ty, params, _) = typed(text);
+        let out = f(&params, &ty);
+        (out, unused(&params))
+    }
+
+    /// Converted without warnings, every parameter read.
+    #[track_caller]
+    fn clean<T>(
+        text: &str,
+        f: impl FnOnce(&ParamList, &str) -> Result<Fallback<T>, SceneError>,
+    ) -> T {
+        let (out, unused) = convert(text, f);
+        let out = out.unwrap_or_else(|e| panic!("{e}"));
+        assert!(out.warnings.is_empty(), "{:?}", out.warnings);
+        assert!(unused.is_empty(), "{unused:?}");
+        out.value
+    }
+
+    /// The warnings of a conversion that succeeds.
+    #[track_caller]
+    fn warnings<T>(
+        text: &str,
+        f: impl FnOnce(&ParamList, &str) -> Result<Fallback<T>, SceneError>,
+    ) -> Vec<String> {
+        convert(text, f)
+            .0
+            .unwrap_or_else(|e| panic!("{e}"))
+            .warnings
+    }
+
+    #[track_caller]
+    fn error<T: std::fmt::Debug>(
+        text: &str,
+        f: impl FnOnce(&ParamList, &str) -> Result<T, SceneError>,
+    ) -> String {
+        err(convert(text, f).0)
+    }
+
+    fn new_film(p: &ParamList, ty: &str) -> Result<Fallback<FilmOptions>, SceneError> {
+        film(p, ty, FilmDesc::default())
+    }
+
+    #[test]
+    fn film_defaults_and_every_parameter() {
+        let f = clean(r#"Film "rgb""#, new_film);
+        assert_eq!((f.film, f.iso), (FilmDesc::default(), 100.0));
+        let f = clean(
+            r#"Film "rgb" "integer xresolution" 64 "integer yresolution" 48
+               "string filename" "out.exr" "float cropwindow" [0 0.5 0.25 1]
+               "integer pixelbounds" [0 10 0 20] "float iso" 200 "float maxcomponentvalue" 10
+               "bool savefp16" true "float diagonal" 50 "string sensor" "cie1931"
+               "float whitebalance" 0"#,
+            new_film,
+        );
+        let expected = FilmDesc {
+            xresolution: 64,
+            yresolution: 48,
+            filename: Some("out.exr".into()),
+            crop_window: [0.0, 0.5, 0.25, 1.0],
+            pixel_bounds: Some([0, 10, 0, 20]),
+            scale: 1.0,
+            max_component_value: 10.0,
+            save_fp16: true,
+        };
+        assert_eq!((f.film, f.iso), (expected, 200.0));
+        // A crop window or pixel bounds a later Film does not give are kept.
+        let earlier = FilmDesc {
+            crop_window: [0.1, 0.2, 0.3, 0.4],
+            ..FilmDesc::default()
+        };
+        let (out, _) = convert(r#"Film "rgb" "integer xresolution" 8"#, |p, ty| {
+            film(p, ty, earlier)
+        });
+        let f = out.unwrap().value.film;
+        assert_eq!((f.xresolution, f.crop_window), (8, [0.1, 0.2, 0.3, 0.4]));
+    }
+
+    #[test]
+    fn film_fallbacks_and_errors() {
+        assert_eq!(
+            warnings(
+                r#"Film "gbuffer" "string sensor" "canon_eos_100d" "float whitebalance" 5000"#,
+                new_film
+            ),
+            [
+                "film \"gbuffer\" is not supported yet; lancer uses an \"rgb\" film",
+                "camera sensors and white balance are not supported yet; lancer uses the CIE 1931 observer without white balance"
+            ]
+        );
+        assert_eq!(
+            error("Film \"rgb\"\n  \"integer xresolution\" 0", new_film),
+            "t.pbrt:2:3: \"integer xresolution\" must be between 1 and 65536, not 0"
+        );
+        assert_eq!(
+            error("Film \"rgb\"\n  \"integer yresolution\" 65537", new_film),
+            "t.pbrt:2:3: \"integer yresolution\" must be between 1 and 65536, not 65537"
+        );
+        assert_eq!(
+            error("Film \"rgb\"\n  \"float cropwindow\" [0 2 0 1]", new_film),
+            "t.pbrt:2:3: \"float cropwindow\" needs 4 numbers in [0, 1]: xmin xmax ymin ymax, with min < max"
+        );
+        assert_eq!(
+            error(
+                "Film \"rgb\"\n  \"integer pixelbounds\" [0 0 0 1]",
+                new_film
+            ),
+            "t.pbrt:2:3: \"integer pixelbounds\" needs 4 numbers: x0 x1 y0 y1, with x0 < x1 and y0 < y1"
+        );
+        assert_eq!(
+            error("Film \"rgb\"\n  \"float iso\" 0", new_film),
+            "t.pbrt:2:3: \"float iso\" must be positive, not 0"
+        );
+        assert_eq!(
+            error("Film \"rgb\"\n  \"float maxcomponentvalue\" -1", new_film),
+            "t.pbrt:2:3: \"float maxcomponentvalue\" must be positive, not -1"
+        );
+    }
+
+    #[test]
+    fn samplers() {
+        let options = |kind, spp, seed| SamplerOptions { kind, spp, seed };
+        assert_eq!(
+            clean(r#"Sampler "zsobol""#, sampler),
+            options(SamplerKind::Sobol, 16, None)
+        );
+        assert_eq!(
+            clean(
+                r#"Sampler "sobol" "integer pixelsamples" 64 "string randomization" "owen" "integer seed" 9"#,
+                sampler
+            ),
+            options(SamplerKind::Sobol, 64, Some(9))
+        );
+        assert_eq!(
+            clean(r#"Sampler "independent" "integer pixelsamples" 4"#, sampler),
+            options(SamplerKind::Independent, 4, None)
+        );
+        let strata = |xsamples, ysamples, jitter| SamplerKind::Stratified {
+            xsamples,
+            ysamples,
+            jitter,
+        };
+        assert_eq!(
+            clean(r#"Sampler "stratified""#, sampler),
+            options(strata(4, 4, true), 16, None)
+        );
+        assert_eq!(
+            clean(
+                r#"Sampler "stratified" "integer xsamples" 2 "integer ysamples" 3 "bool jitter" false"#,
+                sampler
+            ),
+            options(strata(2, 3, false), 6, None)
+        );
+        // pbrt-v4 reads the seed as a 32-bit integer.
+        assert_eq!(
+            clean(r#"Sampler "zsobol" "integer seed" -1"#, sampler).seed,
+            Some(u32::MAX as u64)
+        );
+        assert_eq!(
+            warnings(r#"Sampler "halton" "integer pixelsamples" 8"#, sampler),
+            ["sampler \"halton\" is not supported yet; lancer uses \"zsobol\""]
+        );
+        assert_eq!(
+            warnings(r#"Sampler "magic""#, sampler),
+            ["unknown sampler \"magic\"; lancer uses \"zsobol\""]
+        );
+        assert_eq!(
+            error("Sampler \"zsobol\"\n  \"integer pixelsamples\" 0", sampler),
+            "t.pbrt:2:3: \"integer pixelsamples\" must be between 1 and 16777216, not 0"
+        );
+        assert_eq!(
+            error(
+                "Sampler \"stratified\"\n  \"integer xsamples\" 5000",
+                sampler
+            ),
+            "t.pbrt:2:3: \"integer xsamples\" must be between 1 and 4096, not 5000"
+        );
+    }
+
+    #[test]
+    fn option_seeds() {
+        let seed_of = |p: &ParamList, _: &str| seed(p);
+        assert_eq!(
+            convert(r#"Option "integer seed" 5"#, seed_of).0,
+            Ok(Some(5))
+        );
+        assert_eq!(
+            convert(r#"Option "bool disablepixeljitter" true"#, seed_of).0,
+            Ok(None)
+        );
+        assert_eq!(
+            error("Option\n  \"float seed\" 5", seed_of),
+            "t.pbrt:2:3: parameter 'seed' must be of type integer, not float"
+        );
+    }
+
+    #[test]
+    fn filters() {
+        assert_eq!(
+            clean(r#"PixelFilter "box""#, filter),
+            FilterDesc::Box { radius: [0.5, 0.5] }
+        );
+        assert_eq!(
+            clean(r#"PixelFilter "gaussian""#, filter),
+            FilterDesc::Gaussian {
+                radius: [1.5, 1.5],
+                sigma: 0.5
+            }
+        );
+        assert_eq!(
+            clean(r#"PixelFilter "triangle""#, filter),
+            FilterDesc::Triangle { radius: [2.0, 2.0] }
+        );
+        assert_eq!(
+            clean(r#"PixelFilter "mitchell""#, filter),
+            FilterDesc::Mitchell {
+                radius: [2.0, 2.0],
+                b: 1.0 / 3.0,
+                c: 1.0 / 3.0
+            }
+        );
+        assert_eq!(
+            clean(r#"PixelFilter "sinc""#, filter),
+            FilterDesc::Lanczos {
+                radius: [4.0, 4.0],
+                tau: 3.0
+            }
+        );
+        assert_eq!(
+            clean(
+                r#"PixelFilter "gaussian" "float xradius" 1 "float yradius" 2 "float sigma" 0.25"#,
+                filter
+            ),
+            FilterDesc::Gaussian {
+                radius: [1.0, 2.0],
+                sigma: 0.25
+            }
+        );
+        assert_eq!(
+            clean(
+                r#"PixelFilter "mitchell" "float B" 0.5 "float C" 0.25"#,
+                filter
+            ),
+            FilterDesc::Mitchell {
+                radius: [2.0, 2.0],
+                b: 0.5,
+                c: 0.25
+            }
+        );
+        assert_eq!(
+            clean(r#"PixelFilter "lanczos" "float tau" 2"#, filter),
+            FilterDesc::Lanczos {
+                radius: [4.0, 4.0],
+                tau: 2.0
+            }
+        );
+        let (out, _) = convert(r#"PixelFilter "cubic""#, filter);
+        let f = out.unwrap();
+        assert_eq!(f.value, FilterDesc::default());
+        assert_eq!(
+            f.warnings,
+            ["unknown pixel filter \"cubic\"; lancer uses \"gaussian\""]
+        );
+        assert_eq!(
+            error("PixelFilter \"box\"\n  \"float xradius\" 0", filter),
+            "t.pbrt:2:3: \"float xradius\" must be in (0, 64], not 0"
+        );
+        assert_eq!(
+            error("PixelFilter \"gaussian\"\n  \"float sigma\" -1", filter),
+            "t.pbrt:2:3: \"float sigma\" must be positive, not -1"
+        );
+    }
+
+    #[test]
+    fn integrators() {
+        let path = |max_depth, regularize| IntegratorDesc::Path {
+            max_depth,
+            regularize,
+        };
+        assert_eq!(clean(r#"Integrator "path""#, integrator), path(5, false));
+        assert_eq!(
+            clean(
+                r#"Integrator "volpath" "integer maxdepth" 8 "bool regularize" true "string lightsampler" "power""#,
+                integrator
+            ),
+            path(8, true)
+        );
+        assert_eq!(
+            clean(r#"Integrator "whitted" "integer maxdepth" 3"#, integrator),
+            IntegratorDesc::Whitted { max_depth: 3 }
+        );
+        assert_eq!(
+            clean(r#"Integrator "ambientocclusion""#, integrator),
+            IntegratorDesc::AmbientOcclusion {
+                cos_sample: true,
+                max_distance: f32::INFINITY
+            }
+        );
+        assert_eq!(
+            clean(
+                r#"Integrator "ambientocclusion" "bool cossample" false "float maxdistance" 2"#,
+                integrator
+            ),
+            IntegratorDesc::AmbientOcclusion {
+                cos_sample: false,
+                max_distance: 2.0
+            }
+        );
+        assert_eq!(
+            clean(r#"Integrator "normals""#, integrator),
+            IntegratorDesc::Normals
+        );
+        assert_eq!(
+            clean(r#"Integrator "depth""#, integrator),
+            IntegratorDesc::Depth
+        );
+        let (out, _) = convert(r#"Integrator "bdpt" "integer maxdepth" 7"#, integrator);
+        let f = out.unwrap();
+        assert_eq!(f.value, path(7, false));
+        assert_eq!(
+            f.warnings,
+            ["integrator \"bdpt\" is not supported yet; lancer uses \"path\" with maxdepth 7"]
+        );
+        assert_eq!(
+            warnings(r#"Integrator "photonmap""#, integrator),
+            ["unknown integrator \"photonmap\"; lancer uses \"path\""]
+        );
+        assert_eq!(
+            error("Integrator \"path\"\n  \"integer maxdepth\" -1", integrator),
+            "t.pbrt:2:3: \"integer maxdepth\" must be between 0 and 100000, not -1"
+        );
+    }
+}
