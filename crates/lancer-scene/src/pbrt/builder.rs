@@ -2,11 +2,11 @@
 //! monde"), the graphics state saved and restored by `AttributeBegin`/`AttributeEnd`, named
 //! materials, textures, coordinate systems and objects, and the [`SceneDesc`] they build.
 
-use super::cameras::camera;
+use super::cameras::{camera, frame_window};
 use super::convert::{Fallback, Reader, TextureNames};
 use super::lights::{area_light, light};
 use super::materials::{MaterialWithNames, material};
-use super::options::{film, filter, integrator, sampler, seed};
+use super::options::{film, filter, imaging_ratio, integrator, sampler, seed};
 use super::params::{Param, ParamList};
 use super::parser::{Directive, Located, Parser};
 use super::search_path::SearchPath;
@@ -201,10 +201,11 @@ impl Builder {
         }
     }
 
-    /// The frame of an option directive (`Camera "perspective" …`): it must come before
-    /// `WorldBegin`, and the parameters `body` leaves unread are warned about as parameters of
+    /// The frame of a directive with parameters: an option must come before `WorldBegin`; a
+    /// world directive after it, with the `Attribute` defaults of its category filling in what
+    /// it does not say. The parameters `body` leaves unread are warned about as parameters of
     /// `directive "label"`.
-    fn options_directive(
+    fn with_params(
         &mut self,
         directive: &str,
         label: &str,
@@ -212,26 +213,20 @@ impl Builder {
         loc: &Location,
         body: impl FnOnce(&mut Self, &ParamList) -> Result<(), SceneError>,
     ) -> Result<(), SceneError> {
-        self.require_options(directive, loc)?;
-        body(self, &params)?;
-        self.unused(&params, format!("{directive} \"{label}\""));
-        Ok(())
-    }
-
-    /// The frame of a world directive with parameters: it must come after `WorldBegin`, the
-    /// `Attribute` defaults of `category` fill in what it does not say, and the parameters
-    /// `body` leaves unread are warned about as parameters of `directive "label"`.
-    fn world_directive(
-        &mut self,
-        directive: &str,
-        category: &str,
-        label: &str,
-        params: ParamList,
-        loc: &Location,
-        body: impl FnOnce(&mut Self, &ParamList) -> Result<(), SceneError>,
-    ) -> Result<(), SceneError> {
-        self.require_world(directive, loc)?;
-        let params = self.defaults(category, params);
+        let category = match directive {
+            "Material" | "MakeNamedMaterial" => "material",
+            "Texture" => "texture",
+            "LightSource" | "AreaLightSource" => "light",
+            "Shape" => "shape",
+            _ => "",
+        };
+        let params = if category.is_empty() {
+            self.require_options(directive, loc)?;
+            params
+        } else {
+            self.require_world(directive, loc)?;
+            self.defaults(category, params)
+        };
         body(self, &params)?;
         self.unused(&params, format!("{directive} \"{label}\""));
         Ok(())
@@ -268,6 +263,30 @@ impl Builder {
             D::WorldBegin => self.world_begin(loc),
             // A tuning hint for pbrt's own structures: lancer always builds its BVH.
             D::WorldEnd | D::Accelerator(..) => Ok(()),
+            D::Option(..)
+            | D::ColorSpace(..)
+            | D::Camera(..)
+            | D::Film(..)
+            | D::Sampler(..)
+            | D::PixelFilter(..)
+            | D::Integrator(..) => self.rendering_option(directive, loc),
+            D::MakeNamedMedium(..)
+            | D::MediumInterface(..)
+            | D::Material(..)
+            | D::MakeNamedMaterial(..)
+            | D::NamedMaterial(..)
+            | D::Texture(..)
+            | D::LightSource(..)
+            | D::AreaLightSource(..)
+            | D::Shape(..) => self.world_content(directive, &dir, loc),
+            transform => self.transform(transform, loc),
+        }
+    }
+
+    /// The rendering options, each converted by [`super::options`] or [`super::cameras`].
+    fn rendering_option(&mut self, d: Directive, loc: &Location) -> Result<(), SceneError> {
+        use Directive as D;
+        match d {
             D::Option(params) => {
                 if let Some(s) = seed(&params)? {
                     self.option_seed = Some(s);
@@ -283,76 +302,76 @@ impl Builder {
                 }
                 Ok(())
             }
-            D::Camera(ty, params) => self.options_directive("Camera", &ty, params, loc, |b, p| {
-                let c = camera(p, &ty, b.gs.ctm, loc)?;
-                let c = b.accept(c, loc);
-                b.desc.camera = c.camera;
-                b.frame_aspect = c.frame_aspect;
+            D::Camera(ty, params) => self.with_params("Camera", &ty, params, loc, |b, p| {
+                let c = b.accept(camera(p, &ty, b.gs.ctm, loc)?, loc);
+                (b.desc.camera, b.frame_aspect) = (c.camera, c.frame_aspect);
                 b.named_coords
                     .insert("camera".to_string(), b.gs.ctm.inverse());
                 Ok(())
             }),
-            D::Film(ty, params) => self.options_directive("Film", &ty, params, loc, |b, p| {
-                let f = film(p, &ty, b.desc.film.clone())?;
-                let f = b.accept(f, loc);
+            D::Film(ty, params) => self.with_params("Film", &ty, params, loc, |b, p| {
+                let f = b.accept(film(p, &ty, b.desc.film.clone())?, loc);
                 (b.desc.film, b.iso) = (f.film, f.iso);
                 Ok(())
             }),
-            D::Sampler(ty, params) => {
-                self.options_directive("Sampler", &ty, params, loc, |b, p| {
-                    let s = sampler(p, &ty)?;
-                    let s = b.accept(s, loc);
-                    (b.desc.sampler.kind, b.desc.sampler.spp) = (s.kind, s.spp);
-                    b.sampler_seed = s.seed.or(b.sampler_seed);
-                    Ok(())
-                })
-            }
+            D::Sampler(ty, params) => self.with_params("Sampler", &ty, params, loc, |b, p| {
+                let s = b.accept(sampler(p, &ty)?, loc);
+                (b.desc.sampler.kind, b.desc.sampler.spp) = (s.kind, s.spp);
+                b.sampler_seed = s.seed.or(b.sampler_seed);
+                Ok(())
+            }),
             D::PixelFilter(ty, params) => {
-                self.options_directive("PixelFilter", &ty, params, loc, |b, p| {
-                    let f = filter(p, &ty)?;
-                    b.desc.filter = b.accept(f, loc);
+                self.with_params("PixelFilter", &ty, params, loc, |b, p| {
+                    b.desc.filter = b.accept(filter(p, &ty)?, loc);
                     Ok(())
                 })
             }
             D::Integrator(ty, params) => {
-                self.options_directive("Integrator", &ty, params, loc, |b, p| {
-                    let i = integrator(p, &ty)?;
-                    b.desc.integrator = b.accept(i, loc);
+                self.with_params("Integrator", &ty, params, loc, |b, p| {
+                    b.desc.integrator = b.accept(integrator(p, &ty)?, loc);
                     Ok(())
                 })
             }
+            other => unreachable!("not a rendering option: {other:?}"),
+        }
+    }
+
+    /// What the world holds: materials, textures, lights and shapes, each converted by the file
+    /// of its kind; media, which lancer ignores ([`super::media`]).
+    fn world_content(
+        &mut self,
+        d: Directive,
+        dir: &SearchPath,
+        loc: &Location,
+    ) -> Result<(), SceneError> {
+        use Directive as D;
+        match d {
             D::MakeNamedMedium(..) | D::MediumInterface(..) => {
                 self.warn_once("media", loc, super::media::IGNORED);
                 Ok(())
             }
-            D::Material(ty, params) => {
-                self.world_directive("Material", "material", &ty, params, loc, |b, p| {
-                    let index = b.material(&ty, p, &dir, loc)?;
-                    b.gs.material = MaterialRef::Index(index);
-                    Ok(())
+            D::Material(ty, params) => self.with_params("Material", &ty, params, loc, |b, p| {
+                b.gs.material = MaterialRef::Index(b.material(&ty, p, dir, loc)?);
+                Ok(())
+            }),
+            D::MakeNamedMaterial(name, params) => {
+                self.with_params("MakeNamedMaterial", &name, params, loc, |b, p| {
+                    b.named_material(&name, p, dir, loc)
                 })
             }
-            D::MakeNamedMaterial(name, params) => self.world_directive(
-                "MakeNamedMaterial",
-                "material",
-                &name,
-                params,
-                loc,
-                |b, p| b.named_material(&name, p, &dir, loc),
-            ),
             D::NamedMaterial(name) => {
                 self.require_world("NamedMaterial", loc)?;
                 self.gs.material = MaterialRef::Named(name, loc.clone());
                 Ok(())
             }
             D::Texture(name, ty, class, params) => {
-                self.world_directive("Texture", "texture", &class, params, loc, |b, p| {
-                    b.texture(name, &ty, &class, p, &dir, loc)
+                self.with_params("Texture", &class, params, loc, |b, p| {
+                    b.texture(name, &ty, &class, p, dir, loc)
                 })
             }
             D::LightSource(ty, params) => {
-                self.world_directive("LightSource", "light", &ty, params, loc, |b, p| {
-                    let l = light(&b.reader(p, &dir), &ty, b.gs.ctm, loc)?;
+                self.with_params("LightSource", &ty, params, loc, |b, p| {
+                    let l = light(&b.reader(p, dir), &ty, b.gs.ctm, loc)?;
                     if let Some(l) = b.accept(l, loc) {
                         b.desc.lights.push(l);
                     }
@@ -360,17 +379,15 @@ impl Builder {
                 })
             }
             D::AreaLightSource(ty, params) => {
-                self.world_directive("AreaLightSource", "light", &ty, params, loc, |b, p| {
-                    b.gs.area_light = Some(area_light(p, &ty, &dir, loc)?);
+                self.with_params("AreaLightSource", &ty, params, loc, |b, p| {
+                    b.gs.area_light = Some(area_light(p, &ty, dir, loc)?);
                     Ok(())
                 })
             }
             D::Shape(ty, params) => {
-                self.world_directive("Shape", "shape", &ty, params, loc, |b, p| {
-                    b.shape(&ty, p, &dir, loc)
-                })
+                self.with_params("Shape", &ty, params, loc, |b, p| b.shape(&ty, p, dir, loc))
             }
-            transform => self.transform(transform, loc),
+            other => unreachable!("not a world directive: {other:?}"),
         }
     }
 
@@ -630,15 +647,15 @@ impl Builder {
             "float" => {
                 let converted = float_texture(&self.reader(params, dir), class, loc)?;
                 let t = self.accept(converted, loc);
-                let index = self.desc.float_textures.len() as u32;
                 self.desc.float_textures.push(t);
+                let index = self.desc.float_textures.len() as u32 - 1;
                 self.textures.floats.insert(name, index);
             }
             "spectrum" | "color" | "rgb" => {
                 let converted = spectrum_texture(&self.reader(params, dir), class, loc)?;
                 let t = self.accept(converted, loc);
-                let index = self.desc.spectrum_textures.len() as u32;
                 self.desc.spectrum_textures.push(t);
+                let index = self.desc.spectrum_textures.len() as u32 - 1;
                 self.textures.spectra.insert(name, index);
             }
             _ => {
@@ -753,18 +770,9 @@ impl Builder {
                 object_to_world: ctm,
             });
         }
-        if self.desc.camera.screen_window.is_none()
-            && let Some(frame) = self.frame_aspect
-        {
-            self.desc.camera.screen_window = Some(if frame > 1.0 {
-                [-frame, frame, -1.0, 1.0]
-            } else {
-                [-1.0, 1.0, -1.0 / frame, 1.0 / frame]
-            });
-        }
-        // pbrt-v4's imaging ratio: exposure time × ISO / 100.
-        let [open, close] = self.desc.camera.shutter;
-        self.desc.film.scale = (close - open) * self.iso / 100.0;
+        let camera = &mut self.desc.camera;
+        camera.screen_window = camera.screen_window.or(self.frame_aspect.map(frame_window));
+        self.desc.film.scale = imaging_ratio(camera.shutter, self.iso);
         self.desc.sampler.seed = self.sampler_seed.or(self.option_seed).unwrap_or(0);
         Ok((self.desc, self.warnings))
     }

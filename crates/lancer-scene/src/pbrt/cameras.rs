@@ -78,6 +78,17 @@ pub fn camera(
     })
 }
 
+/// The screen window of a frame of aspect ratio `frame` (width / height) when the scene gives
+/// none: [−frame, frame] × [−1, 1] for a wide frame, [−1, 1] × [−1/frame, 1/frame] for a tall
+/// one, so that the shorter side spans [−1, 1] (and the field of view).
+pub fn frame_window(frame: f32) -> [f32; 4] {
+    if frame > 1.0 {
+        [-frame, frame, -1.0, 1.0]
+    } else {
+        [-1.0, 1.0, -1.0 / frame, 1.0 / frame]
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -168,6 +179,13 @@ mod tests {
             ]
         );
         assert_eq!(unused.len(), 1);
+    }
+
+    #[test]
+    fn the_shorter_side_of_the_frame_spans_the_field_of_view() {
+        assert_eq!(frame_window(2.0), [-2.0, 2.0, -1.0, 1.0]);
+        assert_eq!(frame_window(0.5), [-1.0, 1.0, -2.0, 2.0]);
+        assert_eq!(frame_window(1.0), [-1.0, 1.0, -1.0, 1.0]);
     }
 
     #[test]

@@ -71,6 +71,13 @@ pub fn film(
     })
 }
 
+/// pbrt-v4's imaging ratio, the film's scale: exposure time × ISO / 100, the exposure time
+/// being the camera's `shutter` [open, close].
+pub fn imaging_ratio(shutter: [f32; 2], iso: f32) -> f32 {
+    let [open, close] = shutter;
+    (close - open) * iso / 100.0
+}
+
 /// A `seed` (of `Option` or `Sampler`), if given; pbrt-v4 reads it as a 32-bit integer.
 pub fn seed(params: &ParamList) -> Result<Option<u64>, SceneError> {
     if !params.has("seed") {
@@ -342,6 +349,12 @@ mod tests {
             error("Film \"rgb\"\n  \"float maxcomponentvalue\" -1", new_film),
             "t.pbrt:2:3: \"float maxcomponentvalue\" must be positive, not -1"
         );
+    }
+
+    #[test]
+    fn the_imaging_ratio_is_exposure_time_times_iso_over_100() {
+        assert_eq!(imaging_ratio([0.0, 1.0], 100.0), 1.0);
+        assert_eq!(imaging_ratio([0.25, 0.75], 400.0), 2.0);
     }
 
     #[test]
