@@ -288,3 +288,86 @@ pub mod testing {
         r.expect_err("an error").to_string()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::testing::{err, typed, with_reader};
+    use super::*;
+    use std::path::Path;
+
+    #[test]
+    fn a_fallback_always_has_a_value() {
+        let done = Fallback::done(1);
+        assert_eq!((done.value, done.warnings.len()), (1, 0));
+        let instead = Fallback::instead(2, "used 2").map(|v| v * 10);
+        assert_eq!(
+            instead,
+            Fallback {
+                value: 20,
+                warnings: vec!["used 2".into()]
+            }
+        );
+        // Notes fold into one warning, or none.
+        let noted = Fallback::noted(3, vec!["a".into(), "b".into()]);
+        assert_eq!(noted.warnings, ["a; b"]);
+        assert!(Fallback::noted(3, Vec::new()).warnings.is_empty());
+    }
+
+    #[test]
+    fn errors_get_the_directive_place_when_they_have_none() {
+        let (_, _, loc) = typed("\n  Shape \"sphere\"");
+        assert_eq!(
+            locate(SceneError::general("bad"), &loc).to_string(),
+            "t.pbrt:2:3: bad"
+        );
+        let own = SceneError::at(
+            Location {
+                line: 9,
+                ..loc.clone()
+            },
+            "bad",
+        );
+        assert_eq!(locate(own, &loc).to_string(), "t.pbrt:9:3: bad");
+    }
+
+    #[test]
+    fn texture_names_are_looked_up_by_kind() {
+        let (_, _, loc) = typed("Shape \"sphere\"");
+        let mut names = TextureNames::default();
+        names.floats.insert("f".into(), 1);
+        names.spectra.insert("s".into(), 2);
+        assert_eq!(names.float("f", &loc), Ok(FloatTex::Tex(1)));
+        assert_eq!(names.spectrum("s", &loc), Ok(SpectrumTex::Tex(2)));
+        assert_eq!(
+            err(names.float("s", &loc)),
+            "t.pbrt:1:1: no float texture named \"s\" (there is a spectrum texture of that name)"
+        );
+        assert_eq!(
+            err(names.spectrum("x", &loc)),
+            "t.pbrt:1:1: no spectrum texture named \"x\""
+        );
+    }
+
+    #[test]
+    fn files_resolve_against_the_scene_folder_and_images_get_their_encoding() {
+        let dir = Path::new("scenes");
+        let (_, params, _) =
+            typed(r#"Texture "t" "spectrum" "imagemap" "string filename" "a.png""#);
+        let (path, encoding) = with_reader(&params, dir, |r| r.image_file("x")).unwrap();
+        assert_eq!((path, encoding), (dir.join("a.png"), Encoding::Srgb));
+        let (_, params, _) = typed(
+            r#"Texture "t" "spectrum" "imagemap" "string filename" "a.png" "string encoding" "linear""#,
+        );
+        let (_, encoding) = with_reader(&params, dir, |r| r.image_file("x")).unwrap();
+        assert_eq!(encoding, Encoding::Linear);
+        let (_, params, _) =
+            typed(r#"Texture "t" "spectrum" "imagemap" "string filename" "a.exr""#);
+        let (_, encoding) = with_reader(&params, dir, |r| r.image_file("x")).unwrap();
+        assert_eq!(encoding, Encoding::Linear);
+        let (_, params, _) = typed(r#"Shape "plymesh""#);
+        assert_eq!(
+            err(with_reader(&params, dir, |r| r.file("a \"plymesh\" needs a file"))),
+            "a \"plymesh\" needs a file, \"string filename\""
+        );
+    }
+}
