@@ -15,7 +15,7 @@
 //! since lancer's area lights are uniform) makes the shape an area light. `alphaMode` MASK
 //! becomes a 0/1 alpha cut-out at `alphaCutoff`, BLEND lancer's stochastic alpha.
 
-use super::GltfLoader;
+use super::loader::{GltfLoader, MaterialInfo};
 use crate::image_read::{DecodedImage, Encoding, decode_image};
 use ::gltf::material::AlphaMode;
 use ::gltf::texture::{MagFilter, WrappingMode};
@@ -32,19 +32,6 @@ use std::sync::Arc;
 pub const DIELECTRIC_ETA: f32 = 1.5;
 /// Thickness of the coating of `coateddiffuse` (pbrt-v4's default).
 const COAT_THICKNESS: f32 = 0.01;
-
-/// What a glTF material became.
-#[derive(Clone, Copy, Debug)]
-pub struct MaterialInfo {
-    /// Index into the scene's materials.
-    pub material: u32,
-    /// Alpha cut-out, when the material is not opaque.
-    pub alpha: Option<FloatTex>,
-    /// Emitted radiance, when the material glows.
-    pub emission: Option<Rgb>,
-    /// glTF `doubleSided`: emission from both sides.
-    pub double_sided: bool,
-}
 
 /// How a texture is sampled.
 struct Sampling {

@@ -45,25 +45,23 @@
 
 pub mod data;
 pub mod draco;
+pub mod loader;
 pub mod material;
 
 use crate::LoadedScene;
-use crate::error::{Location, SceneError, Warning};
-use crate::image_read::DecodedImage;
+use crate::error::SceneError;
 use crate::mesh_scene::{default_lights, defaults, framing_camera};
 use ::gltf::Document;
 use ::gltf::mesh::{Mode, Semantic};
-use lancer::material::Material;
 use lancer::math::{Mat4, PackedVec3, Rgb, Transform, Vec2, Vec3, Vec4};
 use lancer::scene::desc::{
     AreaLightDesc, CameraDesc, FilmDesc, Geometry, Integrator, LightDesc, Projection, SceneDesc,
     ShapeDesc,
 };
 use lancer::shape::TriangleMesh;
-use lancer::texture::{FloatTexture, SpectrumTexture};
-use material::MaterialInfo;
+use loader::GltfLoader;
 use std::collections::{HashMap, HashSet};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 
 /// Extensions lancer reads (a file requiring any other is refused).
@@ -197,41 +195,7 @@ fn validated(root: ::gltf::json::Root) -> Result<Document, ::gltf::Error> {
     }
 }
 
-/// The state of one load: the document, its bytes, and the scene as it is built.
-pub(crate) struct GltfLoader<'a> {
-    name: String,
-    dir: PathBuf,
-    doc: &'a Document,
-    buffers: Vec<Vec<u8>>,
-    /// Decoded images by (image index, sRGB?).
-    images: HashMap<(usize, bool), Arc<DecodedImage>>,
-    material_cache: HashMap<Option<usize>, MaterialInfo>,
-    materials: Vec<Material>,
-    float_textures: Vec<FloatTexture>,
-    spectrum_textures: Vec<SpectrumTexture>,
-    warnings: Vec<Warning>,
-    /// Triangle meshes by (mesh, primitive); `None` for primitives that were skipped.
-    meshes: HashMap<(usize, usize), Option<Arc<TriangleMesh>>>,
-    shapes: Vec<ShapeDesc>,
-    lights: Vec<LightDesc>,
-    camera: Option<(CameraDesc, FilmDesc)>,
-    /// World-space bounds of every vertex placed.
-    lo: Vec3,
-    hi: Vec3,
-}
-
 impl GltfLoader<'_> {
-    fn warn(&mut self, message: String) {
-        self.warnings.push(Warning {
-            location: Location {
-                file: Arc::from(self.name.as_str()),
-                line: 1,
-                col: 1,
-            },
-            message,
-        });
-    }
-
     /// Walks the scene's node trees depth first, placing meshes, the first camera and lights.
     fn load(&mut self) -> Result<(), String> {
         let doc = self.doc;

@@ -2,20 +2,21 @@
 //! monde"), the graphics state saved and restored by `AttributeBegin`/`AttributeEnd`, named
 //! materials, textures, coordinate systems and objects, and the [`SceneDesc`] they build.
 
-use super::convert::{Converted, MAX_RESOLUTION, Reader, TextureNames};
+use super::cameras::{camera, frame_window};
+use super::convert::{Fallback, Reader, TextureNames};
+use super::lights::{area_light, light};
+use super::materials::{MaterialWithNames, material};
+use super::options::{film, filter, imaging_ratio, integrator, sampler, seed};
 use super::params::{Param, ParamList};
-use super::parser::SearchPath;
 use super::parser::{Directive, Located, Parser};
+use super::search_path::SearchPath;
+use super::shapes::{ShapeGeometry, shape};
+use super::textures::{float_texture, spectrum_texture};
 use crate::error::{Location, SceneError, Warning};
-use crate::image_read::{Encoding, ImageCache};
-use lancer::light::EnvMapping;
+use crate::image_read::ImageCache;
 use lancer::material::Material;
-use lancer::math::{Mat4, Rgb, Transform, Vec3};
-use lancer::scene::desc::{
-    AreaLightDesc, CameraDesc, InstanceDesc, LightDesc, ObjectDesc, Projection, SceneDesc,
-    ShapeDesc,
-};
-use lancer::spectrum::SpectrumKind;
+use lancer::math::{Mat4, Transform, Vec3};
+use lancer::scene::desc::{AreaLightDesc, InstanceDesc, ObjectDesc, SceneDesc, ShapeDesc};
 use std::collections::{HashMap, HashSet};
 
 /// The material a shape gets: one already in the list, or a name resolved at the end (pbrt-v4
@@ -90,14 +91,6 @@ pub struct Builder {
     sampler_seed: Option<u64>,
 }
 
-/// Gives an error without a place the place of the directive it came from.
-fn locate(mut e: SceneError, loc: &Location) -> SceneError {
-    if e.location.is_none() {
-        e.location = Some(loc.clone());
-    }
-    e
-}
-
 impl Builder {
     fn new() -> Builder {
         let desc = SceneDesc {
@@ -147,16 +140,12 @@ impl Builder {
         }
     }
 
-    /// What a conversion gives, after warning about an unsupported one; `None` when lancer
-    /// skips it.
-    fn accept<T>(&mut self, converted: Converted<T>, loc: &Location) -> Option<T> {
-        match converted {
-            Converted::Done(t) => Some(t),
-            Converted::Unsupported(warning, t) => {
-                self.warn(loc, warning);
-                t
-            }
+    /// What a conversion gives, after passing on its warnings.
+    fn accept<T>(&mut self, converted: Fallback<T>, loc: &Location) -> T {
+        for w in converted.warnings {
+            self.warn(loc, w);
         }
+        converted.value
     }
 
     fn unused(&mut self, params: &ParamList, what: String) {
@@ -212,22 +201,34 @@ impl Builder {
         }
     }
 
-    /// The frame of a world directive with parameters: it must come after `WorldBegin`, the
-    /// `Attribute` defaults of `category` fill in what it does not say, and the parameters
-    /// `body` leaves unread are warned about as parameters of `what`.
-    fn world_directive(
+    /// The frame of a directive with parameters: an option must come before `WorldBegin`; a
+    /// world directive after it, with the `Attribute` defaults of its category filling in what
+    /// it does not say. The parameters `body` leaves unread are warned about as parameters of
+    /// `directive "label"`.
+    fn with_params(
         &mut self,
         directive: &str,
-        category: &str,
+        label: &str,
         params: ParamList,
         loc: &Location,
-        what: String,
         body: impl FnOnce(&mut Self, &ParamList) -> Result<(), SceneError>,
     ) -> Result<(), SceneError> {
-        self.require_world(directive, loc)?;
-        let params = self.defaults(category, params);
+        let category = match directive {
+            "Material" | "MakeNamedMaterial" => "material",
+            "Texture" => "texture",
+            "LightSource" | "AreaLightSource" => "light",
+            "Shape" => "shape",
+            _ => "",
+        };
+        let params = if category.is_empty() {
+            self.require_options(directive, loc)?;
+            params
+        } else {
+            self.require_world(directive, loc)?;
+            self.defaults(category, params)
+        };
         body(self, &params)?;
-        self.unused(&params, what);
+        self.unused(&params, format!("{directive} \"{label}\""));
         Ok(())
     }
 
@@ -240,6 +241,8 @@ impl Builder {
         }
     }
 
+    /// One directive: the transformation and block directives change the graphics state,
+    /// the others convert their parameters through the file of their kind.
     fn directive(&mut self, d: Located) -> Result<(), SceneError> {
         let Located {
             directive,
@@ -247,24 +250,171 @@ impl Builder {
             dir,
         } = d;
         use Directive as D;
+        let loc = &loc;
         match directive {
+            D::AttributeBegin => self.begin_block(Block::Attribute, loc),
+            D::AttributeEnd => self.end_block(Block::Attribute, loc),
+            D::TransformBegin => self.begin_block(Block::Transform, loc),
+            D::TransformEnd => self.end_block(Block::Transform, loc),
+            D::ObjectBegin(name) => self.object_begin(name, loc),
+            D::ObjectEnd => self.end_block(Block::Object, loc),
+            D::ObjectInstance(name) => self.object_instance(name, loc),
+            D::Attribute(target, params) => self.attribute(target, params, loc),
+            D::WorldBegin => self.world_begin(loc),
+            // A tuning hint for pbrt's own structures: lancer always builds its BVH.
+            D::WorldEnd | D::Accelerator(..) => Ok(()),
+            D::Option(..)
+            | D::ColorSpace(..)
+            | D::Camera(..)
+            | D::Film(..)
+            | D::Sampler(..)
+            | D::PixelFilter(..)
+            | D::Integrator(..) => self.rendering_option(directive, loc),
+            D::MakeNamedMedium(..)
+            | D::MediumInterface(..)
+            | D::Material(..)
+            | D::MakeNamedMaterial(..)
+            | D::NamedMaterial(..)
+            | D::Texture(..)
+            | D::LightSource(..)
+            | D::AreaLightSource(..)
+            | D::Shape(..) => self.world_content(directive, &dir, loc),
+            transform => self.transform(transform, loc),
+        }
+    }
+
+    /// The rendering options, each converted by [`super::options`] or [`super::cameras`].
+    fn rendering_option(&mut self, d: Directive, loc: &Location) -> Result<(), SceneError> {
+        use Directive as D;
+        match d {
+            D::Option(params) => {
+                if let Some(s) = seed(&params)? {
+                    self.option_seed = Some(s);
+                }
+                self.unused(&params, "Option".to_string());
+                Ok(())
+            }
+            D::ColorSpace(name) => {
+                if name != "srgb" {
+                    let m =
+                        format!("colour space \"{name}\" is not supported yet; lancer uses srgb");
+                    self.warn(loc, m);
+                }
+                Ok(())
+            }
+            D::Camera(ty, params) => self.with_params("Camera", &ty, params, loc, |b, p| {
+                let c = b.accept(camera(p, &ty, b.gs.ctm, loc)?, loc);
+                (b.desc.camera, b.frame_aspect) = (c.camera, c.frame_aspect);
+                b.named_coords
+                    .insert("camera".to_string(), b.gs.ctm.inverse());
+                Ok(())
+            }),
+            D::Film(ty, params) => self.with_params("Film", &ty, params, loc, |b, p| {
+                let f = b.accept(film(p, &ty, b.desc.film.clone())?, loc);
+                (b.desc.film, b.iso) = (f.film, f.iso);
+                Ok(())
+            }),
+            D::Sampler(ty, params) => self.with_params("Sampler", &ty, params, loc, |b, p| {
+                let s = b.accept(sampler(p, &ty)?, loc);
+                (b.desc.sampler.kind, b.desc.sampler.spp) = (s.kind, s.spp);
+                b.sampler_seed = s.seed.or(b.sampler_seed);
+                Ok(())
+            }),
+            D::PixelFilter(ty, params) => {
+                self.with_params("PixelFilter", &ty, params, loc, |b, p| {
+                    b.desc.filter = b.accept(filter(p, &ty)?, loc);
+                    Ok(())
+                })
+            }
+            D::Integrator(ty, params) => {
+                self.with_params("Integrator", &ty, params, loc, |b, p| {
+                    b.desc.integrator = b.accept(integrator(p, &ty)?, loc);
+                    Ok(())
+                })
+            }
+            other => unreachable!("not a rendering option: {other:?}"),
+        }
+    }
+
+    /// What the world holds: materials, textures, lights and shapes, each converted by the file
+    /// of its kind; media, which lancer ignores ([`super::media`]).
+    fn world_content(
+        &mut self,
+        d: Directive,
+        dir: &SearchPath,
+        loc: &Location,
+    ) -> Result<(), SceneError> {
+        use Directive as D;
+        match d {
+            D::MakeNamedMedium(..) | D::MediumInterface(..) => {
+                self.warn_once("media", loc, super::media::IGNORED);
+                Ok(())
+            }
+            D::Material(ty, params) => self.with_params("Material", &ty, params, loc, |b, p| {
+                b.gs.material = MaterialRef::Index(b.material(&ty, p, dir, loc)?);
+                Ok(())
+            }),
+            D::MakeNamedMaterial(name, params) => {
+                self.with_params("MakeNamedMaterial", &name, params, loc, |b, p| {
+                    b.named_material(&name, p, dir, loc)
+                })
+            }
+            D::NamedMaterial(name) => {
+                self.require_world("NamedMaterial", loc)?;
+                self.gs.material = MaterialRef::Named(name, loc.clone());
+                Ok(())
+            }
+            D::Texture(name, ty, class, params) => {
+                self.with_params("Texture", &class, params, loc, |b, p| {
+                    b.texture(name, &ty, &class, p, dir, loc)
+                })
+            }
+            D::LightSource(ty, params) => {
+                self.with_params("LightSource", &ty, params, loc, |b, p| {
+                    let l = light(&b.reader(p, dir), &ty, b.gs.ctm, loc)?;
+                    if let Some(l) = b.accept(l, loc) {
+                        b.desc.lights.push(l);
+                    }
+                    Ok(())
+                })
+            }
+            D::AreaLightSource(ty, params) => {
+                self.with_params("AreaLightSource", &ty, params, loc, |b, p| {
+                    b.gs.area_light = Some(area_light(p, &ty, dir, loc)?);
+                    Ok(())
+                })
+            }
+            D::Shape(ty, params) => {
+                self.with_params("Shape", &ty, params, loc, |b, p| b.shape(&ty, p, dir, loc))
+            }
+            other => unreachable!("not a world directive: {other:?}"),
+        }
+    }
+
+    /// The directives that change the current transformation (and the orientation).
+    fn transform(&mut self, d: Directive, loc: &Location) -> Result<(), SceneError> {
+        use Directive as D;
+        let motion = "motion blur is not supported yet: lancer uses the transformations at the shutter's opening";
+        match d {
             D::Identity => {
                 if self.start_active {
                     self.gs.ctm = Transform::IDENTITY;
                 }
             }
-            D::Translate([x, y, z]) => {
-                self.concat(Some(Transform::translate(Vec3::new(x, y, z))), "Translate", &loc)?
-            }
+            D::Translate([x, y, z]) => self.concat(
+                Some(Transform::translate(Vec3::new(x, y, z))),
+                "Translate",
+                loc,
+            )?,
             D::Scale([x, y, z]) => {
-                self.concat(Transform::scale(Vec3::new(x, y, z)), "Scale", &loc)?
+                self.concat(Transform::scale(Vec3::new(x, y, z)), "Scale", loc)?
             }
             D::Rotate([a, x, y, z]) => {
                 let r = Transform::rotate(a, Vec3::new(x, y, z));
                 if r.is_none() {
-                    return Err(SceneError::at(loc, "Rotate about a zero axis"));
+                    return Err(SceneError::at(loc.clone(), "Rotate about a zero axis"));
                 }
-                self.concat(r, "Rotate", &loc)?
+                self.concat(r, "Rotate", loc)?
             }
             D::LookAt(v) => {
                 let t = Transform::look_at(
@@ -274,12 +424,12 @@ impl Builder {
                 );
                 if t.is_none() {
                     return Err(SceneError::at(
-                        loc,
+                        loc.clone(),
                         "LookAt: the eye and the point looked at coincide, or 'up' is parallel \
                          to the viewing direction",
                     ));
                 }
-                self.concat(t, "LookAt", &loc)?
+                self.concat(t, "LookAt", loc)?
             }
             D::Transform(m) => {
                 // pbrt's 16 numbers are the matrix column by column.
@@ -287,11 +437,11 @@ impl Builder {
                 if self.start_active {
                     self.gs.ctm = Transform::IDENTITY;
                 }
-                self.concat(t, "Transform", &loc)?
+                self.concat(t, "Transform", loc)?
             }
             D::ConcatTransform(m) => {
                 let t = Transform::from_matrix(Mat4::from_cols_array(&m));
-                self.concat(t, "ConcatTransform", &loc)?
+                self.concat(t, "ConcatTransform", loc)?
             }
             D::CoordinateSystem(name) => {
                 self.named_coords.insert(name, self.gs.ctm);
@@ -299,215 +449,117 @@ impl Builder {
             D::CoordSysTransform(name) => match self.named_coords.get(&name) {
                 Some(t) => self.gs.ctm = *t,
                 None => self.warn(
-                    &loc,
+                    loc,
                     format!("no coordinate system named \"{name}\"; CoordSysTransform ignored"),
                 ),
             },
             D::ActiveTransform(which) => {
                 self.start_active = which != "EndTime";
                 if which != "StartTime" {
-                    self.warn_once(
-                        "motion",
-                        &loc,
-                        "motion blur is not supported yet: lancer uses the transformations at the shutter's opening",
-                    );
+                    self.warn_once("motion", loc, motion);
                 }
             }
-            D::TransformTimes(_) => self.warn_once(
-                "motion",
-                &loc,
-                "motion blur is not supported yet: lancer uses the transformations at the shutter's opening",
-            ),
+            D::TransformTimes(_) => self.warn_once("motion", loc, motion),
             D::ReverseOrientation => self.gs.reverse_orientation ^= true,
-            D::AttributeBegin => self.begin_block(Block::Attribute, loc)?,
-            D::TransformBegin => self.begin_block(Block::Transform, loc)?,
-            D::AttributeEnd => self.end_block(Block::Attribute, &loc)?,
-            D::TransformEnd => self.end_block(Block::Transform, &loc)?,
-            D::Attribute(target, params) => {
-                if !matches!(
-                    target.as_str(),
-                    "shape" | "light" | "material" | "medium" | "texture"
-                ) {
-                    return Err(SceneError::at(
-                        loc,
-                        format!(
-                            "Attribute target \"{target}\" is unknown (expected shape, light, \
-                             material, medium or texture)"
-                        ),
-                    ));
-                }
-                self.gs
-                    .defaults
-                    .entry(target)
-                    .or_default()
-                    .extend(params.iter().cloned());
-            }
-            D::WorldBegin => {
-                self.require_options("WorldBegin", &loc)?;
-                if let Some((b, _, open)) = self.stack.last() {
-                    return Err(SceneError::at(
-                        loc,
-                        format!("WorldBegin inside the {} at line {}", b.names().0, open.line),
-                    ));
-                }
-                self.in_world = true;
-                self.gs.ctm = Transform::IDENTITY;
-                self.named_coords
-                    .insert("world".to_string(), Transform::IDENTITY);
-            }
-            D::WorldEnd => {}
-            D::Option(params) => {
-                if params.has("seed") {
-                    self.option_seed = Some(params.int("seed", 0)? as u32 as u64);
-                }
-                self.unused(&params, "Option".to_string());
-            }
-            D::ColorSpace(name) => {
-                if name != "srgb" {
-                    self.warn(
-                        &loc,
-                        format!("colour space \"{name}\" is not supported yet; lancer uses srgb"),
-                    );
-                }
-            }
-            D::Camera(ty, params) => {
-                self.require_options("Camera", &loc)?;
-                self.camera(&ty, &params, &loc)?;
-                self.unused(&params, format!("Camera \"{ty}\""));
-            }
-            D::Film(ty, params) => {
-                self.require_options("Film", &loc)?;
-                self.film(&ty, &params, &loc)?;
-                self.unused(&params, format!("Film \"{ty}\""));
-            }
-            D::Sampler(ty, params) => {
-                self.require_options("Sampler", &loc)?;
-                let (kind, spp) = self.accept(self.reader(&params, &dir).sampler(&ty)?, &loc).expect("samplers always fall back");
-                self.desc.sampler.kind = kind;
-                self.desc.sampler.spp = spp;
-                if params.has("seed") {
-                    self.sampler_seed = Some(params.int("seed", 0)? as u32 as u64);
-                }
-                self.unused(&params, format!("Sampler \"{ty}\""));
-            }
-            D::PixelFilter(ty, params) => {
-                self.require_options("PixelFilter", &loc)?;
-                self.desc.filter = self.accept(self.reader(&params, &dir).filter(&ty)?, &loc).expect("filters always fall back");
-                self.unused(&params, format!("PixelFilter \"{ty}\""));
-            }
-            D::Integrator(ty, params) => {
-                self.require_options("Integrator", &loc)?;
-                self.desc.integrator = self.accept(self.reader(&params, &dir).integrator(&ty)?, &loc).expect("integrators always fall back");
-                self.unused(&params, format!("Integrator \"{ty}\""));
-            }
-            D::Accelerator(..) => {
-                // A tuning hint for pbrt's own structures: lancer always builds its BVH.
-            }
-            D::MakeNamedMedium(..) | D::MediumInterface(..) => self.warn_once(
-                "media",
-                &loc,
-                "participating media are not supported yet; media are ignored",
-            ),
-            D::Material(ty, params) => {
-                self.require_world("Material", &loc)?;
-                let params = self.defaults("material", params);
-                let index = self.material(&ty, &params, &dir, &loc)?;
-                self.gs.material = MaterialRef::Index(index);
-                self.unused(&params, format!("Material \"{ty}\""));
-            }
-            D::MakeNamedMaterial(name, params) => {
-                self.require_world("MakeNamedMaterial", &loc)?;
-                let params = self.defaults("material", params);
-                let Some(ty) = params.string("type")? else {
-                    return Err(SceneError::at(
-                        loc,
-                        format!("MakeNamedMaterial \"{name}\" needs a \"string type\""),
-                    ));
-                };
-                let index = self.material(&ty, &params, &dir, &loc)?;
-                if self.named_materials.insert(name.clone(), index).is_some() {
-                    self.warn(&loc, format!("named material \"{name}\" redefined"));
-                }
-                self.unused(&params, format!("MakeNamedMaterial \"{name}\""));
-            }
-            D::NamedMaterial(name) => {
-                self.require_world("NamedMaterial", &loc)?;
-                self.gs.material = MaterialRef::Named(name, loc);
-            }
-            D::Texture(name, ty, class, params) => {
-                let what = format!("Texture \"{class}\"");
-                self.world_directive("Texture", "texture", params, &loc, what, |b, p| {
-                    b.texture(name, &ty, &class, p, &dir, &loc)
-                })?;
-            }
-            D::LightSource(ty, params) => {
-                let what = format!("LightSource \"{ty}\"");
-                self.world_directive("LightSource", "light", params, &loc, what, |b, p| {
-                    b.light(&ty, p, &dir, &loc)
-                })?;
-            }
-            D::AreaLightSource(ty, params) => {
-                let what = format!("AreaLightSource \"{ty}\"");
-                self.world_directive("AreaLightSource", "light", params, &loc, what, |b, p| {
-                    b.area_light(&ty, p, &dir, &loc)
-                })?;
-            }
-            D::Shape(ty, params) => {
-                let what = format!("Shape \"{ty}\"");
-                self.world_directive("Shape", "shape", params, &loc, what, |b, p| {
-                    b.shape(&ty, p, &dir, &loc)
-                })?;
-            }
-            D::ObjectBegin(name) => {
-                self.require_world("ObjectBegin", &loc)?;
-                if let Some(open) = self.current_object {
-                    let open = &self.desc.objects[open as usize].name;
-                    return Err(SceneError::at(
-                        loc,
-                        format!("ObjectBegin \"{name}\" inside the definition of \"{open}\""),
-                    ));
-                }
-                // pbrt-v4's ObjectBegin also begins an attribute block.
-                self.stack.push((Block::Object, self.gs.clone(), loc.clone()));
-                let index = self.desc.objects.len() as u32;
-                self.desc.objects.push(ObjectDesc {
-                    name: name.clone(),
-                    shapes: Vec::new(),
-                });
-                if self.object_names.insert(name.clone(), index).is_some() {
-                    self.warn(&loc, format!("object \"{name}\" redefined"));
-                }
-                self.current_object = Some(index);
-            }
-            D::ObjectEnd => {
-                self.end_block(Block::Object, &loc)?;
-                self.current_object = None;
-            }
-            D::ObjectInstance(name) => {
-                self.require_world("ObjectInstance", &loc)?;
-                if self.current_object.is_some() {
-                    return Err(SceneError::at(
-                        loc,
-                        "ObjectInstance inside an object definition",
-                    ));
-                }
-                self.pending_instances.push((name, self.gs.ctm, loc));
-            }
+            other => unreachable!("not a transformation directive: {other:?}"),
         }
+        Ok(())
+    }
+
+    /// `Attribute "target" …`: defaults for the parameters of later directives of `target`.
+    fn attribute(
+        &mut self,
+        target: String,
+        params: ParamList,
+        loc: &Location,
+    ) -> Result<(), SceneError> {
+        if !matches!(
+            target.as_str(),
+            "shape" | "light" | "material" | "medium" | "texture"
+        ) {
+            return Err(SceneError::at(
+                loc.clone(),
+                format!(
+                    "Attribute target \"{target}\" is unknown (expected shape, light, \
+                     material, medium or texture)"
+                ),
+            ));
+        }
+        self.gs
+            .defaults
+            .entry(target)
+            .or_default()
+            .extend(params.iter().cloned());
+        Ok(())
+    }
+
+    fn world_begin(&mut self, loc: &Location) -> Result<(), SceneError> {
+        self.require_options("WorldBegin", loc)?;
+        if let Some((b, _, open)) = self.stack.last() {
+            return Err(SceneError::at(
+                loc.clone(),
+                format!(
+                    "WorldBegin inside the {} at line {}",
+                    b.names().0,
+                    open.line
+                ),
+            ));
+        }
+        self.in_world = true;
+        self.gs.ctm = Transform::IDENTITY;
+        self.named_coords
+            .insert("world".to_string(), Transform::IDENTITY);
+        Ok(())
+    }
+
+    /// `ObjectBegin`: also begins an attribute block, as in pbrt-v4.
+    fn object_begin(&mut self, name: String, loc: &Location) -> Result<(), SceneError> {
+        self.require_world("ObjectBegin", loc)?;
+        if let Some(open) = self.current_object {
+            let open = &self.desc.objects[open as usize].name;
+            return Err(SceneError::at(
+                loc.clone(),
+                format!("ObjectBegin \"{name}\" inside the definition of \"{open}\""),
+            ));
+        }
+        self.stack
+            .push((Block::Object, self.gs.clone(), loc.clone()));
+        let index = self.desc.objects.len() as u32;
+        self.desc.objects.push(ObjectDesc {
+            name: name.clone(),
+            shapes: Vec::new(),
+        });
+        if self.object_names.insert(name.clone(), index).is_some() {
+            self.warn(loc, format!("object \"{name}\" redefined"));
+        }
+        self.current_object = Some(index);
+        Ok(())
+    }
+
+    fn object_instance(&mut self, name: String, loc: &Location) -> Result<(), SceneError> {
+        self.require_world("ObjectInstance", loc)?;
+        if self.current_object.is_some() {
+            return Err(SceneError::at(
+                loc.clone(),
+                "ObjectInstance inside an object definition",
+            ));
+        }
+        self.pending_instances
+            .push((name, self.gs.ctm, loc.clone()));
         Ok(())
     }
 
     /// Saves the graphics state at the opening of a block, refusing nesting deeper than
     /// [`MAX_NESTING`] (each level holds a copy of the state).
-    fn begin_block(&mut self, block: Block, loc: Location) -> Result<(), SceneError> {
+    fn begin_block(&mut self, block: Block, loc: &Location) -> Result<(), SceneError> {
         if self.stack.len() >= MAX_NESTING {
             let (open, _) = block.names();
             return Err(SceneError::at(
-                loc,
+                loc.clone(),
                 format!("{open} nested more than {MAX_NESTING} blocks deep"),
             ));
         }
-        self.stack.push((block, self.gs.clone(), loc));
+        self.stack.push((block, self.gs.clone(), loc.clone()));
         Ok(())
     }
 
@@ -528,115 +580,12 @@ impl Builder {
                 } else {
                     self.gs = saved_gs;
                 }
+                if block == Block::Object {
+                    self.current_object = None;
+                }
                 Ok(())
             }
         }
-    }
-
-    fn camera(&mut self, ty: &str, params: &ParamList, loc: &Location) -> Result<(), SceneError> {
-        let projection = match ty {
-            "perspective" => Projection::Perspective {
-                fov: params.float_checked("fov", 90.0, "in (0, 180)", |v| v > 0.0 && v < 180.0)?,
-            },
-            "orthographic" => Projection::Orthographic,
-            _ => {
-                self.warn(
-                    loc,
-                    format!(
-                        "camera \"{ty}\" is not supported yet; lancer uses a perspective camera \
-                         with fov 90"
-                    ),
-                );
-                Projection::Perspective { fov: 90.0 }
-            }
-        };
-        let screen_window = match params.floats("screenwindow")? {
-            None => None,
-            Some(w) if w.len() == 4 && w[0] < w[1] && w[2] < w[3] => Some([w[0], w[1], w[2], w[3]]),
-            Some(_) => {
-                return Err(SceneError::at(
-                    params.location("screenwindow").cloned().expect("given"),
-                    "\"float screenwindow\" needs 4 numbers: xmin xmax ymin ymax, with min < max",
-                ));
-            }
-        };
-        self.frame_aspect = if params.has("frameaspectratio") {
-            Some(params.float_checked("frameaspectratio", 1.0, "positive", |v| v > 0.0)?)
-        } else {
-            None
-        };
-        let shutter_open = params.float("shutteropen", 0.0)?;
-        let shutter_close = params.float("shutterclose", 1.0)?;
-        if shutter_close < shutter_open {
-            return Err(SceneError::at(
-                params
-                    .location("shutterclose")
-                    .cloned()
-                    .unwrap_or(loc.clone()),
-                "the shutter closes before it opens",
-            ));
-        }
-        self.desc.camera = CameraDesc {
-            projection,
-            camera_from_world: self.gs.ctm,
-            screen_window,
-            lens_radius: params.float_checked("lensradius", 0.0, "at least 0", |v| v >= 0.0)?,
-            focal_distance: params.float_checked("focaldistance", 1e6, "positive", |v| v > 0.0)?,
-            shutter: [shutter_open, shutter_close],
-        };
-        self.named_coords
-            .insert("camera".to_string(), self.gs.ctm.inverse());
-        Ok(())
-    }
-
-    fn film(&mut self, ty: &str, params: &ParamList, loc: &Location) -> Result<(), SceneError> {
-        if ty != "rgb" {
-            self.warn(
-                loc,
-                format!("film \"{ty}\" is not supported yet; lancer uses an \"rgb\" film"),
-            );
-        }
-        let film = &mut self.desc.film;
-        film.xresolution = params.int_in("xresolution", 1280, 1..=MAX_RESOLUTION)? as u32;
-        film.yresolution = params.int_in("yresolution", 720, 1..=MAX_RESOLUTION)? as u32;
-        film.filename = params.string("filename")?;
-        if let Some(c) = params.floats("cropwindow")? {
-            let ok = c.len() == 4
-                && c.iter().all(|v| (0.0..=1.0).contains(v))
-                && c[0] < c[1]
-                && c[2] < c[3];
-            if !ok {
-                return Err(SceneError::at(
-                    params.location("cropwindow").cloned().expect("given"),
-                    "\"float cropwindow\" needs 4 numbers in [0, 1]: xmin xmax ymin ymax, with min < max",
-                ));
-            }
-            film.crop_window = [c[0], c[1], c[2], c[3]];
-        }
-        if let Some((b, bloc)) = params.ints("pixelbounds")? {
-            if b.len() != 4 || b[0] >= b[1] || b[2] >= b[3] {
-                return Err(SceneError::at(
-                    bloc,
-                    "\"integer pixelbounds\" needs 4 numbers: x0 x1 y0 y1, with x0 < x1 and y0 < y1",
-                ));
-            }
-            film.pixel_bounds = Some([b[0], b[1], b[2], b[3]]);
-        }
-        self.iso = params.float_checked("iso", 100.0, "positive", |v| v > 0.0)?;
-        film.max_component_value =
-            params.float_checked("maxcomponentvalue", f32::INFINITY, "positive", |v| v > 0.0)?;
-        film.save_fp16 = params.bool("savefp16", false)?;
-        // Only the realistic camera uses the sensor's diagonal.
-        let _ = params.float("diagonal", 35.0)?;
-        let sensor = params.string("sensor")?.unwrap_or_else(|| "cie1931".into());
-        let white_balance = params.float("whitebalance", 0.0)?;
-        if sensor != "cie1931" || white_balance != 0.0 {
-            self.warn(
-                loc,
-                "camera sensors and white balance are not supported yet; lancer uses the CIE 1931 observer without white balance",
-            );
-        }
-        Ok(())
     }
 
     /// Adds a material; a `mix` has its two names resolved at the end.
@@ -647,15 +596,10 @@ impl Builder {
         dir: &SearchPath,
         loc: &Location,
     ) -> Result<u32, SceneError> {
-        let converted = self
-            .reader(params, dir)
-            .material(ty)
-            .map_err(|e| locate(e, loc))?;
-        let (m, mix) = self
-            .accept(converted, loc)
-            .expect("materials always fall back");
+        let converted = material(&self.reader(params, dir), ty, loc)?;
+        let MaterialWithNames { material, mix } = self.accept(converted, loc);
         let index = self.desc.materials.len() as u32;
-        self.desc.materials.push(m);
+        self.desc.materials.push(material);
         if let Some((names, nloc)) = mix {
             for (k, n) in names.into_iter().enumerate() {
                 self.pending_materials
@@ -663,6 +607,31 @@ impl Builder {
             }
         }
         Ok(index)
+    }
+
+    /// `MakeNamedMaterial "name" "string type" …`.
+    fn named_material(
+        &mut self,
+        name: &str,
+        params: &ParamList,
+        dir: &SearchPath,
+        loc: &Location,
+    ) -> Result<(), SceneError> {
+        let Some(ty) = params.string("type")? else {
+            return Err(SceneError::at(
+                loc.clone(),
+                format!("MakeNamedMaterial \"{name}\" needs a \"string type\""),
+            ));
+        };
+        let index = self.material(&ty, params, dir, loc)?;
+        if self
+            .named_materials
+            .insert(name.to_string(), index)
+            .is_some()
+        {
+            self.warn(loc, format!("named material \"{name}\" redefined"));
+        }
+        Ok(())
     }
 
     fn texture(
@@ -676,27 +645,17 @@ impl Builder {
     ) -> Result<(), SceneError> {
         match ty {
             "float" => {
-                let converted = self
-                    .reader(params, dir)
-                    .float_texture(class)
-                    .map_err(|e| locate(e, loc))?;
-                let t = self
-                    .accept(converted, loc)
-                    .expect("textures always fall back");
-                let index = self.desc.float_textures.len() as u32;
+                let converted = float_texture(&self.reader(params, dir), class, loc)?;
+                let t = self.accept(converted, loc);
                 self.desc.float_textures.push(t);
+                let index = self.desc.float_textures.len() as u32 - 1;
                 self.textures.floats.insert(name, index);
             }
             "spectrum" | "color" | "rgb" => {
-                let converted = self
-                    .reader(params, dir)
-                    .spectrum_texture(class)
-                    .map_err(|e| locate(e, loc))?;
-                let t = self
-                    .accept(converted, loc)
-                    .expect("textures always fall back");
-                let index = self.desc.spectrum_textures.len() as u32;
+                let converted = spectrum_texture(&self.reader(params, dir), class, loc)?;
+                let t = self.accept(converted, loc);
                 self.desc.spectrum_textures.push(t);
+                let index = self.desc.spectrum_textures.len() as u32 - 1;
                 self.textures.spectra.insert(name, index);
             }
             _ => {
@@ -711,217 +670,6 @@ impl Builder {
         Ok(())
     }
 
-    /// A light's emission: its colour (RGB passes through; spectra are normalised to luminance
-    /// 1, as pbrt-v4 divides `scale` by the spectrum's photometric value) times `scale`.
-    fn emission(params: &ParamList, name: &str, dir: &SearchPath) -> Result<Rgb, SceneError> {
-        let c = params
-            .color(name, SpectrumKind::Illuminant, dir)?
-            .unwrap_or(Rgb::ONE);
-        Ok(c * params.float("scale", 1.0)?)
-    }
-
-    fn light(
-        &mut self,
-        ty: &str,
-        params: &ParamList,
-        dir: &SearchPath,
-        loc: &Location,
-    ) -> Result<(), SceneError> {
-        let ctm = self.gs.ctm;
-        let power = params.float("power", -1.0)?;
-        let light = match ty {
-            "point" => {
-                let mut i = Self::emission(params, "I", dir)?;
-                if power > 0.0 {
-                    // Φ = 4π·I for an isotropic point light.
-                    i *= power / (4.0 * std::f32::consts::PI);
-                }
-                LightDesc::Point {
-                    from: ctm.point(params.point3("from", Vec3::ZERO)?),
-                    intensity: i,
-                }
-            }
-            "spot" => {
-                let mut i = Self::emission(params, "I", dir)?;
-                let cone_angle = params
-                    .float_checked("coneangle", 30.0, "in (0, 180]", |v| v > 0.0 && v <= 180.0)?;
-                let cone_delta_angle = params.float_checked(
-                    "conedeltaangle",
-                    5.0,
-                    "between 0 and the cone angle",
-                    |v| (0.0..=cone_angle).contains(&v),
-                )?;
-                if power > 0.0 {
-                    // Φ = 2π·I·((1 − cos θ_start) + (cos θ_start − cos θ_end)/2): the
-                    // smoothstep falloff integrates to half its width.
-                    let c_end = cone_angle.to_radians().cos();
-                    let c_start = (cone_angle - cone_delta_angle).to_radians().cos();
-                    let k =
-                        2.0 * std::f32::consts::PI * ((1.0 - c_start) + (c_start - c_end) / 2.0);
-                    i *= power / k;
-                }
-                let from = ctm.point(params.point3("from", Vec3::ZERO)?);
-                let to = ctm.point(params.point3("to", Vec3::Z)?);
-                if from == to {
-                    return Err(SceneError::at(
-                        loc.clone(),
-                        "spot light with \"from\" equal to \"to\"",
-                    ));
-                }
-                LightDesc::Spot {
-                    from,
-                    to,
-                    intensity: i,
-                    cone_angle,
-                    cone_delta_angle,
-                }
-            }
-            "distant" => {
-                let mut l = Self::emission(params, "L", dir)?;
-                let w = params.point3("from", Vec3::ZERO)? - params.point3("to", Vec3::Z)?;
-                let illuminance = params.float("illuminance", -1.0)?;
-                if illuminance > 0.0 {
-                    // pbrt-v4 measures illuminance on an upward-facing patch.
-                    let k = w.normalize_or_zero().y;
-                    if k > 0.0 {
-                        l *= illuminance / k;
-                    }
-                }
-                let direction = ctm.vector(w);
-                if direction == Vec3::ZERO {
-                    return Err(SceneError::at(
-                        loc.clone(),
-                        "distant light with \"from\" equal to \"to\"",
-                    ));
-                }
-                LightDesc::Distant { direction, l }
-            }
-            "infinite" => self.infinite_light(ctm, params, dir, loc)?,
-            "goniometric" | "projection" => {
-                self.warn(loc, format!("light \"{ty}\" is not supported yet; skipped"));
-                return Ok(());
-            }
-            _ => {
-                return Err(SceneError::at(
-                    loc.clone(),
-                    format!(
-                        "unknown light \"{ty}\" (expected point, spot, distant, infinite, goniometric or projection)"
-                    ),
-                ));
-            }
-        };
-        self.desc.lights.push(light);
-        Ok(())
-    }
-
-    /// pbrt-v4's `infinite` light: a uniform sky of radiance `L`, or the image `filename`
-    /// (equal-area octahedral, or, as a lancer extension, 2:1 latitude-longitude) times
-    /// `scale`. With `illuminance` E, a sky is scaled so that an upward patch receives E
-    /// (L·π = E); an image is scaled by E over the illuminance pbrt-v4 computes for it, which
-    /// is half the physical one (see `EnvMapping::pbrt_illuminance`), so that lancer matches
-    /// pbrt-v4's images.
-    fn infinite_light(
-        &mut self,
-        ctm: Transform,
-        params: &ParamList,
-        dir: &SearchPath,
-        loc: &Location,
-    ) -> Result<LightDesc, SceneError> {
-        let illuminance = params.float("illuminance", -1.0)?;
-        if !params.has("filename") {
-            let mut l = Self::emission(params, "L", dir)?;
-            if illuminance > 0.0 {
-                // A uniform sky of radiance L gives an illuminance of π·L.
-                l *= illuminance / std::f32::consts::PI;
-            }
-            return Ok(LightDesc::Infinite {
-                light_to_world: ctm,
-                l,
-                image: None,
-            });
-        }
-        if params.has("L") {
-            return Err(SceneError::at(
-                loc.clone(),
-                "an \"infinite\" light takes either \"L\" or \"filename\", not both",
-            ));
-        }
-        let mut scale = params.float("scale", 1.0)?;
-        // pbrt-v4 reads environment images with their default encoding (sRGB for PNG).
-        let (path, _) = self
-            .reader(params, dir)
-            .image_file("an \"infinite\" light with an image")
-            .map_err(|e| locate(e, loc))?;
-        let image = self
-            .images
-            .rgb(&path, Encoding::Srgb)
-            .map_err(|e| SceneError::at(loc.clone(), e.to_string()))?;
-        let mapping = EnvMapping::of_size(image.width, image.height).ok_or_else(|| {
-            SceneError::at(
-                loc.clone(),
-                format!(
-                    "{}: an environment image must be square (pbrt-v4's equal-area octahedral layout) or twice as wide as high (latitude-longitude), not {}×{}",
-                    path.display(),
-                    image.width,
-                    image.height
-                ),
-            )
-        })?;
-        if image.texels.iter().any(|c| !c.is_finite()) {
-            return Err(SceneError::at(
-                loc.clone(),
-                format!(
-                    "{}: the image has infinite or NaN values and cannot be a light",
-                    path.display()
-                ),
-            ));
-        }
-        if illuminance > 0.0 {
-            let e = mapping.pbrt_illuminance(&image);
-            if e > 0.0 {
-                scale *= illuminance / e;
-            } else {
-                self.warn(
-                    loc,
-                    format!(
-                        "{} is black above the horizon, so \"illuminance\" cannot scale it; ignored",
-                        path.display()
-                    ),
-                );
-            }
-        }
-        if params.point3s("portal")?.is_some() {
-            self.warn(
-                loc,
-                "infinite light portals are not supported yet; lancer samples the whole image",
-            );
-        }
-        Ok(LightDesc::Infinite {
-            light_to_world: ctm,
-            l: Rgb::splat(scale),
-            image: Some(image),
-        })
-    }
-
-    fn area_light(
-        &mut self,
-        ty: &str,
-        params: &ParamList,
-        dir: &SearchPath,
-        loc: &Location,
-    ) -> Result<(), SceneError> {
-        if ty != "diffuse" {
-            return Err(SceneError::at(
-                loc.clone(),
-                format!("unknown area light \"{ty}\" (expected \"diffuse\")"),
-            ));
-        }
-        let l = Self::emission(params, "L", dir)?;
-        let two_sided = params.bool("twosided", false)?;
-        self.gs.area_light = Some(AreaLightDesc { l, two_sided });
-        Ok(())
-    }
-
     fn shape(
         &mut self,
         ty: &str,
@@ -929,11 +677,9 @@ impl Builder {
         dir: &SearchPath,
         loc: &Location,
     ) -> Result<(), SceneError> {
-        let converted = self
-            .reader(params, dir)
-            .shape(ty)
-            .map_err(|e| locate(e, loc))?;
-        let Some((geometry, alpha)) = self.accept(converted, loc) else {
+        let emits = self.gs.area_light.is_some();
+        let converted = shape(&self.reader(params, dir), ty, emits, loc)?;
+        let Some(ShapeGeometry { geometry, alpha }) = self.accept(converted, loc) else {
             // Skipped whole: its warning says so; its parameters need no warnings of their own.
             params.mark_all_used();
             return Ok(());
@@ -945,21 +691,7 @@ impl Builder {
                 None => (0, Some((name.clone(), nloc.clone()))),
             },
         };
-        if self.gs.area_light.is_some()
-            && matches!(geometry, lancer::scene::desc::Geometry::Curve(_))
-        {
-            return Err(SceneError::at(
-                loc.clone(),
-                "a curve cannot be an area light (pbrt-v4 cannot sample curves either)",
-            ));
-        }
         let mut area_light = self.gs.area_light;
-        if area_light.is_some() && matches!(geometry, lancer::scene::desc::Geometry::Voxels(_)) {
-            return Err(SceneError::at(
-                loc.clone(),
-                "a \"voxels\" shape cannot be an area light (AttributeBegin/AttributeEnd around the AreaLightSource keeps it from the voxels)",
-            ));
-        }
         if area_light.is_some() && self.current_object.is_some() {
             self.warn_once(
                 "instanced-area-light",
@@ -1038,18 +770,9 @@ impl Builder {
                 object_to_world: ctm,
             });
         }
-        if self.desc.camera.screen_window.is_none()
-            && let Some(frame) = self.frame_aspect
-        {
-            self.desc.camera.screen_window = Some(if frame > 1.0 {
-                [-frame, frame, -1.0, 1.0]
-            } else {
-                [-1.0, 1.0, -1.0 / frame, 1.0 / frame]
-            });
-        }
-        // pbrt-v4's imaging ratio: exposure time × ISO / 100.
-        let [open, close] = self.desc.camera.shutter;
-        self.desc.film.scale = (close - open) * self.iso / 100.0;
+        let camera = &mut self.desc.camera;
+        camera.screen_window = camera.screen_window.or(self.frame_aspect.map(frame_window));
+        self.desc.film.scale = imaging_ratio(camera.shutter, self.iso);
         self.desc.sampler.seed = self.sampler_seed.or(self.option_seed).unwrap_or(0);
         Ok((self.desc, self.warnings))
     }

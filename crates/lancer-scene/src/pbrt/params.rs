@@ -5,7 +5,7 @@
 //! parameter found under the right name but the wrong type is an error, one never looked up is
 //! reported as a warning (lancer does not use it).
 
-use super::parser::SearchPath;
+use super::search_path::SearchPath;
 use crate::error::{Location, SceneError, Warning};
 use lancer::math::{PackedVec3, Rgb, Vec2, Vec3};
 use lancer::spectrum::{Spectrum, SpectrumKind, parse_spd, spectrum_to_rgb};
@@ -363,6 +363,15 @@ impl ParamList {
     /// Where the parameter `name` is declared, if given.
     pub fn location(&self, name: &str) -> Option<&Location> {
         self.params.iter().find(|p| p.name == name).map(|p| &p.loc)
+    }
+
+    /// An error at the place of parameter `name`, or without a place when it is not given
+    /// (the conversion then puts it at its directive).
+    pub fn error_at(&self, name: &str, message: impl Into<String>) -> SceneError {
+        match self.location(name) {
+            Some(l) => SceneError::at(l.clone(), message),
+            None => SceneError::general(message),
+        }
     }
 
     fn one_number(&self, name: &str, ty: ParamType) -> Result<Option<(f32, &Param)>, SceneError> {

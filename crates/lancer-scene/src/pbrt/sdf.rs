@@ -35,24 +35,21 @@ pub fn sdf_geometry(p: &ParamList) -> Result<Geometry, SceneError> {
         (true, true) => {
             let (min, max) = (p.point3("min", Vec3::ZERO)?, p.point3("max", Vec3::ZERO)?);
             if !min.cmplt(max).all() {
-                let loc = p.location("max").cloned();
-                let msg = format!(
-                    "the sdf's \"min\" {min} must be below its \"max\" {max} on every axis"
-                );
-                return Err(match loc {
-                    Some(l) => SceneError::at(l, msg),
-                    None => SceneError::general(msg),
-                });
+                return Err(p.error_at(
+                    "max",
+                    format!(
+                        "the sdf's \"min\" {min} must be below its \"max\" {max} on every axis"
+                    ),
+                ));
             }
             Some((min, max))
         }
         _ => {
             let name = if p.has("min") { "min" } else { "max" };
-            let msg = "an sdf's box needs both \"point3 min\" and \"point3 max\"";
-            return Err(match p.location(name).cloned() {
-                Some(l) => SceneError::at(l, msg),
-                None => SceneError::general(msg),
-            });
+            return Err(p.error_at(
+                name,
+                "an sdf's box needs both \"point3 min\" and \"point3 max\"",
+            ));
         }
     };
     if bounds.is_none() && !function.bounds().is_finite() {

@@ -1,0 +1,518 @@
+//! `LightSource` and `AreaLightSource`: pbrt-v4's `point`, `spot`, `distant` and `infinite`
+//! lights, placed by the current transformation, and the `diffuse` area light, with pbrt-v4's
+//! normalisation by `power` and `illuminance`.
+
+use super::convert::{Fallback, Reader, locate};
+use super::params::ParamList;
+use super::search_path::SearchPath;
+use crate::error::{Location, SceneError};
+use crate::image_read::Encoding;
+use lancer::light::EnvMapping;
+use lancer::math::{Rgb, Transform, Vec3};
+use lancer::scene::desc::{AreaLightDesc, LightDesc};
+use lancer::spectrum::SpectrumKind;
+use std::f32::consts::PI;
+
+/// A light's emission: its colour (RGB passes through; spectra are normalised to luminance 1,
+/// as pbrt-v4 divides `scale` by the spectrum's photometric value) times `scale`.
+fn emission(params: &ParamList, name: &str, dir: &SearchPath) -> Result<Rgb, SceneError> {
+    let c = params
+        .color(name, SpectrumKind::Illuminant, dir)?
+        .unwrap_or(Rgb::ONE);
+    Ok(c * params.float("scale", 1.0)?)
+}
+
+/// The light `ty` at `loc`, placed by `ctm`; `None` for the kinds lancer skips (with their
+/// warning).
+pub fn light(
+    r: &Reader,
+    ty: &str,
+    ctm: Transform,
+    loc: &Location,
+) -> Result<Fallback<Option<LightDesc>>, SceneError> {
+    let params = r.params;
+    let power = params.float("power", -1.0)?;
+    let same_points = |what: &str| {
+        SceneError::at(
+            loc.clone(),
+            format!("{what} light with \"from\" equal to \"to\""),
+        )
+    };
+    let light = match ty {
+        "point" => {
+            let mut i = emission(params, "I", r.dir)?;
+            if power > 0.0 {
+                // Φ = 4π·I for an isotropic point light.
+                i *= power / (4.0 * PI);
+            }
+            LightDesc::Point {
+                from: ctm.point(params.point3("from", Vec3::ZERO)?),
+                intensity: i,
+            }
+        }
+        "spot" => {
+            let mut i = emission(params, "I", r.dir)?;
+            let cone_angle = params
+                .float_checked("coneangle", 30.0, "in (0, 180]", |v| v > 0.0 && v <= 180.0)?;
+            let cone_delta_angle = params.float_checked(
+                "conedeltaangle",
+                5.0,
+                "between 0 and the cone angle",
+                |v| (0.0..=cone_angle).contains(&v),
+            )?;
+            if power > 0.0 {
+                // Φ = 2π·I·((1 − cos θ_start) + (cos θ_start − cos θ_end)/2): the smoothstep
+                // falloff integrates to half its width.
+                let c_end = cone_angle.to_radians().cos();
+                let c_start = (cone_angle - cone_delta_angle).to_radians().cos();
+                let k = 2.0 * PI * ((1.0 - c_start) + (c_start - c_end) / 2.0);
+                i *= power / k;
+            }
+            let from = ctm.point(params.point3("from", Vec3::ZERO)?);
+            let to = ctm.point(params.point3("to", Vec3::Z)?);
+            if from == to {
+                return Err(same_points("spot"));
+            }
+            LightDesc::Spot {
+                from,
+                to,
+                intensity: i,
+                cone_angle,
+                cone_delta_angle,
+            }
+        }
+        "distant" => {
+            let mut l = emission(params, "L", r.dir)?;
+            let w = params.point3("from", Vec3::ZERO)? - params.point3("to", Vec3::Z)?;
+            let illuminance = params.float("illuminance", -1.0)?;
+            if illuminance > 0.0 {
+                // pbrt-v4 measures illuminance on an upward-facing patch: E = L·cos θ.
+                let k = w.normalize_or_zero().y;
+                if k > 0.0 {
+                    l *= illuminance / k;
+                }
+            }
+            let direction = ctm.vector(w);
+            if direction == Vec3::ZERO {
+                return Err(same_points("distant"));
+            }
+            LightDesc::Distant { direction, l }
+        }
+        "infinite" => return Ok(infinite(r, ctm, loc)?.map(Some)),
+        "goniometric" | "projection" => {
+            return Ok(Fallback::instead(
+                None,
+                format!("light \"{ty}\" is not supported yet; skipped"),
+            ));
+        }
+        _ => {
+            return Err(SceneError::at(
+                loc.clone(),
+                format!(
+                    "unknown light \"{ty}\" (expected point, spot, distant, infinite, goniometric or projection)"
+                ),
+            ));
+        }
+    };
+    Ok(Fallback::done(Some(light)))
+}
+
+/// pbrt-v4's `infinite` light: a uniform sky of radiance `L`, or the image `filename`
+/// (equal-area octahedral, or, as a lancer extension, 2:1 latitude-longitude) times `scale`.
+/// With `illuminance` E, a sky is scaled so that an upward patch receives E (L·π = E); an
+/// image is scaled by E over the illuminance pbrt-v4 computes for it, which is half the
+/// physical one (see `EnvMapping::pbrt_illuminance`), so that lancer matches pbrt-v4's images.
+fn infinite(r: &Reader, ctm: Transform, loc: &Location) -> Result<Fallback<LightDesc>, SceneError> {
+    let params = r.params;
+    let illuminance = params.float("illuminance", -1.0)?;
+    if !params.has("filename") {
+        let mut l = emission(params, "L", r.dir)?;
+        if illuminance > 0.0 {
+            // A uniform sky of radiance L gives an illuminance of π·L.
+            l *= illuminance / PI;
+        }
+        return Ok(Fallback::done(LightDesc::Infinite {
+            light_to_world: ctm,
+            l,
+            image: None,
+        }));
+    }
+    let at = |message: String| SceneError::at(loc.clone(), message);
+    if params.has("L") {
+        return Err(at(
+            "an \"infinite\" light takes either \"L\" or \"filename\", not both".into(),
+        ));
+    }
+    let mut scale = params.float("scale", 1.0)?;
+    // pbrt-v4 reads environment images with their default encoding (sRGB for PNG).
+    let (path, _) = r
+        .image_file("an \"infinite\" light with an image")
+        .map_err(|e| locate(e, loc))?;
+    let image = r
+        .images
+        .rgb(&path, Encoding::Srgb)
+        .map_err(|e| at(e.to_string()))?;
+    let mapping = EnvMapping::of_size(image.width, image.height).ok_or_else(|| {
+        at(format!(
+            "{}: an environment image must be square (pbrt-v4's equal-area octahedral layout) or twice as wide as high (latitude-longitude), not {}×{}",
+            path.display(),
+            image.width,
+            image.height
+        ))
+    })?;
+    if image.texels.iter().any(|c| !c.is_finite()) {
+        return Err(at(format!(
+            "{}: the image has infinite or NaN values and cannot be a light",
+            path.display()
+        )));
+    }
+    let mut warnings = Vec::new();
+    if illuminance > 0.0 {
+        let e = mapping.pbrt_illuminance(&image);
+        if e > 0.0 {
+            scale *= illuminance / e;
+        } else {
+            warnings.push(format!(
+                "{} is black above the horizon, so \"illuminance\" cannot scale it; ignored",
+                path.display()
+            ));
+        }
+    }
+    if params.point3s("portal")?.is_some() {
+        warnings.push(
+            "infinite light portals are not supported yet; lancer samples the whole image".into(),
+        );
+    }
+    Ok(Fallback {
+        value: LightDesc::Infinite {
+            light_to_world: ctm,
+            l: Rgb::splat(scale),
+            image: Some(image),
+        },
+        warnings,
+    })
+}
+
+/// `AreaLightSource "diffuse"`: radiance `L` times `scale`, from one side or both
+/// (`twosided`).
+pub fn area_light(
+    params: &ParamList,
+    ty: &str,
+    dir: &SearchPath,
+    loc: &Location,
+) -> Result<AreaLightDesc, SceneError> {
+    if ty != "diffuse" {
+        return Err(SceneError::at(
+            loc.clone(),
+            format!("unknown area light \"{ty}\" (expected \"diffuse\")"),
+        ));
+    }
+    Ok(AreaLightDesc {
+        l: emission(params, "L", dir)?,
+        two_sided: params.bool("twosided", false)?,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pbrt::convert::TextureNames;
+    use crate::pbrt::convert::testing::{err, typed_in, unused, with_textures};
+    use std::path::{Path, PathBuf};
+
+    type Converted = (Result<Fallback<Option<LightDesc>>, SceneError>, Vec<String>);
+
+    /// The one `LightSource` of `text` under `ctm`, and its unread parameters.
+    fn convert_in(text: &str, dir: &Path, ctm: Transform) -> Converted {
+        let (ty, params, loc) = typed_in(text, dir);
+        let names = TextureNames::default();
+        let out = with_textures(&params, dir, &names, |r| light(r, &ty, ctm, &loc));
+        (out, unused(&params))
+    }
+
+    /// A light that converts without warnings and reads every parameter.
+    #[track_caller]
+    fn converted(text: &str, ctm: Transform) -> LightDesc {
+        let (out, unused) = convert_in(text, Path::new("."), ctm);
+        let f = out.unwrap_or_else(|e| panic!("{e}"));
+        assert!(f.warnings.is_empty(), "{:?}", f.warnings);
+        assert!(unused.is_empty(), "{unused:?}");
+        f.value.expect("a light")
+    }
+
+    #[track_caller]
+    fn error(text: &str) -> String {
+        err(convert_in(text, Path::new("."), Transform::IDENTITY).0)
+    }
+
+    #[track_caller]
+    fn assert_close(a: Rgb, b: Rgb) {
+        assert!(
+            (a - b).abs().max_element() <= 1e-5 * b.abs().max_element().max(1.0),
+            "{a} != {b}"
+        );
+    }
+
+    const ID: Transform = Transform::IDENTITY;
+
+    #[test]
+    fn point_lights() {
+        assert_eq!(
+            converted(r#"LightSource "point""#, ID),
+            LightDesc::Point {
+                from: Vec3::ZERO,
+                intensity: Rgb::ONE
+            }
+        );
+        // Placed by the CTM; I times scale.
+        let ctm = Transform::translate(Vec3::new(1.0, 2.0, 3.0));
+        assert_eq!(
+            converted(
+                r#"LightSource "point" "point3 from" [0 1 0] "rgb I" [1 2 3] "float scale" 2"#,
+                ctm
+            ),
+            LightDesc::Point {
+                from: Vec3::new(1.0, 3.0, 3.0),
+                intensity: Rgb::new(2.0, 4.0, 6.0)
+            }
+        );
+        // `power` Φ gives I = Φ / 4π: Φ = 8π gives 2.
+        let power = 8.0 * PI;
+        let LightDesc::Point { intensity, .. } = converted(
+            &format!("LightSource \"point\" \"float power\" {power}"),
+            ID,
+        ) else {
+            panic!("a point light")
+        };
+        assert_close(intensity, Rgb::splat(2.0));
+    }
+
+    #[test]
+    fn spot_lights() {
+        assert_eq!(
+            converted(r#"LightSource "spot""#, ID),
+            LightDesc::Spot {
+                from: Vec3::ZERO,
+                to: Vec3::Z,
+                intensity: Rgb::ONE,
+                cone_angle: 30.0,
+                cone_delta_angle: 5.0,
+            }
+        );
+        let LightDesc::Spot {
+            from,
+            to,
+            intensity,
+            cone_angle,
+            cone_delta_angle,
+        } = converted(
+            r#"LightSource "spot" "point3 from" [1 0 0] "point3 to" [1 0 5] "rgb I" [2 2 2]
+               "float coneangle" 60 "float conedeltaangle" 60 "float power" 1"#,
+            ID,
+        )
+        else {
+            panic!("a spot light")
+        };
+        assert_eq!((from, to), (Vec3::X, Vec3::new(1.0, 0.0, 5.0)));
+        assert_eq!((cone_angle, cone_delta_angle), (60.0, 60.0));
+        // Φ = 2π·I·((1 − cos 0°) + (cos 0° − cos 60°)/2) = π/2·I: pbrt-v4 multiplies the colour
+        // by Φ / (π/2), so "I" 2 with "power" 1 gives 2·2/π.
+        assert_close(intensity, Rgb::splat(4.0 / PI));
+        assert_eq!(
+            error("LightSource \"spot\"\n  \"float coneangle\" 200"),
+            "t.pbrt:2:3: \"float coneangle\" must be in (0, 180], not 200"
+        );
+        assert_eq!(
+            error("LightSource \"spot\"\n  \"float conedeltaangle\" 40"),
+            "t.pbrt:2:3: \"float conedeltaangle\" must be between 0 and the cone angle, not 40"
+        );
+        assert_eq!(
+            error(r#"LightSource "spot" "point3 to" [0 0 0]"#),
+            "t.pbrt:1:1: spot light with \"from\" equal to \"to\""
+        );
+    }
+
+    #[test]
+    fn distant_lights() {
+        assert_eq!(
+            converted(r#"LightSource "distant""#, ID),
+            LightDesc::Distant {
+                direction: -Vec3::Z,
+                l: Rgb::ONE
+            }
+        );
+        // Light travels from "from" to "to": it comes straight from above (cos θ = 1), so the
+        // colour times scale (5·2) is multiplied by E / cos θ = 3.
+        let LightDesc::Distant { direction, l } = converted(
+            r#"LightSource "distant" "point3 from" [0 1 0] "point3 to" [0 0 0] "rgb L" [5 5 5]
+               "float scale" 2 "float illuminance" 3"#,
+            Transform::scale(Vec3::splat(2.0)).unwrap(),
+        ) else {
+            panic!("a distant light")
+        };
+        assert_eq!(direction, Vec3::new(0.0, 2.0, 0.0));
+        assert_close(l, Rgb::splat(30.0));
+        assert_eq!(
+            error(r#"LightSource "distant" "point3 from" [0 0 1]"#),
+            "t.pbrt:1:1: distant light with \"from\" equal to \"to\""
+        );
+    }
+
+    #[test]
+    fn uniform_skies() {
+        let ctm = Transform::translate(Vec3::X);
+        assert_eq!(
+            converted(r#"LightSource "infinite""#, ctm),
+            LightDesc::Infinite {
+                light_to_world: ctm,
+                l: Rgb::ONE,
+                image: None
+            }
+        );
+        // A unit sky gives E = π: illuminance 2π multiplies the colour 4 by 2.
+        let e = 2.0 * PI;
+        let LightDesc::Infinite { l, .. } = converted(
+            &format!("LightSource \"infinite\" \"rgb L\" [4 4 4] \"float illuminance\" {e}"),
+            ID,
+        ) else {
+            panic!("a sky")
+        };
+        assert_close(l, Rgb::splat(8.0));
+    }
+
+    /// A fresh folder holding 8-bit RGB PNGs of one grey `value`: (name, width, height, value).
+    fn folder_with_pngs(test: &str, images: &[(&str, u32, u32, u8)]) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("lancer-lights-{test}-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        for &(name, w, h, v) in images {
+            let file = std::fs::File::create(dir.join(name)).unwrap();
+            let mut enc = png::Encoder::new(std::io::BufWriter::new(file), w, h);
+            enc.set_color(png::ColorType::Rgb);
+            enc.set_depth(png::BitDepth::Eight);
+            let data = vec![v; (3 * w * h) as usize];
+            enc.write_header().unwrap().write_image_data(&data).unwrap();
+        }
+        dir
+    }
+
+    #[test]
+    fn image_skies() {
+        let dir = folder_with_pngs(
+            "sky",
+            &[
+                ("sky.png", 2, 2, 255),
+                ("black.png", 1, 1, 0),
+                ("wide.png", 3, 1, 255),
+            ],
+        );
+        let convert = |text: &str| {
+            let (out, unused) = convert_in(text, &dir, ID);
+            (out.unwrap_or_else(|e| panic!("{e}")), unused)
+        };
+        let (f, unused) =
+            convert(r#"LightSource "infinite" "string filename" "sky.png" "float scale" 3"#);
+        assert!(f.warnings.is_empty() && unused.is_empty());
+        let Some(LightDesc::Infinite { l, image, .. }) = f.value else {
+            panic!("a sky")
+        };
+        assert_eq!(l, Rgb::splat(3.0));
+        let image = image.expect("an image");
+        assert_eq!((image.width, image.height, image.texels[0].x), (2, 2, 1.0));
+        let (f, _) = convert(
+            r#"LightSource "infinite" "string filename" "black.png" "float illuminance" 1
+               "point3 portal" [0 0 0 1 0 0 1 1 0 0 1 0]"#,
+        );
+        let black = dir.join("black.png");
+        assert_eq!(
+            f.warnings,
+            [
+                format!(
+                    "{} is black above the horizon, so \"illuminance\" cannot scale it; ignored",
+                    black.display()
+                ),
+                "infinite light portals are not supported yet; lancer samples the whole image"
+                    .to_string()
+            ]
+        );
+        let error = |text: &str| err(convert_in(text, &dir, ID).0);
+        assert_eq!(
+            error(r#"LightSource "infinite" "string filename" "sky.png" "rgb L" [1 1 1]"#),
+            "t.pbrt:1:1: an \"infinite\" light takes either \"L\" or \"filename\", not both"
+        );
+        assert_eq!(
+            error(r#"LightSource "infinite" "string filename" "wide.png""#),
+            format!(
+                "t.pbrt:1:1: {}: an environment image must be square (pbrt-v4's equal-area octahedral layout) or twice as wide as high (latitude-longitude), not 3×1",
+                dir.join("wide.png").display()
+            )
+        );
+        let missing = error(r#"LightSource "infinite" "string filename" "nope.exr""#);
+        assert!(
+            missing.starts_with("t.pbrt:1:1: ") && missing.contains("nope.exr"),
+            "{missing}"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn lights_lancer_lacks() {
+        let (out, unused) = convert_in(
+            r#"LightSource "goniometric" "string filename" "g.exr""#,
+            Path::new("."),
+            ID,
+        );
+        let f = out.unwrap();
+        assert_eq!(f.value, None);
+        assert_eq!(
+            f.warnings,
+            ["light \"goniometric\" is not supported yet; skipped"]
+        );
+        assert_eq!(unused.len(), 1);
+        assert_eq!(
+            error(r#"LightSource "laser""#),
+            "t.pbrt:1:1: unknown light \"laser\" (expected point, spot, distant, infinite, goniometric or projection)"
+        );
+    }
+
+    #[test]
+    fn area_lights() {
+        let area = |text: &str| {
+            let (ty, params, loc) = typed_in(text, Path::new("."));
+            let out = area_light(&params, &ty, &SearchPath::new(Path::new(".")), &loc);
+            (out, unused(&params))
+        };
+        let (out, unused) = area(r#"AreaLightSource "diffuse""#);
+        assert_eq!(
+            out,
+            Ok(AreaLightDesc {
+                l: Rgb::ONE,
+                two_sided: false
+            })
+        );
+        assert!(unused.is_empty());
+        let (out, unused) = area(
+            r#"AreaLightSource "diffuse" "rgb L" [1 2 3] "float scale" 2 "bool twosided" true"#,
+        );
+        assert_eq!(
+            out,
+            Ok(AreaLightDesc {
+                l: Rgb::new(2.0, 4.0, 6.0),
+                two_sided: true
+            })
+        );
+        assert!(unused.is_empty());
+        // A spectrum is normalised to luminance 1 (before `scale`).
+        let (out, _) = area(r#"AreaLightSource "diffuse" "blackbody L" 3000"#);
+        let l = out.unwrap().l;
+        let luminance = 0.2126 * l.x + 0.7152 * l.y + 0.0722 * l.z;
+        assert!((luminance - 1.0).abs() < 1e-3, "{luminance}");
+        assert_eq!(
+            err(area(r#"AreaLightSource "spot""#).0),
+            "t.pbrt:1:1: unknown area light \"spot\" (expected \"diffuse\")"
+        );
+        assert_eq!(
+            err(area("AreaLightSource \"diffuse\"\n  \"rgb L\" [-1 1 1]").0),
+            "t.pbrt:2:3: \"rgb L\" has a negative component: -1 1 1"
+        );
+    }
+}

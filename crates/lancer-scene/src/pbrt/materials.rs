@@ -1,0 +1,547 @@
+//! `Material` and `MakeNamedMaterial`: pbrt-v4's materials as lancer's [`Material`], with
+//! pbrt-v4's defaults. A `mix` names two materials that may not be defined yet: they come back
+//! beside it, for the builder to resolve once every name is known.
+
+use super::convert::{Fallback, Reader, locate};
+use crate::error::{Location, SceneError};
+use lancer::material::Material;
+use lancer::math::Rgb;
+use lancer::spectrum::{SpectrumKind, named_spectrum, spectrum_to_rgb};
+use lancer::texture::FloatTex;
+
+/// A material, and for a `mix` the two names it refers to and where they are written.
+#[derive(Clone, Debug)]
+pub struct MaterialWithNames {
+    /// The material (a `mix` holds placeholder indices until its names are resolved).
+    pub material: Material,
+    /// The names of a `mix`, and where they are given.
+    pub mix: Option<(Vec<String>, Location)>,
+}
+
+impl From<Material> for MaterialWithNames {
+    fn from(material: Material) -> MaterialWithNames {
+        MaterialWithNames {
+            material,
+            mix: None,
+        }
+    }
+}
+
+/// The linear RGB of one of pbrt's named spectra (the metals' η and k).
+fn named_rgb(name: &str) -> Rgb {
+    named_spectrum(name)
+        .map(|s| spectrum_to_rgb(&s, SpectrumKind::Unbounded))
+        .expect("pbrt's named metal spectra are built in")
+}
+
+/// `uroughness`/`vroughness`, each defaulting to `roughness` (all prefixed by `prefix`, as in
+/// `interface.` for the coated materials).
+fn roughness(r: &Reader, prefix: &str) -> Result<(FloatTex, FloatTex), SceneError> {
+    let rough = r.float_tex(&format!("{prefix}roughness"), 0.0)?;
+    let one = |axis: &str| {
+        let name = format!("{prefix}{axis}roughness");
+        if r.params.has(&name) {
+            r.float_tex(&name, 0.0)
+        } else {
+            Ok(rough)
+        }
+    };
+    Ok((one("u")?, one("v")?))
+}
+
+/// The layered materials' random walk: `maxdepth` (default 10) and `nsamples` (default 1).
+fn walk(r: &Reader) -> Result<(u32, u32), SceneError> {
+    Ok((
+        r.params.int_in("maxdepth", 10, 0..=1000)? as u32,
+        r.params.int_in("nsamples", 1, 1..=1000)? as u32,
+    ))
+}
+
+/// The material `ty` at `loc`; an unknown or unsupported one becomes a diffuse one, with a
+/// warning.
+pub fn material(
+    r: &Reader,
+    ty: &str,
+    loc: &Location,
+) -> Result<Fallback<MaterialWithNames>, SceneError> {
+    convert(r, ty).map_err(|e| locate(e, loc))
+}
+
+fn convert(r: &Reader, ty: &str) -> Result<Fallback<MaterialWithNames>, SceneError> {
+    use SpectrumKind::{Albedo, Unbounded};
+    let p = r.params;
+    let remap = || p.bool("remaproughness", true);
+    let diffuse = |default: f32| -> Result<Material, SceneError> {
+        Ok(Material::Diffuse {
+            reflectance: r.spectrum_tex("reflectance", Rgb::splat(default), Albedo)?,
+        })
+    };
+    let m = match ty {
+        "diffuse" => diffuse(0.5)?,
+        "conductor" => {
+            let (uroughness, vroughness) = roughness(r, "")?;
+            Material::Conductor {
+                eta: r.spectrum_tex("eta", named_rgb("metal-Cu-eta"), Unbounded)?,
+                k: r.spectrum_tex("k", named_rgb("metal-Cu-k"), Unbounded)?,
+                reflectance: r.opt_spectrum_tex("reflectance", Albedo)?,
+                uroughness,
+                vroughness,
+                remap_roughness: remap()?,
+            }
+        }
+        "dielectric" => {
+            let (uroughness, vroughness) = roughness(r, "")?;
+            Material::Dielectric {
+                eta: p.ior("eta", 1.5, r.dir)?,
+                uroughness,
+                vroughness,
+                remap_roughness: remap()?,
+            }
+        }
+        "thindielectric" => Material::ThinDielectric {
+            eta: p.ior("eta", 1.5, r.dir)?,
+        },
+        "diffusetransmission" => Material::DiffuseTransmission {
+            reflectance: r.spectrum_tex("reflectance", Rgb::splat(0.25), Albedo)?,
+            transmittance: r.spectrum_tex("transmittance", Rgb::splat(0.25), Albedo)?,
+            scale: p.float("scale", 1.0)?,
+        },
+        "coateddiffuse" => {
+            let (uroughness, vroughness) = roughness(r, "")?;
+            let reflectance = r.spectrum_tex("reflectance", Rgb::splat(0.5), Albedo)?;
+            let thickness = r.float_tex("thickness", 0.01)?;
+            let eta = p.ior("eta", 1.5, r.dir)?;
+            let albedo = r.spectrum_tex("albedo", Rgb::ZERO, Albedo)?;
+            let g = r.float_tex("g", 0.0)?;
+            let (max_depth, n_samples) = walk(r)?;
+            Material::CoatedDiffuse {
+                reflectance,
+                uroughness,
+                vroughness,
+                thickness,
+                eta,
+                albedo,
+                g,
+                max_depth,
+                n_samples,
+                remap_roughness: remap()?,
+            }
+        }
+        "coatedconductor" => {
+            let (interface_uroughness, interface_vroughness) = roughness(r, "interface.")?;
+            let (conductor_uroughness, conductor_vroughness) = roughness(r, "conductor.")?;
+            let interface_eta = p.ior("interface.eta", 1.5, r.dir)?;
+            let conductor_eta =
+                r.spectrum_tex("conductor.eta", named_rgb("metal-Cu-eta"), Unbounded)?;
+            let k = r.spectrum_tex("conductor.k", named_rgb("metal-Cu-k"), Unbounded)?;
+            let reflectance = r.opt_spectrum_tex("reflectance", Albedo)?;
+            let thickness = r.float_tex("thickness", 0.01)?;
+            let albedo = r.spectrum_tex("albedo", Rgb::ZERO, Albedo)?;
+            let g = r.float_tex("g", 0.0)?;
+            let (max_depth, n_samples) = walk(r)?;
+            Material::CoatedConductor {
+                interface_uroughness,
+                interface_vroughness,
+                interface_eta,
+                conductor_eta,
+                k,
+                reflectance,
+                conductor_uroughness,
+                conductor_vroughness,
+                thickness,
+                albedo,
+                g,
+                max_depth,
+                n_samples,
+                remap_roughness: remap()?,
+            }
+        }
+        "mix" => {
+            let Some((names, loc)) = p.strings("materials")? else {
+                return Err(SceneError::general(
+                    "material \"mix\" needs \"string materials\" [\"a\" \"b\"]",
+                ));
+            };
+            if names.len() != 2 {
+                return Err(SceneError::at(
+                    loc,
+                    format!(
+                        "\"string materials\" of a mix names 2 materials, not {}",
+                        names.len()
+                    ),
+                ));
+            }
+            let material = Material::Mix {
+                materials: [0, 0],
+                amount: r.float_tex("amount", 0.5)?,
+            };
+            return Ok(Fallback::done(MaterialWithNames {
+                material,
+                mix: Some((names, loc)),
+            }));
+        }
+        "interface" | "" | "none" => Material::Interface,
+        "measured" | "hair" | "subsurface" => {
+            return Ok(Fallback::instead(
+                diffuse(0.5)?.into(),
+                format!("material \"{ty}\" is not supported yet; lancer renders it as \"diffuse\""),
+            ));
+        }
+        _ => {
+            return Ok(Fallback::instead(
+                Material::default().into(),
+                format!("unknown material \"{ty}\"; lancer renders it as \"diffuse\""),
+            ));
+        }
+    };
+    Ok(Fallback::done(m.into()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pbrt::convert::TextureNames;
+    use crate::pbrt::convert::testing::{err, typed, unused, with_textures};
+    use lancer::texture::SpectrumTex;
+    use std::path::Path;
+
+    /// The conversion of the one `Material` of `text` against `textures`, and the messages of
+    /// the parameters it left unread.
+    fn convert_with(
+        text: &str,
+        textures: &TextureNames,
+    ) -> (Result<Fallback<MaterialWithNames>, SceneError>, Vec<String>) {
+        let (ty, params, loc) = typed(text);
+        let out = with_textures(&params, Path::new("."), textures, |r| {
+            material(r, &ty, &loc)
+        });
+        (out, unused(&params))
+    }
+
+    /// A material that converts without warnings and reads every parameter.
+    #[track_caller]
+    fn converted(text: &str) -> Material {
+        let (out, unused) = convert_with(text, &TextureNames::default());
+        let f = out.unwrap_or_else(|e| panic!("{e}"));
+        assert!(f.warnings.is_empty(), "{:?}", f.warnings);
+        assert!(unused.is_empty(), "{unused:?}");
+        assert!(f.value.mix.is_none());
+        f.value.material
+    }
+
+    #[track_caller]
+    fn error(text: &str) -> String {
+        err(convert_with(text, &TextureNames::default()).0)
+    }
+
+    fn grey(v: f32) -> SpectrumTex {
+        SpectrumTex::Const(Rgb::splat(v))
+    }
+
+    fn rgb(r: f32, g: f32, b: f32) -> SpectrumTex {
+        SpectrumTex::Const(Rgb::new(r, g, b))
+    }
+
+    const ZERO: FloatTex = FloatTex::Const(0.0);
+
+    #[test]
+    fn defaults_are_pbrt_v4s() {
+        assert_eq!(
+            converted(r#"Material "diffuse""#),
+            Material::Diffuse {
+                reflectance: grey(0.5)
+            }
+        );
+        let copper = (
+            SpectrumTex::Const(named_rgb("metal-Cu-eta")),
+            SpectrumTex::Const(named_rgb("metal-Cu-k")),
+        );
+        assert_eq!(
+            converted(r#"Material "conductor""#),
+            Material::Conductor {
+                eta: copper.0,
+                k: copper.1,
+                reflectance: None,
+                uroughness: ZERO,
+                vroughness: ZERO,
+                remap_roughness: true,
+            }
+        );
+        assert_eq!(
+            converted(r#"Material "dielectric""#),
+            Material::Dielectric {
+                eta: 1.5,
+                uroughness: ZERO,
+                vroughness: ZERO,
+                remap_roughness: true,
+            }
+        );
+        assert_eq!(
+            converted(r#"Material "thindielectric""#),
+            Material::ThinDielectric { eta: 1.5 }
+        );
+        assert_eq!(
+            converted(r#"Material "diffusetransmission""#),
+            Material::DiffuseTransmission {
+                reflectance: grey(0.25),
+                transmittance: grey(0.25),
+                scale: 1.0,
+            }
+        );
+        assert_eq!(
+            converted(r#"Material "coateddiffuse""#),
+            Material::CoatedDiffuse {
+                reflectance: grey(0.5),
+                uroughness: ZERO,
+                vroughness: ZERO,
+                thickness: FloatTex::Const(0.01),
+                eta: 1.5,
+                albedo: grey(0.0),
+                g: ZERO,
+                max_depth: 10,
+                n_samples: 1,
+                remap_roughness: true,
+            }
+        );
+        assert_eq!(
+            converted(r#"Material "coatedconductor""#),
+            Material::CoatedConductor {
+                interface_uroughness: ZERO,
+                interface_vroughness: ZERO,
+                interface_eta: 1.5,
+                conductor_eta: copper.0,
+                k: copper.1,
+                reflectance: None,
+                conductor_uroughness: ZERO,
+                conductor_vroughness: ZERO,
+                thickness: FloatTex::Const(0.01),
+                albedo: grey(0.0),
+                g: ZERO,
+                max_depth: 10,
+                n_samples: 1,
+                remap_roughness: true,
+            }
+        );
+        for ty in ["interface", "none", ""] {
+            assert_eq!(
+                converted(&format!("Material \"{ty}\"")),
+                Material::Interface
+            );
+        }
+    }
+
+    #[test]
+    fn every_parameter_is_read() {
+        assert_eq!(
+            converted(r#"Material "diffuse" "rgb reflectance" [0.1 0.2 0.3]"#),
+            Material::Diffuse {
+                reflectance: rgb(0.1, 0.2, 0.3)
+            }
+        );
+        assert_eq!(
+            converted(
+                r#"Material "conductor" "rgb eta" [0.2 0.3 0.4] "rgb k" [3 2 1]
+                   "rgb reflectance" [0.9 0.8 0.7] "float uroughness" 0.1
+                   "float vroughness" 0.2 "bool remaproughness" false"#
+            ),
+            Material::Conductor {
+                eta: rgb(0.2, 0.3, 0.4),
+                k: rgb(3.0, 2.0, 1.0),
+                reflectance: Some(rgb(0.9, 0.8, 0.7)),
+                uroughness: FloatTex::Const(0.1),
+                vroughness: FloatTex::Const(0.2),
+                remap_roughness: false,
+            }
+        );
+        // `roughness` gives both directions unless one is named.
+        assert_eq!(
+            converted(
+                r#"Material "dielectric" "float eta" 1.33 "float roughness" 0.3 "float vroughness" 0.4"#
+            ),
+            Material::Dielectric {
+                eta: 1.33,
+                uroughness: FloatTex::Const(0.3),
+                vroughness: FloatTex::Const(0.4),
+                remap_roughness: true,
+            }
+        );
+        assert_eq!(
+            converted(r#"Material "thindielectric" "float eta" 1.2"#),
+            Material::ThinDielectric { eta: 1.2 }
+        );
+        assert_eq!(
+            converted(
+                r#"Material "diffusetransmission" "rgb reflectance" [0.1 0.1 0.1]
+                   "rgb transmittance" [0.7 0.7 0.7] "float scale" 2"#
+            ),
+            Material::DiffuseTransmission {
+                reflectance: grey(0.1),
+                transmittance: grey(0.7),
+                scale: 2.0,
+            }
+        );
+        assert_eq!(
+            converted(
+                r#"Material "coateddiffuse" "rgb reflectance" [0.2 0.2 0.2] "float roughness" 0.1
+                   "float thickness" 0.2 "float eta" 1.4 "rgb albedo" [0.5 0.5 0.5] "float g" 0.3
+                   "integer maxdepth" 4 "integer nsamples" 2 "bool remaproughness" false"#
+            ),
+            Material::CoatedDiffuse {
+                reflectance: grey(0.2),
+                uroughness: FloatTex::Const(0.1),
+                vroughness: FloatTex::Const(0.1),
+                thickness: FloatTex::Const(0.2),
+                eta: 1.4,
+                albedo: grey(0.5),
+                g: FloatTex::Const(0.3),
+                max_depth: 4,
+                n_samples: 2,
+                remap_roughness: false,
+            }
+        );
+        assert_eq!(
+            converted(
+                r#"Material "coatedconductor" "float interface.roughness" 0.1
+                   "float interface.vroughness" 0.15 "float interface.eta" 1.3
+                   "rgb conductor.eta" [0.2 0.2 0.2] "rgb conductor.k" [4 4 4]
+                   "rgb reflectance" [0.9 0.9 0.9] "float conductor.uroughness" 0.2
+                   "float conductor.vroughness" 0.25 "float thickness" 0.05
+                   "rgb albedo" [0.1 0.1 0.1] "float g" -0.2 "integer maxdepth" 3
+                   "integer nsamples" 5 "bool remaproughness" false"#
+            ),
+            Material::CoatedConductor {
+                interface_uroughness: FloatTex::Const(0.1),
+                interface_vroughness: FloatTex::Const(0.15),
+                interface_eta: 1.3,
+                conductor_eta: grey(0.2),
+                k: grey(4.0),
+                reflectance: Some(grey(0.9)),
+                conductor_uroughness: FloatTex::Const(0.2),
+                conductor_vroughness: FloatTex::Const(0.25),
+                thickness: FloatTex::Const(0.05),
+                albedo: grey(0.1),
+                g: FloatTex::Const(-0.2),
+                max_depth: 3,
+                n_samples: 5,
+                remap_roughness: false,
+            }
+        );
+    }
+
+    #[test]
+    fn textures_are_found_by_name_and_kind() {
+        let mut textures = TextureNames::default();
+        textures.spectra.insert("wood".into(), 2);
+        textures.floats.insert("bumps".into(), 1);
+        let (out, _) = convert_with(
+            r#"Material "conductor" "texture reflectance" "wood" "texture roughness" "bumps""#,
+            &textures,
+        );
+        let Material::Conductor {
+            reflectance,
+            uroughness,
+            vroughness,
+            ..
+        } = out.unwrap().value.material
+        else {
+            panic!("a conductor")
+        };
+        assert_eq!(reflectance, Some(SpectrumTex::Tex(2)));
+        assert_eq!(
+            (uroughness, vroughness),
+            (FloatTex::Tex(1), FloatTex::Tex(1))
+        );
+        let (out, _) = convert_with(
+            "Material \"diffuse\"\n  \"texture reflectance\" \"bumps\"",
+            &textures,
+        );
+        assert_eq!(
+            err(out),
+            "t.pbrt:2:3: no spectrum texture named \"bumps\" (there is a float texture of that name)"
+        );
+    }
+
+    #[test]
+    fn a_mix_returns_its_names_for_later() {
+        let (out, unused) = convert_with(
+            "Material \"mix\"\n  \"string materials\" [\"a\" \"b\"] \"float amount\" 0.25",
+            &TextureNames::default(),
+        );
+        assert!(unused.is_empty());
+        let f = out.unwrap();
+        assert_eq!(
+            f.value.material,
+            Material::Mix {
+                materials: [0, 0],
+                amount: FloatTex::Const(0.25),
+            }
+        );
+        let (names, loc) = f.value.mix.expect("names");
+        assert_eq!(names, ["a", "b"]);
+        assert_eq!(loc.to_string(), "t.pbrt:2:3");
+    }
+
+    #[test]
+    fn unsupported_materials_become_diffuse_with_a_warning() {
+        let (out, unused) = convert_with(
+            r#"Material "hair" "rgb reflectance" [0.3 0.2 0.1]"#,
+            &TextureNames::default(),
+        );
+        let f = out.unwrap();
+        assert!(unused.is_empty());
+        assert_eq!(
+            f.value.material,
+            Material::Diffuse {
+                reflectance: rgb(0.3, 0.2, 0.1)
+            }
+        );
+        assert_eq!(
+            f.warnings,
+            ["material \"hair\" is not supported yet; lancer renders it as \"diffuse\""]
+        );
+        let (out, unused) = convert_with(
+            r#"Material "plastic" "float roughness" 0.1"#,
+            &TextureNames::default(),
+        );
+        let f = out.unwrap();
+        assert_eq!(f.value.material, Material::default());
+        assert_eq!(
+            f.warnings,
+            ["unknown material \"plastic\"; lancer renders it as \"diffuse\""]
+        );
+        // An unknown material reads nothing: its parameters are reported unused.
+        assert_eq!(unused.len(), 1);
+    }
+
+    #[test]
+    fn errors_are_at_their_parameter() {
+        assert_eq!(
+            error(r#"Material "mix""#),
+            "t.pbrt:1:1: material \"mix\" needs \"string materials\" [\"a\" \"b\"]"
+        );
+        assert_eq!(
+            error("Material \"mix\"\n  \"string materials\" [\"a\"]"),
+            "t.pbrt:2:3: \"string materials\" of a mix names 2 materials, not 1"
+        );
+        assert_eq!(
+            error("Material \"coateddiffuse\"\n  \"integer maxdepth\" -1"),
+            "t.pbrt:2:3: \"integer maxdepth\" must be between 0 and 1000, not -1"
+        );
+        assert_eq!(
+            error("Material \"coatedconductor\"\n  \"integer nsamples\" 0"),
+            "t.pbrt:2:3: \"integer nsamples\" must be between 1 and 1000, not 0"
+        );
+        assert_eq!(
+            error("Material \"dielectric\"\n  \"float eta\" -1"),
+            "t.pbrt:2:3: \"float eta\" must be a positive index of refraction, not -1"
+        );
+        assert_eq!(
+            error("Material \"diffuse\"\n  \"rgb reflectance\" [-1 0 0]"),
+            "t.pbrt:2:3: \"rgb reflectance\" has a negative component: -1 0 0"
+        );
+        assert_eq!(
+            error("Material \"diffuse\"\n  \"float reflectance\" 0.5"),
+            "t.pbrt:2:3: parameter 'reflectance' must be of type rgb or spectrum or blackbody, not float"
+        );
+    }
+}

@@ -1,0 +1,573 @@
+//! The rendering options: `Film`, `Sampler`, `PixelFilter`, `Integrator` and `Option`, with
+//! pbrt-v4's defaults. Kinds lancer does not have fall back to its nearest one, with a warning.
+
+use super::convert::{Fallback, MAX_RESOLUTION};
+use super::params::ParamList;
+use crate::error::SceneError;
+use lancer::sampling::SamplerKind;
+use lancer::scene::desc::{FilmDesc, FilterDesc, Integrator};
+
+/// What `Film` sets: the film, and the sensor's ISO (the imaging ratio is exposure time ×
+/// ISO / 100, known once the camera's shutter is).
+#[derive(Clone, Debug)]
+pub struct FilmOptions {
+    /// The film (its `scale` is left for the builder to set).
+    pub film: FilmDesc,
+    /// `iso`.
+    pub iso: f32,
+}
+
+/// The film `ty`, over `film` (what earlier directives set).
+pub fn film(
+    params: &ParamList,
+    ty: &str,
+    mut film: FilmDesc,
+) -> Result<Fallback<FilmOptions>, SceneError> {
+    let mut warnings = Vec::new();
+    if ty != "rgb" {
+        warnings.push(format!(
+            "film \"{ty}\" is not supported yet; lancer uses an \"rgb\" film"
+        ));
+    }
+    film.xresolution = params.int_in("xresolution", 1280, 1..=MAX_RESOLUTION)? as u32;
+    film.yresolution = params.int_in("yresolution", 720, 1..=MAX_RESOLUTION)? as u32;
+    film.filename = params.string("filename")?;
+    if let Some(c) = params.floats("cropwindow")? {
+        let ok =
+            c.len() == 4 && c.iter().all(|v| (0.0..=1.0).contains(v)) && c[0] < c[1] && c[2] < c[3];
+        if !ok {
+            return Err(params.error_at(
+                "cropwindow",
+                "\"float cropwindow\" needs 4 numbers in [0, 1]: xmin xmax ymin ymax, with min < max",
+            ));
+        }
+        film.crop_window = [c[0], c[1], c[2], c[3]];
+    }
+    if let Some((b, bloc)) = params.ints("pixelbounds")? {
+        if b.len() != 4 || b[0] >= b[1] || b[2] >= b[3] {
+            return Err(SceneError::at(
+                bloc,
+                "\"integer pixelbounds\" needs 4 numbers: x0 x1 y0 y1, with x0 < x1 and y0 < y1",
+            ));
+        }
+        film.pixel_bounds = Some([b[0], b[1], b[2], b[3]]);
+    }
+    let iso = params.float_checked("iso", 100.0, "positive", |v| v > 0.0)?;
+    film.max_component_value =
+        params.float_checked("maxcomponentvalue", f32::INFINITY, "positive", |v| v > 0.0)?;
+    film.save_fp16 = params.bool("savefp16", false)?;
+    // Only the realistic camera uses the sensor's diagonal.
+    let _ = params.float("diagonal", 35.0)?;
+    let sensor = params.string("sensor")?.unwrap_or_else(|| "cie1931".into());
+    let white_balance = params.float("whitebalance", 0.0)?;
+    if sensor != "cie1931" || white_balance != 0.0 {
+        warnings.push(
+            "camera sensors and white balance are not supported yet; lancer uses the CIE 1931 observer without white balance".into(),
+        );
+    }
+    Ok(Fallback {
+        value: FilmOptions { film, iso },
+        warnings,
+    })
+}
+
+/// pbrt-v4's imaging ratio, the film's scale: exposure time × ISO / 100, the exposure time
+/// being the camera's `shutter` [open, close].
+pub fn imaging_ratio(shutter: [f32; 2], iso: f32) -> f32 {
+    let [open, close] = shutter;
+    (close - open) * iso / 100.0
+}
+
+/// A `seed` (of `Option` or `Sampler`), if given; pbrt-v4 reads it as a 32-bit integer.
+pub fn seed(params: &ParamList) -> Result<Option<u64>, SceneError> {
+    if !params.has("seed") {
+        return Ok(None);
+    }
+    Ok(Some(params.int("seed", 0)? as u32 as u64))
+}
+
+/// What `Sampler` sets.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SamplerOptions {
+    /// The point set.
+    pub kind: SamplerKind,
+    /// Samples per pixel.
+    pub spp: u32,
+    /// `seed`, if given (it overrides `Option "seed"`).
+    pub seed: Option<u64>,
+}
+
+/// The sampler `ty`: its point set, samples per pixel and seed.
+pub fn sampler(params: &ParamList, ty: &str) -> Result<Fallback<SamplerOptions>, SceneError> {
+    let p = params;
+    let spp =
+        || -> Result<u32, SceneError> { Ok(p.int_in("pixelsamples", 16, 1..=1 << 24)? as u32) };
+    let (kind, spp, warning) = match ty {
+        "independent" => (SamplerKind::Independent, spp()?, None),
+        "stratified" => {
+            let x = p.int_in("xsamples", 4, 1..=4096)? as u32;
+            let y = p.int_in("ysamples", 4, 1..=4096)? as u32;
+            let jitter = p.bool("jitter", true)?;
+            let kind = SamplerKind::Stratified {
+                xsamples: x,
+                ysamples: y,
+                jitter,
+            };
+            (kind, x * y, None)
+        }
+        "sobol" | "zsobol" | "paddedsobol" => {
+            let _ = p.string("randomization")?;
+            (SamplerKind::Sobol, spp()?, None)
+        }
+        "halton" | "pmj02bn" => {
+            let _ = p.string("randomization")?;
+            let w = format!("sampler \"{ty}\" is not supported yet; lancer uses \"zsobol\"");
+            (SamplerKind::Sobol, spp()?, Some(w))
+        }
+        _ => {
+            let w = format!("unknown sampler \"{ty}\"; lancer uses \"zsobol\"");
+            (SamplerKind::Sobol, spp()?, Some(w))
+        }
+    };
+    let options = SamplerOptions {
+        kind,
+        spp,
+        seed: seed(p)?,
+    };
+    Ok(match warning {
+        None => Fallback::done(options),
+        Some(w) => Fallback::instead(options, w),
+    })
+}
+
+/// The pixel filter `ty`, with pbrt-v4's default radii.
+pub fn filter(params: &ParamList, ty: &str) -> Result<Fallback<FilterDesc>, SceneError> {
+    let p = params;
+    let radius = |d: f32| -> Result<[f32; 2], SceneError> {
+        let ok = |v: f32| v > 0.0 && v <= 64.0;
+        Ok([
+            p.float_checked("xradius", d, "in (0, 64]", ok)?,
+            p.float_checked("yradius", d, "in (0, 64]", ok)?,
+        ])
+    };
+    let f = match ty {
+        "box" => FilterDesc::Box {
+            radius: radius(0.5)?,
+        },
+        "gaussian" => FilterDesc::Gaussian {
+            radius: radius(1.5)?,
+            sigma: p.float_checked("sigma", 0.5, "positive", |v| v > 0.0)?,
+        },
+        "triangle" => FilterDesc::Triangle {
+            radius: radius(2.0)?,
+        },
+        "mitchell" => FilterDesc::Mitchell {
+            radius: radius(2.0)?,
+            b: p.float("B", 1.0 / 3.0)?,
+            c: p.float("C", 1.0 / 3.0)?,
+        },
+        "sinc" | "lanczos" => FilterDesc::Lanczos {
+            radius: radius(4.0)?,
+            tau: p.float_checked("tau", 3.0, "positive", |v| v > 0.0)?,
+        },
+        _ => {
+            return Ok(Fallback::instead(
+                FilterDesc::default(),
+                format!("unknown pixel filter \"{ty}\"; lancer uses \"gaussian\""),
+            ));
+        }
+    };
+    Ok(Fallback::done(f))
+}
+
+/// The integrator `ty`, with pbrt-v4's defaults (`maxdepth` 5); the others fall back to
+/// `path`.
+pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, SceneError> {
+    let p = params;
+    let max_depth = p.int_in("maxdepth", 5, 0..=100_000)? as u32;
+    let path = || -> Result<Integrator, SceneError> {
+        Ok(Integrator::Path {
+            max_depth,
+            regularize: p.bool("regularize", false)?,
+        })
+    };
+    let i = match ty {
+        "whitted" => Integrator::Whitted { max_depth },
+        "path" | "volpath" => {
+            // The light sampler is lancer's own; pbrt's choice needs no warning.
+            let _ = p.string("lightsampler")?;
+            path()?
+        }
+        "ambientocclusion" => Integrator::AmbientOcclusion {
+            cos_sample: p.bool("cossample", true)?,
+            max_distance: p.float("maxdistance", f32::INFINITY)?,
+        },
+        "normals" => Integrator::Normals,
+        "depth" => Integrator::Depth,
+        "bdpt" | "mlt" | "sppm" | "lightpath" | "randomwalk" | "simplepath" | "simplevolpath"
+        | "aov" => {
+            return Ok(Fallback::instead(
+                path()?,
+                format!(
+                    "integrator \"{ty}\" is not supported yet; lancer uses \"path\" with maxdepth {max_depth}"
+                ),
+            ));
+        }
+        _ => {
+            return Ok(Fallback::instead(
+                path()?,
+                format!("unknown integrator \"{ty}\"; lancer uses \"path\""),
+            ));
+        }
+    };
+    Ok(Fallback::done(i))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pbrt::convert::testing::{err, typed, unused};
+
+    /// Converts the one directive of `text` with `f`, and gives its unread parameters.
+    fn convert<T>(
+        text: &str,
+        f: impl FnOnce(&ParamList, &str) -> Result<T, SceneError>,
+    ) -> (Result<T, SceneError>, Vec<String>) {
+        let (ty, params, _) = typed(text);
+        let out = f(&params, &ty);
+        (out, unused(&params))
+    }
+
+    /// Converted without warnings, every parameter read.
+    #[track_caller]
+    fn clean<T>(
+        text: &str,
+        f: impl FnOnce(&ParamList, &str) -> Result<Fallback<T>, SceneError>,
+    ) -> T {
+        let (out, unused) = convert(text, f);
+        let out = out.unwrap_or_else(|e| panic!("{e}"));
+        assert!(out.warnings.is_empty(), "{:?}", out.warnings);
+        assert!(unused.is_empty(), "{unused:?}");
+        out.value
+    }
+
+    /// The warnings of a conversion that succeeds.
+    #[track_caller]
+    fn warnings<T>(
+        text: &str,
+        f: impl FnOnce(&ParamList, &str) -> Result<Fallback<T>, SceneError>,
+    ) -> Vec<String> {
+        convert(text, f)
+            .0
+            .unwrap_or_else(|e| panic!("{e}"))
+            .warnings
+    }
+
+    #[track_caller]
+    fn error<T: std::fmt::Debug>(
+        text: &str,
+        f: impl FnOnce(&ParamList, &str) -> Result<T, SceneError>,
+    ) -> String {
+        err(convert(text, f).0)
+    }
+
+    fn new_film(p: &ParamList, ty: &str) -> Result<Fallback<FilmOptions>, SceneError> {
+        film(p, ty, FilmDesc::default())
+    }
+
+    #[test]
+    fn film_defaults_and_every_parameter() {
+        let f = clean(r#"Film "rgb""#, new_film);
+        assert_eq!((f.film, f.iso), (FilmDesc::default(), 100.0));
+        let f = clean(
+            r#"Film "rgb" "integer xresolution" 64 "integer yresolution" 48
+               "string filename" "out.exr" "float cropwindow" [0 0.5 0.25 1]
+               "integer pixelbounds" [0 10 0 20] "float iso" 200 "float maxcomponentvalue" 10
+               "bool savefp16" true "float diagonal" 50 "string sensor" "cie1931"
+               "float whitebalance" 0"#,
+            new_film,
+        );
+        let expected = FilmDesc {
+            xresolution: 64,
+            yresolution: 48,
+            filename: Some("out.exr".into()),
+            crop_window: [0.0, 0.5, 0.25, 1.0],
+            pixel_bounds: Some([0, 10, 0, 20]),
+            scale: 1.0,
+            max_component_value: 10.0,
+            save_fp16: true,
+        };
+        assert_eq!((f.film, f.iso), (expected, 200.0));
+        // A crop window or pixel bounds a later Film does not give are kept.
+        let earlier = FilmDesc {
+            crop_window: [0.1, 0.2, 0.3, 0.4],
+            ..FilmDesc::default()
+        };
+        let (out, _) = convert(r#"Film "rgb" "integer xresolution" 8"#, |p, ty| {
+            film(p, ty, earlier)
+        });
+        let f = out.unwrap().value.film;
+        assert_eq!((f.xresolution, f.crop_window), (8, [0.1, 0.2, 0.3, 0.4]));
+    }
+
+    #[test]
+    fn film_fallbacks_and_errors() {
+        assert_eq!(
+            warnings(
+                r#"Film "gbuffer" "string sensor" "canon_eos_100d" "float whitebalance" 5000"#,
+                new_film
+            ),
+            [
+                "film \"gbuffer\" is not supported yet; lancer uses an \"rgb\" film",
+                "camera sensors and white balance are not supported yet; lancer uses the CIE 1931 observer without white balance"
+            ]
+        );
+        assert_eq!(
+            error("Film \"rgb\"\n  \"integer xresolution\" 0", new_film),
+            "t.pbrt:2:3: \"integer xresolution\" must be between 1 and 65536, not 0"
+        );
+        assert_eq!(
+            error("Film \"rgb\"\n  \"integer yresolution\" 65537", new_film),
+            "t.pbrt:2:3: \"integer yresolution\" must be between 1 and 65536, not 65537"
+        );
+        assert_eq!(
+            error("Film \"rgb\"\n  \"float cropwindow\" [0 2 0 1]", new_film),
+            "t.pbrt:2:3: \"float cropwindow\" needs 4 numbers in [0, 1]: xmin xmax ymin ymax, with min < max"
+        );
+        assert_eq!(
+            error(
+                "Film \"rgb\"\n  \"integer pixelbounds\" [0 0 0 1]",
+                new_film
+            ),
+            "t.pbrt:2:3: \"integer pixelbounds\" needs 4 numbers: x0 x1 y0 y1, with x0 < x1 and y0 < y1"
+        );
+        assert_eq!(
+            error("Film \"rgb\"\n  \"float iso\" 0", new_film),
+            "t.pbrt:2:3: \"float iso\" must be positive, not 0"
+        );
+        assert_eq!(
+            error("Film \"rgb\"\n  \"float maxcomponentvalue\" -1", new_film),
+            "t.pbrt:2:3: \"float maxcomponentvalue\" must be positive, not -1"
+        );
+    }
+
+    #[test]
+    fn the_imaging_ratio_is_exposure_time_times_iso_over_100() {
+        assert_eq!(imaging_ratio([0.0, 1.0], 100.0), 1.0);
+        assert_eq!(imaging_ratio([0.25, 0.75], 400.0), 2.0);
+    }
+
+    #[test]
+    fn samplers() {
+        let options = |kind, spp, seed| SamplerOptions { kind, spp, seed };
+        assert_eq!(
+            clean(r#"Sampler "zsobol""#, sampler),
+            options(SamplerKind::Sobol, 16, None)
+        );
+        assert_eq!(
+            clean(
+                r#"Sampler "sobol" "integer pixelsamples" 64 "string randomization" "owen" "integer seed" 9"#,
+                sampler
+            ),
+            options(SamplerKind::Sobol, 64, Some(9))
+        );
+        assert_eq!(
+            clean(r#"Sampler "independent" "integer pixelsamples" 4"#, sampler),
+            options(SamplerKind::Independent, 4, None)
+        );
+        let strata = |xsamples, ysamples, jitter| SamplerKind::Stratified {
+            xsamples,
+            ysamples,
+            jitter,
+        };
+        assert_eq!(
+            clean(r#"Sampler "stratified""#, sampler),
+            options(strata(4, 4, true), 16, None)
+        );
+        assert_eq!(
+            clean(
+                r#"Sampler "stratified" "integer xsamples" 2 "integer ysamples" 3 "bool jitter" false"#,
+                sampler
+            ),
+            options(strata(2, 3, false), 6, None)
+        );
+        // pbrt-v4 reads the seed as a 32-bit integer.
+        assert_eq!(
+            clean(r#"Sampler "zsobol" "integer seed" -1"#, sampler).seed,
+            Some(u32::MAX as u64)
+        );
+        assert_eq!(
+            warnings(r#"Sampler "halton" "integer pixelsamples" 8"#, sampler),
+            ["sampler \"halton\" is not supported yet; lancer uses \"zsobol\""]
+        );
+        assert_eq!(
+            warnings(r#"Sampler "magic""#, sampler),
+            ["unknown sampler \"magic\"; lancer uses \"zsobol\""]
+        );
+        assert_eq!(
+            error("Sampler \"zsobol\"\n  \"integer pixelsamples\" 0", sampler),
+            "t.pbrt:2:3: \"integer pixelsamples\" must be between 1 and 16777216, not 0"
+        );
+        assert_eq!(
+            error(
+                "Sampler \"stratified\"\n  \"integer xsamples\" 5000",
+                sampler
+            ),
+            "t.pbrt:2:3: \"integer xsamples\" must be between 1 and 4096, not 5000"
+        );
+    }
+
+    #[test]
+    fn option_seeds() {
+        let seed_of = |p: &ParamList, _: &str| seed(p);
+        assert_eq!(
+            convert(r#"Option "integer seed" 5"#, seed_of).0,
+            Ok(Some(5))
+        );
+        assert_eq!(
+            convert(r#"Option "bool disablepixeljitter" true"#, seed_of).0,
+            Ok(None)
+        );
+        assert_eq!(
+            error("Option\n  \"float seed\" 5", seed_of),
+            "t.pbrt:2:3: parameter 'seed' must be of type integer, not float"
+        );
+    }
+
+    #[test]
+    fn filters() {
+        assert_eq!(
+            clean(r#"PixelFilter "box""#, filter),
+            FilterDesc::Box { radius: [0.5, 0.5] }
+        );
+        assert_eq!(
+            clean(r#"PixelFilter "gaussian""#, filter),
+            FilterDesc::Gaussian {
+                radius: [1.5, 1.5],
+                sigma: 0.5
+            }
+        );
+        assert_eq!(
+            clean(r#"PixelFilter "triangle""#, filter),
+            FilterDesc::Triangle { radius: [2.0, 2.0] }
+        );
+        assert_eq!(
+            clean(r#"PixelFilter "mitchell""#, filter),
+            FilterDesc::Mitchell {
+                radius: [2.0, 2.0],
+                b: 1.0 / 3.0,
+                c: 1.0 / 3.0
+            }
+        );
+        assert_eq!(
+            clean(r#"PixelFilter "sinc""#, filter),
+            FilterDesc::Lanczos {
+                radius: [4.0, 4.0],
+                tau: 3.0
+            }
+        );
+        assert_eq!(
+            clean(
+                r#"PixelFilter "gaussian" "float xradius" 1 "float yradius" 2 "float sigma" 0.25"#,
+                filter
+            ),
+            FilterDesc::Gaussian {
+                radius: [1.0, 2.0],
+                sigma: 0.25
+            }
+        );
+        assert_eq!(
+            clean(
+                r#"PixelFilter "mitchell" "float B" 0.5 "float C" 0.25"#,
+                filter
+            ),
+            FilterDesc::Mitchell {
+                radius: [2.0, 2.0],
+                b: 0.5,
+                c: 0.25
+            }
+        );
+        assert_eq!(
+            clean(r#"PixelFilter "lanczos" "float tau" 2"#, filter),
+            FilterDesc::Lanczos {
+                radius: [4.0, 4.0],
+                tau: 2.0
+            }
+        );
+        let (out, _) = convert(r#"PixelFilter "cubic""#, filter);
+        let f = out.unwrap();
+        assert_eq!(f.value, FilterDesc::default());
+        assert_eq!(
+            f.warnings,
+            ["unknown pixel filter \"cubic\"; lancer uses \"gaussian\""]
+        );
+        assert_eq!(
+            error("PixelFilter \"box\"\n  \"float xradius\" 0", filter),
+            "t.pbrt:2:3: \"float xradius\" must be in (0, 64], not 0"
+        );
+        assert_eq!(
+            error("PixelFilter \"gaussian\"\n  \"float sigma\" -1", filter),
+            "t.pbrt:2:3: \"float sigma\" must be positive, not -1"
+        );
+    }
+
+    #[test]
+    fn integrators() {
+        let path = |max_depth, regularize| Integrator::Path {
+            max_depth,
+            regularize,
+        };
+        assert_eq!(clean(r#"Integrator "path""#, integrator), path(5, false));
+        assert_eq!(
+            clean(
+                r#"Integrator "volpath" "integer maxdepth" 8 "bool regularize" true "string lightsampler" "power""#,
+                integrator
+            ),
+            path(8, true)
+        );
+        assert_eq!(
+            clean(r#"Integrator "whitted" "integer maxdepth" 3"#, integrator),
+            Integrator::Whitted { max_depth: 3 }
+        );
+        assert_eq!(
+            clean(r#"Integrator "ambientocclusion""#, integrator),
+            Integrator::AmbientOcclusion {
+                cos_sample: true,
+                max_distance: f32::INFINITY
+            }
+        );
+        assert_eq!(
+            clean(
+                r#"Integrator "ambientocclusion" "bool cossample" false "float maxdistance" 2"#,
+                integrator
+            ),
+            Integrator::AmbientOcclusion {
+                cos_sample: false,
+                max_distance: 2.0
+            }
+        );
+        assert_eq!(
+            clean(r#"Integrator "normals""#, integrator),
+            Integrator::Normals
+        );
+        assert_eq!(
+            clean(r#"Integrator "depth""#, integrator),
+            Integrator::Depth
+        );
+        let (out, _) = convert(r#"Integrator "bdpt" "integer maxdepth" 7"#, integrator);
+        let f = out.unwrap();
+        assert_eq!(f.value, path(7, false));
+        assert_eq!(
+            f.warnings,
+            ["integrator \"bdpt\" is not supported yet; lancer uses \"path\" with maxdepth 7"]
+        );
+        assert_eq!(
+            warnings(r#"Integrator "photonmap""#, integrator),
+            ["unknown integrator \"photonmap\"; lancer uses \"path\""]
+        );
+        assert_eq!(
+            error("Integrator \"path\"\n  \"integer maxdepth\" -1", integrator),
+            "t.pbrt:2:3: \"integer maxdepth\" must be between 0 and 100000, not -1"
+        );
+    }
+}

@@ -1,0 +1,527 @@
+//! `Shape`: pbrt-v4's quadrics, meshes (inline, or read from OBJ, PLY and MagicaVoxel files),
+//! curves and bilinear patches, and lancer's extensions (`box`, `plane`, `sdf`, `voxels`), as
+//! object-space [`Geometry`] with pbrt-v4's defaults.
+
+use super::convert::{Fallback, Reader, locate};
+use super::params::{FloatParam, ParamList};
+use crate::error::{Location, SceneError};
+use crate::obj::read_obj;
+use crate::ply::read_ply;
+use crate::vox::{default_palette, linear_palette, read_vox};
+use lancer::math::{PackedVec3, Rgb, Vec3};
+use lancer::scene::desc::Geometry;
+use lancer::shape::{BilinearMesh, CurveBasis, CurveDesc, CurveType, TriangleMesh, VoxelGrid};
+use lancer::texture::FloatTex;
+use std::sync::Arc;
+
+/// A shape as the scene gives it: its object-space geometry and its `alpha` (none when opaque).
+#[derive(Clone, Debug)]
+pub struct ShapeGeometry {
+    /// Object-space geometry.
+    pub geometry: Geometry,
+    /// The alpha cut-out, when not 1.
+    pub alpha: Option<FloatTex>,
+}
+
+/// The shape `ty` at `loc`; `emits` when the current area light would make it glow. The value
+/// is `None` when lancer skips the shape (its warning says why).
+pub fn shape(
+    r: &Reader,
+    ty: &str,
+    emits: bool,
+    loc: &Location,
+) -> Result<Fallback<Option<ShapeGeometry>>, SceneError> {
+    let converted = geometry(r, ty).map_err(|e| locate(e, loc))?;
+    let Some(geometry) = converted.value else {
+        return Ok(Fallback {
+            value: None,
+            warnings: converted.warnings,
+        });
+    };
+    let alpha = match r.params.float_or_texture("alpha")? {
+        None | Some(FloatParam::Const(1.0)) => None,
+        Some(FloatParam::Const(a)) => Some(FloatTex::Const(a)),
+        Some(FloatParam::Texture(t, tloc)) => Some(r.textures.float(&t, &tloc)?),
+    };
+    if emits {
+        can_emit(&geometry, loc)?;
+    }
+    Ok(Fallback {
+        value: Some(ShapeGeometry { geometry, alpha }),
+        warnings: converted.warnings,
+    })
+}
+
+/// Curves and voxels cannot be area lights.
+fn can_emit(geometry: &Geometry, loc: &Location) -> Result<(), SceneError> {
+    let refusal = match geometry {
+        Geometry::Curve(_) => {
+            "a curve cannot be an area light (pbrt-v4 cannot sample curves either)"
+        }
+        Geometry::Voxels(_) => {
+            "a \"voxels\" shape cannot be an area light (AttributeBegin/AttributeEnd around the AreaLightSource keeps it from the voxels)"
+        }
+        _ => return Ok(()),
+    };
+    Err(SceneError::at(loc.clone(), refusal))
+}
+
+/// The geometry of `ty`, `None` when skipped.
+fn geometry(r: &Reader, ty: &str) -> Result<Fallback<Option<Geometry>>, SceneError> {
+    let p = r.params;
+    let positive = |v: f32| v > 0.0;
+    // pbrt's sweep angle, in degrees, for every quadric.
+    let phi_max = || p.float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0);
+    let radius = || p.float_checked("radius", 1.0, "positive", positive);
+    let g = match ty {
+        "sphere" => {
+            let radius = radius()?;
+            Geometry::Sphere {
+                radius,
+                z_min: p.float("zmin", -radius)?,
+                z_max: p.float("zmax", radius)?,
+                phi_max: phi_max()?,
+            }
+        }
+        "disk" => {
+            let radius = radius()?;
+            Geometry::Disk {
+                height: p.float("height", 0.0)?,
+                radius,
+                inner_radius: p.float_checked(
+                    "innerradius",
+                    0.0,
+                    "at least 0 and less than the radius",
+                    |v| (0.0..radius).contains(&v),
+                )?,
+                phi_max: phi_max()?,
+            }
+        }
+        "cylinder" => Geometry::Cylinder {
+            radius: radius()?,
+            z_min: p.float("zmin", -1.0)?,
+            z_max: p.float("zmax", 1.0)?,
+            phi_max: phi_max()?,
+        },
+        "cone" => Geometry::Cone {
+            radius: radius()?,
+            height: p.float_checked("height", 1.0, "positive", positive)?,
+            phi_max: phi_max()?,
+        },
+        "paraboloid" => {
+            let z_max = p.float_checked("zmax", 1.0, "positive", positive)?;
+            Geometry::Paraboloid {
+                radius: radius()?,
+                z_min: p.float_checked("zmin", 0.0, "at least 0 and less than zmax", |v| {
+                    (0.0..z_max).contains(&v)
+                })?,
+                z_max,
+                phi_max: phi_max()?,
+            }
+        }
+        "hyperboloid" => {
+            let p1 = p.point3("p1", Vec3::ZERO)?;
+            let p2 = p.point3("p2", Vec3::ONE)?;
+            if p1.z == p2.z {
+                return Err(p.error_at(
+                    if p.has("p2") { "p2" } else { "p1" },
+                    format!(
+                        "the hyperboloid's \"p1\" {p1} and \"p2\" {p2} are at the same height; \
+                         the swept segment would be a flat annulus (use a disk)"
+                    ),
+                ));
+            }
+            Geometry::Hyperboloid {
+                p1,
+                p2,
+                phi_max: phi_max()?,
+            }
+        }
+        // lancer extension: an axis-aligned box in object space.
+        "box" => {
+            let min = p.point3("min", Vec3::splat(-1.0))?;
+            let max = p.point3("max", Vec3::ONE)?;
+            if !min.cmplt(max).all() {
+                return Err(p.error_at(
+                    if p.has("max") { "max" } else { "min" },
+                    format!(
+                        "the box's \"min\" {min} must be below its \"max\" {max} on every axis"
+                    ),
+                ));
+            }
+            Geometry::Box { min, max }
+        }
+        "plane" => {
+            let n = p.normal("n", Vec3::Z)?;
+            // Too short to normalise (components so small their squares underflow) counts as
+            // zero.
+            if n.try_normalize().is_none() {
+                return Err(p.error_at("n", "the plane's normal \"n\" is zero"));
+            }
+            Geometry::Plane {
+                p: p.point3("p", Vec3::ZERO)?,
+                n,
+            }
+        }
+        // lancer extension: a signed-distance object, sphere-traced.
+        "sdf" => super::sdf::sdf_geometry(p)?,
+        "trianglemesh" => Geometry::TriangleMesh(Arc::new(triangle_mesh(p, ty)?)),
+        // pbrt's subdivision surface: the control mesh refined `levels` times (default 3) and
+        // moved to the limit surface.
+        "loopsubdiv" => {
+            let levels = p.int_in("levels", 3, 0..=8)? as u32;
+            let control = triangle_mesh(p, ty)?;
+            Geometry::TriangleMesh(Arc::new(lancer::shape::loop_subdivide(&control, levels)))
+        }
+        "plymesh" | "objmesh" => {
+            let read = if ty == "plymesh" {
+                ply_mesh(r)?
+            } else {
+                obj_mesh(r)?
+            };
+            return Ok(read.map(|m| m.map(|m| Geometry::TriangleMesh(Arc::new(m)))));
+        }
+        // lancer extension: a voxel grid, from a MagicaVoxel file or inline.
+        "voxels" => {
+            let (grid, notes) = voxel_grid(r)?;
+            return Ok(Fallback::noted(
+                Some(Geometry::Voxels(Arc::new(grid))),
+                notes,
+            ));
+        }
+        "curve" => {
+            let (desc, ignored_normals) = curve(p)?;
+            let g = Some(Geometry::Curve(Arc::new(desc)));
+            return Ok(if ignored_normals {
+                Fallback::instead(
+                    g,
+                    "curve normals \"N\" are only used by \"ribbon\" curves; ignored",
+                )
+            } else {
+                Fallback::done(g)
+            });
+        }
+        "bilinearmesh" => Geometry::BilinearMesh(Arc::new(bilinear_mesh(p)?)),
+        _ => {
+            return Ok(Fallback::instead(
+                None,
+                format!("unknown shape \"{ty}\"; skipped"),
+            ));
+        }
+    };
+    Ok(Fallback::done(Some(g)))
+}
+
+/// A mesh's `point3 P`: `what` names the shape in the error when it is missing.
+fn positions(p: &ParamList, what: &str) -> Result<Vec<PackedVec3>, SceneError> {
+    p.point3s("P")?.ok_or_else(|| {
+        SceneError::general(format!("a \"{what}\" needs vertex positions \"point3 P\""))
+    })
+}
+
+/// A per-vertex array `name` (`N`, `uv`, …) of `values`: empty, or one entry per vertex.
+fn per_vertex<T>(
+    p: &ParamList,
+    name: &str,
+    values: Option<Vec<T>>,
+    vertices: usize,
+) -> Result<Vec<T>, SceneError> {
+    let values = values.unwrap_or_default();
+    if !values.is_empty() && values.len() != vertices {
+        return Err(p.error_at(
+            name,
+            format!(
+                "\"{name}\" has {} entries for {vertices} vertices",
+                values.len()
+            ),
+        ));
+    }
+    Ok(values)
+}
+
+/// pbrt's `trianglemesh`: `P`, `indices` (optional for a single triangle), `N`, `uv` (or
+/// pbrt-v3's `st`).
+fn triangle_mesh(p: &ParamList, what: &str) -> Result<TriangleMesh, SceneError> {
+    let positions = positions(p, what)?;
+    let indices: Vec<u32> = match p.ints("indices")? {
+        Some((idx, loc)) => face_indices(idx, loc, 3, positions.len())?,
+        None if positions.len() == 3 => vec![0, 1, 2],
+        None => {
+            return Err(p.error_at(
+                "P",
+                format!("a \"{what}\" with more than 3 vertices needs \"integer indices\""),
+            ));
+        }
+    };
+    let normals = per_vertex(p, "N", p.normals("N")?, positions.len())?;
+    let uv_name = if p.has("uv") { "uv" } else { "st" };
+    let uvs = per_vertex(p, uv_name, p.point2s(uv_name)?, positions.len())?;
+    Ok(TriangleMesh {
+        positions,
+        normals,
+        uvs,
+        indices,
+        flip_normal: false,
+    })
+}
+
+/// pbrt-v4's `bilinearmesh`: `P`, `indices` (four per patch: p₀₀, p₁₀, p₀₁, p₁₁; optional for
+/// a single patch), `uv`, `N`.
+fn bilinear_mesh(p: &ParamList) -> Result<BilinearMesh, SceneError> {
+    let positions = positions(p, "bilinearmesh")?;
+    let indices: Vec<u32> = match p.ints("indices")? {
+        Some((idx, loc)) if idx.is_empty() => {
+            return Err(SceneError::at(loc, "\"integer indices\" is empty"));
+        }
+        Some((idx, loc)) => face_indices(idx, loc, 4, positions.len())?,
+        None if positions.len() == 4 => vec![0, 1, 2, 3],
+        None => {
+            return Err(p.error_at(
+                "P",
+                "a \"bilinearmesh\" with other than 4 vertices needs \"integer indices\"",
+            ));
+        }
+    };
+    if positions.iter().any(|v| !v.is_finite()) {
+        return Err(p.error_at("P", "vertex positions must be finite"));
+    }
+    let normals = per_vertex(p, "N", p.normals("N")?, positions.len())?;
+    let uvs = per_vertex(p, "uv", p.point2s("uv")?, positions.len())?;
+    Ok(BilinearMesh {
+        positions,
+        normals,
+        uvs,
+        indices,
+        flip_normal: false,
+    })
+}
+
+/// A mesh's `"integer indices"`: `corners` per face, each naming one of `vertices` vertices.
+fn face_indices(
+    idx: Vec<i32>,
+    loc: Location,
+    corners: usize,
+    vertices: usize,
+) -> Result<Vec<u32>, SceneError> {
+    if !idx.len().is_multiple_of(corners) {
+        return Err(SceneError::at(
+            loc,
+            format!(
+                "\"integer indices\" holds {} values, not a multiple of {corners}",
+                idx.len()
+            ),
+        ));
+    }
+    if let Some(bad) = idx.iter().find(|&&i| i < 0 || i as usize >= vertices) {
+        return Err(SceneError::at(
+            loc,
+            format!("index {bad} in \"integer indices\" is out of range for {vertices} vertices"),
+        ));
+    }
+    Ok(idx.into_iter().map(|i| i as u32).collect())
+}
+
+/// pbrt-v4's `curve`: `P`, `basis` (`bezier` | `bspline`), `degree` (2 | 3), `type` (`flat` |
+/// `ribbon` | `cylinder`), `width` / `width0` / `width1`, `N` (ribbons: one per segment
+/// boundary), `splitdepth` (default 3). Also says whether `N` was given to a curve that does
+/// not use it.
+fn curve(p: &ParamList) -> Result<(CurveDesc, bool), SceneError> {
+    let Some(points) = p.point3s("P")? else {
+        return Err(SceneError::general(
+            "a \"curve\" needs control points \"point3 P\"",
+        ));
+    };
+    let non_negative = |v: f32| v >= 0.0 && v.is_finite();
+    let width = p.float_checked("width", 1.0, "at least 0", non_negative)?;
+    let width0 = p.float_checked("width0", width, "at least 0", non_negative)?;
+    let width1 = p.float_checked("width1", width, "at least 0", non_negative)?;
+    let degree = p.int_in("degree", 3, 2..=3)? as u32;
+    let basis = match p.string("basis")?.as_deref() {
+        None | Some("bezier") => CurveBasis::Bezier,
+        Some("bspline") => CurveBasis::BSpline,
+        Some(other) => {
+            return Err(p.error_at(
+                "basis",
+                format!("unknown curve basis \"{other}\" (expected \"bezier\" or \"bspline\")"),
+            ));
+        }
+    };
+    let kind = match p.string("type")?.as_deref() {
+        None | Some("flat") => CurveType::Flat,
+        Some("ribbon") => CurveType::Ribbon,
+        Some("cylinder") => CurveType::Cylinder,
+        Some(other) => {
+            return Err(p.error_at(
+                "type",
+                format!(
+                    "unknown curve type \"{other}\" (expected \"flat\", \"ribbon\" or \"cylinder\")"
+                ),
+            ));
+        }
+    };
+    let split_depth = p.int_in("splitdepth", 3, 0..=10)? as u32;
+    let mut normals = p.normals("N")?.unwrap_or_default();
+    let ignored_normals = kind != CurveType::Ribbon && !normals.is_empty();
+    if ignored_normals {
+        normals.clear();
+    }
+    let desc = CurveDesc {
+        points,
+        basis,
+        degree,
+        kind,
+        width0,
+        width1,
+        normals,
+        split_depth,
+    };
+    desc.segment_count().map_err(|e| p.error_at("P", e))?;
+    desc.validate().map_err(|e| {
+        let at = if kind == CurveType::Ribbon && p.has("N") {
+            "N"
+        } else {
+            "P"
+        };
+        p.error_at(at, e)
+    })?;
+    Ok((desc, ignored_normals))
+}
+
+/// A mesh read from `path`, or `None` (with a warning) when it has no faces; faces with fewer
+/// than 3 vertices, which the file readers skip, are noted.
+fn file_mesh(
+    mesh: TriangleMesh,
+    skipped_faces: u64,
+    path: &std::path::Path,
+) -> (Option<TriangleMesh>, Vec<String>) {
+    if mesh.triangle_count() == 0 {
+        let skipped = format!("{} has no faces; the shape is skipped", path.display());
+        return (None, vec![skipped]);
+    }
+    let mut notes = Vec::new();
+    if skipped_faces > 0 {
+        notes.push(format!(
+            "{}: {skipped_faces} faces with fewer than 3 vertices skipped",
+            path.display()
+        ));
+    }
+    (Some(mesh), notes)
+}
+
+/// pbrt-v4's `objmesh`: every triangle of the OBJ file `filename` in one mesh (objects, groups
+/// and materials merged; the file's materials are not used, the shape takes the current pbrt
+/// material as any other shape does).
+fn obj_mesh(r: &Reader) -> Result<Fallback<Option<TriangleMesh>>, SceneError> {
+    let path = r.file("an \"objmesh\" needs the name of its OBJ file")?;
+    let obj = read_obj(&path).map_err(|e| SceneError::general(e.to_string()))?;
+    let mesh = obj.merged_mesh();
+    mesh.validate()
+        .map_err(|e| SceneError::general(format!("{}: {e}", path.display())))?;
+    let (mesh, notes) = file_mesh(mesh, obj.skipped_faces, &path);
+    Ok(Fallback::noted(mesh, notes))
+}
+
+/// pbrt's `plymesh`: the triangles of the PLY file `filename` (gzipped when it ends in `.gz`).
+/// Displacement is not supported: the mesh is used as it is, with a warning.
+fn ply_mesh(r: &Reader) -> Result<Fallback<Option<TriangleMesh>>, SceneError> {
+    let p = r.params;
+    let path = r.file("a \"plymesh\" needs the name of its PLY file")?;
+    let ply = read_ply(&path).map_err(|e| SceneError::general(e.to_string()))?;
+    let (mesh, mut notes) = file_mesh(ply.mesh, ply.skipped_faces, &path);
+    if mesh.is_none() {
+        return Ok(Fallback::noted(None, notes));
+    }
+    // Read (so that they are not also reported as unused) but not applied.
+    let displaced = p.float_or_texture("displacement")?.is_some();
+    let edge_length = p.has("edgelength");
+    p.float("edgelength", 1.0)?;
+    if displaced {
+        notes.push(
+            "displacement of a \"plymesh\" is not supported yet; the mesh is used undisplaced"
+                .into(),
+        );
+    } else if edge_length {
+        notes.push(
+            "\"edgelength\" only matters with \"displacement\", which lancer does not support yet; ignored"
+                .into(),
+        );
+    }
+    Ok(Fallback::noted(mesh, notes))
+}
+
+/// lancer's `voxels`: the first model of the MagicaVoxel file `filename`, or the inline grid
+/// `integer dims` [nx ny nz] with `integer indices` (nx·ny·nz palette indices, x fastest,
+/// 0 = empty) and an optional `float palette` (linear r, g, b of indices 1, 2, …; indices it
+/// does not reach keep MagicaVoxel's default palette; `float` because pbrt's `rgb` holds one
+/// colour). Also gives the file's warnings.
+fn voxel_grid(r: &Reader) -> Result<(VoxelGrid, Vec<String>), SceneError> {
+    let p = r.params;
+    if let Some(name) = p.string("filename")? {
+        let path = r.dir.resolve(&name);
+        let model = read_vox(&path).map_err(|e| SceneError::general(e.to_string()))?;
+        let warnings = model
+            .warnings
+            .iter()
+            .map(|w| format!("{}: {w}", path.display()))
+            .collect();
+        return Ok((model.grid, warnings));
+    }
+    let Some((dims, dloc)) = p.ints("dims")? else {
+        return Err(SceneError::general(
+            "a \"voxels\" shape needs \"string filename\" or \"integer dims\" with \"integer indices\"",
+        ));
+    };
+    if dims.len() != 3 || dims.iter().any(|&d| d <= 0) {
+        return Err(SceneError::at(
+            dloc,
+            format!("\"integer dims\" must be three positive values, got {dims:?}"),
+        ));
+    }
+    let dims = [dims[0] as u32, dims[1] as u32, dims[2] as u32];
+    let Some((indices, iloc)) = p.ints("indices")? else {
+        return Err(p.error_at(
+            "dims",
+            "a \"voxels\" shape with \"integer dims\" needs \"integer indices\"",
+        ));
+    };
+    let count = dims.iter().map(|&d| d as u64).product::<u64>();
+    if indices.len() as u64 != count {
+        return Err(SceneError::at(
+            iloc,
+            format!(
+                "\"integer indices\" holds {} values for {}×{}×{} = {count} cells",
+                indices.len(),
+                dims[0],
+                dims[1],
+                dims[2]
+            ),
+        ));
+    }
+    if let Some(bad) = indices.iter().find(|&&i| !(0..=255).contains(&i)) {
+        return Err(SceneError::at(
+            iloc,
+            format!("palette index {bad} in \"integer indices\" is not in 0..=255"),
+        ));
+    }
+    let cells = indices.iter().map(|&i| i as u8).collect();
+    let mut palette = linear_palette(&default_palette());
+    if let Some(values) = p.floats("palette")? {
+        if values.len() % 3 != 0 || values.len() > 3 * 255 {
+            return Err(p.error_at(
+                "palette",
+                format!(
+                    "\"float palette\" holds {} values: it needs 3 (r, g, b) per colour, at most 255 colours",
+                    values.len()
+                ),
+            ));
+        }
+        for (i, c) in values.chunks_exact(3).enumerate() {
+            palette[i + 1] = Rgb::new(c[0], c[1], c[2]);
+        }
+    }
+    let grid = VoxelGrid::new(dims, cells, palette).map_err(|m| p.error_at("dims", m))?;
+    Ok((grid, Vec::new()))
+}
+
+#[cfg(test)]
+mod tests;
