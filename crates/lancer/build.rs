@@ -77,7 +77,10 @@ fn fit_optimised(out_dir: &Path, path: &Path, threads: usize) -> Result<(), Stri
         .arg(path)
         .arg(threads.to_string())
         .status()
-        .map_err(|e| format!("cannot run {}: {e}", exe.display()))?;
+        .map_err(|e| format!("cannot run {}: {e}", exe.display()));
+    // The helper (4 MB) has done its work either way.
+    let _ = std::fs::remove_file(&exe);
+    let status = status?;
     if !status.success() {
         return Err(format!("{} failed: {status}", exe.display()));
     }
