@@ -8,8 +8,13 @@
 //! - [`D65`]: CIE standard illuminant D65, relative spectral power, 100 at 560 nm
 //!   (ISO/CIE 11664-2).
 //!
-//! Entry `i` is at wavelength [`LAMBDA_MIN`] + `i`·[`LAMBDA_STEP`]. Between entries the
-//! spectrum module interpolates linearly; outside the range the functions are zero.
+//! Entry `i` is at wavelength [`LAMBDA_MIN`] + `i`·[`LAMBDA_STEP`]. Between entries [`cmf`]
+//! and [`d65`] interpolate linearly; outside the range the functions are zero. Spectral
+//! integrals are sums over [`INTEGRATION_RANGE`] (every 1 nm), and XYZ becomes linear sRGB by
+//! [`xyz_to_srgb`].
+//!
+//! This file uses nothing but `std`: the crate's build script includes it (with
+//! `fit.rs`) to fit the RGB → spectrum table at compile time.
 
 /// First wavelength of the tables, in nanometres.
 pub const LAMBDA_MIN: f64 = 360.0;
@@ -141,3 +146,45 @@ pub const D65: [f64; SAMPLES] = [
     63.8434, 64.304, 61.8779, 59.4519, 55.7054, // 785–805
     51.959, 54.6998, 57.4406, 58.8765, 60.3125, // 810–830
 ];
+
+/// First and last wavelengths of the spectral integrals (nm); they are sums every 1 nm.
+pub const INTEGRATION_RANGE: std::ops::RangeInclusive<u32> = 360..=830;
+
+/// Where `lambda` falls in the 5 nm tables: the entry below and the fraction of the way to the
+/// next one; `None` outside 360–830 nm.
+fn table_position(lambda: f64) -> Option<(usize, f64)> {
+    if !(LAMBDA_MIN..=LAMBDA_MAX).contains(&lambda) {
+        return None;
+    }
+    let x = (lambda - LAMBDA_MIN) / LAMBDA_STEP;
+    let i = (x.floor() as usize).min(SAMPLES - 2);
+    Some((i, x - i as f64))
+}
+
+/// `[x̄, ȳ, z̄]` at `lambda` (nm), interpolated linearly in [`CMF_1931`]; zero outside
+/// 360–830 nm.
+pub fn cmf(lambda: f64) -> [f64; 3] {
+    let Some((i, t)) = table_position(lambda) else {
+        return [0.0; 3];
+    };
+    let (a, b) = (CMF_1931[i], CMF_1931[i + 1]);
+    std::array::from_fn(|k| a[k] * (1.0 - t) + b[k] * t)
+}
+
+/// D65 at `lambda` (nm), interpolated linearly in [`D65`]; zero outside 360–830 nm.
+pub fn d65(lambda: f64) -> f64 {
+    table_position(lambda).map_or(0.0, |(i, t)| D65[i] * (1.0 - t) + D65[i + 1] * t)
+}
+
+/// Rows of the standard XYZ → linear sRGB matrix (D65 white, IEC 61966-2-1).
+pub const XYZ_TO_SRGB: [[f64; 3]; 3] = [
+    [3.240_454_2, -1.537_138_5, -0.498_531_4],
+    [-0.969_266, 1.876_010_8, 0.041_556],
+    [0.055_643_4, -0.204_025_9, 1.057_225_2],
+];
+
+/// CIE XYZ → linear sRGB: each component the dot product of a row of [`XYZ_TO_SRGB`] with
+/// `xyz`, summed left to right, (m₀·x + m₁·y) + m₂·z.
+pub fn xyz_to_srgb(xyz: [f64; 3]) -> [f64; 3] {
+    XYZ_TO_SRGB.map(|m| m[0] * xyz[0] + m[1] * xyz[1] + m[2] * xyz[2])
+}

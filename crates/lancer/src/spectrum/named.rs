@@ -147,7 +147,7 @@ pub fn named_spectrum_names() -> impl Iterator<Item = &'static str> {
 mod tests {
     use super::*;
     use crate::math::luminance;
-    use crate::spectrum::{SpectrumKind, spectrum_to_rgb};
+    use crate::spectrum::reduce::{SpectrumKind, spectrum_to_rgb};
 
     fn rgb(name: &str, kind: SpectrumKind) -> Rgb {
         spectrum_to_rgb(&named_spectrum(name).expect(name), kind)

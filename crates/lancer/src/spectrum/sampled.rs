@@ -15,8 +15,10 @@
 //! reach this point already reduced to RGB at load, and are uplifted from that RGB like any
 //! colour; dielectrics have a constant index, so there is no dispersion.
 
+use super::cie::INTEGRATION_RANGE;
+use super::reduce::weights;
 use super::uplift::{SigmoidSpectrum, albedo_spectrum, unbounded_spectrum};
-use super::{INTEGRATION_RANGE, cie_d65, cie_xyz, weights, xyz_to_srgb};
+use super::{cie_d65, cie_xyz, xyz_to_srgb};
 use crate::math::Rgb;
 use std::sync::OnceLock;
 
