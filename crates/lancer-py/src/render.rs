@@ -78,9 +78,9 @@ pub fn settings_from_desc(desc: &SceneDesc, spectral: bool) -> RenderSettings {
 fn with_overrides(
     desc: &SceneDesc,
     spp: Option<u32>,
-    resolution: Option<(u32, u32)>,
+    resolution: Option<Vec<u32>>,
     seed: u64,
-    crop: Option<(f32, f32, f32, f32)>,
+    crop: Option<Vec<f32>>,
 ) -> PyResult<SceneDesc> {
     let mut d = desc.clone();
     if let Some(spp) = spp {
@@ -95,7 +95,12 @@ fn with_overrides(
         ));
     }
     d.sampler.seed = seed;
-    if let Some((w, h)) = resolution {
+    if let Some(res) = resolution {
+        let &[w, h] = res.as_slice() else {
+            return Err(PyValueError::new_err(format!(
+                "resolution is (width, height), not {res:?}"
+            )));
+        };
         for (name, v) in [("width", w), ("height", h)] {
             if v == 0 || v > MAX_RESOLUTION {
                 return Err(PyValueError::new_err(format!(
@@ -107,7 +112,12 @@ fn with_overrides(
         d.film.yresolution = h;
         d.film.pixel_bounds = None;
     }
-    if let Some((x0, x1, y0, y1)) = crop {
+    if let Some(crop) = crop {
+        let &[x0, x1, y0, y1] = crop.as_slice() else {
+            return Err(PyValueError::new_err(format!(
+                "crop is (x0, x1, y0, y1), not {crop:?}"
+            )));
+        };
         let inside = |v: f32| (0.0..=1.0).contains(&v);
         if !([x0, x1, y0, y1].into_iter().all(inside) && x0 < x1 && y0 < y1) {
             return Err(PyValueError::new_err(format!(
@@ -126,13 +136,14 @@ fn with_overrides(
 /// or the scene selects some).
 ///
 /// `spp`, `resolution` (width, height) and `crop` (x0, x1, y0, y1 as fractions of the image,
-/// pbrt's cropwindow) override the scene's; `seed` seeds the sampler; `threads` limits the
-/// worker threads (all cores by default); `spectral` renders with sampled wavelengths as
-/// pbrt-v4 does (True) or in plain RGB (False). The same arguments give the same pixels as
-/// `lancer render` with the same options, whatever the thread count.
+/// pbrt's cropwindow), as tuples or lists, override the scene's; `seed` seeds the sampler;
+/// `threads` limits the worker threads (all cores by default); `spectral` renders with sampled
+/// wavelengths as pbrt-v4 does (True) or in plain RGB (False). The same arguments give the
+/// same pixels as `lancer render` with the same options, whatever the thread count.
 ///
 /// The GIL is released while rendering; Ctrl-C (or any signal whose Python handler raises)
-/// stops the render between units of work (a tile × 16 samples) and raises here (KeyboardInterrupt for Ctrl-C).
+/// stops the render between units of work (a tile × 16 samples) and raises here
+/// (KeyboardInterrupt for Ctrl-C).
 #[pyfunction]
 #[pyo3(signature = (scene, spp = None, resolution = None, seed = 0, threads = None, spectral = true, crop = None))]
 #[allow(clippy::too_many_arguments)] // the Python signature the issue asks for
@@ -140,11 +151,11 @@ pub fn render<'py>(
     py: Python<'py>,
     scene: &Bound<'py, PyScene>,
     spp: Option<u32>,
-    resolution: Option<(u32, u32)>,
+    resolution: Option<Vec<u32>>,
     seed: u64,
     threads: Option<usize>,
     spectral: bool,
-    crop: Option<(f32, f32, f32, f32)>,
+    crop: Option<Vec<f32>>,
 ) -> PyResult<Bound<'py, PyArray3<f32>>> {
     let this = scene.get();
     let desc = with_overrides(&this.desc, spp, resolution, seed, crop)?;

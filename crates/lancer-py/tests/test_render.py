@@ -1,7 +1,7 @@
 """lancer.render: shapes, values against the reference and the command line, overrides,
 threads, the GIL and Ctrl-C."""
 
-import os
+import re
 import signal
 import subprocess
 import sys
@@ -70,7 +70,7 @@ def test_threads_do_not_change_the_image_and_seeds_do(cbox):
 def test_crop_renders_that_window_only(cbox):
     scene = lancer.load_file(cbox)
     full = lancer.render(scene, spp=2, resolution=(32, 32))
-    part = lancer.render(scene, spp=2, resolution=(32, 32), crop=(0.25, 0.75, 0.0, 0.5))
+    part = lancer.render(scene, spp=2, resolution=[32, 32], crop=[0.25, 0.75, 0.0, 0.5])
     # pbrt's rounding: columns ceil(32*0.25)=8 .. ceil(32*0.75)=24, rows 0 .. 16.
     assert part.shape == (16, 16, 3)
     np.testing.assert_array_equal(part, full[0:16, 8:24])
@@ -92,8 +92,10 @@ def test_bad_arguments_raise_value_errors(cbox):
         ({"resolution": (10, 100000)}, "height 100000"),
         ({"crop": (0.5, 0.25, 0.0, 1.0)}, "x0 < x1"),
         ({"crop": (0.0, 1.0, 0.0, 1.5)}, "in [0, 1]"),
+        ({"resolution": (10, 10, 3)}, "resolution is (width, height)"),
+        ({"crop": [0.0, 1.0]}, "crop is (x0, x1, y0, y1)"),
     ]:
-        with pytest.raises(ValueError, match=words.replace("[", r"\[").replace("]", r"\]")):
+        with pytest.raises(ValueError, match=re.escape(words)):
             lancer.render(scene, **kwargs)
     with pytest.raises(ValueError, match="selects no pixel"):
         lancer.render(scene, resolution=(4, 4), crop=(0.1, 0.2, 0.0, 1.0))

@@ -50,8 +50,15 @@ def _image(array, dtype, name="image"):
     """`array` as a C-contiguous (height, width, 3) array of `dtype`."""
     a = _np.ascontiguousarray(array, dtype=dtype)
     if a.ndim != 3 or a.shape[2] != 3 or a.shape[0] == 0 or a.shape[1] == 0:
-        raise ValueError(f"{name}: an image is an array of shape (height, width, 3), not {a.shape}")
+        raise ValueError(
+            f"{name}: an image is an array of shape (height, width, 3), not {a.shape}"
+        )
     return a
+
+
+def _pair(image, reference):
+    """Both images as float64 (height, width, 3) arrays, for the metrics."""
+    return _image(image, _np.float64), _image(reference, _np.float64, "reference")
 
 
 def write_image(path, array):
@@ -68,19 +75,19 @@ def mean_rel_error(image, reference):
 
     A bias measure that noise hardly moves; the images may differ in size.
     """
-    return _lancer.mean_rel_error(_image(image, _np.float64), _image(reference, _np.float64, "reference"))
+    return _lancer.mean_rel_error(*_pair(image, reference))
 
 
 def relmse(image, reference):
     """Relative MSE: mean of (image - reference)^2 / (reference^2 + (0.1 m)^2), m = mean(reference)."""
-    return _lancer.relmse(_image(image, _np.float64), _image(reference, _np.float64, "reference"))
+    return _lancer.relmse(*_pair(image, reference))
 
 
 def rmse(image, reference):
     """Root mean squared difference over every pixel and channel."""
-    return _lancer.rmse(_image(image, _np.float64), _image(reference, _np.float64, "reference"))
+    return _lancer.rmse(*_pair(image, reference))
 
 
 def nrmse(image, reference):
     """RMSE divided by the reference's mean (floored at 1e-6)."""
-    return _lancer.nrmse(_image(image, _np.float64), _image(reference, _np.float64, "reference"))
+    return _lancer.nrmse(*_pair(image, reference))
