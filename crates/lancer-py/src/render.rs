@@ -136,10 +136,11 @@ fn with_overrides(
 /// or the scene selects some).
 ///
 /// `spp`, `resolution` (width, height) and `crop` (x0, x1, y0, y1 as fractions of the image,
-/// pbrt's cropwindow), as tuples or lists, override the scene's; `seed` seeds the sampler;
-/// `threads` limits the worker threads (all cores by default); `spectral` renders with sampled
-/// wavelengths as pbrt-v4 does (True) or in plain RGB (False). The same arguments give the
-/// same pixels as `lancer render` with the same options, whatever the thread count.
+/// pbrt's cropwindow), as tuples or lists, override the scene's; `seed` replaces the scene's
+/// sampler seed; `threads` limits the worker threads (all cores by default); `spectral`
+/// renders with sampled wavelengths as pbrt-v4 does (True) or in plain RGB (False). The same
+/// arguments give the same pixels as `lancer render --seed` with the same options, whatever
+/// the thread count.
 ///
 /// The GIL is released while rendering; Ctrl-C (or any signal whose Python handler raises)
 /// stops the render between units of work (a tile × 16 samples) and raises here
