@@ -276,27 +276,10 @@ fn resumed_state(
     })
 }
 
-/// The pixels to render: pbrt's `pixelbounds`, else its crop window rounded as pbrt does
-/// (⌈res·min⌉ to ⌈res·max⌉).
+/// The pixels to render: pbrt's `pixelbounds`, else its crop window
+/// ([`lancer::scene::desc::FilmDesc::render_bounds`]).
 pub fn pixel_bounds(desc: &SceneDesc) -> PixelBounds {
-    let (w, h) = (desc.film.xresolution as i32, desc.film.yresolution as i32);
-    let full = PixelBounds {
-        x0: 0,
-        x1: w,
-        y0: 0,
-        y1: h,
-    };
-    if let Some([x0, x1, y0, y1]) = desc.film.pixel_bounds {
-        return PixelBounds { x0, x1, y0, y1 }.intersect(&full);
-    }
-    let [cx0, cx1, cy0, cy1] = desc.film.crop_window;
-    PixelBounds {
-        x0: (w as f32 * cx0).ceil() as i32,
-        x1: (w as f32 * cx1).ceil() as i32,
-        y0: (h as f32 * cy0).ceil() as i32,
-        y1: (h as f32 * cy1).ceil() as i32,
-    }
-    .intersect(&full)
+    desc.film.render_bounds()
 }
 
 /// Step 3: builds the scene (BVH, lights, textures).

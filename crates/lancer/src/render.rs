@@ -46,19 +46,15 @@ pub struct RenderSettings {
 pub const DEFAULT_TILE_SIZE: u32 = 16;
 
 impl RenderSettings {
-    /// The settings a scene description asks for: the whole image (`xresolution ×
-    /// yresolution`), every sample index `0..spp`, the description's sampler, seed, filter,
+    /// The settings a scene description asks for: the pixels of its film's pixel bounds or
+    /// crop window ([`crate::scene::desc::FilmDesc::render_bounds`]; the whole image by
+    /// default), every sample index `0..spp`, the description's sampler, seed, filter,
     /// integrator and `maxcomponentvalue`, tiles of [`DEFAULT_TILE_SIZE`] pixels, RGB (not
     /// spectral) rendering. Callers that render a part of the image or of the samples, or in
     /// spectral mode, change those fields afterwards.
     pub fn from_desc(desc: &SceneDesc) -> RenderSettings {
         RenderSettings {
-            bounds: PixelBounds {
-                x0: 0,
-                x1: desc.film.xresolution as i32,
-                y0: 0,
-                y1: desc.film.yresolution as i32,
-            },
+            bounds: desc.film.render_bounds(),
             samples: 0..desc.sampler.spp,
             spp: desc.sampler.spp,
             seed: desc.sampler.seed,

@@ -5,6 +5,7 @@
 //! is built from it. Colours are already linear RGB (spectra are converted by the readers, with
 //! pbrt's light normalisation applied); meshes are in object space with their transforms.
 
+use crate::film::PixelBounds;
 use crate::material::Material;
 use crate::math::{Rgb, Transform, Vec3};
 use crate::shape::TriangleMesh;
@@ -105,6 +106,31 @@ pub struct FilmDesc {
     pub max_component_value: f32,
     /// Write EXR as half floats (pbrt's `savefp16`; lancer defaults to full float).
     pub save_fp16: bool,
+}
+
+impl FilmDesc {
+    /// The pixels to render: pbrt's `pixelbounds`, else its crop window rounded as pbrt-v4
+    /// rounds it (⌈res·min⌉ to ⌈res·max⌉), clipped to the image.
+    pub fn render_bounds(&self) -> PixelBounds {
+        let (w, h) = (self.xresolution as i32, self.yresolution as i32);
+        let full = PixelBounds {
+            x0: 0,
+            x1: w,
+            y0: 0,
+            y1: h,
+        };
+        if let Some([x0, x1, y0, y1]) = self.pixel_bounds {
+            return PixelBounds { x0, x1, y0, y1 }.intersect(&full);
+        }
+        let [cx0, cx1, cy0, cy1] = self.crop_window;
+        PixelBounds {
+            x0: (w as f32 * cx0).ceil() as i32,
+            x1: (w as f32 * cx1).ceil() as i32,
+            y0: (h as f32 * cy0).ceil() as i32,
+            y1: (h as f32 * cy1).ceil() as i32,
+        }
+        .intersect(&full)
+    }
 }
 
 impl Default for FilmDesc {
