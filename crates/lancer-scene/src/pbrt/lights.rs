@@ -437,6 +437,55 @@ mod tests {
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
+    /// The rules the reader and lancer both know are checked once, by lancer: the reader's
+    /// error is lancer's message for the same description, after the directive's location (and
+    /// for an image, its file name).
+    #[test]
+    fn the_readers_errors_are_lancers_rules() {
+        let spot = LightDesc::Spot {
+            from: Vec3::Z,
+            to: Vec3::Z,
+            intensity: Rgb::ONE,
+            cone_angle: 30.0,
+            cone_delta_angle: 5.0,
+        };
+        let rule = spot.validate().unwrap_err();
+        assert_eq!(
+            error(r#"LightSource "spot" "point3 from" [0 0 1]"#),
+            format!("t.pbrt:1:1: {rule}")
+        );
+        let sun = LightDesc::Distant {
+            direction: Vec3::ZERO,
+            l: Rgb::ONE,
+        };
+        let rule = sun.validate().unwrap_err();
+        assert_eq!(
+            error(r#"LightSource "distant" "point3 to" [0 0 0]"#),
+            format!("t.pbrt:1:1: {rule}")
+        );
+        let dir = folder_with_pngs("rules", &[("wide.png", 3, 1, 255)]);
+        let wide = LightDesc::Infinite {
+            light_to_world: ID,
+            l: Rgb::ONE,
+            image: Some(std::sync::Arc::new(lancer::image::Image {
+                width: 3,
+                height: 1,
+                texels: vec![lancer::math::PackedRgb::ONE; 3],
+            })),
+        };
+        let rule = wide.validate().unwrap_err();
+        assert_eq!(
+            err(convert_in(
+                r#"LightSource "infinite" "string filename" "wide.png""#,
+                &dir,
+                ID
+            )
+            .0),
+            format!("t.pbrt:1:1: {}: {rule}", dir.join("wide.png").display())
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
     #[test]
     fn lights_lancer_lacks() {
         let (out, unused) = convert_in(

@@ -363,14 +363,9 @@ impl Geometry {
                 positive(*radius, &["radius"], "radius")?;
                 positive(*height, &["height"], "height")
             }
-            Geometry::Paraboloid {
-                radius,
-                z_min,
-                z_max,
-                ..
-            } => {
+            Geometry::Paraboloid { radius, z_max, .. } => {
                 positive(*radius, &["radius"], "radius")?;
-                positive(z_min.max(*z_max), &["z_max"], "zmax")
+                positive(*z_max, &["z_max"], "zmax")
             }
             Geometry::Hyperboloid { p1, p2, .. } => {
                 if p1.z != p2.z && p1.is_finite() && p2.is_finite() {
