@@ -61,15 +61,19 @@ pub fn shape(
 /// adds the directive's).
 fn rule_error(p: &ParamList, e: RuleError) -> SceneError {
     let param = e.fields.iter().rev().find_map(|&field| {
-        let name = match field {
-            "z_max" => "zmax",
-            "positions" => "P",
-            "normals" => "N",
-            "uvs" if !p.has("uv") => "st",
-            "uvs" => "uv",
-            other => other,
+        // The parameters a field comes from, the more specific first.
+        let names: &[&str] = match field {
+            "z_max" => &["zmax"],
+            "function" => &["expr"],
+            "bounds" => &["max", "min"],
+            "positions" | "points" => &["P"],
+            "normals" => &["N"],
+            "uvs" => &["uv", "st"],
+            "width0" => &["width0", "width"],
+            "width1" => &["width1", "width"],
+            other => return p.has(other).then_some(other),
         };
-        p.has(name).then_some(name)
+        names.iter().copied().find(|&name| p.has(name))
     });
     match param {
         Some(name) => p.error_at(name, e.message),
@@ -279,10 +283,9 @@ fn curve(p: &ParamList) -> Result<(CurveDesc, bool), SceneError> {
             "a \"curve\" needs control points \"point3 P\"",
         ));
     };
-    let non_negative = |v: f32| v >= 0.0 && v.is_finite();
-    let width = p.float_checked("width", 1.0, "at least 0", non_negative)?;
-    let width0 = p.float_checked("width0", width, "at least 0", non_negative)?;
-    let width1 = p.float_checked("width1", width, "at least 0", non_negative)?;
+    let width = p.float("width", 1.0)?;
+    let width0 = p.float("width0", width)?;
+    let width1 = p.float("width1", width)?;
     let degree = p.int_in("degree", 3, 2..=3)? as u32;
     let basis = match p.string("basis")?.as_deref() {
         None | Some("bezier") => CurveBasis::Bezier,
@@ -323,15 +326,7 @@ fn curve(p: &ParamList) -> Result<(CurveDesc, bool), SceneError> {
         normals,
         split_depth,
     };
-    desc.segment_count().map_err(|e| p.error_at("P", e))?;
-    desc.validate().map_err(|e| {
-        let at = if kind == CurveType::Ribbon && p.has("N") {
-            "N"
-        } else {
-            "P"
-        };
-        p.error_at(at, e)
-    })?;
+    desc.validate().map_err(|e| rule_error(p, e))?;
     Ok((desc, ignored_normals))
 }
 

@@ -353,7 +353,9 @@ impl Geometry {
     /// [`crate::Scene::build`]), with the fields it is about: radii, a cone's height and a
     /// paraboloid's top positive; a hyperboloid's ends finite and at different heights; a
     /// box's `min` below its `max`; a plane's normal not zero; meshes' indices and arrays
-    /// consistent ([`crate::shape::IndexedMesh::check`]).
+    /// consistent ([`crate::shape::IndexedMesh::check`]); an sdf's solid finite and not empty
+    /// ([`crate::shape::SdfFunction::solid_box`]); a curve's points, widths and normals
+    /// ([`crate::shape::CurveDesc::validate`]).
     pub fn validate(&self) -> Result<(), RuleError> {
         match self {
             Geometry::Sphere { radius, .. }
@@ -400,9 +402,10 @@ impl Geometry {
             },
             Geometry::TriangleMesh(m) => m.check(),
             Geometry::BilinearMesh(m) => m.check(),
-            // Their constructors check them (the expression's bounds, the spline's pieces); an
-            // empty voxel grid is valid and makes no primitive.
-            Geometry::Voxels(_) | Geometry::Sdf { .. } | Geometry::Curve(_) => Ok(()),
+            Geometry::Sdf { function, bounds } => function.solid_box(*bounds).map(|_| ()),
+            Geometry::Curve(c) => c.validate(),
+            // Its constructor checks its size; an empty grid is valid and makes no primitive.
+            Geometry::Voxels(_) => Ok(()),
         }
     }
 

@@ -439,7 +439,7 @@ fn curve_errors_are_at_their_parameter() {
     );
     assert_eq!(
         error(&format!("{p}\"float width\" -1")),
-        "t.pbrt:2:3: \"float width\" must be at least 0, not -1"
+        "t.pbrt:2:3: curve widths must be finite and at least 0, got -1 and -1"
     );
     assert_eq!(
         error(&format!("{p}\"integer degree\" 4")),
@@ -594,6 +594,20 @@ fn the_readers_errors_are_lancers_rules() {
         }))
     };
     let tri = r#"Shape "trianglemesh" "point3 P" [0 0 0 1 0 0 0 1 0]"#;
+    let bezier = r#"Shape "curve" "point3 P" [0 0 0 1 0 0 2 0 0 3 0 0]"#;
+    let four: Vec<PackedVec3> = (0..4).map(|i| v3(i as f32, 0.0, 0.0)).collect();
+    let curve = |points, kind, width0, width1, normals| {
+        Geometry::Curve(Arc::new(CurveDesc {
+            points,
+            basis: CurveBasis::Bezier,
+            degree: 3,
+            kind,
+            width0,
+            width1,
+            normals,
+            split_depth: 3,
+        }))
+    };
     let shapes = [
         (
             "Shape \"sphere\"\n  \"float radius\" -1".to_string(),
@@ -695,6 +709,51 @@ fn the_readers_errors_are_lancers_rules() {
                 indices: vec![0, 1, 2, 3],
                 flip_normal: false,
             })),
+        ),
+        (
+            "Shape \"sdf\"\n  \"string expr\" \"plane([0, 1, 0], 0)\"".into(),
+            "t.pbrt:2:3",
+            Geometry::Sdf {
+                function: Arc::new(lancer::shape::SdfFunction::parse("plane([0, 1, 0], 0)").unwrap()),
+                bounds: None,
+            },
+        ),
+        (
+            // The box misses the sphere: at its "max".
+            "Shape \"sdf\" \"string expr\" \"sphere(1)\" \"point3 min\" [5 5 5]\n  \"point3 max\" [6 6 6]"
+                .into(),
+            "t.pbrt:2:3",
+            Geometry::Sdf {
+                function: Arc::new(lancer::shape::SdfFunction::parse("sphere(1)").unwrap()),
+                bounds: Some((Vec3::splat(5.0), Vec3::splat(6.0))),
+            },
+        ),
+        (
+            format!("{bezier}\n  \"float width0\" -1"),
+            "t.pbrt:2:3",
+            curve(four.clone(), CurveType::Flat, -1.0, 1.0, vec![]),
+        ),
+        (
+            // Only "width" given: at it.
+            format!("{bezier}\n  \"float width\" -2"),
+            "t.pbrt:2:3",
+            curve(four.clone(), CurveType::Flat, -2.0, -2.0, vec![]),
+        ),
+        (
+            "Shape \"curve\"\n  \"point3 P\" [0 0 0 1 0 0 2 0 0 3 0 0 4 0 0]".into(),
+            "t.pbrt:2:3",
+            curve(
+                [four.clone(), vec![v3(4.0, 0.0, 0.0)]].concat(),
+                CurveType::Flat,
+                1.0,
+                1.0,
+                vec![],
+            ),
+        ),
+        (
+            format!("{bezier} \"string type\" \"ribbon\"\n  \"normal N\" [0 0 1]"),
+            "t.pbrt:2:3",
+            curve(four.clone(), CurveType::Ribbon, 1.0, 1.0, vec![v3(0.0, 0.0, 1.0)]),
         ),
     ];
     for (text, at, g) in shapes {
