@@ -72,7 +72,11 @@ const CASES: &[(&str, &str, &str)] = &[
     ("nan-argument.pbrt", "6:13", "'nan' is not a finite number"),
     ("nan-parameter.pbrt", "6:32", "'NaN' is not a finite number"),
     ("huge-number.pbrt", "6:32", "'1e999' is not a finite number"),
-    ("negative-radius.pbrt", "6:16", "must be positive, not -1"),
+    (
+        "negative-radius.pbrt",
+        "6:16",
+        "radius must be positive, got -1",
+    ),
     ("index-out-of-range.pbrt", "6:53", "index 3"),
     (
         "shape-before-world.pbrt",

@@ -192,12 +192,12 @@ fn bad_bilinear_meshes_are_errors_where_they_are_written() {
         (
             r#"Shape "bilinearmesh" "point3 P" [0 0 0  1 0 0  0 1 0  1 1 1] "normal N" [0 0 1]"#,
             "t.pbrt:2:62",
-            "\"N\" has 1",
+            "1 normals for 4 vertices",
         ),
         (
             r#"Shape "bilinearmesh" "point3 P" [0 0 0  1 0 0  0 1 0  1 1 1] "point2 uv" [0 0 1 1]"#,
             "t.pbrt:2:62",
-            "\"uv\" has 2",
+            "2 uvs for 4 vertices",
         ),
         (
             r#"Shape "bilinearmesh" "integer indices" [0 1 2 3]"#,

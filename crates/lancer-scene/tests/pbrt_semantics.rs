@@ -568,7 +568,7 @@ fn degenerate_boxes_and_quadrics_are_errors_where_they_are_written() {
         ),
         (
             "Shape \"hyperboloid\" \"point3 p1\" [1 0 1] \"point3 p2\" [0 1 1]",
-            "same height",
+            "different heights",
         ),
         ("Shape \"cone\" \"float height\" [0]", "positive"),
         ("Shape \"paraboloid\" \"float zmin\" [2]", "less than zmax"),

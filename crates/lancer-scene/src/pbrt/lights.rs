@@ -7,7 +7,7 @@ use super::params::ParamList;
 use super::search_path::SearchPath;
 use crate::error::{Location, SceneError};
 use crate::image_read::Encoding;
-use lancer::light::EnvMapping;
+use lancer::light::environment_mapping;
 use lancer::math::{Rgb, Transform, Vec3};
 use lancer::scene::desc::{AreaLightDesc, LightDesc};
 use lancer::spectrum::SpectrumKind;
@@ -32,12 +32,6 @@ pub fn light(
 ) -> Result<Fallback<Option<LightDesc>>, SceneError> {
     let params = r.params;
     let power = params.float("power", -1.0)?;
-    let same_points = |what: &str| {
-        SceneError::at(
-            loc.clone(),
-            format!("{what} light with \"from\" equal to \"to\""),
-        )
-    };
     let light = match ty {
         "point" => {
             let mut i = emission(params, "I", r.dir)?;
@@ -68,14 +62,9 @@ pub fn light(
                 let k = 2.0 * PI * ((1.0 - c_start) + (c_start - c_end) / 2.0);
                 i *= power / k;
             }
-            let from = ctm.point(params.point3("from", Vec3::ZERO)?);
-            let to = ctm.point(params.point3("to", Vec3::Z)?);
-            if from == to {
-                return Err(same_points("spot"));
-            }
             LightDesc::Spot {
-                from,
-                to,
+                from: ctm.point(params.point3("from", Vec3::ZERO)?),
+                to: ctm.point(params.point3("to", Vec3::Z)?),
                 intensity: i,
                 cone_angle,
                 cone_delta_angle,
@@ -92,11 +81,10 @@ pub fn light(
                     l *= illuminance / k;
                 }
             }
-            let direction = ctm.vector(w);
-            if direction == Vec3::ZERO {
-                return Err(same_points("distant"));
+            LightDesc::Distant {
+                direction: ctm.vector(w),
+                l,
             }
-            LightDesc::Distant { direction, l }
         }
         "infinite" => return Ok(infinite(r, ctm, loc)?.map(Some)),
         "goniometric" | "projection" => {
@@ -114,6 +102,11 @@ pub fn light(
             ));
         }
     };
+    // lancer's rules on lights (a spot's ends apart, a distant light's direction not zero),
+    // about two parameters at once: at the directive.
+    light
+        .validate()
+        .map_err(|m| SceneError::at(loc.clone(), m))?;
     Ok(Fallback::done(Some(light)))
 }
 
@@ -152,20 +145,10 @@ fn infinite(r: &Reader, ctm: Transform, loc: &Location) -> Result<Fallback<Light
         .images
         .rgb(&path, Encoding::Srgb)
         .map_err(|e| at(e.to_string()))?;
-    let mapping = EnvMapping::of_size(image.width, image.height).ok_or_else(|| {
-        at(format!(
-            "{}: an environment image must be square (pbrt-v4's equal-area octahedral layout) or twice as wide as high (latitude-longitude), not {}×{}",
-            path.display(),
-            image.width,
-            image.height
-        ))
-    })?;
-    if image.texels.iter().any(|c| !c.is_finite()) {
-        return Err(at(format!(
-            "{}: the image has infinite or NaN values and cannot be a light",
-            path.display()
-        )));
-    }
+    // lancer's rules on environment images (the ones `LightDesc::validate` checks), after the
+    // file's name.
+    let mapping =
+        environment_mapping(&image).map_err(|m| at(format!("{}: {m}", path.display())))?;
     let mut warnings = Vec::new();
     if illuminance > 0.0 {
         let e = mapping.pbrt_illuminance(&image);
@@ -442,7 +425,7 @@ mod tests {
         assert_eq!(
             error(r#"LightSource "infinite" "string filename" "wide.png""#),
             format!(
-                "t.pbrt:1:1: {}: an environment image must be square (pbrt-v4's equal-area octahedral layout) or twice as wide as high (latitude-longitude), not 3×1",
+                "t.pbrt:1:1: {}: an environment image must be square (equal-area octahedral) or twice as wide as high (latitude-longitude), not 3×1",
                 dir.join("wide.png").display()
             )
         );
@@ -450,6 +433,55 @@ mod tests {
         assert!(
             missing.starts_with("t.pbrt:1:1: ") && missing.contains("nope.exr"),
             "{missing}"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// The rules the reader and lancer both know are checked once, by lancer: the reader's
+    /// error is lancer's message for the same description, after the directive's location (and
+    /// for an image, its file name).
+    #[test]
+    fn the_readers_errors_are_lancers_rules() {
+        let spot = LightDesc::Spot {
+            from: Vec3::Z,
+            to: Vec3::Z,
+            intensity: Rgb::ONE,
+            cone_angle: 30.0,
+            cone_delta_angle: 5.0,
+        };
+        let rule = spot.validate().unwrap_err();
+        assert_eq!(
+            error(r#"LightSource "spot" "point3 from" [0 0 1]"#),
+            format!("t.pbrt:1:1: {rule}")
+        );
+        let sun = LightDesc::Distant {
+            direction: Vec3::ZERO,
+            l: Rgb::ONE,
+        };
+        let rule = sun.validate().unwrap_err();
+        assert_eq!(
+            error(r#"LightSource "distant" "point3 to" [0 0 0]"#),
+            format!("t.pbrt:1:1: {rule}")
+        );
+        let dir = folder_with_pngs("rules", &[("wide.png", 3, 1, 255)]);
+        let wide = LightDesc::Infinite {
+            light_to_world: ID,
+            l: Rgb::ONE,
+            image: Some(std::sync::Arc::new(lancer::image::Image {
+                width: 3,
+                height: 1,
+                texels: vec![lancer::math::PackedRgb::ONE; 3],
+            })),
+        };
+        let rule = wide.validate().unwrap_err();
+        assert_eq!(
+            err(convert_in(
+                r#"LightSource "infinite" "string filename" "wide.png""#,
+                &dir,
+                ID
+            )
+            .0),
+            format!("t.pbrt:1:1: {}: {rule}", dir.join("wide.png").display())
         );
         std::fs::remove_dir_all(&dir).unwrap();
     }

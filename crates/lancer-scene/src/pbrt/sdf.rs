@@ -52,13 +52,7 @@ pub fn sdf_geometry(p: &ParamList) -> Result<Geometry, SceneError> {
             ));
         }
     };
-    if bounds.is_none() && !function.bounds().is_finite() {
-        return Err(SceneError::at(
-            param.loc.clone(),
-            "this sdf expression is unbounded (a plane or an endless repeat): give its box \
-             with \"point3 min\" [...] and \"point3 max\" [...]",
-        ));
-    }
+    // Whether the solid is bounded is lancer's rule, checked with the other shapes' rules.
     Ok(Geometry::Sdf {
         function: Arc::new(function),
         bounds,

@@ -10,7 +10,9 @@ use crate::ply::read_ply;
 use crate::vox::{default_palette, linear_palette, read_vox};
 use lancer::math::{PackedVec3, Rgb, Vec3};
 use lancer::scene::desc::Geometry;
-use lancer::shape::{BilinearMesh, CurveBasis, CurveDesc, CurveType, TriangleMesh, VoxelGrid};
+use lancer::shape::{
+    BilinearMesh, CurveBasis, CurveDesc, CurveType, RuleError, TriangleMesh, VoxelGrid,
+};
 use lancer::texture::FloatTex;
 use std::sync::Arc;
 
@@ -44,7 +46,9 @@ pub fn shape(
         Some(FloatParam::Texture(t, tloc)) => Some(r.textures.float(&t, &tloc)?),
     };
     if emits {
-        can_emit(&geometry, loc)?;
+        geometry
+            .validate_emitter()
+            .map_err(|e| SceneError::at(loc.clone(), e.message))?;
     }
     Ok(Fallback {
         value: Some(ShapeGeometry { geometry, alpha }),
@@ -52,27 +56,37 @@ pub fn shape(
     })
 }
 
-/// Curves and voxels cannot be area lights.
-fn can_emit(geometry: &Geometry, loc: &Location) -> Result<(), SceneError> {
-    let refusal = match geometry {
-        Geometry::Curve(_) => {
-            "a curve cannot be an area light (pbrt-v4 cannot sample curves either)"
-        }
-        Geometry::Voxels(_) => {
-            "a \"voxels\" shape cannot be an area light (AttributeBegin/AttributeEnd around the AreaLightSource keeps it from the voxels)"
-        }
-        _ => return Ok(()),
-    };
-    Err(SceneError::at(loc.clone(), refusal))
+/// The error of a rule of lancer's descriptions broken ([`Geometry::validate`]): at the
+/// parameter it is about (the last given of its fields), else without a location (the caller
+/// adds the directive's).
+fn rule_error(p: &ParamList, e: RuleError) -> SceneError {
+    let param = e.fields.iter().rev().find_map(|&field| {
+        // The parameters a field comes from, the more specific first.
+        let names: &[&str] = match field {
+            "z_max" => &["zmax"],
+            "function" => &["expr"],
+            "bounds" => &["max", "min"],
+            "positions" | "points" => &["P"],
+            "normals" => &["N"],
+            "uvs" => &["uv", "st"],
+            "width0" => &["width0", "width"],
+            "width1" => &["width1", "width"],
+            other => return p.has(other).then_some(other),
+        };
+        names.iter().copied().find(|&name| p.has(name))
+    });
+    match param {
+        Some(name) => p.error_at(name, e.message),
+        None => SceneError::general(e.message),
+    }
 }
 
 /// The geometry of `ty`, `None` when skipped.
 fn geometry(r: &Reader, ty: &str) -> Result<Fallback<Option<Geometry>>, SceneError> {
     let p = r.params;
-    let positive = |v: f32| v > 0.0;
     // pbrt's sweep angle, in degrees, for every quadric.
     let phi_max = || p.float_checked("phimax", 360.0, "in (0, 360]", |v| v > 0.0 && v <= 360.0);
-    let radius = || p.float_checked("radius", 1.0, "positive", positive);
+    let radius = || p.float("radius", 1.0);
     let g = match ty {
         "sphere" => {
             let radius = radius()?;
@@ -83,20 +97,12 @@ fn geometry(r: &Reader, ty: &str) -> Result<Fallback<Option<Geometry>>, SceneErr
                 phi_max: phi_max()?,
             }
         }
-        "disk" => {
-            let radius = radius()?;
-            Geometry::Disk {
-                height: p.float("height", 0.0)?,
-                radius,
-                inner_radius: p.float_checked(
-                    "innerradius",
-                    0.0,
-                    "at least 0 and less than the radius",
-                    |v| (0.0..radius).contains(&v),
-                )?,
-                phi_max: phi_max()?,
-            }
-        }
+        "disk" => Geometry::Disk {
+            height: p.float("height", 0.0)?,
+            radius: radius()?,
+            inner_radius: p.float("innerradius", 0.0)?,
+            phi_max: phi_max()?,
+        },
         "cylinder" => Geometry::Cylinder {
             radius: radius()?,
             z_min: p.float("zmin", -1.0)?,
@@ -105,64 +111,29 @@ fn geometry(r: &Reader, ty: &str) -> Result<Fallback<Option<Geometry>>, SceneErr
         },
         "cone" => Geometry::Cone {
             radius: radius()?,
-            height: p.float_checked("height", 1.0, "positive", positive)?,
+            height: p.float("height", 1.0)?,
             phi_max: phi_max()?,
         },
-        "paraboloid" => {
-            let z_max = p.float_checked("zmax", 1.0, "positive", positive)?;
-            Geometry::Paraboloid {
-                radius: radius()?,
-                z_min: p.float_checked("zmin", 0.0, "at least 0 and less than zmax", |v| {
-                    (0.0..z_max).contains(&v)
-                })?,
-                z_max,
-                phi_max: phi_max()?,
-            }
-        }
-        "hyperboloid" => {
-            let p1 = p.point3("p1", Vec3::ZERO)?;
-            let p2 = p.point3("p2", Vec3::ONE)?;
-            if p1.z == p2.z {
-                return Err(p.error_at(
-                    if p.has("p2") { "p2" } else { "p1" },
-                    format!(
-                        "the hyperboloid's \"p1\" {p1} and \"p2\" {p2} are at the same height; \
-                         the swept segment would be a flat annulus (use a disk)"
-                    ),
-                ));
-            }
-            Geometry::Hyperboloid {
-                p1,
-                p2,
-                phi_max: phi_max()?,
-            }
-        }
+        "paraboloid" => Geometry::Paraboloid {
+            radius: radius()?,
+            z_min: p.float("zmin", 0.0)?,
+            z_max: p.float("zmax", 1.0)?,
+            phi_max: phi_max()?,
+        },
+        "hyperboloid" => Geometry::Hyperboloid {
+            p1: p.point3("p1", Vec3::ZERO)?,
+            p2: p.point3("p2", Vec3::ONE)?,
+            phi_max: phi_max()?,
+        },
         // lancer extension: an axis-aligned box in object space.
-        "box" => {
-            let min = p.point3("min", Vec3::splat(-1.0))?;
-            let max = p.point3("max", Vec3::ONE)?;
-            if !min.cmplt(max).all() {
-                return Err(p.error_at(
-                    if p.has("max") { "max" } else { "min" },
-                    format!(
-                        "the box's \"min\" {min} must be below its \"max\" {max} on every axis"
-                    ),
-                ));
-            }
-            Geometry::Box { min, max }
-        }
-        "plane" => {
-            let n = p.normal("n", Vec3::Z)?;
-            // Too short to normalise (components so small their squares underflow) counts as
-            // zero.
-            if n.try_normalize().is_none() {
-                return Err(p.error_at("n", "the plane's normal \"n\" is zero"));
-            }
-            Geometry::Plane {
-                p: p.point3("p", Vec3::ZERO)?,
-                n,
-            }
-        }
+        "box" => Geometry::Box {
+            min: p.point3("min", Vec3::splat(-1.0))?,
+            max: p.point3("max", Vec3::ONE)?,
+        },
+        "plane" => Geometry::Plane {
+            p: p.point3("p", Vec3::ZERO)?,
+            n: p.normal("n", Vec3::Z)?,
+        },
         // lancer extension: a signed-distance object, sphere-traced.
         "sdf" => super::sdf::sdf_geometry(p)?,
         "trianglemesh" => Geometry::TriangleMesh(Arc::new(triangle_mesh(p, ty)?)),
@@ -171,6 +142,8 @@ fn geometry(r: &Reader, ty: &str) -> Result<Fallback<Option<Geometry>>, SceneErr
         "loopsubdiv" => {
             let levels = p.int_in("levels", 3, 0..=8)? as u32;
             let control = triangle_mesh(p, ty)?;
+            // Subdivision assumes a valid control mesh.
+            control.check().map_err(|e| rule_error(p, e))?;
             Geometry::TriangleMesh(Arc::new(lancer::shape::loop_subdivide(&control, levels)))
         }
         "plymesh" | "objmesh" => {
@@ -209,6 +182,25 @@ fn geometry(r: &Reader, ty: &str) -> Result<Fallback<Option<Geometry>>, SceneErr
             ));
         }
     };
+    g.validate().map_err(|e| rule_error(p, e))?;
+    // pbrt's ranges for the hole of a disk and the bottom of a paraboloid, which lancer's shapes
+    // do not need; checked once lancer's rules (a positive radius and top) hold.
+    match g {
+        Geometry::Disk { radius, .. } => {
+            p.float_checked(
+                "innerradius",
+                0.0,
+                "at least 0 and less than the radius",
+                |v| (0.0..radius).contains(&v),
+            )?;
+        }
+        Geometry::Paraboloid { z_max, .. } => {
+            p.float_checked("zmin", 0.0, "at least 0 and less than zmax", |v| {
+                (0.0..z_max).contains(&v)
+            })?;
+        }
+        _ => {}
+    }
     Ok(Fallback::done(Some(g)))
 }
 
@@ -219,32 +211,12 @@ fn positions(p: &ParamList, what: &str) -> Result<Vec<PackedVec3>, SceneError> {
     })
 }
 
-/// A per-vertex array `name` (`N`, `uv`, …) of `values`: empty, or one entry per vertex.
-fn per_vertex<T>(
-    p: &ParamList,
-    name: &str,
-    values: Option<Vec<T>>,
-    vertices: usize,
-) -> Result<Vec<T>, SceneError> {
-    let values = values.unwrap_or_default();
-    if !values.is_empty() && values.len() != vertices {
-        return Err(p.error_at(
-            name,
-            format!(
-                "\"{name}\" has {} entries for {vertices} vertices",
-                values.len()
-            ),
-        ));
-    }
-    Ok(values)
-}
-
 /// pbrt's `trianglemesh`: `P`, `indices` (optional for a single triangle), `N`, `uv` (or
 /// pbrt-v3's `st`).
 fn triangle_mesh(p: &ParamList, what: &str) -> Result<TriangleMesh, SceneError> {
     let positions = positions(p, what)?;
     let indices: Vec<u32> = match p.ints("indices")? {
-        Some((idx, loc)) => face_indices(idx, loc, 3, positions.len())?,
+        Some((idx, loc)) => face_indices(idx, loc)?,
         None if positions.len() == 3 => vec![0, 1, 2],
         None => {
             return Err(p.error_at(
@@ -253,13 +225,11 @@ fn triangle_mesh(p: &ParamList, what: &str) -> Result<TriangleMesh, SceneError> 
             ));
         }
     };
-    let normals = per_vertex(p, "N", p.normals("N")?, positions.len())?;
     let uv_name = if p.has("uv") { "uv" } else { "st" };
-    let uvs = per_vertex(p, uv_name, p.point2s(uv_name)?, positions.len())?;
     Ok(TriangleMesh {
         positions,
-        normals,
-        uvs,
+        normals: p.normals("N")?.unwrap_or_default(),
+        uvs: p.point2s(uv_name)?.unwrap_or_default(),
         indices,
         flip_normal: false,
     })
@@ -273,7 +243,7 @@ fn bilinear_mesh(p: &ParamList) -> Result<BilinearMesh, SceneError> {
         Some((idx, loc)) if idx.is_empty() => {
             return Err(SceneError::at(loc, "\"integer indices\" is empty"));
         }
-        Some((idx, loc)) => face_indices(idx, loc, 4, positions.len())?,
+        Some((idx, loc)) => face_indices(idx, loc)?,
         None if positions.len() == 4 => vec![0, 1, 2, 3],
         None => {
             return Err(p.error_at(
@@ -282,40 +252,22 @@ fn bilinear_mesh(p: &ParamList) -> Result<BilinearMesh, SceneError> {
             ));
         }
     };
-    if positions.iter().any(|v| !v.is_finite()) {
-        return Err(p.error_at("P", "vertex positions must be finite"));
-    }
-    let normals = per_vertex(p, "N", p.normals("N")?, positions.len())?;
-    let uvs = per_vertex(p, "uv", p.point2s("uv")?, positions.len())?;
     Ok(BilinearMesh {
         positions,
-        normals,
-        uvs,
+        normals: p.normals("N")?.unwrap_or_default(),
+        uvs: p.point2s("uv")?.unwrap_or_default(),
         indices,
         flip_normal: false,
     })
 }
 
-/// A mesh's `"integer indices"`: `corners` per face, each naming one of `vertices` vertices.
-fn face_indices(
-    idx: Vec<i32>,
-    loc: Location,
-    corners: usize,
-    vertices: usize,
-) -> Result<Vec<u32>, SceneError> {
-    if !idx.len().is_multiple_of(corners) {
+/// A mesh's `"integer indices"` as vertex numbers (none negative); whether they fit the mesh
+/// is one of its rules ([`lancer::shape::IndexedMesh::check`]).
+fn face_indices(idx: Vec<i32>, loc: Location) -> Result<Vec<u32>, SceneError> {
+    if let Some(bad) = idx.iter().find(|&&i| i < 0) {
         return Err(SceneError::at(
             loc,
-            format!(
-                "\"integer indices\" holds {} values, not a multiple of {corners}",
-                idx.len()
-            ),
-        ));
-    }
-    if let Some(bad) = idx.iter().find(|&&i| i < 0 || i as usize >= vertices) {
-        return Err(SceneError::at(
-            loc,
-            format!("index {bad} in \"integer indices\" is out of range for {vertices} vertices"),
+            format!("index {bad} in \"integer indices\" is negative"),
         ));
     }
     Ok(idx.into_iter().map(|i| i as u32).collect())
@@ -331,10 +283,9 @@ fn curve(p: &ParamList) -> Result<(CurveDesc, bool), SceneError> {
             "a \"curve\" needs control points \"point3 P\"",
         ));
     };
-    let non_negative = |v: f32| v >= 0.0 && v.is_finite();
-    let width = p.float_checked("width", 1.0, "at least 0", non_negative)?;
-    let width0 = p.float_checked("width0", width, "at least 0", non_negative)?;
-    let width1 = p.float_checked("width1", width, "at least 0", non_negative)?;
+    let width = p.float("width", 1.0)?;
+    let width0 = p.float("width0", width)?;
+    let width1 = p.float("width1", width)?;
     let degree = p.int_in("degree", 3, 2..=3)? as u32;
     let basis = match p.string("basis")?.as_deref() {
         None | Some("bezier") => CurveBasis::Bezier,
@@ -375,15 +326,7 @@ fn curve(p: &ParamList) -> Result<(CurveDesc, bool), SceneError> {
         normals,
         split_depth,
     };
-    desc.segment_count().map_err(|e| p.error_at("P", e))?;
-    desc.validate().map_err(|e| {
-        let at = if kind == CurveType::Ribbon && p.has("N") {
-            "N"
-        } else {
-            "P"
-        };
-        p.error_at(at, e)
-    })?;
+    desc.validate().map_err(|e| rule_error(p, e))?;
     Ok((desc, ignored_normals))
 }
 

@@ -130,7 +130,9 @@ pub fn environment_mapping(image: &Image) -> Result<EnvMapping, String> {
         )
     })?;
     if image.texels.iter().any(|c| !c.is_finite()) {
-        return Err("the environment image holds infinite or NaN values".into());
+        return Err(
+            "the environment image holds infinite or NaN values and cannot be a light".into(),
+        );
     }
     Ok(mapping)
 }

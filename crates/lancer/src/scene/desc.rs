@@ -8,7 +8,7 @@
 use crate::film::PixelBounds;
 use crate::material::Material;
 use crate::math::{Rgb, Transform, Vec3};
-use crate::shape::TriangleMesh;
+use crate::shape::{RuleError, TriangleMesh};
 use crate::texture::{FloatTex, FloatTexture, SpectrumTexture};
 use std::sync::Arc;
 
@@ -358,47 +358,54 @@ pub enum Geometry {
 
 /// The rule a plane breaks when its normal is zero (in its description, or once placed in the
 /// world by a degenerate transform).
-pub(crate) const ZERO_PLANE_NORMAL: &str = "plane normal is zero";
+pub(crate) const ZERO_PLANE_NORMAL: &str = "the plane's normal \"n\" is zero";
 
-/// `Ok` when `v` is finite and positive, else the rule `what` breaks.
-fn positive(v: f32, what: &str) -> Result<(), String> {
+/// `Ok` when `v` is finite and positive, else the rule on `field` (named `what` in the message)
+/// broken.
+fn positive(v: f32, field: &'static [&'static str], what: &str) -> Result<(), RuleError> {
     if v.is_finite() && v > 0.0 {
         Ok(())
     } else {
-        Err(format!("{what} must be positive, got {v}"))
+        Err(RuleError::on(
+            field,
+            format!("{what} must be positive, got {v}"),
+        ))
     }
 }
 
 impl Geometry {
     /// Checks the rules without which the geometry means nothing, and returns the first one
     /// broken (one message per rule, the same whoever asks: the scene readers and
-    /// [`crate::Scene::build`]): radii, a cone's height and a paraboloid's top positive; a
-    /// hyperboloid's ends finite and at different heights; a box's `min` below its `max`; a
-    /// plane's normal not zero; meshes' indices and arrays consistent.
-    pub fn validate(&self) -> Result<(), String> {
+    /// [`crate::Scene::build`]), with the fields it is about: radii, a cone's height and a
+    /// paraboloid's top positive; a hyperboloid's ends finite and at different heights; a
+    /// box's `min` below its `max`; a plane's normal not zero; meshes' indices and arrays
+    /// consistent ([`crate::shape::IndexedMesh::check`]); an sdf's solid finite and not empty
+    /// ([`crate::shape::SdfFunction::solid_box`]); a curve's points, widths and normals
+    /// ([`crate::shape::CurveDesc::validate`]).
+    pub fn validate(&self) -> Result<(), RuleError> {
         match self {
             Geometry::Sphere { radius, .. }
             | Geometry::Disk { radius, .. }
-            | Geometry::Cylinder { radius, .. } => positive(*radius, "radius"),
+            | Geometry::Cylinder { radius, .. } => positive(*radius, &["radius"], "radius"),
             Geometry::Cone { radius, height, .. } => {
-                positive(*radius, "radius")?;
-                positive(*height, "height")
+                positive(*radius, &["radius"], "radius")?;
+                positive(*height, &["height"], "height")
             }
-            Geometry::Paraboloid {
-                radius,
-                z_min,
-                z_max,
-                ..
-            } => {
-                positive(*radius, "radius")?;
-                positive(z_min.max(*z_max), "zmax")
+            Geometry::Paraboloid { radius, z_max, .. } => {
+                positive(*radius, &["radius"], "radius")?;
+                positive(*z_max, &["z_max"], "zmax")
             }
             Geometry::Hyperboloid { p1, p2, .. } => {
                 if p1.z != p2.z && p1.is_finite() && p2.is_finite() {
                     Ok(())
                 } else {
-                    Err(format!(
-                        "hyperboloid p1 {p1} and p2 {p2} must be finite and at different heights"
+                    Err(RuleError::on(
+                        &["p1", "p2"],
+                        format!(
+                            "the hyperboloid's \"p1\" {p1} and \"p2\" {p2} must be finite and at \
+                             different heights (at one height the swept segment is a flat \
+                             annulus: use a disk)"
+                        ),
                     ))
                 }
             }
@@ -406,21 +413,46 @@ impl Geometry {
                 if min.cmplt(*max).all() && min.is_finite() && max.is_finite() {
                     Ok(())
                 } else {
-                    Err(format!(
-                        "box min {min} must be below max {max} on every axis"
+                    Err(RuleError::on(
+                        &["min", "max"],
+                        format!(
+                            "the box's \"min\" {min} must be finite and below its \"max\" {max} \
+                             on every axis"
+                        ),
                     ))
                 }
             }
             Geometry::Plane { n, .. } => match n.try_normalize() {
                 Some(_) => Ok(()),
-                None => Err(ZERO_PLANE_NORMAL.to_string()),
+                None => Err(RuleError::on(&["n"], ZERO_PLANE_NORMAL)),
             },
-            Geometry::TriangleMesh(m) => m.validate(),
-            Geometry::BilinearMesh(m) => m.validate(),
-            // Their constructors check them (the expression's bounds, the spline's pieces); an
-            // empty voxel grid is valid and makes no primitive.
-            Geometry::Voxels(_) | Geometry::Sdf { .. } | Geometry::Curve(_) => Ok(()),
+            Geometry::TriangleMesh(m) => m.check(),
+            Geometry::BilinearMesh(m) => m.check(),
+            Geometry::Sdf { function, bounds } => function.solid_box(*bounds).map(|_| ()),
+            Geometry::Curve(c) => c.validate(),
+            // Its constructor checks its size; an empty grid is valid and makes no primitive.
+            Geometry::Voxels(_) => Ok(()),
         }
+    }
+
+    /// The rule on emission: an sdf shape, a curve or a voxel grid cannot be an area light
+    /// (none of them can be sampled by area). Checked by [`ShapeDesc::validate`] when the
+    /// shape emits, and by readers for the shapes that would.
+    pub fn validate_emitter(&self) -> Result<(), RuleError> {
+        let refusal = match self {
+            Geometry::Sdf { .. } => {
+                "an sdf shape cannot be an area light (its area has no closed form)"
+            }
+            Geometry::Curve(_) => {
+                "a curve cannot be an area light (pbrt-v4 cannot sample curves either)"
+            }
+            Geometry::Voxels(_) => {
+                "a \"voxels\" shape cannot be an area light (AttributeBegin/AttributeEnd around \
+                 the AreaLightSource keeps it from the voxels)"
+            }
+            _ => return Ok(()),
+        };
+        Err(RuleError::on(&[], refusal))
     }
 
     /// True for the mesh geometries, whose errors [`crate::Scene::build`] reports as
@@ -499,22 +531,12 @@ pub enum LightDesc {
 }
 
 impl ShapeDesc {
-    /// [`Geometry::validate`], then the rules on emission: an sdf shape, a curve or a voxel
-    /// grid cannot be an area light (none of them can be sampled by area).
-    pub fn validate(&self) -> Result<(), String> {
+    /// [`Geometry::validate`], then, when the shape emits, [`Geometry::validate_emitter`].
+    pub fn validate(&self) -> Result<(), RuleError> {
         self.geometry.validate()?;
-        if self.area_light.is_none() {
-            return Ok(());
-        }
-        match self.geometry {
-            Geometry::Sdf { .. } => Err(
-                "an sdf shape cannot be an area light (its area has no closed form)".to_string(),
-            ),
-            Geometry::Curve(_) => Err(
-                "a curve cannot be an area light (pbrt-v4 cannot sample curves either)".to_string(),
-            ),
-            Geometry::Voxels(_) => Err("a voxel grid cannot be an area light".to_string()),
-            _ => Ok(()),
+        match self.area_light {
+            Some(_) => self.geometry.validate_emitter(),
+            None => Ok(()),
         }
     }
 }
@@ -578,11 +600,14 @@ mod tests {
         assert_eq!(sphere(1.0).validate(), Ok(()));
         assert_eq!(
             sphere(0.0).validate(),
-            Err("radius must be positive, got 0".into())
+            Err(RuleError::on(&["radius"], "radius must be positive, got 0"))
         );
         assert_eq!(
             sphere(f32::NAN).validate(),
-            Err("radius must be positive, got NaN".into())
+            Err(RuleError::on(
+                &["radius"],
+                "radius must be positive, got NaN"
+            ))
         );
         let cone = Geometry::Cone {
             radius: 1.0,
@@ -591,7 +616,10 @@ mod tests {
         };
         assert_eq!(
             cone.validate(),
-            Err("height must be positive, got -2".into())
+            Err(RuleError::on(
+                &["height"],
+                "height must be positive, got -2"
+            ))
         );
         let paraboloid = Geometry::Paraboloid {
             radius: 1.0,
@@ -601,7 +629,7 @@ mod tests {
         };
         assert_eq!(
             paraboloid.validate(),
-            Err("zmax must be positive, got -1".into())
+            Err(RuleError::on(&["z_max"], "zmax must be positive, got -1"))
         );
         let flat = Geometry::Hyperboloid {
             p1: Vec3::new(1.0, 0.0, 0.5),
@@ -610,7 +638,11 @@ mod tests {
         };
         assert_eq!(
             flat.validate(),
-            Err("hyperboloid p1 [1, 0, 0.5] and p2 [0, 1, 0.5] must be finite and at different heights".into())
+            Err(RuleError::on(
+                &["p1", "p2"],
+                "the hyperboloid's \"p1\" [1, 0, 0.5] and \"p2\" [0, 1, 0.5] must be finite and at \
+                 different heights (at one height the swept segment is a flat annulus: use a disk)"
+            ))
         );
         let inverted = Geometry::Box {
             min: Vec3::new(0.0, 0.0, 1.0),
@@ -618,13 +650,20 @@ mod tests {
         };
         assert_eq!(
             inverted.validate(),
-            Err("box min [0, 0, 1] must be below max [1, 1, 1] on every axis".into())
+            Err(RuleError::on(
+                &["min", "max"],
+                "the box's \"min\" [0, 0, 1] must be finite and below its \"max\" [1, 1, 1] on \
+                 every axis"
+            ))
         );
         let plane = Geometry::Plane {
             p: Vec3::ZERO,
             n: Vec3::ZERO,
         };
-        assert_eq!(plane.validate(), Err("plane normal is zero".into()));
+        assert_eq!(
+            plane.validate(),
+            Err(RuleError::on(&["n"], "the plane's normal \"n\" is zero"))
+        );
         let mut mesh = TriangleMesh::default();
         mesh.positions.push(crate::math::PackedVec3::ZERO);
         mesh.indices.extend([0, 0, 1]);
@@ -632,7 +671,10 @@ mod tests {
         assert!(mesh.is_mesh());
         assert_eq!(
             mesh.validate(),
-            Err("index 1 out of range for 1 vertices".into())
+            Err(RuleError::on(
+                &["indices"],
+                "index 1 out of range for 1 vertices"
+            ))
         );
     }
 
@@ -653,7 +695,11 @@ mod tests {
         };
         assert_eq!(
             voxels.validate(),
-            Err("a voxel grid cannot be an area light".into())
+            Err(RuleError::on(
+                &[],
+                "a \"voxels\" shape cannot be an area light (AttributeBegin/AttributeEnd around \
+                 the AreaLightSource keeps it from the voxels)"
+            ))
         );
         let spot = LightDesc::Spot {
             from: Vec3::ONE,

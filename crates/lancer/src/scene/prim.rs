@@ -83,7 +83,8 @@ pub(crate) fn check_shape(
             material: sd.material,
         });
     }
-    sd.validate().map_err(|m| invalid_shape(sd, index, m))
+    sd.validate()
+        .map_err(|e| invalid_shape(sd, index, e.message))
 }
 
 /// The triangles of a mesh that a ray can hit (one of zero area never can): each one's three

@@ -21,6 +21,7 @@
 //! scene is built; widths scaled by the transform's mean scale |det M|^(1/3)); this is pbrt's
 //! object-space curve exactly for similarity transforms.
 
+use super::RuleError;
 use super::hit::{Shading, ShapeHit, SurfaceInteraction};
 use crate::math::{Bounds3, PackedVec3, Transform, Vec2, Vec3, cross, lerp, normalize};
 use crate::ray::Ray;
@@ -103,30 +104,52 @@ impl CurveDesc {
         }
     }
 
-    /// Checks the description: point count, finite values, non-negative widths, and for
-    /// ribbons one non-zero normal per segment boundary.
-    pub fn validate(&self) -> Result<(), String> {
-        let segments = self.segment_count()?;
+    /// Checks the description: point count ([`CurveDesc::segment_count`]), finite values,
+    /// non-negative widths, and for ribbons one non-zero normal per segment boundary; the first
+    /// rule broken, with the fields it is about. The one place these rules are checked.
+    pub fn validate(&self) -> Result<(), RuleError> {
+        let segments = self
+            .segment_count()
+            .map_err(|m| RuleError::on(&["points"], m))?;
         if self.points.iter().any(|p| !p.is_finite()) {
-            return Err("curve control points must be finite".into());
+            return Err(RuleError::on(
+                &["points"],
+                "curve control points must be finite",
+            ));
         }
         let ok = |w: f32| w >= 0.0 && w.is_finite();
-        if !(ok(self.width0) && ok(self.width1)) {
-            return Err(format!(
-                "curve widths must be finite and at least 0, got {} and {}",
-                self.width0, self.width1
+        let bad_width = if !ok(self.width0) {
+            Some(&["width0"])
+        } else if !ok(self.width1) {
+            Some(&["width1"])
+        } else {
+            None
+        };
+        if let Some(field) = bad_width {
+            return Err(RuleError::on(
+                field,
+                format!(
+                    "curve widths must be finite and at least 0, got {} and {}",
+                    self.width0, self.width1
+                ),
             ));
         }
         if self.kind == CurveType::Ribbon {
             if self.normals.len() != segments + 1 {
-                return Err(format!(
-                    "a ribbon curve of {segments} segment(s) needs {} normals \"N\", got {}",
-                    segments + 1,
-                    self.normals.len()
+                return Err(RuleError::on(
+                    &["points", "normals"],
+                    format!(
+                        "a ribbon curve of {segments} segment(s) needs {} normals \"N\", got {}",
+                        segments + 1,
+                        self.normals.len()
+                    ),
                 ));
             }
             if self.normals.iter().any(|n| n.try_normalize().is_none()) {
-                return Err("a ribbon curve's normals \"N\" must be non-zero".into());
+                return Err(RuleError::on(
+                    &["normals"],
+                    "a ribbon curve's normals \"N\" must be non-zero",
+                ));
             }
         }
         Ok(())

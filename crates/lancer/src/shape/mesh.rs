@@ -3,6 +3,42 @@
 
 use crate::math::{PackedVec3, Transform, Vec2, Vec3};
 
+/// A rule of a shape's or light's description that is broken: its message (the one message of
+/// that rule, whoever checks it) and the fields of the description it is about, so that a
+/// scene reader can point at the parameters they came from.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RuleError {
+    /// The fields the rule is about, by their names in the description (`"radius"`, `"z_max"`,
+    /// `"indices"`, `"normals"`, …), the most telling last; empty when it is about the whole.
+    pub fields: &'static [&'static str],
+    /// What is wrong.
+    pub message: String,
+}
+
+impl RuleError {
+    /// The rule on `fields` broken, saying `message`.
+    pub fn on(fields: &'static [&'static str], message: impl Into<String>) -> RuleError {
+        RuleError {
+            fields,
+            message: message.into(),
+        }
+    }
+}
+
+impl std::fmt::Display for RuleError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for RuleError {}
+
+impl From<RuleError> for String {
+    fn from(e: RuleError) -> String {
+        e.message
+    }
+}
+
 /// Shared vertices and `N` vertex indices per face.
 ///
 /// In a scene description the positions are in object space; once the scene is built they are
@@ -41,26 +77,48 @@ impl<const N: usize> IndexedMesh<N> {
     }
 
     /// Checks that indices come in groups of `N` and are in range, that per-vertex arrays match
-    /// the positions, and that positions are finite.
+    /// the positions, and that positions are finite; the message of the first rule broken
+    /// ([`IndexedMesh::check`] also says which array it is about).
     pub fn validate(&self) -> Result<(), String> {
+        self.check().map_err(String::from)
+    }
+
+    /// [`IndexedMesh::validate`], with the array each rule is about (`indices`, `normals`,
+    /// `uvs`, `positions`). The one place these rules are checked.
+    pub fn check(&self) -> Result<(), RuleError> {
         if !self.indices.len().is_multiple_of(N) {
-            return Err(format!(
-                "{} indices is not a multiple of {N}",
-                self.indices.len()
+            return Err(RuleError::on(
+                &["indices"],
+                format!(
+                    "the mesh has {} indices, not a multiple of {N}",
+                    self.indices.len()
+                ),
             ));
         }
         let n = self.positions.len();
         if let Some(&bad) = self.indices.iter().find(|&&i| i as usize >= n) {
-            return Err(format!("index {bad} out of range for {n} vertices"));
+            return Err(RuleError::on(
+                &["indices"],
+                format!("index {bad} out of range for {n} vertices"),
+            ));
         }
         if !self.normals.is_empty() && self.normals.len() != n {
-            return Err(format!("{} normals for {n} vertices", self.normals.len()));
+            return Err(RuleError::on(
+                &["normals"],
+                format!("{} normals for {n} vertices", self.normals.len()),
+            ));
         }
         if !self.uvs.is_empty() && self.uvs.len() != n {
-            return Err(format!("{} uvs for {n} vertices", self.uvs.len()));
+            return Err(RuleError::on(
+                &["uvs"],
+                format!("{} uvs for {n} vertices", self.uvs.len()),
+            ));
         }
         if self.positions.iter().any(|p| !p.is_finite()) {
-            return Err("vertex positions must be finite".into());
+            return Err(RuleError::on(
+                &["positions"],
+                "vertex positions must be finite",
+            ));
         }
         Ok(())
     }

@@ -41,7 +41,7 @@ pub use disk::Disk;
 pub use hit::{Shading, ShapeHit, ShapeSample, SurfaceInteraction};
 pub use hyperboloid::Hyperboloid;
 pub use loop_subdiv::loop_subdivide;
-pub use mesh::IndexedMesh;
+pub use mesh::{IndexedMesh, RuleError};
 pub use paraboloid::Paraboloid;
 pub use placement::Placement;
 pub use plane::Plane;

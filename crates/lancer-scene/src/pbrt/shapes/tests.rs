@@ -6,6 +6,8 @@ use crate::pbrt::convert::testing::{err, typed_in, unused, with_textures};
 use lancer::math::Vec2;
 use std::path::{Path, PathBuf};
 
+mod rules;
+
 /// The conversion of the one `Shape` of `text` (relative names against `dir`, `textures`
 /// defined), and the messages of the parameters it left unread.
 fn convert_full(
@@ -189,7 +191,7 @@ fn quadrics_read_every_parameter() {
 fn quadric_errors_are_at_their_parameter() {
     assert_eq!(
         error("Shape \"sphere\"\n  \"float radius\" -1"),
-        "t.pbrt:2:3: \"float radius\" must be positive, not -1"
+        "t.pbrt:2:3: radius must be positive, got -1"
     );
     assert_eq!(
         error("Shape \"cylinder\"\n  \"float phimax\" 400"),
@@ -201,7 +203,7 @@ fn quadric_errors_are_at_their_parameter() {
     );
     assert_eq!(
         error("Shape \"cone\"\n  \"float height\" 0"),
-        "t.pbrt:2:3: \"float height\" must be positive, not 0"
+        "t.pbrt:2:3: height must be positive, got 0"
     );
     assert_eq!(
         error("Shape \"paraboloid\" \"float zmax\" 1\n  \"float zmin\" 2"),
@@ -211,8 +213,8 @@ fn quadric_errors_are_at_their_parameter() {
     assert_eq!(
         error("Shape \"hyperboloid\" \"point3 p1\" [0 0 1]\n  \"point3 p2\" [1 1 1]"),
         format!(
-            "t.pbrt:2:3: the hyperboloid's \"p1\" {p1} and \"p2\" {p2} are at the same height; \
-             the swept segment would be a flat annulus (use a disk)"
+            "t.pbrt:2:3: the hyperboloid's \"p1\" {p1} and \"p2\" {p2} must be finite and at \
+             different heights (at one height the swept segment is a flat annulus: use a disk)"
         )
     );
     // Without "p2", the message points at "p1".
@@ -221,7 +223,8 @@ fn quadric_errors_are_at_their_parameter() {
     assert_eq!(
         error("Shape \"box\" \"point3 min\" [1 1 1]\n  \"point3 max\" [0 2 2]"),
         format!(
-            "t.pbrt:2:3: the box's \"min\" {min} must be below its \"max\" {max} on every axis"
+            "t.pbrt:2:3: the box's \"min\" {min} must be finite and below its \"max\" {max} on \
+             every axis"
         )
     );
     assert_eq!(
@@ -273,23 +276,29 @@ fn triangle_mesh_errors_are_at_their_parameter() {
         error(
             "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n  \"integer indices\" [0 1]"
         ),
-        "t.pbrt:2:3: \"integer indices\" holds 2 values, not a multiple of 3"
+        "t.pbrt:2:3: the mesh has 2 indices, not a multiple of 3"
     );
     assert_eq!(
         error(
             "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n  \"integer indices\" [0 1 3]"
         ),
-        "t.pbrt:2:3: index 3 in \"integer indices\" is out of range for 3 vertices"
+        "t.pbrt:2:3: index 3 out of range for 3 vertices"
+    );
+    assert_eq!(
+        error(
+            "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n  \"integer indices\" [0 1 -1]"
+        ),
+        "t.pbrt:2:3: index -1 in \"integer indices\" is negative"
     );
     assert_eq!(
         error(
             "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n  \"normal N\" [0 0 1 0 0 1]"
         ),
-        "t.pbrt:2:3: \"N\" has 2 entries for 3 vertices"
+        "t.pbrt:2:3: 2 normals for 3 vertices"
     );
     assert_eq!(
         error("Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n  \"point2 uv\" [0 0]"),
-        "t.pbrt:2:3: \"uv\" has 1 entries for 3 vertices"
+        "t.pbrt:2:3: 1 uvs for 3 vertices"
     );
 }
 
@@ -343,13 +352,13 @@ fn bilinear_meshes() {
         error(
             "Shape \"bilinearmesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0 1 1 0]\n  \"integer indices\" [0 1 2]"
         ),
-        "t.pbrt:2:3: \"integer indices\" holds 3 values, not a multiple of 4"
+        "t.pbrt:2:3: the mesh has 3 indices, not a multiple of 4"
     );
     assert_eq!(
         error(
             "Shape \"bilinearmesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0 1 1 0]\n  \"normal N\" [0 0 1]"
         ),
-        "t.pbrt:2:3: \"N\" has 1 entries for 4 vertices"
+        "t.pbrt:2:3: 1 normals for 4 vertices"
     );
 }
 
@@ -432,7 +441,7 @@ fn curve_errors_are_at_their_parameter() {
     );
     assert_eq!(
         error(&format!("{p}\"float width\" -1")),
-        "t.pbrt:2:3: \"float width\" must be at least 0, not -1"
+        "t.pbrt:2:3: curve widths must be finite and at least 0, got -1 and -1"
     );
     assert_eq!(
         error(&format!("{p}\"integer degree\" 4")),
@@ -534,7 +543,7 @@ fn alpha_is_a_constant_or_a_float_texture() {
 }
 
 #[test]
-fn curves_and_voxels_cannot_emit() {
+fn curves_voxels_and_sdfs_cannot_emit() {
     let emitting =
         |text: &str| convert_full(text, Path::new("."), &TextureNames::default(), true).0;
     assert!(emitting(r#"Shape "sphere""#).is_ok());
@@ -549,6 +558,10 @@ fn curves_and_voxels_cannot_emit() {
             r#"Shape "voxels" "integer dims" [1 1 1] "integer indices" [1]"#
         )),
         "t.pbrt:1:1: a \"voxels\" shape cannot be an area light (AttributeBegin/AttributeEnd around the AreaLightSource keeps it from the voxels)"
+    );
+    assert_eq!(
+        err(emitting(r#"Shape "sdf" "string expr" "sphere(1)""#)),
+        "t.pbrt:1:1: an sdf shape cannot be an area light (its area has no closed form)"
     );
 }
 

@@ -18,6 +18,7 @@ pub use node::{Aabb, FUNCTIONS, Node};
 
 use crate::math::{Bounds3, Vec2, Vec3, gamma, normalize};
 use crate::ray::Ray;
+use crate::shape::RuleError;
 use crate::shape::hit::{ShapeHit, SurfaceInteraction};
 use crate::shape::placement::{Placement, quadric_hit, quadric_t};
 use glam::DVec3;
@@ -55,6 +56,33 @@ impl SdfFunction {
     /// A box containing the solid; infinite on some side for planes and endless repetition.
     pub fn bounds(&self) -> Aabb {
         self.bounds
+    }
+
+    /// The box the solid fills once clipped to `user` (object-space `min`, `max`), or the rule
+    /// broken: it must be finite (an unbounded expression, a plane or an endless repeat, needs
+    /// `user`) and not empty. The one place these rules are checked
+    /// ([`crate::scene::desc::Geometry::validate`], [`Sdf::new`]); the fields named are the
+    /// description's (`function`, `bounds`).
+    pub fn solid_box(&self, user: Option<(Vec3, Vec3)>) -> Result<Aabb, RuleError> {
+        let mut b = self.bounds;
+        if let Some((lo, hi)) = user {
+            b.lo = b.lo.max(lo.as_dvec3());
+            b.hi = b.hi.min(hi.as_dvec3());
+        }
+        if !b.is_finite() {
+            return Err(RuleError::on(
+                &["function"],
+                "the sdf expression is unbounded (a plane or an endless repeat): give its box \
+                 with \"point3 min\" [...] and \"point3 max\" [...]",
+            ));
+        }
+        if b.is_empty() {
+            return Err(RuleError::on(
+                &["bounds"],
+                "the sdf expression's solid is empty (its bounding box is empty)",
+            ));
+        }
+        Ok(b)
     }
 
     /// A Lipschitz bound of the function over `region` (see [`Node::lipschitz`]).
@@ -124,21 +152,7 @@ impl Sdf {
         function: Arc<SdfFunction>,
         user: Option<(Vec3, Vec3)>,
     ) -> Result<Sdf, String> {
-        let mut b = function.bounds();
-        if let Some((lo, hi)) = user {
-            b.lo = b.lo.max(lo.as_dvec3());
-            b.hi = b.hi.min(hi.as_dvec3());
-        }
-        if !b.is_finite() {
-            return Err(
-                "the sdf expression is unbounded (a plane or an endless repeat): give its box \
-                 with \"point3 min\" and \"point3 max\""
-                    .into(),
-            );
-        }
-        if b.is_empty() {
-            return Err("the sdf expression's solid is empty (its bounding box is empty)".into());
-        }
+        let b = function.solid_box(user)?;
         // Pad by 10⁻³ of the diagonal so that surfaces touching their box are not clipped by
         // rounding, and normals found near the box faces see the true function.
         let diag = (b.hi - b.lo).length().max(1e-9);
