@@ -7,6 +7,7 @@ use crate::math::Vec2;
 use crate::sampling::{Sampler, SamplerKind};
 use crate::scene::Scene;
 use crate::scene::desc::SceneDesc;
+use crate::spectrum::sampled::film_rgb;
 use rayon::prelude::*;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -191,13 +192,11 @@ fn camera_sample(
     s: u32,
 ) -> (crate::math::Rgb, f32) {
     let (ray, weight) = camera_ray(scene, settings, sampler, x, y, s);
-    match sample_wavelengths(settings, sampler) {
-        None => (settings.integrator.li(scene, &ray, sampler, None), weight),
-        Some(lambda) => {
-            let l = settings.integrator.li(scene, &ray, sampler, Some(&lambda));
-            (lambda.to_film_rgb(l), weight)
-        }
-    }
+    let lambda = sample_wavelengths(settings, sampler);
+    let l = settings
+        .integrator
+        .li(scene, &ray, sampler, lambda.as_ref());
+    (film_rgb(lambda.as_ref(), l), weight)
 }
 
 /// In spectral mode (radiance integrators only), the sample's wavelengths, drawn from the
@@ -245,11 +244,7 @@ pub fn trace_sample(
         .li_traced(scene, &ray, &mut sampler, lambda.as_ref(), &mut path);
     // The film's colour, as the render computed it (in spectral mode the path's vertices hold
     // values at the wavelengths).
-    let l = match lambda {
-        Some(w) => w.to_film_rgb(l),
-        None => l,
-    };
-    (l, path)
+    (film_rgb(lambda.as_ref(), l), path)
 }
 
 /// The film's sums over `tile` (a part of its bounds), row-major.

@@ -5,7 +5,7 @@ mod path;
 mod whitted;
 
 use crate::material::{Bsdf, Material};
-use crate::math::{Rgb, Vec3};
+use crate::math::{Rgb, SampledSpectrum, Vec3, rgb_lanes};
 use crate::ray::Ray;
 use crate::sampling::Sampler;
 pub use crate::scene::desc::Integrator;
@@ -28,7 +28,7 @@ impl Integrator {
         sampler: &mut Sampler,
         lambda: Option<&SampledWavelengths>,
         path: &mut Vec<PathVertex>,
-    ) -> Rgb {
+    ) -> SampledSpectrum {
         match *self {
             Integrator::Path {
                 max_depth,
@@ -39,15 +39,15 @@ impl Integrator {
     }
 
     /// Radiance arriving at the camera along `ray`. With `lambda` (spectral mode, radiance
-    /// integrators only) the result's channels are the radiance at those three wavelengths;
-    /// otherwise it is linear sRGB.
+    /// integrators only) the result's lanes are the radiance at those four wavelengths;
+    /// otherwise they are linear sRGB as (r, g, b, b) ([`rgb_lanes`]).
     pub fn li(
         &self,
         scene: &Scene,
         ray: &Ray,
         sampler: &mut Sampler,
         lambda: Option<&SampledWavelengths>,
-    ) -> Rgb {
+    ) -> SampledSpectrum {
         match *self {
             Integrator::Whitted { max_depth } => {
                 whitted::li(scene, ray, sampler, lambda, 0, max_depth)
@@ -56,12 +56,19 @@ impl Integrator {
                 max_depth,
                 regularize,
             } => path::li(scene, ray, sampler, lambda, max_depth, regularize),
-            Integrator::Normals => debug::normals(scene, ray),
-            Integrator::Depth => debug::depth(scene, ray),
+            // The debug views are RGB quantities, as lanes (r, g, b, b).
+            Integrator::Normals => rgb_lanes(debug::normals(scene, ray)),
+            Integrator::Depth => rgb_lanes(debug::depth(scene, ray)),
             Integrator::AmbientOcclusion {
                 cos_sample,
                 max_distance,
-            } => debug::ambient_occlusion(scene, ray, sampler, cos_sample, max_distance),
+            } => rgb_lanes(debug::ambient_occlusion(
+                scene,
+                ray,
+                sampler,
+                cos_sample,
+                max_distance,
+            )),
         }
     }
 }
@@ -85,13 +92,13 @@ pub struct PathVertex {
     /// Sampled next direction, if the BSDF gave one.
     pub wi: Option<Vec3>,
     /// BSDF value for it.
-    pub f: Option<Rgb>,
+    pub f: Option<SampledSpectrum>,
     /// Its density.
     pub pdf: Option<f32>,
     /// Path throughput before this bounce.
-    pub beta: Rgb,
+    pub beta: SampledSpectrum,
     /// Radiance gathered so far.
-    pub l: Rgb,
+    pub l: SampledSpectrum,
 }
 
 /// The BSDF at a hit, with `Mix` materials resolved (the choice is a deterministic hash of the
@@ -155,9 +162,9 @@ pub(crate) fn emitted(
     hit: &SceneHit,
     wo: Vec3,
     lambda: Option<&SampledWavelengths>,
-) -> Rgb {
+) -> SampledSpectrum {
     match scene.prims[hit.prim as usize].emission {
         Some(e) if e.two_sided || hit.si.n.dot(wo) > 0.0 => illuminant_at(lambda, e.l.into()),
-        _ => Rgb::ZERO,
+        _ => SampledSpectrum::ZERO,
     }
 }

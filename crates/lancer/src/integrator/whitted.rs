@@ -4,7 +4,7 @@
 use super::{bsdf_at, emitted};
 use crate::light::LightSampleContext;
 use crate::material::{BxDF, TransportMode, fresnel_complex, fresnel_dielectric, refract};
-use crate::math::{Rgb, Vec3};
+use crate::math::{Rgb, SampledSpectrum, Vec3};
 use crate::ray::Ray;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
@@ -22,7 +22,7 @@ pub fn li(
     lambda: Option<&SampledWavelengths>,
     depth: u32,
     max_depth: u32,
-) -> Rgb {
+) -> SampledSpectrum {
     let Some(hit) = scene.intersect(ray) else {
         return scene
             .infinite_lights
@@ -59,7 +59,7 @@ pub fn li(
                 continue;
             }
             let f = bsdf.f(wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(si.shading.n).abs();
-            if f == Rgb::ZERO {
+            if f == SampledSpectrum::ZERO {
                 continue;
             }
             // The shadow ray: is the segment from the point to the light free?
@@ -76,7 +76,7 @@ pub fn li(
             // The course's recursion follows perfect mirrors and refractions only; rough
             // interfaces are lit directly above and nothing more.
             BxDF::Conductor(c) if c.distrib.effectively_smooth() => {
-                let f = fresnel_complex(wo_l.z.abs(), c.eta.into(), c.k.into());
+                let f = fresnel_complex(wo_l.z.abs(), c.eta, c.k);
                 l += f * li(
                     scene,
                     &si.spawn_ray(reflect(wo)),

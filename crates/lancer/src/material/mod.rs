@@ -19,7 +19,7 @@ pub use layered::{CoatedConductorBxdf, CoatedDiffuseBxdf, LayeredBxdf};
 pub use microfacet::TrowbridgeReitz;
 pub use scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode};
 
-use crate::math::Rgb;
+use crate::math::{Rgb, SampledSpectrum, rgb_lanes};
 use crate::spectrum::sampled::{SampledWavelengths, albedo_at, unbounded_at};
 use crate::texture::{FloatTex, SpectrumTex, TexCoord, TextureEval};
 
@@ -165,12 +165,16 @@ fn conductor_index(
     k: SpectrumTex,
     reflectance: Option<SpectrumTex>,
     lambda: Option<&SampledWavelengths>,
-) -> (Rgb, Rgb) {
+) -> (SampledSpectrum, SampledSpectrum) {
     match reflectance {
         Some(r) => {
-            let r = albedo_at(lambda, tex.spectrum(r, tc)).clamp(Rgb::ZERO, Rgb::splat(0.9999));
-            let k = 2.0 * r.map(f32::sqrt) / (Rgb::ONE - r).max(Rgb::ZERO).map(f32::sqrt);
-            (Rgb::ONE, k)
+            let r = albedo_at(lambda, tex.spectrum(r, tc))
+                .clamp(SampledSpectrum::ZERO, SampledSpectrum::splat(0.9999));
+            let k = 2.0 * r.map(f32::sqrt)
+                / (SampledSpectrum::ONE - r)
+                    .max(SampledSpectrum::ZERO)
+                    .map(f32::sqrt);
+            (SampledSpectrum::ONE, k)
         }
         None => (
             unbounded_at(lambda, tex.spectrum(eta, tc)),
@@ -185,9 +189,10 @@ impl Material {
     /// when asked, an index of 0 taken as 1. `Mix` must be resolved by the caller first (it
     /// needs a random choice); `Interface` has none.
     ///
-    /// With `lambda` (spectral mode) every colour becomes its values at the path's three
+    /// With `lambda` (spectral mode) every colour becomes its values at the path's four
     /// wavelengths ([`SampledWavelengths`]): albedos as reflectance spectra, conductor indices as
-    /// unbounded spectra. Without it (RGB mode) colours are used as they are.
+    /// unbounded spectra. Without it (RGB mode) colours are used as they are, as lanes
+    /// (r, g, b, b) ([`crate::math::rgb_lanes`]).
     pub fn bxdf(
         &self,
         tex: &TextureEval,
@@ -213,8 +218,8 @@ impl Material {
                 let (eta, k) = conductor_index(tex, tc, eta, k, reflectance, lambda);
                 BxDF::Conductor(ConductorBxdf {
                     distrib: distrib(uroughness, vroughness, remap_roughness),
-                    eta: eta.into(),
-                    k: k.into(),
+                    eta,
+                    k,
                 })
             }
             Material::Dielectric {
@@ -238,10 +243,10 @@ impl Material {
                 // colour is scaled before it is clamped, so scale < 1 can tame a colour > 1).
                 let scaled = |t: SpectrumTex| {
                     let rho = match lambda {
-                        None => tex.spectrum(t, tc),
+                        None => rgb_lanes(tex.spectrum(t, tc)),
                         Some(_) => albedo(t),
                     };
-                    (rho * scale).clamp(Rgb::ZERO, Rgb::ONE).into()
+                    (rho * scale).clamp(SampledSpectrum::ZERO, SampledSpectrum::ONE)
                 };
                 BxDF::DiffuseTransmission(DiffuseTransmissionBxdf {
                     r: scaled(reflectance),
@@ -265,7 +270,7 @@ impl Material {
                     distrib: distrib(uroughness, vroughness, remap_roughness),
                 },
                 DiffuseBxdf {
-                    r: albedo(reflectance).into(),
+                    r: albedo(reflectance),
                 },
                 tex.float(thickness, tc),
                 albedo(medium_albedo),
@@ -308,8 +313,8 @@ impl Material {
                             conductor_vroughness,
                             remap_roughness,
                         ),
-                        eta: (ce / ieta).into(),
-                        k: (ck / ieta).into(),
+                        eta: ce / ieta,
+                        k: ck / ieta,
                     },
                     tex.float(thickness, tc),
                     albedo(medium_albedo),
@@ -326,7 +331,6 @@ impl Material {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::math::PackedRgb;
 
     fn eval(m: &Material) -> BxDF {
         let tex = TextureEval {
@@ -361,9 +365,12 @@ mod tests {
         // α = √roughness.
         assert_eq!((b.distrib.alpha_x(), b.distrib.alpha_y()), (0.5, 0.2));
         // η = 1, k = 2√r/√(1 − r): the normal-incidence reflectance is r.
-        let f0 = fresnel_complex(1.0, b.eta.into(), b.k.into());
+        let f0 = fresnel_complex(1.0, b.eta, b.k);
         assert!(
-            (f0 - Rgb::new(0.9, 0.5, 0.1)).abs().max_element() < 1e-4,
+            (f0 - rgb_lanes(Rgb::new(0.9, 0.5, 0.1)))
+                .abs()
+                .max_element()
+                < 1e-4,
             "{f0}"
         );
         // Without remapping the roughness is α itself; zero makes a mirror.
@@ -379,7 +386,10 @@ mod tests {
             panic!("not a conductor")
         };
         assert!(b.distrib.effectively_smooth());
-        assert_eq!((b.eta, b.k), (PackedRgb::splat(0.2), PackedRgb::splat(3.0)));
+        assert_eq!(
+            (b.eta, b.k),
+            (SampledSpectrum::splat(0.2), SampledSpectrum::splat(3.0))
+        );
     }
 
     #[test]
@@ -403,7 +413,7 @@ mod tests {
             scale: 2.0,
         });
         assert!(
-            matches!(dt, BxDF::DiffuseTransmission(b) if b.r == PackedRgb::splat(0.6) && b.t == PackedRgb::ONE)
+            matches!(dt, BxDF::DiffuseTransmission(b) if b.r == SampledSpectrum::splat(0.6) && b.t == SampledSpectrum::ONE)
         );
         let cd = eval(&Material::CoatedDiffuse {
             reflectance: rgb(1.5),
@@ -420,11 +430,11 @@ mod tests {
         let BxDF::CoatedDiffuse(l) = cd else {
             panic!("not a coated diffuse")
         };
-        assert_eq!(l.bottom.r, PackedRgb::ONE);
+        assert_eq!(l.bottom.r, SampledSpectrum::ONE);
         assert_eq!((l.top.eta, l.thickness, l.g), (1.5, 0.01, 1.0));
         assert_eq!(
             (l.albedo, l.max_depth, l.n_samples),
-            (PackedRgb::splat(0.2), 10, 2)
+            (SampledSpectrum::splat(0.2), 10, 2)
         );
         // Under its coating the conductor's index is relative to the coating's.
         let cc = eval(&Material::CoatedConductor {
@@ -446,8 +456,18 @@ mod tests {
         let BxDF::CoatedConductor(l) = cc else {
             panic!("not a coated conductor")
         };
-        assert!((l.bottom.eta - PackedRgb::splat(0.2)).abs().max_element() < 1e-6);
-        assert!((l.bottom.k - PackedRgb::splat(2.0)).abs().max_element() < 1e-6);
+        assert!(
+            (l.bottom.eta - SampledSpectrum::splat(0.2))
+                .abs()
+                .max_element()
+                < 1e-6
+        );
+        assert!(
+            (l.bottom.k - SampledSpectrum::splat(2.0))
+                .abs()
+                .max_element()
+                < 1e-6
+        );
         assert!((l.bottom.distrib.alpha_x() - 0.4).abs() < 1e-6);
         let none = TextureEval {
             floats: &[],
