@@ -4,13 +4,13 @@ mod debug;
 mod path;
 mod whitted;
 
-use crate::material::{Bsdf, Material};
+use crate::material::{Bsdf, Material, SpectralColours};
 use crate::math::{Rgb, SampledSpectrum, Vec3, rgb_lanes};
 use crate::ray::Ray;
 use crate::sampling::Sampler;
 pub use crate::scene::desc::Integrator;
 use crate::scene::{Scene, SceneHit};
-use crate::spectrum::sampled::{SampledWavelengths, albedo_at, illuminant_at};
+use crate::spectrum::sampled::{SampledWavelengths, albedo_at};
 
 impl Integrator {
     /// True for the integrators that compute radiance (path tracing, Whitted), which spectral
@@ -127,7 +127,11 @@ pub(crate) fn bsdf_at(
                 };
             }
             mat => {
-                let mut bxdf = mat.bxdf(&tex, &tc, lambda)?;
+                let spectral = lambda.map(|lambda| SpectralColours {
+                    lambda,
+                    consts: &scene.spectra().materials[m as usize],
+                });
+                let mut bxdf = mat.bxdf(&tex, &tc, spectral)?;
                 // A shape's own colour (voxels) replaces a diffuse material's reflectance.
                 if let (Some(c), Material::Diffuse { .. }) = (hit.albedo, mat) {
                     bxdf = crate::material::BxDF::diffuse(albedo_at(
@@ -164,7 +168,9 @@ pub(crate) fn emitted(
     lambda: Option<&SampledWavelengths>,
 ) -> SampledSpectrum {
     match scene.prims[hit.prim as usize].emission {
-        Some(e) if e.two_sided || hit.si.n.dot(wo) > 0.0 => illuminant_at(lambda, e.l.into()),
+        Some(e) if e.two_sided || hit.si.n.dot(wo) > 0.0 => {
+            scene.light_radiance(e.light as usize, lambda, e.l.into(), 1.0)
+        }
         _ => SampledSpectrum::ZERO,
     }
 }

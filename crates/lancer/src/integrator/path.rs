@@ -7,7 +7,7 @@ use crate::math::{Rgb, SampledSpectrum, normalize};
 use crate::ray::Ray;
 use crate::sampling::{Sampler, power_heuristic};
 use crate::scene::Scene;
-use crate::spectrum::sampled::{SampledWavelengths, illuminant_at};
+use crate::spectrum::sampled::SampledWavelengths;
 
 /// Radiance along a camera ray, by path tracing up to `max_depth` bounces. With `regularize`,
 /// near-specular lobes met after a non-specular bounce are roughened (pbrt-v4's path
@@ -73,7 +73,7 @@ pub fn li_observed<O: PathObserver>(
                 let le = if le == Rgb::ZERO {
                     SampledSpectrum::ZERO
                 } else {
-                    illuminant_at(lambda, le)
+                    scene.light_radiance(i, lambda, le, 1.0)
                 };
                 if le == SampledSpectrum::ZERO {
                     continue;
@@ -146,7 +146,8 @@ pub fn li_observed<O: PathObserver>(
                         } else {
                             power_heuristic(p_l, bsdf.pdf(wo, ls.wi, TransportMode::Radiance))
                         };
-                        l += beta * f * illuminant_at(lambda, ls.l) * (w / p_l);
+                        l +=
+                            beta * f * scene.light_radiance(i, lambda, ls.l, ls.factor) * (w / p_l);
                     }
                 }
             }

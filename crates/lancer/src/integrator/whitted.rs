@@ -8,7 +8,7 @@ use crate::math::{Rgb, SampledSpectrum, Vec3};
 use crate::ray::Ray;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
-use crate::spectrum::sampled::{SampledWavelengths, illuminant_at};
+use crate::spectrum::sampled::SampledWavelengths;
 
 /// Radiance along `ray`:
 ///
@@ -27,7 +27,10 @@ pub fn li(
         return scene
             .infinite_lights
             .iter()
-            .map(|&i| illuminant_at(lambda, scene.lights[i as usize].le(ray.d)))
+            .map(|&i| {
+                let i = i as usize;
+                scene.light_radiance(i, lambda, scene.lights[i].le(ray.d), 1.0)
+            })
             .sum();
     };
     let si = &hit.si;
@@ -50,7 +53,7 @@ pub fn li(
         ns: si.shading.n,
     };
     if bsdf.flags().is_non_specular() {
-        for light in &scene.lights {
+        for (i, light) in scene.lights.iter().enumerate() {
             let u = sampler.get_2d();
             let Some(ls) = light.sample_li(&ctx, u, &scene.shapes, &scene.meshes) else {
                 continue;
@@ -64,7 +67,7 @@ pub fn li(
             }
             // The shadow ray: is the segment from the point to the light free?
             if !scene.intersect_p(&si.spawn_ray_to(ls.p_light)) {
-                l += f * illuminant_at(lambda, ls.l) / ls.pdf;
+                l += f * scene.light_radiance(i, lambda, ls.l, ls.factor) / ls.pdf;
             }
         }
     }

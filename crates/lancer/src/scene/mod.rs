@@ -5,8 +5,10 @@ pub mod desc;
 pub mod instance;
 pub mod memory;
 mod prim;
+mod spectra;
 
 pub use prim::{AreaEmission, BuildError, PrimInfo};
+pub use spectra::SceneSpectra;
 
 use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
@@ -61,6 +63,8 @@ pub struct Scene {
     /// Primitives without finite bounds (infinite planes), tested on every ray.
     unbounded: Vec<u32>,
     bounds: Bounds3,
+    /// Spectral mode's constant colours as spectra, made on first use.
+    spectra: std::sync::OnceLock<spectra::SceneSpectra>,
 }
 
 impl Scene {

@@ -94,6 +94,9 @@ pub struct SampledWavelengths {
     pub lambda: glam::Vec4,
     /// Density of each, per nm (each is drawn from the same density, stratified).
     pub pdf: glam::Vec4,
+    /// D65(λᵢ) · Σȳ / Σ D65·ȳ, the illuminant of RGB white at each wavelength (looked up once
+    /// per camera sample rather than at each light sample).
+    d65: SampledSpectrum,
 }
 
 impl SampledWavelengths {
@@ -110,9 +113,11 @@ impl SampledWavelengths {
             lambda[i] = sample_visible_wavelength(ui);
             pdf[i] = visible_wavelength_pdf(lambda[i]);
         }
+        let k = norms().illuminant_scale as f32;
         SampledWavelengths {
             lambda: lambda.into(),
             pdf: pdf.into(),
+            d65: SampledSpectrum::from_array(lambda.map(cie_d65)) * k,
         }
     }
 
@@ -158,12 +163,6 @@ impl SampledWavelengths {
         self.eval(&s) * scale
     }
 
-    /// D65(λ) · Σȳ / Σ D65·ȳ at the four wavelengths: the illuminant of RGB white (1, 1, 1).
-    fn d65_normalised(&self) -> SampledSpectrum {
-        let k = norms().illuminant_scale as f32;
-        SampledSpectrum::from_array(self.lambda.to_array().map(cie_d65)) * k
-    }
-
     /// Emitted radiance of RGB colour `rgb` at the four wavelengths, as pbrt-v4's
     /// `RGBIlluminantSpectrum` with its light normalisation:
     /// L(λ) = 2m · s(λ) · D65(λ) · Σȳ / Σ D65·ȳ, so that (1, 1, 1) gives film luminance 1 and
@@ -174,7 +173,7 @@ impl SampledWavelengths {
         if scale == 0.0 {
             return SampledSpectrum::ZERO;
         }
-        self.eval(&s) * self.d65_normalised() * scale
+        self.eval(&s) * self.d65 * scale
     }
 
     /// The film colour of radiance `l` (its lanes the values at the four wavelengths):
@@ -194,6 +193,65 @@ impl SampledWavelengths {
         }
         let s = norms().inv_y_integral / N_SPECTRUM_SAMPLES as f64;
         xyz_to_srgb(xyz.map(|v| (v * s) as f32))
+    }
+}
+
+/// What an RGB colour describes, which decides its spectrum ([`RgbSpectrum::new`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ColourKind {
+    /// A reflectance in [0, 1] (pbrt-v4's `RGBAlbedoSpectrum`).
+    Albedo,
+    /// An unbounded quantity such as an index of refraction, or emission before D65 is
+    /// applied (pbrt-v4's `RGBUnboundedSpectrum`).
+    Unbounded,
+}
+
+/// An RGB colour turned into a spectrum once, at scene preparation, so that spectral mode
+/// only evaluates it at each path's wavelengths: `scale · s(λ)`, s a sigmoid spectrum.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RgbSpectrum {
+    /// 1 for an albedo; 2m (m the largest component) for an unbounded colour; 0 for black.
+    pub scale: f32,
+    /// The sigmoid spectrum.
+    pub s: SigmoidSpectrum,
+}
+
+impl RgbSpectrum {
+    /// The spectrum of `rgb` taken as `kind`: an albedo is clamped to [0, 1] and uplifted
+    /// (scale 1); an unbounded colour is 2m · s(λ), s the albedo spectrum of rgb / 2m.
+    pub fn new(rgb: Rgb, kind: ColourKind) -> RgbSpectrum {
+        match kind {
+            ColourKind::Albedo => RgbSpectrum {
+                scale: 1.0,
+                s: albedo_spectrum(rgb),
+            },
+            ColourKind::Unbounded => {
+                let (scale, s) = unbounded_spectrum(rgb);
+                RgbSpectrum { scale, s }
+            }
+        }
+    }
+}
+
+impl SampledWavelengths {
+    /// A prepared spectrum at the four wavelengths: scale · s(λᵢ) (exactly
+    /// [`SampledWavelengths::albedo`] or [`SampledWavelengths::unbounded`] of its colour).
+    #[inline]
+    pub fn sample(&self, sp: &RgbSpectrum) -> SampledSpectrum {
+        if sp.scale == 0.0 {
+            return SampledSpectrum::ZERO;
+        }
+        self.eval(&sp.s) * sp.scale
+    }
+
+    /// A prepared unbounded spectrum as emission: scale · s(λ) · D65(λ) · Σȳ / Σ D65·ȳ
+    /// (exactly [`SampledWavelengths::illuminant`] of its colour).
+    #[inline]
+    pub fn sample_illuminant(&self, sp: &RgbSpectrum) -> SampledSpectrum {
+        if sp.scale == 0.0 {
+            return SampledSpectrum::ZERO;
+        }
+        self.eval(&sp.s) * self.d65 * sp.scale
     }
 }
 
