@@ -36,10 +36,11 @@ pub struct RenderSettings {
     /// Largest component a sample may have; brighter samples are scaled down to it, keeping
     /// their colour (pbrt's `maxcomponentvalue`; infinity keeps every sample as it is).
     pub max_component_value: f32,
-    /// Spectral mode: each camera sample carries three wavelengths and the scene's RGB colours
-    /// are uplifted to spectra (see [`crate::spectrum::sampled`]); the samples' radiance is
-    /// converted to linear sRGB before the film, so the film is the same either way. Applies
-    /// to the radiance integrators only (path, Whitted); false is plain RGB rendering.
+    /// Spectral mode (the default, as pbrt-v4 renders): each camera sample carries four
+    /// wavelengths and the scene's RGB colours are uplifted to spectra (see
+    /// [`crate::spectrum::sampled`]); the samples' radiance is converted to linear sRGB before
+    /// the film, so the film is the same either way. Applies to the radiance integrators only
+    /// (path, Whitted); false is plain RGB rendering, as Mitsuba 3's RGB variants do.
     pub spectral: bool,
 }
 
@@ -49,9 +50,10 @@ pub const DEFAULT_TILE_SIZE: u32 = 16;
 impl RenderSettings {
     /// The settings a scene description asks for: the whole image (`xresolution ×
     /// yresolution`), every sample index `0..spp`, the description's sampler, seed, filter,
-    /// integrator and `maxcomponentvalue`, tiles of [`DEFAULT_TILE_SIZE`] pixels, RGB (not
-    /// spectral) rendering. Callers that render a part of the image or of the samples, or in
-    /// spectral mode, change those fields afterwards.
+    /// integrator and `maxcomponentvalue`, tiles of [`DEFAULT_TILE_SIZE`] pixels, spectral
+    /// rendering (lancer reads pbrt-v4 scenes, and pbrt-v4 renders spectrally). Callers that
+    /// render a part of the image or of the samples, or in RGB mode, change those fields
+    /// afterwards.
     pub fn from_desc(desc: &SceneDesc) -> RenderSettings {
         RenderSettings {
             bounds: PixelBounds {
@@ -68,7 +70,7 @@ impl RenderSettings {
             integrator: desc.integrator,
             tile_size: DEFAULT_TILE_SIZE,
             max_component_value: desc.film.max_component_value,
-            spectral: false,
+            spectral: true,
         }
     }
 }

@@ -76,6 +76,8 @@ fn render_centres(desc: &SceneDesc) -> (Scene, Vec<Rgb>) {
             ysamples: 1,
             jitter: false,
         },
+        // The analytic values are RGB.
+        spectral: false,
         ..RenderSettings::from_desc(desc)
     };
     let mut film = Film::new(W, H, bounds);
