@@ -101,23 +101,28 @@ pub struct SampledWavelengths {
 
 impl SampledWavelengths {
     /// Four wavelengths from one uniform number: λᵢ from uᵢ = (u + i/4) mod 1 through
-    /// [`sample_visible_wavelength`], each with its own density p(λᵢ).
+    /// [`sample_visible_wavelength`], each with its own density p(λᵢ), all four lanes at once.
+    ///
+    /// The density comes from the same tanh as the sample, without a cosh: with
+    /// x = tanh(A(λ − C)) = T_MIN + u·(T_MAX − T_MIN), 1/cosh²(A(λ − C)) = 1 − x², so
+    /// p(λ) = A·(1 − x²)/(T_MAX − T_MIN).
     pub fn sample_visible(u: f32) -> SampledWavelengths {
-        let mut lambda = [0.0; N_SPECTRUM_SAMPLES];
-        let mut pdf = [0.0; N_SPECTRUM_SAMPLES];
-        for i in 0..N_SPECTRUM_SAMPLES {
-            let mut ui = u + i as f32 / N_SPECTRUM_SAMPLES as f32;
-            if ui >= 1.0 {
-                ui -= 1.0;
-            }
-            lambda[i] = sample_visible_wavelength(ui);
-            pdf[i] = visible_wavelength_pdf(lambda[i]);
-        }
+        let n = norms();
+        let (t0, t1) = (n.vis_t0 as f32, n.vis_t1 as f32);
+        let mut ui = SampledSpectrum::splat(u) + SampledSpectrum::new(0.0, 0.25, 0.5, 0.75);
+        ui = SampledSpectrum::select(ui.cmpge(SampledSpectrum::ONE), ui - 1.0, ui);
+        let x = (t0 + ui.clamp(SampledSpectrum::ZERO, SampledSpectrum::ONE) * (t1 - t0))
+            .clamp(SampledSpectrum::splat(t0), SampledSpectrum::splat(t1));
+        let lambda = (VIS_C as f32 + x.map(f32::atanh) * (1.0 / VIS_A as f32)).clamp(
+            SampledSpectrum::splat(LAMBDA_MIN),
+            SampledSpectrum::splat(LAMBDA_MAX),
+        );
+        let pdf = n.vis_pdf_scale * (SampledSpectrum::ONE - x * x);
         let k = norms().illuminant_scale as f32;
         SampledWavelengths {
-            lambda: lambda.into(),
-            pdf: pdf.into(),
-            d65: SampledSpectrum::from_array(lambda.map(cie_d65)) * k,
+            lambda,
+            pdf,
+            d65: SampledSpectrum::from_array(lambda.to_array().map(cie_d65)) * k,
         }
     }
 
@@ -318,9 +323,11 @@ mod tests {
         // Four wavelengths spread a quarter of the CDF apart: u = 0.9, 0.15, 0.4, 0.65.
         let w = SampledWavelengths::sample_visible(0.9);
         assert_eq!(w.lambda[0], sample_visible_wavelength(0.9));
-        for (i, u) in [(1, 0.15f32), (2, 0.4), (3, 0.65)] {
+        for (i, u) in [(0, 0.9f32), (1, 0.15), (2, 0.4), (3, 0.65)] {
             assert!((w.lambda[i] - sample_visible_wavelength(u)).abs() < 1e-3);
-            assert_eq!(w.pdf[i], visible_wavelength_pdf(w.lambda[i]));
+            // The density from 1 − tanh² is the density from cosh², to rounding.
+            let p = visible_wavelength_pdf(w.lambda[i]);
+            assert!((w.pdf[i] - p).abs() < 1e-5 * p, "{} vs {p}", w.pdf[i]);
         }
     }
 
