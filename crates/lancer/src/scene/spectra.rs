@@ -2,21 +2,20 @@
 //! turned into a spectrum once ([`RgbSpectrum`]), so that a path only evaluates it at its
 //! wavelengths. Textures and image environments keep their texels, uplifted per lookup.
 
-use super::Scene;
 use crate::light::Light;
 use crate::material::{COLOUR_SLOTS, Material};
-use crate::math::{Rgb, SampledSpectrum, rgb_lanes};
-use crate::spectrum::sampled::{ColourKind, RgbSpectrum, SampledWavelengths};
+use crate::math::Rgb;
+use crate::spectrum::sampled::{ColourKind, RgbSpectrum};
 use crate::texture::SpectrumTex;
 
 /// A scene's constant colours as spectra, made on first use in spectral mode (RGB mode never
 /// makes them, so it never builds the uplift's coefficient table for them).
 #[derive(Debug)]
 pub struct SceneSpectra {
-    /// Per light (the indices of [`Scene::lights`]): its constant colour
+    /// Per light (the indices of [`super::Scene::lights`]): its constant colour
     /// ([`Light::constant_colour`]) as an unbounded spectrum; `None` for image environments.
     pub lights: Vec<Option<RgbSpectrum>>,
-    /// Per material (the indices of [`Scene::materials`]): its constant colours by slot
+    /// Per material (the indices of [`super::Scene::materials`]): its constant colours by slot
     /// ([`Material::colour_slots`]); slots without a constant hold black.
     pub materials: Vec<[RgbSpectrum; COLOUR_SLOTS]>,
 }
@@ -53,34 +52,5 @@ impl SceneSpectra {
             })
             .collect();
         SceneSpectra { lights, materials }
-    }
-}
-
-impl Scene {
-    /// The scene's constant colours as spectra, prepared on the first call.
-    pub fn spectra(&self) -> &SceneSpectra {
-        self.spectra
-            .get_or_init(|| SceneSpectra::new(&self.lights, &self.materials))
-    }
-
-    /// Emission `l` of light `i`, which is its constant colour times `factor` (see
-    /// [`crate::light::LightLiSample::factor`]), as transport lanes: in spectral mode the
-    /// light's prepared spectrum as an illuminant, times `factor` (lights without a constant
-    /// colour uplift `l` itself); in RGB mode `l`'s lanes (r, g, b, b).
-    #[inline]
-    pub fn light_radiance(
-        &self,
-        i: usize,
-        lambda: Option<&SampledWavelengths>,
-        l: Rgb,
-        factor: f32,
-    ) -> SampledSpectrum {
-        match lambda {
-            None => rgb_lanes(l),
-            Some(w) => match &self.spectra().lights[i] {
-                Some(sp) => w.sample_illuminant(sp) * factor,
-                None => w.illuminant(l),
-            },
-        }
     }
 }
