@@ -99,6 +99,8 @@ pub fn render_image(width: u32, height: u32) -> Canvas {
             ysamples: 1,
             jitter: false,
         },
+        // In RGB, as the hand-written loop of step 7 (the library's default is spectral).
+        spectral: false,
         ..RenderSettings::from_desc(&desc)
     };
     let mut film = Film::new(width, height, bounds);

@@ -188,6 +188,15 @@ pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
             "seed": desc.sampler.seed,
         },
         "integrator": integrator_json(&desc.integrator),
+        // The mode `lancer render` uses by default (spectral, as pbrt-v4; `--rgb` for RGB);
+        // the debug integrators output RGB quantities in either.
+        "mode": if lancer::render::RenderSettings::from_desc(desc).spectral
+            && desc.integrator.computes_radiance()
+        {
+            "spectral"
+        } else {
+            "rgb"
+        },
         "shapes": c.shapes,
         "objects": desc.objects.len(),
         "object_shapes": c.object_shapes,
@@ -298,6 +307,13 @@ pub fn text(v: &Value) -> String {
         ),
     );
     line("integrator", integrator_text(&v["integrator"]));
+    line(
+        "mode",
+        match v["mode"].as_str() {
+            Some("spectral") => "spectral (the default; lancer render --rgb renders in RGB)".into(),
+            m => m.unwrap_or("").into(),
+        },
+    );
     line("shapes", kinds(&v["shapes"]));
     if u(&v["objects"]) > 0 {
         line(

@@ -31,7 +31,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     let scene = build(&desc)?;
     let build_s = t_build.elapsed().as_secs_f64();
     let load_s = t0.elapsed().as_secs_f64();
-    let settings = render_settings(&desc, &plan.pixels, args.spectral);
+    let settings = render_settings(&desc, &plan.pixels, args.spectral_mode());
     let rendered = match render(&scene, &settings, &args, &mut plan)? {
         Outcome::Done(r) => r,
         Outcome::Interrupted(message) => {
@@ -158,7 +158,7 @@ pub fn plan(
     let bounds = pixels.bounds;
     check_film_memory(&bounds, args.max_film_gib)?;
     let meta = PartMeta {
-        scene_hash: split::scene_hash_in_mode(desc, args.spectral),
+        scene_hash: split::scene_hash_in_mode(desc, args.spectral_mode()),
         seed: desc.sampler.seed,
         spp: desc.sampler.spp,
         samples: pixels.samples.clone(),
@@ -524,7 +524,7 @@ pub fn report(
             samples: done.stats.samples,
             nonfinite: done.stats.nonfinite,
             rays: done.stats.rays,
-            spectral: args.spectral,
+            spectral: args.spectral_mode(),
         };
         let mem = stats::SceneMemory::of(scene);
         match format {

@@ -102,11 +102,22 @@ pub struct RenderArgs {
     /// or as one JSON object with `--stats json` (a bare --stats, as in pbrt, means text).
     #[arg(long, value_enum, value_name = "FORMAT", num_args = 0..=1, default_missing_value = "text")]
     pub stats: Option<stats::StatsFormat>,
-    /// Render spectrally, as pbrt-v4 does: each sample carries three wavelengths and RGB
-    /// colours are uplifted to spectra; to agree with pbrt-v4's images on saturated colours.
-    /// The default (RGB) agrees with Mitsuba 3's RGB variants.
+    /// Render spectrally, as pbrt-v4 does: the default (each sample carries four wavelengths
+    /// and RGB colours are uplifted to spectra). Accepted for scripts written when RGB was
+    /// the default.
     #[arg(long, conflicts_with = "resume")]
     pub spectral: bool,
+    /// Render in RGB, as Mitsuba 3's RGB variants and Tungsten do: to compare with their
+    /// images, or to reproduce a render made in RGB (its parts and checkpoints).
+    #[arg(long, conflicts_with_all = ["resume", "spectral"])]
+    pub rgb: bool,
+}
+
+impl RenderArgs {
+    /// True for a spectral render: the default, unless `--rgb` was given.
+    pub fn spectral_mode(&self) -> bool {
+        !self.rgb
+    }
 }
 
 /// Largest image side accepted, in pixels: the scene reader's limit.

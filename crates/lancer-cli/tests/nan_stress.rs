@@ -105,6 +105,9 @@ fn render_with_nan_sphere(
         seed: 3,
         tile_size: tile,
         max_component_value: f32::INFINITY,
+        // In RGB mode the NaN colour reaches the radiance as it is; spectral mode's uplift
+        // would turn it into black (a spectrum of scale 0) before it could poison anything.
+        spectral: false,
         ..RenderSettings::from_desc(&desc)
     };
     let mut film = lancer::film::Film::new(40, 24, bounds);

@@ -6,20 +6,20 @@
 mod common;
 use common::*;
 
-/// 64 spp against Mitsuba 3 (`llvm_ad_rgb`, 4096 spp; both renderers are RGB, so the means
-/// must agree within 1.5 %). Both images are box-filtered 4× (the stored reference already
+/// 64 spp in RGB mode (`--rgb`) against Mitsuba 3 (`llvm_ad_rgb`, 4096 spp; both renderers
+/// are RGB, so the means must agree within 1.5 %). Both images are box-filtered 4× (the stored reference already
 /// is), which leaves the RMSE to catch misplaced light or shadows.
 #[test]
 fn cornell_box_agrees_with_mitsuba() {
     let dir = ScratchDir::new("cbox");
     let out = dir.join("cbox.exr");
-    render_ok(&dir, &data("pt/cbox.pbrt"), &out, &["--spp", "64"]);
+    render_ok(&dir, &data("pt/cbox.pbrt"), &out, &["--spp", "64", "--rgb"]);
     let img = read_exr(&out).shrink(4);
     let reference = read_exr(&data("references/pt/cbox-mitsuba.exr"));
     compare("cbox", &img, &reference, 0.015, 0.06);
 }
 
-/// Spectral mode against pbrt-v4 (which renders spectrally; its 256 × 256 reference,
+/// Spectral mode (the default; `--spectral` is accepted too) against pbrt-v4 (which renders spectrally; its 256 × 256 reference,
 /// `references/pt/cbox-pbrt.exr`, is stored box-filtered 4× to 64 × 64). RGB mode misses
 /// pbrt-v4's channel means by 2.5 % (red) and 3.2 % (blue), because saturated colours
 /// multiplied over many bounces do not commute with the reduction to RGB; spectral mode must
@@ -38,8 +38,8 @@ fn spectral_cornell_box_agrees_with_pbrt_v4() {
         &["--spp", "64", "--spectral"],
     );
     let img = read_exr(&spectral).shrink(4);
-    // Three wavelengths per sample add colour noise (nrmse ≈ 0.11 on 64 × 64, twice the RGB
-    // image's), which would hide a misplaced shadow: the shapes are compared on 4 × 4 blocks,
+    // The wavelengths add colour noise (nrmse ≈ 0.1 on 64 × 64, twice the RGB image's),
+    // which would hide a misplaced shadow: the shapes are compared on 4 × 4 blocks,
     // where the noise is a quarter of that.
     compare(
         "cbox spectral vs pbrt-v4, 4 x 4 blocks",
@@ -53,7 +53,7 @@ fn spectral_cornell_box_agrees_with_pbrt_v4() {
         &dir,
         &data("pt/cbox.pbrt"),
         &rgb,
-        &["--spp", "64", "--resolution", "64x64"],
+        &["--spp", "64", "--resolution", "64x64", "--rgb"],
     );
     let rgb_mre = read_exr(&rgb).mean_rel_error(&reference);
     println!("cbox RGB vs pbrt-v4: mre {rgb_mre:.4}");
@@ -63,7 +63,8 @@ fn spectral_cornell_box_agrees_with_pbrt_v4() {
     );
 }
 
-/// The acceptance's long render: 512 × 512 at 256 spp.
+/// The acceptance's long render: 512 × 512 at 256 spp, in RGB, where no channel of a pixel
+/// can exceed the light's (a spectral sample's colour noise can push one channel past it).
 #[test]
 fn long_render_has_no_nan_and_nothing_brighter_than_the_light() {
     let dir = ScratchDir::new("cbox-long");
@@ -72,7 +73,7 @@ fn long_render_has_no_nan_and_nothing_brighter_than_the_light() {
         &dir,
         &data("pt/cbox.pbrt"),
         &out,
-        &["--spp", "256", "--resolution", "512x512"],
+        &["--spp", "256", "--resolution", "512x512", "--rgb"],
     );
     let img = read_exr(&out);
     assert_eq!((img.width, img.height), (512, 512));

@@ -64,6 +64,19 @@ fn pbrt_spellings_give_the_same_image_as_lancers() {
     let o = cbox(&dir, &["-o", "c.exr", "--nthreads", "1", "--stats", "json"]);
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("one JSON object");
     assert_eq!(v["threads"].as_u64(), Some(1));
+    assert_eq!(v["mode"].as_str(), Some("spectral"));
+    // --rgb renders in RGB, and says so.
+    let o = cbox(&dir, &["-o", "d.exr", "--rgb", "--stats", "json"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("one JSON object");
+    assert_eq!(v["mode"].as_str(), Some("rgb"));
+    // --spectral stays accepted; with --rgb it is a contradiction.
+    assert!(cbox(&dir, &["-o", "e.exr", "--spectral"]).status.success());
+    let o = cbox(&dir, &["-o", "f.exr", "--spectral", "--rgb"]);
+    assert!(
+        !o.status.success() && stderr(&o).contains("--rgb"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 #[test]
@@ -181,6 +194,8 @@ fn a_scene_on_stdin_renders_and_its_errors_name_stdin() {
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(v["film"]["width"].as_u64(), Some(24));
     assert_eq!(v["shapes"]["sphere"].as_u64(), Some(1));
+    // The mode `lancer render` uses for it by default.
+    assert_eq!(v["mode"].as_str(), Some("spectral"));
 }
 
 #[test]
@@ -244,7 +259,7 @@ fn a_bare_stats_prints_the_text_summary() {
     assert_eq!(lines[0], format!("statistics of {}", scene.display()));
     assert!(lines[1].starts_with("  time      "), "{out}");
     assert!(
-        lines[2].starts_with("  image     c.png, 40x30 pixels, 3 spp, rgb, "),
+        lines[2].starts_with("  image     c.png, 40x30 pixels, 3 spp, spectral, "),
         "{out}"
     );
     // 40 · 30 · 3 = 3600 camera samples, none of them NaN.

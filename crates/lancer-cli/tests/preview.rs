@@ -362,6 +362,8 @@ fn stats_json_reports_the_render() {
     assert_eq!(v["samples"].as_u64(), Some(40 * 30 * 3));
     assert_eq!(v["width"].as_u64(), Some(40));
     assert_eq!(v["spp"].as_u64(), Some(3));
+    // Spectral is the default mode.
+    assert_eq!(v["mode"].as_str(), Some("spectral"));
     // The Cornell box: 8 meshes of 36 triangles in all, nothing else.
     assert_eq!(v["triangles"].as_u64(), Some(36));
     assert_eq!(v["primitives"].as_u64(), Some(36));

@@ -7,6 +7,7 @@ use crate::math::Vec2;
 use crate::sampling::{Sampler, SamplerKind};
 use crate::scene::Scene;
 use crate::scene::desc::SceneDesc;
+use crate::spectrum::sampled::film_rgb;
 use rayon::prelude::*;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -35,10 +36,11 @@ pub struct RenderSettings {
     /// Largest component a sample may have; brighter samples are scaled down to it, keeping
     /// their colour (pbrt's `maxcomponentvalue`; infinity keeps every sample as it is).
     pub max_component_value: f32,
-    /// Spectral mode: each camera sample carries three wavelengths and the scene's RGB colours
-    /// are uplifted to spectra (see [`crate::spectrum::sampled`]); the samples' radiance is
-    /// converted to linear sRGB before the film, so the film is the same either way. Applies
-    /// to the radiance integrators only (path, Whitted); false is plain RGB rendering.
+    /// Spectral mode (the default, as pbrt-v4 renders): each camera sample carries four
+    /// wavelengths and the scene's RGB colours are uplifted to spectra (see
+    /// [`crate::spectrum::sampled`]); the samples' radiance is converted to linear sRGB before
+    /// the film, so the film is the same either way. Applies to the radiance integrators only
+    /// (path, Whitted); false is plain RGB rendering, as Mitsuba 3's RGB variants do.
     pub spectral: bool,
 }
 
@@ -49,9 +51,10 @@ impl RenderSettings {
     /// The settings a scene description asks for: the pixels of its film's pixel bounds or
     /// crop window ([`crate::scene::desc::FilmDesc::render_bounds`]; the whole image by
     /// default), every sample index `0..spp`, the description's sampler, seed, filter,
-    /// integrator and `maxcomponentvalue`, tiles of [`DEFAULT_TILE_SIZE`] pixels, RGB (not
-    /// spectral) rendering. Callers that render a part of the image or of the samples, or in
-    /// spectral mode, change those fields afterwards.
+    /// integrator and `maxcomponentvalue`, tiles of [`DEFAULT_TILE_SIZE`] pixels, spectral
+    /// rendering (lancer reads pbrt-v4 scenes, and pbrt-v4 renders spectrally). Callers that
+    /// render a part of the image or of the samples, or in RGB mode, change those fields
+    /// afterwards.
     pub fn from_desc(desc: &SceneDesc) -> RenderSettings {
         RenderSettings {
             bounds: desc.film.render_bounds(),
@@ -63,7 +66,7 @@ impl RenderSettings {
             integrator: desc.integrator,
             tile_size: DEFAULT_TILE_SIZE,
             max_component_value: desc.film.max_component_value,
-            spectral: false,
+            spectral: true,
         }
     }
 }
@@ -187,13 +190,11 @@ fn camera_sample(
     s: u32,
 ) -> (crate::math::Rgb, f32) {
     let (ray, weight) = camera_ray(scene, settings, sampler, x, y, s);
-    match sample_wavelengths(settings, sampler) {
-        None => (settings.integrator.li(scene, &ray, sampler, None), weight),
-        Some(lambda) => {
-            let l = settings.integrator.li(scene, &ray, sampler, Some(&lambda));
-            (lambda.to_film_rgb(l), weight)
-        }
-    }
+    let lambda = sample_wavelengths(settings, sampler);
+    let l = settings
+        .integrator
+        .li(scene, &ray, sampler, lambda.as_ref());
+    (film_rgb(lambda.as_ref(), l), weight)
 }
 
 /// In spectral mode (radiance integrators only), the sample's wavelengths, drawn from the
@@ -241,11 +242,7 @@ pub fn trace_sample(
         .li_traced(scene, &ray, &mut sampler, lambda.as_ref(), &mut path);
     // The film's colour, as the render computed it (in spectral mode the path's vertices hold
     // values at the wavelengths).
-    let l = match lambda {
-        Some(w) => w.to_film_rgb(l),
-        None => l,
-    };
-    (l, path)
+    (film_rgb(lambda.as_ref(), l), path)
 }
 
 /// The film's sums over `tile` (a part of its bounds), row-major.

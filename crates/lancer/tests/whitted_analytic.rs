@@ -4,7 +4,7 @@
 
 use lancer::film::{Film, PixelBounds};
 use lancer::material::{Material, fresnel_complex};
-use lancer::math::{INV_PI, Rgb, Transform, Vec2, Vec3, normalize};
+use lancer::math::{INV_PI, Rgb, SampledSpectrum, Transform, Vec2, Vec3, lanes_rgb, normalize};
 use lancer::render::{RenderSettings, render};
 use lancer::sampling::SamplerKind;
 use lancer::scene::desc::{
@@ -76,6 +76,8 @@ fn render_centres(desc: &SceneDesc) -> (Scene, Vec<Rgb>) {
             ysamples: 1,
             jitter: false,
         },
+        // The analytic values are RGB.
+        spectral: false,
         ..RenderSettings::from_desc(desc)
     };
     let mut film = Film::new(W, H, bounds);
@@ -201,8 +203,8 @@ fn mirror_reflects_the_scene_with_its_fresnel_reflectance() {
     }];
     let (scene, img) = render_centres(&d);
     // pbrt's reflectance parameterisation: η = 1, k = 2√R/√(1 − R), so F(0°) = R.
-    let k = Rgb::splat(2.0 * reflectance.sqrt() / (1.0 - reflectance).sqrt());
-    assert!((fresnel_complex(1.0, Rgb::ONE, k).x - reflectance).abs() < 1e-5);
+    let k = SampledSpectrum::splat(2.0 * reflectance.sqrt() / (1.0 - reflectance).sqrt());
+    assert!((fresnel_complex(1.0, SampledSpectrum::ONE, k).x - reflectance).abs() < 1e-5);
     let mut reflections = 0;
     for y in 0..H {
         for x in 0..W {
@@ -214,7 +216,7 @@ fn mirror_reflects_the_scene_with_its_fresnel_reflectance() {
             let p = ray.at(t);
             let dn = normalize(ray.d);
             let refl = Ray::new(p, Vec3::new(dn.x, dn.y, -dn.z));
-            let f = fresnel_complex(dn.z.abs(), Rgb::ONE, k);
+            let f = lanes_rgb(fresnel_complex(dn.z.abs(), SampledSpectrum::ONE, k));
             let expected = match hit_sphere(&refl, c, r) {
                 Some(t2) => {
                     let q = refl.at(t2 as f32);

@@ -4,13 +4,13 @@ mod debug;
 mod path;
 mod whitted;
 
-use crate::material::{Bsdf, Material};
-use crate::math::{Rgb, Vec3};
+use crate::material::{Bsdf, Material, SpectralColours};
+use crate::math::{Rgb, SampledSpectrum, Vec3, rgb_lanes};
 use crate::ray::Ray;
 use crate::sampling::Sampler;
 pub use crate::scene::desc::Integrator;
 use crate::scene::{Scene, SceneHit};
-use crate::spectrum::sampled::{SampledWavelengths, albedo_at, illuminant_at};
+use crate::spectrum::sampled::{SampledWavelengths, albedo_at};
 
 impl Integrator {
     /// The pbrt-v4 name of this integrator (`Integrator "…"`): `path`, `whitted`,
@@ -40,7 +40,7 @@ impl Integrator {
         sampler: &mut Sampler,
         lambda: Option<&SampledWavelengths>,
         path: &mut Vec<PathVertex>,
-    ) -> Rgb {
+    ) -> SampledSpectrum {
         match *self {
             Integrator::Path {
                 max_depth,
@@ -51,15 +51,15 @@ impl Integrator {
     }
 
     /// Radiance arriving at the camera along `ray`. With `lambda` (spectral mode, radiance
-    /// integrators only) the result's channels are the radiance at those three wavelengths;
-    /// otherwise it is linear sRGB.
+    /// integrators only) the result's lanes are the radiance at those four wavelengths;
+    /// otherwise they are linear sRGB as (r, g, b, b) ([`rgb_lanes`]).
     pub fn li(
         &self,
         scene: &Scene,
         ray: &Ray,
         sampler: &mut Sampler,
         lambda: Option<&SampledWavelengths>,
-    ) -> Rgb {
+    ) -> SampledSpectrum {
         match *self {
             Integrator::Whitted { max_depth } => {
                 whitted::li(scene, ray, sampler, lambda, 0, max_depth)
@@ -68,12 +68,19 @@ impl Integrator {
                 max_depth,
                 regularize,
             } => path::li(scene, ray, sampler, lambda, max_depth, regularize),
-            Integrator::Normals => debug::normals(scene, ray),
-            Integrator::Depth => debug::depth(scene, ray),
+            // The debug views are RGB quantities, as lanes (r, g, b, b).
+            Integrator::Normals => rgb_lanes(debug::normals(scene, ray)),
+            Integrator::Depth => rgb_lanes(debug::depth(scene, ray)),
             Integrator::AmbientOcclusion {
                 cos_sample,
                 max_distance,
-            } => debug::ambient_occlusion(scene, ray, sampler, cos_sample, max_distance),
+            } => rgb_lanes(debug::ambient_occlusion(
+                scene,
+                ray,
+                sampler,
+                cos_sample,
+                max_distance,
+            )),
         }
     }
 }
@@ -97,13 +104,13 @@ pub struct PathVertex {
     /// Sampled next direction, if the BSDF gave one.
     pub wi: Option<Vec3>,
     /// BSDF value for it.
-    pub f: Option<Rgb>,
+    pub f: Option<SampledSpectrum>,
     /// Its density.
     pub pdf: Option<f32>,
     /// Path throughput before this bounce.
-    pub beta: Rgb,
+    pub beta: SampledSpectrum,
     /// Radiance gathered so far.
-    pub l: Rgb,
+    pub l: SampledSpectrum,
 }
 
 /// The BSDF at a hit, with `Mix` materials resolved (the choice is a deterministic hash of the
@@ -132,7 +139,11 @@ pub(crate) fn bsdf_at(
                 };
             }
             mat => {
-                let mut bxdf = mat.bxdf(&tex, &tc, lambda)?;
+                let spectral = lambda.map(|lambda| SpectralColours {
+                    lambda,
+                    consts: &scene.spectra().materials[m as usize],
+                });
+                let mut bxdf = mat.bxdf(&tex, &tc, spectral)?;
                 // A shape's own colour (voxels) replaces a diffuse material's reflectance.
                 if let (Some(c), Material::Diffuse { .. }) = (hit.albedo, mat) {
                     bxdf = crate::material::BxDF::diffuse(albedo_at(
@@ -167,9 +178,11 @@ pub(crate) fn emitted(
     hit: &SceneHit,
     wo: Vec3,
     lambda: Option<&SampledWavelengths>,
-) -> Rgb {
+) -> SampledSpectrum {
     match scene.prims[hit.prim as usize].emission {
-        Some(e) if e.two_sided || hit.si.n.dot(wo) > 0.0 => illuminant_at(lambda, e.l.into()),
-        _ => Rgb::ZERO,
+        Some(e) if e.two_sided || hit.si.n.dot(wo) > 0.0 => {
+            scene.light_radiance(e.light as usize, lambda, e.l.into(), 1.0)
+        }
+        _ => SampledSpectrum::ZERO,
     }
 }

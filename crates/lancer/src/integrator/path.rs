@@ -3,11 +3,11 @@
 use super::{PathVertex, bsdf_at, emitted};
 use crate::light::LightSampleContext;
 use crate::material::TransportMode;
-use crate::math::{Rgb, normalize};
+use crate::math::{Rgb, SampledSpectrum, normalize};
 use crate::ray::Ray;
 use crate::sampling::{Sampler, power_heuristic};
 use crate::scene::Scene;
-use crate::spectrum::sampled::{SampledWavelengths, illuminant_at};
+use crate::spectrum::sampled::SampledWavelengths;
 
 /// Radiance along a camera ray, by path tracing up to `max_depth` bounces. With `regularize`,
 /// near-specular lobes met after a non-specular bounce are roughened (pbrt-v4's path
@@ -21,7 +21,7 @@ pub fn li(
     lambda: Option<&SampledWavelengths>,
     max_depth: u32,
     regularize: bool,
-) -> Rgb {
+) -> SampledSpectrum {
     li_observed(scene, ray, sampler, lambda, max_depth, regularize, &mut ())
 }
 
@@ -53,9 +53,9 @@ pub fn li_observed<O: PathObserver>(
     max_depth: u32,
     regularize: bool,
     obs: &mut O,
-) -> Rgb {
-    let mut l = Rgb::ZERO;
-    let mut beta = Rgb::ONE;
+) -> SampledSpectrum {
+    let mut l = SampledSpectrum::ZERO;
+    let mut beta = SampledSpectrum::ONE;
     let mut ray = *ray;
     let mut depth = 0u32;
     let mut specular_bounce = false;
@@ -71,11 +71,11 @@ pub fn li_observed<O: PathObserver>(
                 let (i, light) = (i as usize, &scene.lights[i as usize]);
                 let le = light.le(ray.d);
                 let le = if le == Rgb::ZERO {
-                    le
+                    SampledSpectrum::ZERO
                 } else {
-                    illuminant_at(lambda, le)
+                    scene.light_radiance(i, lambda, le, 1.0)
                 };
-                if le == Rgb::ZERO {
+                if le == SampledSpectrum::ZERO {
                     continue;
                 }
                 match (depth == 0 || specular_bounce, prev_ctx) {
@@ -94,7 +94,7 @@ pub fn li_observed<O: PathObserver>(
         // An area light hit by a BSDF-sampled ray: weighted against the chance that light
         // sampling picked the same point.
         let le = emitted(scene, &hit, wo, lambda);
-        if le != Rgb::ZERO {
+        if le != SampledSpectrum::ZERO {
             match (
                 depth == 0 || specular_bounce,
                 prev_ctx,
@@ -137,7 +137,7 @@ pub fn li_observed<O: PathObserver>(
                     let f =
                         bsdf.f(wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(si.shading.n).abs();
                     if ls.pdf > 0.0
-                        && f != Rgb::ZERO
+                        && f != SampledSpectrum::ZERO
                         && !scene.intersect_p(&si.spawn_ray_to(ls.p_light))
                     {
                         let p_l = pmf * ls.pdf;
@@ -146,7 +146,8 @@ pub fn li_observed<O: PathObserver>(
                         } else {
                             power_heuristic(p_l, bsdf.pdf(wo, ls.wi, TransportMode::Radiance))
                         };
-                        l += beta * f * illuminant_at(lambda, ls.l) * (w / p_l);
+                        l +=
+                            beta * f * scene.light_radiance(i, lambda, ls.l, ls.factor) * (w / p_l);
                     }
                 }
             }
@@ -199,7 +200,7 @@ pub fn li_observed<O: PathObserver>(
             }
             beta /= 1.0 - q;
         }
-        if !beta.is_finite() || beta == Rgb::ZERO {
+        if !beta.is_finite() || beta == SampledSpectrum::ZERO {
             break;
         }
     }

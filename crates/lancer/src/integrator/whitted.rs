@@ -4,11 +4,11 @@
 use super::{bsdf_at, emitted};
 use crate::light::LightSampleContext;
 use crate::material::{BxDF, TransportMode, fresnel_complex, fresnel_dielectric, refract};
-use crate::math::{Rgb, Vec3};
+use crate::math::{Rgb, SampledSpectrum, Vec3};
 use crate::ray::Ray;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
-use crate::spectrum::sampled::{SampledWavelengths, illuminant_at};
+use crate::spectrum::sampled::SampledWavelengths;
 
 /// Radiance along `ray`:
 ///
@@ -22,12 +22,15 @@ pub fn li(
     lambda: Option<&SampledWavelengths>,
     depth: u32,
     max_depth: u32,
-) -> Rgb {
+) -> SampledSpectrum {
     let Some(hit) = scene.intersect(ray) else {
         return scene
             .infinite_lights
             .iter()
-            .map(|&i| illuminant_at(lambda, scene.lights[i as usize].le(ray.d)))
+            .map(|&i| {
+                let i = i as usize;
+                scene.light_radiance(i, lambda, scene.lights[i].le(ray.d), 1.0)
+            })
             .sum();
     };
     let si = &hit.si;
@@ -50,7 +53,7 @@ pub fn li(
         ns: si.shading.n,
     };
     if bsdf.flags().is_non_specular() {
-        for light in &scene.lights {
+        for (i, light) in scene.lights.iter().enumerate() {
             let u = sampler.get_2d();
             let Some(ls) = light.sample_li(&ctx, u, &scene.shapes, &scene.meshes) else {
                 continue;
@@ -59,12 +62,12 @@ pub fn li(
                 continue;
             }
             let f = bsdf.f(wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(si.shading.n).abs();
-            if f == Rgb::ZERO {
+            if f == SampledSpectrum::ZERO {
                 continue;
             }
             // The shadow ray: is the segment from the point to the light free?
             if !scene.intersect_p(&si.spawn_ray_to(ls.p_light)) {
-                l += f * illuminant_at(lambda, ls.l) / ls.pdf;
+                l += f * scene.light_radiance(i, lambda, ls.l, ls.factor) / ls.pdf;
             }
         }
     }
@@ -76,7 +79,7 @@ pub fn li(
             // The course's recursion follows perfect mirrors and refractions only; rough
             // interfaces are lit directly above and nothing more.
             BxDF::Conductor(c) if c.distrib.effectively_smooth() => {
-                let f = fresnel_complex(wo_l.z.abs(), c.eta.into(), c.k.into());
+                let f = fresnel_complex(wo_l.z.abs(), c.eta, c.k);
                 l += f * li(
                     scene,
                     &si.spawn_ray(reflect(wo)),

@@ -256,6 +256,7 @@ impl ImageInfiniteLight {
         }
         let pdf = map_pdf / jacobian;
         pdf.is_finite().then(|| LightLiSample {
+            factor: 1.0,
             l: self.image_le(uv),
             wi,
             pdf,

@@ -128,6 +128,7 @@ impl Light {
                     }
                     return Some(LightLiSample {
                         l: (*l).into(),
+                        factor: 1.0,
                         wi,
                         pdf: crate::sampling::uniform_cone_pdf(cone.cos_theta_max),
                         p_light: p,
@@ -149,6 +150,7 @@ impl Light {
                 let pdf = d2 / (cos_light.abs() * area);
                 pdf.is_finite().then_some(LightLiSample {
                     l: (*l).into(),
+                    factor: 1.0,
                     wi,
                     pdf,
                     p_light: ss.p,
@@ -162,6 +164,7 @@ impl Light {
                 }
                 Some(LightLiSample {
                     l: *intensity / r2,
+                    factor: 1.0 / r2,
                     wi: d / r2.sqrt(),
                     pdf: 1.0,
                     p_light: *p,
@@ -187,6 +190,7 @@ impl Light {
                 }
                 Some(LightLiSample {
                     l: *intensity * falloff / r2,
+                    factor: falloff / r2,
                     wi,
                     pdf: 1.0,
                     p_light: *p,
@@ -194,6 +198,7 @@ impl Light {
             }
             Light::Distant { w, l, scene_radius } => Some(LightLiSample {
                 l: *l,
+                factor: 1.0,
                 wi: *w,
                 pdf: 1.0,
                 p_light: ctx.p + *w * (2.0 * scene_radius.max(1e-3)),
@@ -211,6 +216,7 @@ impl Light {
                 };
                 (pdf > 0.0).then_some(LightLiSample {
                     l: *l,
+                    factor: 1.0,
                     wi,
                     pdf,
                     p_light: ctx.p + wi * (2.0 * scene_radius.max(1e-3)),
@@ -280,6 +286,18 @@ impl Light {
             }
             // Φ = π·r²·∫L dω.
             Light::ImageInfinite(light) => light.power(),
+        }
+    }
+
+    /// The constant colour this light's emission is a multiple of (intensity or radiance), or
+    /// `None` when it varies over directions (an image environment). Spectral mode turns it
+    /// into a spectrum once ([`crate::spectrum::sampled::RgbSpectrum`]).
+    pub fn constant_colour(&self) -> Option<Rgb> {
+        match self {
+            Light::Point { intensity, .. } | Light::Spot { intensity, .. } => Some(*intensity),
+            Light::Distant { l, .. } | Light::UniformInfinite { l, .. } => Some(*l),
+            Light::Area { l, .. } => Some((*l).into()),
+            Light::ImageInfinite(_) => None,
         }
     }
 

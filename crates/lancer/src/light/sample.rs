@@ -19,6 +19,10 @@ pub struct LightSampleContext {
 pub struct LightLiSample {
     /// Radiance arriving (for delta lights: the intensity already divided by distance²).
     pub l: Rgb,
+    /// `l` divided by the light's constant colour ([`super::Light::constant_colour`]): 1/r²
+    /// for a point light, falloff/r² for a spot, 1 for the others. Spectral mode multiplies
+    /// the colour's prepared spectrum by it instead of uplifting `l` at each sample.
+    pub factor: f32,
     /// Unit direction from the lit point towards the light.
     pub wi: Vec3,
     /// Density of the sample with respect to solid angle (1 for delta lights).

@@ -10,7 +10,7 @@ use super::dielectric::{DielectricBxdf, ThinDielectricBxdf};
 use super::diffuse::{DiffuseBxdf, DiffuseTransmissionBxdf};
 use super::layered::{CoatedConductorBxdf, CoatedDiffuseBxdf};
 use super::scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode};
-use crate::math::{Frame, Rgb, Vec2, Vec3};
+use crate::math::{Frame, SampledSpectrum, Vec2, Vec3};
 
 /// A BxDF in its local frame: directions have the shading normal as +z.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -49,8 +49,8 @@ macro_rules! dispatch {
 impl BxDF {
     /// Lambert with albedo `r`.
     #[inline]
-    pub fn diffuse(r: Rgb) -> BxDF {
-        BxDF::Diffuse(DiffuseBxdf { r: r.into() })
+    pub fn diffuse(r: SampledSpectrum) -> BxDF {
+        BxDF::Diffuse(DiffuseBxdf { r })
     }
 
     /// The kinds of lobes this BxDF has.
@@ -59,7 +59,7 @@ impl BxDF {
     }
 
     /// f(wo, wi) for a pair of local directions (zero for specular lobes).
-    pub fn f(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
+    pub fn f(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> SampledSpectrum {
         dispatch!(self, b => b.f(wo, wi, mode))
     }
 
@@ -117,10 +117,10 @@ impl Bsdf {
     }
 
     /// f(wo, wi) for world-space directions.
-    pub fn f(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
+    pub fn f(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> SampledSpectrum {
         let (wo, wi) = (self.frame.to_local(wo), self.frame.to_local(wi));
         if wo.z == 0.0 {
-            return Rgb::ZERO;
+            return SampledSpectrum::ZERO;
         }
         self.bxdf.f(wo, wi, mode)
     }
@@ -141,7 +141,7 @@ impl Bsdf {
             return None;
         }
         let mut s = self.bxdf.sample_f(wo_l, uc, u, mode)?;
-        if s.pdf <= 0.0 || !s.f.is_finite() || s.f == Rgb::ZERO || s.wi.z == 0.0 {
+        if s.pdf <= 0.0 || !s.f.is_finite() || s.f == SampledSpectrum::ZERO || s.wi.z == 0.0 {
             return None;
         }
         s.wi = self.frame.from_local(s.wi);

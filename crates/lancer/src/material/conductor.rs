@@ -6,7 +6,7 @@ use super::microfacet::TrowbridgeReitz;
 use super::scatter::{
     BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode, abs_cos_theta, same_hemisphere,
 };
-use crate::math::{PackedRgb, Rgb, Vec2, Vec3, face_forward};
+use crate::math::{SampledSpectrum, Vec2, Vec3, face_forward};
 
 /// A conductor with index `eta + i·k` per channel.
 ///
@@ -19,9 +19,9 @@ pub struct ConductorBxdf {
     /// Microfacet distribution.
     pub distrib: TrowbridgeReitz,
     /// Real part of the index, per channel (packed, as every colour of a BxDF).
-    pub eta: PackedRgb,
+    pub eta: SampledSpectrum,
     /// Imaginary part (absorption), per channel (packed).
-    pub k: PackedRgb,
+    pub k: SampledSpectrum,
 }
 
 impl Scatter for ConductorBxdf {
@@ -33,18 +33,18 @@ impl Scatter for ConductorBxdf {
         }
     }
 
-    fn f(&self, wo: Vec3, wi: Vec3, _mode: TransportMode) -> Rgb {
+    fn f(&self, wo: Vec3, wi: Vec3, _mode: TransportMode) -> SampledSpectrum {
         if !same_hemisphere(wo, wi) || self.distrib.effectively_smooth() {
-            return Rgb::ZERO;
+            return SampledSpectrum::ZERO;
         }
         let (cos_o, cos_i) = (abs_cos_theta(wo), abs_cos_theta(wi));
         if cos_i == 0.0 || cos_o == 0.0 {
-            return Rgb::ZERO;
+            return SampledSpectrum::ZERO;
         }
         let Some(wm) = (wi + wo).try_normalize() else {
-            return Rgb::ZERO;
+            return SampledSpectrum::ZERO;
         };
-        let fr = fresnel_complex(wo.dot(wm).abs(), self.eta.into(), self.k.into());
+        let fr = fresnel_complex(wo.dot(wm).abs(), self.eta, self.k);
         // f = D F G / (4 cos θo cos θi)
         self.distrib.d(wm) * fr * self.distrib.g(wo, wi) / (4.0 * cos_i * cos_o)
     }
@@ -67,7 +67,7 @@ impl Scatter for ConductorBxdf {
                 return None;
             }
             return Some(BsdfSample::new(
-                fresnel_complex(c, self.eta.into(), self.k.into()) / c,
+                fresnel_complex(c, self.eta, self.k) / c,
                 wi,
                 1.0,
                 BxdfFlags::REFLECTION | BxdfFlags::SPECULAR,
@@ -87,7 +87,7 @@ impl Scatter for ConductorBxdf {
         if cos_i == 0.0 || cos_o == 0.0 {
             return None;
         }
-        let fr = fresnel_complex(wo.dot(wm).abs(), self.eta.into(), self.k.into());
+        let fr = fresnel_complex(wo.dot(wm).abs(), self.eta, self.k);
         let f = self.distrib.d(wm) * fr * self.distrib.g(wo, wi) / (4.0 * cos_i * cos_o);
         Some(BsdfSample::new(
             f,

@@ -7,7 +7,7 @@ use super::scatter::{
     BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode, abs_cos_theta, cos_theta,
     same_hemisphere,
 };
-use crate::math::{Rgb, Vec2, Vec3, face_forward};
+use crate::math::{SampledSpectrum, Vec2, Vec3, face_forward};
 
 /// A dielectric interface with relative index `eta` = η_inside/η_outside (the +z side is
 /// outside).
@@ -88,18 +88,18 @@ impl Scatter for DielectricBxdf {
             }
     }
 
-    fn f(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
+    fn f(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> SampledSpectrum {
         if self.is_smooth() {
-            return Rgb::ZERO;
+            return SampledSpectrum::ZERO;
         }
         let Some((wm, etap, reflect)) = self.half_vector(wo, wi) else {
-            return Rgb::ZERO;
+            return SampledSpectrum::ZERO;
         };
         let (cos_o, cos_i) = (cos_theta(wo), cos_theta(wi));
         let fr = fresnel_dielectric(wo.dot(wm), self.eta);
         let d = &self.distrib;
         if reflect {
-            Rgb::splat(d.d(wm) * d.g(wo, wi) * fr / (4.0 * cos_i * cos_o).abs())
+            SampledSpectrum::splat(d.d(wm) * d.g(wo, wi) * fr / (4.0 * cos_i * cos_o).abs())
         } else {
             let denom = (wi.dot(wm) + wo.dot(wm) / etap).powi(2) * cos_i * cos_o;
             let mut ft =
@@ -107,7 +107,7 @@ impl Scatter for DielectricBxdf {
             if mode == TransportMode::Radiance {
                 ft /= etap * etap;
             }
-            Rgb::splat(ft)
+            SampledSpectrum::splat(ft)
         }
     }
 
@@ -132,7 +132,7 @@ impl Scatter for DielectricBxdf {
                     return None;
                 }
                 return Some(BsdfSample::new(
-                    Rgb::splat(r / c),
+                    SampledSpectrum::splat(r / c),
                     wi,
                     pr / (pr + pt),
                     BxdfFlags::REFLECTION | BxdfFlags::SPECULAR,
@@ -152,7 +152,7 @@ impl Scatter for DielectricBxdf {
             return Some(BsdfSample {
                 eta: etap,
                 ..BsdfSample::new(
-                    Rgb::splat(ft),
+                    SampledSpectrum::splat(ft),
                     wi,
                     pt / (pr + pt),
                     BxdfFlags::TRANSMISSION | BxdfFlags::SPECULAR,
@@ -177,7 +177,7 @@ impl Scatter for DielectricBxdf {
             let pdf = d.pdf(wo, wm) / (4.0 * wo.dot(wm).abs()) * pr / (pr + pt);
             let f = d.d(wm) * d.g(wo, wi) * r / (4.0 * cos_theta(wi) * cos_theta(wo));
             return Some(BsdfSample::new(
-                Rgb::splat(f),
+                SampledSpectrum::splat(f),
                 wi,
                 pdf,
                 BxdfFlags::REFLECTION | BxdfFlags::GLOSSY,
@@ -201,7 +201,7 @@ impl Scatter for DielectricBxdf {
         Some(BsdfSample {
             eta: etap,
             ..BsdfSample::new(
-                Rgb::splat(ft),
+                SampledSpectrum::splat(ft),
                 wi,
                 pdf,
                 BxdfFlags::TRANSMISSION | BxdfFlags::GLOSSY,
@@ -261,8 +261,8 @@ impl Scatter for ThinDielectricBxdf {
         BxdfFlags::REFLECTION | BxdfFlags::TRANSMISSION | BxdfFlags::SPECULAR
     }
 
-    fn f(&self, _wo: Vec3, _wi: Vec3, _mode: TransportMode) -> Rgb {
-        Rgb::ZERO
+    fn f(&self, _wo: Vec3, _wi: Vec3, _mode: TransportMode) -> SampledSpectrum {
+        SampledSpectrum::ZERO
     }
 
     fn sample_f(
@@ -285,14 +285,14 @@ impl Scatter for ThinDielectricBxdf {
         }
         Some(if uc < pr / (pr + pt) {
             BsdfSample::new(
-                Rgb::splat(r / c),
+                SampledSpectrum::splat(r / c),
                 Vec3::new(-wo.x, -wo.y, wo.z),
                 pr / (pr + pt),
                 BxdfFlags::REFLECTION | BxdfFlags::SPECULAR,
             )
         } else {
             BsdfSample::new(
-                Rgb::splat(t / c),
+                SampledSpectrum::splat(t / c),
                 -wo,
                 pt / (pr + pt),
                 BxdfFlags::TRANSMISSION | BxdfFlags::SPECULAR,

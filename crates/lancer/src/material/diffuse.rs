@@ -3,7 +3,7 @@
 use super::scatter::{
     BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode, abs_cos_theta, same_hemisphere,
 };
-use crate::math::{INV_PI, PackedRgb, Rgb, Vec2, Vec3};
+use crate::math::{INV_PI, SampledSpectrum, Vec2, Vec3};
 use crate::sampling::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 
 /// Lambert: f = ρ/π on the side of `wo`, sampled with density |cos θi|/π.
@@ -11,23 +11,23 @@ use crate::sampling::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 pub struct DiffuseBxdf {
     /// Albedo ρ (packed, as every colour of a BxDF, so that a [`BxDF`](super::BxDF) stays
     /// small enough to copy).
-    pub r: PackedRgb,
+    pub r: SampledSpectrum,
 }
 
 impl Scatter for DiffuseBxdf {
     fn flags(&self) -> BxdfFlags {
-        if self.r == PackedRgb::ZERO {
+        if self.r == SampledSpectrum::ZERO {
             BxdfFlags::NONE
         } else {
             BxdfFlags::REFLECTION | BxdfFlags::DIFFUSE
         }
     }
 
-    fn f(&self, wo: Vec3, wi: Vec3, _mode: TransportMode) -> Rgb {
+    fn f(&self, wo: Vec3, wi: Vec3, _mode: TransportMode) -> SampledSpectrum {
         if same_hemisphere(wo, wi) {
-            Rgb::from(self.r) * INV_PI
+            self.r * INV_PI
         } else {
-            Rgb::ZERO
+            SampledSpectrum::ZERO
         }
     }
 
@@ -39,7 +39,7 @@ impl Scatter for DiffuseBxdf {
         _mode: TransportMode,
         mask: ReflTrans,
     ) -> Option<BsdfSample> {
-        if !mask.reflection() || self.r == PackedRgb::ZERO {
+        if !mask.reflection() || self.r == SampledSpectrum::ZERO {
             return None;
         }
         let mut wi = sample_cosine_hemisphere(u);
@@ -49,7 +49,7 @@ impl Scatter for DiffuseBxdf {
         let pdf = cosine_hemisphere_pdf(abs_cos_theta(wi));
         (pdf > 0.0).then(|| {
             BsdfSample::new(
-                Rgb::from(self.r) * INV_PI,
+                self.r * INV_PI,
                 wi,
                 pdf,
                 BxdfFlags::REFLECTION | BxdfFlags::DIFFUSE,
@@ -72,9 +72,9 @@ impl Scatter for DiffuseBxdf {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DiffuseTransmissionBxdf {
     /// Reflectance R (packed).
-    pub r: PackedRgb,
+    pub r: SampledSpectrum,
     /// Transmittance T (packed).
-    pub t: PackedRgb,
+    pub t: SampledSpectrum,
 }
 
 impl DiffuseTransmissionBxdf {
@@ -98,20 +98,20 @@ impl DiffuseTransmissionBxdf {
 impl Scatter for DiffuseTransmissionBxdf {
     fn flags(&self) -> BxdfFlags {
         let mut fl = BxdfFlags::NONE;
-        if self.r != PackedRgb::ZERO {
+        if self.r != SampledSpectrum::ZERO {
             fl |= BxdfFlags::REFLECTION | BxdfFlags::DIFFUSE;
         }
-        if self.t != PackedRgb::ZERO {
+        if self.t != SampledSpectrum::ZERO {
             fl |= BxdfFlags::TRANSMISSION | BxdfFlags::DIFFUSE;
         }
         fl
     }
 
-    fn f(&self, wo: Vec3, wi: Vec3, _mode: TransportMode) -> Rgb {
+    fn f(&self, wo: Vec3, wi: Vec3, _mode: TransportMode) -> SampledSpectrum {
         if same_hemisphere(wo, wi) {
-            Rgb::from(self.r) * INV_PI
+            self.r * INV_PI
         } else {
-            Rgb::from(self.t) * INV_PI
+            self.t * INV_PI
         }
     }
 

@@ -1,6 +1,6 @@
 //! Fresnel equations, reflection and refraction (Snell's law).
 
-use crate::math::{Rgb, Vec3, safe_sqrt};
+use crate::math::{SampledSpectrum, Vec3, safe_sqrt};
 
 /// Mirror reflection of `wo` about `n`: `wr = −wo + 2(wo·n)n`.
 #[inline]
@@ -102,13 +102,14 @@ pub fn fresnel_complex_1(cos_i: f32, eta: f32, k: f32) -> f32 {
     (r_parl.norm() + r_perp.norm()) / 2.0
 }
 
-/// [`fresnel_complex_1`] for each RGB channel.
+/// [`fresnel_complex_1`] for each lane (wavelength, or RGB channel as (r, g, b, b)).
 #[inline]
-pub fn fresnel_complex(cos_i: f32, eta: Rgb, k: Rgb) -> Rgb {
-    Rgb::new(
+pub fn fresnel_complex(cos_i: f32, eta: SampledSpectrum, k: SampledSpectrum) -> SampledSpectrum {
+    SampledSpectrum::new(
         fresnel_complex_1(cos_i, eta.x, k.x),
         fresnel_complex_1(cos_i, eta.y, k.y),
         fresnel_complex_1(cos_i, eta.z, k.z),
+        fresnel_complex_1(cos_i, eta.w, k.w),
     )
 }
 

@@ -17,7 +17,7 @@ use super::diffuse::DiffuseBxdf;
 use super::scatter::{
     BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode, abs_cos_theta, same_hemisphere,
 };
-use crate::math::{INV_4PI, PackedRgb, Rgb, Vec2, Vec3, lerp};
+use crate::math::{INV_4PI, SampledSpectrum, Vec2, Vec3, lerp};
 use crate::sampling::{
     Pcg32, hash_u64, henyey_greenstein, power_heuristic, sample_exponential,
     sample_henyey_greenstein,
@@ -43,7 +43,7 @@ pub struct LayeredBxdf<B> {
     pub g: f32,
     /// Single-scattering albedo of the medium (zero: the slab only absorbs, by e^(−d/|cos θ|));
     /// packed, as every colour of a BxDF.
-    pub albedo: PackedRgb,
+    pub albedo: SampledSpectrum,
     /// Maximum number of scattering events in one random walk.
     pub max_depth: u32,
     /// Number of random walks averaged per evaluation.
@@ -74,7 +74,7 @@ impl<B: Scatter> Side<'_, B> {
     }
 
     #[inline]
-    fn f(self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb {
+    fn f(self, wo: Vec3, wi: Vec3, mode: TransportMode) -> SampledSpectrum {
         match self {
             Side::Top(t) => t.f(wo, wi, mode),
             Side::Bottom(b) => b.f(wo, wi, mode),
@@ -139,7 +139,7 @@ impl<B: Scatter> LayeredBxdf<B> {
         top: DielectricBxdf,
         bottom: B,
         thickness: f32,
-        albedo: Rgb,
+        albedo: SampledSpectrum,
         g: f32,
         max_depth: u32,
         n_samples: u32,
@@ -149,7 +149,7 @@ impl<B: Scatter> LayeredBxdf<B> {
             bottom,
             thickness: thickness.max(f32::MIN_POSITIVE),
             g,
-            albedo: albedo.into(),
+            albedo,
             max_depth,
             n_samples: n_samples.max(1),
         }
@@ -158,7 +158,7 @@ impl<B: Scatter> LayeredBxdf<B> {
     /// True when the slab holds a scattering medium.
     #[inline]
     fn has_medium(&self) -> bool {
-        self.albedo != PackedRgb::ZERO
+        self.albedo != SampledSpectrum::ZERO
     }
 }
 
@@ -187,7 +187,7 @@ impl<B: Scatter> Scatter for LayeredBxdf<B> {
     /// through the medium, and at each vertex connect to `wi` through the exit interface
     /// (next-event estimation along a pre-sampled exit direction and along the next sampled
     /// direction, combined by the power heuristic).
-    fn f(&self, mut wo: Vec3, mut wi: Vec3, mode: TransportMode) -> Rgb {
+    fn f(&self, mut wo: Vec3, mut wi: Vec3, mode: TransportMode) -> SampledSpectrum {
         if wo.z < 0.0 {
             wo = -wo;
             wi = -wi;
@@ -205,7 +205,7 @@ impl<B: Scatter> Scatter for LayeredBxdf<B> {
         let mut f = if same {
             n * self.top.f(wo, wi, mode)
         } else {
-            Rgb::ZERO
+            SampledSpectrum::ZERO
         };
         let mut rng = Pcg32::new(
             hash_floats([wo.x, wo.y, wo.z]),
@@ -262,12 +262,7 @@ impl<B: Scatter> Scatter for LayeredBxdf<B> {
                         } else {
                             power_heuristic(wis.pdf, p_wis)
                         };
-                        f += beta
-                            * Rgb::from(self.albedo)
-                            * p_wis
-                            * wt
-                            * tr(zp - exit_z, wis.wi)
-                            * wis.f
+                        f += beta * self.albedo * p_wis * wt * tr(zp - exit_z, wis.wi) * wis.f
                             / wis.pdf;
                         // Continue in a direction from the phase function.
                         let (wp, p) = sample_henyey_greenstein(-w, self.g, Vec2::new(r(), r()));
@@ -275,7 +270,7 @@ impl<B: Scatter> Scatter for LayeredBxdf<B> {
                             continue;
                         }
                         // The phase function is sampled exactly: p/pdf = 1.
-                        beta *= Rgb::from(self.albedo);
+                        beta *= self.albedo;
                         w = wp;
                         z = zp;
                         // Heading for the exit: connect through it along w.
@@ -283,7 +278,7 @@ impl<B: Scatter> Scatter for LayeredBxdf<B> {
                             && !exit_specular
                         {
                             let f_exit = exit.f(-w, wi, mode);
-                            if f_exit != Rgb::ZERO {
+                            if f_exit != SampledSpectrum::ZERO {
                                 let exit_pdf = exit.pdf(-w, wi, mode, ReflTrans::TRANSMISSION);
                                 let wt = power_heuristic(p, exit_pdf);
                                 f += beta * tr(zp - exit_z, wp) * f_exit * wt;
@@ -334,7 +329,7 @@ impl<B: Scatter> Scatter for LayeredBxdf<B> {
                     // ...and connect through the exit along the new direction.
                     if !exit_specular {
                         let f_exit = exit.f(-w, wi, mode);
-                        if f_exit != Rgb::ZERO {
+                        if f_exit != SampledSpectrum::ZERO {
                             let wt = if non_exit_specular {
                                 1.0
                             } else {
@@ -407,7 +402,7 @@ impl<B: Scatter> Scatter for LayeredBxdf<B> {
                     if p == 0.0 || wp.z == 0.0 {
                         return None;
                     }
-                    f *= Rgb::from(self.albedo) * p;
+                    f *= self.albedo * p;
                     pdf *= p;
                     specular_path = false;
                     w = wp;
@@ -492,7 +487,11 @@ impl<B: Scatter> Scatter for LayeredBxdf<B> {
                 let (Some(wos), Some(wis)) = (wos, wis) else {
                     continue;
                 };
-                if wos.f == Rgb::ZERO || wos.pdf <= 0.0 || wis.f == Rgb::ZERO || wis.pdf <= 0.0 {
+                if wos.f == SampledSpectrum::ZERO
+                    || wos.pdf <= 0.0
+                    || wis.f == SampledSpectrum::ZERO
+                    || wis.pdf <= 0.0
+                {
                     continue;
                 }
                 if !top.flags().is_non_specular() {
@@ -503,7 +502,7 @@ impl<B: Scatter> Scatter for LayeredBxdf<B> {
                     let Some(rs) = bottom.sample_f(-wos.wi, uc, u, mode, ReflTrans::ALL) else {
                         continue;
                     };
-                    if rs.f == Rgb::ZERO || rs.pdf <= 0.0 {
+                    if rs.f == SampledSpectrum::ZERO || rs.pdf <= 0.0 {
                         continue;
                     }
                     if !bottom.flags().is_non_specular() {

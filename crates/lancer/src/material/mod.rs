@@ -19,8 +19,8 @@ pub use layered::{CoatedConductorBxdf, CoatedDiffuseBxdf, LayeredBxdf};
 pub use microfacet::TrowbridgeReitz;
 pub use scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode};
 
-use crate::math::Rgb;
-use crate::spectrum::sampled::{SampledWavelengths, albedo_at, unbounded_at};
+use crate::math::{Rgb, SampledSpectrum, rgb_lanes};
+use crate::spectrum::sampled::{ColourKind, RgbSpectrum, SampledWavelengths};
 use crate::texture::{FloatTex, SpectrumTex, TexCoord, TextureEval};
 
 /// A material as given in a scene (pbrt-v4's names and parameters), plain data.
@@ -153,28 +153,44 @@ fn nonzero_eta(eta: f32) -> f32 {
     if eta == 0.0 { 1.0 } else { eta }
 }
 
-/// The conductor index pbrt-v4 uses: `eta`/`k` as given, or, when an artist's `reflectance`
-/// r is given instead, η = 1 and k = 2√r / √(1 − r) (r clamped to [0, 0.9999]), which makes
-/// the normal-incidence Fresnel reflectance ((η − 1)² + k²)/((η + 1)² + k²) equal r. In
-/// spectral mode (`lambda` given) `eta` and `k` are unbounded spectra and r a reflectance
-/// spectrum, evaluated at the path's wavelengths before the formula.
+/// How many constant colours a material can have ([`Material::colour_slots`]).
+pub const COLOUR_SLOTS: usize = 4;
+
+/// Spectral mode's view of a material at a hit: the path's wavelengths and the material's
+/// constant colours, prepared once per scene ([`RgbSpectrum`], by [`Material::colour_slots`]).
+#[derive(Clone, Copy, Debug)]
+pub struct SpectralColours<'a> {
+    /// The path's wavelengths.
+    pub lambda: &'a SampledWavelengths,
+    /// The material's constant colours as spectra, by slot (unused slots are anything).
+    pub consts: &'a [RgbSpectrum; COLOUR_SLOTS],
+}
+
+/// The conductor index pbrt-v4 uses: `eta`/`k` as given (slots 0 and 1), or, when an artist's
+/// `reflectance` r is given instead (slot 2), η = 1 and k = 2√r / √(1 − r) (r clamped to
+/// [0, 0.9999]), which makes the normal-incidence Fresnel reflectance
+/// ((η − 1)² + k²)/((η + 1)² + k²) equal r. `colour` gives a slot's value at the path's
+/// wavelengths (spectral mode: `eta` and `k` unbounded spectra, r a reflectance spectrum) or
+/// its RGB lanes.
 fn conductor_index(
-    tex: &TextureEval,
-    tc: &TexCoord,
+    colour: &impl Fn(usize, SpectrumTex, ColourKind) -> SampledSpectrum,
     eta: SpectrumTex,
     k: SpectrumTex,
     reflectance: Option<SpectrumTex>,
-    lambda: Option<&SampledWavelengths>,
-) -> (Rgb, Rgb) {
+) -> (SampledSpectrum, SampledSpectrum) {
     match reflectance {
         Some(r) => {
-            let r = albedo_at(lambda, tex.spectrum(r, tc)).clamp(Rgb::ZERO, Rgb::splat(0.9999));
-            let k = 2.0 * r.map(f32::sqrt) / (Rgb::ONE - r).max(Rgb::ZERO).map(f32::sqrt);
-            (Rgb::ONE, k)
+            let r = colour(2, r, ColourKind::Albedo)
+                .clamp(SampledSpectrum::ZERO, SampledSpectrum::splat(0.9999));
+            let k = 2.0 * r.map(f32::sqrt)
+                / (SampledSpectrum::ONE - r)
+                    .max(SampledSpectrum::ZERO)
+                    .map(f32::sqrt);
+            (SampledSpectrum::ONE, k)
         }
         None => (
-            unbounded_at(lambda, tex.spectrum(eta, tc)),
-            unbounded_at(lambda, tex.spectrum(k, tc)),
+            colour(0, eta, ColourKind::Unbounded),
+            colour(1, k, ColourKind::Unbounded),
         ),
     }
 }
@@ -195,28 +211,105 @@ impl Material {
         }
     }
 
+    /// The material's colour parameters by slot, with what each describes: the slots
+    /// [`Material::bxdf`] reads them from in spectral mode, where the constant ones have been
+    /// turned into spectra once ([`SpectralColours`]). Diffuse: reflectance. Conductor: eta,
+    /// k, reflectance. Diffuse transmission: reflectance, transmittance. Coated diffuse:
+    /// reflectance, medium albedo. Coated conductor: eta, k, reflectance, medium albedo.
+    pub fn colour_slots(&self) -> [Option<(SpectrumTex, ColourKind)>; COLOUR_SLOTS] {
+        use ColourKind::{Albedo, Unbounded};
+        match *self {
+            Material::Diffuse { reflectance } => [Some((reflectance, Albedo)), None, None, None],
+            Material::Conductor {
+                eta,
+                k,
+                reflectance,
+                ..
+            } => [
+                Some((eta, Unbounded)),
+                Some((k, Unbounded)),
+                reflectance.map(|r| (r, Albedo)),
+                None,
+            ],
+            Material::DiffuseTransmission {
+                reflectance,
+                transmittance,
+                ..
+            } => [
+                Some((reflectance, Albedo)),
+                Some((transmittance, Albedo)),
+                None,
+                None,
+            ],
+            Material::CoatedDiffuse {
+                reflectance,
+                albedo,
+                ..
+            } => [
+                Some((reflectance, Albedo)),
+                Some((albedo, Albedo)),
+                None,
+                None,
+            ],
+            Material::CoatedConductor {
+                conductor_eta,
+                k,
+                reflectance,
+                albedo,
+                ..
+            } => [
+                Some((conductor_eta, Unbounded)),
+                Some((k, Unbounded)),
+                reflectance.map(|r| (r, Albedo)),
+                Some((albedo, Albedo)),
+            ],
+            Material::Dielectric { .. }
+            | Material::ThinDielectric { .. }
+            | Material::Mix { .. }
+            | Material::Interface => [None; COLOUR_SLOTS],
+        }
+    }
+
     /// The BxDF this material has at a surface point, with textures evaluated there, as
     /// pbrt-v4's materials build theirs: albedos clamped to [0, 1], roughness remapped to α
     /// when asked, an index of 0 taken as 1. `Mix` must be resolved by the caller first (it
     /// needs a random choice); `Interface` has none.
     ///
-    /// With `lambda` (spectral mode) every colour becomes its values at the path's three
+    /// With `spectral` (spectral mode) every colour becomes its values at the path's four
     /// wavelengths ([`SampledWavelengths`]): albedos as reflectance spectra, conductor indices as
-    /// unbounded spectra. Without it (RGB mode) colours are used as they are.
+    /// unbounded spectra; constant colours come prepared ([`SpectralColours`]), texture lookups
+    /// are uplifted here. Without it (RGB mode) colours are used as they are, as lanes
+    /// (r, g, b, b) ([`crate::math::rgb_lanes`]).
     pub fn bxdf(
         &self,
         tex: &TextureEval,
         tc: &TexCoord,
-        lambda: Option<&SampledWavelengths>,
+        spectral: Option<SpectralColours>,
     ) -> Option<BxDF> {
-        // In RGB mode: clamp(t, 0, 1); in spectral mode the uplift clamps the same way first.
-        let albedo =
-            |t: SpectrumTex| albedo_at(lambda, tex.spectrum(t, tc).clamp(Rgb::ZERO, Rgb::ONE));
+        // The colour in slot `slot`. RGB mode: an albedo is clamp(t, 0, 1), an unbounded
+        // colour is t. Spectral mode: the prepared spectrum of a constant, the uplift of a
+        // texel (which clamps an albedo the same way first).
+        let colour = |slot: usize, t: SpectrumTex, kind: ColourKind| -> SampledSpectrum {
+            match (spectral, t) {
+                (None, _) => {
+                    let c = tex.spectrum(t, tc);
+                    rgb_lanes(match kind {
+                        ColourKind::Albedo => c.clamp(Rgb::ZERO, Rgb::ONE),
+                        ColourKind::Unbounded => c,
+                    })
+                }
+                (Some(sc), SpectrumTex::Const(_)) => sc.lambda.sample(&sc.consts[slot]),
+                (Some(sc), SpectrumTex::Tex(_)) => sc
+                    .lambda
+                    .sample(&RgbSpectrum::new(tex.spectrum(t, tc), kind)),
+            }
+        };
+        let albedo = |slot: usize, t: SpectrumTex| colour(slot, t, ColourKind::Albedo);
         let distrib = |u: FloatTex, v: FloatTex, remap: bool| {
             TrowbridgeReitz::from_roughness(tex.float(u, tc), tex.float(v, tc), remap)
         };
         Some(match *self {
-            Material::Diffuse { reflectance } => BxDF::diffuse(albedo(reflectance)),
+            Material::Diffuse { reflectance } => BxDF::diffuse(albedo(0, reflectance)),
             Material::Conductor {
                 eta,
                 k,
@@ -225,11 +318,11 @@ impl Material {
                 vroughness,
                 remap_roughness,
             } => {
-                let (eta, k) = conductor_index(tex, tc, eta, k, reflectance, lambda);
+                let (eta, k) = conductor_index(&colour, eta, k, reflectance);
                 BxDF::Conductor(ConductorBxdf {
                     distrib: distrib(uroughness, vroughness, remap_roughness),
-                    eta: eta.into(),
-                    k: k.into(),
+                    eta,
+                    k,
                 })
             }
             Material::Dielectric {
@@ -251,16 +344,16 @@ impl Material {
             } => {
                 // pbrt-v4: clamp(scale · ρ(λ), 0, 1), ρ a reflectance spectrum (in RGB mode the
                 // colour is scaled before it is clamped, so scale < 1 can tame a colour > 1).
-                let scaled = |t: SpectrumTex| {
-                    let rho = match lambda {
-                        None => tex.spectrum(t, tc),
-                        Some(_) => albedo(t),
+                let scaled = |slot: usize, t: SpectrumTex| {
+                    let rho = match spectral {
+                        None => rgb_lanes(tex.spectrum(t, tc)),
+                        Some(_) => albedo(slot, t),
                     };
-                    (rho * scale).clamp(Rgb::ZERO, Rgb::ONE).into()
+                    (rho * scale).clamp(SampledSpectrum::ZERO, SampledSpectrum::ONE)
                 };
                 BxDF::DiffuseTransmission(DiffuseTransmissionBxdf {
-                    r: scaled(reflectance),
-                    t: scaled(transmittance),
+                    r: scaled(0, reflectance),
+                    t: scaled(1, transmittance),
                 })
             }
             Material::CoatedDiffuse {
@@ -280,10 +373,10 @@ impl Material {
                     distrib: distrib(uroughness, vroughness, remap_roughness),
                 },
                 DiffuseBxdf {
-                    r: albedo(reflectance).into(),
+                    r: albedo(0, reflectance),
                 },
                 tex.float(thickness, tc),
-                albedo(medium_albedo),
+                albedo(1, medium_albedo),
                 tex.float(g, tc).clamp(-1.0, 1.0),
                 max_depth,
                 n_samples,
@@ -305,7 +398,7 @@ impl Material {
                 remap_roughness,
             } => {
                 let ieta = nonzero_eta(interface_eta);
-                let (ce, ck) = conductor_index(tex, tc, conductor_eta, k, reflectance, lambda);
+                let (ce, ck) = conductor_index(&colour, conductor_eta, k, reflectance);
                 BxDF::CoatedConductor(CoatedConductorBxdf::new(
                     DielectricBxdf {
                         eta: ieta,
@@ -323,11 +416,11 @@ impl Material {
                             conductor_vroughness,
                             remap_roughness,
                         ),
-                        eta: (ce / ieta).into(),
-                        k: (ck / ieta).into(),
+                        eta: ce / ieta,
+                        k: ck / ieta,
                     },
                     tex.float(thickness, tc),
-                    albedo(medium_albedo),
+                    albedo(3, medium_albedo),
                     tex.float(g, tc).clamp(-1.0, 1.0),
                     max_depth,
                     n_samples,
@@ -341,7 +434,7 @@ impl Material {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::math::PackedRgb;
+    use crate::texture::SpectrumTexture;
 
     fn eval(m: &Material) -> BxDF {
         let tex = TextureEval {
@@ -376,9 +469,12 @@ mod tests {
         // α = √roughness.
         assert_eq!((b.distrib.alpha_x(), b.distrib.alpha_y()), (0.5, 0.2));
         // η = 1, k = 2√r/√(1 − r): the normal-incidence reflectance is r.
-        let f0 = fresnel_complex(1.0, b.eta.into(), b.k.into());
+        let f0 = fresnel_complex(1.0, b.eta, b.k);
         assert!(
-            (f0 - Rgb::new(0.9, 0.5, 0.1)).abs().max_element() < 1e-4,
+            (f0 - rgb_lanes(Rgb::new(0.9, 0.5, 0.1)))
+                .abs()
+                .max_element()
+                < 1e-4,
             "{f0}"
         );
         // Without remapping the roughness is α itself; zero makes a mirror.
@@ -394,7 +490,10 @@ mod tests {
             panic!("not a conductor")
         };
         assert!(b.distrib.effectively_smooth());
-        assert_eq!((b.eta, b.k), (PackedRgb::splat(0.2), PackedRgb::splat(3.0)));
+        assert_eq!(
+            (b.eta, b.k),
+            (SampledSpectrum::splat(0.2), SampledSpectrum::splat(3.0))
+        );
     }
 
     #[test]
@@ -418,7 +517,7 @@ mod tests {
             scale: 2.0,
         });
         assert!(
-            matches!(dt, BxDF::DiffuseTransmission(b) if b.r == PackedRgb::splat(0.6) && b.t == PackedRgb::ONE)
+            matches!(dt, BxDF::DiffuseTransmission(b) if b.r == SampledSpectrum::splat(0.6) && b.t == SampledSpectrum::ONE)
         );
         let cd = eval(&Material::CoatedDiffuse {
             reflectance: rgb(1.5),
@@ -435,11 +534,11 @@ mod tests {
         let BxDF::CoatedDiffuse(l) = cd else {
             panic!("not a coated diffuse")
         };
-        assert_eq!(l.bottom.r, PackedRgb::ONE);
+        assert_eq!(l.bottom.r, SampledSpectrum::ONE);
         assert_eq!((l.top.eta, l.thickness, l.g), (1.5, 0.01, 1.0));
         assert_eq!(
             (l.albedo, l.max_depth, l.n_samples),
-            (PackedRgb::splat(0.2), 10, 2)
+            (SampledSpectrum::splat(0.2), 10, 2)
         );
         // Under its coating the conductor's index is relative to the coating's.
         let cc = eval(&Material::CoatedConductor {
@@ -461,8 +560,18 @@ mod tests {
         let BxDF::CoatedConductor(l) = cc else {
             panic!("not a coated conductor")
         };
-        assert!((l.bottom.eta - PackedRgb::splat(0.2)).abs().max_element() < 1e-6);
-        assert!((l.bottom.k - PackedRgb::splat(2.0)).abs().max_element() < 1e-6);
+        assert!(
+            (l.bottom.eta - SampledSpectrum::splat(0.2))
+                .abs()
+                .max_element()
+                < 1e-6
+        );
+        assert!(
+            (l.bottom.k - SampledSpectrum::splat(2.0))
+                .abs()
+                .max_element()
+                < 1e-6
+        );
         assert!((l.bottom.distrib.alpha_x() - 0.4).abs() < 1e-6);
         let none = TextureEval {
             floats: &[],
@@ -473,5 +582,92 @@ mod tests {
                 .bxdf(&none, &TexCoord::default(), None)
                 .is_none()
         );
+    }
+
+    #[test]
+    fn prepared_constant_colours_give_what_an_uplift_per_hit_gives() {
+        // Each colour once as a constant (prepared by slot, as a scene does) and once as a
+        // constant texture (uplifted at the hit): the BxDFs must be identical in spectral mode.
+        let colours = [
+            Rgb::new(0.8, 0.3, 0.1),
+            Rgb::new(0.2, 0.9, 1.4),
+            Rgb::new(3.9, 2.4, 1.6),
+            Rgb::new(0.1, 0.6, 0.3),
+        ];
+        let textures: Vec<SpectrumTexture> = colours
+            .iter()
+            .map(|&c| SpectrumTexture::Constant(c))
+            .collect();
+        let tex = TextureEval {
+            floats: &[],
+            spectra: &textures,
+        };
+        let (k, t) = (SpectrumTex::Const, SpectrumTex::Tex);
+        let coated_conductor = |eta, kk, r, a| Material::CoatedConductor {
+            interface_uroughness: c(0.1),
+            interface_vroughness: c(0.1),
+            interface_eta: 1.5,
+            conductor_eta: eta,
+            k: kk,
+            reflectance: r,
+            conductor_uroughness: c(0.2),
+            conductor_vroughness: c(0.2),
+            thickness: c(0.01),
+            albedo: a,
+            g: c(0.0),
+            max_depth: 10,
+            n_samples: 1,
+            remap_roughness: false,
+        };
+        let pairs = [
+            (
+                Material::Diffuse {
+                    reflectance: k(colours[0]),
+                },
+                Material::Diffuse { reflectance: t(0) },
+            ),
+            (
+                Material::DiffuseTransmission {
+                    reflectance: k(colours[0]),
+                    transmittance: k(colours[3]),
+                    scale: 0.7,
+                },
+                Material::DiffuseTransmission {
+                    reflectance: t(0),
+                    transmittance: t(3),
+                    scale: 0.7,
+                },
+            ),
+            (
+                coated_conductor(k(colours[1]), k(colours[2]), None, k(colours[3])),
+                coated_conductor(t(1), t(2), None, t(3)),
+            ),
+            (
+                coated_conductor(
+                    k(colours[1]),
+                    k(colours[2]),
+                    Some(k(colours[0])),
+                    k(colours[3]),
+                ),
+                coated_conductor(t(1), t(2), Some(t(0)), t(3)),
+            ),
+        ];
+        let lambda = SampledWavelengths::sample_visible(0.37);
+        for (constant, textured) in pairs {
+            let consts = constant.colour_slots().map(|slot| match slot {
+                Some((SpectrumTex::Const(c), kind)) => RgbSpectrum::new(c, kind),
+                Some((SpectrumTex::Tex(_), _)) => panic!("these materials' colours are constants"),
+                None => RgbSpectrum::new(Rgb::ZERO, ColourKind::Albedo),
+            });
+            let spectral = Some(SpectralColours {
+                lambda: &lambda,
+                consts: &consts,
+            });
+            let a = constant.bxdf(&tex, &TexCoord::default(), spectral);
+            let b = textured.bxdf(&tex, &TexCoord::default(), spectral);
+            assert_eq!(a, b, "{constant:?}");
+            // And they are spectra, not the colours' RGB lanes.
+            assert_ne!(a, constant.bxdf(&tex, &TexCoord::default(), None));
+        }
     }
 }

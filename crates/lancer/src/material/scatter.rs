@@ -2,7 +2,7 @@
 //! sampled directions, transport modes and the local-frame trigonometry (a leaf module: the
 //! BxDF files and the enum listing them all depend on it, it on none of them).
 
-use crate::math::{Rgb, Vec2, Vec3};
+use crate::math::{SampledSpectrum, Vec2, Vec3};
 
 /// Whether radiance (from the camera) or importance (from lights) is carried: refraction scales
 /// radiance by 1/η², not importance.
@@ -130,7 +130,7 @@ impl ReflTrans {
 pub struct BsdfSample {
     /// BSDF value f(wo, wi) (for layered BSDFs, an unbiased estimate of f·pdf-ratio; see
     /// `pdf_is_proportional`).
-    pub f: Rgb,
+    pub f: SampledSpectrum,
     /// The sampled incident direction.
     pub wi: Vec3,
     /// Its density (solid angle); for a specular lobe, the discrete probability of the lobe.
@@ -147,7 +147,7 @@ pub struct BsdfSample {
 impl BsdfSample {
     /// A sample with exact density and no refraction.
     #[inline]
-    pub fn new(f: Rgb, wi: Vec3, pdf: f32, flags: BxdfFlags) -> BsdfSample {
+    pub fn new(f: SampledSpectrum, wi: Vec3, pdf: f32, flags: BxdfFlags) -> BsdfSample {
         BsdfSample {
             f,
             wi,
@@ -180,7 +180,7 @@ impl BsdfSample {
     /// off the surface plane.
     #[inline]
     pub(crate) fn is_usable(&self) -> bool {
-        self.f != Rgb::ZERO && self.pdf > 0.0 && self.wi.z != 0.0
+        self.f != SampledSpectrum::ZERO && self.pdf > 0.0 && self.wi.z != 0.0
     }
 }
 
@@ -209,7 +209,7 @@ pub trait Scatter {
     fn flags(&self) -> BxdfFlags;
 
     /// f(wo, wi); zero for specular lobes.
-    fn f(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> Rgb;
+    fn f(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> SampledSpectrum;
 
     /// Samples `wi` given `wo`, with `uc` choosing a lobe and `u` the direction within it,
     /// restricted to the halves `mask` allows.

@@ -21,6 +21,6 @@ pub use frame::Frame;
 pub use glam::{Mat3, Mat4, UVec2, Vec2, Vec4};
 pub use transform::Transform;
 pub use vector::{
-    PackedRgb, PackedVec3, Rgb, SHADOW_EPSILON, Vec3, cross, face_forward, luminance, normalize,
-    offset_ray_origin, spherical_direction,
+    PackedRgb, PackedVec3, Rgb, SHADOW_EPSILON, SampledSpectrum, Vec3, cross, face_forward,
+    lanes_rgb, luminance, normalize, offset_ray_origin, rgb_lanes, spherical_direction,
 };

@@ -20,6 +20,31 @@ pub type PackedVec3 = glam::Vec3;
 /// Linear RGB (the sRGB/Rec.709 primaries, D65 white): radiance, reflectance, any colour.
 pub type Rgb = Vec3;
 
+/// Radiance, throughput and every colour inside light transport (BSDF values, emission): four
+/// `f32` lanes in one SSE register (glam's `Vec4`), so that an operation on it costs what one on
+/// an [`Rgb`] costs.
+///
+/// In spectral mode lane i is the value at the path's wavelength λᵢ
+/// ([`crate::spectrum::sampled::SampledWavelengths`], four per camera sample as pbrt-v4's
+/// `NSpectrumSamples`). In RGB mode the lanes are (r, g, b, b) ([`rgb_lanes`]): every lane-wise
+/// operation then keeps lane 3 equal to lane 2, so lanes 0–2 hold exactly the bits an [`Rgb`]
+/// computation would, and `max_element`, `min_element`, `is_finite` and `== ZERO` answer as
+/// they would on the [`Rgb`]. Sums and averages over lanes are not mode-independent: take them
+/// through [`crate::spectrum::sampled`] or on [`lanes_rgb`].
+pub type SampledSpectrum = glam::Vec4;
+
+/// An RGB colour as transport lanes: (r, g, b, b) (see [`SampledSpectrum`]).
+#[inline(always)]
+pub fn rgb_lanes(c: Rgb) -> SampledSpectrum {
+    c.extend(c.z)
+}
+
+/// The RGB colour held by RGB-mode lanes (r, g, b, b): the first three.
+#[inline(always)]
+pub fn lanes_rgb(s: SampledSpectrum) -> Rgb {
+    Rgb::from_vec4(s)
+}
+
 /// [`Rgb`] as stored in bulk (texels, per-primitive emission): 12 bytes.
 pub type PackedRgb = PackedVec3;
 

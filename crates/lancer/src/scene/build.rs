@@ -62,6 +62,7 @@ impl Scene {
             instances,
             unbounded,
             bounds,
+            spectra: std::sync::OnceLock::new(),
         })
     }
 }

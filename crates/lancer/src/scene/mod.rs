@@ -5,16 +5,19 @@ pub mod desc;
 pub mod instance;
 pub mod memory;
 mod prim;
+mod spectra;
 
 pub use prim::{AreaEmission, BuildError, PrimInfo};
+pub use spectra::SceneSpectra;
 
 use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
 use crate::light::{Light, LightDistribution};
 use crate::material::Material;
-use crate::math::{Bounds3, Rgb};
+use crate::math::{Bounds3, Rgb, SampledSpectrum, rgb_lanes};
 use crate::ray::Ray;
 use crate::shape::{Shape, SurfaceInteraction, TriangleMesh, TriangleRay};
+use crate::spectrum::sampled::SampledWavelengths;
 use crate::texture::{FloatTex, FloatTexture, SpectrumTexture, TexCoord, TextureEval};
 
 /// A ray's nearest hit in the scene.
@@ -61,6 +64,8 @@ pub struct Scene {
     /// Primitives without finite bounds (infinite planes), tested on every ray.
     unbounded: Vec<u32>,
     bounds: Bounds3,
+    /// Spectral mode's constant colours as spectra, made on first use.
+    spectra: std::sync::OnceLock<spectra::SceneSpectra>,
 }
 
 impl Scene {
@@ -188,5 +193,34 @@ impl Scene {
     /// Where textures are looked up for a hit.
     pub fn tex_coord(si: &SurfaceInteraction) -> TexCoord {
         TexCoord { uv: si.uv, p: si.p }
+    }
+}
+
+impl Scene {
+    /// The scene's constant colours as spectra, prepared on the first call.
+    pub fn spectra(&self) -> &spectra::SceneSpectra {
+        self.spectra
+            .get_or_init(|| spectra::SceneSpectra::new(&self.lights, &self.materials))
+    }
+
+    /// Emission `l` of light `i`, which is its constant colour times `factor` (see
+    /// [`crate::light::LightLiSample::factor`]), as transport lanes: in spectral mode the
+    /// light's prepared spectrum as an illuminant, times `factor` (lights without a constant
+    /// colour uplift `l` itself); in RGB mode `l`'s lanes (r, g, b, b).
+    #[inline]
+    pub fn light_radiance(
+        &self,
+        i: usize,
+        lambda: Option<&SampledWavelengths>,
+        l: Rgb,
+        factor: f32,
+    ) -> SampledSpectrum {
+        match lambda {
+            None => rgb_lanes(l),
+            Some(w) => match &self.spectra().lights[i] {
+                Some(sp) => w.sample_illuminant(sp) * factor,
+                None => w.illuminant(l),
+            },
+        }
     }
 }

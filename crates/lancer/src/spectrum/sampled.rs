@@ -1,13 +1,14 @@
 //! Spectral rendering's wavelength samples: which wavelengths a camera path carries, how the
 //! scene's RGB colours become values at them, and how the path's radiance becomes film RGB.
 //!
-//! In spectral mode (`lancer render --spectral`) each camera sample draws three wavelengths
-//! λ₀, λ₁, λ₂ and the three channels of every [`Rgb`] value in light transport hold the values
-//! at those wavelengths instead of red, green and blue. The BSDFs and the path tracer are
-//! unchanged: only the colours that enter transport (material parameters, emission) are
-//! converted, by [`SampledWavelengths::albedo`], [`SampledWavelengths::unbounded`] and
-//! [`SampledWavelengths::illuminant`], and the radiance that leaves it, by
-//! [`SampledWavelengths::to_film_rgb`].
+//! In spectral mode (`lancer render --spectral`) each camera sample draws four wavelengths
+//! λ₀…λ₃ (pbrt-v4's `NSpectrumSamples`), and the four lanes of every [`SampledSpectrum`] in
+//! light transport hold the values at those wavelengths; in RGB mode the same lanes hold
+//! (r, g, b, b), so both modes run the same code at the same cost. Only the colours that enter
+//! transport (material parameters, emission) are converted, by [`SampledWavelengths::albedo`],
+//! [`SampledWavelengths::unbounded`] and [`SampledWavelengths::illuminant`] (or, in RGB mode,
+//! [`rgb_lanes`]), and the radiance that leaves it, by [`SampledWavelengths::to_film_rgb`] (or
+//! [`lanes_rgb`]).
 //!
 //! Conventions are pbrt-v4's: wavelengths follow its visible-wavelength density, RGB colours are
 //! uplifted by the Jakob–Hanika method ([`super::uplift`]), illuminants are the uplift times
@@ -19,7 +20,7 @@ use super::cie::INTEGRATION_RANGE;
 use super::reduce::weights;
 use super::uplift::{SigmoidSpectrum, albedo_spectrum, unbounded_spectrum};
 use super::{cie_d65, cie_xyz, xyz_to_srgb};
-use crate::math::Rgb;
+use crate::math::{Rgb, SampledSpectrum, lanes_rgb, rgb_lanes};
 use std::sync::OnceLock;
 
 /// Shortest wavelength sampled (nm).
@@ -84,75 +85,110 @@ fn norms() -> &'static Norms {
     })
 }
 
-/// The three wavelengths a camera path carries and their densities.
+/// How many wavelengths a camera path carries, as pbrt-v4's `NSpectrumSamples`: one per lane of
+/// [`SampledSpectrum`].
+pub const N_SPECTRUM_SAMPLES: usize = 4;
+
+/// The four wavelengths a camera path carries and their densities, one per lane.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SampledWavelengths {
     /// Wavelengths in nm.
-    pub lambda: [f32; 3],
+    pub lambda: glam::Vec4,
     /// Density of each, per nm (each is drawn from the same density, stratified).
-    pub pdf: [f32; 3],
+    pub pdf: glam::Vec4,
+    /// D65(λᵢ) · Σȳ / Σ D65·ȳ, the illuminant of RGB white at each wavelength (looked up once
+    /// per camera sample rather than at each light sample).
+    d65: SampledSpectrum,
 }
 
 impl SampledWavelengths {
-    /// Three wavelengths from one uniform number: λᵢ from (u + i/3) mod 1 through
-    /// [`sample_visible_wavelength`], each with its own density.
+    /// Four wavelengths from one uniform number: λᵢ from uᵢ = (u + i/4) mod 1 through
+    /// [`sample_visible_wavelength`], each with its own density p(λᵢ), all four lanes at once.
+    ///
+    /// The density comes from the same tanh as the sample, without a cosh: with
+    /// x = tanh(A(λ − C)) = T_MIN + u·(T_MAX − T_MIN), 1/cosh²(A(λ − C)) = 1 − x², so
+    /// p(λ) = A·(1 − x²)/(T_MAX − T_MIN).
     pub fn sample_visible(u: f32) -> SampledWavelengths {
-        let mut lambda = [0.0; 3];
-        let mut pdf = [0.0; 3];
-        for i in 0..3 {
-            let mut ui = u + i as f32 / 3.0;
-            if ui >= 1.0 {
-                ui -= 1.0;
-            }
-            lambda[i] = sample_visible_wavelength(ui);
-            pdf[i] = visible_wavelength_pdf(lambda[i]);
+        let n = norms();
+        let (t0, t1) = (n.vis_t0 as f32, n.vis_t1 as f32);
+        let mut ui = SampledSpectrum::splat(u) + SampledSpectrum::new(0.0, 0.25, 0.5, 0.75);
+        ui = SampledSpectrum::select(ui.cmpge(SampledSpectrum::ONE), ui - 1.0, ui);
+        let x = (t0 + ui.clamp(SampledSpectrum::ZERO, SampledSpectrum::ONE) * (t1 - t0))
+            .clamp(SampledSpectrum::splat(t0), SampledSpectrum::splat(t1));
+        let lambda = (VIS_C as f32 + x.map(f32::atanh) * (1.0 / VIS_A as f32)).clamp(
+            SampledSpectrum::splat(LAMBDA_MIN),
+            SampledSpectrum::splat(LAMBDA_MAX),
+        );
+        let pdf = n.vis_pdf_scale * (SampledSpectrum::ONE - x * x);
+        let k = norms().illuminant_scale as f32;
+        SampledWavelengths {
+            lambda,
+            pdf,
+            d65: SampledSpectrum::from_array(lambda.to_array().map(cie_d65)) * k,
         }
-        SampledWavelengths { lambda, pdf }
     }
 
-    fn eval(&self, s: &SigmoidSpectrum) -> Rgb {
-        Rgb::from_array(self.lambda.map(|l| s.eval(l)))
+    /// The sigmoid spectrum at the four wavelengths, lane-wise:
+    /// t = (λ − 360)/470, x = (c₀t + c₁)t + c₂, s = ½ + x / (2√(1 + x²)) (1 or 0 where x = ±∞).
+    #[inline]
+    pub fn eval(&self, s: &SigmoidSpectrum) -> SampledSpectrum {
+        match *s {
+            SigmoidSpectrum::Constant(v) => SampledSpectrum::splat(v),
+            SigmoidSpectrum::Poly([c0, c1, c2]) => {
+                let t = (self.lambda - SampledSpectrum::splat(LAMBDA_MIN))
+                    * (1.0 / (LAMBDA_MAX - LAMBDA_MIN));
+                let x = (c0 * t + SampledSpectrum::splat(c1)) * t + SampledSpectrum::splat(c2);
+                let v = SampledSpectrum::splat(0.5)
+                    + x / (2.0 * (SampledSpectrum::ONE + x * x).map(f32::sqrt));
+                let inf = x.abs().cmpeq(SampledSpectrum::INFINITY);
+                SampledSpectrum::select(
+                    inf,
+                    SampledSpectrum::select(
+                        x.cmpgt(SampledSpectrum::ZERO),
+                        SampledSpectrum::ONE,
+                        SampledSpectrum::ZERO,
+                    ),
+                    v,
+                )
+            }
+        }
     }
 
-    /// A reflectance (clamped to [0, 1]) at the three wavelengths, as pbrt-v4's
+    /// A reflectance (clamped to [0, 1]) at the four wavelengths, as pbrt-v4's
     /// `RGBAlbedoSpectrum`.
-    pub fn albedo(&self, rgb: Rgb) -> Rgb {
+    pub fn albedo(&self, rgb: Rgb) -> SampledSpectrum {
         self.eval(&albedo_spectrum(rgb))
     }
 
-    /// An unbounded quantity (an index of refraction; negatives clamped to 0) at the three
+    /// An unbounded quantity (an index of refraction; negatives clamped to 0) at the four
     /// wavelengths, as pbrt-v4's `RGBUnboundedSpectrum`: 2m · s(λ), m the largest component.
-    pub fn unbounded(&self, rgb: Rgb) -> Rgb {
+    pub fn unbounded(&self, rgb: Rgb) -> SampledSpectrum {
         let (scale, s) = unbounded_spectrum(rgb);
         if scale == 0.0 {
-            return Rgb::ZERO;
+            return SampledSpectrum::ZERO;
         }
         self.eval(&s) * scale
     }
 
-    /// Emitted radiance of RGB colour `rgb` at the three wavelengths, as pbrt-v4's
+    /// Emitted radiance of RGB colour `rgb` at the four wavelengths, as pbrt-v4's
     /// `RGBIlluminantSpectrum` with its light normalisation:
     /// L(λ) = 2m · s(λ) · D65(λ) · Σȳ / Σ D65·ȳ, so that (1, 1, 1) gives film luminance 1 and
     /// every colour comes back as itself through [`SampledWavelengths::to_film_rgb`] (on
     /// average over wavelengths).
-    pub fn illuminant(&self, rgb: Rgb) -> Rgb {
+    pub fn illuminant(&self, rgb: Rgb) -> SampledSpectrum {
         let (scale, s) = unbounded_spectrum(rgb);
         if scale == 0.0 {
-            return Rgb::ZERO;
+            return SampledSpectrum::ZERO;
         }
-        let k = (scale as f64 * norms().illuminant_scale) as f32;
-        Rgb::from_array(std::array::from_fn(|i| {
-            let l = self.lambda[i];
-            s.eval(l) * cie_d65(l) * k
-        }))
+        self.eval(&s) * self.d65 * scale
     }
 
-    /// The film colour of radiance `l` (its channels the values at the three wavelengths):
-    /// the Monte Carlo estimate XYZ = (1/3) Σᵢ (x̄, ȳ, z̄)(λᵢ) · L(λᵢ)/p(λᵢ) / ∫ȳ, then linear
+    /// The film colour of radiance `l` (its lanes the values at the four wavelengths):
+    /// the Monte Carlo estimate XYZ = (1/4) Σᵢ (x̄, ȳ, z̄)(λᵢ) · L(λᵢ)/p(λᵢ) / ∫ȳ, then linear
     /// sRGB. Wavelengths of zero density contribute nothing.
-    pub fn to_film_rgb(&self, l: Rgb) -> Rgb {
+    pub fn to_film_rgb(&self, l: SampledSpectrum) -> Rgb {
         let mut xyz = [0.0f64; 3];
-        for i in 0..3 {
+        for i in 0..N_SPECTRUM_SAMPLES {
             if self.pdf[i] <= 0.0 || l[i] == 0.0 {
                 continue;
             }
@@ -162,27 +198,93 @@ impl SampledWavelengths {
                 xyz[k] += c[k] as f64 * w;
             }
         }
-        let s = norms().inv_y_integral / 3.0;
+        let s = norms().inv_y_integral / N_SPECTRUM_SAMPLES as f64;
         xyz_to_srgb(xyz.map(|v| (v * s) as f32))
     }
 }
 
-/// [`SampledWavelengths::albedo`] in spectral mode, the colour itself in RGB mode.
-#[inline]
-pub fn albedo_at(lambda: Option<&SampledWavelengths>, rgb: Rgb) -> Rgb {
-    lambda.map_or(rgb, |w| w.albedo(rgb))
+/// What an RGB colour describes, which decides its spectrum ([`RgbSpectrum::new`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ColourKind {
+    /// A reflectance in [0, 1] (pbrt-v4's `RGBAlbedoSpectrum`).
+    Albedo,
+    /// An unbounded quantity such as an index of refraction, or emission before D65 is
+    /// applied (pbrt-v4's `RGBUnboundedSpectrum`).
+    Unbounded,
 }
 
-/// [`SampledWavelengths::unbounded`] in spectral mode, the colour itself in RGB mode.
-#[inline]
-pub fn unbounded_at(lambda: Option<&SampledWavelengths>, rgb: Rgb) -> Rgb {
-    lambda.map_or(rgb, |w| w.unbounded(rgb))
+/// An RGB colour turned into a spectrum once, at scene preparation, so that spectral mode
+/// only evaluates it at each path's wavelengths: `scale · s(λ)`, s a sigmoid spectrum.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RgbSpectrum {
+    /// 1 for an albedo; 2m (m the largest component) for an unbounded colour; 0 for black.
+    pub scale: f32,
+    /// The sigmoid spectrum.
+    pub s: SigmoidSpectrum,
 }
 
-/// [`SampledWavelengths::illuminant`] in spectral mode, the colour itself in RGB mode.
+impl RgbSpectrum {
+    /// The spectrum of `rgb` taken as `kind`: an albedo is clamped to [0, 1] and uplifted
+    /// (scale 1); an unbounded colour is 2m · s(λ), s the albedo spectrum of rgb / 2m.
+    pub fn new(rgb: Rgb, kind: ColourKind) -> RgbSpectrum {
+        match kind {
+            ColourKind::Albedo => RgbSpectrum {
+                scale: 1.0,
+                s: albedo_spectrum(rgb),
+            },
+            ColourKind::Unbounded => {
+                let (scale, s) = unbounded_spectrum(rgb);
+                RgbSpectrum { scale, s }
+            }
+        }
+    }
+}
+
+impl SampledWavelengths {
+    /// A prepared spectrum at the four wavelengths: scale · s(λᵢ) (exactly
+    /// [`SampledWavelengths::albedo`] or [`SampledWavelengths::unbounded`] of its colour).
+    #[inline]
+    pub fn sample(&self, sp: &RgbSpectrum) -> SampledSpectrum {
+        if sp.scale == 0.0 {
+            return SampledSpectrum::ZERO;
+        }
+        self.eval(&sp.s) * sp.scale
+    }
+
+    /// A prepared unbounded spectrum as emission: scale · s(λ) · D65(λ) · Σȳ / Σ D65·ȳ
+    /// (exactly [`SampledWavelengths::illuminant`] of its colour).
+    #[inline]
+    pub fn sample_illuminant(&self, sp: &RgbSpectrum) -> SampledSpectrum {
+        if sp.scale == 0.0 {
+            return SampledSpectrum::ZERO;
+        }
+        self.eval(&sp.s) * self.d65 * sp.scale
+    }
+}
+
+/// [`SampledWavelengths::albedo`] in spectral mode, the colour's lanes (r, g, b, b) in RGB mode.
 #[inline]
-pub fn illuminant_at(lambda: Option<&SampledWavelengths>, rgb: Rgb) -> Rgb {
-    lambda.map_or(rgb, |w| w.illuminant(rgb))
+pub fn albedo_at(lambda: Option<&SampledWavelengths>, rgb: Rgb) -> SampledSpectrum {
+    lambda.map_or(rgb_lanes(rgb), |w| w.albedo(rgb))
+}
+
+/// [`SampledWavelengths::unbounded`] in spectral mode, the colour's lanes in RGB mode.
+#[inline]
+pub fn unbounded_at(lambda: Option<&SampledWavelengths>, rgb: Rgb) -> SampledSpectrum {
+    lambda.map_or(rgb_lanes(rgb), |w| w.unbounded(rgb))
+}
+
+/// [`SampledWavelengths::illuminant`] in spectral mode, the colour's lanes in RGB mode.
+#[inline]
+pub fn illuminant_at(lambda: Option<&SampledWavelengths>, rgb: Rgb) -> SampledSpectrum {
+    lambda.map_or(rgb_lanes(rgb), |w| w.illuminant(rgb))
+}
+
+/// The film colour of a path's radiance: [`SampledWavelengths::to_film_rgb`] in spectral mode,
+/// the lanes' RGB (the first three of (r, g, b, b)) in RGB mode.
+#[inline]
+pub fn film_rgb(lambda: Option<&SampledWavelengths>, l: SampledSpectrum) -> Rgb {
+    lambda.map_or(lanes_rgb(l), |w| w.to_film_rgb(l))
 }
 
 #[cfg(test)]
@@ -190,7 +292,7 @@ mod tests {
     use super::*;
 
     /// Average film colour of `f(wavelengths)` over `n` stratified wavelength samples.
-    fn film_average(n: u32, f: impl Fn(&SampledWavelengths) -> Rgb) -> Rgb {
+    fn film_average(n: u32, f: impl Fn(&SampledWavelengths) -> SampledSpectrum) -> Rgb {
         let mut sum = glam::DVec3::ZERO;
         for j in 0..n {
             let w = SampledWavelengths::sample_visible((j as f32 + 0.5) / n as f32);
@@ -220,12 +322,15 @@ mod tests {
         }
         assert_eq!(sample_visible_wavelength(0.0), 360.0);
         assert_eq!(sample_visible_wavelength(1.0), 830.0);
-        // Three wavelengths spread a third of the CDF apart.
+        // Four wavelengths spread a quarter of the CDF apart: u = 0.9, 0.15, 0.4, 0.65.
         let w = SampledWavelengths::sample_visible(0.9);
         assert_eq!(w.lambda[0], sample_visible_wavelength(0.9));
-        assert!((w.lambda[1] - sample_visible_wavelength(0.9 + 1.0 / 3.0 - 1.0)).abs() < 1e-3);
-        assert!((w.lambda[2] - sample_visible_wavelength(0.9 + 2.0 / 3.0 - 1.0)).abs() < 1e-3);
-        assert_eq!(w.pdf[1], visible_wavelength_pdf(w.lambda[1]));
+        for (i, u) in [(0, 0.9f32), (1, 0.15), (2, 0.4), (3, 0.65)] {
+            assert!((w.lambda[i] - sample_visible_wavelength(u)).abs() < 1e-3);
+            // The density from 1 − tanh² is the density from cosh², to rounding.
+            let p = visible_wavelength_pdf(w.lambda[i]);
+            assert!((w.pdf[i] - p).abs() < 1e-5 * p, "{} vs {p}", w.pdf[i]);
+        }
     }
 
     #[test]
@@ -250,7 +355,7 @@ mod tests {
         assert!((y - 1.0).abs() < 3e-3, "{y}");
         assert_eq!(
             SampledWavelengths::sample_visible(0.3).illuminant(Rgb::ZERO),
-            Rgb::ZERO
+            SampledSpectrum::ZERO
         );
     }
 
@@ -270,9 +375,11 @@ mod tests {
         }
         // An albedo and an unbounded value in RGB mode are the colour itself.
         let c = Rgb::new(0.2, 3.0, 0.5);
-        assert_eq!(albedo_at(None, c), c);
-        assert_eq!(unbounded_at(None, c), c);
-        assert_eq!(illuminant_at(None, c), c);
+        let lanes = SampledSpectrum::new(0.2, 3.0, 0.5, 0.5);
+        assert_eq!(albedo_at(None, c), lanes);
+        assert_eq!(unbounded_at(None, c), lanes);
+        assert_eq!(illuminant_at(None, c), lanes);
+        assert_eq!(film_rgb(None, lanes), c);
         let w = SampledWavelengths::sample_visible(0.25);
         assert!(w.albedo(Rgb::new(2.0, 0.5, 0.5)).max_element() <= 1.0);
     }
