@@ -6,9 +6,9 @@ use crate::cli_error::CliError;
 use crate::input;
 use crate::stats::{SceneMemory, human_bytes};
 use clap::Args;
+use lancer::Scene;
 use lancer::integrator::Integrator;
-use lancer::scene::desc::{Geometry, LightDesc, Projection, ShapeDesc};
-use lancer::{Scene, SceneDesc};
+use lancer::scene::desc::Projection;
 use serde_json::{Value, json};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -25,36 +25,6 @@ pub struct InfoArgs {
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
-}
-
-/// The kind of a shape's geometry, as pbrt names it (lancer's extensions by their names).
-pub fn geometry_kind(g: &Geometry) -> &'static str {
-    match g {
-        Geometry::Sphere { .. } => "sphere",
-        Geometry::Disk { .. } => "disk",
-        Geometry::Cylinder { .. } => "cylinder",
-        Geometry::Cone { .. } => "cone",
-        Geometry::Paraboloid { .. } => "paraboloid",
-        Geometry::Hyperboloid { .. } => "hyperboloid",
-        Geometry::Box { .. } => "box",
-        Geometry::Plane { .. } => "plane",
-        Geometry::TriangleMesh(_) => "trianglemesh",
-        Geometry::Voxels(_) => "voxels",
-        Geometry::Sdf { .. } => "sdf",
-        Geometry::Curve(_) => "curve",
-        Geometry::BilinearMesh(_) => "bilinearmesh",
-    }
-}
-
-/// The kind of a light, as pbrt names it.
-pub fn light_kind(l: &LightDesc) -> &'static str {
-    match l {
-        LightDesc::Point { .. } => "point",
-        LightDesc::Spot { .. } => "spot",
-        LightDesc::Distant { .. } => "distant",
-        LightDesc::Infinite { image: Some(_), .. } => "infinite (image)",
-        LightDesc::Infinite { .. } => "infinite",
-    }
 }
 
 /// The integrator as pbrt-v4 names it and its parameters under pbrt-v4's names:
@@ -82,53 +52,6 @@ fn integrator_json(i: &Integrator) -> Value {
     v
 }
 
-/// Counts of what the scene description holds.
-#[derive(Debug, Default)]
-pub struct Counts {
-    /// Shapes by kind, placed directly in the world.
-    pub shapes: BTreeMap<&'static str, u64>,
-    /// Shapes by kind inside object definitions (instanced).
-    pub object_shapes: BTreeMap<&'static str, u64>,
-    /// Area lights (shapes that emit).
-    pub area_lights: u64,
-    /// Triangles of world shapes.
-    pub triangles: u64,
-    /// Triangles of all instances (each instance counted with its object's triangles).
-    pub instanced_triangles: u64,
-}
-
-fn count_shapes(shapes: &[ShapeDesc], kinds: &mut BTreeMap<&'static str, u64>) -> (u64, u64) {
-    let (mut tris, mut area) = (0, 0);
-    for s in shapes {
-        *kinds.entry(geometry_kind(&s.geometry)).or_default() += 1;
-        if let Geometry::TriangleMesh(m) = &s.geometry {
-            tris += m.triangle_count() as u64;
-        }
-        area += s.area_light.is_some() as u64;
-    }
-    (tris, area)
-}
-
-/// Counts shapes, triangles and area lights of `desc`.
-pub fn counts(desc: &SceneDesc) -> Counts {
-    let mut c = Counts::default();
-    let (tris, area) = count_shapes(&desc.shapes, &mut c.shapes);
-    c.triangles = tris;
-    c.area_lights = area;
-    let mut per_object = Vec::new();
-    for o in &desc.objects {
-        let (t, a) = count_shapes(&o.shapes, &mut c.object_shapes);
-        per_object.push(t);
-        c.area_lights += a;
-    }
-    c.instanced_triangles = desc
-        .instances
-        .iter()
-        .filter_map(|i| per_object.get(i.object as usize))
-        .sum();
-    c
-}
-
 /// Everything `lancer info` reports, as JSON.
 pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
     let t0 = Instant::now();
@@ -140,7 +63,7 @@ pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
     let scene = Scene::build(desc).map_err(|e| CliError::input(format!("scene: {e}")))?;
     let build_s = t1.elapsed().as_secs_f64();
     let mem = SceneMemory::of(&scene);
-    let c = counts(desc);
+    let c = desc.counts();
 
     let world_from_camera = desc.camera.camera_from_world.inverse();
     let eye = world_from_camera.point(lancer::math::Vec3::ZERO);
@@ -149,10 +72,7 @@ pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
         Projection::Perspective { fov } => json!({ "kind": "perspective", "fov": fov }),
         Projection::Orthographic => json!({ "kind": "orthographic" }),
     };
-    let mut lights: BTreeMap<&str, u64> = BTreeMap::new();
-    for l in &desc.lights {
-        *lights.entry(light_kind(l)).or_default() += 1;
-    }
+    let mut lights = c.lights.clone();
     if c.area_lights > 0 {
         lights.insert("area (shapes)", c.area_lights);
     }

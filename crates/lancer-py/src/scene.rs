@@ -2,7 +2,7 @@
 //! rendering (kept while the film size stays the same).
 
 use crate::{SceneError, SceneWarning};
-use lancer::scene::desc::{Geometry, LightDesc, Projection, ShapeDesc};
+use lancer::scene::desc::Projection;
 use lancer::{Scene, SceneDesc};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -116,48 +116,6 @@ pub fn load_string(py: Python<'_>, text: &str, base_dir: Option<PathBuf>) -> PyR
     PyScene::from_loaded(py, STRING_NAME.to_string(), result)
 }
 
-/// The kind of a shape's geometry, as pbrt names it (lancer's extensions by their names).
-fn geometry_kind(g: &Geometry) -> &'static str {
-    match g {
-        Geometry::Sphere { .. } => "sphere",
-        Geometry::Disk { .. } => "disk",
-        Geometry::Cylinder { .. } => "cylinder",
-        Geometry::Cone { .. } => "cone",
-        Geometry::Paraboloid { .. } => "paraboloid",
-        Geometry::Hyperboloid { .. } => "hyperboloid",
-        Geometry::Box { .. } => "box",
-        Geometry::Plane { .. } => "plane",
-        Geometry::TriangleMesh(_) => "trianglemesh",
-        Geometry::Voxels(_) => "voxels",
-        Geometry::Sdf { .. } => "sdf",
-        Geometry::Curve(_) => "curve",
-        Geometry::BilinearMesh(_) => "bilinearmesh",
-    }
-}
-
-/// The kind of a light, as pbrt names it.
-fn light_kind(l: &LightDesc) -> &'static str {
-    match l {
-        LightDesc::Point { .. } => "point",
-        LightDesc::Spot { .. } => "spot",
-        LightDesc::Distant { .. } => "distant",
-        LightDesc::Infinite { .. } => "infinite",
-    }
-}
-
-/// Adds `shapes` to the counts by kind; returns their triangles and area lights.
-fn count_shapes(shapes: &[ShapeDesc], kinds: &mut BTreeMap<&'static str, u64>) -> (u64, u64) {
-    let (mut triangles, mut area) = (0, 0);
-    for s in shapes {
-        *kinds.entry(geometry_kind(&s.geometry)).or_default() += 1;
-        if let Geometry::TriangleMesh(m) = &s.geometry {
-            triangles += m.triangle_count() as u64;
-        }
-        area += u64::from(s.area_light.is_some());
-    }
-    (triangles, area)
-}
-
 #[pymethods]
 impl PyScene {
     /// What the scene holds, as a dict: `camera` (projection, fov in degrees for a perspective
@@ -183,27 +141,17 @@ impl PyScene {
         camera.set_item("forward", (forward.x, forward.y, forward.z))?;
         camera.set_item("lens_radius", d.camera.lens_radius)?;
 
-        let mut shapes = BTreeMap::new();
-        let (mut triangles, mut area_lights) = count_shapes(&d.shapes, &mut shapes);
+        let c = d.counts();
+        let shapes = &c.shapes;
         let shape_count = d.shapes.len();
-        let mut object_triangles = Vec::new();
-        let mut object_shapes = BTreeMap::new();
-        for o in &d.objects {
-            let (t, a) = count_shapes(&o.shapes, &mut object_shapes);
-            object_triangles.push(t);
-            area_lights += a;
-        }
-        triangles += d
-            .instances
-            .iter()
-            .filter_map(|i| object_triangles.get(i.object as usize))
-            .sum::<u64>();
+        let triangles = c.triangles + c.instanced_triangles;
+        // As pbrt names them, an infinite light with an image counted as `infinite`.
         let mut lights: BTreeMap<&str, u64> = BTreeMap::new();
         for l in &d.lights {
-            *lights.entry(light_kind(l)).or_default() += 1;
+            *lights.entry(l.pbrt_name()).or_default() += 1;
         }
-        if area_lights > 0 {
-            lights.insert("area", area_lights);
+        if c.area_lights > 0 {
+            lights.insert("area", c.area_lights);
         }
         let light_count: u64 = lights.values().sum();
 

@@ -1,12 +1,14 @@
 //! The built scene: immutable, shared by all render threads.
 
 mod build;
+mod counts;
 pub mod desc;
 pub mod instance;
 pub mod memory;
 mod prim;
 mod spectra;
 
+pub use counts::DescCounts;
 pub use prim::{AreaEmission, BuildError, PrimInfo};
 pub use spectra::SceneSpectra;
 
