@@ -121,7 +121,10 @@ def test_the_gil_is_released_while_rendering(cbox):
 def test_ctrl_c_stops_a_render_with_keyboard_interrupt(cbox):
     child = textwrap.dedent(
         f"""
-        import sys, time, lancer
+        import signal, sys, time, lancer
+        # An interactive Python turns Ctrl-C into KeyboardInterrupt; a child of a batch job
+        # may inherit SIGINT ignored (bash ignores it for background commands), so restore it.
+        signal.signal(signal.SIGINT, signal.default_int_handler)
         scene = lancer.load_file({str(cbox)!r})
         print("rendering", flush=True)
         t = time.monotonic()
