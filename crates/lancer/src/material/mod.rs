@@ -20,6 +20,7 @@ pub use microfacet::TrowbridgeReitz;
 pub use scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode};
 
 use crate::math::{Rgb, SampledSpectrum, rgb_lanes};
+use crate::spectrum::Ior;
 use crate::spectrum::sampled::{ColourKind, RgbSpectrum, SampledWavelengths};
 use crate::texture::{FloatTex, SpectrumTex, TexCoord, TextureEval};
 
@@ -50,8 +51,9 @@ pub enum Material {
     },
     /// Glass: Fresnel reflection and refraction, smooth or rough.
     Dielectric {
-        /// Relative index of refraction (inside / outside).
-        eta: f32,
+        /// Relative index of refraction (inside / outside); a named glass's varies with
+        /// wavelength.
+        eta: Ior,
         /// Roughness along u.
         uroughness: FloatTex,
         /// Roughness along v.
@@ -62,7 +64,7 @@ pub enum Material {
     /// An infinitely thin dielectric slab (a window pane): no refraction offset.
     ThinDielectric {
         /// Index of refraction.
-        eta: f32,
+        eta: Ior,
     },
     /// Diffuse reflection and diffuse transmission.
     DiffuseTransmission {
@@ -270,6 +272,18 @@ impl Material {
         }
     }
 
+    /// Whether this material's index varies with wavelength (a dielectric of a named glass):
+    /// in spectral mode a path that meets it keeps only its hero wavelength, as pbrt-v4's
+    /// dielectric materials call `TerminateSecondary` whenever `eta` is not constant.
+    pub fn disperses(&self) -> bool {
+        match self {
+            Material::Dielectric { eta, .. } | Material::ThinDielectric { eta } => {
+                eta.is_dispersive()
+            }
+            _ => false,
+        }
+    }
+
     /// The BxDF this material has at a surface point, with textures evaluated there, as
     /// pbrt-v4's materials build theirs: albedos clamped to [0, 1], roughness remapped to α
     /// when asked, an index of 0 taken as 1. `Mix` must be resolved by the caller first (it
@@ -305,6 +319,12 @@ impl Material {
             }
         };
         let albedo = |slot: usize, t: SpectrumTex| colour(slot, t, ColourKind::Albedo);
+        // A dielectric's index: RGB mode's single value, or the value at the hero wavelength
+        // λ₀ (the only one a dispersive path keeps, see [`Material::disperses`]).
+        let ior = |eta: Ior| match spectral {
+            None => eta.constant_value(),
+            Some(sc) => eta.at(sc.lambda.lambda[0]),
+        };
         let distrib = |u: FloatTex, v: FloatTex, remap: bool| {
             TrowbridgeReitz::from_roughness(tex.float(u, tc), tex.float(v, tc), remap)
         };
@@ -331,11 +351,11 @@ impl Material {
                 vroughness,
                 remap_roughness,
             } => BxDF::Dielectric(DielectricBxdf {
-                eta: nonzero_eta(eta),
+                eta: nonzero_eta(ior(eta)),
                 distrib: distrib(uroughness, vroughness, remap_roughness),
             }),
             Material::ThinDielectric { eta } => BxDF::ThinDielectric(ThinDielectricBxdf {
-                eta: nonzero_eta(eta),
+                eta: nonzero_eta(ior(eta)),
             }),
             Material::DiffuseTransmission {
                 reflectance,
@@ -499,7 +519,7 @@ mod tests {
     #[test]
     fn every_material_becomes_its_own_bxdf() {
         let d = eval(&Material::Dielectric {
-            eta: 0.0,
+            eta: Ior::Constant(0.0),
             uroughness: c(0.09),
             vroughness: c(0.09),
             remap_roughness: true,
@@ -508,7 +528,9 @@ mod tests {
         assert!(
             matches!(d, BxDF::Dielectric(b) if b.eta == 1.0 && (b.distrib.alpha_x() - 0.3).abs() < 1e-6)
         );
-        let t = eval(&Material::ThinDielectric { eta: 1.33 });
+        let t = eval(&Material::ThinDielectric {
+            eta: Ior::Constant(1.33),
+        });
         assert!(matches!(t, BxDF::ThinDielectric(b) if b.eta == 1.33));
         // Diffuse transmission: both albedos scaled, then clamped to one.
         let dt = eval(&Material::DiffuseTransmission {
