@@ -469,6 +469,59 @@ mod tests {
         FloatTex::Const(v)
     }
 
+    /// A flint-glass dielectric disperses: in spectral mode its index is the glass's at the
+    /// hero wavelength, so a ray refracts more for a blue hero than for a red one (the prism's
+    /// fringes); RGB mode keeps the 550 nm index; a constant index does not disperse.
+    #[test]
+    fn named_glass_refracts_blue_more_than_red() {
+        let glass = Material::Dielectric {
+            eta: Ior::named_glass("glass-F11").unwrap(),
+            uroughness: c(0.0),
+            vroughness: c(0.0),
+            remap_roughness: false,
+        };
+        assert!(glass.disperses());
+        assert!(
+            !Material::ThinDielectric {
+                eta: Ior::Constant(1.5)
+            }
+            .disperses()
+        );
+        let tex = TextureEval {
+            floats: &[],
+            spectra: &[],
+        };
+        let consts = [RgbSpectrum::new(Rgb::ZERO, ColourKind::Albedo); COLOUR_SLOTS];
+        let eta_at = |hero: f32| {
+            let mut lambda = SampledWavelengths::sample_visible(0.5);
+            lambda.lambda[0] = hero;
+            let spectral = Some(SpectralColours {
+                lambda: &lambda,
+                consts: &consts,
+            });
+            match glass.bxdf(&tex, &TexCoord::default(), spectral) {
+                Some(BxDF::Dielectric(d)) => d.eta,
+                other => panic!("{other:?}"),
+            }
+        };
+        let (blue, red) = (eta_at(450.0), eta_at(650.0));
+        assert_eq!(blue, Ior::named_glass("glass-F11").unwrap().at(450.0));
+        assert!(
+            matches!(eval(&glass), BxDF::Dielectric(d) if d.eta == crate::spectrum::named_ior("glass-F11").unwrap())
+        );
+        // Snell at 45°: sin θt = sin 45° / n; blue bends further towards the normal.
+        let wi = crate::math::Vec3::new(1.0, 0.0, 1.0).normalize();
+        let n = crate::math::Vec3::Z;
+        let (tb, _) = refract(wi, n, blue).unwrap();
+        let (tr, _) = refract(wi, n, red).unwrap();
+        let sin45 = std::f32::consts::FRAC_1_SQRT_2;
+        assert!((tb.x.abs() - sin45 / blue).abs() < 1e-5);
+        assert!((tr.x.abs() - sin45 / red).abs() < 1e-5);
+        // ≈ 0.58° apart: sin⁻¹(0.7071/1.7766) − sin⁻¹(0.7071/1.8192).
+        let spread = (tr.x.abs().asin() - tb.x.abs().asin()).to_degrees();
+        assert!((spread - 0.58).abs() < 0.15, "{spread}°");
+    }
+
     fn rgb(v: f32) -> SpectrumTex {
         SpectrumTex::Const(Rgb::splat(v))
     }
