@@ -510,7 +510,7 @@ mod tests {
             matches!(eval(&glass), BxDF::Dielectric(d) if d.eta == crate::spectrum::named_ior("glass-F11").unwrap())
         );
         // Snell at 45°: sin θt = sin 45° / n; blue bends further towards the normal.
-        let wi = crate::math::Vec3::new(1.0, 0.0, 1.0).normalize();
+        let wi = crate::math::normalize(crate::math::Vec3::new(1.0, 0.0, 1.0));
         let n = crate::math::Vec3::Z;
         let (tb, _) = refract(wi, n, blue).unwrap();
         let (tr, _) = refract(wi, n, red).unwrap();
