@@ -332,7 +332,9 @@ fn named_materials_resolve_whenever_they_are_defined() {
             reflectance: SpectrumTex::Const(Vec3::new(0.8, 0.0, 0.0))
         }
     );
-    assert!(matches!(mat(1), Material::Dielectric { eta, .. } if eta == 1.33));
+    assert!(
+        matches!(mat(1), Material::Dielectric { eta, .. } if eta == lancer::spectrum::Ior::Constant(1.33))
+    );
     let Material::Mix { materials, .. } = mat(2) else {
         panic!("{:?}", mat(2))
     };

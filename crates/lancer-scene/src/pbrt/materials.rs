@@ -92,14 +92,14 @@ fn convert(r: &Reader, ty: &str) -> Result<Fallback<MaterialWithNames>, SceneErr
         "dielectric" => {
             let (uroughness, vroughness) = roughness(r, "")?;
             Material::Dielectric {
-                eta: p.ior("eta", 1.5, r.dir)?,
+                eta: p.dielectric_ior("eta", 1.5, r.dir)?,
                 uroughness,
                 vroughness,
                 remap_roughness: remap()?,
             }
         }
         "thindielectric" => Material::ThinDielectric {
-            eta: p.ior("eta", 1.5, r.dir)?,
+            eta: p.dielectric_ior("eta", 1.5, r.dir)?,
         },
         "diffusetransmission" => Material::DiffuseTransmission {
             reflectance: r.spectrum_tex("reflectance", Rgb::splat(0.25), Albedo)?,
@@ -202,6 +202,7 @@ mod tests {
     use super::*;
     use crate::pbrt::convert::TextureNames;
     use crate::pbrt::convert::testing::{err, typed, unused, with_textures};
+    use lancer::spectrum::Ior;
     use lancer::texture::SpectrumTex;
     use std::path::Path;
 
@@ -270,7 +271,7 @@ mod tests {
         assert_eq!(
             converted(r#"Material "dielectric""#),
             Material::Dielectric {
-                eta: 1.5,
+                eta: Ior::Constant(1.5),
                 uroughness: ZERO,
                 vroughness: ZERO,
                 remap_roughness: true,
@@ -278,7 +279,9 @@ mod tests {
         );
         assert_eq!(
             converted(r#"Material "thindielectric""#),
-            Material::ThinDielectric { eta: 1.5 }
+            Material::ThinDielectric {
+                eta: Ior::Constant(1.5)
+            }
         );
         assert_eq!(
             converted(r#"Material "diffusetransmission""#),
@@ -359,7 +362,7 @@ mod tests {
                 r#"Material "dielectric" "float eta" 1.33 "float roughness" 0.3 "float vroughness" 0.4"#
             ),
             Material::Dielectric {
-                eta: 1.33,
+                eta: Ior::Constant(1.33),
                 uroughness: FloatTex::Const(0.3),
                 vroughness: FloatTex::Const(0.4),
                 remap_roughness: true,
@@ -367,7 +370,9 @@ mod tests {
         );
         assert_eq!(
             converted(r#"Material "thindielectric" "float eta" 1.2"#),
-            Material::ThinDielectric { eta: 1.2 }
+            Material::ThinDielectric {
+                eta: Ior::Constant(1.2)
+            }
         );
         assert_eq!(
             converted(

@@ -8,7 +8,7 @@
 use super::search_path::SearchPath;
 use crate::error::{Location, SceneError, Warning};
 use lancer::math::{PackedVec3, Rgb, Vec2, Vec3};
-use lancer::spectrum::{Spectrum, SpectrumKind, parse_spd, spectrum_to_rgb};
+use lancer::spectrum::{Ior, Spectrum, SpectrumKind, parse_spd, spectrum_to_rgb};
 use std::cell::Cell;
 
 /// The declared type of a parameter.
@@ -636,37 +636,54 @@ impl ParamList {
         Ok(Some(rgb))
     }
 
-    /// An index of refraction: a `float`, or a `spectrum` (pairs, a named glass, a file)
-    /// sampled at [`lancer::spectrum::IOR_WAVELENGTH`], as lancer does not render dispersion.
+    /// An index of refraction as one number: a `float`, or a `spectrum` (pairs, a named glass,
+    /// a file) sampled at [`lancer::spectrum::IOR_WAVELENGTH`] (coatings, which do not disperse).
     pub fn ior(&self, name: &str, default: f32, dir: &SearchPath) -> Result<f32, SceneError> {
+        Ok(self.dielectric_ior(name, default, dir)?.constant_value())
+    }
+
+    /// A dielectric's index of refraction: a `float`, or a `spectrum`. A named glass
+    /// (`glass-F11`, …) stays a spectrum ([`Ior::Glass`]), which disperses in spectral mode;
+    /// pairs and files are sampled at [`lancer::spectrum::IOR_WAVELENGTH`].
+    pub fn dielectric_ior(
+        &self,
+        name: &str,
+        default: f32,
+        dir: &SearchPath,
+    ) -> Result<Ior, SceneError> {
         let Some(p) = self.find(name, &[ParamType::Float, ParamType::Spectrum])? else {
-            return Ok(default);
+            return Ok(Ior::Constant(default));
         };
         let lambda = lancer::spectrum::IOR_WAVELENGTH;
         let eta = match &p.values {
             Values::Numbers(v) if p.ty == ParamType::Float => match v.as_slice() {
-                [eta] => *eta,
+                [eta] => Ior::Constant(*eta),
                 _ => return Err(p.error(format!("{} takes one value", p.decl()))),
             },
             Values::Numbers(v) => {
                 let (lambda_s, values) = v.chunks_exact(2).map(|c| (c[0], c[1])).unzip();
-                Spectrum::PiecewiseLinear {
-                    lambda: lambda_s,
-                    values,
-                }
-                .eval(lambda)
-            }
-            Values::Strings(v) => match lancer::spectrum::named_ior(&v[0]) {
-                Some(eta) => eta,
-                None => named_or_file_spectrum(&v[0], dir)
-                    .map_err(|m| p.error(m))?
+                Ior::Constant(
+                    Spectrum::PiecewiseLinear {
+                        lambda: lambda_s,
+                        values,
+                    }
                     .eval(lambda),
+                )
+            }
+            Values::Strings(v) => match Ior::named_glass(&v[0]) {
+                Some(glass) => glass,
+                None => Ior::Constant(
+                    named_or_file_spectrum(&v[0], dir)
+                        .map_err(|m| p.error(m))?
+                        .eval(lambda),
+                ),
             },
             _ => unreachable!("types checked by find"),
         };
-        if !(eta.is_finite() && eta > 0.0) {
+        let value = eta.constant_value();
+        if !(value.is_finite() && value > 0.0) {
             return Err(p.error(format!(
-                "{} must be a positive index of refraction, not {eta}",
+                "{} must be a positive index of refraction, not {value}",
                 p.decl()
             )));
         }

@@ -116,12 +116,13 @@ pub struct PathVertex {
 /// The BSDF at a hit, with `Mix` materials resolved (the choice is a deterministic hash of the
 /// hit, as pbrt does, so it needs no sampler dimension). `None` for `interface` materials,
 /// which the ray passes straight through. With `lambda` (spectral mode) the material's colours
-/// are evaluated at those wavelengths.
+/// are evaluated at those wavelengths. The flag says whether the material disperses
+/// ([`Material::disperses`]): a spectral path then keeps only its hero wavelength.
 pub(crate) fn bsdf_at(
     scene: &Scene,
     hit: &SceneHit,
     lambda: Option<&SampledWavelengths>,
-) -> Option<Bsdf> {
+) -> Option<(Bsdf, bool)> {
     let mut m = scene.prims[hit.prim as usize].material;
     let tex = scene.textures();
     let tc = Scene::tex_coord(&hit.si);
@@ -151,7 +152,8 @@ pub(crate) fn bsdf_at(
                         c.clamp(Rgb::ZERO, Rgb::ONE),
                     ));
                 }
-                return Some(Bsdf::new(bxdf, hit.si.shading.n, hit.si.shading.dpdu));
+                let bsdf = Bsdf::new(bxdf, hit.si.shading.n, hit.si.shading.dpdu);
+                return Some((bsdf, mat.disperses()));
             }
         }
     }

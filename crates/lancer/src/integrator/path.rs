@@ -7,6 +7,7 @@ use crate::math::{Rgb, SampledSpectrum, normalize};
 use crate::ray::Ray;
 use crate::sampling::{Sampler, power_heuristic};
 use crate::scene::Scene;
+use crate::spectrum::hero::HERO_ONLY;
 use crate::spectrum::sampled::SampledWavelengths;
 
 /// Radiance along a camera ray, by path tracing up to `max_depth` bounces. With `regularize`,
@@ -54,6 +55,8 @@ pub fn li_observed<O: PathObserver>(
     regularize: bool,
     obs: &mut O,
 ) -> SampledSpectrum {
+    // The path's own copy of its wavelengths, which a dispersive surface may terminate.
+    let mut wavelengths = lambda.copied();
     let mut l = SampledSpectrum::ZERO;
     let mut beta = SampledSpectrum::ONE;
     let mut ray = *ray;
@@ -73,7 +76,7 @@ pub fn li_observed<O: PathObserver>(
                 let le = if le == Rgb::ZERO {
                     SampledSpectrum::ZERO
                 } else {
-                    scene.light_radiance(i, lambda, le, 1.0)
+                    scene.light_radiance(i, wavelengths.as_ref(), le, 1.0)
                 };
                 if le == SampledSpectrum::ZERO {
                     continue;
@@ -93,7 +96,7 @@ pub fn li_observed<O: PathObserver>(
         let wo = si.wo;
         // An area light hit by a BSDF-sampled ray: weighted against the chance that light
         // sampling picked the same point.
-        let le = emitted(scene, &hit, wo, lambda);
+        let le = emitted(scene, &hit, wo, wavelengths.as_ref());
         if le != SampledSpectrum::ZERO {
             match (
                 depth == 0 || specular_bounce,
@@ -109,11 +112,22 @@ pub fn li_observed<O: PathObserver>(
                 _ => l += beta * le,
             }
         }
-        let Some(mut bsdf) = bsdf_at(scene, &hit, lambda) else {
+        let Some((mut bsdf, disperses)) = bsdf_at(scene, &hit, wavelengths.as_ref()) else {
             // An interface between media: no surface, the ray goes on unchanged.
             ray = si.spawn_ray(ray.d);
             continue;
         };
+        // A dispersive dielectric bends each wavelength its own way: the path keeps only its
+        // hero wavelength, weighting what it has gathered and will gather by HERO_ONLY
+        // (pbrt-v4's TerminateSecondary, see [`crate::spectrum::hero`]), once.
+        if let Some(lam) = wavelengths
+            .as_mut()
+            .filter(|l| disperses && !l.secondary_terminated())
+        {
+            lam.terminate_secondary();
+            l *= HERO_ONLY;
+            beta *= HERO_ONLY;
+        }
         if regularize && any_non_specular {
             bsdf.bxdf.regularize();
         }
@@ -146,8 +160,10 @@ pub fn li_observed<O: PathObserver>(
                         } else {
                             power_heuristic(p_l, bsdf.pdf(wo, ls.wi, TransportMode::Radiance))
                         };
-                        l +=
-                            beta * f * scene.light_radiance(i, lambda, ls.l, ls.factor) * (w / p_l);
+                        l += beta
+                            * f
+                            * scene.light_radiance(i, wavelengths.as_ref(), ls.l, ls.factor)
+                            * (w / p_l);
                     }
                 }
             }

@@ -8,6 +8,7 @@ use crate::math::{Rgb, SampledSpectrum, Vec3};
 use crate::ray::Ray;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
+use crate::spectrum::hero::HERO_ONLY;
 use crate::spectrum::sampled::SampledWavelengths;
 
 /// Radiance along `ray`:
@@ -36,7 +37,7 @@ pub fn li(
     let si = &hit.si;
     let wo = si.wo;
     let mut l = emitted(scene, &hit, wo, lambda);
-    let Some(bsdf) = bsdf_at(scene, &hit, lambda) else {
+    let Some((bsdf, disperses)) = bsdf_at(scene, &hit, lambda) else {
         // No surface (interface material): continue the ray.
         return l + li(
             scene,
@@ -47,6 +48,13 @@ pub fn li(
             max_depth,
         );
     };
+    // A dispersive surface: the path keeps only its hero wavelength from here on (see
+    // [`crate::spectrum::hero`]); the hit is traced again with terminated wavelengths, once.
+    if let Some(lam) = lambda.filter(|l| disperses && !l.secondary_terminated()) {
+        let mut hero = *lam;
+        hero.terminate_secondary();
+        return li(scene, ray, sampler, Some(&hero), depth, max_depth) * HERO_ONLY;
+    }
     let ctx = LightSampleContext {
         p: si.p,
         n: si.n,

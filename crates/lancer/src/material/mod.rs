@@ -20,6 +20,7 @@ pub use microfacet::TrowbridgeReitz;
 pub use scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode};
 
 use crate::math::{Rgb, SampledSpectrum, rgb_lanes};
+use crate::spectrum::Ior;
 use crate::spectrum::sampled::{ColourKind, RgbSpectrum, SampledWavelengths};
 use crate::texture::{FloatTex, SpectrumTex, TexCoord, TextureEval};
 
@@ -50,8 +51,9 @@ pub enum Material {
     },
     /// Glass: Fresnel reflection and refraction, smooth or rough.
     Dielectric {
-        /// Relative index of refraction (inside / outside).
-        eta: f32,
+        /// Relative index of refraction (inside / outside); a named glass's varies with
+        /// wavelength.
+        eta: Ior,
         /// Roughness along u.
         uroughness: FloatTex,
         /// Roughness along v.
@@ -62,7 +64,7 @@ pub enum Material {
     /// An infinitely thin dielectric slab (a window pane): no refraction offset.
     ThinDielectric {
         /// Index of refraction.
-        eta: f32,
+        eta: Ior,
     },
     /// Diffuse reflection and diffuse transmission.
     DiffuseTransmission {
@@ -270,6 +272,18 @@ impl Material {
         }
     }
 
+    /// Whether this material's index varies with wavelength (a dielectric of a named glass):
+    /// in spectral mode a path that meets it keeps only its hero wavelength, as pbrt-v4's
+    /// dielectric materials call `TerminateSecondary` whenever `eta` is not constant.
+    pub fn disperses(&self) -> bool {
+        match self {
+            Material::Dielectric { eta, .. } | Material::ThinDielectric { eta } => {
+                eta.is_dispersive()
+            }
+            _ => false,
+        }
+    }
+
     /// The BxDF this material has at a surface point, with textures evaluated there, as
     /// pbrt-v4's materials build theirs: albedos clamped to [0, 1], roughness remapped to α
     /// when asked, an index of 0 taken as 1. `Mix` must be resolved by the caller first (it
@@ -305,6 +319,12 @@ impl Material {
             }
         };
         let albedo = |slot: usize, t: SpectrumTex| colour(slot, t, ColourKind::Albedo);
+        // A dielectric's index: RGB mode's single value, or the value at the hero wavelength
+        // λ₀ (the only one a dispersive path keeps, see [`Material::disperses`]).
+        let ior = |eta: Ior| match spectral {
+            None => eta.constant_value(),
+            Some(sc) => eta.at(sc.lambda.lambda[0]),
+        };
         let distrib = |u: FloatTex, v: FloatTex, remap: bool| {
             TrowbridgeReitz::from_roughness(tex.float(u, tc), tex.float(v, tc), remap)
         };
@@ -331,11 +351,11 @@ impl Material {
                 vroughness,
                 remap_roughness,
             } => BxDF::Dielectric(DielectricBxdf {
-                eta: nonzero_eta(eta),
+                eta: nonzero_eta(ior(eta)),
                 distrib: distrib(uroughness, vroughness, remap_roughness),
             }),
             Material::ThinDielectric { eta } => BxDF::ThinDielectric(ThinDielectricBxdf {
-                eta: nonzero_eta(eta),
+                eta: nonzero_eta(ior(eta)),
             }),
             Material::DiffuseTransmission {
                 reflectance,
@@ -449,6 +469,59 @@ mod tests {
         FloatTex::Const(v)
     }
 
+    /// A flint-glass dielectric disperses: in spectral mode its index is the glass's at the
+    /// hero wavelength, so a ray refracts more for a blue hero than for a red one (the prism's
+    /// fringes); RGB mode keeps the 550 nm index; a constant index does not disperse.
+    #[test]
+    fn named_glass_refracts_blue_more_than_red() {
+        let glass = Material::Dielectric {
+            eta: Ior::named_glass("glass-F11").unwrap(),
+            uroughness: c(0.0),
+            vroughness: c(0.0),
+            remap_roughness: false,
+        };
+        assert!(glass.disperses());
+        assert!(
+            !Material::ThinDielectric {
+                eta: Ior::Constant(1.5)
+            }
+            .disperses()
+        );
+        let tex = TextureEval {
+            floats: &[],
+            spectra: &[],
+        };
+        let consts = [RgbSpectrum::new(Rgb::ZERO, ColourKind::Albedo); COLOUR_SLOTS];
+        let eta_at = |hero: f32| {
+            let mut lambda = SampledWavelengths::sample_visible(0.5);
+            lambda.lambda[0] = hero;
+            let spectral = Some(SpectralColours {
+                lambda: &lambda,
+                consts: &consts,
+            });
+            match glass.bxdf(&tex, &TexCoord::default(), spectral) {
+                Some(BxDF::Dielectric(d)) => d.eta,
+                other => panic!("{other:?}"),
+            }
+        };
+        let (blue, red) = (eta_at(450.0), eta_at(650.0));
+        assert_eq!(blue, Ior::named_glass("glass-F11").unwrap().at(450.0));
+        assert!(
+            matches!(eval(&glass), BxDF::Dielectric(d) if d.eta == crate::spectrum::named_ior("glass-F11").unwrap())
+        );
+        // Snell at 45°: sin θt = sin 45° / n; blue bends further towards the normal.
+        let wi = crate::math::normalize(crate::math::Vec3::new(1.0, 0.0, 1.0));
+        let n = crate::math::Vec3::Z;
+        let (tb, _) = refract(wi, n, blue).unwrap();
+        let (tr, _) = refract(wi, n, red).unwrap();
+        let sin45 = std::f32::consts::FRAC_1_SQRT_2;
+        assert!((tb.x.abs() - sin45 / blue).abs() < 1e-5);
+        assert!((tr.x.abs() - sin45 / red).abs() < 1e-5);
+        // ≈ 0.58° apart: sin⁻¹(0.7071/1.7766) − sin⁻¹(0.7071/1.8192).
+        let spread = (tr.x.abs().asin() - tb.x.abs().asin()).to_degrees();
+        assert!((spread - 0.58).abs() < 0.15, "{spread}°");
+    }
+
     fn rgb(v: f32) -> SpectrumTex {
         SpectrumTex::Const(Rgb::splat(v))
     }
@@ -499,7 +572,7 @@ mod tests {
     #[test]
     fn every_material_becomes_its_own_bxdf() {
         let d = eval(&Material::Dielectric {
-            eta: 0.0,
+            eta: Ior::Constant(0.0),
             uroughness: c(0.09),
             vroughness: c(0.09),
             remap_roughness: true,
@@ -508,7 +581,9 @@ mod tests {
         assert!(
             matches!(d, BxDF::Dielectric(b) if b.eta == 1.0 && (b.distrib.alpha_x() - 0.3).abs() < 1e-6)
         );
-        let t = eval(&Material::ThinDielectric { eta: 1.33 });
+        let t = eval(&Material::ThinDielectric {
+            eta: Ior::Constant(1.33),
+        });
         assert!(matches!(t, BxDF::ThinDielectric(b) if b.eta == 1.33));
         // Diffuse transmission: both albedos scaled, then clamped to one.
         let dt = eval(&Material::DiffuseTransmission {

@@ -19,13 +19,14 @@
 
 pub mod cie;
 mod fit;
+pub mod hero;
 mod named;
 mod reduce;
 pub mod sampled;
 mod table;
 pub mod uplift;
 
-pub use named::{IOR_WAVELENGTH, named_ior, named_spectrum, named_spectrum_names};
+pub use named::{IOR_WAVELENGTH, Ior, named_ior, named_spectrum, named_spectrum_names};
 pub use reduce::{
     PrecomputedRgb, Spectrum, SpectrumKind, blackbody, cie_d65, cie_xyz, parse_spd,
     spectrum_to_rgb, spectrum_to_xyz_unnormalised, xyz_to_srgb,

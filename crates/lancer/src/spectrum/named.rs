@@ -134,6 +134,46 @@ pub fn named_ior(name: &str) -> Option<f32> {
     glass(name).map(|c| sellmeier(c, IOR_WAVELENGTH as f64) as f32)
 }
 
+/// A dielectric's index of refraction as a scene gives it: one number, or a named glass whose
+/// index varies with wavelength (Sellmeier), which disperses light in spectral mode.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Ior {
+    /// The same index at every wavelength.
+    Constant(f32),
+    /// A named glass (`glass-F11`, …): its Sellmeier coefficients.
+    Glass(&'static [f64; 6]),
+}
+
+impl Ior {
+    /// The named glass `name` (`glass-BK7`, …), or `None` for any other name.
+    pub fn named_glass(name: &str) -> Option<Ior> {
+        glass(name).map(Ior::Glass)
+    }
+
+    /// The single index a renderer without dispersion uses (RGB mode): a glass's value at
+    /// [`IOR_WAVELENGTH`], exactly [`named_ior`].
+    pub fn constant_value(&self) -> f32 {
+        match *self {
+            Ior::Constant(eta) => eta,
+            Ior::Glass(c) => sellmeier(c, IOR_WAVELENGTH as f64) as f32,
+        }
+    }
+
+    /// The index at `lambda_nm`: n(λ) from the Sellmeier formula for a glass.
+    pub fn at(&self, lambda_nm: f32) -> f32 {
+        match *self {
+            Ior::Constant(eta) => eta,
+            Ior::Glass(c) => sellmeier(c, lambda_nm as f64) as f32,
+        }
+    }
+
+    /// Whether the index varies with wavelength, so that refraction separates wavelengths
+    /// (pbrt-v4 then keeps only the path's hero wavelength).
+    pub fn is_dispersive(&self) -> bool {
+        matches!(self, Ior::Glass(_))
+    }
+}
+
 /// Every name [`named_spectrum`] knows.
 pub fn named_spectrum_names() -> impl Iterator<Item = &'static str> {
     GLASSES
@@ -146,6 +186,33 @@ pub fn named_spectrum_names() -> impl Iterator<Item = &'static str> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A glass's index at two wavelengths is the Sellmeier formula's, computed here by hand for
+    /// SF11 (pbrt's glass-F11): n² = 1 + Σ Bᵢλ²/(λ² − Cᵢ).
+    #[test]
+    fn glass_ior_follows_sellmeier_and_disperses() {
+        let f11 = Ior::named_glass("glass-F11").unwrap();
+        let by_hand = |l_um: f64| {
+            let l2 = l_um * l_um;
+            (1.0 + 1.737_596_95 * l2 / (l2 - 0.013_188_707)
+                + 0.313_747_346 * l2 / (l2 - 0.062_306_814_2)
+                + 1.898_781_01 * l2 / (l2 - 155.236_29))
+                .sqrt()
+        };
+        for l in [450.0f32, 650.0] {
+            assert!(
+                (f11.at(l) as f64 - by_hand(l as f64 / 1000.0)).abs() < 1e-6,
+                "{l} nm"
+            );
+        }
+        // Dense flint: ≈1.819 at 450 nm, ≈1.777 at 650 nm (Schott SF11).
+        assert!((f11.at(450.0) - 1.819).abs() < 1e-3 && (f11.at(650.0) - 1.777).abs() < 1e-3);
+        assert!(f11.at(450.0) > f11.at(650.0) + 0.02);
+        assert!(f11.is_dispersive() && !Ior::Constant(1.5).is_dispersive());
+        assert_eq!(f11.constant_value(), named_ior("glass-F11").unwrap());
+        assert_eq!(Ior::Constant(1.33).at(400.0), 1.33);
+        assert_eq!(Ior::named_glass("metal-Au-eta"), None);
+    }
     use crate::math::luminance;
     use crate::spectrum::reduce::{SpectrumKind, spectrum_to_rgb};
 
