@@ -14,7 +14,8 @@
 //! uplifted by the Jakob–Hanika method ([`super::uplift`]), illuminants are the uplift times
 //! D65, and the film integrates against the CIE 1931 functions. Blackbody and named spectra
 //! reach this point already reduced to RGB at load, and are uplifted from that RGB like any
-//! colour; dielectrics have a constant index, so there is no dispersion.
+//! colour. A dielectric of a named glass disperses: its index is taken at the hero wavelength
+//! and the path keeps only that wavelength from then on ([`super::hero`]).
 
 use super::cie::INTEGRATION_RANGE;
 use super::reduce::weights;
