@@ -16,10 +16,10 @@
 //! reach this point already reduced to RGB at load, and are uplifted from that RGB like any
 //! colour; dielectrics have a constant index, so there is no dispersion.
 
-use super::cie::INTEGRATION_RANGE;
+use super::cie::{self, INTEGRATION_RANGE};
 use super::reduce::weights;
 use super::uplift::{SigmoidSpectrum, albedo_spectrum, unbounded_spectrum};
-use super::{cie_d65, cie_xyz, xyz_to_srgb};
+use super::xyz_to_srgb;
 use crate::math::{Rgb, SampledSpectrum, lanes_rgb, rgb_lanes};
 use std::sync::OnceLock;
 
@@ -58,13 +58,26 @@ pub fn visible_wavelength_pdf(lambda: f32) -> f32 {
 struct Norms {
     /// 1 / Σ ȳ (1 nm steps): the film's XYZ scale.
     inv_y_integral: f64,
-    /// Σ ȳ / Σ D65·ȳ: scales D65 so that an illuminant RGB (1, 1, 1) has luminance 1.
-    illuminant_scale: f64,
     /// tanh(A(360 − C)) and tanh(A(830 − C)).
     vis_t0: f64,
     vis_t1: f64,
     /// A / (T_MAX − T_MIN), the visible density's numerator.
     vis_pdf_scale: f32,
+    /// Per 5 nm node of the CIE tables: (x̄, ȳ, z̄, D65 · Σȳ / Σ D65·ȳ) in f32, so that a camera
+    /// sample looks each wavelength up once, as one 4-lane linear interpolation.
+    rows: [SampledSpectrum; cie::SAMPLES],
+}
+
+impl Norms {
+    /// The row of `rows` at `lambda` ∈ [360, 830] nm, interpolated linearly:
+    /// x = (λ − 360)/5, i = ⌊x⌋ (at most the last interval), row = rᵢ + (x − i)·(rᵢ₊₁ − rᵢ).
+    #[inline]
+    fn row_at(&self, lambda: f32) -> SampledSpectrum {
+        let x = ((lambda - LAMBDA_MIN) * (1.0 / cie::LAMBDA_STEP as f32)).max(0.0);
+        let i = (x as usize).min(cie::SAMPLES - 2);
+        let (a, b) = (self.rows[i], self.rows[i + 1]);
+        a + (x - i as f32) * (b - a)
+    }
 }
 
 fn norms() -> &'static Norms {
@@ -77,10 +90,15 @@ fn norms() -> &'static Norms {
         let vis_t1 = (VIS_A * (LAMBDA_MAX as f64 - VIS_C)).tanh();
         Norms {
             inv_y_integral: 1.0 / y_integral,
-            illuminant_scale: y_integral / w.d65_y,
             vis_t0,
             vis_t1,
             vis_pdf_scale: (VIS_A / (vis_t1 - vis_t0)) as f32,
+            rows: std::array::from_fn(|i| {
+                let [x, y, z] = cie::CMF_1931[i];
+                // Σ ȳ / Σ D65·ȳ scales D65 so that an illuminant RGB (1, 1, 1) has luminance 1.
+                let d = cie::D65[i] * (y_integral / w.d65_y);
+                SampledSpectrum::new(x as f32, y as f32, z as f32, d as f32)
+            }),
         }
     })
 }
@@ -149,14 +167,16 @@ impl SampledWavelengths {
             SampledSpectrum::splat(LAMBDA_MAX),
         );
         let pdf = n.vis_pdf_scale * (SampledSpectrum::ONE - x * x);
-        let k = norms().illuminant_scale as f32;
-        let c = lambda.to_array().map(cie_xyz);
-        let cmf = [0, 1, 2].map(|j| SampledSpectrum::new(c[0][j], c[1][j], c[2][j], c[3][j]));
+        // One row (x̄, ȳ, z̄, k·D65) per wavelength from the f32 table, then transposed so that
+        // each quantity has one lane per wavelength.
+        let r = lambda.to_array().map(|l| n.row_at(l));
+        let [x, y, z, d65] =
+            [0, 1, 2, 3].map(|j| SampledSpectrum::new(r[0][j], r[1][j], r[2][j], r[3][j]));
         SampledWavelengths {
             lambda,
             pdf,
-            d65: SampledSpectrum::from_array(lambda.to_array().map(cie_d65)) * k,
-            cmf,
+            d65,
+            cmf: [x, y, z],
         }
     }
 
@@ -314,6 +334,7 @@ pub fn film_rgb(lambda: Option<&SampledWavelengths>, l: SampledSpectrum) -> Rgb 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::spectrum::{cie_d65, cie_xyz};
 
     /// Average film colour of `f(wavelengths)` over `n` stratified wavelength samples.
     fn film_average(n: u32, f: impl Fn(&SampledWavelengths) -> SampledSpectrum) -> Rgb {
@@ -385,6 +406,25 @@ mod tests {
                 "atanh {x}: {got}"
             );
         }
+    }
+
+    #[test]
+    fn f32_rows_interpolate_the_cie_tables() {
+        // Ends, a node (560 nm: ȳ = 0.995, D65 = 100) and between nodes, against the f64 tables.
+        let n = norms();
+        let k = (1.0 / n.inv_y_integral / weights().d65_y) as f32;
+        for l in [360.0f32, 362.5, 557.3, 560.0, 701.9, 829.99, 830.0] {
+            let r = n.row_at(l);
+            let (c, d) = (cie_xyz(l), cie_d65(l) * k);
+            for j in 0..3 {
+                assert!(
+                    (r[j] - c[j]).abs() < 1e-6 * (1.0 + c[j]),
+                    "{l} nm [{j}]: {r} vs {c:?}"
+                );
+            }
+            assert!((r[3] - d).abs() < 1e-5 * d, "{l} nm: D65 {} vs {d}", r[3]);
+        }
+        assert!((n.row_at(560.0)[1] - 0.995).abs() < 1e-6);
     }
 
     #[test]
