@@ -17,10 +17,10 @@
 //! colour. A dielectric of a named glass disperses: its index is taken at the hero wavelength
 //! and the path keeps only that wavelength from then on ([`super::hero`]).
 
-use super::cie::INTEGRATION_RANGE;
+use super::cie::{self, INTEGRATION_RANGE};
 use super::reduce::weights;
 use super::uplift::{SigmoidSpectrum, albedo_spectrum, unbounded_spectrum};
-use super::{cie_d65, cie_xyz, xyz_to_srgb};
+use super::xyz_to_srgb;
 use crate::math::{Rgb, SampledSpectrum, lanes_rgb, rgb_lanes};
 use std::sync::OnceLock;
 
@@ -59,13 +59,26 @@ pub fn visible_wavelength_pdf(lambda: f32) -> f32 {
 struct Norms {
     /// 1 / Σ ȳ (1 nm steps): the film's XYZ scale.
     inv_y_integral: f64,
-    /// Σ ȳ / Σ D65·ȳ: scales D65 so that an illuminant RGB (1, 1, 1) has luminance 1.
-    illuminant_scale: f64,
     /// tanh(A(360 − C)) and tanh(A(830 − C)).
     vis_t0: f64,
     vis_t1: f64,
     /// A / (T_MAX − T_MIN), the visible density's numerator.
     vis_pdf_scale: f32,
+    /// Per 5 nm node of the CIE tables: (x̄, ȳ, z̄, D65 · Σȳ / Σ D65·ȳ) in f32, so that a camera
+    /// sample looks each wavelength up once, as one 4-lane linear interpolation.
+    rows: [SampledSpectrum; cie::SAMPLES],
+}
+
+impl Norms {
+    /// The row of `rows` at `lambda` ∈ [360, 830] nm, interpolated linearly:
+    /// x = (λ − 360)/5, i = ⌊x⌋ (at most the last interval), row = rᵢ + (x − i)·(rᵢ₊₁ − rᵢ).
+    #[inline]
+    fn row_at(&self, lambda: f32) -> SampledSpectrum {
+        let x = ((lambda - LAMBDA_MIN) * (1.0 / cie::LAMBDA_STEP as f32)).max(0.0);
+        let i = (x as usize).min(cie::SAMPLES - 2);
+        let (a, b) = (self.rows[i], self.rows[i + 1]);
+        a + (x - i as f32) * (b - a)
+    }
 }
 
 fn norms() -> &'static Norms {
@@ -78,10 +91,15 @@ fn norms() -> &'static Norms {
         let vis_t1 = (VIS_A * (LAMBDA_MAX as f64 - VIS_C)).tanh();
         Norms {
             inv_y_integral: 1.0 / y_integral,
-            illuminant_scale: y_integral / w.d65_y,
             vis_t0,
             vis_t1,
             vis_pdf_scale: (VIS_A / (vis_t1 - vis_t0)) as f32,
+            rows: std::array::from_fn(|i| {
+                let [x, y, z] = cie::CMF_1931[i];
+                // Σ ȳ / Σ D65·ȳ scales D65 so that an illuminant RGB (1, 1, 1) has luminance 1.
+                let d = cie::D65[i] * (y_integral / w.d65_y);
+                SampledSpectrum::new(x as f32, y as f32, z as f32, d as f32)
+            }),
         }
     })
 }
@@ -100,6 +118,35 @@ pub struct SampledWavelengths {
     /// D65(λᵢ) · Σȳ / Σ D65·ȳ, the illuminant of RGB white at each wavelength (looked up once
     /// per camera sample rather than at each light sample).
     d65: SampledSpectrum,
+    /// The CIE matching functions x̄, ȳ, z̄ at each wavelength, looked up once per camera sample
+    /// so that [`SampledWavelengths::to_film_rgb`] is three lane-wise dot products.
+    cmf: [SampledSpectrum; 3],
+}
+
+/// atanh of four lanes at once, each in (−1, 1): atanh(x) = ½ ln((1 + x)/(1 − x)), the
+/// logarithm from [`ln_lanes`] (replaces four scalar `log1p` calls per camera sample).
+fn atanh_lanes(x: SampledSpectrum) -> SampledSpectrum {
+    0.5 * ln_lanes((SampledSpectrum::ONE + x) / (SampledSpectrum::ONE - x))
+}
+
+/// Natural logarithm of four positive, finite, normal lanes at once: y = 2ᵉ·m with
+/// m ∈ [√½, √2), ln y = e·ln 2 + ln m, and with s = (m − 1)/(m + 1),
+/// ln m = 2·(s + s³/3 + s⁵/5 + s⁷/7 + s⁹/9) (|s| ≤ 0.172, so the next term, 2s¹¹/11 < 4·10⁻⁹,
+/// is below f32 resolution).
+fn ln_lanes(y: SampledSpectrum) -> SampledSpectrum {
+    let bits = y.to_array().map(f32::to_bits);
+    // Exponent and mantissa in [1, 2) from the IEEE-754 fields.
+    let e = SampledSpectrum::from_array(bits.map(|b| ((b >> 23) & 0xff) as f32 - 127.0));
+    let m =
+        SampledSpectrum::from_array(bits.map(|b| f32::from_bits((b & 0x007f_ffff) | 0x3f80_0000)));
+    let big = m.cmpgt(SampledSpectrum::splat(std::f32::consts::SQRT_2));
+    let m = SampledSpectrum::select(big, m * 0.5, m);
+    let e = SampledSpectrum::select(big, e + 1.0, e);
+    let s = (m - 1.0) / (m + 1.0);
+    let s2 = s * s;
+    let poly = SampledSpectrum::ONE
+        + s2 * (1.0 / 3.0 + s2 * (1.0 / 5.0 + s2 * (1.0 / 7.0 + s2 * (1.0 / 9.0))));
+    e * std::f32::consts::LN_2 + 2.0 * s * poly
 }
 
 impl SampledWavelengths {
@@ -116,16 +163,21 @@ impl SampledWavelengths {
         ui = SampledSpectrum::select(ui.cmpge(SampledSpectrum::ONE), ui - 1.0, ui);
         let x = (t0 + ui.clamp(SampledSpectrum::ZERO, SampledSpectrum::ONE) * (t1 - t0))
             .clamp(SampledSpectrum::splat(t0), SampledSpectrum::splat(t1));
-        let lambda = (VIS_C as f32 + x.map(f32::atanh) * (1.0 / VIS_A as f32)).clamp(
+        let lambda = (VIS_C as f32 + atanh_lanes(x) * (1.0 / VIS_A as f32)).clamp(
             SampledSpectrum::splat(LAMBDA_MIN),
             SampledSpectrum::splat(LAMBDA_MAX),
         );
         let pdf = n.vis_pdf_scale * (SampledSpectrum::ONE - x * x);
-        let k = norms().illuminant_scale as f32;
+        // One row (x̄, ȳ, z̄, k·D65) per wavelength from the f32 table, then transposed so that
+        // each quantity has one lane per wavelength.
+        let r = lambda.to_array().map(|l| n.row_at(l));
+        let [x, y, z, d65] =
+            [0, 1, 2, 3].map(|j| SampledSpectrum::new(r[0][j], r[1][j], r[2][j], r[3][j]));
         SampledWavelengths {
             lambda,
             pdf,
-            d65: SampledSpectrum::from_array(lambda.to_array().map(cie_d65)) * k,
+            d65,
+            cmf: [x, y, z],
         }
     }
 
@@ -188,19 +240,11 @@ impl SampledWavelengths {
     /// the Monte Carlo estimate XYZ = (1/4) Σᵢ (x̄, ȳ, z̄)(λᵢ) · L(λᵢ)/p(λᵢ) / ∫ȳ, then linear
     /// sRGB. Wavelengths of zero density contribute nothing.
     pub fn to_film_rgb(&self, l: SampledSpectrum) -> Rgb {
-        let mut xyz = [0.0f64; 3];
-        for i in 0..N_SPECTRUM_SAMPLES {
-            if self.pdf[i] <= 0.0 || l[i] == 0.0 {
-                continue;
-            }
-            let w = l[i] as f64 / self.pdf[i] as f64;
-            let c = cie_xyz(self.lambda[i]);
-            for k in 0..3 {
-                xyz[k] += c[k] as f64 * w;
-            }
-        }
-        let s = norms().inv_y_integral / N_SPECTRUM_SAMPLES as f64;
-        xyz_to_srgb(xyz.map(|v| (v * s) as f32))
+        // wᵢ = L(λᵢ)/p(λᵢ), zero where the density is (or the radiance is exactly zero).
+        let live = self.pdf.cmpgt(SampledSpectrum::ZERO) & l.cmpne(SampledSpectrum::ZERO);
+        let w = SampledSpectrum::select(live, l / self.pdf, SampledSpectrum::ZERO);
+        let s = (norms().inv_y_integral / N_SPECTRUM_SAMPLES as f64) as f32;
+        xyz_to_srgb(self.cmf.map(|c| c.dot(w) * s))
     }
 }
 
@@ -291,6 +335,7 @@ pub fn film_rgb(lambda: Option<&SampledWavelengths>, l: SampledSpectrum) -> Rgb 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::spectrum::{cie_d65, cie_xyz};
 
     /// Average film colour of `f(wavelengths)` over `n` stratified wavelength samples.
     fn film_average(n: u32, f: impl Fn(&SampledWavelengths) -> SampledSpectrum) -> Rgb {
@@ -325,13 +370,84 @@ mod tests {
         assert_eq!(sample_visible_wavelength(1.0), 830.0);
         // Four wavelengths spread a quarter of the CDF apart: u = 0.9, 0.15, 0.4, 0.65.
         let w = SampledWavelengths::sample_visible(0.9);
-        assert_eq!(w.lambda[0], sample_visible_wavelength(0.9));
         for (i, u) in [(0, 0.9f32), (1, 0.15), (2, 0.4), (3, 0.65)] {
             assert!((w.lambda[i] - sample_visible_wavelength(u)).abs() < 1e-3);
             // The density from 1 − tanh² is the density from cosh², to rounding.
             let p = visible_wavelength_pdf(w.lambda[i]);
             assert!((w.pdf[i] - p).abs() < 1e-5 * p, "{} vs {p}", w.pdf[i]);
         }
+    }
+
+    #[test]
+    fn lane_wise_atanh_matches_the_scalar_one() {
+        // ln of exact powers of two and of e, then atanh over the range the sampling uses.
+        let y = SampledSpectrum::new(1.0, 8.0, 0.25, std::f32::consts::E);
+        let ln = ln_lanes(y);
+        let want = [
+            0.0,
+            3.0 * std::f32::consts::LN_2,
+            -2.0 * std::f32::consts::LN_2,
+            1.0,
+        ];
+        for i in 0..4 {
+            assert!(
+                (ln[i] - want[i]).abs() < 2e-7,
+                "ln {}: {} vs {}",
+                y[i],
+                ln[i],
+                want[i]
+            );
+        }
+        for k in 0..=1000 {
+            let x = -0.86 + 1.83 * k as f32 / 1000.0;
+            let got = atanh_lanes(SampledSpectrum::splat(x))[0];
+            let want = (x as f64).atanh();
+            assert!(
+                (got as f64 - want).abs() < 1e-6 * (1.0 + want.abs()),
+                "atanh {x}: {got}"
+            );
+        }
+    }
+
+    #[test]
+    fn f32_rows_interpolate_the_cie_tables() {
+        // Ends, a node (560 nm: ȳ = 0.995, D65 = 100) and between nodes, against the f64 tables.
+        let n = norms();
+        let k = (1.0 / n.inv_y_integral / weights().d65_y) as f32;
+        for l in [360.0f32, 362.5, 557.3, 560.0, 701.9, 829.99, 830.0] {
+            let r = n.row_at(l);
+            let (c, d) = (cie_xyz(l), cie_d65(l) * k);
+            for j in 0..3 {
+                assert!(
+                    (r[j] - c[j]).abs() < 1e-6 * (1.0 + c[j]),
+                    "{l} nm [{j}]: {r} vs {c:?}"
+                );
+            }
+            assert!((r[3] - d).abs() < 1e-5 * d, "{l} nm: D65 {} vs {d}", r[3]);
+        }
+        assert!((n.row_at(560.0)[1] - 0.995).abs() < 1e-6);
+    }
+
+    #[test]
+    fn film_rgb_is_the_f64_monte_carlo_estimate() {
+        // XYZ = (1/4) Σ cmf(λᵢ) L/p / Σȳ, computed here in f64, lane 2 of zero density.
+        let mut w = SampledWavelengths::sample_visible(0.61);
+        w.pdf[2] = 0.0;
+        let l = SampledSpectrum::new(0.7, 2.0, 5.0, 0.0);
+        let mut xyz = [0.0f64; 3];
+        for i in [0, 1] {
+            let c = cie_xyz(w.lambda[i]);
+            for k in 0..3 {
+                xyz[k] += c[k] as f64 * l[i] as f64 / w.pdf[i] as f64;
+            }
+        }
+        let s = norms().inv_y_integral / 4.0;
+        let want = xyz_to_srgb(xyz.map(|v| (v * s) as f32));
+        let got = w.to_film_rgb(l);
+        assert!(
+            (got - want).abs().max_element() < 1e-5 * want.abs().max_element(),
+            "{got} vs {want}"
+        );
     }
 
     #[test]
