@@ -211,7 +211,7 @@ fn image_texture(images: &ImageCache, path: &Path) -> Result<ImageTexture, Strin
         .map_err(|e| e.to_string())?;
     Ok(ImageTexture {
         image,
-        mapping: UvMapping::default(),
+        mapping: UvMapping::default().into(),
         wrap: WrapMode::Repeat,
         scale: 1.0,
         invert: false,

@@ -71,6 +71,7 @@ Shape "sphere"
     let at = |u: f32, v: f32| TexCoord {
         uv: Vec2::new(u, v),
         p: Vec3::ZERO,
+        n: Vec3::Z,
     };
     let lit = srgb_to_linear(200.0 / 255.0);
     // pbrt flips v: (u, v) = (0.25, 0.75) is the centre of the top-left texel (red), and

@@ -63,7 +63,7 @@ fn wrap_mode(w: WrappingMode) -> WrapMode {
 fn image_texture(image: Image, s: &Sampling) -> ImageTexture {
     ImageTexture {
         image: Arc::new(image),
-        mapping: s.mapping,
+        mapping: s.mapping.into(),
         wrap: s.wrap,
         scale: 1.0,
         invert: false,

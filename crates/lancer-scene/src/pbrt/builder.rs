@@ -645,14 +645,15 @@ impl Builder {
     ) -> Result<(), SceneError> {
         match ty {
             "float" => {
-                let converted = float_texture(&self.reader(params, dir), class, loc)?;
+                let converted = float_texture(&self.reader(params, dir), class, &self.gs.ctm, loc)?;
                 let t = self.accept(converted, loc);
                 self.desc.float_textures.push(t);
                 let index = self.desc.float_textures.len() as u32 - 1;
                 self.textures.floats.insert(name, index);
             }
             "spectrum" | "color" | "rgb" => {
-                let converted = spectrum_texture(&self.reader(params, dir), class, loc)?;
+                let converted =
+                    spectrum_texture(&self.reader(params, dir), class, &self.gs.ctm, loc)?;
                 let t = self.accept(converted, loc);
                 self.desc.spectrum_textures.push(t);
                 let index = self.desc.spectrum_textures.len() as u32 - 1;

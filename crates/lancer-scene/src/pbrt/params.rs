@@ -542,6 +542,13 @@ impl ParamList {
             .unwrap_or(default))
     }
 
+    /// A `vector3`, or `default`.
+    pub fn vector3(&self, name: &str, default: Vec3) -> Result<Vec3, SceneError> {
+        Ok(self
+            .one_vec3(name, &[ParamType::Vector3])?
+            .unwrap_or(default))
+    }
+
     /// A `normal`, or `default`.
     pub fn normal(&self, name: &str, default: Vec3) -> Result<Vec3, SceneError> {
         Ok(self

@@ -252,7 +252,7 @@ mod tests {
         });
         let tex = ImageTexture {
             image: image.clone(),
-            mapping: UvMapping::default(),
+            mapping: UvMapping::default().into(),
             wrap: WrapMode::Repeat,
             scale: 1.0,
             invert: false,

@@ -194,7 +194,11 @@ impl Scene {
 
     /// Where textures are looked up for a hit.
     pub fn tex_coord(si: &SurfaceInteraction) -> TexCoord {
-        TexCoord { uv: si.uv, p: si.p }
+        TexCoord {
+            uv: si.uv,
+            p: si.p,
+            n: si.n,
+        }
     }
 }
 

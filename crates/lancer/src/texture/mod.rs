@@ -4,9 +4,15 @@
 //! ([`FloatTex`], [`SpectrumTex`]); the textures themselves are plain data ([`FloatTexture`],
 //! [`SpectrumTexture`]) stored in the scene's lists and evaluated by [`TextureEval`].
 
+mod eval;
+mod mapping;
+pub mod procedural;
+
 use crate::image::Image;
 pub use crate::image::WrapMode;
 use crate::math::{Rgb, Vec2, Vec3};
+pub use eval::TextureEval;
+pub use mapping::{Mapping2D, Mapping3D, UvMapping};
 use std::sync::Arc;
 
 /// A float-valued material parameter: a constant, or the index of a float texture.
@@ -27,45 +33,13 @@ pub enum SpectrumTex {
     Tex(u32),
 }
 
-/// The (u, v) mapping of pbrt's textures: `(su·u + du, sv·v + dv)`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct UvMapping {
-    /// Scale of u (`uscale`).
-    pub su: f32,
-    /// Scale of v (`vscale`).
-    pub sv: f32,
-    /// Offset of u (`udelta`).
-    pub du: f32,
-    /// Offset of v (`vdelta`).
-    pub dv: f32,
-}
-
-impl Default for UvMapping {
-    fn default() -> Self {
-        UvMapping {
-            su: 1.0,
-            sv: 1.0,
-            du: 0.0,
-            dv: 0.0,
-        }
-    }
-}
-
-impl UvMapping {
-    /// The mapped texture coordinates.
-    #[inline]
-    pub fn map(&self, uv: Vec2) -> Vec2 {
-        Vec2::new(self.su * uv.x + self.du, self.sv * uv.y + self.dv)
-    }
-}
-
 /// An image texture's parameters.
 #[derive(Clone, Debug)]
 pub struct ImageTexture {
     /// Decoded texels, linear.
     pub image: Arc<Image>,
-    /// (u, v) mapping.
-    pub mapping: UvMapping,
+    /// Texture-coordinate mapping.
+    pub mapping: Mapping2D,
     /// Behaviour outside [0, 1].
     pub wrap: WrapMode,
     /// Multiplies every value (`scale`).
@@ -84,10 +58,10 @@ pub enum FloatTexture {
     /// An image holding the float value in all three channels (the scene reader chooses it as
     /// pbrt-v4 does: alpha, the average of R, G, B, or the first channel); `.x` is read.
     Image(ImageTexture),
-    /// Alternates `tex1` and `tex2` on a grid of the mapped (u, v).
+    /// Alternates `tex1` and `tex2` on a grid of the mapped (s, t).
     Checkerboard {
-        /// (u, v) mapping.
-        mapping: UvMapping,
+        /// Texture-coordinate mapping.
+        mapping: Mapping2D,
         /// Value on even cells.
         tex1: FloatTex,
         /// Value on odd cells.
@@ -109,6 +83,63 @@ pub enum FloatTexture {
         /// Blend factor.
         amount: FloatTex,
     },
+    /// Alternates `tex1` and `tex2` on unit cubes of texture space (`dimension` 3).
+    Checkerboard3D {
+        /// Texture space.
+        mapping: Mapping3D,
+        /// Value on even cells.
+        tex1: FloatTex,
+        /// Value on odd cells.
+        tex2: FloatTex,
+    },
+    /// Bilinear interpolation of four corner values over (s, t).
+    Bilerp {
+        /// Texture-coordinate mapping.
+        mapping: Mapping2D,
+        /// Values at (0, 0), (0, 1), (1, 0), (1, 1).
+        v: [f32; 4],
+    },
+    /// Polka dots ([`procedural::inside_polka_dot`]).
+    Dots {
+        /// Texture-coordinate mapping.
+        mapping: Mapping2D,
+        /// Value inside a dot (pbrt-v4's `outside` parameter: it swaps the two).
+        dot: FloatTex,
+        /// Value between the dots (pbrt-v4's `inside` parameter).
+        background: FloatTex,
+    },
+    /// Fractional Brownian motion ([`crate::math::noise::fbm`]) in texture space.
+    Fbm {
+        /// Texture space.
+        mapping: Mapping3D,
+        /// Maximum number of octaves.
+        octaves: u32,
+        /// Amplitude ratio between octaves (`roughness`).
+        omega: f32,
+    },
+    /// Turbulence ([`crate::math::noise::turbulence`]) in texture space.
+    Wrinkled {
+        /// Texture space.
+        mapping: Mapping3D,
+        /// Maximum number of octaves.
+        octaves: u32,
+        /// Amplitude ratio between octaves (`roughness`).
+        omega: f32,
+    },
+    /// Wind-swept waves ([`procedural::windy`]) in texture space.
+    Windy {
+        /// Texture space.
+        mapping: Mapping3D,
+    },
+    /// `a·tex1 + (1 − a)·tex2` with `a = |n·dir|` (n the geometric normal).
+    DirectionMix {
+        /// Seen along `dir`.
+        tex1: FloatTex,
+        /// Seen across it.
+        tex2: FloatTex,
+        /// Unit direction, world space.
+        dir: Vec3,
+    },
 }
 
 /// A colour texture (pbrt's spectrum textures), plain data.
@@ -118,10 +149,10 @@ pub enum SpectrumTexture {
     Constant(Rgb),
     /// An image.
     Image(ImageTexture),
-    /// Alternates `tex1` and `tex2` on a grid of the mapped (u, v).
+    /// Alternates `tex1` and `tex2` on a grid of the mapped (s, t).
     Checkerboard {
-        /// (u, v) mapping.
-        mapping: UvMapping,
+        /// Texture-coordinate mapping.
+        mapping: Mapping2D,
         /// Value on even cells.
         tex1: SpectrumTex,
         /// Value on odd cells.
@@ -143,6 +174,53 @@ pub enum SpectrumTexture {
         /// Blend factor.
         amount: FloatTex,
     },
+    /// Alternates `tex1` and `tex2` on unit cubes of texture space (`dimension` 3).
+    Checkerboard3D {
+        /// Texture space.
+        mapping: Mapping3D,
+        /// Value on even cells.
+        tex1: SpectrumTex,
+        /// Value on odd cells.
+        tex2: SpectrumTex,
+    },
+    /// Bilinear interpolation of four corner colours over (s, t).
+    Bilerp {
+        /// Texture-coordinate mapping.
+        mapping: Mapping2D,
+        /// Colours at (0, 0), (0, 1), (1, 0), (1, 1).
+        v: [Rgb; 4],
+    },
+    /// Polka dots ([`procedural::inside_polka_dot`]).
+    Dots {
+        /// Texture-coordinate mapping.
+        mapping: Mapping2D,
+        /// Colour inside a dot (pbrt-v4's `outside` parameter: it swaps the two).
+        dot: SpectrumTex,
+        /// Colour between the dots (pbrt-v4's `inside` parameter).
+        background: SpectrumTex,
+    },
+    /// Marble ([`procedural::marble`]) in texture space.
+    Marble {
+        /// Texture space.
+        mapping: Mapping3D,
+        /// Maximum number of octaves.
+        octaves: u32,
+        /// Amplitude ratio between octaves (`roughness`).
+        omega: f32,
+        /// Frequency of the veins (`scale`).
+        scale: f32,
+        /// Strength of the noise (`variation`).
+        variation: f32,
+    },
+    /// `a·tex1 + (1 − a)·tex2` with `a = |n·dir|` (n the geometric normal).
+    DirectionMix {
+        /// Seen along `dir`.
+        tex1: SpectrumTex,
+        /// Seen across it.
+        tex2: SpectrumTex,
+        /// Unit direction, world space.
+        dir: Vec3,
+    },
 }
 
 /// Where a texture is looked up.
@@ -152,104 +230,6 @@ pub struct TexCoord {
     pub uv: Vec2,
     /// World-space position.
     pub p: Vec3,
-}
-
-/// Evaluates texture parameters against the scene's texture lists.
-#[derive(Clone, Copy)]
-pub struct TextureEval<'a> {
-    /// The scene's float textures.
-    pub floats: &'a [FloatTexture],
-    /// The scene's spectrum textures.
-    pub spectra: &'a [SpectrumTexture],
-}
-
-fn checker(mapping: &UvMapping, uv: Vec2) -> bool {
-    let st = mapping.map(uv);
-    (st.x.floor() as i64 + st.y.floor() as i64) & 1 == 0
-}
-
-impl TextureEval<'_> {
-    /// The value of a float parameter at `tc`.
-    #[inline(always)]
-    pub fn float(&self, t: FloatTex, tc: &TexCoord) -> f32 {
-        // Constants inline (most parameters), textures out of line.
-        match t {
-            FloatTex::Const(v) => v,
-            FloatTex::Tex(i) => self.float_texture(i, tc),
-        }
-    }
-
-    /// The value of texture `i` at `tc`.
-    #[inline(never)]
-    fn float_texture(&self, i: u32, tc: &TexCoord) -> f32 {
-        match &self.floats[i as usize] {
-            FloatTexture::Constant(v) => *v,
-            FloatTexture::Image(it) => {
-                let v = it
-                    .image
-                    .lookup(it.mapping.map(tc.uv), it.wrap, it.nearest)
-                    .x
-                    * it.scale;
-                if it.invert { (1.0 - v).max(0.0) } else { v }
-            }
-            FloatTexture::Checkerboard {
-                mapping,
-                tex1,
-                tex2,
-            } => {
-                if checker(mapping, tc.uv) {
-                    self.float(*tex1, tc)
-                } else {
-                    self.float(*tex2, tc)
-                }
-            }
-            FloatTexture::Scale { tex, scale } => self.float(*tex, tc) * self.float(*scale, tc),
-            FloatTexture::Mix { tex1, tex2, amount } => {
-                let a = self.float(*amount, tc);
-                (1.0 - a) * self.float(*tex1, tc) + a * self.float(*tex2, tc)
-            }
-        }
-    }
-
-    /// The value of a colour parameter at `tc`.
-    #[inline(always)]
-    pub fn spectrum(&self, t: SpectrumTex, tc: &TexCoord) -> Rgb {
-        // Constants inline (most parameters), textures out of line.
-        match t {
-            SpectrumTex::Const(v) => v,
-            SpectrumTex::Tex(i) => self.spectrum_texture(i, tc),
-        }
-    }
-
-    /// The value of texture `i` at `tc`.
-    #[inline(never)]
-    fn spectrum_texture(&self, i: u32, tc: &TexCoord) -> Rgb {
-        match &self.spectra[i as usize] {
-            SpectrumTexture::Constant(v) => *v,
-            SpectrumTexture::Image(it) => {
-                // pbrt-v4: max(0, invert ? 1 − scale·c : scale·c).
-                let v = it.image.lookup(it.mapping.map(tc.uv), it.wrap, it.nearest) * it.scale;
-                let v = if it.invert { Rgb::ONE - v } else { v };
-                v.max(Rgb::ZERO)
-            }
-            SpectrumTexture::Checkerboard {
-                mapping,
-                tex1,
-                tex2,
-            } => {
-                if checker(mapping, tc.uv) {
-                    self.spectrum(*tex1, tc)
-                } else {
-                    self.spectrum(*tex2, tc)
-                }
-            }
-            SpectrumTexture::Scale { tex, scale } => {
-                self.spectrum(*tex, tc) * self.float(*scale, tc)
-            }
-            SpectrumTexture::Mix { tex1, tex2, amount } => {
-                let a = self.float(*amount, tc);
-                (1.0 - a) * self.spectrum(*tex1, tc) + a * self.spectrum(*tex2, tc)
-            }
-        }
-    }
+    /// Geometric normal, world space (for `directionmix`).
+    pub n: Vec3,
 }

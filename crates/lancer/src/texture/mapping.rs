@@ -1,0 +1,225 @@
+//! Texture mappings: where on a texture a surface point lands, as pbrt-v4's `TextureMapping2D`
+//! (`uv`, `spherical`, `cylindrical`, `planar`) and `TextureMapping3D` (the point in texture
+//! space). Texture space is the coordinate system current at the `Texture` directive: the
+//! mappings hold `texture_from_world`, the inverse of that transformation.
+
+use super::TexCoord;
+use crate::math::{INV_2PI, INV_PI, PI, Transform, Vec2, Vec3, safe_acos};
+
+/// The (u, v) mapping of pbrt's textures: `(su·u + du, sv·v + dv)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UvMapping {
+    /// Scale of u (`uscale`).
+    pub su: f32,
+    /// Scale of v (`vscale`).
+    pub sv: f32,
+    /// Offset of u (`udelta`).
+    pub du: f32,
+    /// Offset of v (`vdelta`).
+    pub dv: f32,
+}
+
+impl Default for UvMapping {
+    fn default() -> Self {
+        UvMapping {
+            su: 1.0,
+            sv: 1.0,
+            du: 0.0,
+            dv: 0.0,
+        }
+    }
+}
+
+impl UvMapping {
+    /// The mapped texture coordinates.
+    #[inline]
+    pub fn map(&self, uv: Vec2) -> Vec2 {
+        Vec2::new(self.su * uv.x + self.du, self.sv * uv.y + self.dv)
+    }
+}
+
+/// A 2D texture mapping: surface point → texture coordinates (s, t).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Mapping2D {
+    /// The surface's own (u, v), scaled and offset.
+    Uv(UvMapping),
+    /// Around texture space's origin: `s = θ/π` (θ from texture +z), `t = φ/2π`, of the
+    /// direction from the origin to the point.
+    Spherical {
+        /// World → texture space.
+        texture_from_world: Transform,
+    },
+    /// Around texture space's z axis: `s = (π + atan2(y, x))/2π`, `t = z`.
+    Cylindrical {
+        /// World → texture space.
+        texture_from_world: Transform,
+    },
+    /// Projection on two vectors: `s = ds + p·vs`, `t = dt + p·vt` (p in texture space).
+    Planar {
+        /// World → texture space.
+        texture_from_world: Transform,
+        /// `v1`.
+        vs: Vec3,
+        /// `v2`.
+        vt: Vec3,
+        /// `udelta`.
+        ds: f32,
+        /// `vdelta`.
+        dt: f32,
+    },
+}
+
+impl Default for Mapping2D {
+    fn default() -> Self {
+        Mapping2D::Uv(UvMapping::default())
+    }
+}
+
+impl From<UvMapping> for Mapping2D {
+    fn from(m: UvMapping) -> Self {
+        Mapping2D::Uv(m)
+    }
+}
+
+impl Mapping2D {
+    /// The texture coordinates (s, t) of `tc`.
+    #[inline]
+    pub fn map(&self, tc: &TexCoord) -> Vec2 {
+        match self {
+            Mapping2D::Uv(m) => m.map(tc.uv),
+            Mapping2D::Spherical { texture_from_world } => {
+                let v = texture_from_world.point(tc.p).normalize_or_zero();
+                let phi = v.y.atan2(v.x);
+                let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
+                Vec2::new(safe_acos(v.z) * INV_PI, phi * INV_2PI)
+            }
+            Mapping2D::Cylindrical { texture_from_world } => {
+                let p = texture_from_world.point(tc.p);
+                Vec2::new((PI + p.y.atan2(p.x)) * INV_2PI, p.z)
+            }
+            Mapping2D::Planar {
+                texture_from_world,
+                vs,
+                vt,
+                ds,
+                dt,
+            } => {
+                let p = texture_from_world.point(tc.p);
+                Vec2::new(ds + p.dot(*vs), dt + p.dot(*vt))
+            }
+        }
+    }
+}
+
+/// pbrt-v4's 3D mapping (`PointTransformMapping`): the point in texture space.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct Mapping3D {
+    /// World → texture space.
+    pub texture_from_world: Transform,
+}
+
+impl Mapping3D {
+    /// The texture-space point of `tc`.
+    #[inline]
+    pub fn map(&self, tc: &TexCoord) -> Vec3 {
+        self.texture_from_world.point(tc.p)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn at(p: Vec3) -> TexCoord {
+        TexCoord {
+            p,
+            ..TexCoord::default()
+        }
+    }
+
+    fn close(a: Vec2, b: Vec2) -> bool {
+        (a - b).abs().max_element() < 1e-5
+    }
+
+    #[test]
+    fn uv_scales_then_offsets() {
+        let m = Mapping2D::Uv(UvMapping {
+            su: 2.0,
+            sv: 1.5,
+            du: 0.25,
+            dv: -0.1,
+        });
+        let tc = TexCoord {
+            uv: Vec2::new(0.5, 0.2),
+            ..TexCoord::default()
+        };
+        // (2·0.5 + 0.25, 1.5·0.2 − 0.1) = (1.25, 0.2).
+        assert!(close(m.map(&tc), Vec2::new(1.25, 0.2)));
+    }
+
+    #[test]
+    fn spherical_measures_theta_from_texture_z() {
+        let m = Mapping2D::Spherical {
+            texture_from_world: Transform::IDENTITY,
+        };
+        // +z: θ = 0; +x: θ = π/2, φ = 0; +y: φ = π/2 → t = 1/4; −y: φ = 3π/2 → t = 3/4.
+        assert!(close(m.map(&at(Vec3::Z * 3.0)), Vec2::new(0.0, 0.0)));
+        assert!(close(m.map(&at(Vec3::X)), Vec2::new(0.5, 0.0)));
+        assert!(close(m.map(&at(Vec3::Y)), Vec2::new(0.5, 0.25)));
+        assert!(close(m.map(&at(-Vec3::Y - Vec3::Z)), Vec2::new(0.75, 0.75)));
+        // Texture space moved to (0, 0, 5) by the CTM: the world point (1, 0, 5) is texture +x.
+        let moved = Mapping2D::Spherical {
+            texture_from_world: Transform::translate(Vec3::new(0.0, 0.0, 5.0)).inverse(),
+        };
+        assert!(close(
+            moved.map(&at(Vec3::new(1.0, 0.0, 5.0))),
+            Vec2::new(0.5, 0.0)
+        ));
+    }
+
+    #[test]
+    fn cylindrical_starts_s_at_minus_x_and_t_is_height() {
+        let m = Mapping2D::Cylindrical {
+            texture_from_world: Transform::scale(Vec3::new(1.0, 1.0, 0.5))
+                .unwrap()
+                .inverse(),
+        };
+        // (π + atan2(0, 1))/2π = 1/2 at +x; atan2(1, 0) = π/2 → 3/4 at +y; z = 0.3 / 0.5.
+        assert!(close(
+            m.map(&at(Vec3::new(1.0, 0.0, 0.3))),
+            Vec2::new(0.5, 0.6)
+        ));
+        assert!(close(
+            m.map(&at(Vec3::new(0.0, 2.0, 0.0))),
+            Vec2::new(0.75, 0.0)
+        ));
+        assert!(close(
+            m.map(&at(Vec3::new(-1.0, -1e-7, 0.0))),
+            Vec2::new(0.0, 0.0)
+        ));
+    }
+
+    #[test]
+    fn planar_projects_on_v1_and_v2() {
+        let m = Mapping2D::Planar {
+            texture_from_world: Transform::translate(Vec3::new(0.0, 0.5, 0.0)).inverse(),
+            vs: Vec3::new(0.9, 0.35, 0.0),
+            vt: Vec3::new(-0.35, 0.9, 0.0),
+            ds: 0.5,
+            dt: 0.4,
+        };
+        // Texture point (0.2, 0.1, 0): s = 0.5 + 0.18 + 0.035, t = 0.4 − 0.07 + 0.09.
+        let st = m.map(&at(Vec3::new(0.2, 0.6, 7.0)));
+        assert!(close(st, Vec2::new(0.715, 0.42)), "{st}");
+    }
+
+    #[test]
+    fn the_3d_mapping_moves_the_point_into_texture_space() {
+        let m = Mapping3D {
+            texture_from_world: Transform::scale(Vec3::splat(0.2)).unwrap().inverse(),
+        };
+        assert!(
+            (m.map(&at(Vec3::new(0.2, 0.4, -0.6))) - Vec3::new(1.0, 2.0, -3.0)).length() < 1e-5
+        );
+    }
+}
