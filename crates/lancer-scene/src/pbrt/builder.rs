@@ -597,7 +597,11 @@ impl Builder {
         loc: &Location,
     ) -> Result<u32, SceneError> {
         let converted = material(&self.reader(params, dir), ty, loc)?;
-        let MaterialWithNames { material, mix } = self.accept(converted, loc);
+        let MaterialWithNames {
+            material,
+            mix,
+            bump,
+        } = self.accept(converted, loc);
         let index = self.desc.materials.len() as u32;
         self.desc.materials.push(material);
         if let Some((names, nloc)) = mix {
@@ -606,7 +610,7 @@ impl Builder {
                     .push((Slot::Mix(index, k), n, nloc.clone()));
             }
         }
-        Ok(index)
+        Ok(bump.map_or(index, |b| b.push_around(index, &mut self.desc)))
     }
 
     /// `MakeNamedMaterial "name" "string type" …`.

@@ -4,10 +4,12 @@
 
 use super::convert::{Fallback, Reader, locate};
 use crate::error::{Location, SceneError};
+use crate::image_read::Encoding;
 use lancer::material::Material;
 use lancer::math::Rgb;
+use lancer::scene::desc::SceneDesc;
 use lancer::spectrum::{SpectrumKind, named_spectrum, spectrum_to_rgb};
-use lancer::texture::FloatTex;
+use lancer::texture::{FloatTex, ImageTexture, Mapping2D, SpectrumTexture, WrapMode};
 
 /// A material, and for a `mix` the two names it refers to and where they are written.
 #[derive(Clone, Debug)]
@@ -16,6 +18,8 @@ pub struct MaterialWithNames {
     pub material: Material,
     /// The names of a `mix`, and where they are given.
     pub mix: Option<(Vec<String>, Location)>,
+    /// Its bump or normal map, which the builder wraps around it ([`Material::Bumped`]).
+    pub bump: Option<BumpMaps>,
 }
 
 impl From<Material> for MaterialWithNames {
@@ -23,8 +27,69 @@ impl From<Material> for MaterialWithNames {
         MaterialWithNames {
             material,
             mix: None,
+            bump: None,
         }
     }
+}
+
+/// A material's `"texture displacement"` and `"string normalmap"` (pbrt-v4 reads both on
+/// every material but `mix` and `interface`; the normal map wins when both are given).
+#[derive(Clone, Debug)]
+pub struct BumpMaps {
+    /// Height texture.
+    pub displacement: Option<FloatTex>,
+    /// The tangent-space normal image as pbrt-v4 reads it: linear, bilinear, repeat, at the
+    /// surface's (u, v) (the image's row 0 at v = 1).
+    pub normal_map: Option<ImageTexture>,
+}
+
+impl BumpMaps {
+    /// Adds these maps around material `base` of `desc`: the normal map as a spectrum texture,
+    /// then a [`Material::Bumped`] referring to both; returns the latter's index.
+    pub fn push_around(self, base: u32, desc: &mut SceneDesc) -> u32 {
+        let normal_map = self.normal_map.map(|t| {
+            desc.spectrum_textures.push(SpectrumTexture::Image(t));
+            desc.spectrum_textures.len() as u32 - 1
+        });
+        desc.materials.push(Material::Bumped {
+            base,
+            displacement: self.displacement,
+            normal_map,
+        });
+        desc.materials.len() as u32 - 1
+    }
+}
+
+/// The bump maps of a material's parameters, if any.
+fn bump_maps(r: &Reader) -> Result<Option<BumpMaps>, SceneError> {
+    let displacement = if r.params.has("displacement") {
+        Some(r.float_tex("displacement", 0.0)?)
+    } else {
+        None
+    };
+    let normal_map = match r.params.string("normalmap")?.filter(|n| !n.is_empty()) {
+        None => None,
+        Some(name) => {
+            let image = r
+                .images
+                .rgb(&r.dir.resolve(&name), Encoding::Linear)
+                .map_err(|e| r.params.error_at("normalmap", e.to_string()))?;
+            Some(ImageTexture {
+                image,
+                mapping: Mapping2D::default(),
+                wrap: WrapMode::Repeat,
+                scale: 1.0,
+                invert: false,
+                nearest: false,
+            })
+        }
+    };
+    Ok(
+        (displacement.is_some() || normal_map.is_some()).then_some(BumpMaps {
+            displacement,
+            normal_map,
+        }),
+    )
 }
 
 /// The linear RGB of one of pbrt's named spectra (the metals' η and k).
@@ -64,7 +129,15 @@ pub fn material(
     ty: &str,
     loc: &Location,
 ) -> Result<Fallback<MaterialWithNames>, SceneError> {
-    convert(r, ty).map_err(|e| locate(e, loc))
+    let with_bump = |mut m: Fallback<MaterialWithNames>| -> Result<_, SceneError> {
+        if !matches!(m.value.material, Material::Mix { .. } | Material::Interface) {
+            m.value.bump = bump_maps(r)?;
+        }
+        Ok(m)
+    };
+    convert(r, ty)
+        .and_then(with_bump)
+        .map_err(|e| locate(e, loc))
 }
 
 fn convert(r: &Reader, ty: &str) -> Result<Fallback<MaterialWithNames>, SceneError> {
@@ -178,6 +251,7 @@ fn convert(r: &Reader, ty: &str) -> Result<Fallback<MaterialWithNames>, SceneErr
             return Ok(Fallback::done(MaterialWithNames {
                 material,
                 mix: Some((names, loc)),
+                bump: None,
             }));
         }
         "interface" | "" | "none" => Material::Interface,
@@ -550,3 +624,6 @@ mod tests {
         );
     }
 }
+
+#[cfg(test)]
+mod bump_tests;

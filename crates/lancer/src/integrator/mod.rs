@@ -139,6 +139,8 @@ pub(crate) fn bsdf_at(
                     materials[0]
                 };
             }
+            // The bump map was applied at the hit (`crate::material::apply_bump`).
+            Material::Bumped { base, .. } => m = *base,
             mat => {
                 let spectral = lambda.map(|lambda| SpectralColours {
                     lambda,

@@ -1,6 +1,7 @@
 //! Materials: how a surface scatters light, as plain data ([`Material`]), turned at each hit
 //! into a [`Bsdf`] in the local shading frame.
 
+mod bump;
 mod bxdf;
 mod conductor;
 mod dielectric;
@@ -10,6 +11,7 @@ mod layered;
 mod microfacet;
 mod scatter;
 
+pub use bump::{bump_shading, normal_map_shading};
 pub use bxdf::{Bsdf, BxDF};
 pub use conductor::ConductorBxdf;
 pub use dielectric::{DielectricBxdf, ThinDielectricBxdf};
@@ -138,6 +140,16 @@ pub enum Material {
     },
     /// No surface at all: marks the boundary of a participating medium; rays pass through.
     Interface,
+    /// Material `base` with its shading frame changed by a bump map (`displacement`) or a
+    /// normal map (pbrt-v4's `normalmap`, which wins when both are given); see [`bump`].
+    Bumped {
+        /// Index of the material underneath in the scene's list.
+        base: u32,
+        /// Height texture.
+        displacement: Option<FloatTex>,
+        /// Spectrum texture holding the tangent-space normal image.
+        normal_map: Option<u32>,
+    },
 }
 
 impl Default for Material {
@@ -197,6 +209,33 @@ fn conductor_index(
     }
 }
 
+/// Changes `si`'s shading frame as material `m`'s bump or normal map asks (pbrt-v4 does it
+/// in `SurfaceInteraction::GetBSDF`, before the BSDF and everything that uses the shading
+/// normal). Other materials leave it alone.
+#[inline]
+pub fn apply_bump(
+    materials: &[Material],
+    tex: &TextureEval,
+    m: u32,
+    si: &mut crate::shape::SurfaceInteraction,
+) {
+    if let Material::Bumped {
+        displacement,
+        normal_map,
+        ..
+    } = materials[m as usize]
+    {
+        let shading = match (normal_map, displacement) {
+            (Some(nm), _) => normal_map_shading(tex, nm, si),
+            (None, Some(d)) => bump_shading(tex, d, si),
+            (None, None) => None,
+        };
+        if let Some(sh) = shading {
+            si.shading = sh;
+        }
+    }
+}
+
 impl Material {
     /// The pbrt-v4 name of this material (`Material "…"`): `diffuse`, `conductor`, …
     pub fn pbrt_name(&self) -> &'static str {
@@ -210,6 +249,7 @@ impl Material {
             Material::CoatedConductor { .. } => "coatedconductor",
             Material::Mix { .. } => "mix",
             Material::Interface => "interface",
+            Material::Bumped { .. } => "bumped",
         }
     }
 
@@ -268,7 +308,8 @@ impl Material {
             Material::Dielectric { .. }
             | Material::ThinDielectric { .. }
             | Material::Mix { .. }
-            | Material::Interface => [None; COLOUR_SLOTS],
+            | Material::Interface
+            | Material::Bumped { .. } => [None; COLOUR_SLOTS],
         }
     }
 
@@ -446,7 +487,7 @@ impl Material {
                     n_samples,
                 ))
             }
-            Material::Mix { .. } | Material::Interface => return None,
+            Material::Mix { .. } | Material::Interface | Material::Bumped { .. } => return None,
         })
     }
 }

@@ -112,7 +112,9 @@ impl Scene {
                 r.t_max = b.0.t;
             }
             if let Some(ih) = self.instances.intersect(&r) {
-                let (si, prim) = self.instances.interaction(ray, &ih);
+                let (mut si, prim) = self.instances.interaction(ray, &ih);
+                let m = self.prims[prim as usize].material;
+                crate::material::apply_bump(&self.materials, &self.textures(), m, &mut si);
                 // Instanced objects are triangle meshes, which carry no colour of their own.
                 return Some(SceneHit {
                     si,
@@ -123,7 +125,9 @@ impl Scene {
         }
         let (h, prim) = best?;
         let shape = &self.shapes[prim as usize];
-        let si = shape.interaction(ray, &h, &self.meshes);
+        let mut si = shape.interaction(ray, &h, &self.meshes);
+        let m = self.prims[prim as usize].material;
+        crate::material::apply_bump(&self.materials, &self.textures(), m, &mut si);
         let albedo = shape.hit_albedo(&h);
         Some(SceneHit { si, prim, albedo })
     }

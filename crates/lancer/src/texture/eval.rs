@@ -1,22 +1,11 @@
 //! Evaluation of texture parameters against the scene's texture lists, as pbrt-v4's textures'
 //! `Evaluate`.
 
+use super::mapping::{Mapping2D, Mapping3D, TexCoord};
 use super::procedural::{bilerp, inside_polka_dot, marble, windy};
-use super::{
-    FloatTex, FloatTexture, ImageTexture, Mapping2D, Mapping3D, SpectrumTex, SpectrumTexture,
-    TexCoord,
-};
+use super::{FloatTex, FloatTexture, ImageTexture, SpectrumTex, SpectrumTexture, TextureEval};
 use crate::math::Rgb;
 use crate::math::noise::{fbm, turbulence};
-
-/// Evaluates texture parameters against the scene's texture lists.
-#[derive(Clone, Copy)]
-pub struct TextureEval<'a> {
-    /// The scene's float textures.
-    pub floats: &'a [FloatTexture],
-    /// The scene's spectrum textures.
-    pub spectra: &'a [SpectrumTexture],
-}
 
 /// True on the even cells of the 2D checkerboard: `⌊s⌋ + ⌊t⌋` even (pbrt-v4's filtered
 /// checkerboard with a zero footprint).

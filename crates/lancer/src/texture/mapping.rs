@@ -3,8 +3,18 @@
 //! space). Texture space is the coordinate system current at the `Texture` directive: the
 //! mappings hold `texture_from_world`, the inverse of that transformation.
 
-use super::TexCoord;
 use crate::math::{INV_2PI, INV_PI, PI, Transform, Vec2, Vec3, safe_acos};
+
+/// Where a texture is looked up.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TexCoord {
+    /// Surface (u, v).
+    pub uv: Vec2,
+    /// World-space position.
+    pub p: Vec3,
+    /// Geometric normal, world space (for `directionmix`).
+    pub n: Vec3,
+}
 
 /// The (u, v) mapping of pbrt's textures: `(su·u + du, sv·v + dv)`.
 #[derive(Clone, Copy, Debug, PartialEq)]

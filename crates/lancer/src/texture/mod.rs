@@ -10,9 +10,8 @@ pub mod procedural;
 
 use crate::image::Image;
 pub use crate::image::WrapMode;
-use crate::math::{Rgb, Vec2, Vec3};
-pub use eval::TextureEval;
-pub use mapping::{Mapping2D, Mapping3D, UvMapping};
+use crate::math::{Rgb, Vec3};
+pub use mapping::{Mapping2D, Mapping3D, TexCoord, UvMapping};
 use std::sync::Arc;
 
 /// A float-valued material parameter: a constant, or the index of a float texture.
@@ -223,13 +222,12 @@ pub enum SpectrumTexture {
     },
 }
 
-/// Where a texture is looked up.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct TexCoord {
-    /// Surface (u, v).
-    pub uv: Vec2,
-    /// World-space position.
-    pub p: Vec3,
-    /// Geometric normal, world space (for `directionmix`).
-    pub n: Vec3,
+/// Evaluates texture parameters against the scene's texture lists (the evaluation itself is
+/// in `eval.rs`).
+#[derive(Clone, Copy)]
+pub struct TextureEval<'a> {
+    /// The scene's float textures.
+    pub floats: &'a [FloatTexture],
+    /// The scene's spectrum textures.
+    pub spectra: &'a [SpectrumTexture],
 }

@@ -1,0 +1,177 @@
+//! Bump and normal mapping: the shading frame a material's `displacement` texture or
+//! `normalmap` image gives, as pbrt-v4's `BumpMap`, `NormalMap` and `SetShadingGeometry`.
+//!
+//! Both replace the shading ∂p/∂u and ∂p/∂v; the shading normal is then
+//! `normalize(∂p/∂u × ∂p/∂v)`, turned to the geometric normal's side.
+
+use crate::math::{Vec2, Vec3, cross, face_forward, normalize};
+use crate::shape::{Shading, SurfaceInteraction};
+use crate::texture::{FloatTex, SpectrumTex, TexCoord, TextureEval};
+
+/// The finite-difference step in u and v. pbrt-v4 uses half the footprint's extent in (u, v),
+/// 0.0005 when it is zero; lancer's rays carry no differentials, so it is always 0.0005.
+const DELTA: f32 = 0.0005;
+
+/// The shading frame of the new ∂p/∂u, ∂p/∂v: `ns = normalize(∂p/∂u × ∂p/∂v)` on the side of
+/// the geometric normal `n` (pbrt-v4's `SetShadingGeometry` without authoritative
+/// orientation). `None` when the tangents are degenerate (the old frame is kept).
+fn shading_from(dpdu: Vec3, dpdv: Vec3, n: Vec3) -> Option<Shading> {
+    let c = cross(dpdu, dpdv);
+    let len2 = c.length_squared();
+    if len2 == 0.0 || !len2.is_finite() {
+        return None;
+    }
+    Some(Shading {
+        n: face_forward(normalize(c), n),
+        dpdu,
+        dpdv,
+    })
+}
+
+/// pbrt-v4's `BumpMap`: with d the displacement texture, δ = [`DELTA`],
+/// `∂p/∂u' = ∂p/∂u + (d(u + δ) − d(u))/δ · ns` (and the same in v), the texture shifted by
+/// δ·∂p/∂u in position and by δ in u. pbrt-v4 also adds `d · ∂n/∂u`; lancer's hits carry no
+/// normal derivatives, so that term (a relative change of d/radius on curved surfaces) is
+/// left out.
+pub fn bump_shading(
+    tex: &TextureEval,
+    displacement: FloatTex,
+    si: &SurfaceInteraction,
+) -> Option<Shading> {
+    let sh = &si.shading;
+    let at = |p: Vec3, uv: Vec2| TexCoord { uv, p, n: si.n };
+    let d = tex.float(displacement, &at(si.p, si.uv));
+    let du = tex.float(
+        displacement,
+        &at(si.p + DELTA * sh.dpdu, si.uv + Vec2::new(DELTA, 0.0)),
+    );
+    let dv = tex.float(
+        displacement,
+        &at(si.p + DELTA * sh.dpdv, si.uv + Vec2::new(0.0, DELTA)),
+    );
+    let dpdu = sh.dpdu + (du - d) / DELTA * sh.n;
+    let dpdv = sh.dpdv + (dv - d) / DELTA * sh.n;
+    shading_from(dpdu, dpdv, si.n)
+}
+
+/// pbrt-v4's `NormalMap`: the image's colour c at (u, 1 − v) (bilinear, repeat; the texture
+/// `normal_map` is such an image, read linear) gives the tangent-space normal
+/// `normalize(2c − 1)` in the frame (∂p/∂u, ns × ∂p/∂u, ns); then
+/// `∂p/∂u' = |∂p/∂u| · normalize(∂p/∂u − (∂p/∂u·n')n')` and
+/// `∂p/∂v' = |∂p/∂v| · normalize(n' × ∂p/∂u')`.
+pub fn normal_map_shading(
+    tex: &TextureEval,
+    normal_map: u32,
+    si: &SurfaceInteraction,
+) -> Option<Shading> {
+    let sh = &si.shading;
+    let tc = TexCoord {
+        uv: si.uv,
+        p: si.p,
+        n: si.n,
+    };
+    let c = tex.spectrum(SpectrumTex::Tex(normal_map), &tc);
+    let local = (2.0 * c - Vec3::ONE).try_normalize()?;
+    let x = sh.dpdu.try_normalize()?;
+    let z = sh.n;
+    let ns = x * local.x + cross(z, x) * local.y + z * local.z;
+    let (ulen, vlen) = (sh.dpdu.length(), sh.dpdv.length());
+    let dpdu = (sh.dpdu - sh.dpdu.dot(ns) * ns).try_normalize()? * ulen;
+    let dpdv = cross(ns, dpdu).try_normalize()? * vlen;
+    shading_from(dpdu, dpdv, si.n)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Rgb;
+    use crate::texture::{FloatTexture, Mapping2D, SpectrumTexture};
+
+    /// A hit on the plane z = 0 at (u, v) = (x, y), ∂p/∂u = x̂, ∂p/∂v = ŷ, n = ẑ.
+    fn flat(x: f32, y: f32) -> SurfaceInteraction {
+        SurfaceInteraction {
+            p: Vec3::new(x, y, 0.0),
+            p_error: Vec3::ZERO,
+            n: Vec3::Z,
+            uv: Vec2::new(x, y),
+            dpdu: Vec3::X,
+            dpdv: Vec3::Y,
+            shading: Shading {
+                n: Vec3::Z,
+                dpdu: Vec3::X,
+                dpdv: Vec3::Y,
+            },
+            wo: Vec3::Z,
+            t: 1.0,
+        }
+    }
+
+    #[test]
+    fn bumps_tilt_the_normal_against_the_height_gradient() {
+        // Height h(u, v) = 0.1·u + 0.2·v (bilerp 0, 0.2, 0.1, 0.3): the displaced surface
+        // (u, v, h) has normal ∝ (−0.1, −0.2, 1).
+        let floats = vec![FloatTexture::Bilerp {
+            mapping: Mapping2D::default(),
+            v: [0.0, 0.2, 0.1, 0.3],
+        }];
+        let tex = TextureEval {
+            floats: &floats,
+            spectra: &[],
+        };
+        let sh = bump_shading(&tex, FloatTex::Tex(0), &flat(0.3, 0.6)).unwrap();
+        let want = normalize(Vec3::new(-0.1, -0.2, 1.0));
+        assert!((sh.n - want).length() < 2e-3, "{} vs {want}", sh.n);
+        assert!((sh.dpdu - Vec3::new(1.0, 0.0, 0.1)).length() < 2e-3);
+        // A constant height leaves the frame as it was.
+        let sh = bump_shading(&tex, FloatTex::Const(0.7), &flat(0.3, 0.6)).unwrap();
+        assert_eq!((sh.n, sh.dpdu, sh.dpdv), (Vec3::Z, Vec3::X, Vec3::Y));
+    }
+
+    #[test]
+    fn bumped_normals_stay_on_the_geometric_side() {
+        // The same slope seen from a surface whose normal is −z: ns is flipped to −z's side.
+        let floats = vec![FloatTexture::Bilerp {
+            mapping: Mapping2D::default(),
+            v: [0.0, 0.0, 0.5, 0.5],
+        }];
+        let tex = TextureEval {
+            floats: &floats,
+            spectra: &[],
+        };
+        let mut si = flat(0.5, 0.5);
+        si.n = -Vec3::Z;
+        si.shading.n = -Vec3::Z;
+        let sh = bump_shading(&tex, FloatTex::Tex(0), &si).unwrap();
+        assert!(sh.n.z < 0.0, "{}", sh.n);
+        // dpdu' = x̂ + 0.5·(−ẑ): the slope follows the shading normal.
+        assert!(
+            (sh.dpdu - Vec3::new(1.0, 0.0, -0.5)).length() < 2e-3,
+            "{}",
+            sh.dpdu
+        );
+    }
+
+    #[test]
+    fn a_flat_normal_map_keeps_the_frame_and_a_tilted_one_tilts_it() {
+        let tilted = normalize(Vec3::new(0.6, 0.0, 0.8));
+        let spectra = vec![
+            SpectrumTexture::Constant(Rgb::new(0.5, 0.5, 1.0)),
+            SpectrumTexture::Constant((tilted + Vec3::ONE) * 0.5),
+        ];
+        let tex = TextureEval {
+            floats: &[],
+            spectra: &spectra,
+        };
+        let mut si = flat(0.2, 0.2);
+        si.shading.dpdu = Vec3::X * 2.0;
+        si.shading.dpdv = Vec3::Y * 3.0;
+        let sh = normal_map_shading(&tex, 0, &si).unwrap();
+        assert!((sh.n - Vec3::Z).length() < 1e-6);
+        // Lengths of ∂p/∂u and ∂p/∂v are kept.
+        assert!((sh.dpdu - Vec3::X * 2.0).length() < 1e-5);
+        assert!((sh.dpdv - Vec3::Y * 3.0).length() < 1e-5);
+        let sh = normal_map_shading(&tex, 1, &si).unwrap();
+        assert!((sh.n - tilted).length() < 1e-5, "{}", sh.n);
+        assert!(sh.dpdu.dot(sh.n).abs() < 1e-5 && (sh.dpdu.length() - 2.0).abs() < 1e-5);
+    }
+}
