@@ -8,6 +8,7 @@
 use super::conductor::ConductorBxdf;
 use super::dielectric::{DielectricBxdf, ThinDielectricBxdf};
 use super::diffuse::{DiffuseBxdf, DiffuseTransmissionBxdf};
+use super::hair::HairBxdf;
 use super::layered::{CoatedConductorBxdf, CoatedDiffuseBxdf};
 use super::scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode};
 use crate::math::{Frame, SampledSpectrum, Vec2, Vec3};
@@ -29,6 +30,8 @@ pub enum BxDF {
     CoatedDiffuse(CoatedDiffuseBxdf),
     /// A dielectric coating over a conductor, evaluated by random walks.
     CoatedConductor(CoatedConductorBxdf),
+    /// A hair fibre (pbrt-v4's `HairBxDF`).
+    Hair(HairBxdf),
 }
 
 /// Calls `$body` with `$b` bound to the variant's inner BxDF, whatever the variant.
@@ -42,6 +45,7 @@ macro_rules! dispatch {
             BxDF::DiffuseTransmission($b) => $body,
             BxDF::CoatedDiffuse($b) => $body,
             BxDF::CoatedConductor($b) => $body,
+            BxDF::Hair($b) => $body,
         }
     };
 }
@@ -87,7 +91,10 @@ impl BxDF {
                 l.top.distrib.regularize();
                 l.bottom.distrib.regularize();
             }
-            BxDF::Diffuse(_) | BxDF::ThinDielectric(_) | BxDF::DiffuseTransmission(_) => {}
+            BxDF::Diffuse(_)
+            | BxDF::ThinDielectric(_)
+            | BxDF::DiffuseTransmission(_)
+            | BxDF::Hair(_) => {}
         }
     }
 }

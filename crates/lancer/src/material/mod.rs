@@ -6,6 +6,7 @@ mod conductor;
 mod dielectric;
 mod diffuse;
 mod fresnel;
+mod hair;
 mod layered;
 mod microfacet;
 mod scatter;
@@ -15,6 +16,9 @@ pub use conductor::ConductorBxdf;
 pub use dielectric::{DielectricBxdf, ThinDielectricBxdf};
 pub use diffuse::{DiffuseBxdf, DiffuseTransmissionBxdf};
 pub use fresnel::{fresnel_complex, fresnel_dielectric, reflect, refract};
+pub use hair::{
+    HairAbsorption, HairBxdf, hair_sigma_a_from_concentration, hair_sigma_a_from_reflectance,
+};
 pub use layered::{CoatedConductorBxdf, CoatedDiffuseBxdf, LayeredBxdf};
 pub use microfacet::TrowbridgeReitz;
 pub use scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode};
@@ -136,6 +140,20 @@ pub enum Material {
         /// Probability of choosing the second.
         amount: FloatTex,
     },
+    /// Hair fibres (pbrt-v4's `hair`, [`HairBxdf`]), meant for `curve` shapes: the offset
+    /// across the fibre is h = −1 + 2v.
+    Hair {
+        /// σₐ, the colour it gives, or melanin concentrations.
+        absorption: HairAbsorption,
+        /// Index of refraction of the fibre.
+        eta: FloatTex,
+        /// Longitudinal roughness, clamped to [0.01, 1].
+        beta_m: FloatTex,
+        /// Azimuthal roughness, clamped to [0.01, 1].
+        beta_n: FloatTex,
+        /// Tilt of the cuticle scales, degrees.
+        alpha: FloatTex,
+    },
     /// No surface at all: marks the boundary of a participating medium; rays pass through.
     Interface,
 }
@@ -209,6 +227,7 @@ impl Material {
             Material::CoatedDiffuse { .. } => "coateddiffuse",
             Material::CoatedConductor { .. } => "coatedconductor",
             Material::Mix { .. } => "mix",
+            Material::Hair { .. } => "hair",
             Material::Interface => "interface",
         }
     }
@@ -265,6 +284,7 @@ impl Material {
                 reflectance.map(|r| (r, Albedo)),
                 Some((albedo, Albedo)),
             ],
+            Material::Hair { absorption, .. } => [absorption.colour_slot(), None, None, None],
             Material::Dielectric { .. }
             | Material::ThinDielectric { .. }
             | Material::Mix { .. }
@@ -444,6 +464,50 @@ impl Material {
                     tex.float(g, tc).clamp(-1.0, 1.0),
                     max_depth,
                     n_samples,
+                ))
+            }
+            Material::Hair {
+                absorption,
+                eta,
+                beta_m,
+                beta_n,
+                alpha,
+            } => {
+                // pbrt-v4's HairMaterial: βm, βn clamped to [0.01, 1], σₐ clamped at 0.
+                let bm = tex.float(beta_m, tc).clamp(0.01, 1.0);
+                let bn = tex.float(beta_n, tc).clamp(0.01, 1.0);
+                let sigma_a = match (absorption, absorption.colour_slot()) {
+                    (HairAbsorption::Reflectance(_), Some((c, _))) => {
+                        hair_sigma_a_from_reflectance(albedo(0, c), bn)
+                    }
+                    (_, Some((s, kind))) => colour(0, s, kind),
+                    (
+                        HairAbsorption::Melanin {
+                            eumelanin,
+                            pheomelanin,
+                        },
+                        None,
+                    ) => {
+                        let rgb = hair_sigma_a_from_concentration(
+                            tex.float(eumelanin, tc).max(0.0),
+                            tex.float(pheomelanin, tc).max(0.0),
+                        );
+                        match spectral {
+                            None => rgb_lanes(rgb),
+                            Some(sc) => sc
+                                .lambda
+                                .sample(&RgbSpectrum::new(rgb, ColourKind::Unbounded)),
+                        }
+                    }
+                    (_, None) => SampledSpectrum::ZERO,
+                };
+                BxDF::Hair(HairBxdf::new(
+                    -1.0 + 2.0 * tc.uv.y,
+                    tex.float(eta, tc),
+                    sigma_a,
+                    bm,
+                    bn,
+                    tex.float(alpha, tc),
                 ))
             }
             Material::Mix { .. } | Material::Interface => return None,
