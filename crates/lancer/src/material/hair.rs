@@ -455,13 +455,15 @@ mod tests {
         assert_eq!(bessel_i0(0.0), 1.0);
         assert!((bessel_i0(1.0) - 1.266_065_9).abs() < 1e-6);
         assert!((bessel_i0(5.0) / 27.239_872 - 1.0).abs() < 1e-4);
-        // The asymptote and the series agree where they meet.
-        assert!((log_bessel_i0(12.01) - bessel_i0(12.01).ln()).abs() < 2e-3);
+        // Past 12 the asymptote: ln I₀(20) = 17.58961 (the full series); pbrt's asymptote
+        // gives 17.58632.
+        assert!((log_bessel_i0(20.0) - 17.589_61).abs() < 5e-3);
     }
 
     #[test]
     fn mp_integrates_to_one_over_theta_i() {
-        // ∫ M_p(θi) cos θi dθi over [−π/2, π/2] = 1 for any θo and v (both branches).
+        // ∫ M_p(θi) cos θi dθi over [−π/2, π/2] = 1 for any θo and v (both branches; the
+        // logarithmic one, with pbrt's ln 2 ≈ 0.6931 and its asymptotic ln I₀, which is 0.4 % low near x = 20, to ~5·10⁻³).
         for v in [0.01f32, 0.05, 0.3, 1.0] {
             for theta_o in [-1.0f32, 0.0, 0.4, 1.3] {
                 let n = 20_000;
@@ -473,9 +475,21 @@ mod tests {
                 }
                 let integral = sum * (PI / n as f32) as f64;
                 assert!(
-                    (integral - 1.0).abs() < 2e-3,
+                    (integral - 1.0).abs() < 6e-3,
                     "v {v} θo {theta_o}: {integral}"
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn mp_is_symmetric_in_its_two_directions() {
+        // M_p(θi, θo) = M_p(θo, θi): the longitudinal term is reciprocal.
+        for v in [0.02f32, 0.3] {
+            for (a, b) in [(0.3f32, -1.1f32), (1.2, 0.7), (-0.4, -0.2)] {
+                let m1 = mp(a.cos(), b.cos(), a.sin(), b.sin(), v);
+                let m2 = mp(b.cos(), a.cos(), b.sin(), a.sin(), v);
+                assert!((m1 - m2).abs() <= 1e-6 * m1.abs().max(1e-30), "{m1} {m2}");
             }
         }
     }
