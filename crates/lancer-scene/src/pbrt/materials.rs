@@ -2,6 +2,8 @@
 //! pbrt-v4's defaults. A `mix` names two materials that may not be defined yet: they come back
 //! beside it, for the builder to resolve once every name is known.
 
+mod subsurface;
+
 use super::convert::{Fallback, Reader, locate};
 use crate::error::{Location, SceneError};
 use lancer::material::Material;
@@ -182,7 +184,8 @@ fn convert(r: &Reader, ty: &str) -> Result<Fallback<MaterialWithNames>, SceneErr
         }
         "interface" | "" | "none" => Material::Interface,
         "hair" => return hair(r),
-        "measured" | "subsurface" => {
+        "subsurface" => return subsurface::subsurface(r),
+        "measured" => {
             return Ok(Fallback::instead(
                 diffuse(0.5)?.into(),
                 format!("material \"{ty}\" is not supported yet; lancer renders it as \"diffuse\""),

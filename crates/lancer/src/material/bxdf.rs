@@ -5,6 +5,7 @@
 //! closed set of them is the enum [`BxDF`], matched per call: no allocation and no dynamic
 //! dispatch per ray.
 
+use super::bssrdf::NormalizedFresnelBxdf;
 use super::conductor::ConductorBxdf;
 use super::dielectric::{DielectricBxdf, ThinDielectricBxdf};
 use super::diffuse::{DiffuseBxdf, DiffuseTransmissionBxdf};
@@ -32,6 +33,8 @@ pub enum BxDF {
     CoatedConductor(CoatedConductorBxdf),
     /// A hair fibre (pbrt-v4's `HairBxDF`).
     Hair(HairBxdf),
+    /// The exit lobe of a BSSRDF.
+    NormalizedFresnel(NormalizedFresnelBxdf),
 }
 
 /// Calls `$body` with `$b` bound to the variant's inner BxDF, whatever the variant.
@@ -46,6 +49,7 @@ macro_rules! dispatch {
             BxDF::CoatedDiffuse($b) => $body,
             BxDF::CoatedConductor($b) => $body,
             BxDF::Hair($b) => $body,
+            BxDF::NormalizedFresnel($b) => $body,
         }
     };
 }
@@ -94,7 +98,8 @@ impl BxDF {
             BxDF::Diffuse(_)
             | BxDF::ThinDielectric(_)
             | BxDF::DiffuseTransmission(_)
-            | BxDF::Hair(_) => {}
+            | BxDF::Hair(_)
+            | BxDF::NormalizedFresnel(_) => {}
         }
     }
 }

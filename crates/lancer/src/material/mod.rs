@@ -1,6 +1,7 @@
 //! Materials: how a surface scatters light, as plain data ([`Material`]), turned at each hit
 //! into a [`Bsdf`] in the local shading frame.
 
+mod bssrdf;
 mod bxdf;
 mod conductor;
 mod dielectric;
@@ -11,6 +12,10 @@ mod layered;
 mod microfacet;
 mod scatter;
 
+pub use bssrdf::{
+    BssrdfTable, NormalizedFresnelBxdf, ProbeSegment, SubsurfaceCoefficients, TabulatedBssrdf,
+    subsurface_from_diffuse,
+};
 pub use bxdf::{Bsdf, BxDF};
 pub use conductor::ConductorBxdf;
 pub use dielectric::{DielectricBxdf, ThinDielectricBxdf};
@@ -154,6 +159,25 @@ pub enum Material {
         /// Tilt of the cuticle scales, degrees.
         alpha: FloatTex,
     },
+    /// A dielectric boundary over a scattering medium, rendered with a BSSRDF (pbrt-v4's
+    /// `subsurface`, [`TabulatedBssrdf`]): light refracted in leaves elsewhere, by the
+    /// medium's diffusion profile.
+    Subsurface {
+        /// σa and σs, or a colour and mean free path.
+        coefficients: SubsurfaceCoefficients,
+        /// Multiplies σa and σs (or the mean free path).
+        scale: f32,
+        /// Index of refraction of the boundary and the medium.
+        eta: f32,
+        /// Boundary roughness along u.
+        uroughness: FloatTex,
+        /// Boundary roughness along v.
+        vroughness: FloatTex,
+        /// Map roughness to α as pbrt does.
+        remap_roughness: bool,
+        /// The profile table for the medium's g and η ([`BssrdfTable::shared`]).
+        table: std::sync::Arc<BssrdfTable>,
+    },
     /// No surface at all: marks the boundary of a participating medium; rays pass through.
     Interface,
 }
@@ -228,6 +252,7 @@ impl Material {
             Material::CoatedConductor { .. } => "coatedconductor",
             Material::Mix { .. } => "mix",
             Material::Hair { .. } => "hair",
+            Material::Subsurface { .. } => "subsurface",
             Material::Interface => "interface",
         }
     }
@@ -285,6 +310,7 @@ impl Material {
                 Some((albedo, Albedo)),
             ],
             Material::Hair { absorption, .. } => [absorption.colour_slot(), None, None, None],
+            Material::Subsurface { coefficients, .. } => coefficients.colour_slots(),
             Material::Dielectric { .. }
             | Material::ThinDielectric { .. }
             | Material::Mix { .. }
@@ -510,6 +536,16 @@ impl Material {
                     tex.float(alpha, tc),
                 ))
             }
+            Material::Subsurface {
+                eta,
+                uroughness,
+                vroughness,
+                remap_roughness,
+                ..
+            } => BxDF::Dielectric(DielectricBxdf {
+                eta: nonzero_eta(eta),
+                distrib: distrib(uroughness, vroughness, remap_roughness),
+            }),
             Material::Mix { .. } | Material::Interface => return None,
         })
     }
