@@ -88,3 +88,129 @@ pub(super) fn subsurface(r: &Reader) -> Result<Fallback<MaterialWithNames>, Scen
     };
     Ok(Fallback::noted(m.into(), notes))
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::pbrt::convert::TextureNames;
+    use crate::pbrt::convert::testing::{err, typed, unused, with_textures};
+    use crate::pbrt::materials::material;
+    use lancer::material::{Material, SubsurfaceCoefficients};
+    use lancer::math::Rgb;
+    use lancer::texture::{FloatTex, SpectrumTex};
+    use std::path::Path;
+
+    /// The material of `text`, its warnings, and the parameters it left unread.
+    fn convert(text: &str) -> Result<(Material, Vec<String>, Vec<String>), String> {
+        let (ty, params, loc) = typed(text);
+        let out = with_textures(&params, Path::new("."), &TextureNames::default(), |r| {
+            material(r, &ty, &loc)
+        });
+        let unused = unused(&params);
+        match out {
+            Ok(f) => Ok((f.value.material, f.warnings, unused)),
+            Err(e) => Err(err::<()>(Err(e))),
+        }
+    }
+
+    #[test]
+    fn every_way_of_giving_the_medium() {
+        let (m, w, u) = convert(r#"Material "subsurface""#).unwrap();
+        assert!(w.is_empty() && u.is_empty());
+        let Material::Subsurface {
+            coefficients,
+            scale,
+            eta,
+            uroughness,
+            remap_roughness,
+            table,
+            ..
+        } = m
+        else {
+            panic!("{m:?}")
+        };
+        assert_eq!(
+            coefficients,
+            SubsurfaceCoefficients::Coefficients {
+                sigma_a: SpectrumTex::Const(Rgb::new(0.0011, 0.0024, 0.014)),
+                sigma_s: SpectrumTex::Const(Rgb::new(2.55, 3.21, 3.77)),
+            }
+        );
+        assert_eq!(
+            (scale, eta, uroughness, remap_roughness),
+            (1.0, 1.33, FloatTex::Const(0.0), true)
+        );
+        assert_eq!((table.g, table.eta), (0.0, 1.33));
+
+        // A preset forces g = 0, with pbrt-v4's note.
+        let (m, w, _) = convert(
+            r#"Material "subsurface" "string name" "Skin1" "float g" 0.5 "float scale" 20"#,
+        )
+        .unwrap();
+        assert_eq!(
+            w,
+            ["non-zero \"g\" ignored with named scattering coefficients (as pbrt-v4 does)"]
+        );
+        let Material::Subsurface {
+            coefficients,
+            scale,
+            table,
+            ..
+        } = m
+        else {
+            panic!()
+        };
+        assert_eq!(
+            coefficients,
+            SubsurfaceCoefficients::Coefficients {
+                sigma_a: SpectrumTex::Const(Rgb::new(0.032, 0.17, 0.48)),
+                sigma_s: SpectrumTex::Const(Rgb::new(0.74, 0.88, 1.01)),
+            }
+        );
+        assert_eq!((scale, table.g), (20.0, 0.0));
+
+        let (m, _, u) = convert(
+            r#"Material "subsurface" "rgb reflectance" [0.8 0.6 0.3] "float eta" 1.5 "float g" 0.3 "float roughness" 0.1"#,
+        )
+        .unwrap();
+        assert!(u.is_empty());
+        let Material::Subsurface {
+            coefficients,
+            vroughness,
+            table,
+            ..
+        } = m
+        else {
+            panic!()
+        };
+        assert_eq!(
+            coefficients,
+            SubsurfaceCoefficients::Reflectance {
+                reflectance: SpectrumTex::Const(Rgb::new(0.8, 0.6, 0.3)),
+                mfp: SpectrumTex::Const(Rgb::ONE),
+            }
+        );
+        assert_eq!(
+            (vroughness, table.g, table.eta),
+            (FloatTex::Const(0.1), 0.3, 1.5)
+        );
+    }
+
+    #[test]
+    fn errors_name_what_is_wrong() {
+        assert_eq!(
+            convert(r#"Material "subsurface" "rgb sigma_a" [1 1 1]"#).unwrap_err(),
+            "t.pbrt:1:1: material \"subsurface\" has \"sigma_a\" without \"sigma_s\""
+        );
+        let e = convert(r#"Material "subsurface" "string name" "Soup""#).unwrap_err();
+        assert!(
+            e.starts_with(
+                "t.pbrt:1:1: \"Soup\": no such named medium (pbrt-v4's are Apple, Chicken1"
+            ),
+            "{e}"
+        );
+        assert_eq!(
+            convert(r#"Material "subsurface" "float eta" 0"#).unwrap_err(),
+            "t.pbrt:1:1: \"float eta\" of a subsurface material must be positive, not 0"
+        );
+    }
+}

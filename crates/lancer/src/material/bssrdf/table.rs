@@ -213,7 +213,7 @@ mod tests {
     }
 
     #[test]
-    fn effective_albedo_grows_with_albedo_and_stays_below_one() {
+    fn effective_albedo_grows_with_albedo_up_to_about_one() {
         let t = BssrdfTable::compute(0.0, 1.33);
         assert_eq!(t.rho_samples[0], 0.0);
         assert!((t.rho_samples[N_RHO - 1] - 1.0).abs() < 1e-6);
@@ -223,7 +223,9 @@ mod tests {
             assert!(w[1] >= w[0], "{w:?}");
         }
         let top = t.rho_eff[N_RHO - 1];
-        assert!(top > 0.5 && top < 1.0, "ρ_eff(1) = {top}");
+        // A non-absorbing medium returns (nearly) everything: the diffusion approximation
+        // overshoots by about 2 % at ρ = 1.
+        assert!((top - 1.0).abs() < 0.03, "ρ_eff(1) = {top}");
         assert_eq!(*t.profile_cdf.last().unwrap(), top);
     }
 }
