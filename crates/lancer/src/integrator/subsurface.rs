@@ -96,7 +96,7 @@ pub(super) fn exit(
     let sp = bssrdf.sp(pi.si.p);
     // The one-sample mixture over the lanes that may have drawn the radius.
     let pdf = bssrdf.pdf_sp(pi.si.p, pi.si.n).element_sum() * 0.25;
-    if sp == SampledSpectrum::ZERO || !(pdf > 0.0) {
+    if sp == SampledSpectrum::ZERO || pdf.is_nan() || pdf <= 0.0 {
         return Exit::Lost;
     }
     *beta *= sp * (count as f32 / pdf);
@@ -152,7 +152,8 @@ fn direct_light(
         return SampledSpectrum::ZERO;
     };
     let f = bsdf.f(wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(si.shading.n).abs();
-    if !(ls.pdf > 0.0)
+    if ls.pdf.is_nan()
+        || ls.pdf <= 0.0
         || f == SampledSpectrum::ZERO
         || scene.intersect_p(&si.spawn_ray_to(ls.p_light))
     {

@@ -11,6 +11,7 @@ mod hair;
 mod layered;
 mod microfacet;
 mod scatter;
+mod subsurface;
 
 pub use bssrdf::{
     BssrdfTable, NormalizedFresnelBxdf, ProbeSegment, SubsurfaceCoefficients, TabulatedBssrdf,

@@ -122,9 +122,9 @@ fn newton_bisection(mut x0: f32, mut x1: f32, f: impl Fn(f32) -> (f32, f32)) -> 
 /// nodes' range.
 pub(crate) fn invert_catmull_rom(nodes: &[f32], f: &[f32], u: f32) -> f32 {
     let n = nodes.len();
-    if !(u > f[0]) {
+    if u.is_nan() || u <= f[0] {
         return nodes[0];
-    } else if !(u < f[n - 1]) {
+    } else if u >= f[n - 1] {
         return nodes[n - 1];
     }
     let i = find_interval(n, |i| f[i] <= u);
