@@ -205,7 +205,7 @@ fn convert(r: &Reader, ty: &str) -> Result<Fallback<MaterialWithNames>, SceneErr
 /// `reflectance` (or `color`), `eumelanin`/`pheomelanin` given, the others ignored with a
 /// note; eumelanin 1.3 when none is; `eta` 1.55, `beta_m` 0.3, `beta_n` 0.3, `alpha` 2.
 fn hair(r: &Reader) -> Result<Fallback<MaterialWithNames>, SceneError> {
-    use lancer::material::HairAbsorption;
+    use lancer::material::{HairAbsorption, HairMaterial};
     let sigma_a = r.opt_spectrum_tex("sigma_a", SpectrumKind::Unbounded)?;
     let mut reflectance = r.opt_spectrum_tex("reflectance", SpectrumKind::Albedo)?;
     if reflectance.is_none() {
@@ -244,13 +244,13 @@ fn hair(r: &Reader) -> Result<Fallback<MaterialWithNames>, SceneError> {
             pheomelanin: FloatTex::Const(0.0),
         },
     };
-    let m = Material::Hair {
+    let m = Material::Hair(HairMaterial {
         absorption,
         eta: r.float_tex("eta", 1.55)?,
         beta_m: r.float_tex("beta_m", 0.3)?,
         beta_n: r.float_tex("beta_n", 0.3)?,
         alpha: r.float_tex("alpha", 2.0)?,
-    };
+    });
     Ok(Fallback::noted(m.into(), notes))
 }
 
@@ -577,14 +577,16 @@ mod tests {
 
     #[test]
     fn hair_takes_its_absorption_as_pbrt_v4_does() {
-        use lancer::material::HairAbsorption;
+        use lancer::material::{HairAbsorption, HairMaterial};
         let c = FloatTex::Const;
-        let hair = |absorption| Material::Hair {
-            absorption,
-            eta: c(1.55),
-            beta_m: c(0.3),
-            beta_n: c(0.3),
-            alpha: c(2.0),
+        let hair = |absorption| {
+            Material::Hair(HairMaterial {
+                absorption,
+                eta: c(1.55),
+                beta_m: c(0.3),
+                beta_n: c(0.3),
+                alpha: c(2.0),
+            })
         };
         // Nothing given: eumelanin 1.3.
         assert_eq!(
@@ -610,13 +612,13 @@ mod tests {
         );
         assert_eq!(
             m,
-            Material::Hair {
+            Material::Hair(HairMaterial {
                 absorption: HairAbsorption::SigmaA(rgb(0.4, 0.75, 1.6)),
                 eta: c(1.5),
                 beta_m: c(0.25),
                 beta_n: c(0.7),
                 alpha: c(0.0),
-            }
+            })
         );
         // sigma_a wins over the others, with pbrt-v4's note.
         let (out, unused) = convert_with(
@@ -627,10 +629,10 @@ mod tests {
         assert!(unused.is_empty(), "{unused:?}");
         assert!(matches!(
             f.value.material,
-            Material::Hair {
+            Material::Hair(HairMaterial {
                 absorption: HairAbsorption::SigmaA(_),
                 ..
-            }
+            })
         ));
         assert_eq!(
             f.warnings,

@@ -14,8 +14,8 @@ mod scatter;
 mod subsurface;
 
 pub use bssrdf::{
-    BssrdfTable, NormalizedFresnelBxdf, ProbeSegment, SubsurfaceCoefficients, TabulatedBssrdf,
-    subsurface_from_diffuse,
+    BssrdfTable, NormalizedFresnelBxdf, ProbeSegment, SubsurfaceCoefficients, SubsurfaceMaterial,
+    TabulatedBssrdf, subsurface_from_diffuse,
 };
 pub use bxdf::{Bsdf, BxDF};
 pub use conductor::ConductorBxdf;
@@ -23,7 +23,8 @@ pub use dielectric::{DielectricBxdf, ThinDielectricBxdf};
 pub use diffuse::{DiffuseBxdf, DiffuseTransmissionBxdf};
 pub use fresnel::{fresnel_complex, fresnel_dielectric, reflect, refract};
 pub use hair::{
-    HairAbsorption, HairBxdf, hair_sigma_a_from_concentration, hair_sigma_a_from_reflectance,
+    HairAbsorption, HairBxdf, HairMaterial, hair_sigma_a_from_concentration,
+    hair_sigma_a_from_reflectance,
 };
 pub use layered::{CoatedConductorBxdf, CoatedDiffuseBxdf, LayeredBxdf};
 pub use microfacet::TrowbridgeReitz;
@@ -146,39 +147,11 @@ pub enum Material {
         /// Probability of choosing the second.
         amount: FloatTex,
     },
-    /// Hair fibres (pbrt-v4's `hair`, [`HairBxdf`]), meant for `curve` shapes: the offset
-    /// across the fibre is h = −1 + 2v.
-    Hair {
-        /// σₐ, the colour it gives, or melanin concentrations.
-        absorption: HairAbsorption,
-        /// Index of refraction of the fibre.
-        eta: FloatTex,
-        /// Longitudinal roughness, clamped to [0.01, 1].
-        beta_m: FloatTex,
-        /// Azimuthal roughness, clamped to [0.01, 1].
-        beta_n: FloatTex,
-        /// Tilt of the cuticle scales, degrees.
-        alpha: FloatTex,
-    },
+    /// Hair fibres (pbrt-v4's `hair`, [`HairBxdf`]), meant for `curve` shapes.
+    Hair(HairMaterial),
     /// A dielectric boundary over a scattering medium, rendered with a BSSRDF (pbrt-v4's
-    /// `subsurface`, [`TabulatedBssrdf`]): light refracted in leaves elsewhere, by the
-    /// medium's diffusion profile.
-    Subsurface {
-        /// σa and σs, or a colour and mean free path.
-        coefficients: SubsurfaceCoefficients,
-        /// Multiplies σa and σs (or the mean free path).
-        scale: f32,
-        /// Index of refraction of the boundary and the medium.
-        eta: f32,
-        /// Boundary roughness along u.
-        uroughness: FloatTex,
-        /// Boundary roughness along v.
-        vroughness: FloatTex,
-        /// Map roughness to α as pbrt does.
-        remap_roughness: bool,
-        /// The profile table for the medium's g and η ([`BssrdfTable::shared`]).
-        table: std::sync::Arc<BssrdfTable>,
-    },
+    /// `subsurface`, [`TabulatedBssrdf`]).
+    Subsurface(SubsurfaceMaterial),
     /// No surface at all: marks the boundary of a participating medium; rays pass through.
     Interface,
 }
@@ -310,8 +283,8 @@ impl Material {
                 reflectance.map(|r| (r, Albedo)),
                 Some((albedo, Albedo)),
             ],
-            Material::Hair { absorption, .. } => [absorption.colour_slot(), None, None, None],
-            Material::Subsurface { coefficients, .. } => coefficients.colour_slots(),
+            Material::Hair(h) => [h.absorption.colour_slot(), None, None, None],
+            Material::Subsurface(ref m) => m.coefficients.colour_slots(),
             Material::Dielectric { .. }
             | Material::ThinDielectric { .. }
             | Material::Mix { .. }
@@ -493,59 +466,16 @@ impl Material {
                     n_samples,
                 ))
             }
-            Material::Hair {
-                absorption,
-                eta,
-                beta_m,
-                beta_n,
-                alpha,
-            } => {
-                // pbrt-v4's HairMaterial: βm, βn clamped to [0.01, 1], σₐ clamped at 0.
-                let bm = tex.float(beta_m, tc).clamp(0.01, 1.0);
-                let bn = tex.float(beta_n, tc).clamp(0.01, 1.0);
-                let sigma_a = match (absorption, absorption.colour_slot()) {
-                    (HairAbsorption::Reflectance(_), Some((c, _))) => {
-                        hair_sigma_a_from_reflectance(albedo(0, c), bn)
-                    }
-                    (_, Some((s, kind))) => colour(0, s, kind),
-                    (
-                        HairAbsorption::Melanin {
-                            eumelanin,
-                            pheomelanin,
-                        },
-                        None,
-                    ) => {
-                        let rgb = hair_sigma_a_from_concentration(
-                            tex.float(eumelanin, tc).max(0.0),
-                            tex.float(pheomelanin, tc).max(0.0),
-                        );
-                        match spectral {
-                            None => rgb_lanes(rgb),
-                            Some(sc) => sc
-                                .lambda
-                                .sample(&RgbSpectrum::new(rgb, ColourKind::Unbounded)),
-                        }
-                    }
-                    (_, None) => SampledSpectrum::ZERO,
-                };
-                BxDF::Hair(HairBxdf::new(
-                    -1.0 + 2.0 * tc.uv.y,
-                    tex.float(eta, tc),
-                    sigma_a,
-                    bm,
-                    bn,
-                    tex.float(alpha, tc),
-                ))
-            }
-            Material::Subsurface {
-                eta,
-                uroughness,
-                vroughness,
-                remap_roughness,
-                ..
-            } => BxDF::Dielectric(DielectricBxdf {
-                eta: nonzero_eta(eta),
-                distrib: distrib(uroughness, vroughness, remap_roughness),
+            Material::Hair(h) => BxDF::Hair(hair::hair_at(
+                &h,
+                tex,
+                tc,
+                spectral.map(|sc| sc.lambda),
+                &colour,
+            )),
+            Material::Subsurface(ref m) => BxDF::Dielectric(DielectricBxdf {
+                eta: nonzero_eta(m.eta),
+                distrib: distrib(m.uroughness, m.vroughness, m.remap_roughness),
             }),
             Material::Mix { .. } | Material::Interface => return None,
         })

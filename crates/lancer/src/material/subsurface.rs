@@ -43,16 +43,10 @@ impl Material {
         po: Vec3,
         ns: Vec3,
     ) -> Option<TabulatedBssrdf<'a>> {
-        let Material::Subsurface {
-            coefficients,
-            scale,
-            eta,
-            table,
-            ..
-        } = self
-        else {
+        let Material::Subsurface(m) = self else {
             return None;
         };
+        let (coefficients, scale, eta, table) = (&m.coefficients, &m.scale, &m.eta, &m.table);
         // A slot's colour as [`Material::bxdf`] reads it: RGB lanes, or the prepared
         // spectrum of a constant, or the uplift of a texel.
         let colour = |slot: usize, t: SpectrumTex, kind: ColourKind| match (spectral, t) {

@@ -6,7 +6,7 @@
 use super::{MaterialWithNames, roughness};
 use crate::error::SceneError;
 use crate::pbrt::convert::{Fallback, Reader};
-use lancer::material::{BssrdfTable, Material, SubsurfaceCoefficients};
+use lancer::material::{BssrdfTable, Material, SubsurfaceCoefficients, SubsurfaceMaterial};
 use lancer::math::Rgb;
 use lancer::spectrum::{SpectrumKind, scattering_preset, scattering_preset_names};
 use lancer::texture::SpectrumTex;
@@ -77,7 +77,7 @@ pub(super) fn subsurface(r: &Reader) -> Result<Fallback<MaterialWithNames>, Scen
     }
     let g = g.clamp(-0.99, 0.99);
     let (uroughness, vroughness) = roughness(r, "")?;
-    let m = Material::Subsurface {
+    let m = Material::Subsurface(SubsurfaceMaterial {
         coefficients,
         scale,
         eta,
@@ -85,7 +85,7 @@ pub(super) fn subsurface(r: &Reader) -> Result<Fallback<MaterialWithNames>, Scen
         vroughness,
         remap_roughness: p.bool("remaproughness", true)?,
         table: BssrdfTable::shared(g, eta),
-    };
+    });
     Ok(Fallback::noted(m.into(), notes))
 }
 
@@ -94,7 +94,7 @@ mod tests {
     use crate::pbrt::convert::TextureNames;
     use crate::pbrt::convert::testing::{err, typed, unused, with_textures};
     use crate::pbrt::materials::material;
-    use lancer::material::{Material, SubsurfaceCoefficients};
+    use lancer::material::{Material, SubsurfaceCoefficients, SubsurfaceMaterial};
     use lancer::math::Rgb;
     use lancer::texture::{FloatTex, SpectrumTex};
     use std::path::Path;
@@ -116,7 +116,7 @@ mod tests {
     fn every_way_of_giving_the_medium() {
         let (m, w, u) = convert(r#"Material "subsurface""#).unwrap();
         assert!(w.is_empty() && u.is_empty());
-        let Material::Subsurface {
+        let Material::Subsurface(SubsurfaceMaterial {
             coefficients,
             scale,
             eta,
@@ -124,7 +124,7 @@ mod tests {
             remap_roughness,
             table,
             ..
-        } = m
+        }) = m
         else {
             panic!("{m:?}")
         };
@@ -150,12 +150,12 @@ mod tests {
             w,
             ["non-zero \"g\" ignored with named scattering coefficients (as pbrt-v4 does)"]
         );
-        let Material::Subsurface {
+        let Material::Subsurface(SubsurfaceMaterial {
             coefficients,
             scale,
             table,
             ..
-        } = m
+        }) = m
         else {
             panic!()
         };
@@ -173,12 +173,12 @@ mod tests {
         )
         .unwrap();
         assert!(u.is_empty());
-        let Material::Subsurface {
+        let Material::Subsurface(SubsurfaceMaterial {
             coefficients,
             vroughness,
             table,
             ..
-        } = m
+        }) = m
         else {
             panic!()
         };
