@@ -2,6 +2,8 @@
 //! pbrt-v4's defaults. A `mix` names two materials that may not be defined yet: they come back
 //! beside it, for the builder to resolve once every name is known.
 
+mod subsurface;
+
 use super::convert::{Fallback, Reader, locate};
 use crate::error::{Location, SceneError};
 use crate::image_read::Encoding;
@@ -255,7 +257,9 @@ fn convert(r: &Reader, ty: &str) -> Result<Fallback<MaterialWithNames>, SceneErr
             }));
         }
         "interface" | "" | "none" => Material::Interface,
-        "measured" | "hair" | "subsurface" => {
+        "hair" => return hair(r),
+        "subsurface" => return subsurface::subsurface(r),
+        "measured" => {
             return Ok(Fallback::instead(
                 diffuse(0.5)?.into(),
                 format!("material \"{ty}\" is not supported yet; lancer renders it as \"diffuse\""),
@@ -269,6 +273,59 @@ fn convert(r: &Reader, ty: &str) -> Result<Fallback<MaterialWithNames>, SceneErr
         }
     };
     Ok(Fallback::done(m.into()))
+}
+
+/// pbrt-v4's `HairMaterial::Create`: absorption from the first of `sigma_a`,
+/// `reflectance` (or `color`), `eumelanin`/`pheomelanin` given, the others ignored with a
+/// note; eumelanin 1.3 when none is; `eta` 1.55, `beta_m` 0.3, `beta_n` 0.3, `alpha` 2.
+fn hair(r: &Reader) -> Result<Fallback<MaterialWithNames>, SceneError> {
+    use lancer::material::{HairAbsorption, HairMaterial};
+    let sigma_a = r.opt_spectrum_tex("sigma_a", SpectrumKind::Unbounded)?;
+    let mut reflectance = r.opt_spectrum_tex("reflectance", SpectrumKind::Albedo)?;
+    if reflectance.is_none() {
+        reflectance = r.opt_spectrum_tex("color", SpectrumKind::Albedo)?;
+    }
+    let has_melanin = r.params.has("eumelanin") || r.params.has("pheomelanin");
+    let melanin = HairAbsorption::Melanin {
+        eumelanin: r.float_tex("eumelanin", 0.0)?,
+        pheomelanin: r.float_tex("pheomelanin", 0.0)?,
+    };
+    let mut notes = Vec::new();
+    let mut ignoring = |what: &str, since: &str| {
+        notes.push(format!(
+            "ignoring \"{what}\" since \"{since}\" was given (as pbrt-v4 does)"
+        ))
+    };
+    let absorption = match (sigma_a, reflectance) {
+        (Some(s), refl) => {
+            if refl.is_some() {
+                ignoring("reflectance", "sigma_a");
+            }
+            if has_melanin {
+                ignoring("eumelanin\"/\"pheomelanin", "sigma_a");
+            }
+            HairAbsorption::SigmaA(s)
+        }
+        (None, Some(c)) => {
+            if has_melanin {
+                ignoring("eumelanin\"/\"pheomelanin", "reflectance");
+            }
+            HairAbsorption::Reflectance(c)
+        }
+        (None, None) if has_melanin => melanin,
+        (None, None) => HairAbsorption::Melanin {
+            eumelanin: FloatTex::Const(1.3),
+            pheomelanin: FloatTex::Const(0.0),
+        },
+    };
+    let m = Material::Hair(HairMaterial {
+        absorption,
+        eta: r.float_tex("eta", 1.55)?,
+        beta_m: r.float_tex("beta_m", 0.3)?,
+        beta_n: r.float_tex("beta_n", 0.3)?,
+        alpha: r.float_tex("alpha", 2.0)?,
+    });
+    Ok(Fallback::noted(m.into(), notes))
 }
 
 #[cfg(test)]
@@ -563,7 +620,7 @@ mod tests {
     #[test]
     fn unsupported_materials_become_diffuse_with_a_warning() {
         let (out, unused) = convert_with(
-            r#"Material "hair" "rgb reflectance" [0.3 0.2 0.1]"#,
+            r#"Material "measured" "rgb reflectance" [0.3 0.2 0.1]"#,
             &TextureNames::default(),
         );
         let f = out.unwrap();
@@ -576,7 +633,7 @@ mod tests {
         );
         assert_eq!(
             f.warnings,
-            ["material \"hair\" is not supported yet; lancer renders it as \"diffuse\""]
+            ["material \"measured\" is not supported yet; lancer renders it as \"diffuse\""]
         );
         let (out, unused) = convert_with(
             r#"Material "plastic" "float roughness" 0.1"#,
@@ -590,6 +647,74 @@ mod tests {
         );
         // An unknown material reads nothing: its parameters are reported unused.
         assert_eq!(unused.len(), 1);
+    }
+
+    #[test]
+    fn hair_takes_its_absorption_as_pbrt_v4_does() {
+        use lancer::material::{HairAbsorption, HairMaterial};
+        let c = FloatTex::Const;
+        let hair = |absorption| {
+            Material::Hair(HairMaterial {
+                absorption,
+                eta: c(1.55),
+                beta_m: c(0.3),
+                beta_n: c(0.3),
+                alpha: c(2.0),
+            })
+        };
+        // Nothing given: eumelanin 1.3.
+        assert_eq!(
+            converted(r#"Material "hair""#),
+            hair(HairAbsorption::Melanin {
+                eumelanin: c(1.3),
+                pheomelanin: c(0.0)
+            })
+        );
+        assert_eq!(
+            converted(r#"Material "hair" "float pheomelanin" 2"#),
+            hair(HairAbsorption::Melanin {
+                eumelanin: c(0.0),
+                pheomelanin: c(2.0)
+            })
+        );
+        assert_eq!(
+            converted(r#"Material "hair" "rgb color" [0.1 0.2 0.3]"#),
+            hair(HairAbsorption::Reflectance(rgb(0.1, 0.2, 0.3)))
+        );
+        let m = converted(
+            r#"Material "hair" "rgb sigma_a" [0.4 0.75 1.6] "float beta_m" 0.25 "float eta" 1.5 "float alpha" 0 "float beta_n" 0.7"#,
+        );
+        assert_eq!(
+            m,
+            Material::Hair(HairMaterial {
+                absorption: HairAbsorption::SigmaA(rgb(0.4, 0.75, 1.6)),
+                eta: c(1.5),
+                beta_m: c(0.25),
+                beta_n: c(0.7),
+                alpha: c(0.0),
+            })
+        );
+        // sigma_a wins over the others, with pbrt-v4's note.
+        let (out, unused) = convert_with(
+            r#"Material "hair" "rgb sigma_a" [1 1 1] "rgb reflectance" [0.5 0.5 0.5] "float eumelanin" 2"#,
+            &TextureNames::default(),
+        );
+        let f = out.unwrap();
+        assert!(unused.is_empty(), "{unused:?}");
+        assert!(matches!(
+            f.value.material,
+            Material::Hair(HairMaterial {
+                absorption: HairAbsorption::SigmaA(_),
+                ..
+            })
+        ));
+        assert_eq!(
+            f.warnings,
+            [
+                "ignoring \"reflectance\" since \"sigma_a\" was given (as pbrt-v4 does); \
+                 ignoring \"eumelanin\"/\"pheomelanin\" since \"sigma_a\" was given (as pbrt-v4 does)"
+            ]
+        );
     }
 
     #[test]

@@ -2,6 +2,7 @@
 
 mod debug;
 mod path;
+mod subsurface;
 mod whitted;
 
 use crate::material::{Bsdf, Material, SpectralColours};

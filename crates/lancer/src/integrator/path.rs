@@ -1,6 +1,6 @@
 //! Unidirectional path tracing with next-event estimation and multiple importance sampling.
 
-use super::{PathVertex, bsdf_at, emitted};
+use super::{PathVertex, bsdf_at, emitted, subsurface};
 use crate::light::LightSampleContext;
 use crate::material::TransportMode;
 use crate::math::{Rgb, SampledSpectrum, normalize};
@@ -206,6 +206,31 @@ pub fn li_observed<O: PathObserver>(
         }
         prev_ctx = Some(ctx);
         ray = si.spawn_ray(bs.wi);
+        // Refracted into a subsurface material: a BSSRDF picks where the light leaves.
+        if bs.is_transmission() {
+            match subsurface::exit(
+                scene,
+                &hit,
+                sampler,
+                wavelengths.as_ref(),
+                &mut beta,
+                &mut l,
+            ) {
+                subsurface::Exit::NotSubsurface => {}
+                subsurface::Exit::Lost => break,
+                subsurface::Exit::Left {
+                    ray: exit_ray,
+                    p_b: exit_pdf,
+                    ctx: exit_ctx,
+                } => {
+                    ray = exit_ray;
+                    p_b = exit_pdf;
+                    prev_ctx = Some(exit_ctx);
+                    specular_bounce = false;
+                    any_non_specular = true;
+                }
+            }
+        }
         // Russian roulette once the path carries little.
         let rr = beta * eta_scale;
         let m = rr.max_element();

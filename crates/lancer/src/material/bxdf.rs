@@ -5,9 +5,11 @@
 //! closed set of them is the enum [`BxDF`], matched per call: no allocation and no dynamic
 //! dispatch per ray.
 
+use super::bssrdf::NormalizedFresnelBxdf;
 use super::conductor::ConductorBxdf;
 use super::dielectric::{DielectricBxdf, ThinDielectricBxdf};
 use super::diffuse::{DiffuseBxdf, DiffuseTransmissionBxdf};
+use super::hair::HairBxdf;
 use super::layered::{CoatedConductorBxdf, CoatedDiffuseBxdf};
 use super::scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode};
 use crate::math::{Frame, SampledSpectrum, Vec2, Vec3};
@@ -29,6 +31,10 @@ pub enum BxDF {
     CoatedDiffuse(CoatedDiffuseBxdf),
     /// A dielectric coating over a conductor, evaluated by random walks.
     CoatedConductor(CoatedConductorBxdf),
+    /// A hair fibre (pbrt-v4's `HairBxDF`).
+    Hair(HairBxdf),
+    /// The exit lobe of a BSSRDF.
+    NormalizedFresnel(NormalizedFresnelBxdf),
 }
 
 /// Calls `$body` with `$b` bound to the variant's inner BxDF, whatever the variant.
@@ -42,6 +48,8 @@ macro_rules! dispatch {
             BxDF::DiffuseTransmission($b) => $body,
             BxDF::CoatedDiffuse($b) => $body,
             BxDF::CoatedConductor($b) => $body,
+            BxDF::Hair($b) => $body,
+            BxDF::NormalizedFresnel($b) => $body,
         }
     };
 }
@@ -87,7 +95,11 @@ impl BxDF {
                 l.top.distrib.regularize();
                 l.bottom.distrib.regularize();
             }
-            BxDF::Diffuse(_) | BxDF::ThinDielectric(_) | BxDF::DiffuseTransmission(_) => {}
+            BxDF::Diffuse(_)
+            | BxDF::ThinDielectric(_)
+            | BxDF::DiffuseTransmission(_)
+            | BxDF::Hair(_)
+            | BxDF::NormalizedFresnel(_) => {}
         }
     }
 }

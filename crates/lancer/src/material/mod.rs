@@ -2,21 +2,32 @@
 //! into a [`Bsdf`] in the local shading frame.
 
 mod bump;
+mod bssrdf;
 mod bxdf;
 mod conductor;
 mod dielectric;
 mod diffuse;
 mod fresnel;
+mod hair;
 mod layered;
 mod microfacet;
 mod scatter;
+mod subsurface;
 
 pub use bump::{bump_shading, normal_map_shading};
+pub use bssrdf::{
+    BssrdfTable, NormalizedFresnelBxdf, ProbeSegment, SubsurfaceCoefficients, SubsurfaceMaterial,
+    TabulatedBssrdf, subsurface_from_diffuse,
+};
 pub use bxdf::{Bsdf, BxDF};
 pub use conductor::ConductorBxdf;
 pub use dielectric::{DielectricBxdf, ThinDielectricBxdf};
 pub use diffuse::{DiffuseBxdf, DiffuseTransmissionBxdf};
 pub use fresnel::{fresnel_complex, fresnel_dielectric, reflect, refract};
+pub use hair::{
+    HairAbsorption, HairBxdf, HairMaterial, hair_sigma_a_from_concentration,
+    hair_sigma_a_from_reflectance,
+};
 pub use layered::{CoatedConductorBxdf, CoatedDiffuseBxdf, LayeredBxdf};
 pub use microfacet::TrowbridgeReitz;
 pub use scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode};
@@ -138,6 +149,11 @@ pub enum Material {
         /// Probability of choosing the second.
         amount: FloatTex,
     },
+    /// Hair fibres (pbrt-v4's `hair`, [`HairBxdf`]), meant for `curve` shapes.
+    Hair(HairMaterial),
+    /// A dielectric boundary over a scattering medium, rendered with a BSSRDF (pbrt-v4's
+    /// `subsurface`, [`TabulatedBssrdf`]).
+    Subsurface(SubsurfaceMaterial),
     /// No surface at all: marks the boundary of a participating medium; rays pass through.
     Interface,
     /// Material `base` with its shading frame changed by a bump map (`displacement`) or a
@@ -248,6 +264,8 @@ impl Material {
             Material::CoatedDiffuse { .. } => "coateddiffuse",
             Material::CoatedConductor { .. } => "coatedconductor",
             Material::Mix { .. } => "mix",
+            Material::Hair { .. } => "hair",
+            Material::Subsurface { .. } => "subsurface",
             Material::Interface => "interface",
             Material::Bumped { .. } => "bumped",
         }
@@ -305,6 +323,8 @@ impl Material {
                 reflectance.map(|r| (r, Albedo)),
                 Some((albedo, Albedo)),
             ],
+            Material::Hair(h) => [h.absorption.colour_slot(), None, None, None],
+            Material::Subsurface(ref m) => m.coefficients.colour_slots(),
             Material::Dielectric { .. }
             | Material::ThinDielectric { .. }
             | Material::Mix { .. }
@@ -487,6 +507,17 @@ impl Material {
                     n_samples,
                 ))
             }
+            Material::Hair(h) => BxDF::Hair(hair::hair_at(
+                &h,
+                tex,
+                tc,
+                spectral.map(|sc| sc.lambda),
+                &colour,
+            )),
+            Material::Subsurface(ref m) => BxDF::Dielectric(DielectricBxdf {
+                eta: nonzero_eta(m.eta),
+                distrib: distrib(m.uroughness, m.vroughness, m.remap_roughness),
+            }),
             Material::Mix { .. } | Material::Interface | Material::Bumped { .. } => return None,
         })
     }

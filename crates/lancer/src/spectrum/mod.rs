@@ -23,6 +23,7 @@ pub mod hero;
 mod named;
 mod reduce;
 pub mod sampled;
+mod scattering_presets;
 mod table;
 pub mod uplift;
 
@@ -31,3 +32,4 @@ pub use reduce::{
     PrecomputedRgb, Spectrum, SpectrumKind, blackbody, cie_d65, cie_xyz, parse_spd,
     spectrum_to_rgb, spectrum_to_xyz_unnormalised, xyz_to_srgb,
 };
+pub use scattering_presets::{scattering_preset, scattering_preset_names};
