@@ -4,7 +4,7 @@
 use super::convert::{Fallback, MAX_RESOLUTION};
 use super::params::ParamList;
 use crate::error::SceneError;
-use lancer::sampling::SamplerKind;
+use lancer::sampling::{Randomization, SamplerKind};
 use lancer::scene::desc::{FilmDesc, FilterDesc, Integrator};
 
 /// What `Film` sets: the film, and the sensor's ISO (the imaging ratio is exposure time ×
@@ -102,6 +102,9 @@ pub fn sampler(params: &ParamList, ty: &str) -> Result<Fallback<SamplerOptions>,
     let p = params;
     let spp =
         || -> Result<u32, SceneError> { Ok(p.int_in("pixelsamples", 16, 1..=1 << 24)? as u32) };
+    let zsobol = SamplerKind::ZSobol {
+        randomization: Randomization::FastOwen,
+    };
     let (kind, spp, warning) = match ty {
         "independent" => (SamplerKind::Independent, spp()?, None),
         "stratified" => {
@@ -115,18 +118,31 @@ pub fn sampler(params: &ParamList, ty: &str) -> Result<Fallback<SamplerOptions>,
             };
             (kind, x * y, None)
         }
-        "sobol" | "zsobol" | "paddedsobol" => {
-            let _ = p.string("randomization")?;
-            (SamplerKind::Sobol, spp()?, None)
+        "zsobol" => {
+            let randomization = randomization(p, Randomization::FastOwen, true)?;
+            (SamplerKind::ZSobol { randomization }, spp()?, None)
         }
-        "halton" | "pmj02bn" => {
+        "paddedsobol" => {
+            let randomization = randomization(p, Randomization::FastOwen, true)?;
+            (SamplerKind::PaddedSobol { randomization }, spp()?, None)
+        }
+        "halton" => {
+            let randomization = randomization(p, Randomization::PermuteDigits, false)?;
+            // The film's resolution is set when the render starts.
+            let kind = SamplerKind::Halton {
+                randomization,
+                resolution: [1280, 720],
+            };
+            (kind, spp()?, None)
+        }
+        "sobol" | "pmj02bn" => {
             let _ = p.string("randomization")?;
             let w = format!("sampler \"{ty}\" is not supported yet; lancer uses \"zsobol\"");
-            (SamplerKind::Sobol, spp()?, Some(w))
+            (zsobol, spp()?, Some(w))
         }
         _ => {
             let w = format!("unknown sampler \"{ty}\"; lancer uses \"zsobol\"");
-            (SamplerKind::Sobol, spp()?, Some(w))
+            (zsobol, spp()?, Some(w))
         }
     };
     let options = SamplerOptions {
@@ -138,6 +154,31 @@ pub fn sampler(params: &ParamList, ty: &str) -> Result<Fallback<SamplerOptions>,
         None => Fallback::done(options),
         Some(w) => Fallback::instead(options, w),
     })
+}
+
+/// The sampler's `"string randomization"` (`default` when absent): `none`, `permutedigits`,
+/// `owen`, and `fastowen` where the sequence is in base 2 (`base2`); pbrt-v4 refuses the rest.
+fn randomization(
+    params: &ParamList,
+    default: Randomization,
+    base2: bool,
+) -> Result<Randomization, SceneError> {
+    let Some(name) = params.string("randomization")? else {
+        return Ok(default);
+    };
+    match Randomization::from_pbrt(&name) {
+        Some(Randomization::FastOwen) if !base2 => Err(params.error_at(
+            "randomization",
+            "\"fastowen\" randomization is for base-2 samplers; use \"permutedigits\", \"owen\" or \"none\"",
+        )),
+        Some(r) => Ok(r),
+        None => Err(params.error_at(
+            "randomization",
+            &format!(
+                "unknown randomization \"{name}\": expected \"none\", \"permutedigits\", \"fastowen\" or \"owen\""
+            ),
+        )),
+    }
 }
 
 /// The pixel filter `ty`, with pbrt-v4's default radii.
@@ -360,16 +401,56 @@ mod tests {
     #[test]
     fn samplers() {
         let options = |kind, spp, seed| SamplerOptions { kind, spp, seed };
+        let zsobol = |randomization| SamplerKind::ZSobol { randomization };
         assert_eq!(
             clean(r#"Sampler "zsobol""#, sampler),
-            options(SamplerKind::Sobol, 16, None)
+            options(zsobol(Randomization::FastOwen), 16, None)
         );
         assert_eq!(
             clean(
-                r#"Sampler "sobol" "integer pixelsamples" 64 "string randomization" "owen" "integer seed" 9"#,
+                r#"Sampler "zsobol" "integer pixelsamples" 64 "string randomization" "owen" "integer seed" 9"#,
                 sampler
             ),
-            options(SamplerKind::Sobol, 64, Some(9))
+            options(zsobol(Randomization::Owen), 64, Some(9))
+        );
+        assert_eq!(
+            clean(
+                r#"Sampler "paddedsobol" "string randomization" "permutedigits""#,
+                sampler
+            ),
+            options(
+                SamplerKind::PaddedSobol {
+                    randomization: Randomization::PermuteDigits
+                },
+                16,
+                None
+            )
+        );
+        let halton = |randomization| SamplerKind::Halton {
+            randomization,
+            resolution: [1280, 720],
+        };
+        assert_eq!(
+            clean(r#"Sampler "halton" "integer pixelsamples" 8"#, sampler),
+            options(halton(Randomization::PermuteDigits), 8, None)
+        );
+        assert_eq!(
+            clean(r#"Sampler "halton" "string randomization" "none""#, sampler),
+            options(halton(Randomization::None), 16, None)
+        );
+        assert_eq!(
+            error(
+                "Sampler \"halton\"\n  \"string randomization\" \"fastowen\"",
+                sampler
+            ),
+            "t.pbrt:2:3: \"fastowen\" randomization is for base-2 samplers; use \"permutedigits\", \"owen\" or \"none\""
+        );
+        assert_eq!(
+            error(
+                "Sampler \"zsobol\"\n  \"string randomization\" \"cranleypatterson\"",
+                sampler
+            ),
+            "t.pbrt:2:3: unknown randomization \"cranleypatterson\": expected \"none\", \"permutedigits\", \"fastowen\" or \"owen\""
         );
         assert_eq!(
             clean(r#"Sampler "independent" "integer pixelsamples" 4"#, sampler),
@@ -395,10 +476,6 @@ mod tests {
         assert_eq!(
             clean(r#"Sampler "zsobol" "integer seed" -1"#, sampler).seed,
             Some(u32::MAX as u64)
-        );
-        assert_eq!(
-            warnings(r#"Sampler "halton" "integer pixelsamples" 8"#, sampler),
-            ["sampler \"halton\" is not supported yet; lancer uses \"zsobol\""]
         );
         assert_eq!(
             warnings(r#"Sampler "magic""#, sampler),

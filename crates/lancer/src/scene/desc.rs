@@ -164,7 +164,9 @@ impl Default for SamplerDesc {
     /// pbrt's default is `zsobol` with 16 samples; lancer's Owen-scrambled Sobol stands in.
     fn default() -> Self {
         SamplerDesc {
-            kind: crate::sampling::SamplerKind::Sobol,
+            kind: crate::sampling::SamplerKind::ZSobol {
+                randomization: crate::sampling::Randomization::FastOwen,
+            },
             spp: 16,
             seed: 0,
         }
