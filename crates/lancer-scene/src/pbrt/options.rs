@@ -4,6 +4,7 @@
 use super::convert::{Fallback, MAX_RESOLUTION};
 use super::params::ParamList;
 use crate::error::SceneError;
+use lancer::light::LightSamplerKind;
 use lancer::sampling::{Randomization, SamplerKind};
 use lancer::scene::desc::{FilmDesc, FilterDesc, Integrator};
 
@@ -234,11 +235,8 @@ pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, 
     };
     let i = match ty {
         "whitted" => Integrator::Whitted { max_depth },
-        "path" | "volpath" => {
-            // The light sampler is lancer's own; pbrt's choice needs no warning.
-            let _ = p.string("lightsampler")?;
-            path()?
-        }
+        // Their `lightsampler` is read by [`light_sampler`].
+        "path" | "volpath" => path()?,
         "ambientocclusion" => Integrator::AmbientOcclusion {
             cos_sample: p.bool("cossample", true)?,
             max_distance: p.float("maxdistance", f32::INFINITY)?,
@@ -262,6 +260,31 @@ pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, 
         }
     };
     Ok(Fallback::done(i))
+}
+
+/// The integrator `ty`'s `"string lightsampler"` (path tracers only): `uniform`, `power` or
+/// `bvh`, pbrt-v4's default.
+pub fn light_sampler(
+    params: &ParamList,
+    ty: &str,
+) -> Result<Fallback<LightSamplerKind>, SceneError> {
+    if !matches!(ty, "path" | "volpath") {
+        return Ok(Fallback::done(LightSamplerKind::Bvh));
+    }
+    let Some(name) = params.string("lightsampler")? else {
+        return Ok(Fallback::done(LightSamplerKind::Bvh));
+    };
+    match LightSamplerKind::from_pbrt(&name) {
+        Some(k) => Ok(Fallback::done(k)),
+        None if name == "exhaustive" => Ok(Fallback::instead(
+            LightSamplerKind::Bvh,
+            "light sampler \"exhaustive\" is not supported yet; lancer uses \"bvh\"".to_string(),
+        )),
+        None => Err(params.error_at(
+            "lightsampler",
+            format!("unknown light sampler \"{name}\": expected \"uniform\", \"power\" or \"bvh\""),
+        )),
+    }
 }
 
 #[cfg(test)]
@@ -597,10 +620,34 @@ mod tests {
         assert_eq!(clean(r#"Integrator "path""#, integrator), path(5, false));
         assert_eq!(
             clean(
-                r#"Integrator "volpath" "integer maxdepth" 8 "bool regularize" true "string lightsampler" "power""#,
+                r#"Integrator "volpath" "integer maxdepth" 8 "bool regularize" true"#,
                 integrator
             ),
             path(8, true)
+        );
+        let ls = |text: &str| clean(text, light_sampler);
+        assert_eq!(ls(r#"Integrator "path""#), LightSamplerKind::Bvh);
+        assert_eq!(
+            ls(r#"Integrator "volpath" "string lightsampler" "power""#),
+            LightSamplerKind::Power
+        );
+        assert_eq!(
+            ls(r#"Integrator "path" "string lightsampler" "uniform""#),
+            LightSamplerKind::Uniform
+        );
+        assert_eq!(
+            warnings(
+                r#"Integrator "path" "string lightsampler" "exhaustive""#,
+                light_sampler
+            ),
+            ["light sampler \"exhaustive\" is not supported yet; lancer uses \"bvh\""]
+        );
+        assert_eq!(
+            error(
+                "Integrator \"path\"\n  \"string lightsampler\" \"magic\"",
+                light_sampler
+            ),
+            "t.pbrt:2:3: unknown light sampler \"magic\": expected \"uniform\", \"power\" or \"bvh\""
         );
         assert_eq!(
             clean(r#"Integrator "whitted" "integer maxdepth" 3"#, integrator),

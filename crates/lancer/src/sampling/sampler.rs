@@ -278,7 +278,13 @@ impl Sampler {
     /// Dimension `d` of the current Halton sample (dimensions 0 and 1 belong to the pixel).
     fn halton_dimension(&self, d: u32, randomization: Randomization) -> f32 {
         let Some(h) = &self.halton else { return 0.5 };
-        halton::sample_dimension(d.max(2), h.index, randomization, h.perms.as_deref(), self.seed)
+        halton::sample_dimension(
+            d.max(2),
+            h.index,
+            randomization,
+            h.perms.as_deref(),
+            self.seed,
+        )
     }
 
     /// 64 random bits for dimension `d`: the `d`-th output of a SplitMix64 stream seeded by the
@@ -312,7 +318,9 @@ mod tests {
     fn samples_depend_only_on_pixel_index_and_dimension() {
         for kind in [
             SamplerKind::Independent,
-            SamplerKind::ZSobol { randomization: Randomization::FastOwen },
+            SamplerKind::ZSobol {
+                randomization: Randomization::FastOwen,
+            },
             SamplerKind::Stratified {
                 xsamples: 4,
                 ysamples: 4,
@@ -336,7 +344,13 @@ mod tests {
     fn sobol_2d_prefix_is_stratified() {
         // A (0, 2)-sequence: the first 16 points put exactly one point in each 4 × 4 cell, and
         // one in each 1 × 16 and 16 × 1 elementary interval.
-        let mut s = Sampler::new(SamplerKind::ZSobol { randomization: Randomization::FastOwen }, 16, 3);
+        let mut s = Sampler::new(
+            SamplerKind::ZSobol {
+                randomization: Randomization::FastOwen,
+            },
+            16,
+            3,
+        );
         let mut grid = [0u32; 16];
         let mut cols = [0u32; 16];
         let mut rows = [0u32; 16];

@@ -106,6 +106,9 @@ mod tests {
         }
         // And they do change the points.
         assert_ne!(owen_scramble(0, 5), 0);
-        assert_eq!(randomize(0b1010, Randomization::PermuteDigits, 0b0110), 0b1100);
+        assert_eq!(
+            randomize(0b1010, Randomization::PermuteDigits, 0b0110),
+            0b1100
+        );
     }
 }

@@ -158,6 +158,9 @@ pub struct SamplerDesc {
     pub spp: u32,
     /// Seed (pbrt's `seed` parameter, or `--seed`).
     pub seed: u64,
+    /// How next-event estimation chooses a light (pbrt's integrator `lightsampler`; `bvh`
+    /// by default, as pbrt-v4).
+    pub light_sampler: crate::light::LightSamplerKind,
 }
 
 impl Default for SamplerDesc {
@@ -169,6 +172,7 @@ impl Default for SamplerDesc {
             },
             spp: 16,
             seed: 0,
+            light_sampler: crate::light::LightSamplerKind::Bvh,
         }
     }
 }
