@@ -136,7 +136,15 @@ pub fn sampler(params: &ParamList, ty: &str) -> Result<Fallback<SamplerOptions>,
             };
             (kind, spp()?, None)
         }
-        "sobol" | "pmj02bn" => {
+        "sobol" => {
+            let randomization = randomization(p, Randomization::FastOwen, true)?;
+            let kind = SamplerKind::Sobol {
+                randomization,
+                resolution: [1280, 720],
+            };
+            (kind, spp()?, None)
+        }
+        "pmj02bn" => {
             let _ = p.string("randomization")?;
             let w = format!("sampler \"{ty}\" is not supported yet; lancer uses \"zsobol\"");
             (zsobol, spp()?, Some(w))

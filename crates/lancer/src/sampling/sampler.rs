@@ -7,7 +7,10 @@
 use super::halton::{self, DigitPermutations, HaltonTiling};
 use super::hash::{hash_u64, mix_bits, permutation_element, u32_to_unit_f32};
 use super::randomization::Randomization;
-use super::sobol::{fast_owen_scramble, randomize, sobol_0, sobol_1};
+use super::sobol::{
+    N_SOBOL_DIMENSIONS, fast_owen_scramble, interval_to_index, randomize, sobol_0, sobol_1,
+    sobol_sample,
+};
 use crate::math::Vec2;
 use std::sync::Arc;
 
@@ -41,6 +44,15 @@ pub enum SamplerKind {
         /// How the values are randomised (`fastowen` by default).
         randomization: Randomization,
     },
+    /// pbrt-v4's `sobol`: one Sobol sequence over the whole image, each pixel taking the
+    /// points whose first two dimensions, scaled to the image, fall in it
+    /// ([`super::sobol::interval_to_index`]).
+    Sobol {
+        /// How dimensions 2 and up are randomised (`fastowen` by default).
+        randomization: Randomization,
+        /// The film's full resolution.
+        resolution: [u32; 2],
+    },
     /// pbrt-v4's `halton`: the Halton sequence tiled over the image, so that each pixel's
     /// samples are a residue class of the index ([`halton::HaltonTiling`]).
     Halton {
@@ -60,6 +72,7 @@ impl SamplerKind {
             SamplerKind::ZSobol { .. } => "zsobol",
             SamplerKind::PaddedSobol { .. } => "paddedsobol",
             SamplerKind::Halton { .. } => "halton",
+            SamplerKind::Sobol { .. } => "sobol",
         }
     }
 
@@ -71,9 +84,19 @@ impl SamplerKind {
                 randomization,
                 resolution: [width, height],
             },
+            SamplerKind::Sobol { randomization, .. } => SamplerKind::Sobol {
+                randomization,
+                resolution: [width, height],
+            },
             k => k,
         }
     }
+}
+
+/// log₂ of the Sobol sampler's scale: the smallest power of two covering the resolution.
+fn sobol_log2_scale(resolution: [u32; 2]) -> u32 {
+    let r = resolution[0].max(resolution[1]).max(1);
+    r.next_power_of_two().trailing_zeros().min(16)
 }
 
 /// What a Halton sampler keeps: its tiling and (for `permutedigits`) the digit permutations.
@@ -98,6 +121,8 @@ pub struct Sampler {
     index: u64,
     dim: u32,
     halton: Option<HaltonState>,
+    /// The `sobol` sampler's index of the current sample in the whole image's sequence.
+    sobol_index: u64,
 }
 
 impl Sampler {
@@ -125,6 +150,7 @@ impl Sampler {
             index: 0,
             dim: 0,
             halton,
+            sobol_index: 0,
         }
     }
 
@@ -151,6 +177,10 @@ impl Sampler {
         self.dim = 0;
         if let Some(h) = &mut self.halton {
             h.index = h.tiling.index(x, y, index);
+        }
+        if let SamplerKind::Sobol { resolution, .. } = self.kind {
+            let m = sobol_log2_scale(resolution);
+            self.sobol_index = interval_to_index(m, index, x as u32, y as u32);
         }
     }
 
@@ -200,6 +230,7 @@ impl Sampler {
                 u32_to_unit_f32(randomize(sobol_0(i), randomization, (h >> 32) as u32))
             }
             SamplerKind::Halton { randomization, .. } => self.halton_dimension(d, randomization),
+            SamplerKind::Sobol { randomization, .. } => self.sobol_dimension(d, randomization),
         }
     }
 
@@ -257,6 +288,10 @@ impl Sampler {
                 self.halton_dimension(d, randomization),
                 self.halton_dimension(d + 1, randomization),
             ),
+            SamplerKind::Sobol { randomization, .. } => Vec2::new(
+                self.sobol_dimension(d, randomization),
+                self.sobol_dimension(d + 1, randomization),
+            ),
         }
     }
 
@@ -271,8 +306,37 @@ impl Sampler {
                 let (x, y) = h.tiling.pixel_2d(h.index);
                 Vec2::new(x, y)
             }
-            None => self.get_2d(),
+            None => match self.kind {
+                // The first two dimensions below the bits that chose the pixel, unscrambled.
+                SamplerKind::Sobol { resolution, .. } => {
+                    self.dim = 2;
+                    let m = sobol_log2_scale(resolution);
+                    let a = self.sobol_index;
+                    Vec2::new(
+                        u32_to_unit_f32(sobol_0(a as u32) << m),
+                        u32_to_unit_f32(sobol_1(a as u32) << m),
+                    )
+                }
+                _ => self.get_2d(),
+            },
         }
+    }
+
+    /// Dimension `d` of the current `sobol` sample, randomised by a hash of (dimension,
+    /// seed); past the table, dimensions start again from 2 (as pbrt-v4 does past its 1024).
+    fn sobol_dimension(&self, d: u32, randomization: Randomization) -> f32 {
+        let n = N_SOBOL_DIMENSIONS as u32;
+        let d = if d < n {
+            d.max(2)
+        } else {
+            2 + (d - 2) % (n - 2)
+        };
+        let h = mix_bits(hash_u64(&[d as u64, self.seed]));
+        u32_to_unit_f32(randomize(
+            sobol_sample(self.sobol_index, d as usize),
+            randomization,
+            h as u32,
+        ))
     }
 
     /// Dimension `d` of the current Halton sample (dimensions 0 and 1 belong to the pixel).
