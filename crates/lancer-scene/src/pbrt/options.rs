@@ -183,7 +183,7 @@ fn randomization(
         Some(r) => Ok(r),
         None => Err(params.error_at(
             "randomization",
-            &format!(
+            format!(
                 "unknown randomization \"{name}\": expected \"none\", \"permutedigits\", \"fastowen\" or \"owen\""
             ),
         )),

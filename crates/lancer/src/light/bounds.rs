@@ -3,10 +3,19 @@
 //! with half-angle θ_o, plus the emission spread θ_e beyond each normal). From these,
 //! [`LightBounds::importance`] bounds how much the group can light a point.
 
-use super::Light;
-use crate::math::{Bounds3, Vec3};
-use crate::shape::{Shape, TriangleMesh};
+use crate::math::{Bounds3, Vec3, cross, normalize};
 use std::f32::consts::PI;
+
+/// What the light samplers know of a light's extent ([`super::Light::extent`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LightExtent {
+    /// A light with bounds, for the BVH.
+    Bounded(LightBounds),
+    /// Distant and infinite lights, chosen apart.
+    Unbounded,
+    /// A light that emits nothing: never chosen by the BVH.
+    Dark,
+}
 
 /// A cone of directions: axis `w` and cos of its half-angle (−1 for the whole sphere).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -17,7 +26,7 @@ pub struct DirectionCone {
     pub cos_theta: f32,
 }
 
-fn safe_acos(x: f32) -> f32 {
+pub(super) fn safe_acos(x: f32) -> f32 {
     x.clamp(-1.0, 1.0).acos()
 }
 
@@ -51,15 +60,15 @@ impl DirectionCone {
         }
         // Rotate a.w by θ_r = θ_o − θ_a about a.w × b.w (Rodrigues).
         let theta_r = theta_o - theta_a;
-        let axis = a.w.cross(b.w);
+        let axis = cross(a.w, b.w);
         if axis.length_squared() == 0.0 {
             return DirectionCone::ENTIRE_SPHERE;
         }
-        let k = axis.normalize();
+        let k = normalize(axis);
         let (s, c) = theta_r.sin_cos();
-        let w = a.w * c + k.cross(a.w) * s + k * k.dot(a.w) * (1.0 - c);
+        let w = a.w * c + cross(k, a.w) * s + k * k.dot(a.w) * (1.0 - c);
         DirectionCone {
-            w: w.normalize(),
+            w: normalize(w),
             cos_theta: theta_o.cos(),
         }
     }
@@ -101,81 +110,6 @@ fn sin_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> f32 {
 }
 
 impl LightBounds {
-    /// The bounds of a single light; `None` for lights without any (distant and infinite
-    /// lights, which the BVH sampler handles apart) and for lights that emit nothing.
-    pub fn of(light: &Light, shapes: &[Shape], meshes: &[TriangleMesh]) -> Option<LightBounds> {
-        let max = |c: crate::math::Rgb| c.x.max(c.y).max(c.z);
-        let b = match light {
-            // A point emits everywhere: normal cone = sphere, no spread needed.
-            Light::Point { p, intensity } => LightBounds {
-                bounds: Bounds3::from_point(*p),
-                phi: 4.0 * PI * max(*intensity),
-                normals: DirectionCone::ENTIRE_SPHERE,
-                cos_theta_e: (PI / 2.0).cos(),
-                two_sided: false,
-            },
-            // A spot: full intensity inside θ_start, falling off over θ_end − θ_start.
-            Light::Spot {
-                p,
-                axis,
-                intensity,
-                cos_falloff_start,
-                cos_falloff_end,
-            } => {
-                let mut cos_theta_e =
-                    (safe_acos(*cos_falloff_end) - safe_acos(*cos_falloff_start)).cos();
-                // Slack for round-off in the importance's cos θ' (as pbrt-v4).
-                if cos_theta_e == 1.0 && cos_falloff_end != cos_falloff_start {
-                    cos_theta_e = 0.999;
-                }
-                LightBounds {
-                    bounds: Bounds3::from_point(*p),
-                    phi: 4.0 * PI * max(*intensity),
-                    normals: DirectionCone {
-                        w: *axis,
-                        cos_theta: *cos_falloff_start,
-                    },
-                    cos_theta_e,
-                    two_sided: false,
-                }
-            }
-            // An area light: φ = π·A·L, its normals' cone, emission over a hemisphere.
-            Light::Area {
-                prim,
-                l,
-                two_sided,
-                area,
-                ..
-            } => {
-                let shape = &shapes[*prim as usize];
-                let normals = match shape {
-                    // Flat shapes: one normal, as the shape orients it.
-                    Shape::Triangle(_) | Shape::Disk(_) => shape
-                        .sample_area(crate::math::Vec2::splat(1.0 / 3.0), meshes)
-                        .map(|s| DirectionCone {
-                            w: s.n,
-                            cos_theta: 1.0,
-                        })
-                        .unwrap_or(DirectionCone::ENTIRE_SPHERE),
-                    _ => DirectionCone::ENTIRE_SPHERE,
-                };
-                let bounds = shape.bounds();
-                if bounds.is_empty() || !bounds.diagonal().is_finite() {
-                    return None;
-                }
-                LightBounds {
-                    bounds,
-                    phi: max((*l).into()) * area * PI,
-                    normals,
-                    cos_theta_e: (PI / 2.0).cos(),
-                    two_sided: *two_sided,
-                }
-            }
-            _ => return None,
-        };
-        (b.phi > 0.0 && b.phi.is_finite()).then_some(b)
-    }
-
     /// The bounds of two groups together: boxes and cones united, powers added, the wider
     /// spread.
     pub fn union(&self, o: &LightBounds) -> LightBounds {
@@ -281,28 +215,6 @@ mod tests {
     }
 
     #[test]
-    fn importance_bounds_the_true_contribution() {
-        // A point light of intensity I: the irradiance at p on a surface of normal n is
-        // I·cos θᵢ/d², and φ = 4π·I, so importance/(4π) must be at least it.
-        let light = Light::Point {
-            p: Vec3::new(0.3, 1.0, -0.2),
-            intensity: crate::math::Rgb::splat(2.0),
-        };
-        let b = LightBounds::of(&light, &[], &[]).unwrap();
-        let mut rng = crate::sampling::Pcg32::new(3, 4);
-        for _ in 0..1000 {
-            let p = Vec3::new(rng.uniform(), rng.uniform(), rng.uniform()) * 4.0 - 2.0;
-            let n = crate::sampling::sample_uniform_sphere(crate::math::Vec2::new(
-                rng.uniform(),
-                rng.uniform(),
-            ));
-            let d = Vec3::new(0.3, 1.0, -0.2) - p;
-            let e = 2.0 * n.dot(d.normalize()).abs() / d.length_squared();
-            assert!(b.importance(p, n) / (4.0 * PI) >= e * 0.9999, "{p:?}");
-        }
-    }
-
-    #[test]
     fn cone_union_holds_both_cones() {
         let a = DirectionCone {
             w: Vec3::X,
@@ -315,7 +227,7 @@ mod tests {
         let u = DirectionCone::union(a, b);
         // Half-angle π/4 around (x + y)/√2.
         assert!((u.cos_theta - (PI / 4.0).cos()).abs() < 1e-6);
-        assert!((u.w - Vec3::new(1.0, 1.0, 0.0).normalize()).length() < 1e-5);
+        assert!((u.w - normalize(Vec3::new(1.0, 1.0, 0.0))).length() < 1e-5);
         let c = DirectionCone::union(a, DirectionCone::ENTIRE_SPHERE);
         assert_eq!(c.cos_theta, -1.0);
     }

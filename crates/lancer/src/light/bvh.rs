@@ -8,10 +8,9 @@
 //! leaf; each light's path is kept as a bit trail (bit k = which child at depth k) so that
 //! [`BvhLightSampler::pmf`] retraces it for multiple importance sampling.
 
-use super::bounds::LightBounds;
-use super::{Light, LightSampleContext};
+use super::bounds::{LightBounds, LightExtent};
+use super::sample::LightSampleContext;
 use crate::math::{Bounds3, Vec3};
-use crate::shape::{Shape, TriangleMesh};
 use std::f32::consts::PI;
 
 /// The largest float below 1.
@@ -72,8 +71,8 @@ fn cost(b: &LightBounds, parent: &Bounds3, dim: usize) -> f32 {
 }
 
 impl BvhLightSampler {
-    /// The sampler over `lights` (`shapes` and `meshes` give area lights their extent).
-    pub fn new(lights: &[Light], shapes: &[Shape], meshes: &[TriangleMesh]) -> BvhLightSampler {
+    /// The sampler over lights of these extents ([`super::Light::extent`]).
+    pub fn new(lights: &[LightExtent]) -> BvhLightSampler {
         let mut s = BvhLightSampler {
             nodes: Vec::new(),
             infinite: Vec::new(),
@@ -81,13 +80,13 @@ impl BvhLightSampler {
         };
         let mut bounded = Vec::new();
         for (i, light) in lights.iter().enumerate() {
-            match LightBounds::of(light, shapes, meshes) {
-                Some(b) => bounded.push((i as u32, b)),
-                None if light.is_infinite() || matches!(light, Light::Distant { .. }) => {
+            match light {
+                LightExtent::Bounded(b) => bounded.push((i as u32, *b)),
+                LightExtent::Unbounded => {
                     s.infinite.push(i as u32);
                     s.trails[i] = UNBOUNDED;
                 }
-                None => {}
+                LightExtent::Dark => {}
             }
         }
         if !bounded.is_empty() {
@@ -279,34 +278,52 @@ impl BvhLightSampler {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::math::Rgb;
+    use crate::light::DirectionCone;
 
-    fn point(x: f32, y: f32, z: f32, i: f32) -> Light {
-        Light::Point {
-            p: Vec3::new(x, y, z),
-            intensity: Rgb::splat(i),
+    /// A point light's extent: φ = 4π·I, emitting everywhere.
+    fn point(x: f32, y: f32, z: f32, i: f32) -> LightExtent {
+        if i == 0.0 {
+            return LightExtent::Dark;
         }
+        LightExtent::Bounded(LightBounds {
+            bounds: Bounds3::from_point(Vec3::new(x, y, z)),
+            phi: 4.0 * PI * i,
+            normals: DirectionCone::ENTIRE_SPHERE,
+            cos_theta_e: 0.0,
+            two_sided: false,
+        })
     }
 
-    fn lights() -> Vec<Light> {
+    fn lights() -> Vec<LightExtent> {
         let mut v = Vec::new();
         let mut rng = crate::sampling::Pcg32::new(5, 1);
         for _ in 0..37 {
             let p = [rng.uniform(), rng.uniform(), rng.uniform()].map(|c| c * 6.0 - 3.0);
             v.push(point(p[0], p[1], p[2], 0.1 + 3.0 * rng.uniform()));
         }
-        v.push(Light::Spot {
-            p: Vec3::new(0.0, 2.0, 0.0),
-            axis: -Vec3::Y,
-            intensity: Rgb::splat(5.0),
-            cos_falloff_start: 0.9,
-            cos_falloff_end: 0.8,
-        });
-        v.push(Light::UniformInfinite {
-            l: Rgb::splat(0.5),
-            scene_radius: 10.0,
-        });
+        // A spot light pointing down, and a one-sided quad facing up above the point.
+        v.push(LightExtent::Bounded(LightBounds {
+            bounds: Bounds3::from_point(Vec3::new(0.0, 2.0, 0.0)),
+            phi: 4.0 * PI * 5.0,
+            normals: DirectionCone {
+                w: -Vec3::Y,
+                cos_theta: 0.9,
+            },
+            cos_theta_e: (0.9f32.acos() - 0.8f32.acos()).cos(),
+            two_sided: false,
+        }));
+        v.push(LightExtent::Unbounded);
         v.push(point(0.0, 0.0, 0.0, 0.0));
+        v.push(LightExtent::Bounded(LightBounds {
+            bounds: Bounds3::new(Vec3::new(-1.0, 3.0, -1.0), Vec3::new(1.0, 3.0, 1.0)),
+            phi: 10.0,
+            normals: DirectionCone {
+                w: Vec3::Y,
+                cos_theta: 1.0,
+            },
+            cos_theta_e: 0.0,
+            two_sided: false,
+        }));
         v
     }
 
@@ -321,13 +338,14 @@ mod tests {
     #[test]
     fn pmf_sums_to_one_and_matches_sampling_frequencies() {
         let lights = lights();
-        let s = BvhLightSampler::new(&lights, &[], &[]);
+        let s = BvhLightSampler::new(&lights);
         let c = ctx();
         let pmf: Vec<f64> = (0..lights.len()).map(|i| s.pmf(&c, i) as f64).collect();
         let total: f64 = pmf.iter().sum();
         assert!((total - 1.0).abs() < 1e-4, "{total}");
-        // The infinite light gets 1/2; the black point light nothing.
-        assert!((pmf[38] - 0.5).abs() < 1e-6 && pmf[39] == 0.0);
+        // The infinite light gets 1/2; the black point light and the quad, which faces away
+        // from the point, nothing.
+        assert!((pmf[38] - 0.5).abs() < 1e-6 && pmf[39] == 0.0 && pmf[40] == 0.0);
         // Chi-square of the sampled counts against the PMF.
         let n = 200_000;
         let mut counts = vec![0u32; lights.len()];
@@ -356,7 +374,7 @@ mod tests {
     #[test]
     fn nearer_lights_are_chosen_more_often() {
         let lights = vec![point(0.0, 1.0, 0.0, 1.0), point(0.0, 10.0, 0.0, 1.0)];
-        let s = BvhLightSampler::new(&lights, &[], &[]);
+        let s = BvhLightSampler::new(&lights);
         let c = LightSampleContext {
             p: Vec3::ZERO,
             n: Vec3::Y,

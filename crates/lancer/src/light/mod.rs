@@ -6,11 +6,12 @@
 mod bounds;
 mod bvh;
 mod distribution;
+mod extent;
 mod image_infinite;
 mod sample;
 mod sampler;
 
-pub use bounds::{DirectionCone, LightBounds};
+pub use bounds::{DirectionCone, LightBounds, LightExtent};
 pub use bvh::BvhLightSampler;
 pub use distribution::LightDistribution;
 pub use image_infinite::{EnvMapping, ImageInfiniteLight, environment_mapping};

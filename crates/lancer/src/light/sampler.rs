@@ -2,9 +2,10 @@
 //! in proportion to power, or by the light BVH's estimate of each light's contribution at the
 //! point being lit (pbrt-v4's default).
 
+use super::bounds::LightExtent;
 use super::bvh::BvhLightSampler;
-use super::{Light, LightDistribution, LightSampleContext};
-use crate::shape::{Shape, TriangleMesh};
+use super::distribution::LightDistribution;
+use super::sample::LightSampleContext;
 
 /// Which light sampler (the integrator's `lightsampler`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -46,23 +47,20 @@ impl Default for LightSampler {
 }
 
 impl LightSampler {
-    /// The sampler of `kind` over `lights`; `power` is the distribution by power the scene
-    /// already holds (so that `power` chooses exactly as it always did).
+    /// The sampler of `kind` over lights of extents `lights` ([`super::Light::extent`]);
+    /// `power` is the distribution by power the scene already holds (so that `power` chooses
+    /// exactly as it always did).
     pub fn new(
         kind: LightSamplerKind,
-        lights: &[Light],
+        lights: &[LightExtent],
         power: &LightDistribution,
-        shapes: &[Shape],
-        meshes: &[TriangleMesh],
     ) -> LightSampler {
         match kind {
             LightSamplerKind::Uniform => {
                 LightSampler::Fixed(LightDistribution::new(&vec![1.0; lights.len()]))
             }
             LightSamplerKind::Power => LightSampler::Fixed(power.clone()),
-            LightSamplerKind::Bvh => {
-                LightSampler::Bvh(Box::new(BvhLightSampler::new(lights, shapes, meshes)))
-            }
+            LightSamplerKind::Bvh => LightSampler::Bvh(Box::new(BvhLightSampler::new(lights))),
         }
     }
 

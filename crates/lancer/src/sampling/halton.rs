@@ -26,7 +26,7 @@ const fn primes() -> [u32; PRIME_TABLE_SIZE] {
         let mut prime = true;
         let mut k = 0;
         while k < n && out[k] * out[k] <= c {
-            if c % out[k] == 0 {
+            if c.is_multiple_of(out[k]) {
                 prime = false;
                 break;
             }
@@ -124,7 +124,9 @@ impl DigitPermutations {
 
     /// The permutations for `seed`, built once per seed and shared by every sampler.
     pub fn for_seed(seed: u64) -> Arc<DigitPermutations> {
-        static CACHE: OnceLock<Mutex<Vec<(u64, Arc<DigitPermutations>)>>> = OnceLock::new();
+        /// The permutations built so far, by seed.
+        type Cache = Mutex<Vec<(u64, Arc<DigitPermutations>)>>;
+        static CACHE: OnceLock<Cache> = OnceLock::new();
         let cache = CACHE.get_or_init(|| Mutex::new(Vec::new()));
         let mut cache = cache.lock().unwrap_or_else(|e| e.into_inner());
         if let Some((_, p)) = cache.iter().find(|(s, _)| *s == seed) {

@@ -46,13 +46,13 @@ impl Scene {
         }
         let camera = Camera::from_desc(&desc.camera, desc.film.xresolution, desc.film.yresolution)
             .ok_or(BuildError::BadCamera)?;
-        let light_sampler = LightSampler::new(
-            desc.sampler.light_sampler,
-            &lights.lights,
-            &lights.distribution,
-            &shapes,
-            &meshes,
-        );
+        let extents: Vec<_> = lights
+            .lights
+            .iter()
+            .map(|l| l.extent(&shapes, &meshes))
+            .collect();
+        let light_sampler =
+            LightSampler::new(desc.sampler.light_sampler, &extents, &lights.distribution);
         Ok(Scene {
             light_sampler,
             shapes,
