@@ -378,6 +378,121 @@ impl Sampler {
 mod tests {
     use super::*;
 
+    /// Every point set, with several randomisations.
+    fn all_kinds() -> Vec<SamplerKind> {
+        let mut v = vec![
+            SamplerKind::Independent,
+            SamplerKind::Stratified {
+                xsamples: 4,
+                ysamples: 4,
+                jitter: true,
+            },
+        ];
+        for r in [
+            Randomization::None,
+            Randomization::PermuteDigits,
+            Randomization::FastOwen,
+            Randomization::Owen,
+        ] {
+            v.push(SamplerKind::ZSobol { randomization: r });
+            v.push(SamplerKind::PaddedSobol { randomization: r });
+            v.push(SamplerKind::Sobol {
+                randomization: r,
+                resolution: [16, 16],
+            });
+            if r != Randomization::FastOwen {
+                v.push(SamplerKind::Halton {
+                    randomization: r,
+                    resolution: [16, 16],
+                });
+            }
+        }
+        v
+    }
+
+    #[test]
+    fn every_sampler_is_a_pure_function_of_pixel_index_and_dimension() {
+        for kind in all_kinds() {
+            let mut a = Sampler::new(kind, 16, 7);
+            let mut b = Sampler::new(kind, 16, 7);
+            b.start_pixel_sample(9, 9, 3);
+            let _ = (b.get_pixel_2d(), b.get_1d(), b.get_2d());
+            a.start_pixel_sample(5, 6, 11);
+            b.start_pixel_sample(5, 6, 11);
+            assert_eq!(a.get_pixel_2d(), b.get_pixel_2d());
+            for _ in 0..40 {
+                assert_eq!(a.get_2d(), b.get_2d(), "{kind:?}");
+                assert_eq!(a.get_1d(), b.get_1d(), "{kind:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn first_dimensions_are_uniform_by_chi_square() {
+        // 16 × 16 pixels × 16 samples = 4096 values of the pixel sample and of the next two
+        // dimensions, in 16 bins each (expected 256 per bin). χ² with 15 degrees of freedom
+        // stays below 37.7 with probability 0.999 for uniform values; stratified ones do far
+        // better.
+        for kind in all_kinds() {
+            let mut s = Sampler::new(kind, 16, 1);
+            let mut bins = [[0u32; 16]; 5];
+            for y in 0..16 {
+                for x in 0..16 {
+                    for i in 0..16 {
+                        s.start_pixel_sample(x, y, i);
+                        let p = s.get_pixel_2d();
+                        let u = s.get_1d();
+                        let q = s.get_2d();
+                        for (k, v) in [p.x, p.y, u, q.x, q.y].into_iter().enumerate() {
+                            assert!((0.0..1.0).contains(&v), "{kind:?}");
+                            bins[k][(v * 16.0) as usize] += 1;
+                        }
+                    }
+                }
+            }
+            for (k, b) in bins.iter().enumerate() {
+                let chi2: f64 = b.iter().map(|&o| (o as f64 - 256.0).powi(2) / 256.0).sum();
+                assert!(chi2 < 37.7, "{kind:?} dimension {k}: chi2 {chi2} {b:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn sobol_and_halton_pixel_samples_are_stratified() {
+        // The first 16 samples of a pixel put one point in each 4 × 4 cell (Sobol, a
+        // (0, 2)-sequence); Halton's first 6 samples one in each of 2 × 3 cells (bases 2, 3).
+        let mut s = Sampler::new(
+            SamplerKind::Sobol {
+                randomization: Randomization::FastOwen,
+                resolution: [32, 20],
+            },
+            16,
+            2,
+        );
+        let mut grid = [0u32; 16];
+        for i in 0..16 {
+            s.start_pixel_sample(7, 13, i);
+            let p = s.get_pixel_2d();
+            grid[(p.x * 4.0) as usize + 4 * (p.y * 4.0) as usize] += 1;
+        }
+        assert_eq!(grid, [1; 16]);
+        let mut s = Sampler::new(
+            SamplerKind::Halton {
+                randomization: Randomization::PermuteDigits,
+                resolution: [32, 20],
+            },
+            6,
+            2,
+        );
+        let mut cells = [0u32; 6];
+        for i in 0..6 {
+            s.start_pixel_sample(3, 4, i);
+            let p = s.get_pixel_2d();
+            cells[(p.x * 2.0) as usize + 2 * (p.y * 3.0) as usize] += 1;
+        }
+        assert_eq!(cells, [1; 6]);
+    }
+
     #[test]
     fn samples_depend_only_on_pixel_index_and_dimension() {
         for kind in [
