@@ -61,7 +61,10 @@ impl RenderSettings {
             samples: 0..desc.sampler.spp,
             spp: desc.sampler.spp,
             seed: desc.sampler.seed,
-            sampler: desc.sampler.kind,
+            sampler: desc
+                .sampler
+                .kind
+                .for_film(desc.film.xresolution, desc.film.yresolution),
             filter: Filter::new(desc.filter),
             integrator: desc.integrator,
             tile_size: DEFAULT_TILE_SIZE,

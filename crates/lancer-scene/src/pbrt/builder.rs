@@ -6,7 +6,7 @@ use super::cameras::{camera, frame_window};
 use super::convert::{Fallback, Reader, TextureNames};
 use super::lights::{area_light, light};
 use super::materials::{MaterialWithNames, material};
-use super::options::{film, filter, imaging_ratio, integrator, sampler, seed};
+use super::options::{film, filter, imaging_ratio, integrator, light_sampler, sampler, seed};
 use super::params::{Param, ParamList};
 use super::parser::{Directive, Located, Parser};
 use super::search_path::SearchPath;
@@ -329,6 +329,7 @@ impl Builder {
             D::Integrator(ty, params) => {
                 self.with_params("Integrator", &ty, params, loc, |b, p| {
                     b.desc.integrator = b.accept(integrator(p, &ty)?, loc);
+                    b.desc.sampler.light_sampler = b.accept(light_sampler(p, &ty)?, loc);
                     Ok(())
                 })
             }

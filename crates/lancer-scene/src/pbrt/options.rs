@@ -4,7 +4,8 @@
 use super::convert::{Fallback, MAX_RESOLUTION};
 use super::params::ParamList;
 use crate::error::SceneError;
-use lancer::sampling::SamplerKind;
+use lancer::light::LightSamplerKind;
+use lancer::sampling::{Randomization, SamplerKind};
 use lancer::scene::desc::{FilmDesc, FilterDesc, Integrator};
 
 /// What `Film` sets: the film, and the sensor's ISO (the imaging ratio is exposure time ×
@@ -102,6 +103,9 @@ pub fn sampler(params: &ParamList, ty: &str) -> Result<Fallback<SamplerOptions>,
     let p = params;
     let spp =
         || -> Result<u32, SceneError> { Ok(p.int_in("pixelsamples", 16, 1..=1 << 24)? as u32) };
+    let zsobol = SamplerKind::ZSobol {
+        randomization: Randomization::FastOwen,
+    };
     let (kind, spp, warning) = match ty {
         "independent" => (SamplerKind::Independent, spp()?, None),
         "stratified" => {
@@ -115,18 +119,39 @@ pub fn sampler(params: &ParamList, ty: &str) -> Result<Fallback<SamplerOptions>,
             };
             (kind, x * y, None)
         }
-        "sobol" | "zsobol" | "paddedsobol" => {
-            let _ = p.string("randomization")?;
-            (SamplerKind::Sobol, spp()?, None)
+        "zsobol" => {
+            let randomization = randomization(p, Randomization::FastOwen, true)?;
+            (SamplerKind::ZSobol { randomization }, spp()?, None)
         }
-        "halton" | "pmj02bn" => {
+        "paddedsobol" => {
+            let randomization = randomization(p, Randomization::FastOwen, true)?;
+            (SamplerKind::PaddedSobol { randomization }, spp()?, None)
+        }
+        "halton" => {
+            let randomization = randomization(p, Randomization::PermuteDigits, false)?;
+            // The film's resolution is set when the render starts.
+            let kind = SamplerKind::Halton {
+                randomization,
+                resolution: [1280, 720],
+            };
+            (kind, spp()?, None)
+        }
+        "sobol" => {
+            let randomization = randomization(p, Randomization::FastOwen, true)?;
+            let kind = SamplerKind::Sobol {
+                randomization,
+                resolution: [1280, 720],
+            };
+            (kind, spp()?, None)
+        }
+        "pmj02bn" => {
             let _ = p.string("randomization")?;
             let w = format!("sampler \"{ty}\" is not supported yet; lancer uses \"zsobol\"");
-            (SamplerKind::Sobol, spp()?, Some(w))
+            (zsobol, spp()?, Some(w))
         }
         _ => {
             let w = format!("unknown sampler \"{ty}\"; lancer uses \"zsobol\"");
-            (SamplerKind::Sobol, spp()?, Some(w))
+            (zsobol, spp()?, Some(w))
         }
     };
     let options = SamplerOptions {
@@ -138,6 +163,31 @@ pub fn sampler(params: &ParamList, ty: &str) -> Result<Fallback<SamplerOptions>,
         None => Fallback::done(options),
         Some(w) => Fallback::instead(options, w),
     })
+}
+
+/// The sampler's `"string randomization"` (`default` when absent): `none`, `permutedigits`,
+/// `owen`, and `fastowen` where the sequence is in base 2 (`base2`); pbrt-v4 refuses the rest.
+fn randomization(
+    params: &ParamList,
+    default: Randomization,
+    base2: bool,
+) -> Result<Randomization, SceneError> {
+    let Some(name) = params.string("randomization")? else {
+        return Ok(default);
+    };
+    match Randomization::from_pbrt(&name) {
+        Some(Randomization::FastOwen) if !base2 => Err(params.error_at(
+            "randomization",
+            "\"fastowen\" randomization is for base-2 samplers; use \"permutedigits\", \"owen\" or \"none\"",
+        )),
+        Some(r) => Ok(r),
+        None => Err(params.error_at(
+            "randomization",
+            format!(
+                "unknown randomization \"{name}\": expected \"none\", \"permutedigits\", \"fastowen\" or \"owen\""
+            ),
+        )),
+    }
 }
 
 /// The pixel filter `ty`, with pbrt-v4's default radii.
@@ -193,11 +243,8 @@ pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, 
     };
     let i = match ty {
         "whitted" => Integrator::Whitted { max_depth },
-        "path" | "volpath" => {
-            // The light sampler is lancer's own; pbrt's choice needs no warning.
-            let _ = p.string("lightsampler")?;
-            path()?
-        }
+        // Their `lightsampler` is read by [`light_sampler`].
+        "path" | "volpath" => path()?,
         "ambientocclusion" => Integrator::AmbientOcclusion {
             cos_sample: p.bool("cossample", true)?,
             max_distance: p.float("maxdistance", f32::INFINITY)?,
@@ -221,6 +268,31 @@ pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, 
         }
     };
     Ok(Fallback::done(i))
+}
+
+/// The integrator `ty`'s `"string lightsampler"` (path tracers only): `uniform`, `power` or
+/// `bvh`, pbrt-v4's default.
+pub fn light_sampler(
+    params: &ParamList,
+    ty: &str,
+) -> Result<Fallback<LightSamplerKind>, SceneError> {
+    if !matches!(ty, "path" | "volpath") {
+        return Ok(Fallback::done(LightSamplerKind::Bvh));
+    }
+    let Some(name) = params.string("lightsampler")? else {
+        return Ok(Fallback::done(LightSamplerKind::Bvh));
+    };
+    match LightSamplerKind::from_pbrt(&name) {
+        Some(k) => Ok(Fallback::done(k)),
+        None if name == "exhaustive" => Ok(Fallback::instead(
+            LightSamplerKind::Bvh,
+            "light sampler \"exhaustive\" is not supported yet; lancer uses \"bvh\"".to_string(),
+        )),
+        None => Err(params.error_at(
+            "lightsampler",
+            format!("unknown light sampler \"{name}\": expected \"uniform\", \"power\" or \"bvh\""),
+        )),
+    }
 }
 
 #[cfg(test)]
@@ -360,16 +432,56 @@ mod tests {
     #[test]
     fn samplers() {
         let options = |kind, spp, seed| SamplerOptions { kind, spp, seed };
+        let zsobol = |randomization| SamplerKind::ZSobol { randomization };
         assert_eq!(
             clean(r#"Sampler "zsobol""#, sampler),
-            options(SamplerKind::Sobol, 16, None)
+            options(zsobol(Randomization::FastOwen), 16, None)
         );
         assert_eq!(
             clean(
-                r#"Sampler "sobol" "integer pixelsamples" 64 "string randomization" "owen" "integer seed" 9"#,
+                r#"Sampler "zsobol" "integer pixelsamples" 64 "string randomization" "owen" "integer seed" 9"#,
                 sampler
             ),
-            options(SamplerKind::Sobol, 64, Some(9))
+            options(zsobol(Randomization::Owen), 64, Some(9))
+        );
+        assert_eq!(
+            clean(
+                r#"Sampler "paddedsobol" "string randomization" "permutedigits""#,
+                sampler
+            ),
+            options(
+                SamplerKind::PaddedSobol {
+                    randomization: Randomization::PermuteDigits
+                },
+                16,
+                None
+            )
+        );
+        let halton = |randomization| SamplerKind::Halton {
+            randomization,
+            resolution: [1280, 720],
+        };
+        assert_eq!(
+            clean(r#"Sampler "halton" "integer pixelsamples" 8"#, sampler),
+            options(halton(Randomization::PermuteDigits), 8, None)
+        );
+        assert_eq!(
+            clean(r#"Sampler "halton" "string randomization" "none""#, sampler),
+            options(halton(Randomization::None), 16, None)
+        );
+        assert_eq!(
+            error(
+                "Sampler \"halton\"\n  \"string randomization\" \"fastowen\"",
+                sampler
+            ),
+            "t.pbrt:2:3: \"fastowen\" randomization is for base-2 samplers; use \"permutedigits\", \"owen\" or \"none\""
+        );
+        assert_eq!(
+            error(
+                "Sampler \"zsobol\"\n  \"string randomization\" \"cranleypatterson\"",
+                sampler
+            ),
+            "t.pbrt:2:3: unknown randomization \"cranleypatterson\": expected \"none\", \"permutedigits\", \"fastowen\" or \"owen\""
         );
         assert_eq!(
             clean(r#"Sampler "independent" "integer pixelsamples" 4"#, sampler),
@@ -395,10 +507,6 @@ mod tests {
         assert_eq!(
             clean(r#"Sampler "zsobol" "integer seed" -1"#, sampler).seed,
             Some(u32::MAX as u64)
-        );
-        assert_eq!(
-            warnings(r#"Sampler "halton" "integer pixelsamples" 8"#, sampler),
-            ["sampler \"halton\" is not supported yet; lancer uses \"zsobol\""]
         );
         assert_eq!(
             warnings(r#"Sampler "magic""#, sampler),
@@ -520,10 +628,34 @@ mod tests {
         assert_eq!(clean(r#"Integrator "path""#, integrator), path(5, false));
         assert_eq!(
             clean(
-                r#"Integrator "volpath" "integer maxdepth" 8 "bool regularize" true "string lightsampler" "power""#,
+                r#"Integrator "volpath" "integer maxdepth" 8 "bool regularize" true"#,
                 integrator
             ),
             path(8, true)
+        );
+        let ls = |text: &str| clean(text, light_sampler);
+        assert_eq!(ls(r#"Integrator "path""#), LightSamplerKind::Bvh);
+        assert_eq!(
+            ls(r#"Integrator "volpath" "string lightsampler" "power""#),
+            LightSamplerKind::Power
+        );
+        assert_eq!(
+            ls(r#"Integrator "path" "string lightsampler" "uniform""#),
+            LightSamplerKind::Uniform
+        );
+        assert_eq!(
+            warnings(
+                r#"Integrator "path" "string lightsampler" "exhaustive""#,
+                light_sampler
+            ),
+            ["light sampler \"exhaustive\" is not supported yet; lancer uses \"bvh\""]
+        );
+        assert_eq!(
+            error(
+                "Integrator \"path\"\n  \"string lightsampler\" \"magic\"",
+                light_sampler
+            ),
+            "t.pbrt:2:3: unknown light sampler \"magic\": expected \"uniform\", \"power\" or \"bvh\""
         );
         assert_eq!(
             clean(r#"Integrator "whitted" "integer maxdepth" 3"#, integrator),

@@ -83,7 +83,7 @@ pub fn li_observed<O: PathObserver>(
                 }
                 match (depth == 0 || specular_bounce, prev_ctx) {
                     (false, Some(ctx)) => {
-                        let p_l = scene.light_distribution.pmf(i)
+                        let p_l = scene.light_sampler.pmf(&ctx, i)
                             * light.pdf_li(&ctx, normalize(ray.d), None);
                         l += beta * power_heuristic(p_b, p_l) * le;
                     }
@@ -105,7 +105,7 @@ pub fn li_observed<O: PathObserver>(
             ) {
                 (false, Some(ctx), Some(e)) => {
                     let light = &scene.lights[e.light as usize];
-                    let p_l = scene.light_distribution.pmf(e.light as usize)
+                    let p_l = scene.light_sampler.pmf(&ctx, e.light as usize)
                         * light.pdf_li(&ctx, normalize(ray.d), Some((si.p, si.n)));
                     l += beta * power_heuristic(p_b, p_l) * le;
                 }
@@ -142,10 +142,10 @@ pub fn li_observed<O: PathObserver>(
         };
         let flags = bsdf.flags();
         if flags.is_non_specular() && !scene.lights.is_empty() {
-            // Next-event estimation: one light chosen by power, one point on it.
+            // Next-event estimation: one light chosen by the scene's light sampler, one point on it.
             let ul = sampler.get_1d();
             let u = sampler.get_2d();
-            if let Some((i, pmf)) = scene.light_distribution.sample(ul) {
+            if let Some((i, pmf)) = scene.light_sampler.sample(&ctx, ul) {
                 let light = &scene.lights[i];
                 if let Some(ls) = light.sample_li(&ctx, u, &scene.shapes, &scene.meshes) {
                     let f =

@@ -3,13 +3,20 @@
 //! [`Light::sample_li`] answers, for a point being shaded, "from which direction does this
 //! light arrive, how much, and where must a shadow ray go to check that nothing is in the way".
 
+mod bounds;
+mod bvh;
 mod distribution;
+mod extent;
 mod image_infinite;
 mod sample;
+mod sampler;
 
+pub use bounds::{DirectionCone, LightBounds, LightExtent};
+pub use bvh::BvhLightSampler;
 pub use distribution::LightDistribution;
 pub use image_infinite::{EnvMapping, ImageInfiniteLight, environment_mapping};
 pub use sample::{LightLiSample, LightSampleContext};
+pub use sampler::{LightSampler, LightSamplerKind};
 
 use crate::math::{Frame, INV_PI, PackedRgb, PackedVec3, Rgb, Vec2, Vec3, smooth_step};
 use crate::shape::{Shape, TriangleMesh};

@@ -1,13 +1,17 @@
 //! Random numbers, samplers and warps from the unit square to the shapes light travels through.
 
+pub mod halton;
 mod hash;
 pub(crate) mod piecewise;
+mod randomization;
 mod rng;
 mod sampler;
+pub mod sobol;
 mod warp;
 
 pub use hash::{hash_u64, mix_bits, permutation_element, u32_to_unit_f32};
 pub use piecewise::{PiecewiseConstant1D, PiecewiseConstant2D};
+pub use randomization::Randomization;
 pub use rng::Pcg32;
 pub use sampler::{Sampler, SamplerKind};
 pub use warp::*;

@@ -4,8 +4,15 @@
 //! thread, tile order or machine computes it. That is what makes split renders merge exactly
 //! and interrupted renders resume to the same pixels.
 
+use super::halton::{self, DigitPermutations, HaltonTiling};
 use super::hash::{hash_u64, mix_bits, permutation_element, u32_to_unit_f32};
+use super::randomization::Randomization;
+use super::sobol::{
+    N_SOBOL_DIMENSIONS, fast_owen_scramble, interval_to_index, randomize, sobol_0, sobol_1,
+    sobol_sample,
+};
 use crate::math::Vec2;
+use std::sync::Arc;
 
 /// Which point set a [`Sampler`] draws from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -22,22 +29,83 @@ pub enum SamplerKind {
         /// Jitter within each stratum (otherwise its centre).
         jitter: bool,
     },
-    /// The first two dimensions of the Sobol sequence, Owen-scrambled and shuffled
-    /// independently for each pair of dimensions ("padded" Sobol, Burley 2020). Every 2D
+    /// lancer's stand-in for pbrt-v4's `zsobol` (its default): the first two dimensions of
+    /// the Sobol sequence for every pair of dimensions, the sample index shuffled by Owen
+    /// scrambling and the values randomised independently for each pixel and pair of
+    /// dimensions ("padded" Sobol with hash-based shuffling, Burley 2020). Every 2D
     /// projection is a (0, 2)-sequence: well stratified for any power-of-two prefix.
-    Sobol,
+    ZSobol {
+        /// How the values are randomised (`fastowen` by default).
+        randomization: Randomization,
+    },
+    /// pbrt-v4's `paddedsobol`: for each pixel and dimension a random permutation of the
+    /// pixel's sample indices picks a point of the first Sobol dimensions, randomised.
+    PaddedSobol {
+        /// How the values are randomised (`fastowen` by default).
+        randomization: Randomization,
+    },
+    /// pbrt-v4's `sobol`: one Sobol sequence over the whole image, each pixel taking the
+    /// points whose first two dimensions, scaled to the image, fall in it
+    /// ([`super::sobol::interval_to_index`]).
+    Sobol {
+        /// How dimensions 2 and up are randomised (`fastowen` by default).
+        randomization: Randomization,
+        /// The film's full resolution.
+        resolution: [u32; 2],
+    },
+    /// pbrt-v4's `halton`: the Halton sequence tiled over the image, so that each pixel's
+    /// samples are a residue class of the index ([`halton::HaltonTiling`]).
+    Halton {
+        /// `permutedigits` (pbrt-v4's default), `owen` or `none`.
+        randomization: Randomization,
+        /// The film's full resolution, which sets the tiling.
+        resolution: [u32; 2],
+    },
 }
 
 impl SamplerKind {
-    /// The pbrt-v4 name of this point set (`Sampler "…"`): `independent`, `stratified`,
-    /// `paddedsobol` (pbrt's `sobol` and `zsobol` are read as it too).
+    /// The pbrt-v4 name of this point set (`Sampler "…"`).
     pub fn pbrt_name(&self) -> &'static str {
         match self {
             SamplerKind::Independent => "independent",
             SamplerKind::Stratified { .. } => "stratified",
-            SamplerKind::Sobol => "paddedsobol",
+            SamplerKind::ZSobol { .. } => "zsobol",
+            SamplerKind::PaddedSobol { .. } => "paddedsobol",
+            SamplerKind::Halton { .. } => "halton",
+            SamplerKind::Sobol { .. } => "sobol",
         }
     }
+
+    /// The same point set for a film of `width × height` pixels (the samplers that tile the
+    /// image with their first dimensions need the film's full resolution).
+    pub fn for_film(self, width: u32, height: u32) -> SamplerKind {
+        match self {
+            SamplerKind::Halton { randomization, .. } => SamplerKind::Halton {
+                randomization,
+                resolution: [width, height],
+            },
+            SamplerKind::Sobol { randomization, .. } => SamplerKind::Sobol {
+                randomization,
+                resolution: [width, height],
+            },
+            k => k,
+        }
+    }
+}
+
+/// log₂ of the Sobol sampler's scale: the smallest power of two covering the resolution.
+fn sobol_log2_scale(resolution: [u32; 2]) -> u32 {
+    let r = resolution[0].max(resolution[1]).max(1);
+    r.next_power_of_two().trailing_zeros().min(16)
+}
+
+/// What a Halton sampler keeps: its tiling and (for `permutedigits`) the digit permutations.
+#[derive(Clone, Debug)]
+struct HaltonState {
+    tiling: HaltonTiling,
+    perms: Option<Arc<DigitPermutations>>,
+    /// The current sample's Halton index.
+    index: u64,
 }
 
 /// A sampler positioned at one pixel sample; hands out the sample's dimensions in turn.
@@ -52,53 +120,26 @@ pub struct Sampler {
     sample_hash: u64,
     index: u64,
     dim: u32,
-}
-
-/// Reverses the bits of a 32-bit word.
-#[inline]
-fn reverse_bits(v: u32) -> u32 {
-    v.reverse_bits()
-}
-
-/// Nested uniform (Owen) scrambling of a 32-bit fixed-point value, in the hash-based form of
-/// Burley 2020 ("Practical Hash-based Owen Scrambling", §3): reverse the bits, apply the
-/// Laine–Karras permutation, reverse back.
-#[inline]
-fn owen_scramble(v: u32, seed: u32) -> u32 {
-    let mut x = reverse_bits(v);
-    x = x.wrapping_add(seed);
-    x ^= x.wrapping_mul(0x6c50_b47c);
-    x ^= x.wrapping_mul(0xb82f_1e52);
-    x ^= x.wrapping_mul(0xc7af_e638);
-    x ^= x.wrapping_mul(0x8d22_f6e6);
-    reverse_bits(x)
-}
-
-/// Sobol dimension 0: the van der Corput sequence (bit reversal of the index).
-#[inline]
-fn sobol_0(a: u32) -> u32 {
-    reverse_bits(a)
-}
-
-/// Sobol dimension 1: generator matrix = Pascal's triangle mod 2, produced by the recurrence
-/// vᵢ₊₁ = vᵢ ⊕ (vᵢ >> 1) on the direction numbers.
-#[inline]
-fn sobol_1(mut a: u32) -> u32 {
-    let mut v = 1u32 << 31;
-    let mut r = 0u32;
-    while a != 0 {
-        if a & 1 != 0 {
-            r ^= v;
-        }
-        a >>= 1;
-        v ^= v >> 1;
-    }
-    r
+    halton: Option<HaltonState>,
+    /// The `sobol` sampler's index of the current sample in the whole image's sequence.
+    sobol_index: u64,
 }
 
 impl Sampler {
     /// A sampler of `kind` for `spp` samples per pixel, seeded by `seed`.
     pub fn new(kind: SamplerKind, spp: u32, seed: u64) -> Sampler {
+        let halton = match kind {
+            SamplerKind::Halton {
+                randomization,
+                resolution,
+            } => Some(HaltonState {
+                tiling: HaltonTiling::new(resolution),
+                perms: (randomization == Randomization::PermuteDigits)
+                    .then(|| DigitPermutations::for_seed(seed)),
+                index: 0,
+            }),
+            _ => None,
+        };
         Sampler {
             kind,
             seed,
@@ -108,6 +149,8 @@ impl Sampler {
             sample_hash: 0,
             index: 0,
             dim: 0,
+            halton,
+            sobol_index: 0,
         }
     }
 
@@ -132,6 +175,22 @@ impl Sampler {
         self.sample_hash = mix_bits(self.pixel_hash ^ index.wrapping_mul(0xd6e8_feb8_6659_fd93));
         self.index = index;
         self.dim = 0;
+        if let Some(h) = &mut self.halton {
+            h.index = h.tiling.index(x, y, index);
+        }
+        if let SamplerKind::Sobol { resolution, .. } = self.kind {
+            let m = sobol_log2_scale(resolution);
+            self.sobol_index = interval_to_index(m, index, x as u32, y as u32);
+        }
+    }
+
+    /// The pixel's sample index permuted by a hash `h` of (pixel, dimension): pbrt-v4's
+    /// padded samplers take the points of one pixel in a different order in each dimension.
+    #[inline]
+    fn permuted_index(&self, h: u64) -> u32 {
+        let spp = self.spp as u64;
+        let (round, i) = (self.index / spp, self.index % spp);
+        (round * spp) as u32 + permutation_element(i as u32, self.spp, h as u32)
     }
 
     /// The sample's next dimension.
@@ -162,10 +221,16 @@ impl Sampler {
                 let delta = if jitter { self.independent(d) } else { 0.5 };
                 (stratum as f32 + delta) / n as f32
             }
-            SamplerKind::Sobol => {
-                let i = owen_scramble(self.index as u32, h as u32);
-                u32_to_unit_f32(owen_scramble(sobol_0(i), (h >> 32) as u32))
+            SamplerKind::ZSobol { randomization } => {
+                let i = fast_owen_scramble(self.index as u32, h as u32);
+                u32_to_unit_f32(randomize(sobol_0(i), randomization, (h >> 32) as u32))
             }
+            SamplerKind::PaddedSobol { randomization } => {
+                let i = self.permuted_index(h);
+                u32_to_unit_f32(randomize(sobol_0(i), randomization, (h >> 32) as u32))
+            }
+            SamplerKind::Halton { randomization, .. } => self.halton_dimension(d, randomization),
+            SamplerKind::Sobol { randomization, .. } => self.sobol_dimension(d, randomization),
         }
     }
 
@@ -204,21 +269,86 @@ impl Sampler {
                     (sy as f32 + dy) / ysamples as f32,
                 )
             }
-            SamplerKind::Sobol => {
-                let i = owen_scramble(self.index as u32, h as u32);
+            SamplerKind::ZSobol { randomization } => {
+                let i = fast_owen_scramble(self.index as u32, h as u32);
                 let h2 = mix_bits(h);
                 Vec2::new(
-                    u32_to_unit_f32(owen_scramble(sobol_0(i), (h >> 32) as u32)),
-                    u32_to_unit_f32(owen_scramble(sobol_1(i), h2 as u32)),
+                    u32_to_unit_f32(randomize(sobol_0(i), randomization, (h >> 32) as u32)),
+                    u32_to_unit_f32(randomize(sobol_1(i), randomization, h2 as u32)),
                 )
             }
+            SamplerKind::PaddedSobol { randomization } => {
+                let i = self.permuted_index(h);
+                Vec2::new(
+                    u32_to_unit_f32(randomize(sobol_0(i), randomization, h as u32)),
+                    u32_to_unit_f32(randomize(sobol_1(i), randomization, (h >> 32) as u32)),
+                )
+            }
+            SamplerKind::Halton { randomization, .. } => Vec2::new(
+                self.halton_dimension(d, randomization),
+                self.halton_dimension(d + 1, randomization),
+            ),
+            SamplerKind::Sobol { randomization, .. } => Vec2::new(
+                self.sobol_dimension(d, randomization),
+                self.sobol_dimension(d + 1, randomization),
+            ),
         }
     }
 
     /// The 2D sample that positions the sample on the film (the first two dimensions).
     #[inline]
     pub fn get_pixel_2d(&mut self) -> Vec2 {
-        self.get_2d()
+        match &self.halton {
+            // The Halton tiling's own first two dimensions, past the digits that chose the
+            // pixel; the other dimensions start at 2.
+            Some(h) => {
+                self.dim = 2;
+                let (x, y) = h.tiling.pixel_2d(h.index);
+                Vec2::new(x, y)
+            }
+            None => match self.kind {
+                // The first two dimensions below the bits that chose the pixel, unscrambled.
+                SamplerKind::Sobol { resolution, .. } => {
+                    self.dim = 2;
+                    let m = sobol_log2_scale(resolution);
+                    let a = self.sobol_index;
+                    Vec2::new(
+                        u32_to_unit_f32(sobol_0(a as u32) << m),
+                        u32_to_unit_f32(sobol_1(a as u32) << m),
+                    )
+                }
+                _ => self.get_2d(),
+            },
+        }
+    }
+
+    /// Dimension `d` of the current `sobol` sample, randomised by a hash of (dimension,
+    /// seed); past the table, dimensions start again from 2 (as pbrt-v4 does past its 1024).
+    fn sobol_dimension(&self, d: u32, randomization: Randomization) -> f32 {
+        let n = N_SOBOL_DIMENSIONS as u32;
+        let d = if d < n {
+            d.max(2)
+        } else {
+            2 + (d - 2) % (n - 2)
+        };
+        let h = mix_bits(hash_u64(&[d as u64, self.seed]));
+        u32_to_unit_f32(randomize(
+            sobol_sample(self.sobol_index, d as usize),
+            randomization,
+            h as u32,
+        ))
+    }
+
+    /// Dimension `d` of the current Halton sample (dimensions 0 and 1 belong to the pixel).
+    fn halton_dimension(&self, d: u32, randomization: Randomization) -> f32 {
+        let Some(h) = &self.halton else { return 0.5 };
+        halton::sample_dimension(
+            d.max(2),
+            h.index,
+            randomization,
+            h.perms.as_deref(),
+            self.seed,
+        )
     }
 
     /// 64 random bits for dimension `d`: the `d`-th output of a SplitMix64 stream seeded by the
@@ -248,11 +378,128 @@ impl Sampler {
 mod tests {
     use super::*;
 
+    /// Every point set, with several randomisations.
+    fn all_kinds() -> Vec<SamplerKind> {
+        let mut v = vec![
+            SamplerKind::Independent,
+            SamplerKind::Stratified {
+                xsamples: 4,
+                ysamples: 4,
+                jitter: true,
+            },
+        ];
+        for r in [
+            Randomization::None,
+            Randomization::PermuteDigits,
+            Randomization::FastOwen,
+            Randomization::Owen,
+        ] {
+            v.push(SamplerKind::ZSobol { randomization: r });
+            v.push(SamplerKind::PaddedSobol { randomization: r });
+            v.push(SamplerKind::Sobol {
+                randomization: r,
+                resolution: [16, 16],
+            });
+            if r != Randomization::FastOwen {
+                v.push(SamplerKind::Halton {
+                    randomization: r,
+                    resolution: [16, 16],
+                });
+            }
+        }
+        v
+    }
+
+    #[test]
+    fn every_sampler_is_a_pure_function_of_pixel_index_and_dimension() {
+        for kind in all_kinds() {
+            let mut a = Sampler::new(kind, 16, 7);
+            let mut b = Sampler::new(kind, 16, 7);
+            b.start_pixel_sample(9, 9, 3);
+            let _ = (b.get_pixel_2d(), b.get_1d(), b.get_2d());
+            a.start_pixel_sample(5, 6, 11);
+            b.start_pixel_sample(5, 6, 11);
+            assert_eq!(a.get_pixel_2d(), b.get_pixel_2d());
+            for _ in 0..40 {
+                assert_eq!(a.get_2d(), b.get_2d(), "{kind:?}");
+                assert_eq!(a.get_1d(), b.get_1d(), "{kind:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn first_dimensions_are_uniform_by_chi_square() {
+        // 16 × 16 pixels × 16 samples = 4096 values of the pixel sample and of the next two
+        // dimensions, in 16 bins each (expected 256 per bin). χ² with 15 degrees of freedom
+        // stays below 37.7 with probability 0.999 for uniform values; stratified ones do far
+        // better.
+        for kind in all_kinds() {
+            let mut s = Sampler::new(kind, 16, 1);
+            let mut bins = [[0u32; 16]; 5];
+            for y in 0..16 {
+                for x in 0..16 {
+                    for i in 0..16 {
+                        s.start_pixel_sample(x, y, i);
+                        let p = s.get_pixel_2d();
+                        let u = s.get_1d();
+                        let q = s.get_2d();
+                        for (k, v) in [p.x, p.y, u, q.x, q.y].into_iter().enumerate() {
+                            assert!((0.0..1.0).contains(&v), "{kind:?}");
+                            bins[k][(v * 16.0) as usize] += 1;
+                        }
+                    }
+                }
+            }
+            for (k, b) in bins.iter().enumerate() {
+                let chi2: f64 = b.iter().map(|&o| (o as f64 - 256.0).powi(2) / 256.0).sum();
+                assert!(chi2 < 37.7, "{kind:?} dimension {k}: chi2 {chi2} {b:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn sobol_and_halton_pixel_samples_are_stratified() {
+        // The first 16 samples of a pixel put one point in each 4 × 4 cell (Sobol, a
+        // (0, 2)-sequence); Halton's first 6 samples one in each of 2 × 3 cells (bases 2, 3).
+        let mut s = Sampler::new(
+            SamplerKind::Sobol {
+                randomization: Randomization::FastOwen,
+                resolution: [32, 20],
+            },
+            16,
+            2,
+        );
+        let mut grid = [0u32; 16];
+        for i in 0..16 {
+            s.start_pixel_sample(7, 13, i);
+            let p = s.get_pixel_2d();
+            grid[(p.x * 4.0) as usize + 4 * (p.y * 4.0) as usize] += 1;
+        }
+        assert_eq!(grid, [1; 16]);
+        let mut s = Sampler::new(
+            SamplerKind::Halton {
+                randomization: Randomization::PermuteDigits,
+                resolution: [32, 20],
+            },
+            6,
+            2,
+        );
+        let mut cells = [0u32; 6];
+        for i in 0..6 {
+            s.start_pixel_sample(3, 4, i);
+            let p = s.get_pixel_2d();
+            cells[(p.x * 2.0) as usize + 2 * (p.y * 3.0) as usize] += 1;
+        }
+        assert_eq!(cells, [1; 6]);
+    }
+
     #[test]
     fn samples_depend_only_on_pixel_index_and_dimension() {
         for kind in [
             SamplerKind::Independent,
-            SamplerKind::Sobol,
+            SamplerKind::ZSobol {
+                randomization: Randomization::FastOwen,
+            },
             SamplerKind::Stratified {
                 xsamples: 4,
                 ysamples: 4,
@@ -276,7 +523,13 @@ mod tests {
     fn sobol_2d_prefix_is_stratified() {
         // A (0, 2)-sequence: the first 16 points put exactly one point in each 4 × 4 cell, and
         // one in each 1 × 16 and 16 × 1 elementary interval.
-        let mut s = Sampler::new(SamplerKind::Sobol, 16, 3);
+        let mut s = Sampler::new(
+            SamplerKind::ZSobol {
+                randomization: Randomization::FastOwen,
+            },
+            16,
+            3,
+        );
         let mut grid = [0u32; 16];
         let mut cols = [0u32; 16];
         let mut rows = [0u32; 16];

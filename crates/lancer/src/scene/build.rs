@@ -9,7 +9,7 @@ use super::instance::{Instance, Instances, ObjectAccel};
 use super::prim::{AreaEmission, BuildError, PrimInfo, check_shape, mesh_triangles};
 use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
-use crate::light::{ImageInfiniteLight, Light, LightDistribution};
+use crate::light::{ImageInfiniteLight, Light, LightDistribution, LightSampler};
 use crate::material::Material;
 use crate::math::{Bounds3, PackedRgb, PackedVec3, Transform, Vec3};
 use crate::shape::{
@@ -46,7 +46,15 @@ impl Scene {
         }
         let camera = Camera::from_desc(&desc.camera, desc.film.xresolution, desc.film.yresolution)
             .ok_or(BuildError::BadCamera)?;
+        let extents: Vec<_> = lights
+            .lights
+            .iter()
+            .map(|l| l.extent(&shapes, &meshes))
+            .collect();
+        let light_sampler =
+            LightSampler::new(desc.sampler.light_sampler, &extents, &lights.distribution);
         Ok(Scene {
+            light_sampler,
             shapes,
             prims,
             meshes,

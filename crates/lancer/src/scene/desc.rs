@@ -158,15 +158,21 @@ pub struct SamplerDesc {
     pub spp: u32,
     /// Seed (pbrt's `seed` parameter, or `--seed`).
     pub seed: u64,
+    /// How next-event estimation chooses a light (pbrt's integrator `lightsampler`; `bvh`
+    /// by default, as pbrt-v4).
+    pub light_sampler: crate::light::LightSamplerKind,
 }
 
 impl Default for SamplerDesc {
     /// pbrt's default is `zsobol` with 16 samples; lancer's Owen-scrambled Sobol stands in.
     fn default() -> Self {
         SamplerDesc {
-            kind: crate::sampling::SamplerKind::Sobol,
+            kind: crate::sampling::SamplerKind::ZSobol {
+                randomization: crate::sampling::Randomization::FastOwen,
+            },
             spp: 16,
             seed: 0,
+            light_sampler: crate::light::LightSamplerKind::Bvh,
         }
     }
 }

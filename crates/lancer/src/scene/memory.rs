@@ -126,6 +126,7 @@ impl Scene {
                 })
                 .sum::<usize>()
             + self.light_distribution.memory_bytes()
+            + self.light_sampler.memory_bytes()
             + vec_bytes::<u32>(self.infinite_lights.capacity());
         SceneMemory {
             meshes: meshes + vec_bytes::<crate::shape::TriangleMesh>(self.meshes.capacity()),

@@ -14,7 +14,7 @@ pub use spectra::SceneSpectra;
 
 use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
-use crate::light::{Light, LightDistribution};
+use crate::light::{Light, LightDistribution, LightSampler};
 use crate::material::Material;
 use crate::math::{Bounds3, Rgb, SampledSpectrum, rgb_lanes};
 use crate::ray::Ray;
@@ -45,8 +45,10 @@ pub struct Scene {
     pub meshes: Vec<TriangleMesh>,
     /// Lights, area lights included.
     pub lights: Vec<Light>,
-    /// How next-event estimation picks a light: in proportion to power.
+    /// The lights in proportion to power (pbrt's `power` light sampler).
     pub light_distribution: LightDistribution,
+    /// How next-event estimation picks a light (the integrator's `lightsampler`).
+    pub light_sampler: LightSampler,
     /// Indices of the lights that rays escaping the scene see (environment lights).
     pub infinite_lights: Vec<u32>,
     /// Materials.

@@ -1,0 +1,234 @@
+//! What the light BVH knows about a light or a group of lights (pbrt-v4's `LightBounds`): where
+//! it is (a box), how much it emits (φ), and in which directions (a cone of normals around `w`
+//! with half-angle θ_o, plus the emission spread θ_e beyond each normal). From these,
+//! [`LightBounds::importance`] bounds how much the group can light a point.
+
+use crate::math::{Bounds3, Vec3, cross, normalize};
+use std::f32::consts::PI;
+
+/// What the light samplers know of a light's extent ([`super::Light::extent`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LightExtent {
+    /// A light with bounds, for the BVH.
+    Bounded(LightBounds),
+    /// Distant and infinite lights, chosen apart.
+    Unbounded,
+    /// A light that emits nothing: never chosen by the BVH.
+    Dark,
+}
+
+/// A cone of directions: axis `w` and cos of its half-angle (−1 for the whole sphere).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DirectionCone {
+    /// Unit axis.
+    pub w: Vec3,
+    /// cos θ of the half-angle.
+    pub cos_theta: f32,
+}
+
+pub(super) fn safe_acos(x: f32) -> f32 {
+    x.clamp(-1.0, 1.0).acos()
+}
+
+fn safe_sqrt(x: f32) -> f32 {
+    x.max(0.0).sqrt()
+}
+
+impl DirectionCone {
+    /// Every direction.
+    pub const ENTIRE_SPHERE: DirectionCone = DirectionCone {
+        w: Vec3::Z,
+        cos_theta: -1.0,
+    };
+
+    /// The smallest cone holding both (pbrt-v4's `Union`): the half-angle
+    /// θ = (θ_a + θ_d + θ_b)/2 around an axis rotated from `a` towards `b`, θ_d being the angle
+    /// between the axes.
+    pub fn union(a: DirectionCone, b: DirectionCone) -> DirectionCone {
+        let theta_a = safe_acos(a.cos_theta);
+        let theta_b = safe_acos(b.cos_theta);
+        let theta_d = safe_acos(a.w.dot(b.w));
+        if (theta_d + theta_b).min(PI) <= theta_a {
+            return a;
+        }
+        if (theta_d + theta_a).min(PI) <= theta_b {
+            return b;
+        }
+        let theta_o = 0.5 * (theta_a + theta_d + theta_b);
+        if theta_o >= PI {
+            return DirectionCone::ENTIRE_SPHERE;
+        }
+        // Rotate a.w by θ_r = θ_o − θ_a about a.w × b.w (Rodrigues).
+        let theta_r = theta_o - theta_a;
+        let axis = cross(a.w, b.w);
+        if axis.length_squared() == 0.0 {
+            return DirectionCone::ENTIRE_SPHERE;
+        }
+        let k = normalize(axis);
+        let (s, c) = theta_r.sin_cos();
+        let w = a.w * c + cross(k, a.w) * s + k * k.dot(a.w) * (1.0 - c);
+        DirectionCone {
+            w: normalize(w),
+            cos_theta: theta_o.cos(),
+        }
+    }
+}
+
+/// Bounds on a light's emission (pbrt-v4's `LightBounds`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightBounds {
+    /// Where the light is.
+    pub bounds: Bounds3,
+    /// Its emitted power (an upper bound, any consistent scale).
+    pub phi: f32,
+    /// The cone of its surface normals (or emission axes).
+    pub normals: DirectionCone,
+    /// cos θ_e: how far past each normal it emits (π/2 for area lights).
+    pub cos_theta_e: f32,
+    /// Emits on both sides of its normals.
+    pub two_sided: bool,
+}
+
+/// cos(θ_a − θ_b) clamped to 1 when θ_a < θ_b, from sines and cosines.
+#[inline]
+fn cos_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> f32 {
+    if cos_a > cos_b {
+        1.0
+    } else {
+        cos_a * cos_b + sin_a * sin_b
+    }
+}
+
+/// sin(θ_a − θ_b) clamped to 0 when θ_a < θ_b.
+#[inline]
+fn sin_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> f32 {
+    if cos_a > cos_b {
+        0.0
+    } else {
+        sin_a * cos_b - cos_a * sin_b
+    }
+}
+
+impl LightBounds {
+    /// The bounds of two groups together: boxes and cones united, powers added, the wider
+    /// spread.
+    pub fn union(&self, o: &LightBounds) -> LightBounds {
+        if self.phi == 0.0 {
+            return *o;
+        }
+        if o.phi == 0.0 {
+            return *self;
+        }
+        LightBounds {
+            bounds: self.bounds.union(&o.bounds),
+            phi: self.phi + o.phi,
+            normals: DirectionCone::union(self.normals, o.normals),
+            cos_theta_e: self.cos_theta_e.min(o.cos_theta_e),
+            two_sided: self.two_sided || o.two_sided,
+        }
+    }
+
+    /// The centre of the box.
+    pub fn centroid(&self) -> Vec3 {
+        self.bounds.centroid()
+    }
+
+    /// A conservative estimate of how much this group lights point `p` with surface normal
+    /// `n` (zero for a point in a medium), pbrt-v4's `LightBounds::Importance`:
+    ///
+    /// I = φ · cos θ′ / d² · cos θ′ᵢ, where d² is the squared distance to the box's centre
+    /// (at least half its diagonal), θ′ = max(0, θ_w − θ_o − θ_b) the smallest angle between
+    /// an emission direction the cone allows and the direction to `p` (θ_w the angle from the
+    /// cone's axis to `p`, θ_b the half-angle the box subtends from `p`), zero when θ′ ≥ θ_e;
+    /// θ′ᵢ = max(0, θᵢ − θ_b) likewise for the angle θᵢ between `n` and the box.
+    pub fn importance(&self, p: Vec3, n: Vec3) -> f32 {
+        let pc = self.bounds.centroid();
+        let d2 = (p - pc)
+            .length_squared()
+            .max(self.bounds.diagonal().length() / 2.0);
+        // The direction from the light towards p.
+        let wi = (p - pc).normalize_or_zero();
+        let mut cos_theta_w = self.normals.w.dot(wi);
+        if self.two_sided {
+            cos_theta_w = cos_theta_w.abs();
+        }
+        let sin_theta_w = safe_sqrt(1.0 - cos_theta_w * cos_theta_w);
+        // The half-angle of the cone from p holding the box's bounding sphere.
+        let (c, r) = self.bounds.bounding_sphere();
+        let dc2 = (p - c).length_squared();
+        let cos_theta_b = if dc2 < r * r {
+            -1.0
+        } else {
+            safe_sqrt(1.0 - r * r / dc2)
+        };
+        let sin_theta_b = safe_sqrt(1.0 - cos_theta_b * cos_theta_b);
+        // θ_x = max(0, θ_w − θ_o), then θ′ = max(0, θ_x − θ_b).
+        let cos_theta_o = self.normals.cos_theta;
+        let sin_theta_o = safe_sqrt(1.0 - cos_theta_o * cos_theta_o);
+        let cos_theta_x = cos_sub_clamped(sin_theta_w, cos_theta_w, sin_theta_o, cos_theta_o);
+        let sin_theta_x = sin_sub_clamped(sin_theta_w, cos_theta_w, sin_theta_o, cos_theta_o);
+        let cos_theta_p = cos_sub_clamped(sin_theta_x, cos_theta_x, sin_theta_b, cos_theta_b);
+        if cos_theta_p <= self.cos_theta_e {
+            return 0.0;
+        }
+        let mut importance = self.phi * cos_theta_p / d2;
+        // The surface at p sees the box at best at angle max(0, θᵢ − θ_b).
+        if n != Vec3::ZERO {
+            let cos_theta_i = wi.dot(n).abs();
+            let sin_theta_i = safe_sqrt(1.0 - cos_theta_i * cos_theta_i);
+            importance *= cos_sub_clamped(sin_theta_i, cos_theta_i, sin_theta_b, cos_theta_b);
+        }
+        importance.max(0.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn quad_light(two_sided: bool) -> LightBounds {
+        // A small light at the origin facing +z.
+        LightBounds {
+            bounds: Bounds3::new(Vec3::new(-0.1, -0.1, 0.0), Vec3::new(0.1, 0.1, 0.0)),
+            phi: 1.0,
+            normals: DirectionCone {
+                w: Vec3::Z,
+                cos_theta: 1.0,
+            },
+            cos_theta_e: 0.0,
+            two_sided,
+        }
+    }
+
+    #[test]
+    fn importance_is_zero_behind_a_one_sided_emitter() {
+        let b = quad_light(false);
+        assert_eq!(b.importance(Vec3::new(0.0, 0.0, -2.0), Vec3::Z), 0.0);
+        assert_eq!(b.importance(Vec3::new(0.5, 0.3, -1.0), Vec3::ZERO), 0.0);
+        // In front it is φ·cos θ′/d²: straight ahead at distance 2, normal facing it, 1/4.
+        let front = b.importance(Vec3::new(0.0, 0.0, 2.0), -Vec3::Z);
+        assert!((front - 0.25).abs() < 1e-6, "{front}");
+        // Two-sided, the back is as bright as the front.
+        let two = quad_light(true);
+        let back = two.importance(Vec3::new(0.0, 0.0, -2.0), Vec3::Z);
+        assert!((back - 0.25).abs() < 1e-6, "{back}");
+    }
+
+    #[test]
+    fn cone_union_holds_both_cones() {
+        let a = DirectionCone {
+            w: Vec3::X,
+            cos_theta: 1.0,
+        };
+        let b = DirectionCone {
+            w: Vec3::Y,
+            cos_theta: 1.0,
+        };
+        let u = DirectionCone::union(a, b);
+        // Half-angle π/4 around (x + y)/√2.
+        assert!((u.cos_theta - (PI / 4.0).cos()).abs() < 1e-6);
+        assert!((u.w - normalize(Vec3::new(1.0, 1.0, 0.0))).length() < 1e-5);
+        let c = DirectionCone::union(a, DirectionCone::ENTIRE_SPHERE);
+        assert_eq!(c.cos_theta, -1.0);
+    }
+}

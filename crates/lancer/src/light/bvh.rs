@@ -1,0 +1,387 @@
+//! pbrt-v4's `BVHLightSampler`: a bounding volume hierarchy over the lights that have bounds,
+//! walked from the root by choosing each child in proportion to its [`LightBounds::importance`]
+//! at the point being lit, so that lights near and facing the point get the shadow rays. The
+//! lights without bounds (distant and infinite) are chosen apart, each with probability
+//! 1/(n_∞ + 1), the BVH as a whole taking the remaining 1/(n_∞ + 1).
+//!
+//! The probability of a light is the product of the child probabilities on the way to its
+//! leaf; each light's path is kept as a bit trail (bit k = which child at depth k) so that
+//! [`BvhLightSampler::pmf`] retraces it for multiple importance sampling.
+
+use super::bounds::{LightBounds, LightExtent};
+use super::sample::LightSampleContext;
+use crate::math::{Bounds3, Vec3};
+use std::f32::consts::PI;
+
+/// The largest float below 1.
+const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
+
+/// A node: the bounds of its lights; an interior node's first child follows it, the second is
+/// at `child_or_light`; a leaf holds one light.
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    bounds: LightBounds,
+    child_or_light: u32,
+    is_leaf: bool,
+}
+
+/// Where a light is in the sampler.
+const UNBOUNDED: u64 = u64::MAX;
+/// A bounded light that emits nothing: never chosen.
+const NEVER: u64 = u64::MAX - 1;
+
+/// pbrt-v4's light BVH sampler.
+#[derive(Clone, Debug, Default)]
+pub struct BvhLightSampler {
+    nodes: Vec<Node>,
+    /// Lights without bounds (distant, infinite).
+    infinite: Vec<u32>,
+    /// Per light: its bit trail in the BVH, or [`UNBOUNDED`] / [`NEVER`].
+    trails: Vec<u64>,
+}
+
+/// Buckets per axis for the split search.
+const BUCKETS: usize = 12;
+
+/// The cost of a group of lights in a split (pbrt-v4's `EvaluateCost`): power × the solid
+/// angle measure of its emission, M_Ω = 2π(1 − cos θ_o) + π/2·(2θ_w sin θ_o − cos(θ_o − 2θ_w)
+/// − 2θ_o sin θ_o + cos θ_o) with θ_w = min(θ_o + θ_e, π), × its box's surface area, × how
+/// elongated the parent box is along the split axis.
+fn cost(b: &LightBounds, parent: &Bounds3, dim: usize) -> f32 {
+    if b.phi == 0.0 {
+        return 0.0;
+    }
+    let theta_o = b.normals.cos_theta.clamp(-1.0, 1.0).acos();
+    let theta_e = b.cos_theta_e.clamp(-1.0, 1.0).acos();
+    let theta_w = (theta_o + theta_e).min(PI);
+    let sin_theta_o = theta_o.sin();
+    let m_omega = 2.0 * PI * (1.0 - theta_o.cos())
+        + PI / 2.0
+            * (2.0 * theta_w * sin_theta_o
+                - (theta_o - 2.0 * theta_w).cos()
+                - 2.0 * theta_o * sin_theta_o
+                + theta_o.cos());
+    let d = parent.diagonal();
+    let kr = if d[dim] > 0.0 {
+        d.max_element() / d[dim]
+    } else {
+        1.0
+    };
+    b.phi * m_omega * kr * b.bounds.surface_area()
+}
+
+impl BvhLightSampler {
+    /// The sampler over lights of these extents ([`super::Light::extent`]).
+    pub fn new(lights: &[LightExtent]) -> BvhLightSampler {
+        let mut s = BvhLightSampler {
+            nodes: Vec::new(),
+            infinite: Vec::new(),
+            trails: vec![NEVER; lights.len()],
+        };
+        let mut bounded = Vec::new();
+        for (i, light) in lights.iter().enumerate() {
+            match light {
+                LightExtent::Bounded(b) => bounded.push((i as u32, *b)),
+                LightExtent::Unbounded => {
+                    s.infinite.push(i as u32);
+                    s.trails[i] = UNBOUNDED;
+                }
+                LightExtent::Dark => {}
+            }
+        }
+        if !bounded.is_empty() {
+            s.build(&mut bounded, 0, 0);
+        }
+        s
+    }
+
+    /// Bytes of the tables (capacity included).
+    pub fn memory_bytes(&self) -> usize {
+        self.nodes.capacity() * std::mem::size_of::<Node>()
+            + self.infinite.capacity() * 4
+            + self.trails.capacity() * 8
+    }
+
+    /// Builds the subtree over `lights`, whose path from the root is `trail` (`depth` bits);
+    /// returns its bounds.
+    fn build(&mut self, lights: &mut [(u32, LightBounds)], trail: u64, depth: u32) -> LightBounds {
+        if lights.len() == 1 {
+            let (i, b) = lights[0];
+            self.nodes.push(Node {
+                bounds: b,
+                child_or_light: i,
+                is_leaf: true,
+            });
+            self.trails[i as usize] = trail;
+            return b;
+        }
+        let mut bounds = Bounds3::EMPTY;
+        let mut centroids = Bounds3::EMPTY;
+        for (_, b) in lights.iter() {
+            bounds = bounds.union(&b.bounds);
+            centroids = centroids.union_point(b.centroid());
+        }
+        // The cheapest of the bucket boundaries along the three axes.
+        let mut best: Option<(f32, usize, usize)> = None;
+        let bucket_of = |c: Vec3, dim: usize| -> usize {
+            let t = (c[dim] - centroids.min[dim]) / (centroids.max[dim] - centroids.min[dim]);
+            ((t * BUCKETS as f32) as usize).min(BUCKETS - 1)
+        };
+        // Past 48 levels only halving keeps the bit trail within 64 bits.
+        for dim in 0..3 {
+            if depth >= 48 || centroids.max[dim] == centroids.min[dim] {
+                continue;
+            }
+            let mut buckets = [None::<LightBounds>; BUCKETS];
+            for (_, b) in lights.iter() {
+                let k = bucket_of(b.centroid(), dim);
+                buckets[k] = Some(buckets[k].map_or(*b, |a| a.union(b)));
+            }
+            let union = |r: &[Option<LightBounds>]| {
+                r.iter().flatten().fold(None::<LightBounds>, |acc, b| {
+                    Some(acc.map_or(*b, |a| a.union(b)))
+                })
+            };
+            for k in 1..BUCKETS - 1 {
+                let c = union(&buckets[..=k]).map_or(0.0, |b| cost(&b, &bounds, dim))
+                    + union(&buckets[k + 1..]).map_or(0.0, |b| cost(&b, &bounds, dim));
+                if c > 0.0 && best.is_none_or(|(m, _, _)| c < m) {
+                    best = Some((c, dim, k));
+                }
+            }
+        }
+        let mut mid = match best {
+            Some((_, dim, k)) => {
+                // Partition: buckets ≤ k first.
+                let mut m = 0;
+                for j in 0..lights.len() {
+                    if bucket_of(lights[j].1.centroid(), dim) <= k {
+                        lights.swap(j, m);
+                        m += 1;
+                    }
+                }
+                m
+            }
+            None => lights.len() / 2,
+        };
+        if mid == 0 || mid == lights.len() {
+            mid = lights.len() / 2;
+        }
+        let node = self.nodes.len();
+        self.nodes.push(Node {
+            bounds: lights[0].1,
+            child_or_light: 0,
+            is_leaf: false,
+        });
+        let (left, right) = lights.split_at_mut(mid);
+        let b0 = self.build(left, trail, depth + 1);
+        let second = self.nodes.len() as u32;
+        let b1 = self.build(right, trail | (1u64 << depth), depth + 1);
+        let b = b0.union(&b1);
+        self.nodes[node] = Node {
+            bounds: b,
+            child_or_light: second,
+            is_leaf: false,
+        };
+        b
+    }
+
+    /// Probability of choosing an unbounded light, n_∞/(n_∞ + 1) (or 1 without a BVH).
+    fn p_infinite(&self) -> f32 {
+        let n = self.infinite.len();
+        n as f32 / (n + usize::from(!self.nodes.is_empty())).max(1) as f32
+    }
+
+    /// Chooses a light for the point `ctx` with the uniform number `u`: its index and
+    /// probability, or `None` when no light can light the point.
+    pub fn sample(&self, ctx: &LightSampleContext, u: f32) -> Option<(usize, f32)> {
+        let p_inf = self.p_infinite();
+        if u < p_inf {
+            let n = self.infinite.len();
+            let k = ((u / p_inf * n as f32) as usize).min(n - 1);
+            return Some((self.infinite[k] as usize, p_inf / n as f32));
+        }
+        if self.nodes.is_empty() {
+            return None;
+        }
+        let (p, n) = (ctx.p, ctx.ns);
+        let mut u = ((u - p_inf) / (1.0 - p_inf)).min(ONE_MINUS_EPSILON);
+        let mut node = 0usize;
+        let mut pmf = 1.0 - p_inf;
+        loop {
+            let nd = &self.nodes[node];
+            if nd.is_leaf {
+                // A lone light's own importance decides whether it can light p.
+                if node > 0 || nd.bounds.importance(p, n) > 0.0 {
+                    return Some((nd.child_or_light as usize, pmf));
+                }
+                return None;
+            }
+            let c = [node + 1, nd.child_or_light as usize];
+            let i0 = self.nodes[c[0]].bounds.importance(p, n);
+            let i1 = self.nodes[c[1]].bounds.importance(p, n);
+            if i0 == 0.0 && i1 == 0.0 {
+                return None;
+            }
+            // Child 0 with probability i0/(i0 + i1); u is rescaled to the chosen part.
+            let p0 = i0 / (i0 + i1);
+            if u < p0 {
+                u = (u / p0).min(ONE_MINUS_EPSILON);
+                pmf *= p0;
+                node = c[0];
+            } else {
+                u = ((u - p0) / (1.0 - p0)).min(ONE_MINUS_EPSILON);
+                pmf *= 1.0 - p0;
+                node = c[1];
+            }
+        }
+    }
+
+    /// Probability that [`BvhLightSampler::sample`] chooses light `light` at `ctx`.
+    pub fn pmf(&self, ctx: &LightSampleContext, light: usize) -> f32 {
+        let Some(&trail) = self.trails.get(light) else {
+            return 0.0;
+        };
+        match trail {
+            UNBOUNDED => return self.p_infinite() / self.infinite.len() as f32,
+            NEVER => return 0.0,
+            _ => {}
+        }
+        let (p, n) = (ctx.p, ctx.ns);
+        let mut trail = trail;
+        let mut node = 0usize;
+        let mut pmf = 1.0 - self.p_infinite();
+        loop {
+            let nd = &self.nodes[node];
+            if nd.is_leaf {
+                return if node > 0 || nd.bounds.importance(p, n) > 0.0 {
+                    pmf
+                } else {
+                    0.0
+                };
+            }
+            let c = [node + 1, nd.child_or_light as usize];
+            let i0 = self.nodes[c[0]].bounds.importance(p, n);
+            let i1 = self.nodes[c[1]].bounds.importance(p, n);
+            if i0 == 0.0 && i1 == 0.0 {
+                return 0.0;
+            }
+            let p0 = i0 / (i0 + i1);
+            let bit = (trail & 1) as usize;
+            pmf *= if bit == 0 { p0 } else { 1.0 - p0 };
+            node = c[bit];
+            trail >>= 1;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::light::DirectionCone;
+
+    /// A point light's extent: φ = 4π·I, emitting everywhere.
+    fn point(x: f32, y: f32, z: f32, i: f32) -> LightExtent {
+        if i == 0.0 {
+            return LightExtent::Dark;
+        }
+        LightExtent::Bounded(LightBounds {
+            bounds: Bounds3::from_point(Vec3::new(x, y, z)),
+            phi: 4.0 * PI * i,
+            normals: DirectionCone::ENTIRE_SPHERE,
+            cos_theta_e: 0.0,
+            two_sided: false,
+        })
+    }
+
+    fn lights() -> Vec<LightExtent> {
+        let mut v = Vec::new();
+        let mut rng = crate::sampling::Pcg32::new(5, 1);
+        for _ in 0..37 {
+            let p = [rng.uniform(), rng.uniform(), rng.uniform()].map(|c| c * 6.0 - 3.0);
+            v.push(point(p[0], p[1], p[2], 0.1 + 3.0 * rng.uniform()));
+        }
+        // A spot light pointing down, and a one-sided quad facing up above the point.
+        v.push(LightExtent::Bounded(LightBounds {
+            bounds: Bounds3::from_point(Vec3::new(0.0, 2.0, 0.0)),
+            phi: 4.0 * PI * 5.0,
+            normals: DirectionCone {
+                w: -Vec3::Y,
+                cos_theta: 0.9,
+            },
+            cos_theta_e: (0.9f32.acos() - 0.8f32.acos()).cos(),
+            two_sided: false,
+        }));
+        v.push(LightExtent::Unbounded);
+        v.push(point(0.0, 0.0, 0.0, 0.0));
+        v.push(LightExtent::Bounded(LightBounds {
+            bounds: Bounds3::new(Vec3::new(-1.0, 3.0, -1.0), Vec3::new(1.0, 3.0, 1.0)),
+            phi: 10.0,
+            normals: DirectionCone {
+                w: Vec3::Y,
+                cos_theta: 1.0,
+            },
+            cos_theta_e: 0.0,
+            two_sided: false,
+        }));
+        v
+    }
+
+    fn ctx() -> LightSampleContext {
+        LightSampleContext {
+            p: Vec3::new(0.2, -0.1, 0.3),
+            n: Vec3::Y,
+            ns: Vec3::Y,
+        }
+    }
+
+    #[test]
+    fn pmf_sums_to_one_and_matches_sampling_frequencies() {
+        let lights = lights();
+        let s = BvhLightSampler::new(&lights);
+        let c = ctx();
+        let pmf: Vec<f64> = (0..lights.len()).map(|i| s.pmf(&c, i) as f64).collect();
+        let total: f64 = pmf.iter().sum();
+        assert!((total - 1.0).abs() < 1e-4, "{total}");
+        // The infinite light gets 1/2; the black point light and the quad, which faces away
+        // from the point, nothing.
+        assert!((pmf[38] - 0.5).abs() < 1e-6 && pmf[39] == 0.0 && pmf[40] == 0.0);
+        // Chi-square of the sampled counts against the PMF.
+        let n = 200_000;
+        let mut counts = vec![0u32; lights.len()];
+        for k in 0..n {
+            let u = (k as f32 + 0.5) / n as f32;
+            let u = (u * 7919.0).fract();
+            let (i, p) = s.sample(&c, u).expect("a light");
+            assert!((p as f64 - pmf[i]).abs() < 1e-5 * pmf[i].max(1e-3), "{i}");
+            counts[i] += 1;
+        }
+        let mut chi2 = 0.0;
+        let mut dof = 0;
+        for (i, &o) in counts.iter().enumerate() {
+            let e = pmf[i] * n as f64;
+            if e > 5.0 {
+                chi2 += (o as f64 - e).powi(2) / e;
+                dof += 1;
+            } else {
+                assert!(e > 0.0 || o == 0);
+            }
+        }
+        // 99.9th percentile of χ² with ~40 degrees of freedom is about 73.
+        assert!(chi2 < 73.0, "chi2 {chi2} over {dof} bins");
+    }
+
+    #[test]
+    fn nearer_lights_are_chosen_more_often() {
+        let lights = vec![point(0.0, 1.0, 0.0, 1.0), point(0.0, 10.0, 0.0, 1.0)];
+        let s = BvhLightSampler::new(&lights);
+        let c = LightSampleContext {
+            p: Vec3::ZERO,
+            n: Vec3::Y,
+            ns: Vec3::Y,
+        };
+        // Importance φ/d²: 1 against 1/100.
+        assert!((s.pmf(&c, 0) - 100.0 / 101.0).abs() < 1e-5);
+        assert!((s.pmf(&c, 0) + s.pmf(&c, 1) - 1.0).abs() < 1e-6);
+    }
+}
