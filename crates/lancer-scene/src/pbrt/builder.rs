@@ -47,6 +47,8 @@ enum Block {
     Attribute,
     Transform,
     Object,
+    /// An imported file: it starts from a copy of the graphics state, which its end restores.
+    Import,
 }
 
 impl Block {
@@ -55,6 +57,7 @@ impl Block {
             Block::Attribute => ("AttributeBegin", "AttributeEnd"),
             Block::Transform => ("TransformBegin", "TransformEnd"),
             Block::Object => ("ObjectBegin", "ObjectEnd"),
+            Block::Import => ("Import", "the end of the imported file"),
         }
     }
 }
@@ -259,6 +262,11 @@ impl Builder {
             D::ObjectBegin(name) => self.object_begin(name, loc),
             D::ObjectEnd => self.end_block(Block::Object, loc),
             D::ObjectInstance(name) => self.object_instance(name, loc),
+            D::ImportBegin(_) => {
+                self.require_world("Import", loc)?;
+                self.begin_block(Block::Import, loc)
+            }
+            D::ImportEnd => self.end_block(Block::Import, loc),
             D::Attribute(target, params) => self.attribute(target, params, loc),
             D::WorldBegin => self.world_begin(loc),
             // A tuning hint for pbrt's own structures: lancer always builds its BVH.
@@ -485,11 +493,10 @@ impl Builder {
                 ),
             ));
         }
-        self.gs
-            .defaults
-            .entry(target)
-            .or_default()
-            .extend(params.iter().cloned());
+        // A later default replaces an earlier one of the same name, as in pbrt-v4.
+        let defaults = self.gs.defaults.entry(target).or_default();
+        defaults.retain(|d| !params.has(&d.name));
+        defaults.extend(params.iter().cloned());
         Ok(())
     }
 
@@ -569,6 +576,13 @@ impl Builder {
             None => Err(SceneError::at(
                 loc.clone(),
                 format!("{end} without a matching {begin}"),
+            )),
+            Some((b, _, open)) if block == Block::Import => Err(SceneError::at(
+                open,
+                format!(
+                    "this {} is never closed: the imported file ends first",
+                    b.names().0
+                ),
             )),
             Some((b, _, open)) if b != block => Err(SceneError::at(
                 loc.clone(),
