@@ -89,7 +89,6 @@ const CASES: &[(&str, &str, &str)] = &[
         "6:1",
         "no material named \"nowhere\"",
     ),
-    ("singular-scale.pbrt", "6:1", "singular"),
     ("include-self.pbrt", "6:1", "cycle"),
     ("stray-number.pbrt", "6:33", "found the number 2"),
     ("degenerate-spot.pbrt", "6:1", "\"from\" equal to \"to\""),

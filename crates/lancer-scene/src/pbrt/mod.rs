@@ -22,4 +22,5 @@ pub mod parser;
 pub mod sdf;
 pub mod search_path;
 pub mod shapes;
+pub mod singular;
 pub mod textures;
