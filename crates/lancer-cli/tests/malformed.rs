@@ -77,7 +77,6 @@ const CASES: &[(&str, &str, &str)] = &[
         "6:16",
         "radius must be positive, got -1",
     ),
-    ("index-out-of-range.pbrt", "6:53", "index 3"),
     (
         "shape-before-world.pbrt",
         "5:1",
