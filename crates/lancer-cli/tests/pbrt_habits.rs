@@ -493,3 +493,29 @@ fn a_model_requiring_khr_texture_transform_renders() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(dir.join("t.png").is_file());
 }
+
+#[test]
+fn strict_makes_every_reader_warning_an_error() {
+    let dir = ScratchDir::new("pbrt-strict");
+    std::fs::write(
+        dir.join("w.pbrt"),
+        "Film \"rgb\" \"integer xresolution\" 8 \"integer yresolution\" 8\nWorldBegin\n\
+         LightSource \"point\"\nShape \"sphere\"\n  \"float radius\" 0.5 \"float colour\" 2\n",
+    )
+    .unwrap();
+    let expected = "error: w.pbrt:5:22: parameter \"float colour\" of Shape \"sphere\" is not used \
+                    by lancer; ignored (--strict makes every warning an error)";
+    for args in [
+        &["info", "w.pbrt", "--strict"][..],
+        &["render", "w.pbrt", "-o", "w.png", "--quiet", "--strict"],
+    ] {
+        let o = run_in(&dir, args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert_eq!(stderr(&o).lines().next(), Some(expected), "{args:?}");
+    }
+    assert!(!dir.join("w.png").exists());
+    // Without it, the same scene renders, with its warning.
+    let o = run_in(&dir, &["render", "w.pbrt", "-o", "w.png", "--quiet"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stderr(&o).contains("warning: w.pbrt:5:22:"));
+}
