@@ -427,8 +427,10 @@ impl Builder {
                 loc,
             )?,
             D::Scale([x, y, z]) => {
-                let s = Mat4::from_scale(Vec3::new(x, y, z).into());
-                self.concat(Some(kept(s)), "Scale", loc)?
+                // Transform::scale's exact reciprocals when it has them (as before).
+                let s = Vec3::new(x, y, z);
+                let t = Transform::scale(s).unwrap_or_else(|| kept(Mat4::from_scale(s.into())));
+                self.concat(Some(t), "Scale", loc)?
             }
             D::Rotate([a, x, y, z]) => {
                 let r = Transform::rotate(a, Vec3::new(x, y, z));
