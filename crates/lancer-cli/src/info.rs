@@ -9,7 +9,6 @@ use clap::Args;
 use lancer::Scene;
 use lancer::integrator::Integrator;
 use lancer::scene::desc::Projection;
-use lancer_scene::LoadedScene;
 use serde_json::{Value, json};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -30,22 +29,6 @@ pub struct InfoArgs {
     /// parameters it does not use.
     #[arg(long)]
     pub strict: bool,
-}
-
-/// `--strict`: the first of the reader's warnings as an error (`file:line:column: message`),
-/// the others as detail lines; nothing when there is none.
-pub fn refuse_warnings(loaded: &LoadedScene) -> Result<(), CliError> {
-    let Some(first) = loaded.warnings.first() else {
-        return Ok(());
-    };
-    let others = loaded.warnings[1..]
-        .iter()
-        .map(|w| format!("warning: {w}"))
-        .collect();
-    Err(
-        CliError::input(format!("{first} (--strict makes every warning an error)"))
-            .with_detail(others),
-    )
 }
 
 /// The integrator as pbrt-v4 names it and its parameters under pbrt-v4's names:
@@ -79,7 +62,7 @@ pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
     // The warnings are part of the report: read quietly, not to print them twice.
     let loaded = input::read(Some(&args.scene))?;
     if args.strict {
-        refuse_warnings(&loaded)?;
+        input::refuse_warnings(&loaded)?;
     }
     let parse_s = t0.elapsed().as_secs_f64();
     let desc = &loaded.desc;

@@ -47,3 +47,19 @@ pub fn load(path: Option<&Path>) -> Result<LoadedScene, CliError> {
     }
     Ok(loaded)
 }
+
+/// `--strict`: the first of the reader's warnings as an error (`file:line:column: message`),
+/// the others as detail lines; nothing when there is none.
+pub fn refuse_warnings(loaded: &LoadedScene) -> Result<(), CliError> {
+    let Some(first) = loaded.warnings.first() else {
+        return Ok(());
+    };
+    let others = loaded.warnings[1..]
+        .iter()
+        .map(|w| format!("warning: {w}"))
+        .collect();
+    Err(
+        CliError::input(format!("{first} (--strict makes every warning an error)"))
+            .with_detail(others),
+    )
+}

@@ -77,7 +77,7 @@ pub fn load(args: RenderArgs) -> Result<Loaded, CliError> {
     };
     let mut desc = if args.strict {
         let loaded = input::read(args.scene.as_deref())?;
-        crate::info::refuse_warnings(&loaded)?;
+        input::refuse_warnings(&loaded)?;
         loaded.desc
     } else {
         input::load(args.scene.as_deref())?.desc
