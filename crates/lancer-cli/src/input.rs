@@ -26,10 +26,14 @@ pub fn is_stdin(path: &Path) -> bool {
 pub fn read(path: Option<&Path>) -> Result<LoadedScene, CliError> {
     match path {
         Some(p) if is_stdin(p) => {
-            let mut text = String::new();
-            std::io::stdin()
-                .read_to_string(&mut text)
+            // Gzip-compressed text is accepted, as in files (`zcat`-free pipes).
+            let mut bytes = Vec::new();
+            let bytes = std::io::stdin()
+                .read_to_end(&mut bytes)
+                .and_then(|_| lancer_scene::files_read::gunzip_if_compressed(bytes))
                 .map_err(|e| CliError::input(format!("{STDIN_NAME}: cannot read: {e}")))?;
+            let text = lancer_scene::pbrt::lexer::decode_utf8(&bytes, &STDIN_NAME.into())
+                .map_err(|e| CliError::input(e.to_string()).with_detail(e.excerpt_lines()))?;
             let dir = std::env::current_dir().unwrap_or_else(|_| PathBuf::from("."));
             lancer_scene::load_pbrt_str(&text, STDIN_NAME, &dir)
         }
