@@ -25,6 +25,10 @@ pub struct InfoArgs {
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
+    /// Every warning of the scene reader is an error (exit status 2), as pbrt-v4 refuses
+    /// parameters it does not use.
+    #[arg(long)]
+    pub strict: bool,
 }
 
 /// The integrator as pbrt-v4 names it and its parameters under pbrt-v4's names:
@@ -57,6 +61,9 @@ pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
     let t0 = Instant::now();
     // The warnings are part of the report: read quietly, not to print them twice.
     let loaded = input::read(Some(&args.scene))?;
+    if args.strict {
+        input::refuse_warnings(&loaded)?;
+    }
     let parse_s = t0.elapsed().as_secs_f64();
     let desc = &loaded.desc;
     let t1 = Instant::now();

@@ -26,10 +26,14 @@ pub fn is_stdin(path: &Path) -> bool {
 pub fn read(path: Option<&Path>) -> Result<LoadedScene, CliError> {
     match path {
         Some(p) if is_stdin(p) => {
-            let mut text = String::new();
-            std::io::stdin()
-                .read_to_string(&mut text)
+            // Gzip-compressed text is accepted, as in files (`zcat`-free pipes).
+            let mut bytes = Vec::new();
+            let bytes = std::io::stdin()
+                .read_to_end(&mut bytes)
+                .and_then(|_| lancer_scene::files_read::gunzip_if_compressed(bytes))
                 .map_err(|e| CliError::input(format!("{STDIN_NAME}: cannot read: {e}")))?;
+            let text = lancer_scene::pbrt::lexer::decode_utf8(&bytes, &STDIN_NAME.into())
+                .map_err(|e| CliError::input(e.to_string()).with_detail(e.excerpt_lines()))?;
             let dir = std::env::current_dir().unwrap_or_else(|_| PathBuf::from("."));
             lancer_scene::load_pbrt_str(&text, STDIN_NAME, &dir)
         }
@@ -46,4 +50,20 @@ pub fn load(path: Option<&Path>) -> Result<LoadedScene, CliError> {
         eprintln!("warning: {w}");
     }
     Ok(loaded)
+}
+
+/// `--strict`: the first of the reader's warnings as an error (`file:line:column: message`),
+/// the others as detail lines; nothing when there is none.
+pub fn refuse_warnings(loaded: &LoadedScene) -> Result<(), CliError> {
+    let Some(first) = loaded.warnings.first() else {
+        return Ok(());
+    };
+    let others = loaded.warnings[1..]
+        .iter()
+        .map(|w| format!("warning: {w}"))
+        .collect();
+    Err(
+        CliError::input(format!("{first} (--strict makes every warning an error)"))
+            .with_detail(others),
+    )
 }

@@ -75,7 +75,13 @@ pub fn load(args: RenderArgs) -> Result<Loaded, CliError> {
         }
         None => (args, None),
     };
-    let mut desc = input::load(args.scene.as_deref())?.desc;
+    let mut desc = if args.strict {
+        let loaded = input::read(args.scene.as_deref())?;
+        input::refuse_warnings(&loaded)?;
+        loaded.desc
+    } else {
+        input::load(args.scene.as_deref())?.desc
+    };
     apply_overrides(&mut desc, &args)?;
     Ok(Loaded {
         args,

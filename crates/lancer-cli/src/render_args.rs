@@ -66,6 +66,10 @@ pub struct RenderArgs {
     /// No progress bar, no progress lines, no summary.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Every warning of the scene reader is an error (exit status 2), as pbrt-v4 refuses
+    /// parameters it does not use.
+    #[arg(long)]
+    pub strict: bool,
     /// How progress is shown on stderr: `auto` (a bar on a terminal, plain lines in a log
     /// file), `bar`, `lines`, or `json` (one JSON object per line, for programs).
     #[arg(long, value_enum, value_name = "MODE", default_value_t)]

@@ -133,6 +133,11 @@ fn pixelbounds_renders_exactly_those_pixels() {
 
 /// Runs `lancer ARGS` in `dir` with `input` on its standard input.
 fn run_with_stdin(dir: &Path, args: &[&str], input: &str) -> Output {
+    run_with_stdin_bytes(dir, args, input.as_bytes())
+}
+
+/// [`run_with_stdin`] with any bytes.
+fn run_with_stdin_bytes(dir: &Path, args: &[&str], input: &[u8]) -> Output {
     let mut child = lancer()
         .current_dir(dir)
         .args(args)
@@ -141,13 +146,58 @@ fn run_with_stdin(dir: &Path, args: &[&str], input: &str) -> Output {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(input.as_bytes())
-        .unwrap();
+    child.stdin.take().unwrap().write_all(input).unwrap();
     child.wait_with_output().unwrap()
+}
+
+/// `text` as a gzip stream (RFC 1952) of one stored (uncompressed) deflate block.
+fn gzip_stored(text: &[u8]) -> Vec<u8> {
+    // CRC-32 (IEEE, reflected polynomial 0xEDB88320), bit by bit.
+    let mut crc = !0u32;
+    for &b in text {
+        crc ^= b as u32;
+        for _ in 0..8 {
+            crc = if crc & 1 == 1 {
+                (crc >> 1) ^ 0xEDB8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    let n = text.len() as u16;
+    let mut out = vec![0x1f, 0x8b, 8, 0, 0, 0, 0, 0, 0, 0xff, 1];
+    out.extend_from_slice(&n.to_le_bytes());
+    out.extend_from_slice(&(!n).to_le_bytes());
+    out.extend_from_slice(text);
+    out.extend_from_slice(&(!crc).to_le_bytes());
+    out.extend_from_slice(&(text.len() as u32).to_le_bytes());
+    out
+}
+
+#[test]
+fn a_gzip_compressed_scene_on_stdin_is_read() {
+    let dir = ScratchDir::new("pbrt-stdin-gz");
+    let scene = "Film \"rgb\" \"integer xresolution\" [8] \"integer yresolution\" [8]\n\
+                 WorldBegin\nShape \"sphere\" \"float radius\" [2]\n";
+    let o = run_with_stdin_bytes(
+        &dir,
+        &["info", "-", "--json"],
+        &gzip_stored(scene.as_bytes()),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["film"]["width"].as_u64(), Some(8));
+    assert_eq!(v["shapes"]["sphere"].as_u64(), Some(1));
+    // A damaged stream says so.
+    let mut bad = gzip_stored(scene.as_bytes());
+    bad.truncate(bad.len() - 4);
+    let o = run_with_stdin_bytes(&dir, &["info", "-"], &bad);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).starts_with("error: <stdin>: cannot read: cannot decompress"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 #[test]
@@ -492,4 +542,30 @@ fn a_model_requiring_khr_texture_transform_renders() {
     );
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(dir.join("t.png").is_file());
+}
+
+#[test]
+fn strict_makes_every_reader_warning_an_error() {
+    let dir = ScratchDir::new("pbrt-strict");
+    std::fs::write(
+        dir.join("w.pbrt"),
+        "Film \"rgb\" \"integer xresolution\" 8 \"integer yresolution\" 8\nWorldBegin\n\
+         LightSource \"point\"\nShape \"sphere\"\n  \"float radius\" 0.5 \"float colour\" 2\n",
+    )
+    .unwrap();
+    let expected = "error: w.pbrt:5:22: parameter \"float colour\" of Shape \"sphere\" is not used \
+                    by lancer; ignored (--strict makes every warning an error)";
+    for args in [
+        &["info", "w.pbrt", "--strict"][..],
+        &["render", "w.pbrt", "-o", "w.png", "--quiet", "--strict"],
+    ] {
+        let o = run_in(&dir, args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert_eq!(stderr(&o).lines().next(), Some(expected), "{args:?}");
+    }
+    assert!(!dir.join("w.png").exists());
+    // Without it, the same scene renders, with its warning.
+    let o = run_in(&dir, &["render", "w.pbrt", "-o", "w.png", "--quiet"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stderr(&o).contains("warning: w.pbrt:5:22:"));
 }

@@ -55,6 +55,37 @@ pub fn record(path: &Path) {
     });
 }
 
+/// The two bytes every gzip stream starts with (RFC 1952, ID1 ID2).
+pub const GZIP_MAGIC: [u8; 2] = [0x1f, 0x8b];
+
+/// Reads `path` whole, recording it, and gunzips it when it starts with [`GZIP_MAGIC`] (whatever
+/// its name: pbrt-v4 decides by the `.gz` ending, the bytes are the surer sign). Concatenated
+/// gzip members are read one after another, as `gunzip` does.
+pub fn read_maybe_gzipped(path: &Path) -> std::io::Result<Vec<u8>> {
+    record(path);
+    let raw = std::fs::read(path)?;
+    gunzip_if_compressed(raw)
+}
+
+/// `bytes` gunzipped when they start with [`GZIP_MAGIC`], else unchanged.
+pub fn gunzip_if_compressed(bytes: Vec<u8>) -> std::io::Result<Vec<u8>> {
+    if !bytes.starts_with(&GZIP_MAGIC) {
+        return Ok(bytes);
+    }
+    let mut out = Vec::new();
+    std::io::Read::read_to_end(
+        &mut flate2::read::MultiGzDecoder::new(bytes.as_slice()),
+        &mut out,
+    )
+    .map_err(|e| {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("cannot decompress its gzip data: {e}"),
+        )
+    })?;
+    Ok(out)
+}
+
 /// This thread's recorder, to hand to worker threads.
 pub fn current() -> Option<Recorder> {
     CURRENT.with(|c| c.borrow().clone())
@@ -108,6 +139,26 @@ mod tests {
         assert!(files[1].is_absolute());
         assert!(files[1].ends_with("relative/b.ply"));
         assert!(current().is_none());
+    }
+
+    #[test]
+    fn gzip_data_is_recognised_by_its_magic_bytes() {
+        use std::io::Write;
+        let text = b"WorldBegin\nShape \"sphere\"\n";
+        let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
+        enc.write_all(text).unwrap();
+        let gz = enc.finish().unwrap();
+        assert_eq!(gz[..2], GZIP_MAGIC);
+        assert_eq!(gunzip_if_compressed(gz.clone()).unwrap(), text);
+        // Plain text passes unchanged, even if its name said .gz.
+        assert_eq!(gunzip_if_compressed(text.to_vec()).unwrap(), text);
+        // Two members, as `cat a.gz b.gz` makes, read as one text.
+        let mut two = gz.clone();
+        two.extend_from_slice(&gz);
+        assert_eq!(gunzip_if_compressed(two).unwrap().len(), 2 * text.len());
+        // A truncated stream is an error, not a short text.
+        let e = gunzip_if_compressed(gz[..gz.len() - 6].to_vec()).unwrap_err();
+        assert!(e.to_string().contains("cannot decompress"), "{e}");
     }
 
     #[test]

@@ -1,5 +1,5 @@
 //! Reading the images that textures and environment lights name: PNG (8 or 16 bits per
-//! channel), JPEG and OpenEXR, decoded to linear RGB texels ([`Image`], row 0 at the top).
+//! channel), JPEG, OpenEXR and PFM ([`pfm`]), decoded to linear RGB texels ([`Image`], row 0 at the top).
 //!
 //! What pbrt-v4 does, and so what lancer does:
 //! - 8- and 16-bit PNG values go through the texture's `encoding` (sRGB by default for `.png`),
@@ -21,6 +21,8 @@ use std::fmt;
 use std::io::Cursor;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
+
+mod pfm;
 
 /// Largest width or height accepted.
 pub const MAX_SIDE: u32 = 1 << 16;
@@ -146,6 +148,7 @@ enum Format {
     Png,
     Jpeg,
     Exr,
+    Pfm,
 }
 
 /// The format named by `path`'s extension.
@@ -158,14 +161,16 @@ fn format_of(path: &Path) -> Result<Format, ImageReadError> {
         Some("png") => Ok(Format::Png),
         Some("jpg") | Some("jpeg") => Ok(Format::Jpeg),
         Some("exr") => Ok(Format::Exr),
+        Some("pfm") => Ok(Format::Pfm),
         _ => Err(err(
             path,
-            "unknown image format (lancer reads .png, .jpg, .jpeg and .exr)",
+            "unknown image format (lancer reads .png, .jpg, .jpeg, .exr and .pfm)",
         )),
     }
 }
 
-/// Reads an image file, its format chosen by the extension (`.png`, `.jpg`/`.jpeg`, `.exr`);
+/// Reads an image file, its format chosen by the extension (`.png`, `.jpg`/`.jpeg`, `.exr`,
+/// `.pfm`);
 /// `encoding` applies to PNG only (see the module's notes).
 pub fn read_image(path: &Path, encoding: Encoding) -> Result<DecodedImage, ImageReadError> {
     let format = format_of(path)?;
@@ -175,7 +180,7 @@ pub fn read_image(path: &Path, encoding: Encoding) -> Result<DecodedImage, Image
 }
 
 /// Decodes an image held in memory (a glTF file's embedded image, a fuzzer's input), its
-/// format told by its first bytes (PNG, JPEG or OpenEXR signature), else by `name`'s extension;
+/// format told by its first bytes (PNG, JPEG, OpenEXR or PFM signature), else by `name`'s extension;
 /// `name` names it in messages and `encoding` applies to PNG only, as in [`read_image`].
 pub fn decode_image(
     name: &Path,
@@ -188,6 +193,8 @@ pub fn decode_image(
         Format::Jpeg
     } else if bytes.starts_with(&[0x76, 0x2f, 0x31, 0x01]) {
         Format::Exr
+    } else if pfm::is_pfm(bytes) {
+        Format::Pfm
     } else {
         format_of(name)?
     };
@@ -204,6 +211,7 @@ fn decode(
         Format::Png => read_png(path, bytes, encoding)?,
         Format::Jpeg => read_jpeg(path, bytes)?,
         Format::Exr => read_exr(path, bytes)?,
+        Format::Pfm => pfm::read_pfm(path, bytes)?,
     };
     let alpha = alpha.filter(|a| a.iter().any(|&v| v != 1.0));
     let rgb =

@@ -34,8 +34,8 @@ pub struct LoadedScene {
     pub files: Vec<PathBuf>,
 }
 
-/// Reads a scene file, its format chosen by the extension: `.pbrt` (or none) a pbrt-v4
-/// scene; `.gltf` or `.glb` a glTF 2.0 model ([`gltf`]); `.obj`, `.ply` or `.ply.gz` a bare mesh, with the camera, lights and film of
+/// Reads a scene file, its format chosen by the extension: `.pbrt`, `.pbrt.gz` (or none) a
+/// pbrt-v4 scene; `.gltf` or `.glb` a glTF 2.0 model ([`gltf`]); `.obj`, `.ply` or `.ply.gz` a bare mesh, with the camera, lights and film of
 /// [`mesh_scene::defaults`] around it.
 pub fn load(path: &Path) -> Result<LoadedScene, SceneError> {
     let (result, files) = files_read::recording(|| load_unrecorded(path));
@@ -47,20 +47,25 @@ fn load_unrecorded(path: &Path) -> Result<LoadedScene, SceneError> {
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
-    let gzipped_ply = || {
+    // The format of a `.gz` file: the extension before it.
+    let gzipped = |format: &str| {
         path.file_stem()
             .and_then(|s| Path::new(s).extension())
             .and_then(|e| e.to_str())
-            .is_some_and(|e| e.eq_ignore_ascii_case("ply"))
+            .is_some_and(|e| e.eq_ignore_ascii_case(format))
     };
     match ext.as_deref() {
+        Some("gz") if gzipped("pbrt") => {
+            let mut parser = Parser::from_file(path)?;
+            finish(pbrt::builder::build(&mut parser), &parser)
+        }
         Some("pbrt") | None => {
             let mut parser = Parser::from_file(path)?;
             finish(pbrt::builder::build(&mut parser), &parser)
         }
         Some("obj") => mesh_scene::load_obj_scene(path).map(fold),
         Some("ply") => mesh_scene::load_ply_scene(path).map(fold),
-        Some("gz") if gzipped_ply() => mesh_scene::load_ply_scene(path).map(fold),
+        Some("gz") if gzipped("ply") => mesh_scene::load_ply_scene(path).map(fold),
         Some("gltf") | Some("glb") => gltf::load_gltf_scene(path).map(fold),
         Some(other) => Err(SceneError::general(format!(
             "{}: unknown scene format '.{other}' (lancer reads .pbrt scenes, .gltf/.glb models and .obj/.ply meshes)",

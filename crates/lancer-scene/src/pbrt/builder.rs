@@ -11,12 +11,13 @@ use super::params::{Param, ParamList};
 use super::parser::{Directive, Located, Parser};
 use super::search_path::SearchPath;
 use super::shapes::{ShapeGeometry, shape};
+use super::singular::{flatten, is_singular, kept, unplaced};
 use super::textures::{float_texture, spectrum_texture};
 use crate::error::{Location, SceneError, Warning};
 use crate::image_read::ImageCache;
 use lancer::material::Material;
 use lancer::math::{Mat4, Transform, Vec3};
-use lancer::scene::desc::{AreaLightDesc, InstanceDesc, ObjectDesc, SceneDesc, ShapeDesc};
+use lancer::scene::desc::{AreaLightDesc, InstanceDesc, SceneDesc, ShapeDesc};
 use std::collections::{HashMap, HashSet};
 
 /// The material a shape gets: one already in the list, or a name resolved at the end (pbrt-v4
@@ -30,6 +31,8 @@ enum MaterialRef {
 /// The deepest nesting of attribute, transform and object blocks accepted: far beyond any real
 /// scene, and a bound on the memory the saved graphics states take.
 pub const MAX_NESTING: usize = 10_000;
+
+mod blocks;
 
 /// What `AttributeBegin` saves.
 #[derive(Clone, Debug)]
@@ -47,6 +50,8 @@ enum Block {
     Attribute,
     Transform,
     Object,
+    /// An imported file: it starts from a copy of the graphics state, which its end restores.
+    Import,
 }
 
 impl Block {
@@ -55,6 +60,7 @@ impl Block {
             Block::Attribute => ("AttributeBegin", "AttributeEnd"),
             Block::Transform => ("TransformBegin", "TransformEnd"),
             Block::Object => ("ObjectBegin", "ObjectEnd"),
+            Block::Import => ("Import", "the end of the imported file"),
         }
     }
 }
@@ -259,6 +265,11 @@ impl Builder {
             D::ObjectBegin(name) => self.object_begin(name, loc),
             D::ObjectEnd => self.end_block(Block::Object, loc),
             D::ObjectInstance(name) => self.object_instance(name, loc),
+            D::ImportBegin(_) => {
+                self.require_world("Import", loc)?;
+                self.begin_block(Block::Import, loc)
+            }
+            D::ImportEnd => self.end_block(Block::Import, loc),
             D::Attribute(target, params) => self.attribute(target, params, loc),
             D::WorldBegin => self.world_begin(loc),
             // A tuning hint for pbrt's own structures: lancer always builds its BVH.
@@ -303,6 +314,10 @@ impl Builder {
                 Ok(())
             }
             D::Camera(ty, params) => self.with_params("Camera", &ty, params, loc, |b, p| {
+                if is_singular(&b.gs.ctm) {
+                    let m = "the camera's transformation is singular (it flattens space)";
+                    return Err(SceneError::at(loc.clone(), m));
+                }
                 let c = b.accept(camera(p, &ty, b.gs.ctm, loc)?, loc);
                 (b.desc.camera, b.frame_aspect) = (c.camera, c.frame_aspect);
                 b.named_coords
@@ -372,6 +387,11 @@ impl Builder {
             }
             D::LightSource(ty, params) => {
                 self.with_params("LightSource", &ty, params, loc, |b, p| {
+                    if is_singular(&b.gs.ctm) {
+                        p.mark_all_used();
+                        b.warn(loc, unplaced(&format!("LightSource \"{ty}\"")));
+                        return Ok(());
+                    }
                     let l = light(&b.reader(p, dir), &ty, b.gs.ctm, loc)?;
                     if let Some(l) = b.accept(l, loc) {
                         b.desc.lights.push(l);
@@ -408,7 +428,10 @@ impl Builder {
                 loc,
             )?,
             D::Scale([x, y, z]) => {
-                self.concat(Transform::scale(Vec3::new(x, y, z)), "Scale", loc)?
+                // Transform::scale's exact reciprocals when it has them (as before).
+                let s = Vec3::new(x, y, z);
+                let t = Transform::scale(s).unwrap_or_else(|| kept(Mat4::from_scale(s.into())));
+                self.concat(Some(t), "Scale", loc)?
             }
             D::Rotate([a, x, y, z]) => {
                 let r = Transform::rotate(a, Vec3::new(x, y, z));
@@ -434,15 +457,15 @@ impl Builder {
             }
             D::Transform(m) => {
                 // pbrt's 16 numbers are the matrix column by column.
-                let t = Transform::from_matrix(Mat4::from_cols_array(&m));
+                let t = kept(Mat4::from_cols_array(&m));
                 if self.start_active {
                     self.gs.ctm = Transform::IDENTITY;
                 }
-                self.concat(t, "Transform", loc)?
+                self.concat(Some(t), "Transform", loc)?
             }
             D::ConcatTransform(m) => {
-                let t = Transform::from_matrix(Mat4::from_cols_array(&m));
-                self.concat(t, "ConcatTransform", loc)?
+                let t = kept(Mat4::from_cols_array(&m));
+                self.concat(Some(t), "ConcatTransform", loc)?
             }
             D::CoordinateSystem(name) => {
                 self.named_coords.insert(name, self.gs.ctm);
@@ -465,128 +488,6 @@ impl Builder {
             other => unreachable!("not a transformation directive: {other:?}"),
         }
         Ok(())
-    }
-
-    /// `Attribute "target" …`: defaults for the parameters of later directives of `target`.
-    fn attribute(
-        &mut self,
-        target: String,
-        params: ParamList,
-        loc: &Location,
-    ) -> Result<(), SceneError> {
-        if !matches!(
-            target.as_str(),
-            "shape" | "light" | "material" | "medium" | "texture"
-        ) {
-            return Err(SceneError::at(
-                loc.clone(),
-                format!(
-                    "Attribute target \"{target}\" is unknown (expected shape, light, \
-                     material, medium or texture)"
-                ),
-            ));
-        }
-        self.gs
-            .defaults
-            .entry(target)
-            .or_default()
-            .extend(params.iter().cloned());
-        Ok(())
-    }
-
-    fn world_begin(&mut self, loc: &Location) -> Result<(), SceneError> {
-        self.require_options("WorldBegin", loc)?;
-        if let Some((b, _, open)) = self.stack.last() {
-            return Err(SceneError::at(
-                loc.clone(),
-                format!(
-                    "WorldBegin inside the {} at line {}",
-                    b.names().0,
-                    open.line
-                ),
-            ));
-        }
-        self.in_world = true;
-        self.gs.ctm = Transform::IDENTITY;
-        self.named_coords
-            .insert("world".to_string(), Transform::IDENTITY);
-        Ok(())
-    }
-
-    /// `ObjectBegin`: also begins an attribute block, as in pbrt-v4.
-    fn object_begin(&mut self, name: String, loc: &Location) -> Result<(), SceneError> {
-        self.require_world("ObjectBegin", loc)?;
-        if let Some(open) = self.current_object {
-            let open = &self.desc.objects[open as usize].name;
-            return Err(SceneError::at(
-                loc.clone(),
-                format!("ObjectBegin \"{name}\" inside the definition of \"{open}\""),
-            ));
-        }
-        self.stack
-            .push((Block::Object, self.gs.clone(), loc.clone()));
-        let index = self.desc.objects.len() as u32;
-        self.desc.objects.push(ObjectDesc {
-            name: name.clone(),
-            shapes: Vec::new(),
-        });
-        if self.object_names.insert(name.clone(), index).is_some() {
-            self.warn(loc, format!("object \"{name}\" redefined"));
-        }
-        self.current_object = Some(index);
-        Ok(())
-    }
-
-    fn object_instance(&mut self, name: String, loc: &Location) -> Result<(), SceneError> {
-        self.require_world("ObjectInstance", loc)?;
-        if self.current_object.is_some() {
-            return Err(SceneError::at(
-                loc.clone(),
-                "ObjectInstance inside an object definition",
-            ));
-        }
-        self.pending_instances
-            .push((name, self.gs.ctm, loc.clone()));
-        Ok(())
-    }
-
-    /// Saves the graphics state at the opening of a block, refusing nesting deeper than
-    /// [`MAX_NESTING`] (each level holds a copy of the state).
-    fn begin_block(&mut self, block: Block, loc: &Location) -> Result<(), SceneError> {
-        if self.stack.len() >= MAX_NESTING {
-            let (open, _) = block.names();
-            return Err(SceneError::at(
-                loc.clone(),
-                format!("{open} nested more than {MAX_NESTING} blocks deep"),
-            ));
-        }
-        self.stack.push((block, self.gs.clone(), loc.clone()));
-        Ok(())
-    }
-
-    fn end_block(&mut self, block: Block, loc: &Location) -> Result<(), SceneError> {
-        let (begin, end) = block.names();
-        match self.stack.pop() {
-            None => Err(SceneError::at(
-                loc.clone(),
-                format!("{end} without a matching {begin}"),
-            )),
-            Some((b, _, open)) if b != block => Err(SceneError::at(
-                loc.clone(),
-                format!("{end} closes the {} at line {}", b.names().0, open.line),
-            )),
-            Some((_, saved_gs, _)) => {
-                if block == Block::Transform {
-                    self.gs.ctm = saved_gs.ctm;
-                } else {
-                    self.gs = saved_gs;
-                }
-                if block == Block::Object {
-                    self.current_object = None;
-                }
-                Ok(())
-            }
-        }
     }
 
     /// Adds a material; a `mix` has its two names resolved at the end.
@@ -690,6 +591,14 @@ impl Builder {
             params.mark_all_used();
             return Ok(());
         };
+        let (geometry, object_to_world) = if is_singular(&self.gs.ctm) {
+            match self.accept(flatten(geometry, ty, &self.gs.ctm), loc) {
+                Some(g) => (g, Transform::IDENTITY),
+                None => return Ok(()),
+            }
+        } else {
+            (geometry, self.gs.ctm)
+        };
         let (material, pending) = match &self.gs.material {
             MaterialRef::Index(i) => (*i, None),
             MaterialRef::Named(name, nloc) => match self.named_materials.get(name) {
@@ -708,7 +617,7 @@ impl Builder {
         }
         let sd = ShapeDesc {
             geometry,
-            object_to_world: self.gs.ctm,
+            object_to_world,
             reverse_orientation: self.gs.reverse_orientation,
             material,
             area_light,

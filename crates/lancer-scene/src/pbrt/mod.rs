@@ -7,7 +7,8 @@
 //! directive's parameters become lancer's plain data in the file of its kind, as pbrt-v4 puts
 //! `X::Create` beside each type: [`shapes`] (with [`sdf`]), [`materials`], [`textures`],
 //! [`lights`], [`media`], [`cameras`] and [`options`] (film, sampler, filter, integrator), all
-//! reading through [`convert`]'s shared [`convert::Reader`].
+//! reading through [`convert`]'s shared [`convert::Reader`]. [`singular`] places shapes under a
+//! transformation with no inverse, as pbrt-v4 does.
 
 pub mod builder;
 pub mod cameras;
@@ -22,4 +23,5 @@ pub mod parser;
 pub mod sdf;
 pub mod search_path;
 pub mod shapes;
+pub mod singular;
 pub mod textures;

@@ -304,20 +304,28 @@ pub enum FloatParam {
 #[derive(Clone, Debug, Default)]
 pub struct ParamList {
     params: Vec<Param>,
+    /// Earlier copies of a name given again, with where the copy that counts is declared.
+    shadowed: Vec<(Param, Location)>,
 }
 
 impl ParamList {
-    /// A list of parsed parameters. A name given twice is an error.
+    /// A list of parsed parameters. A name given twice keeps its last value, as in pbrt-v4
+    /// (its `ParameterDictionary` looks names up in the reversed list); the earlier copies are
+    /// set aside for a warning ([`ParamList::report_unused`]).
     pub fn new(params: Vec<Param>) -> Result<ParamList, SceneError> {
-        for (i, p) in params.iter().enumerate() {
-            if let Some(q) = params[..i].iter().find(|q| q.name == p.name) {
-                return Err(p.error(format!(
-                    "parameter '{}' is given twice (first at line {})",
-                    p.name, q.loc.line
-                )));
+        let mut kept: Vec<Param> = Vec::with_capacity(params.len());
+        let mut shadowed = Vec::new();
+        for p in params {
+            if let Some(i) = kept.iter().position(|q| q.name == p.name) {
+                let earlier = kept.remove(i);
+                shadowed.push((earlier, p.loc.clone()));
             }
+            kept.push(p);
         }
-        Ok(ParamList { params })
+        Ok(ParamList {
+            params: kept,
+            shadowed,
+        })
     }
 
     /// Adds `defaults` (pbrt's `Attribute` values) for the names this list does not give.
@@ -734,8 +742,21 @@ impl ParamList {
         }
     }
 
-    /// Warnings for every parameter nobody looked up: lancer ignores them.
+    /// Warnings for every parameter nobody looked up (lancer ignores them), and for every
+    /// earlier copy of a parameter given twice.
     pub fn report_unused(&self, what: &str, warnings: &mut Vec<Warning>) {
+        for (p, last) in &self.shadowed {
+            warnings.push(Warning {
+                location: p.loc.clone(),
+                message: format!(
+                    "parameter {} of {what} is given again at {}:{}; this earlier value is \
+                     ignored (as pbrt-v4, the last one counts)",
+                    p.decl(),
+                    last.line,
+                    last.col
+                ),
+            });
+        }
         for p in self.params.iter().filter(|p| !p.used.get()) {
             warnings.push(Warning {
                 location: p.loc.clone(),
@@ -767,54 +788,4 @@ fn named_or_file_spectrum(name: &str, dir: &SearchPath) -> Result<Spectrum, Stri
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use std::sync::Arc;
-
-    fn loc() -> Location {
-        Location {
-            file: Arc::from("t.pbrt"),
-            line: 1,
-            col: 1,
-        }
-    }
-
-    fn num(t: &str) -> (RawValue, Location) {
-        let integral = !t.contains(['.', 'e']);
-        (RawValue::Number(t.parse().unwrap(), integral), loc())
-    }
-
-    #[test]
-    fn types_are_checked_when_read() {
-        assert!(Param::new("integer n", loc(), vec![num("1.5")]).is_err());
-        assert!(Param::new("integer n", loc(), vec![num("3")]).is_ok());
-        assert!(Param::new("rgb c", loc(), vec![num("1"), num("2")]).is_err());
-        assert!(Param::new("floot x", loc(), vec![num("1")]).is_err());
-        assert!(Param::new("float", loc(), vec![num("1")]).is_err());
-        assert!(Param::new("float x", loc(), vec![]).is_err());
-        assert!(Param::new("point3 p", loc(), vec![num("1"), num("2")]).is_err());
-        assert!(Param::new("bool b", loc(), vec![(RawValue::Str("true".into()), loc())]).is_ok());
-    }
-
-    #[test]
-    fn lookups_check_types_and_track_use() {
-        let list = ParamList::new(vec![
-            Param::new("float radius", loc(), vec![num("2")]).unwrap(),
-            Param::new("integer n", loc(), vec![num("2")]).unwrap(),
-            Param::new("float unused", loc(), vec![num("2")]).unwrap(),
-        ])
-        .unwrap();
-        assert_eq!(list.float("radius", 1.0).unwrap(), 2.0);
-        assert_eq!(list.float("zmin", -1.0).unwrap(), -1.0);
-        assert!(list.float("n", 0.0).is_err());
-        assert_eq!(list.int("n", 0).unwrap(), 2);
-        let mut w = Vec::new();
-        list.report_unused("Shape \"sphere\"", &mut w);
-        assert_eq!(w.len(), 1);
-        assert!(
-            w[0].message.contains("\"float unused\""),
-            "{}",
-            w[0].message
-        );
-    }
-}
+mod tests;

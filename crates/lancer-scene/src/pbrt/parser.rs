@@ -1,7 +1,12 @@
 //! The pbrt parser: tokens → directives, one at a time, with `Include` and `Import` followed
-//! into the named files. Relative file names are looked up as pbrt-v4 does, in the folder of
-//! the scene file given on the command line, and then in the folder of the file that names
-//! them ([`SearchPath`]).
+//! into the named files (gzip-compressed or not). Relative file names are looked up as pbrt-v4
+//! does, in the folder of the scene file given on the command line, and then in the folder of
+//! the file that names them ([`SearchPath`]).
+//!
+//! As in pbrt-v4, an `Include`d file is only more tokens: when it ends, its last directive may
+//! go on with the parameters that follow the `Include` line. An `Import`ed file is a stream of
+//! its own, framed by [`Directive::ImportBegin`] and [`Directive::ImportEnd`] so that the
+//! builder can give it a copy of the graphics state.
 //!
 //! The parser knows every directive of pbrt-v4 (and pbrt-v3's `TransformBegin`/`End`,
 //! `WorldEnd`) and the shape of its arguments; what the directives *mean* is the builder's
@@ -99,6 +104,10 @@ pub enum Directive {
     ObjectEnd,
     /// `ObjectInstance "name"`
     ObjectInstance(String),
+    /// `Import "file"`: the directives of `file` follow, then [`Directive::ImportEnd`].
+    ImportBegin(String),
+    /// The end of an imported file.
+    ImportEnd,
 }
 
 /// A directive, where it starts, and where its relative file names point.
@@ -119,6 +128,8 @@ struct Source {
     canonical: Option<PathBuf>,
     /// A token read ahead.
     peeked: Option<Token>,
+    /// Read for an `Import`: a stream of its own, which its directives cannot leave.
+    import: bool,
 }
 
 /// Reads directives from a scene file and the files it includes.
@@ -128,10 +139,10 @@ pub struct Parser {
     sources: HashMap<Arc<str>, Arc<str>>,
 }
 
-/// Reads a file as UTF-8 text; `at` is where it was asked for (an `Include`), if anywhere.
+/// Reads a file (gunzipped when compressed) as UTF-8 text; `at` is where it was asked for (an
+/// `Include`), if anywhere.
 fn read_text(path: &Path, name: &Arc<str>, at: Option<&Location>) -> Result<String, SceneError> {
-    crate::files_read::record(path);
-    let bytes = std::fs::read(path).map_err(|e| {
+    let bytes = crate::files_read::read_maybe_gzipped(path).map_err(|e| {
         let what = if at.is_some() {
             "cannot read included file"
         } else {
@@ -235,7 +246,7 @@ impl Parser {
             stack: Vec::new(),
             sources: HashMap::new(),
         };
-        p.push(text, name, path)?;
+        p.push(text, name, path, false);
         Ok(p)
     }
 
@@ -250,12 +261,13 @@ impl Parser {
                 dir: SearchPath::new(dir),
                 canonical: None,
                 peeked: None,
+                import: false,
             }],
             sources: HashMap::from([(name, src)]),
         }
     }
 
-    fn push(&mut self, text: String, name: Arc<str>, path: &Path) -> Result<(), SceneError> {
+    fn push(&mut self, text: String, name: Arc<str>, path: &Path, import: bool) {
         let src: Arc<str> = Arc::from(text);
         // A file in the working folder has the empty folder, so that the files it includes
         // are named as plainly as it is.
@@ -270,8 +282,8 @@ impl Parser {
             dir: SearchPath { scene, file: dir },
             canonical: path.canonicalize().ok(),
             peeked: None,
+            import,
         });
-        Ok(())
     }
 
     /// The text of a file read so far, by its name in locations.
@@ -279,26 +291,41 @@ impl Parser {
         self.sources.get(file).map(|s| &**s)
     }
 
-    /// The next token of the innermost file; `None` at its end (included files are not left
-    /// here: a directive must end in the file where it starts).
-    fn next(&mut self) -> Result<Option<Token>, SceneError> {
-        let Some(top) = self.stack.last_mut() else {
-            return Ok(None);
-        };
-        match top.peeked.take() {
-            Some(t) => Ok(Some(t)),
-            None => top.lexer.next_token(),
+    /// Reads a token ahead in the innermost file; at the end of an `Include`d file, goes on
+    /// in the file that includes it, as pbrt-v4's stack of token streams does. Stops at the
+    /// end of the main file and of an `Import`ed one (`false`).
+    fn fill(&mut self) -> Result<bool, SceneError> {
+        loop {
+            let depth = self.stack.len();
+            let Some(top) = self.stack.last_mut() else {
+                return Ok(false);
+            };
+            if top.peeked.is_none() {
+                top.peeked = top.lexer.next_token()?;
+            }
+            if top.peeked.is_some() {
+                return Ok(true);
+            }
+            if top.import || depth == 1 {
+                return Ok(false);
+            }
+            self.stack.pop();
         }
     }
 
-    fn peek(&mut self) -> Result<Option<&Token>, SceneError> {
-        let Some(top) = self.stack.last_mut() else {
+    /// The next token, `None` at the end of the main file or of an imported one.
+    fn next(&mut self) -> Result<Option<Token>, SceneError> {
+        if !self.fill()? {
             return Ok(None);
-        };
-        if top.peeked.is_none() {
-            top.peeked = top.lexer.next_token()?;
         }
-        Ok(top.peeked.as_ref())
+        Ok(self.stack.last_mut().and_then(|s| s.peeked.take()))
+    }
+
+    fn peek(&mut self) -> Result<Option<&Token>, SceneError> {
+        if !self.fill()? {
+            return Ok(None);
+        }
+        Ok(self.stack.last().and_then(|s| s.peeked.as_ref()))
     }
 
     /// The start of the main file (for messages about a scene as a whole).
@@ -495,7 +522,13 @@ impl Parser {
         ParamList::new(params)
     }
 
-    fn include(&mut self, loc: &Location, dir: &SearchPath, what: &str) -> Result<(), SceneError> {
+    /// Opens the file an `Include` or `Import` names; gives its name as written.
+    fn include(
+        &mut self,
+        loc: &Location,
+        dir: &SearchPath,
+        what: &str,
+    ) -> Result<String, SceneError> {
         let file = self.string_arg(what, "a file name")?;
         let path = dir.resolve(&file);
         if self.stack.len() >= MAX_INCLUDE_DEPTH {
@@ -514,18 +547,26 @@ impl Parser {
         }
         let name: Arc<str> = Arc::from(path.display().to_string());
         let text = read_text(&path, &name, Some(loc))?;
-        self.push(text, name, &path)
+        self.push(text, name, &path, what == "Import");
+        Ok(file)
     }
 
     /// The next directive, `None` when every file is read.
     pub fn next_directive(&mut self) -> Result<Option<Located>, SceneError> {
         loop {
             let Some(t) = self.next()? else {
-                self.stack.pop();
-                if self.stack.is_empty() {
+                let Some(ended) = self.stack.pop() else {
+                    return Ok(None);
+                };
+                if !ended.import {
+                    self.stack.clear();
                     return Ok(None);
                 }
-                continue;
+                return Ok(Some(Located {
+                    directive: Directive::ImportEnd,
+                    loc: ended.lexer.location(),
+                    dir: ended.dir,
+                }));
             };
             let loc = t.loc.clone();
             let dir = self.stack.last().expect("open").dir.clone();
@@ -538,10 +579,11 @@ impl Parser {
             use Directive as D;
             let name = t.text.as_str();
             let directive = match name {
-                "Include" | "Import" => {
+                "Include" => {
                     self.include(&loc, &dir, name)?;
                     continue;
                 }
+                "Import" => D::ImportBegin(self.include(&loc, &dir, name)?),
                 "Identity" => D::Identity,
                 "Translate" => D::Translate(self.numbers(name)?),
                 "Scale" => D::Scale(self.numbers(name)?),
@@ -641,60 +683,4 @@ impl Parser {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn all(src: &str) -> Result<Vec<Directive>, SceneError> {
-        let mut p = Parser::from_str(src, "t.pbrt", Path::new("."));
-        let mut out = Vec::new();
-        while let Some(d) = p.next_directive()? {
-            out.push(d.directive);
-        }
-        Ok(out)
-    }
-
-    fn err(src: &str) -> (u32, u32, String) {
-        let e = all(src).unwrap_err();
-        let l = e.location.expect("located");
-        (l.line, l.col, e.message)
-    }
-
-    #[test]
-    fn directives_and_arguments() {
-        let d = all("LookAt 0 0 5  0 0 0  0 1 0\nTransform [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1]\n\
-                     Shape \"sphere\" \"float radius\" 2 Texture \"t\" \"spectrum\" \"checkerboard\"")
-        .unwrap();
-        assert!(matches!(d[0], Directive::LookAt(v) if v[2] == 5.0));
-        assert!(matches!(d[1], Directive::Transform(m) if m[15] == 1.0));
-        assert!(
-            matches!(&d[2], Directive::Shape(n, p) if n == "sphere" && p.float("radius", 1.0).unwrap() == 2.0)
-        );
-        assert!(matches!(&d[3], Directive::Texture(n, _, c, _) if n == "t" && c == "checkerboard"));
-    }
-
-    #[test]
-    fn malformed_input_is_located() {
-        assert_eq!(err("WorldBegin\nSphere \"sphere\"").0, 2);
-        assert!(err("Shap \"sphere\"").2.contains("did you mean Shape"));
-        assert_eq!(err("Shape \"sphere\" \"float radius\" [2 3").1, 31);
-        assert_eq!(err("Translate 1 2").0, 1);
-        assert!(err("Translate 1 nan 2").2.contains("finite"));
-        assert!(
-            err("Shape \"sphere\" \"float radius\" [nan]")
-                .2
-                .contains("finite")
-        );
-        assert!(
-            err("Shape \"sphere\" \"float radius\"")
-                .2
-                .contains("no value")
-        );
-        assert!(err("Shape \"sphere\" \"radius\" 1").2.contains("type name"));
-        assert!(err("Shape \"sphere\" 1").2.contains("expected a parameter"));
-        assert!(
-            err("Include \"does-not-exist.pbrt\"")
-                .2
-                .contains("no such file")
-        );
-    }
-}
+mod tests;

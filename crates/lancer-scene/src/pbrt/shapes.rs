@@ -136,7 +136,14 @@ fn geometry(r: &Reader, ty: &str) -> Result<Fallback<Option<Geometry>>, SceneErr
         },
         // lancer extension: a signed-distance object, sphere-traced.
         "sdf" => super::sdf::sdf_geometry(p)?,
-        "trianglemesh" => Geometry::TriangleMesh(Arc::new(triangle_mesh(p, ty)?)),
+        // Inconsistent arrays are trimmed or dropped as pbrt-v4 does, with a warning.
+        "trianglemesh" => {
+            let m = trianglemesh::triangle_mesh_as_pbrt(p)?;
+            if let Some(m) = &m.value {
+                m.check().map_err(|e| rule_error(p, e))?;
+            }
+            return Ok(m.map(|m| m.map(|m| Geometry::TriangleMesh(Arc::new(m)))));
+        }
         // pbrt's subdivision surface: the control mesh refined `levels` times (default 3) and
         // moved to the limit surface.
         "loopsubdiv" => {
@@ -468,3 +475,4 @@ fn voxel_grid(r: &Reader) -> Result<(VoxelGrid, Vec<String>), SceneError> {
 
 #[cfg(test)]
 mod tests;
+mod trianglemesh;

@@ -262,43 +262,79 @@ fn triangle_meshes_read_every_parameter() {
     assert_eq!(m.uvs, [Vec2::ZERO, Vec2::X, Vec2::Y]);
 }
 
+/// The warnings of a shape that converts, and its mesh if kept.
+#[track_caller]
+fn mesh_warnings(text: &str) -> (Option<TriangleMesh>, Vec<String>) {
+    let (out, unused) = convert_full(text, Path::new("."), &TextureNames::default(), false);
+    let f = out.unwrap_or_else(|e| panic!("{e}"));
+    let kept = f.value.map(|s| mesh(s.geometry));
+    if kept.is_some() {
+        assert!(unused.is_empty(), "{unused:?}");
+    }
+    (kept, f.warnings)
+}
+
 #[test]
-fn triangle_mesh_errors_are_at_their_parameter() {
+fn inconsistent_triangle_mesh_arrays_are_treated_as_pbrt_v4_does() {
+    let tri = "\"point3 P\" [0 0 0 1 0 0 0 1 0]";
+    // Meshes pbrt-v4 drops (with an error message, going on with the scene).
+    let (m, w) = mesh_warnings(r#"Shape "trianglemesh""#);
+    assert!(m.is_none());
     assert_eq!(
-        error(r#"Shape "trianglemesh""#),
-        "t.pbrt:1:1: a \"trianglemesh\" needs vertex positions \"point3 P\""
+        w,
+        [
+            "a \"trianglemesh\" with 0 vertices needs vertex indices \"integer indices\"; the mesh \
+          is skipped"
+        ]
     );
+    let (m, w) = mesh_warnings(r#"Shape "trianglemesh" "integer indices" [0 1 2]"#);
+    assert!(m.is_none());
     assert_eq!(
-        error("Shape \"trianglemesh\"\n  \"point3 P\" [0 0 0 1 0 0 0 1 0 1 1 0]"),
-        "t.pbrt:2:3: a \"trianglemesh\" with more than 3 vertices needs \"integer indices\""
+        w,
+        ["a \"trianglemesh\" needs vertex positions \"point3 P\"; the mesh is skipped"]
     );
-    assert_eq!(
-        error(
-            "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n  \"integer indices\" [0 1]"
-        ),
-        "t.pbrt:2:3: the mesh has 2 indices, not a multiple of 3"
+    let (m, w) = mesh_warnings("Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0 1 1 0]");
+    assert!(m.is_none());
+    assert!(
+        w[0].starts_with("a \"trianglemesh\" with 4 vertices needs"),
+        "{w:?}"
     );
+    for bad in ["3", "-1"] {
+        let (m, w) = mesh_warnings(&format!(
+            "Shape \"trianglemesh\" {tri} \"integer indices\" [0 1 2 0 1 {bad}]"
+        ));
+        assert!(m.is_none());
+        assert_eq!(
+            w,
+            [format!(
+                "vertex index {bad} is out of range for 3 vertices \"P\"; the mesh is skipped"
+            )]
+        );
+    }
+    // What pbrt-v4 trims or drops from a mesh it keeps.
+    let (m, w) = mesh_warnings(&format!(
+        "Shape \"trianglemesh\" {tri} \"integer indices\" [0 1 2 2 1]\n  \
+         \"normal N\" [0 0 1 0 0 1] \"point2 uv\" [0 0 1 0 0 1 1 1]"
+    ));
+    let m = m.expect("kept");
+    assert_eq!(m.indices, [0, 1, 2]);
+    assert!(m.normals.is_empty() && m.uvs.is_empty());
     assert_eq!(
-        error(
-            "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n  \"integer indices\" [0 1 3]"
-        ),
-        "t.pbrt:2:3: index 3 out of range for 3 vertices"
+        w,
+        [
+            "\"integer indices\" has 5 values, not a multiple of 3: the last 2 are dropped; 4 uvs \
+          for 3 vertices: the uvs are dropped; 2 normals \"N\" for 3 vertices: the normals are \
+          dropped"
+        ]
     );
-    assert_eq!(
-        error(
-            "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n  \"integer indices\" [0 1 -1]"
-        ),
-        "t.pbrt:2:3: index -1 in \"integer indices\" is negative"
-    );
-    assert_eq!(
-        error(
-            "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n  \"normal N\" [0 0 1 0 0 1]"
-        ),
-        "t.pbrt:2:3: 2 normals for 3 vertices"
-    );
-    assert_eq!(
-        error("Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n  \"point2 uv\" [0 0]"),
-        "t.pbrt:2:3: 1 uvs for 3 vertices"
+    // Two indices make no triangle.
+    let (m, w) = mesh_warnings(&format!(
+        "Shape \"trianglemesh\" {tri} \"integer indices\" [0 1]"
+    ));
+    assert!(m.is_none());
+    assert!(
+        w[0].ends_with("no triangle is left; the mesh is skipped"),
+        "{w:?}"
     );
 }
 
