@@ -196,7 +196,19 @@ pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, 
         "path" | "volpath" => {
             // The light sampler is lancer's own; pbrt's choice needs no warning.
             let _ = p.string("lightsampler")?;
-            path()?
+            match (ty, path()?) {
+                (
+                    "volpath",
+                    Integrator::Path {
+                        max_depth,
+                        regularize,
+                    },
+                ) => Integrator::VolPath {
+                    max_depth,
+                    regularize,
+                },
+                (_, i) => i,
+            }
         }
         "ambientocclusion" => Integrator::AmbientOcclusion {
             cos_sample: p.bool("cossample", true)?,
@@ -523,7 +535,10 @@ mod tests {
                 r#"Integrator "volpath" "integer maxdepth" 8 "bool regularize" true "string lightsampler" "power""#,
                 integrator
             ),
-            path(8, true)
+            Integrator::VolPath {
+                max_depth: 8,
+                regularize: true
+            }
         );
         assert_eq!(
             clean(r#"Integrator "whitted" "integer maxdepth" 3"#, integrator),

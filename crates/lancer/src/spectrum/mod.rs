@@ -23,6 +23,7 @@ pub mod hero;
 mod named;
 mod reduce;
 pub mod sampled;
+pub mod scattering_presets;
 mod table;
 pub mod uplift;
 
