@@ -455,7 +455,7 @@ impl Walk<'_> {
         let p_l = pmf * ls.pdf;
         r_l *= r_p * p_l;
         r_u *= r_p * scatter_pdf;
-        if light.is_delta() {
+        if light.is_delta() || invisible(scene, light) {
             beta * f_hat * t_ray * l / avg(r_l)
         } else {
             beta * f_hat * t_ray * l / avg(r_l + r_u)
@@ -546,6 +546,18 @@ impl Walk<'_> {
             ray = hit.si.spawn_ray_to(target);
         }
         Some((t_ray, r_l, r_u))
+    }
+}
+
+/// True for an area light whose surface has a constant alpha of 0: rays never meet it, so
+/// light sampling is its only strategy and takes the full weight (pbrt-v4 makes such lights
+/// delta-position lights for the same reason).
+fn invisible(scene: &Scene, light: &crate::light::Light) -> bool {
+    match *light {
+        crate::light::Light::Area { prim, .. } => {
+            scene.prims[prim as usize].alpha == Some(crate::texture::FloatTex::Const(0.0))
+        }
+        _ => false,
     }
 }
 
