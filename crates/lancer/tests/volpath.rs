@@ -6,7 +6,7 @@
 
 use lancer::Scene;
 use lancer::material::Material;
-use lancer::math::{Rgb, SampledSpectrum, Transform, Vec3, rgb_lanes};
+use lancer::math::{Rgb, SampledSpectrum, Transform, Vec3, normalize, rgb_lanes};
 use lancer::medium::{MediumDesc, MediumInterface};
 use lancer::ray::Ray;
 use lancer::sampling::{Sampler, SamplerKind};
@@ -71,7 +71,7 @@ fn mean_ratio(scene: &Scene, spectral: bool, n: u32) -> SampledSpectrum {
         let u = sampler.get_2d();
         let target = Vec3::new(u.x - 0.5, u.y - 0.5, 0.0) * 0.5;
         let o = Vec3::new(0.0, 0.0, -4.0);
-        let ray = Ray::new(o, (target - o).normalize());
+        let ray = Ray::new(o, normalize(target - o));
         let lambda = spectral.then(|| SampledWavelengths::sample_visible(sampler.get_1d()));
         let l = integrator.li(scene, &ray, &mut sampler, lambda.as_ref());
         let white = lambda.map_or(rgb_lanes(Rgb::ONE), |w| w.illuminant(Rgb::ONE));

@@ -465,7 +465,8 @@ impl Walk<'_> {
     /// The transmittance of the shadow ray `ray` towards `target`, starting in `medium`, with
     /// its lane ratios (T_ray, r_l, r_u): `None` when an opaque surface blocks it. Surfaces
     /// with an `interface` material let it through (changing its medium); media attenuate it
-    /// by ratio tracking, with Russian roulette once it carries little.
+    /// by ratio tracking (homogeneous ones by their closed form), with Russian roulette once it
+    /// carries little.
     fn transmittance(
         &self,
         mut ray: Ray,
@@ -499,8 +500,15 @@ impl Walk<'_> {
             {
                 return None;
             }
-            if let Some(m) = medium {
-                let t_max = hit.as_ref().map_or(ray.t_max, |h| h.si.t);
+            let t_max = hit.as_ref().map_or(ray.t_max, |h| h.si.t);
+            let uniform = medium.and_then(|m| {
+                scene.media[m as usize].uniform_transmittance(ray.d, t_max, self.lambda())
+            });
+            if let Some(tr) = uniform {
+                // A homogeneous stretch: its transmittance in closed form (ratio tracking's
+                // expectation, without its noise).
+                t_ray *= tr;
+            } else if let Some(m) = medium {
                 let u = rng.uniform();
                 let t_maj = sample_t_maj(
                     &scene.media[m as usize],

@@ -191,6 +191,24 @@ impl Medium {
         }
     }
 
+    /// The transmittance exp(−σ_t·|d|·t_max) of the segment `t ∈ [0, t_max]` of a ray of
+    /// direction `d`, when the medium's σ_t is the same everywhere (homogeneous): what ratio
+    /// tracking estimates, without its noise. `None` for media that vary in space.
+    #[inline]
+    pub fn uniform_transmittance(
+        &self,
+        d: Vec3,
+        t_max: f32,
+        lambda: Option<&SampledWavelengths>,
+    ) -> Option<SampledSpectrum> {
+        match self {
+            Medium::Homogeneous(m) => Some(majorant_transmittance(
+                m.sigma_t(lambda),
+                t_max * d.length(),
+            )),
+        }
+    }
+
     /// The majorant segments of the ray `o + t·d` (`d` unit length) for `t ∈ [0, t_max]` (see
     /// the module's contract).
     #[inline]

@@ -126,6 +126,12 @@ fn homogeneous_slab_transmits_exp_minus_sigma_t_d() {
     let d = 1.5;
     let sigma_t = crate::math::rgb_lanes((sigma_a + sigma_s) * 2.0);
     let expected = majorant_transmittance(sigma_t, d);
+    // The closed form the integrator uses for homogeneous stretches is the same number.
+    let closed = medium
+        .uniform_transmittance(Vec3::new(0.0, 0.0, 3.0), 0.5, None)
+        .unwrap();
+    assert!((closed - expected).abs().max_element() < 1e-6);
+    assert!((expected[0] - (-(0.5f32 * 2.0 * 1.5)).exp()).abs() < 1e-6);
     let n = 400_000;
     for hero in [0usize, 2] {
         let mut rng = Pcg32::new(1, hero as u64);

@@ -24,7 +24,7 @@ pub struct PrimInfo {
 /// A primitive's emission.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AreaEmission {
-    /// Radiance (packed, so that [`PrimInfo`], one per primitive, stays 32 bytes).
+    /// Radiance (packed, so that [`PrimInfo`], one per primitive, stays small).
     pub l: PackedRgb,
     /// Emits from both sides.
     pub two_sided: bool,
