@@ -1,7 +1,8 @@
 //! pbrt-v4's `homogeneous` medium: σ_a, σ_s and Le the same everywhere, so the majorant is σ_t
 //! itself and delta tracking never meets a null collision.
 
-use super::{HgPhaseFunction, MediumProperties};
+use super::phase::HgPhaseFunction;
+use super::properties::MediumProperties;
 use crate::math::{Rgb, SampledSpectrum, rgb_lanes};
 use crate::spectrum::sampled::{ColourKind, RgbSpectrum, SampledWavelengths};
 

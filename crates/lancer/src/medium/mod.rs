@@ -32,9 +32,11 @@
 
 mod homogeneous;
 mod phase;
+mod properties;
 
 pub use homogeneous::HomogeneousMedium;
 pub use phase::{HgPhaseFunction, PhaseSample, henyey_greenstein};
+pub use properties::MediumProperties;
 
 use crate::math::{Rgb, SampledSpectrum, Vec3};
 use crate::sampling::Pcg32;
@@ -124,19 +126,6 @@ impl Iterator for MajorantIter {
             MajorantIter::Single(seg) => seg.take(),
         }
     }
-}
-
-/// A medium's local properties at a point, at the path's wavelengths.
-#[derive(Clone, Copy, Debug)]
-pub struct MediumProperties {
-    /// Absorption coefficient.
-    pub sigma_a: SampledSpectrum,
-    /// Scattering coefficient.
-    pub sigma_s: SampledSpectrum,
-    /// Emitted radiance.
-    pub le: SampledSpectrum,
-    /// The phase function.
-    pub phase: HgPhaseFunction,
 }
 
 impl Medium {
