@@ -39,6 +39,7 @@ pub fn scene_desc(width: u32, height: u32) -> SceneDesc {
         reflectance: SpectrumTex::Const(c),
     };
     let place = |geometry, at: Vec3, material| ShapeDesc {
+        medium_interface: None,
         geometry,
         object_to_world: Transform::translate(at),
         reverse_orientation: false,

@@ -40,6 +40,10 @@ fn integrator_json(i: &Integrator) -> Value {
         Integrator::Path {
             max_depth,
             regularize,
+        }
+        | Integrator::VolPath {
+            max_depth,
+            regularize,
         } => {
             v["maxdepth"] = json!(max_depth);
             v["regularize"] = json!(regularize);

@@ -213,7 +213,7 @@ fn unsupported_features_warn_with_their_line_and_still_render() {
         "Film \"rgb\" \"integer xresolution\" [16] \"integer yresolution\" [16]\n\
          Sampler \"independent\" \"integer pixelsamples\" [1]\n\
          WorldBegin\n\
-         MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n\
+         MakeNamedMedium \"fog\" \"string type\" \"homogeneous\" \"float density\" [1]\n\
          Shape \"sphere\" \"float radius\" [1] \"float wobble\" [2]\n\
          Shape \"nurbs\" \"point3 P\" [0 0 0 1 0 0 1 1 0 0 1 0]\n",
     )
@@ -222,7 +222,7 @@ fn unsupported_features_warn_with_their_line_and_still_render() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "{err}");
     for (at, words) in [
-        ("warn.pbrt:4:1", "media"),
+        ("warn.pbrt:4:51", "\"float density\" of MakeNamedMedium"),
         ("warn.pbrt:5:35", "\"float wobble\""),
         ("warn.pbrt:6:1", "unknown shape \"nurbs\"; skipped"),
     ] {

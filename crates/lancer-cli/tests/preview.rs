@@ -452,7 +452,8 @@ fn info_counts_triangles_and_lists_every_file_read() {
     assert_eq!(v["materials"]["count"].as_u64(), Some(3));
     // Kinds as pbrt-v4 names them, never Rust's Debug text.
     assert_eq!(v["materials"]["by_kind"]["diffuse"].as_u64(), Some(3));
-    assert_eq!(v["integrator"]["name"], "path");
+    // No Integrator directive: pbrt-v4's default.
+    assert_eq!(v["integrator"]["name"], "volpath");
     assert!(v["integrator"]["maxdepth"].is_u64());
     assert!(
         v["sampler"]["kind"]

@@ -264,6 +264,7 @@ fn scene_around(
             hi = hi.max(p);
         }
         shapes.push(ShapeDesc {
+            medium_interface: None,
             geometry: Geometry::TriangleMesh(Arc::new(part.mesh)),
             object_to_world: Transform::IDENTITY,
             reverse_orientation: false,

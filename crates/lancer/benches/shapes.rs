@@ -211,6 +211,7 @@ fn scene_of(geometry: &Geometry, rng: &mut Pcg32) -> Scene {
     let s = object_scale(geometry);
     let shapes = (0..1000)
         .map(|_| ShapeDesc {
+            medium_interface: None,
             geometry: geometry.clone(),
             object_to_world: Transform::translate(random_point(rng))
                 * Transform::rotate(360.0 * rng.uniform(), unit_vector(rng)).expect("axis")

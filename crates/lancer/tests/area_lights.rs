@@ -13,6 +13,7 @@ use std::sync::Arc;
 
 fn emitter(geometry: Geometry, to_world: Transform, reverse: bool, l: f32) -> ShapeDesc {
     ShapeDesc {
+        medium_interface: None,
         geometry,
         object_to_world: to_world,
         reverse_orientation: reverse,

@@ -133,6 +133,7 @@ fn mesh_bvh_equals_brute_force() {
 
 fn shape(geometry: Geometry, at: Vec3) -> ShapeDesc {
     ShapeDesc {
+        medium_interface: None,
         geometry,
         object_to_world: Transform::translate(at),
         reverse_orientation: false,

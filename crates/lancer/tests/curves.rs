@@ -332,6 +332,7 @@ fn spawned_rays_leave_the_curve() {
 fn an_emitting_curve_is_an_error() {
     let e = Scene::build(&SceneDesc {
         shapes: vec![ShapeDesc {
+            medium_interface: None,
             geometry: Geometry::Curve(Arc::new(straight(
                 Vec3::ZERO,
                 Vec3::X,

@@ -213,6 +213,7 @@ fn chi2_uniform_triangle() {
 
 fn emitter(geometry: Geometry, to_world: Transform) -> ShapeDesc {
     ShapeDesc {
+        medium_interface: None,
         geometry,
         object_to_world: to_world,
         reverse_orientation: false,

@@ -615,6 +615,7 @@ fn scenes_build_sdf_objects_and_refuse_them_as_emitters() {
     use lancer::scene::desc::{AreaLightDesc, Geometry, SceneDesc, ShapeDesc};
     let shape = |src: &str, bounds, area_light| SceneDesc {
         shapes: vec![ShapeDesc {
+            medium_interface: None,
             geometry: Geometry::Sdf {
                 function: Arc::new(f(src)),
                 bounds,

@@ -353,6 +353,7 @@ fn voxels_refuse_to_emit_and_empty_grids_vanish() {
     let grid = Arc::new(VoxelGrid::new([2, 2, 2], vec![1; 8], palette()).unwrap());
     let err = Scene::build(&SceneDesc {
         shapes: vec![ShapeDesc {
+            medium_interface: None,
             geometry: Geometry::Voxels(grid),
             object_to_world: Transform::IDENTITY,
             reverse_orientation: false,

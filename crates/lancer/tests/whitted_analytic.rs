@@ -33,6 +33,7 @@ fn course_desc() -> SceneDesc {
 
 fn shape(geometry: Geometry, at: Vec3, material: u32) -> ShapeDesc {
     ShapeDesc {
+        medium_interface: None,
         geometry,
         object_to_world: Transform::translate(at),
         reverse_orientation: false,

@@ -291,6 +291,7 @@ impl GltfLoader<'_> {
             }
             let info = self.material(prim.material().index())?;
             self.shapes.push(ShapeDesc {
+                medium_interface: None,
                 geometry: Geometry::TriangleMesh(tri),
                 object_to_world: to_world,
                 reverse_orientation: false,

@@ -6,6 +6,7 @@ use super::cameras::{camera, frame_window};
 use super::convert::{Fallback, Reader, TextureNames};
 use super::lights::{area_light, light};
 use super::materials::{MaterialWithNames, material};
+use super::media::{CurrentMedia, Media};
 use super::options::{film, filter, imaging_ratio, integrator, light_sampler, sampler, seed};
 use super::params::{Param, ParamList};
 use super::parser::{Directive, Located, Parser};
@@ -43,6 +44,7 @@ struct GraphicsState {
     area_light: Option<AreaLightDesc>,
     /// pbrt-v4's `Attribute "shape" …` defaults, by target.
     defaults: HashMap<String, Vec<Param>>,
+    media: CurrentMedia,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -80,6 +82,7 @@ pub struct Builder {
     named_coords: HashMap<String, Transform>,
     named_materials: HashMap<String, u32>,
     textures: TextureNames,
+    media: Media,
     /// Images decoded so far, shared by the textures and lights that name the same file.
     images: ImageCache,
     object_names: HashMap<String, u32>,
@@ -111,11 +114,13 @@ impl Builder {
                 material: MaterialRef::Index(0),
                 area_light: None,
                 defaults: HashMap::new(),
+                media: CurrentMedia::default(),
             },
             stack: Vec::new(),
             named_coords: HashMap::new(),
             named_materials: HashMap::new(),
             textures: TextureNames::default(),
+            media: Media::default(),
             images: ImageCache::default(),
             object_names: HashMap::new(),
             current_object: None,
@@ -320,6 +325,7 @@ impl Builder {
                 }
                 let c = b.accept(camera(p, &ty, b.gs.ctm, loc)?, loc);
                 (b.desc.camera, b.frame_aspect) = (c.camera, c.frame_aspect);
+                b.media.set_camera(&b.gs.media, loc);
                 b.named_coords
                     .insert("camera".to_string(), b.gs.ctm.inverse());
                 Ok(())
@@ -352,8 +358,7 @@ impl Builder {
         }
     }
 
-    /// What the world holds: materials, textures, lights and shapes, each converted by the file
-    /// of its kind; media, which lancer ignores ([`super::media`]).
+    /// Media, materials, textures, lights and shapes, each converted by the file of its kind.
     fn world_content(
         &mut self,
         d: Directive,
@@ -362,10 +367,12 @@ impl Builder {
     ) -> Result<(), SceneError> {
         use Directive as D;
         match d {
-            D::MakeNamedMedium(..) | D::MediumInterface(..) => {
-                self.warn_once("media", loc, super::media::IGNORED);
-                Ok(())
+            D::MakeNamedMedium(name, params) => {
+                let (p, ctm) = (self.defaults("medium", params), self.gs.ctm);
+                let (desc, warnings) = (&mut self.desc, &mut self.warnings);
+                self.media.define(&name, &p, ctm, dir, desc, warnings, loc)
             }
+            D::MediumInterface(inside, outside) => self.gs.media.set(inside, outside),
             D::Material(ty, params) => self.with_params("Material", &ty, params, loc, |b, p| {
                 b.gs.material = MaterialRef::Index(b.material(&ty, p, dir, loc)?);
                 Ok(())
@@ -616,6 +623,7 @@ impl Builder {
             area_light = None;
         }
         let sd = ShapeDesc {
+            medium_interface: self.media.interface(&self.gs.media, loc)?,
             geometry,
             object_to_world,
             reverse_orientation: self.gs.reverse_orientation,
@@ -685,6 +693,7 @@ impl Builder {
                 object_to_world: ctm,
             });
         }
+        self.desc.camera_medium = self.media.camera_medium()?;
         let camera = &mut self.desc.camera;
         camera.screen_window = camera.screen_window.or(self.frame_aspect.map(frame_window));
         self.desc.film.scale = imaging_ratio(camera.shutter, self.iso);

@@ -243,8 +243,22 @@ pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, 
     };
     let i = match ty {
         "whitted" => Integrator::Whitted { max_depth },
-        // Their `lightsampler` is read by [`light_sampler`].
-        "path" | "volpath" => path()?,
+        "path" | "volpath" => {
+            // Their `lightsampler` is read by [`light_sampler`].
+            match (ty, path()?) {
+                (
+                    "volpath",
+                    Integrator::Path {
+                        max_depth,
+                        regularize,
+                    },
+                ) => Integrator::VolPath {
+                    max_depth,
+                    regularize,
+                },
+                (_, i) => i,
+            }
+        }
         "ambientocclusion" => Integrator::AmbientOcclusion {
             cos_sample: p.bool("cossample", true)?,
             max_distance: p.float("maxdistance", f32::INFINITY)?,
@@ -631,7 +645,10 @@ mod tests {
                 r#"Integrator "volpath" "integer maxdepth" 8 "bool regularize" true"#,
                 integrator
             ),
-            path(8, true)
+            Integrator::VolPath {
+                max_depth: 8,
+                regularize: true
+            }
         );
         let ls = |text: &str| clean(text, light_sampler);
         assert_eq!(ls(r#"Integrator "path""#), LightSamplerKind::Bvh);

@@ -3,6 +3,7 @@
 mod debug;
 mod path;
 mod subsurface;
+mod volpath;
 mod whitted;
 
 use crate::material::{Bsdf, Material, SpectralColours};
@@ -14,12 +15,13 @@ use crate::scene::{Scene, SceneHit};
 use crate::spectrum::sampled::{SampledWavelengths, albedo_at};
 
 impl Integrator {
-    /// The pbrt-v4 name of this integrator (`Integrator "…"`): `path`, `whitted`,
+    /// The pbrt-v4 name of this integrator (`Integrator "…"`): `path`, `volpath`, `whitted`,
     /// `ambientocclusion`, and lancer's debug views `normals` and `depth`.
     pub fn pbrt_name(&self) -> &'static str {
         match self {
             Integrator::Whitted { .. } => "whitted",
             Integrator::Path { .. } => "path",
+            Integrator::VolPath { .. } => "volpath",
             Integrator::AmbientOcclusion { .. } => "ambientocclusion",
             Integrator::Normals => "normals",
             Integrator::Depth => "depth",
@@ -29,7 +31,10 @@ impl Integrator {
     /// True for the integrators that compute radiance (path tracing, Whitted), which spectral
     /// mode applies to; the debug views output other quantities and always work in RGB.
     pub fn computes_radiance(&self) -> bool {
-        matches!(self, Integrator::Whitted { .. } | Integrator::Path { .. })
+        matches!(
+            self,
+            Integrator::Whitted { .. } | Integrator::Path { .. } | Integrator::VolPath { .. }
+        )
     }
 
     /// [`Integrator::li`], recording the path's vertices in `path` (path tracing only; the
@@ -47,6 +52,13 @@ impl Integrator {
                 max_depth,
                 regularize,
             } => path::li_observed(scene, ray, sampler, lambda, max_depth, regularize, path),
+            // Without media, volpath is the path tracer (see `volpath`), vertices included.
+            Integrator::VolPath {
+                max_depth,
+                regularize,
+            } if scene.media.is_empty() => {
+                path::li_observed(scene, ray, sampler, lambda, max_depth, regularize, path)
+            }
             _ => self.li(scene, ray, sampler, lambda),
         }
     }
@@ -69,6 +81,10 @@ impl Integrator {
                 max_depth,
                 regularize,
             } => path::li(scene, ray, sampler, lambda, max_depth, regularize),
+            Integrator::VolPath {
+                max_depth,
+                regularize,
+            } => volpath::li(scene, ray, sampler, lambda, max_depth, regularize),
             // The debug views are RGB quantities, as lanes (r, g, b, b).
             Integrator::Normals => rgb_lanes(debug::normals(scene, ray)),
             Integrator::Depth => rgb_lanes(debug::depth(scene, ray)),

@@ -6,7 +6,9 @@
 use super::Scene;
 use super::desc::{Geometry, LightDesc, SceneDesc, ShapeDesc, ZERO_PLANE_NORMAL};
 use super::instance::{Instance, Instances, ObjectAccel};
-use super::prim::{AreaEmission, BuildError, PrimInfo, check_shape, mesh_triangles};
+use super::prim::{
+    AreaEmission, BuildError, PrimInfo, check_media, check_shape, mesh_triangles, prim_media,
+};
 use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
 use crate::light::{ImageInfiniteLight, Light, LightDistribution, LightSampler};
@@ -26,6 +28,7 @@ impl Scene {
     /// `packets`, `lights`, then the camera.
     pub fn build(desc: &SceneDesc) -> Result<Scene, BuildError> {
         let materials = materials(desc);
+        check_media(desc)?;
         let flat = flatten_instances(desc, materials.len())?;
         let made = primitives(&flat.shapes, materials.len())?;
         let meshes = made.meshes;
@@ -65,6 +68,12 @@ impl Scene {
             float_textures: desc.float_textures.clone(),
             spectrum_textures: desc.spectrum_textures.clone(),
             camera,
+            media: desc
+                .media
+                .iter()
+                .map(crate::medium::Medium::from_desc)
+                .collect(),
+            camera_medium: desc.camera_medium,
             bvh,
             packets,
             instances,
@@ -183,6 +192,7 @@ fn primitives(list: &[Placed<'_>], n_materials: usize) -> Result<Primitives, Bui
             }),
             // A constant alpha of 1 (pbrt's default) cuts nothing: no test needed.
             alpha: sd.alpha.filter(|a| *a != FloatTex::Const(1.0)),
+            media: prim_media(sd),
         };
         out.prims
             .extend(std::iter::repeat_n(info, out.shapes.len() - first));
@@ -478,6 +488,7 @@ mod tests {
 
     fn shape(geometry: Geometry) -> ShapeDesc {
         ShapeDesc {
+            medium_interface: None,
             geometry,
             object_to_world: Transform::IDENTITY,
             reverse_orientation: false,

@@ -108,6 +108,7 @@ mod tests {
 
     fn shape(geometry: Geometry, emits: bool) -> ShapeDesc {
         ShapeDesc {
+            medium_interface: None,
             geometry,
             object_to_world: Transform::IDENTITY,
             reverse_orientation: false,

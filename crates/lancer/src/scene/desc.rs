@@ -39,6 +39,10 @@ pub struct SceneDesc {
     pub objects: Vec<ObjectDesc>,
     /// Placements of objects (pbrt's `ObjectInstance`).
     pub instances: Vec<InstanceDesc>,
+    /// Participating media; shapes and the camera refer to them by index.
+    pub media: Vec<crate::medium::MediumDesc>,
+    /// The medium the camera sits in (`None`: vacuum).
+    pub camera_medium: Option<u32>,
 }
 
 /// Camera projection.
@@ -250,6 +254,14 @@ pub enum Integrator {
         /// Occluders farther than this are ignored.
         max_distance: f32,
     },
+    /// Volumetric path tracing (pbrt-v4's `volpath`): path tracing through participating
+    /// media by delta tracking, with spectral MIS.
+    VolPath {
+        /// Maximum number of scattering events (surfaces and media).
+        max_depth: u32,
+        /// As for [`Integrator::Path`].
+        regularize: bool,
+    },
     /// Debug view: shading normals mapped to colours, (n + 1)/2.
     Normals,
     /// Debug view: distance to the first hit.
@@ -257,9 +269,9 @@ pub enum Integrator {
 }
 
 impl Default for Integrator {
-    /// pbrt's default (`volpath`, maxdepth 5) is served by the path tracer.
+    /// pbrt's default: `volpath`, maxdepth 5.
     fn default() -> Self {
-        Integrator::Path {
+        Integrator::VolPath {
             max_depth: 5,
             regularize: false,
         }
@@ -492,6 +504,9 @@ pub struct ShapeDesc {
     pub area_light: Option<AreaLightDesc>,
     /// Alpha cut-out: where it is 0 the surface is absent.
     pub alpha: Option<FloatTex>,
+    /// The media inside and outside the shape, when it bounds any (indices into
+    /// [`SceneDesc::media`]).
+    pub medium_interface: Option<crate::medium::MediumInterface>,
 }
 
 /// A light source.
@@ -687,6 +702,7 @@ mod tests {
     #[test]
     fn emission_and_light_rules() {
         let voxels = ShapeDesc {
+            medium_interface: None,
             geometry: Geometry::Voxels(Arc::new(
                 crate::shape::VoxelGrid::new([1, 1, 1], vec![1], [Rgb::ONE; 256]).unwrap(),
             )),

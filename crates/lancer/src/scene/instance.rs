@@ -70,6 +70,7 @@ impl ObjectAccel {
                 material: sd.material,
                 emission: None,
                 alpha: None,
+                media: super::prim::prim_media(sd),
             });
         }
         let bvh = MeshBvh::build(&verts);
@@ -276,6 +277,7 @@ mod tests {
 
     fn shape(m: &Arc<TriangleMesh>, xf: Transform) -> ShapeDesc {
         ShapeDesc {
+            medium_interface: None,
             geometry: Geometry::TriangleMesh(m.clone()),
             object_to_world: xf,
             reverse_orientation: false,

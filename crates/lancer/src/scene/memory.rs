@@ -165,6 +165,7 @@ mod tests {
 
     fn shape(m: &Arc<TriangleMesh>) -> ShapeDesc {
         ShapeDesc {
+            medium_interface: None,
             geometry: Geometry::TriangleMesh(m.clone()),
             object_to_world: Transform::translate(Vec3::new(0.0, 0.0, 5.0)),
             reverse_orientation: false,

@@ -59,6 +59,11 @@ pub struct Scene {
     pub spectrum_textures: Vec<SpectrumTexture>,
     /// The camera.
     pub camera: Camera,
+    /// Participating media ([`crate::medium`]); primitives and the camera refer to them by
+    /// index.
+    pub media: Vec<crate::medium::Medium>,
+    /// The medium the camera sits in (`None`: vacuum).
+    pub camera_medium: Option<u32>,
     bvh: Bvh,
     /// Per leaf of `bvh`: its triangles as a packet, or an empty packet when the leaf holds
     /// other shapes or alpha-tested triangles (those go through [`Shape::intersect_with`]).

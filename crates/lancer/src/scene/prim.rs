@@ -17,12 +17,14 @@ pub struct PrimInfo {
     pub emission: Option<AreaEmission>,
     /// Alpha cut-out: where it is below 1 the surface is (partly) absent.
     pub alpha: Option<FloatTex>,
+    /// The media on its two sides, when they differ (a ray crossing it changes medium).
+    pub media: Option<crate::medium::MediumInterface>,
 }
 
 /// A primitive's emission.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AreaEmission {
-    /// Radiance (packed, so that [`PrimInfo`], one per primitive, stays 32 bytes).
+    /// Radiance (packed, so that [`PrimInfo`], one per primitive, stays small).
     pub l: PackedRgb,
     /// Emits from both sides.
     pub two_sided: bool,
@@ -83,6 +85,7 @@ pub(crate) fn check_shape(
             material: sd.material,
         });
     }
+
     sd.validate()
         .map_err(|e| invalid_shape(sd, index, e.message))
 }
@@ -102,6 +105,36 @@ pub(crate) fn mesh_triangles(
         let [a, b, c] = p.map(Vec3::from);
         (!is_degenerate(a, b, c)).then_some((p, i))
     })
+}
+
+/// The interface a primitive keeps: the shape's, when crossing it changes medium.
+pub(crate) fn prim_media(sd: &ShapeDesc) -> Option<crate::medium::MediumInterface> {
+    sd.medium_interface.filter(|mi| mi.is_transition())
+}
+
+/// Checks that every medium the shapes and the camera name exists.
+pub(crate) fn check_media(desc: &super::desc::SceneDesc) -> Result<(), BuildError> {
+    let n = desc.media.len();
+    let bad = |m: Option<u32>| m.filter(|&m| m as usize >= n);
+    if let Some(m) = bad(desc.camera_medium) {
+        return Err(BuildError::Invalid(format!(
+            "the camera's medium {m} does not exist"
+        )));
+    }
+    let shapes = desc
+        .shapes
+        .iter()
+        .chain(desc.objects.iter().flat_map(|o| &o.shapes));
+    for (index, sd) in shapes.enumerate() {
+        if let Some(mi) = sd.medium_interface
+            && let Some(m) = bad(mi.inside).or(bad(mi.outside))
+        {
+            return Err(BuildError::Invalid(format!(
+                "shape {index}: medium {m} does not exist"
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// Bytes of a `Vec` of `T` with capacity `cap`.

@@ -23,7 +23,7 @@ pub mod hero;
 mod named;
 mod reduce;
 pub mod sampled;
-mod scattering_presets;
+pub mod scattering_presets;
 mod table;
 pub mod uplift;
 

@@ -11,6 +11,7 @@ use std::f64::consts::PI;
 pub fn scene_of(geometry: Geometry, to_world: Transform, reverse: bool) -> Scene {
     Scene::build(&SceneDesc {
         shapes: vec![ShapeDesc {
+            medium_interface: None,
             geometry,
             object_to_world: to_world,
             reverse_orientation: reverse,

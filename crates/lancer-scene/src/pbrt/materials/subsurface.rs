@@ -17,7 +17,7 @@ pub(super) fn subsurface(r: &Reader) -> Result<Fallback<MaterialWithNames>, Scen
     let mut g = p.float("g", 0.0)?;
     let mut notes = Vec::new();
     let coefficients = if let Some(name) = p.string("name")? {
-        let Some((sa, ss)) = scattering_preset(&name) else {
+        let Some(preset) = scattering_preset(&name) else {
             let known: Vec<&str> = scattering_preset_names().collect();
             return Err(SceneError::general(format!(
                 "\"{name}\": no such named medium (pbrt-v4's are {})",
@@ -33,8 +33,8 @@ pub(super) fn subsurface(r: &Reader) -> Result<Fallback<MaterialWithNames>, Scen
         // The presets give reduced scattering coefficients: g = 0.
         g = 0.0;
         SubsurfaceCoefficients::Coefficients {
-            sigma_a: SpectrumTex::Const(sa),
-            sigma_s: SpectrumTex::Const(ss),
+            sigma_a: SpectrumTex::Const(preset.sigma_a),
+            sigma_s: SpectrumTex::Const(preset.sigma_prime_s),
         }
     } else {
         let sigma_a = r.opt_spectrum_tex("sigma_a", SpectrumKind::Unbounded)?;

@@ -6,6 +6,7 @@ use super::*;
 /// The description `geometry` as an area light.
 fn glowing_desc(geometry: Geometry) -> lancer::scene::desc::ShapeDesc {
     lancer::scene::desc::ShapeDesc {
+        medium_interface: None,
         geometry,
         object_to_world: lancer::math::Transform::IDENTITY,
         reverse_orientation: false,
