@@ -20,6 +20,7 @@ pub mod integrator;
 pub mod light;
 pub mod material;
 pub mod math;
+pub mod medium;
 pub mod ray;
 pub mod render;
 pub mod sampling;
