@@ -6,7 +6,8 @@
 //! whole medium wastes work where the medium is thin; with the grid, a ray gets one segment
 //! [t₀, t₁) per cell it crosses, with σ_maj = σ_t · (max density in the cell).
 
-use crate::math::{Bounds3, SampledSpectrum, Vec3};
+use crate::math::{Bounds3, SampledSpectrum, Transform, Vec3};
+use crate::ray::Ray;
 
 /// pbrt-v4's majorant grid resolution for `uniformgrid` and `rgbgrid` media.
 pub const MAJORANT_RES: i32 = 16;
@@ -77,6 +78,22 @@ impl MajorantGrid {
     pub fn bytes(&self) -> usize {
         self.voxels.len() * 4
     }
+}
+
+/// A render-space ray moved into medium space and clipped to the medium's `bounds`: the
+/// medium-space origin and direction and the range [t₀, t₁] ⊂ [0, t_max] inside the box, or
+/// `None` if it misses. The ray parameter is the same in both spaces (p_render(t) =
+/// M·p_medium(t)), so segments found in medium space apply to the render-space ray.
+pub fn ray_in_medium(
+    render_to_medium: &Transform,
+    bounds: &Bounds3,
+    ray: &Ray,
+    t_max: f32,
+) -> Option<(Vec3, Vec3, f32, f32)> {
+    let mut r = render_to_medium.ray(ray);
+    r.t_max = t_max;
+    let (t0, t1) = bounds.intersect_p(&r)?;
+    Some((r.o, r.d, t0, t1.min(t_max)))
 }
 
 /// Walks a ray through a [`MajorantGrid`] cell by cell (Amanatides–Woo 3D DDA), yielding
@@ -205,7 +222,6 @@ impl Iterator for DdaMajorantIterator<'_> {
 mod tests {
     use super::*;
     use crate::math::Bounds3;
-    use crate::ray::Ray;
 
     /// A grid whose cell (x, y, z) holds 1 + x + 10y + 100z, over [−1, 2] × [0, 1] × [0, 4].
     fn grid(res: [i32; 3]) -> MajorantGrid {
@@ -286,7 +302,10 @@ mod tests {
         let o = Vec3::new(-2.0, 0.75, 2.5);
         let segs: Vec<_> =
             DdaMajorantIterator::new(o, Vec3::X, 1.0, 4.0, &g, SampledSpectrum::ONE).collect();
-        let got: Vec<_> = segs.iter().map(|s| (s.t_min, s.t_max, s.sigma_maj.x)).collect();
+        let got: Vec<_> = segs
+            .iter()
+            .map(|s| (s.t_min, s.t_max, s.sigma_maj.x))
+            .collect();
         assert_eq!(
             got,
             [(1.0, 2.0, 211.0), (2.0, 3.0, 212.0), (3.0, 4.0, 213.0)]
