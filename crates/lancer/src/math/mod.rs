@@ -8,6 +8,7 @@
 mod bounds;
 mod float;
 mod frame;
+pub mod noise;
 mod transform;
 mod vector;
 
