@@ -5,3 +5,4 @@ pub mod grid;
 pub mod majorant;
 pub mod rgb_grid;
 pub mod uniform_grid;
+pub mod cloud;
