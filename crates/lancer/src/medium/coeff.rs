@@ -97,14 +97,14 @@ pub const MIN_EMITTING_KELVIN: f32 = 100.0;
 /// In RGB mode, the film colour of that spectrum (∫B̂·(x̄, ȳ, z̄)dλ/∫ȳdλ, then sRGB), from a
 /// table in log T. Zero at or below [`MIN_EMITTING_KELVIN`].
 pub fn blackbody_at(lambda: Option<&SampledWavelengths>, kelvin: f32) -> SampledSpectrum {
-    if !(kelvin > MIN_EMITTING_KELVIN) {
+    if kelvin.is_nan() || kelvin <= MIN_EMITTING_KELVIN {
         return SampledSpectrum::ZERO;
     }
     match lambda {
         Some(w) => {
             let peak = 2.897_772e-3 / kelvin * 1e9;
             let b_max = crate::spectrum::blackbody(peak, kelvin);
-            if !(b_max > 0.0) {
+            if b_max.is_nan() || b_max <= 0.0 {
                 return SampledSpectrum::ZERO;
             }
             SampledSpectrum::from_array(

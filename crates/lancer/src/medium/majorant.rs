@@ -183,9 +183,9 @@ impl Iterator for DdaMajorantIterator<'_> {
     type Item = MajorantSegment;
 
     fn next(&mut self) -> Option<MajorantSegment> {
-        // `!(a < b)` also stops on NaN.
         let grid = self.grid?;
-        if !(self.t_min < self.t_max) {
+        // Also stops on NaN.
+        if self.t_min.is_nan() || self.t_max.is_nan() || self.t_min >= self.t_max {
             return None;
         }
         // The axis whose cell boundary comes first.
