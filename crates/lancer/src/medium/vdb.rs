@@ -192,7 +192,7 @@ impl VdbGrid {
     pub fn sample_index(&self, x: Vec3) -> f32 {
         let f = x.floor();
         // Far outside every stored block: the background (keeps the i32 conversion exact).
-        if !(f.abs().max_element() < 1.0e9) {
+        if !f.is_finite() || f.abs().max_element() >= 1.0e9 {
             return self.background;
         }
         let u = x - f;
