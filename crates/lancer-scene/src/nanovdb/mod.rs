@@ -179,7 +179,9 @@ fn grid_buffer(data: &[u8], g: &GridInfo) -> Result<Vec<u8>, String> {
             }
             Ok(out)
         }
-        2 => Err("Blosc-compressed NanoVDB grids are not supported (ZIP and uncompressed are)".into()),
+        2 => Err(
+            "Blosc-compressed NanoVDB grids are not supported (ZIP and uncompressed are)".into(),
+        ),
         c => Err(format!("unknown NanoVDB codec {c}")),
     }
 }
@@ -208,4 +210,4 @@ pub fn read_float_grid(data: &[u8], name: &str) -> Result<Option<VdbGrid>, Strin
 }
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

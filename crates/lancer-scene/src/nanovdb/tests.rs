@@ -16,7 +16,10 @@ fn reads_houdinis_zip_compressed_sphere() {
     let grids = list_grids(&data).unwrap();
     assert_eq!(grids.len(), 1);
     let g = &grids[0];
-    assert_eq!((g.name.as_str(), g.grid_type, g.grid_class, g.codec), ("density", 1, 2, 1));
+    assert_eq!(
+        (g.name.as_str(), g.grid_type, g.grid_class, g.codec),
+        ("density", 1, 2, 1)
+    );
     assert_eq!((g.voxel_count, g.grid_size), (18656, 277_632));
     let grid = read_float_grid(&data, "density").unwrap().unwrap();
     assert!(read_float_grid(&data, "temperature").unwrap().is_none());
@@ -38,7 +41,7 @@ fn reads_houdinis_zip_compressed_sphere() {
         for j in -2..34 {
             for i in -2..34 {
                 let v = grid.value(i, j, k);
-                assert!(v >= 0.0 && v <= 1.0);
+                assert!((0.0..=1.0).contains(&v));
                 nonzero += (v > 0.0) as u32;
                 max = max.max(v);
             }
@@ -105,7 +108,11 @@ pub(crate) fn write_v19(
             put(&mut g, leaf0 + 2144 * n + 64 + 4 * i, v.to_le_bytes());
         }
     }
-    put(&mut g, lower + 1024 + 4 * slot(tile.0), tile.1.to_le_bytes());
+    put(
+        &mut g,
+        lower + 1024 + 4 * slot(tile.0),
+        tile.1.to_le_bytes(),
+    );
     // The file: header, metadata, name, data.
     let data = if zip {
         use std::io::Write;
@@ -173,18 +180,28 @@ fn bad_files_give_errors_not_panics() {
     // Another format version.
     let mut v32 = good.clone();
     v32[8..12].copy_from_slice(&(32u32 << 21 | 7 << 10).to_le_bytes());
-    assert!(list_grids(&v32).unwrap_err().contains("32.7.0"), "{:?}", list_grids(&v32));
+    assert!(
+        list_grids(&v32).unwrap_err().contains("32.7.0"),
+        "{:?}",
+        list_grids(&v32)
+    );
     // A grid size that does not match what inflates.
     let mut big = good.clone();
     big[16..24].copy_from_slice(&(1u64 << 31).to_le_bytes());
-    assert!(read_float_grid(&big, "density").unwrap_err().contains("inflates"));
+    assert!(
+        read_float_grid(&big, "density")
+            .unwrap_err()
+            .contains("inflates")
+    );
     // Corrupt bytes anywhere in an uncompressed file: errors or a grid, never a panic.
     let plain = write_v19("density", &leaves, ([16, 16, 16], 5.0), false);
     let mut state = 7u64;
     for _ in 0..100 {
         let mut f = plain.clone();
         for _ in 0..8 {
-            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             let at = (state >> 33) as usize % f.len();
             f[at] = (state >> 20) as u8;
         }

@@ -112,7 +112,10 @@ pub fn read_v19(buf: &[u8]) -> Result<VdbParts, String> {
         budget_leaf: (n / LEAF_BYTES).min(MAX_LEAVES),
     };
     let tiles = root + ROOT_BYTES;
-    let children = tiles + tile_count.checked_mul(ROOT_TILE_BYTES).ok_or("too many root tiles")?;
+    let children = tiles
+        + tile_count
+            .checked_mul(ROOT_TILE_BYTES)
+            .ok_or("too many root tiles")?;
     w.b.slice(tiles, tile_count * ROOT_TILE_BYTES)?;
     for t in 0..tile_count {
         let at = tiles + t * ROOT_TILE_BYTES;

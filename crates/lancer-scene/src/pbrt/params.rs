@@ -244,7 +244,8 @@ impl Param {
             ParamType::Point3 | ParamType::Vector3 | ParamType::Normal if n % 3 != 0 => {
                 return Err(arity_error("triples of numbers"));
             }
-            ParamType::Rgb if n != 3 => return Err(arity_error("3 numbers")),
+            // One colour, or a grid of them (pbrt-v4's `rgbgrid` medium): whole triples.
+            ParamType::Rgb if n % 3 != 0 => return Err(arity_error("triples of numbers")),
             ParamType::Blackbody if n != 1 && n != 2 => {
                 return Err(arity_error("a temperature in kelvin"));
             }
@@ -594,6 +595,13 @@ impl ParamList {
         };
         let rgb = match (p.ty, &p.values) {
             (ParamType::Rgb, Values::Numbers(v)) => {
+                if v.len() != 3 {
+                    return Err(p.error(format!(
+                        "{} takes one colour (3 numbers), found {} numbers",
+                        p.decl(),
+                        v.len()
+                    )));
+                }
                 let c = Rgb::new(v[0], v[1], v[2]);
                 if kind != SpectrumKind::Unbounded && c.min_element() < 0.0 {
                     return Err(p.error(format!(
@@ -634,6 +642,18 @@ impl ParamList {
             _ => unreachable!("types checked by find"),
         };
         Ok(Some(rgb))
+    }
+
+    /// `rgb` values (any number of triples: a grid of colours), with where they are declared.
+    pub fn rgbs(&self, name: &str) -> Result<Option<(Vec<Rgb>, Location)>, SceneError> {
+        Ok(self.find(name, &[ParamType::Rgb])?.map(|p| {
+            let v = p
+                .numbers()
+                .chunks_exact(3)
+                .map(|c| Rgb::new(c[0], c[1], c[2]))
+                .collect();
+            (v, p.loc.clone())
+        }))
     }
 
     /// An index of refraction as one number: a `float`, or a `spectrum` (pairs, a named glass,
@@ -782,6 +802,22 @@ mod tests {
         assert!(Param::new("integer n", loc(), vec![num("1.5")]).is_err());
         assert!(Param::new("integer n", loc(), vec![num("3")]).is_ok());
         assert!(Param::new("rgb c", loc(), vec![num("1"), num("2")]).is_err());
+        let six = vec![num("1"), num("2"), num("3"), num("4"), num("5"), num("6")];
+        let grid = Param::new("rgb c", loc(), six).unwrap();
+        let list = ParamList::new(vec![grid]).unwrap();
+        let e = list
+            .color(
+                "c",
+                SpectrumKind::Unbounded,
+                &SearchPath::new(std::path::Path::new(".")),
+            )
+            .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "t.pbrt:1:1: \"rgb c\" takes one colour (3 numbers), found 6 numbers"
+        );
+        let (v, _) = list.rgbs("c").unwrap().unwrap();
+        assert_eq!(v, [Rgb::new(1.0, 2.0, 3.0), Rgb::new(4.0, 5.0, 6.0)]);
         assert!(Param::new("floot x", loc(), vec![num("1")]).is_err());
         assert!(Param::new("float", loc(), vec![num("1")]).is_err());
         assert!(Param::new("float x", loc(), vec![]).is_err());
