@@ -1,4 +1,4 @@
-//! The NanoVDB reader (segments, ZIP, the version-19 tree) on arbitrary bytes: every grid the
+//! The NanoVDB reader (segments, ZIP, the trees of formats 19 and 32) on arbitrary bytes: every grid the
 //! file lists is read, and a few lookups made in what comes back.
 #![no_main]
 

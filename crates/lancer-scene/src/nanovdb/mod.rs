@@ -9,8 +9,11 @@
 //! compressed size and a zlib stream that inflates to the grid's `gridSize` bytes. All numbers
 //! are little-endian.
 //!
-//! The grid buffer is a pointer-free VDB tree whose layout depends on the format version; this
-//! reader knows version 19's, the one Houdini writes ([`tree`]). Every offset and count read
+//! Format version 19 (Houdini's) writes the version as two u16 (major, minor) and a 144-byte
+//! metadata record; version 32 (today's NanoVDB, magic `"NanoVDB0"` or `"NanoVDB2"`) packs it
+//! in a u32 (major ≪ 21 | minor ≪ 10 | patch) with a 176-byte record; the grid name's length is
+//! a u32 at byte 40 or 136 of the record. The grid buffer is a pointer-free VDB tree whose
+//! layout depends on the version ([`tree`]). Every offset and count read
 //! from a file is checked against the buffer before use, and sizes before allocation.
 
 mod tree;
@@ -20,10 +23,14 @@ use std::io::Read;
 
 /// "NanoVDB0" as a little-endian u64.
 const MAGIC: u64 = 0x3042_4456_6f6e_614e;
+/// "NanoVDB2", version 32.6's magic number of files.
+const MAGIC_FILE: u64 = 0x3242_4456_6f6e_614e;
 /// Largest grid buffer accepted (4 GiB).
 const MAX_GRID_BYTES: u64 = 1 << 32;
 /// The metadata record of format 19 before the grid name.
 const META_BYTES: usize = 144;
+/// The metadata record of format 32 before the grid name.
+const META_BYTES_32: usize = 176;
 
 /// A grid's record in a segment.
 #[derive(Clone, Debug, PartialEq)]
@@ -42,6 +49,8 @@ pub struct GridInfo {
     pub file_size: u64,
     /// Compression of its data (0 none, 1 ZIP, 2 Blosc).
     pub codec: u16,
+    /// Major format version (19 or 32).
+    pub version: u32,
     /// Offset of its data in the file.
     offset: usize,
 }
@@ -89,24 +98,29 @@ pub fn list_grids(data: &[u8]) -> Result<Vec<GridInfo>, String> {
     let mut at = 0u64;
     while at < data.len() as u64 {
         let magic = b.u64(at)?;
-        if magic != MAGIC {
+        if magic != MAGIC && magic != MAGIC_FILE {
             return Err(if at == 0 {
                 "not a NanoVDB file (no \"NanoVDB0\" magic number)".to_string()
             } else {
                 format!("no segment header at byte {at}")
             });
         }
-        let major = b.u16(at + 8)?;
-        if major != 19 {
-            let v = b.u32(at + 8)?;
+        let v = b.u32(at + 8)?;
+        let version = if b.u16(at + 8)? == 19 { 19 } else { v >> 21 };
+        if version != 19 && version != 32 {
             return Err(format!(
-                "NanoVDB format version {}.{}.{} is not supported (lancer reads version 19, \
-                 the layout Houdini writes)",
+                "NanoVDB format version {}.{}.{} is not supported (lancer reads versions 19 \
+                 and 32)",
                 v >> 21,
                 (v >> 10) & 0x7ff,
                 v & 0x3ff
             ));
         }
+        let (meta_bytes, name_at) = if version == 32 {
+            (META_BYTES_32 as u64, 136)
+        } else {
+            (META_BYTES as u64, 40)
+        };
         let count = b.u16(at + 12)?;
         let codec = b.u16(at + 14)?;
         at += 16;
@@ -117,8 +131,8 @@ pub fn list_grids(data: &[u8]) -> Result<Vec<GridInfo>, String> {
             let voxel_count = b.u64(at + 24)?;
             let grid_type = b.u32(at + 32)?;
             let grid_class = b.u32(at + 36)?;
-            let name_size = b.u32(at + 40)? as u64;
-            let raw = b.slice(at + META_BYTES as u64, name_size)?;
+            let name_size = b.u32(at + name_at)? as u64;
+            let raw = b.slice(at + meta_bytes, name_size)?;
             let name = raw.split(|&c| c == 0).next().unwrap_or(&[]);
             metas.push(GridInfo {
                 name: String::from_utf8_lossy(name).into_owned(),
@@ -128,9 +142,10 @@ pub fn list_grids(data: &[u8]) -> Result<Vec<GridInfo>, String> {
                 grid_size,
                 file_size,
                 codec,
+                version,
                 offset: 0,
             });
-            at += META_BYTES as u64 + name_size;
+            at += meta_bytes + name_size;
         }
         for m in &mut metas {
             b.slice(at, m.file_size)?;
@@ -203,7 +218,7 @@ pub fn read_float_grid(data: &[u8], name: &str) -> Result<Option<VdbGrid>, Strin
         return Err(format!("grid \"{name}\" isn't a FogVolume grid"));
     }
     let buf = grid_buffer(data, g)?;
-    let parts = tree::read_v19(&buf).map_err(|e| format!("grid \"{name}\": {e}"))?;
+    let parts = tree::read(&buf, g.version).map_err(|e| format!("grid \"{name}\": {e}"))?;
     VdbGrid::new(parts)
         .map(Some)
         .map_err(|e| format!("grid \"{name}\": {e}"))

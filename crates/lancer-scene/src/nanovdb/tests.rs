@@ -55,64 +55,95 @@ fn reads_houdinis_zip_compressed_sphere() {
     assert!((c - Vec3::splat(15.5)).abs().max_element() < 0.6, "{c}");
 }
 
-/// Writes a version-19 file of one float grid: one root tile → one upper node → one lower
-/// node → the given leaves (origins inside [0, 128)³), plus a constant 8³ tile in the lower
-/// node at `tile`, index = world·4 + 0 (voxel size ¼).
-pub(crate) fn write_v19(
+/// Writes a file of one float grid in format 19 or 32: one root tile → one upper node → one
+/// lower node → the given leaves (origins inside [0, 128)³), plus a constant 8³ tile in the
+/// lower node at `tile`; index = world·4 (voxel size ¼).
+pub(crate) fn write_grid(
     name: &str,
     leaves: &[([i32; 3], [f32; 512])],
     tile: ([i32; 3], f32),
     zip: bool,
+    v32: bool,
 ) -> Vec<u8> {
     fn put<const N: usize>(b: &mut [u8], at: usize, v: [u8; N]) {
         b[at..at + N].copy_from_slice(&v);
     }
-    let tree = 608;
+    // (grid bytes, name, inverse map, world bbox, class, upper bytes, lower bytes, leaf values)
+    let (grid, name_at, inv, wbox, class) = if v32 {
+        (672, 40, 332, 560, 632)
+    } else {
+        (608, 8, 348, 264, 584)
+    };
+    let (upper_bytes, lower_bytes, leaf_values) = if v32 {
+        (270_400, 33_856, 96)
+    } else {
+        (139_328, 17_472, 64)
+    };
+    let tree = grid;
     let root = tree + 64;
     let upper = root + 64 + 32;
-    let lower = upper + 139_328;
-    let leaf0 = lower + 17_472;
+    let lower = upper + upper_bytes;
+    let leaf0 = lower + lower_bytes;
     let size = leaf0 + 2144 * leaves.len();
     let mut g = vec![0u8; size];
     put(&mut g, 0, MAGIC.to_le_bytes());
-    g[8..8 + name.len()].copy_from_slice(name.as_bytes());
+    g[name_at..name_at + name.len()].copy_from_slice(name.as_bytes());
     for (i, v) in [0.0f64, 0.0, 0.0, 32.0, 32.0, 32.0].iter().enumerate() {
-        put(&mut g, 264 + 8 * i, v.to_le_bytes());
+        put(&mut g, wbox + 8 * i, v.to_le_bytes());
     }
-    // Inverse map: diag(4).
     for i in 0..3 {
-        put(&mut g, 348 + 16 * i, 4.0f32.to_le_bytes());
+        put(&mut g, inv + 16 * i, 4.0f32.to_le_bytes());
     }
-    put(&mut g, 584, 2u32.to_le_bytes()); // fog volume
-    put(&mut g, 588, 1u32.to_le_bytes()); // float
-    // Tree: root at +64, counts.
+    put(&mut g, class, 2u32.to_le_bytes()); // fog volume
+    put(&mut g, class + 4, 1u32.to_le_bytes()); // float
     put(&mut g, tree + 24, 64u64.to_le_bytes());
-    // Root: bbox [0, 127]³, one tile (child 0), background 0.
+    // Root: bbox [0, 127]³, one tile of key 0 whose child is the upper node, background 0.
     for i in 0..3 {
         put(&mut g, root + 12 + 4 * i, 127i32.to_le_bytes());
     }
-    put(&mut g, root + 32, 1u32.to_le_bytes());
-    put(&mut g, root + 64, 0u64.to_le_bytes()); // key of origin 0
-    put(&mut g, root + 64 + 12, 0i32.to_le_bytes()); // child 0
-    // Upper: slot 0 → lower child 0 (at upper + 1·UPPER_BYTES).
-    g[upper + 4096] |= 1;
-    put(&mut g, upper + 139_296, 1i32.to_le_bytes());
-    // Lower: leaves at lower + 1·LOWER_BYTES + index·LEAF_BYTES.
-    put(&mut g, lower + 17_440, 1i32.to_le_bytes());
     let slot = |o: [i32; 3]| ((o[0] >> 3) << 8 | (o[1] >> 3) << 4 | (o[2] >> 3)) as usize;
-    for (n, (o, vals)) in leaves.iter().enumerate() {
-        let s = slot(*o);
-        g[lower + 512 + s / 8] |= 1 << (s % 8);
-        put(&mut g, lower + 1024 + 4 * s, (n as u32).to_le_bytes());
+    if v32 {
+        put(&mut g, root + 24, 1u32.to_le_bytes());
+        put(&mut g, root + 64 + 8, 96i64.to_le_bytes());
+        g[upper + 4128] |= 1;
+        put(&mut g, upper + 8256, (upper_bytes as i64).to_le_bytes());
+        for (n, (o, _)) in leaves.iter().enumerate() {
+            let s = slot(*o);
+            g[lower + 544 + s / 8] |= 1 << (s % 8);
+            let off = (lower_bytes + 2144 * n) as i64;
+            put(&mut g, lower + 1088 + 8 * s, off.to_le_bytes());
+        }
+        put(
+            &mut g,
+            lower + 1088 + 8 * slot(tile.0),
+            tile.1.to_le_bytes(),
+        );
+    } else {
+        put(&mut g, root + 32, 1u32.to_le_bytes());
+        put(&mut g, root + 64 + 12, 0i32.to_le_bytes());
+        g[upper + 4096] |= 1;
+        put(&mut g, upper + 139_296, 1i32.to_le_bytes());
+        put(&mut g, lower + 17_440, 1i32.to_le_bytes());
+        for (n, (o, _)) in leaves.iter().enumerate() {
+            let s = slot(*o);
+            g[lower + 512 + s / 8] |= 1 << (s % 8);
+            put(&mut g, lower + 1024 + 4 * s, (n as u32).to_le_bytes());
+        }
+        put(
+            &mut g,
+            lower + 1024 + 4 * slot(tile.0),
+            tile.1.to_le_bytes(),
+        );
+    }
+    for (n, (_, vals)) in leaves.iter().enumerate() {
         for (i, v) in vals.iter().enumerate() {
-            put(&mut g, leaf0 + 2144 * n + 64 + 4 * i, v.to_le_bytes());
+            put(
+                &mut g,
+                leaf0 + 2144 * n + leaf_values + 4 * i,
+                v.to_le_bytes(),
+            );
         }
     }
-    put(
-        &mut g,
-        lower + 1024 + 4 * slot(tile.0),
-        tile.1.to_le_bytes(),
-    );
     // The file: header, metadata, name, data.
     let data = if zip {
         use std::io::Write;
@@ -127,21 +158,39 @@ pub(crate) fn write_v19(
     };
     let mut f = Vec::new();
     f.extend(MAGIC.to_le_bytes());
-    f.extend(19u16.to_le_bytes());
-    f.extend(0u16.to_le_bytes());
+    if v32 {
+        f.extend((32u32 << 21 | 7 << 10).to_le_bytes());
+    } else {
+        f.extend(19u16.to_le_bytes());
+        f.extend(0u16.to_le_bytes());
+    }
     f.extend(1u16.to_le_bytes());
     f.extend((zip as u16).to_le_bytes());
-    let mut meta = vec![0u8; META_BYTES];
+    let mut meta = vec![0u8; if v32 { META_BYTES_32 } else { META_BYTES }];
     put(&mut meta, 0, (size as u64).to_le_bytes());
     put(&mut meta, 8, (data.len() as u64).to_le_bytes());
     put(&mut meta, 32, 1u32.to_le_bytes());
     put(&mut meta, 36, 2u32.to_le_bytes());
-    put(&mut meta, 40, (name.len() as u32 + 1).to_le_bytes());
+    put(
+        &mut meta,
+        if v32 { 136 } else { 40 },
+        (name.len() as u32 + 1).to_le_bytes(),
+    );
     f.extend(meta);
     f.extend(name.as_bytes());
     f.push(0);
     f.extend(data);
     f
+}
+
+/// A version-19 file (see [`write_grid`]).
+pub(crate) fn write_v19(
+    name: &str,
+    leaves: &[([i32; 3], [f32; 512])],
+    tile: ([i32; 3], f32),
+    zip: bool,
+) -> Vec<u8> {
+    write_grid(name, leaves, tile, zip, false)
 }
 
 fn ramp_leaf(base: f32) -> [f32; 512] {
@@ -151,8 +200,8 @@ fn ramp_leaf(base: f32) -> [f32; 512] {
 #[test]
 fn reads_its_own_files_uncompressed_and_zipped() {
     let leaves = [([8, 0, 16], ramp_leaf(0.0)), ([0, 8, 0], ramp_leaf(1000.0))];
-    for zip in [false, true] {
-        let f = write_v19("density", &leaves, ([16, 16, 16], 5.0), zip);
+    for (zip, v32) in [(false, false), (true, false), (false, true), (true, true)] {
+        let f = write_grid("density", &leaves, ([16, 16, 16], 5.0), zip, v32);
         assert!(read_float_grid(&f, "temperature").unwrap().is_none());
         let g = read_float_grid(&f, "density").unwrap().unwrap();
         assert_eq!(g.leaf_count(), 2);
@@ -178,12 +227,12 @@ fn bad_files_give_errors_not_panics() {
         let _ = read_float_grid(&good[..n], "density");
     }
     // Another format version.
-    let mut v32 = good.clone();
-    v32[8..12].copy_from_slice(&(32u32 << 21 | 7 << 10).to_le_bytes());
+    let mut v29 = good.clone();
+    v29[8..12].copy_from_slice(&(29u32 << 21 | 3 << 10).to_le_bytes());
     assert!(
-        list_grids(&v32).unwrap_err().contains("32.7.0"),
+        list_grids(&v29).unwrap_err().contains("29.3.0"),
         "{:?}",
-        list_grids(&v32)
+        list_grids(&v29)
     );
     // A grid size that does not match what inflates.
     let mut big = good.clone();
@@ -194,10 +243,9 @@ fn bad_files_give_errors_not_panics() {
             .contains("inflates")
     );
     // Corrupt bytes anywhere in an uncompressed file: errors or a grid, never a panic.
-    let plain = write_v19("density", &leaves, ([16, 16, 16], 5.0), false);
     let mut state = 7u64;
-    for _ in 0..100 {
-        let mut f = plain.clone();
+    for i in 0..100 {
+        let mut f = write_grid("density", &leaves, ([16, 16, 16], 5.0), false, i % 2 == 1);
         for _ in 0..8 {
             state = state
                 .wrapping_mul(6364136223846793005)
