@@ -22,6 +22,7 @@ seed ply $(files '*.ply')
 seed obj $(files '*.obj') $(files '*.mtl')
 seed vox $(files '*.vox')
 seed gltf $(files '*.glb') $(files '*.gltf')
+seed nanovdb $(files '*.nvdb')
 # The SDF language: every expression of the scenes, one per file.
 mkdir -p corpus/sdf
 i=0

@@ -42,7 +42,11 @@ const CASES: &[(&str, &str, &str)] = &[
         "6:16",
         "must be of type float, not string",
     ),
-    ("rgb-with-two-values.pbrt", "6:20", "needs 3 numbers"),
+    (
+        "rgb-with-two-values.pbrt",
+        "6:20",
+        "needs triples of numbers",
+    ),
     (
         "unknown-parameter-type.pbrt",
         "6:16",

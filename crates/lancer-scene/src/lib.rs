@@ -10,6 +10,7 @@ pub mod files_read;
 pub mod gltf;
 pub mod image_read;
 pub mod mesh_scene;
+pub mod nanovdb;
 pub mod obj;
 pub mod pbrt;
 pub mod ply;

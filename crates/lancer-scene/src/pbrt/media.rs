@@ -6,6 +6,7 @@
 //! medium when `Camera` is read. The `homogeneous` medium is converted here ([`medium`]); the
 //! others are still read as vacuum, with a warning.
 
+use super::media_grids::grid_medium;
 use super::params::ParamList;
 use super::search_path::SearchPath;
 use crate::error::{Location, SceneError, Warning};
@@ -133,17 +134,10 @@ pub fn medium(
     warnings: &mut Vec<Warning>,
     loc: &Location,
 ) -> Result<Option<MediumDesc>, SceneError> {
-    let _ = ctm;
     match ty {
         "homogeneous" => homogeneous(params, dir, warnings, loc).map(Some),
         "uniformgrid" | "rgbgrid" | "cloud" | "nanovdb" => {
-            warnings.push(Warning {
-                location: loc.clone(),
-                message: format!(
-                    "medium type \"{ty}\" is not supported yet; lancer renders it as vacuum"
-                ),
-            });
-            Ok(None)
+            Ok(grid_medium(params, ty, ctm, dir, loc)?.map(MediumDesc::Grid))
         }
         _ => Err(SceneError::at(
             loc.clone(),

@@ -17,6 +17,7 @@ pub mod lexer;
 pub mod lights;
 pub mod materials;
 pub mod media;
+pub mod media_grids;
 pub mod options;
 pub mod params;
 pub mod parser;

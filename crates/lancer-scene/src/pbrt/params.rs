@@ -244,7 +244,8 @@ impl Param {
             ParamType::Point3 | ParamType::Vector3 | ParamType::Normal if n % 3 != 0 => {
                 return Err(arity_error("triples of numbers"));
             }
-            ParamType::Rgb if n != 3 => return Err(arity_error("3 numbers")),
+            // One colour, or a grid of them (pbrt-v4's `rgbgrid` medium): whole triples.
+            ParamType::Rgb if n % 3 != 0 => return Err(arity_error("triples of numbers")),
             ParamType::Blackbody if n != 1 && n != 2 => {
                 return Err(arity_error("a temperature in kelvin"));
             }
@@ -609,6 +610,13 @@ impl ParamList {
         };
         let rgb = match (p.ty, &p.values) {
             (ParamType::Rgb, Values::Numbers(v)) => {
+                if v.len() != 3 {
+                    return Err(p.error(format!(
+                        "{} takes one colour (3 numbers), found {} numbers",
+                        p.decl(),
+                        v.len()
+                    )));
+                }
                 let c = Rgb::new(v[0], v[1], v[2]);
                 if kind != SpectrumKind::Unbounded && c.min_element() < 0.0 {
                     return Err(p.error(format!(
@@ -649,6 +657,18 @@ impl ParamList {
             _ => unreachable!("types checked by find"),
         };
         Ok(Some(rgb))
+    }
+
+    /// `rgb` values (any number of triples: a grid of colours), with where they are declared.
+    pub fn rgbs(&self, name: &str) -> Result<Option<(Vec<Rgb>, Location)>, SceneError> {
+        Ok(self.find(name, &[ParamType::Rgb])?.map(|p| {
+            let v = p
+                .numbers()
+                .chunks_exact(3)
+                .map(|c| Rgb::new(c[0], c[1], c[2]))
+                .collect();
+            (v, p.loc.clone())
+        }))
     }
 
     /// An index of refraction as one number: a `float`, or a `spectrum` (pairs, a named glass,

@@ -1,8 +1,8 @@
 //! Materials: how a surface scatters light, as plain data ([`Material`]), turned at each hit
 //! into a [`Bsdf`] in the local shading frame.
 
-mod bump;
 mod bssrdf;
+mod bump;
 mod bxdf;
 mod conductor;
 mod dielectric;
@@ -14,11 +14,11 @@ mod microfacet;
 mod scatter;
 mod subsurface;
 
-pub use bump::{bump_shading, normal_map_shading};
 pub use bssrdf::{
     BssrdfTable, NormalizedFresnelBxdf, ProbeSegment, SubsurfaceCoefficients, SubsurfaceMaterial,
     TabulatedBssrdf, subsurface_from_diffuse,
 };
+pub use bump::{bump_shading, normal_map_shading};
 pub use bxdf::{Bsdf, BxDF};
 pub use conductor::ConductorBxdf;
 pub use dielectric::{DielectricBxdf, ThinDielectricBxdf};

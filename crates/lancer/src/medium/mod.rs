@@ -30,15 +30,28 @@
 //! [`crate::Scene::media`] (`None` is vacuum). A ray leaving a surface on the side its normal
 //! faces is in `outside`, otherwise in `inside`.
 
+pub mod cloud;
+pub mod coeff;
+pub mod grid;
+pub mod grids;
 mod homogeneous;
+pub mod majorant;
+pub mod nanovdb;
 mod phase;
 mod properties;
+pub mod rgb_grid;
+pub mod uniform_grid;
+pub mod vdb;
 
 pub use homogeneous::HomogeneousMedium;
+pub use majorant::MajorantSegment;
 pub use phase::{HgPhaseFunction, PhaseSample, henyey_greenstein};
 pub use properties::MediumProperties;
 
+use grids::{GridMajorants, GridMedium, GridMediumDesc};
+
 use crate::math::{Rgb, SampledSpectrum, Vec3};
+use crate::ray::Ray;
 use crate::sampling::Pcg32;
 use crate::spectrum::sampled::SampledWavelengths;
 
@@ -90,6 +103,9 @@ pub enum MediumDesc {
         /// Henyey–Greenstein asymmetry g ∈ (−1, 1).
         g: f32,
     },
+    /// pbrt-v4's `uniformgrid`, `rgbgrid`, `cloud` and `nanovdb`: coefficients that vary in
+    /// space, with a majorant grid (or box) for delta tracking.
+    Grid(GridMediumDesc),
 }
 
 /// A medium ready to render.
@@ -97,33 +113,27 @@ pub enum MediumDesc {
 pub enum Medium {
     /// The same coefficients everywhere.
     Homogeneous(HomogeneousMedium),
-}
-
-/// One stretch `[t_min, t_max]` of a ray with a bound `sigma_maj` on σ_t over it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct MajorantSegment {
-    /// Start (distance along the unit-direction ray).
-    pub t_min: f32,
-    /// End.
-    pub t_max: f32,
-    /// Majorant: at least σ_t at every point of the segment, per lane.
-    pub sigma_maj: SampledSpectrum,
+    /// Coefficients that vary in space ([`grids`]).
+    Grid(Box<GridMedium>),
 }
 
 /// The majorant segments of one ray through one medium ([`Medium::sample_ray`]).
-#[derive(Clone, Copy, Debug)]
-pub enum MajorantIter {
+#[derive(Clone, Debug)]
+pub enum MajorantIter<'a> {
     /// A single segment, given once.
     Single(Option<MajorantSegment>),
+    /// The segments of a grid medium (DDA over its majorant grid).
+    Grid(GridMajorants<'a>),
 }
 
-impl Iterator for MajorantIter {
+impl Iterator for MajorantIter<'_> {
     type Item = MajorantSegment;
 
     #[inline]
     fn next(&mut self) -> Option<MajorantSegment> {
         match self {
             MajorantIter::Single(seg) => seg.take(),
+            MajorantIter::Grid(it) => it.next(),
         }
     }
 }
@@ -132,6 +142,7 @@ impl Medium {
     /// The renderer's medium for a description.
     pub fn from_desc(desc: &MediumDesc) -> Medium {
         match *desc {
+            MediumDesc::Grid(ref d) => Medium::Grid(Box::new(GridMedium::new(d.clone()))),
             MediumDesc::Homogeneous {
                 sigma_a,
                 sigma_s,
@@ -152,6 +163,7 @@ impl Medium {
     pub fn kind(&self) -> &'static str {
         match self {
             Medium::Homogeneous(_) => "homogeneous",
+            Medium::Grid(m) => m.kind(),
         }
     }
 
@@ -159,6 +171,7 @@ impl Medium {
     pub fn heap_bytes(&self) -> usize {
         match self {
             Medium::Homogeneous(_) => 0,
+            Medium::Grid(m) => m.bytes(),
         }
     }
 
@@ -166,6 +179,7 @@ impl Medium {
     pub fn is_emissive(&self) -> bool {
         match self {
             Medium::Homogeneous(m) => m.is_emissive(),
+            Medium::Grid(m) => m.is_emissive(),
         }
     }
 
@@ -173,9 +187,15 @@ impl Medium {
     #[inline]
     pub fn sample_point(&self, p: Vec3, lambda: Option<&SampledWavelengths>) -> MediumProperties {
         match self {
-            Medium::Homogeneous(m) => {
-                let _ = p;
-                m.properties(lambda)
+            Medium::Homogeneous(m) => m.properties(lambda),
+            Medium::Grid(m) => {
+                let pp = m.properties(p, lambda);
+                MediumProperties {
+                    sigma_a: pp.sigma_a,
+                    sigma_s: pp.sigma_s,
+                    le: pp.le,
+                    phase: HgPhaseFunction { g: m.g() },
+                }
             }
         }
     }
@@ -195,6 +215,7 @@ impl Medium {
                 m.sigma_t(lambda),
                 t_max * d.length(),
             )),
+            Medium::Grid(_) => None,
         }
     }
 
@@ -207,14 +228,14 @@ impl Medium {
         d: Vec3,
         t_max: f32,
         lambda: Option<&SampledWavelengths>,
-    ) -> MajorantIter {
-        let _ = (o, d);
+    ) -> MajorantIter<'_> {
         match self {
             Medium::Homogeneous(m) => MajorantIter::Single(Some(MajorantSegment {
                 t_min: 0.0,
                 t_max,
                 sigma_maj: m.sigma_t(lambda),
             })),
+            Medium::Grid(m) => MajorantIter::Grid(m.majorants(&Ray::new(o, d), t_max, lambda)),
         }
     }
 }

@@ -51,7 +51,10 @@ fn named_media_bind_shapes_and_the_camera() {
         le,
         le_scale,
         ..
-    } = d.media[1];
+    } = d.media[1]
+    else {
+        panic!("media[1] is not homogeneous: {:?}", d.media[1]);
+    };
     assert_eq!(sigma_a, Rgb::new(0.0011, 0.0024, 0.014));
     assert_eq!(sigma_s, Rgb::new(2.55, 3.21, 3.77));
     assert!((le - Rgb::splat(0.5)).abs().max_element() < 1e-6, "{le}");

@@ -21,6 +21,24 @@ fn types_are_checked_when_read() {
     assert!(Param::new("integer n", loc(), vec![num("1.5")]).is_err());
     assert!(Param::new("integer n", loc(), vec![num("3")]).is_ok());
     assert!(Param::new("rgb c", loc(), vec![num("1"), num("2")]).is_err());
+    // A whole number of triples is a colour grid (rgbgrid media): `color` refuses it at the
+    // parameter, `rgbs` reads it.
+    let six = vec![num("1"), num("2"), num("3"), num("4"), num("5"), num("6")];
+    let grid = Param::new("rgb c", loc(), six).unwrap();
+    let list = ParamList::new(vec![grid]).unwrap();
+    let e = list
+        .color(
+            "c",
+            SpectrumKind::Unbounded,
+            &SearchPath::new(std::path::Path::new(".")),
+        )
+        .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "t.pbrt:1:1: \"rgb c\" takes one colour (3 numbers), found 6 numbers"
+    );
+    let (v, _) = list.rgbs("c").unwrap().unwrap();
+    assert_eq!(v, [Rgb::new(1.0, 2.0, 3.0), Rgb::new(4.0, 5.0, 6.0)]);
     assert!(Param::new("floot x", loc(), vec![num("1")]).is_err());
     assert!(Param::new("float", loc(), vec![num("1")]).is_err());
     assert!(Param::new("float x", loc(), vec![]).is_err());
