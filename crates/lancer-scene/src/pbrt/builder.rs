@@ -269,7 +269,7 @@ impl Builder {
             | D::Film(..)
             | D::Sampler(..)
             | D::PixelFilter(..)
-            | D::Integrator(..) => self.rendering_option(directive, loc),
+            | D::Integrator(..) => self.rendering_option(directive, &dir, loc),
             D::MakeNamedMedium(..)
             | D::MediumInterface(..)
             | D::Material(..)
@@ -284,7 +284,12 @@ impl Builder {
     }
 
     /// The rendering options, each converted by [`super::options`] or [`super::cameras`].
-    fn rendering_option(&mut self, d: Directive, loc: &Location) -> Result<(), SceneError> {
+    fn rendering_option(
+        &mut self,
+        d: Directive,
+        dir: &SearchPath,
+        loc: &Location,
+    ) -> Result<(), SceneError> {
         use Directive as D;
         match d {
             D::Option(params) => {
@@ -303,7 +308,7 @@ impl Builder {
                 Ok(())
             }
             D::Camera(ty, params) => self.with_params("Camera", &ty, params, loc, |b, p| {
-                let c = b.accept(camera(p, &ty, b.gs.ctm, loc)?, loc);
+                let c = b.accept(camera(&b.reader(p, dir), &ty, b.gs.ctm, loc)?, loc);
                 (b.desc.camera, b.frame_aspect) = (c.camera, c.frame_aspect);
                 b.named_coords
                     .insert("camera".to_string(), b.gs.ctm.inverse());

@@ -44,8 +44,7 @@ impl Scene {
         for o in &mut instances.objects {
             o.offset_prims(base);
         }
-        let camera = Camera::from_desc(&desc.camera, desc.film.xresolution, desc.film.yresolution)
-            .ok_or(BuildError::BadCamera)?;
+        let camera = Camera::from_desc(&desc.camera, &desc.film).map_err(BuildError::BadCamera)?;
         Ok(Scene {
             shapes,
             prims,

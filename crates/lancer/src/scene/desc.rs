@@ -42,7 +42,7 @@ pub struct SceneDesc {
 }
 
 /// Camera projection.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Projection {
     /// pbrt's `perspective`.
     Perspective {
@@ -51,10 +51,17 @@ pub enum Projection {
     },
     /// pbrt's `orthographic`.
     Orthographic,
+    /// pbrt's `spherical`: the whole sphere of directions from one point.
+    Spherical {
+        /// How the image covers the sphere.
+        mapping: crate::camera::lens::SphericalMapping,
+    },
+    /// pbrt's `realistic`: a lens system traced ray by ray.
+    Realistic(Arc<crate::camera::lens::LensDesc>),
 }
 
 /// The camera.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct CameraDesc {
     /// Projection and its parameters.
     pub projection: Projection,
@@ -106,6 +113,9 @@ pub struct FilmDesc {
     pub max_component_value: f32,
     /// Write EXR as half floats (pbrt's `savefp16`; lancer defaults to full float).
     pub save_fp16: bool,
+    /// The sensor's diagonal in millimetres (pbrt's `diagonal`, 35 by default): the realistic
+    /// camera's film size.
+    pub diagonal: f32,
 }
 
 impl FilmDesc {
@@ -145,6 +155,7 @@ impl Default for FilmDesc {
             scale: 1.0,
             max_component_value: f32::INFINITY,
             save_fp16: false,
+            diagonal: 35.0,
         }
     }
 }
