@@ -199,7 +199,12 @@ fn realistic_camera_errors_are_at_their_parameter() {
         &dir,
         Transform::IDENTITY,
     );
-    assert!(err(out).starts_with("t.pbrt:1:21: "));
+    let e = err(out);
+    assert!(
+        e.starts_with("t.pbrt:1:20: ")
+            && e.ends_with("none.dat: No such file or directory (os error 2)"),
+        "{e}"
+    );
     assert_eq!(
         error(r#"Camera "realistic""#),
         "t.pbrt:1:1: a \"realistic\" camera needs a lens description file, \"string lensfile\""
