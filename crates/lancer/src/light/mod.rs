@@ -4,11 +4,15 @@
 //! light arrive, how much, and where must a shadow ray go to check that nothing is in the way".
 
 mod distribution;
+mod goniometric;
 mod image_infinite;
+mod projection;
 mod sample;
 
 pub use distribution::LightDistribution;
+pub use goniometric::GoniometricLight;
 pub use image_infinite::{EnvMapping, ImageInfiniteLight, environment_mapping};
+pub use projection::{ProjectionLight, projected_sum};
 pub use sample::{LightLiSample, LightSampleContext};
 
 use crate::math::{Frame, INV_PI, PackedRgb, PackedVec3, Rgb, Vec2, Vec3, smooth_step};
@@ -71,6 +75,10 @@ pub enum Light {
     /// Environment radiance from an image, importance-sampled (boxed: it holds the image's
     /// sampling tables, much larger than the other variants).
     ImageInfinite(Box<ImageInfiniteLight>),
+    /// pbrt-v4's `goniometric`: a point light with an equal-area intensity image.
+    Goniometric(Box<GoniometricLight>),
+    /// pbrt-v4's `projection`: a point light projecting an image.
+    Projection(Box<ProjectionLight>),
 }
 
 impl Light {
@@ -86,7 +94,11 @@ impl Light {
     pub fn is_delta(&self) -> bool {
         matches!(
             self,
-            Light::Point { .. } | Light::Spot { .. } | Light::Distant { .. }
+            Light::Point { .. }
+                | Light::Spot { .. }
+                | Light::Distant { .. }
+                | Light::Goniometric(_)
+                | Light::Projection(_)
         )
     }
 
@@ -223,6 +235,8 @@ impl Light {
                 })
             }
             Light::ImageInfinite(light) => light.sample_li(ctx, u),
+            Light::Goniometric(light) => light.sample_li(ctx),
+            Light::Projection(light) => light.sample_li(ctx),
         }
     }
 
@@ -286,6 +300,8 @@ impl Light {
             }
             // Φ = π·r²·∫L dω.
             Light::ImageInfinite(light) => light.power(),
+            Light::Goniometric(light) => light.power(),
+            Light::Projection(light) => light.power(),
         }
     }
 
@@ -297,7 +313,8 @@ impl Light {
             Light::Point { intensity, .. } | Light::Spot { intensity, .. } => Some(*intensity),
             Light::Distant { l, .. } | Light::UniformInfinite { l, .. } => Some(*l),
             Light::Area { l, .. } => Some((*l).into()),
-            Light::ImageInfinite(_) => None,
+            Light::Goniometric(light) => Some(light.intensity()),
+            Light::ImageInfinite(_) | Light::Projection(_) => None,
         }
     }
 

@@ -9,7 +9,9 @@ use super::instance::{Instance, Instances, ObjectAccel};
 use super::prim::{AreaEmission, BuildError, PrimInfo, check_shape, mesh_triangles};
 use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
-use crate::light::{ImageInfiniteLight, Light, LightDistribution};
+use crate::light::{
+    GoniometricLight, ImageInfiniteLight, Light, LightDistribution, ProjectionLight,
+};
 use crate::material::Material;
 use crate::math::{Bounds3, PackedRgb, PackedVec3, Transform, Vec3};
 use crate::shape::{
@@ -441,6 +443,23 @@ fn light_of(l: &LightDesc, scene_radius: f32) -> Result<Light, BuildError> {
             l: *l,
             scene_radius,
         },
+        LightDesc::Goniometric {
+            light_to_world,
+            intensity,
+            image,
+        } => Light::Goniometric(Box::new(
+            GoniometricLight::new(*light_to_world, *intensity, image)
+                .map_err(BuildError::Invalid)?,
+        )),
+        LightDesc::Projection {
+            light_to_world,
+            scale,
+            fov,
+            image,
+        } => Light::Projection(Box::new(
+            ProjectionLight::new(*light_to_world, image.clone(), *scale, *fov)
+                .map_err(BuildError::Invalid)?,
+        )),
         LightDesc::Infinite {
             light_to_world,
             l,

@@ -539,6 +539,26 @@ pub enum LightDesc {
         /// Environment map, equal-area octahedral (square) or lat-long (2:1).
         image: Option<Arc<crate::image::Image>>,
     },
+    /// pbrt-v4's `goniometric` light: intensity `intensity` times an equal-area image.
+    Goniometric {
+        /// Light space → world space (the CTM).
+        light_to_world: Transform,
+        /// Intensity colour (scaled and normalised).
+        intensity: Rgb,
+        /// Square equal-area image; its channel average modulates the intensity.
+        image: Arc<crate::image::Image>,
+    },
+    /// pbrt-v4's `projection` light: a slide projector.
+    Projection {
+        /// Light space → world space (the CTM).
+        light_to_world: Transform,
+        /// Multiplies the image's texels (scaled and normalised).
+        scale: f32,
+        /// Field of view of the image's shorter side, degrees.
+        fov: f32,
+        /// The slide.
+        image: Arc<crate::image::Image>,
+    },
 }
 
 impl ShapeDesc {
@@ -571,6 +591,8 @@ impl LightDesc {
             LightDesc::Infinite {
                 image: Some(image), ..
             } => crate::light::environment_mapping(image).map(|_| ()),
+            // The goniometric and projection lights check their images as they are made.
+            LightDesc::Goniometric { .. } | LightDesc::Projection { .. } => Ok(()),
         }
     }
 }
