@@ -75,11 +75,10 @@ pub fn light(
             let w = params.point3("from", Vec3::ZERO)? - params.point3("to", Vec3::Z)?;
             let illuminance = params.float("illuminance", -1.0)?;
             if illuminance > 0.0 {
-                // pbrt-v4 measures illuminance on an upward-facing patch: E = L·cos θ.
-                let k = w.normalize_or_zero().y;
-                if k > 0.0 {
-                    l *= illuminance / k;
-                }
+                // pbrt-v4 multiplies the scale by E: the illuminance on a patch facing the
+                // light (its comment speaks of an upward patch, its code does not divide by
+                // that patch's cos θ), E = L for a unit-luminance colour.
+                l *= illuminance;
             }
             LightDesc::Distant {
                 direction: ctm.vector(w),
@@ -397,8 +396,8 @@ mod tests {
                 l: Rgb::ONE
             }
         );
-        // Light travels from "from" to "to": it comes straight from above (cos θ = 1), so the
-        // colour times scale (5·2) is multiplied by E / cos θ = 3.
+        // Light travels from "from" to "to"; the colour times scale (5·2) is multiplied by
+        // E = 3, as pbrt-v4 does.
         let LightDesc::Distant { direction, l } = converted(
             r#"LightSource "distant" "point3 from" [0 1 0] "point3 to" [0 0 0] "rgb L" [5 5 5]
                "float scale" 2 "float illuminance" 3"#,
@@ -408,6 +407,15 @@ mod tests {
         };
         assert_eq!(direction, Vec3::new(0.0, 2.0, 0.0));
         assert_close(l, Rgb::splat(30.0));
+        // Slanted light gets the same factor: pbrt-v4 does not divide by the upward patch's
+        // cos θ.
+        let LightDesc::Distant { l, .. } = converted(
+            r#"LightSource "distant" "point3 from" [1 1 0] "point3 to" [0 0 0] "float illuminance" 3"#,
+            ID,
+        ) else {
+            panic!("a distant light")
+        };
+        assert_close(l, Rgb::splat(3.0));
         assert_eq!(
             error(r#"LightSource "distant" "point3 from" [0 0 1]"#),
             "t.pbrt:1:1: distant light with \"from\" equal to \"to\""
