@@ -79,9 +79,18 @@ pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
     let world_from_camera = desc.camera.camera_from_world.inverse();
     let eye = world_from_camera.point(lancer::math::Vec3::ZERO);
     let forward = world_from_camera.vector(lancer::math::Vec3::new(0.0, 0.0, 1.0));
-    let projection = match desc.camera.projection {
+    let projection = match &desc.camera.projection {
         Projection::Perspective { fov } => json!({ "kind": "perspective", "fov": fov }),
         Projection::Orthographic => json!({ "kind": "orthographic" }),
+        Projection::Spherical { mapping } => {
+            json!({ "kind": "spherical", "mapping": format!("{mapping:?}").to_lowercase() })
+        }
+        Projection::Realistic(lens) => json!({
+            "kind": "realistic",
+            "interfaces": lens.interfaces.len(),
+            "aperture_diameter": lens.aperture_diameter,
+            "focus_distance": lens.focus_distance,
+        }),
     };
     let mut lights = c.lights.clone();
     if c.area_lights > 0 {

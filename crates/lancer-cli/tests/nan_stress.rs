@@ -49,7 +49,11 @@ fn degenerate_scene_gives_only_finite_samples() {
                     let (offset, _) = filter.sample(sampler.get_pixel_2d());
                     let p_film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
                     let p_lens = sampler.get_2d();
-                    let ray = scene.camera.generate_ray(p_film, p_lens);
+                    let ray = scene
+                        .camera
+                        .generate_ray(p_film, p_lens)
+                        .expect("a ray")
+                        .ray;
                     let l = integrator.li(&scene, &ray, &mut sampler, None);
                     samples += 1;
                     if !l.is_finite() && bad.len() < 10 {

@@ -127,12 +127,14 @@ impl PyScene {
     fn info<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = &self.desc;
         let camera = PyDict::new(py);
-        match d.camera.projection {
+        match &d.camera.projection {
             Projection::Perspective { fov } => {
                 camera.set_item("projection", "perspective")?;
                 camera.set_item("fov", fov)?;
             }
             Projection::Orthographic => camera.set_item("projection", "orthographic")?,
+            Projection::Spherical { .. } => camera.set_item("projection", "spherical")?,
+            Projection::Realistic(_) => camera.set_item("projection", "realistic")?,
         }
         let world_from_camera = d.camera.camera_from_world.inverse();
         let eye = world_from_camera.point(lancer::math::Vec3::ZERO);

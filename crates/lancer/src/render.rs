@@ -194,9 +194,17 @@ fn camera_sample(
 ) -> (crate::math::Rgb, f32) {
     let (ray, weight) = camera_ray(scene, settings, sampler, x, y, s);
     let lambda = sample_wavelengths(settings, sampler);
-    let l = settings
-        .integrator
-        .li(scene, &ray, sampler, lambda.as_ref());
+    // A ray the camera's lens blocks brings nothing back, but the sample still counts (as
+    // pbrt-v4 adds it to the film with its filter weight).
+    let l = match ray {
+        Some(r) => {
+            settings
+                .integrator
+                .li(scene, &r.ray, sampler, lambda.as_ref())
+                * r.weight
+        }
+        None => crate::math::SampledSpectrum::ZERO,
+    };
     (film_rgb(lambda.as_ref(), l), weight)
 }
 
@@ -212,8 +220,8 @@ fn sample_wavelengths(
         .then(|| crate::spectrum::sampled::SampledWavelengths::sample_visible(sampler.get_1d()))
 }
 
-/// The camera ray of sample `s` of pixel (`x`, `y`) and its filter weight, leaving `sampler`
-/// ready for the integrator's dimensions.
+/// The camera ray of sample `s` of pixel (`x`, `y`) (`None` when a lens blocks it) and its
+/// filter weight, leaving `sampler` ready for the integrator's dimensions.
 fn camera_ray(
     scene: &Scene,
     settings: &RenderSettings,
@@ -221,7 +229,7 @@ fn camera_ray(
     x: i32,
     y: i32,
     s: u32,
-) -> (crate::ray::Ray, f32) {
+) -> (Option<crate::camera::CameraRay>, f32) {
     sampler.start_pixel_sample(x, y, s as u64);
     let (offset, weight) = settings.filter.sample(sampler.get_pixel_2d());
     let p_film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
@@ -240,9 +248,15 @@ pub fn trace_sample(
     let (ray, _) = camera_ray(scene, settings, &mut sampler, id.x, id.y, id.sample);
     let lambda = sample_wavelengths(settings, &mut sampler);
     let mut path = Vec::new();
-    let l = settings
-        .integrator
-        .li_traced(scene, &ray, &mut sampler, lambda.as_ref(), &mut path);
+    let l = match ray {
+        Some(r) => {
+            settings
+                .integrator
+                .li_traced(scene, &r.ray, &mut sampler, lambda.as_ref(), &mut path)
+                * r.weight
+        }
+        None => crate::math::SampledSpectrum::ZERO,
+    };
     // The film's colour, as the render computed it (in spectral mode the path's vertices hold
     // values at the wavelengths).
     (film_rgb(lambda.as_ref(), l), path)

@@ -90,6 +90,8 @@ fn camera_ray(scene: &Scene, x: u32, y: u32) -> Ray {
     scene
         .camera
         .generate_ray(Vec2::new(x as f32 + 0.5, y as f32 + 0.5), Vec2::ZERO)
+        .expect("a pinhole camera always gives a ray")
+        .ray
 }
 
 /// Nearest positive root of |o + t·d − c|² = r², in double precision.

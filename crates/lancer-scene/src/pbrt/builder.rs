@@ -285,7 +285,7 @@ impl Builder {
             | D::Film(..)
             | D::Sampler(..)
             | D::PixelFilter(..)
-            | D::Integrator(..) => self.rendering_option(directive, loc),
+            | D::Integrator(..) => self.rendering_option(directive, &dir, loc),
             D::MakeNamedMedium(..)
             | D::MediumInterface(..)
             | D::Material(..)
@@ -300,7 +300,12 @@ impl Builder {
     }
 
     /// The rendering options, each converted by [`super::options`] or [`super::cameras`].
-    fn rendering_option(&mut self, d: Directive, loc: &Location) -> Result<(), SceneError> {
+    fn rendering_option(
+        &mut self,
+        d: Directive,
+        dir: &SearchPath,
+        loc: &Location,
+    ) -> Result<(), SceneError> {
         use Directive as D;
         match d {
             D::Option(params) => {
@@ -323,7 +328,7 @@ impl Builder {
                     let m = "the camera's transformation is singular (it flattens space)";
                     return Err(SceneError::at(loc.clone(), m));
                 }
-                let c = b.accept(camera(p, &ty, b.gs.ctm, loc)?, loc);
+                let c = b.accept(camera(&b.reader(p, dir), &ty, b.gs.ctm, loc)?, loc);
                 (b.desc.camera, b.frame_aspect) = (c.camera, c.frame_aspect);
                 b.media.set_camera(&b.gs.media, loc);
                 b.named_coords

@@ -1,11 +1,14 @@
-//! `Camera`: pbrt-v4's `perspective` and `orthographic` cameras (others fall back to a
-//! perspective one), with their screen window, thin lens and shutter.
+//! `Camera`: pbrt-v4's `perspective` and `orthographic` cameras (screen window, thin lens),
+//! its `spherical` camera (equal-area or equirectangular) and its `realistic` camera (a lens
+//! file, an aperture stop and its shape, a focus distance), all with their shutter.
 
-use super::convert::Fallback;
-use super::params::ParamList;
+use super::convert::{Fallback, Reader};
 use crate::error::{Location, SceneError};
+use crate::image_read::Encoding;
+use lancer::camera::lens::{Aperture, LensDesc, LensInterface, SphericalMapping};
 use lancer::math::Transform;
 use lancer::scene::desc::{CameraDesc, Projection};
+use std::sync::Arc;
 
 /// What `Camera` sets: the camera, and the frame's aspect ratio (`frameaspectratio`), which
 /// gives the screen window once the film is known when `screenwindow` does not.
@@ -19,25 +22,51 @@ pub struct CameraOptions {
 
 /// The camera `ty` at `loc`, whose frame is `camera_from_world` (the CTM at `Camera`).
 pub fn camera(
-    params: &ParamList,
+    r: &Reader,
     ty: &str,
     camera_from_world: Transform,
     loc: &Location,
 ) -> Result<Fallback<CameraOptions>, SceneError> {
+    let params = r.params;
     let mut warnings = Vec::new();
     let projection = match ty {
         "perspective" => Projection::Perspective {
             fov: params.float_checked("fov", 90.0, "in (0, 180)", |v| v > 0.0 && v < 180.0)?,
         },
         "orthographic" => Projection::Orthographic,
+        "spherical" => Projection::Spherical {
+            mapping: match params.string("mapping")?.as_deref() {
+                None | Some("equalarea") => SphericalMapping::EqualArea,
+                Some("equirectangular") => SphericalMapping::Equirectangular,
+                Some(m) => {
+                    return Err(params.error_at(
+                        "mapping",
+                        format!(
+                            "unknown spherical mapping \"{m}\" (expected \"equalarea\" or \"equirectangular\")"
+                        ),
+                    ));
+                }
+            },
+        },
+        "realistic" => {
+            let (lens, warning) = realistic(r, loc)?;
+            warnings.extend(warning);
+            Projection::Realistic(Arc::new(lens))
+        }
         _ => {
-            warnings.push(format!(
-                "camera \"{ty}\" is not supported yet; lancer uses a perspective camera with fov 90"
+            return Err(SceneError::at(
+                loc.clone(),
+                format!(
+                    "unknown camera \"{ty}\" (expected perspective, orthographic, spherical or realistic)"
+                ),
             ));
-            Projection::Perspective { fov: 90.0 }
         }
     };
+    // pbrt-v4's realistic camera has no screen window, thin lens or frame; the others read
+    // them (the spherical camera reads and ignores them).
+    let projective = ty != "realistic";
     let screen_window = match params.floats("screenwindow")? {
+        _ if !projective => None,
         None => None,
         Some(w) if w.len() == 4 && w[0] < w[1] && w[2] < w[3] => Some([w[0], w[1], w[2], w[3]]),
         Some(_) => {
@@ -47,10 +76,18 @@ pub fn camera(
             ));
         }
     };
-    let frame_aspect = if params.has("frameaspectratio") {
+    let frame_aspect = if projective && params.has("frameaspectratio") {
         Some(params.float_checked("frameaspectratio", 1.0, "positive", |v| v > 0.0)?)
     } else {
         None
+    };
+    let (lens_radius, focal_distance) = if projective {
+        (
+            params.float_checked("lensradius", 0.0, "at least 0", |v| v >= 0.0)?,
+            params.float_checked("focaldistance", 1e6, "positive", |v| v > 0.0)?,
+        )
+    } else {
+        (0.0, 1e6)
     };
     let shutter_open = params.float("shutteropen", 0.0)?;
     let shutter_close = params.float("shutterclose", 1.0)?;
@@ -65,8 +102,8 @@ pub fn camera(
         projection,
         camera_from_world,
         screen_window,
-        lens_radius: params.float_checked("lensradius", 0.0, "at least 0", |v| v >= 0.0)?,
-        focal_distance: params.float_checked("focaldistance", 1e6, "positive", |v| v > 0.0)?,
+        lens_radius,
+        focal_distance,
         shutter: [shutter_open, shutter_close],
     };
     Ok(Fallback {
@@ -76,6 +113,116 @@ pub fn camera(
         },
         warnings,
     })
+}
+
+/// pbrt-v4's `realistic` camera: the lens file `lensfile` (rows of curvature radius,
+/// thickness, index and aperture diameter in mm, `#` comments), `aperturediameter` (mm, 1 by
+/// default), `focusdistance` (10 by default) and the stop's shape `aperture`: `circular` (or
+/// absent), `gaussian`, `square`, `pentagon`, `star`, or an image file. A warning when the
+/// aperture is wider than the lens file's stop, which limits it (as pbrt-v4 warns).
+fn realistic(r: &Reader, loc: &Location) -> Result<(LensDesc, Option<String>), SceneError> {
+    let params = r.params;
+    let Some(name) = params.string("lensfile")? else {
+        return Err(SceneError::at(
+            loc.clone(),
+            "a \"realistic\" camera needs a lens description file, \"string lensfile\"",
+        ));
+    };
+    let at = params.location("lensfile").unwrap_or(loc).clone();
+    let path = r.dir.resolve(&name);
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| SceneError::at(at.clone(), format!("{}: {e}", path.display())))?;
+    let interfaces = lens_interfaces(&text)
+        .map_err(|m| SceneError::at(at.clone(), format!("{}: {m}", path.display())))?;
+    let aperture_diameter =
+        params.float_checked("aperturediameter", 1.0, "positive", |v| v > 0.0)?;
+    let focus_distance = params.float_checked("focusdistance", 10.0, "positive", |v| v > 0.0)?;
+    let aperture = match params.string("aperture")?.as_deref() {
+        None | Some("") | Some("circular") => Aperture::Circular,
+        Some("gaussian") => Aperture::Gaussian,
+        Some("square") => Aperture::Square,
+        Some("pentagon") => Aperture::Pentagon,
+        Some("star") => Aperture::Star,
+        Some(file) => {
+            let path = r.dir.resolve(file);
+            let is_png = path
+                .extension()
+                .and_then(|e| e.to_str())
+                .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+            let encoding = if is_png {
+                Encoding::Srgb
+            } else {
+                Encoding::Linear
+            };
+            let image = r
+                .images
+                .rgb(&path, encoding)
+                .map_err(|e| params.error_at("aperture", e.to_string()))?;
+            let lit = image
+                .texels
+                .iter()
+                .any(|&t| lancer::math::Rgb::from(t).max_element() > 0.0);
+            if !lit || image.texels.iter().any(|t| !t.is_finite()) {
+                return Err(params.error_at(
+                    "aperture",
+                    format!(
+                        "{}: the aperture image must let some light through and hold finite values only",
+                        path.display()
+                    ),
+                ));
+            }
+            Aperture::Image(image)
+        }
+    };
+    let warning = interfaces
+        .iter()
+        .find(|i| i.curvature_radius == 0.0 && aperture_diameter > i.aperture_diameter)
+        .map(|stop| {
+            format!(
+                "\"aperturediameter\" {aperture_diameter} mm is wider than the aperture stop of {} ({} mm); clamped to it, as pbrt-v4 does",
+                name, stop.aperture_diameter
+            )
+        });
+    Ok((
+        LensDesc {
+            interfaces,
+            aperture_diameter,
+            focus_distance,
+            aperture,
+        },
+        warning,
+    ))
+}
+
+/// The interfaces of a lens file: whitespace-separated numbers (`#` starts a comment), four a
+/// row. An error names the line of a word that is not a number, or says how many values the
+/// file holds when they are not a non-zero multiple of four.
+pub fn lens_interfaces(text: &str) -> Result<Vec<LensInterface>, String> {
+    let mut values = Vec::new();
+    for (n, line) in text.lines().enumerate() {
+        let line = line.split('#').next().unwrap_or("");
+        for word in line.split_whitespace() {
+            match word.parse::<f32>() {
+                Ok(v) if v.is_finite() => values.push(v),
+                _ => return Err(format!("line {}: \"{word}\" is not a number", n + 1)),
+            }
+        }
+    }
+    if values.is_empty() || values.len() % 4 != 0 {
+        return Err(format!(
+            "a lens file holds rows of 4 numbers (curvature radius, thickness, index, aperture diameter), not {} values",
+            values.len()
+        ));
+    }
+    Ok(values
+        .chunks_exact(4)
+        .map(|c| LensInterface {
+            curvature_radius: c[0],
+            thickness: c[1],
+            eta: c[2],
+            aperture_diameter: c[3],
+        })
+        .collect())
 }
 
 /// The screen window of a frame of aspect ratio `frame` (width / height) when the scene gives
@@ -90,139 +237,4 @@ pub fn frame_window(frame: f32) -> [f32; 4] {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::pbrt::convert::testing::{err, typed, unused};
-    use lancer::math::Vec3;
-
-    type Converted = (Result<Fallback<CameraOptions>, SceneError>, Vec<String>);
-
-    /// The one `Camera` of `text` under `ctm`, and its unread parameters.
-    fn convert(text: &str, ctm: Transform) -> Converted {
-        let (ty, params, loc) = typed(text);
-        let out = camera(&params, &ty, ctm, &loc);
-        (out, unused(&params))
-    }
-
-    /// A camera that converts without warnings and reads every parameter.
-    #[track_caller]
-    fn converted(text: &str) -> CameraOptions {
-        let (out, unused) = convert(text, Transform::IDENTITY);
-        let f = out.unwrap_or_else(|e| panic!("{e}"));
-        assert!(f.warnings.is_empty(), "{:?}", f.warnings);
-        assert!(unused.is_empty(), "{unused:?}");
-        f.value
-    }
-
-    #[track_caller]
-    fn error(text: &str) -> String {
-        err(convert(text, Transform::IDENTITY).0)
-    }
-
-    #[test]
-    fn defaults_are_pbrt_v4s() {
-        let ctm = Transform::translate(Vec3::new(0.0, 0.0, 5.0));
-        let (out, _) = convert(r#"Camera "perspective""#, ctm);
-        let c = out.unwrap().value;
-        assert_eq!(
-            c.camera,
-            CameraDesc {
-                projection: Projection::Perspective { fov: 90.0 },
-                camera_from_world: ctm,
-                screen_window: None,
-                lens_radius: 0.0,
-                focal_distance: 1e6,
-                shutter: [0.0, 1.0],
-            }
-        );
-        assert_eq!(c.frame_aspect, None);
-        let c = converted(r#"Camera "orthographic""#);
-        assert_eq!(c.camera.projection, Projection::Orthographic);
-    }
-
-    #[test]
-    fn every_parameter_is_read() {
-        let c = converted(
-            r#"Camera "perspective" "float fov" 45 "float screenwindow" [-1 1 -0.5 0.5]
-               "float frameaspectratio" 2 "float lensradius" 0.1 "float focaldistance" 5
-               "float shutteropen" 0.2 "float shutterclose" 0.8"#,
-        );
-        assert_eq!(
-            c.camera,
-            CameraDesc {
-                projection: Projection::Perspective { fov: 45.0 },
-                camera_from_world: Transform::IDENTITY,
-                screen_window: Some([-1.0, 1.0, -0.5, 0.5]),
-                lens_radius: 0.1,
-                focal_distance: 5.0,
-                shutter: [0.2, 0.8],
-            }
-        );
-        assert_eq!(c.frame_aspect, Some(2.0));
-    }
-
-    #[test]
-    fn other_cameras_are_perspective_with_a_warning() {
-        let (out, unused) = convert(
-            r#"Camera "realistic" "string lensfile" "wide.dat""#,
-            Transform::IDENTITY,
-        );
-        let f = out.unwrap();
-        assert_eq!(
-            f.value.camera.projection,
-            Projection::Perspective { fov: 90.0 }
-        );
-        assert_eq!(
-            f.warnings,
-            [
-                "camera \"realistic\" is not supported yet; lancer uses a perspective camera with fov 90"
-            ]
-        );
-        assert_eq!(unused.len(), 1);
-    }
-
-    #[test]
-    fn the_shorter_side_of_the_frame_spans_the_field_of_view() {
-        assert_eq!(frame_window(2.0), [-2.0, 2.0, -1.0, 1.0]);
-        assert_eq!(frame_window(0.5), [-1.0, 1.0, -2.0, 2.0]);
-        assert_eq!(frame_window(1.0), [-1.0, 1.0, -1.0, 1.0]);
-    }
-
-    #[test]
-    fn errors_are_at_their_parameter() {
-        assert_eq!(
-            error("Camera \"perspective\"\n  \"float fov\" 180"),
-            "t.pbrt:2:3: \"float fov\" must be in (0, 180), not 180"
-        );
-        let window = "\"float screenwindow\" needs 4 numbers: xmin xmax ymin ymax, with min < max";
-        assert_eq!(
-            error("Camera \"perspective\"\n  \"float screenwindow\" [-1 1 0]"),
-            format!("t.pbrt:2:3: {window}")
-        );
-        assert_eq!(
-            error("Camera \"orthographic\"\n  \"float screenwindow\" [1 -1 0 1]"),
-            format!("t.pbrt:2:3: {window}")
-        );
-        assert_eq!(
-            error("Camera \"perspective\"\n  \"float frameaspectratio\" 0"),
-            "t.pbrt:2:3: \"float frameaspectratio\" must be positive, not 0"
-        );
-        assert_eq!(
-            error("Camera \"perspective\"\n  \"float lensradius\" -1"),
-            "t.pbrt:2:3: \"float lensradius\" must be at least 0, not -1"
-        );
-        assert_eq!(
-            error("Camera \"perspective\"\n  \"float focaldistance\" 0"),
-            "t.pbrt:2:3: \"float focaldistance\" must be positive, not 0"
-        );
-        assert_eq!(
-            error("Camera \"perspective\" \"float shutteropen\" 1\n  \"float shutterclose\" 0.5"),
-            "t.pbrt:2:3: the shutter closes before it opens"
-        );
-        // Without "shutterclose" (1 by default), at the directive.
-        assert_eq!(
-            error(r#"Camera "perspective" "float shutteropen" 2"#),
-            "t.pbrt:1:1: the shutter closes before it opens"
-        );
-    }
-}
+mod tests;

@@ -75,11 +75,10 @@ pub fn light(
             let w = params.point3("from", Vec3::ZERO)? - params.point3("to", Vec3::Z)?;
             let illuminance = params.float("illuminance", -1.0)?;
             if illuminance > 0.0 {
-                // pbrt-v4 measures illuminance on an upward-facing patch: E = L·cos θ.
-                let k = w.normalize_or_zero().y;
-                if k > 0.0 {
-                    l *= illuminance / k;
-                }
+                // pbrt-v4 multiplies the scale by E: the illuminance on a patch facing the
+                // light (its comment speaks of an upward patch, its code does not divide by
+                // that patch's cos θ), E = L for a unit-luminance colour.
+                l *= illuminance;
             }
             LightDesc::Distant {
                 direction: ctm.vector(w),
@@ -87,12 +86,7 @@ pub fn light(
             }
         }
         "infinite" => return Ok(infinite(r, ctm, loc)?.map(Some)),
-        "goniometric" | "projection" => {
-            return Ok(Fallback::instead(
-                None,
-                format!("light \"{ty}\" is not supported yet; skipped"),
-            ));
-        }
+        "goniometric" | "projection" => return Ok(image_light(r, ty, ctm, power, loc)?.map(Some)),
         _ => {
             return Err(SceneError::at(
                 loc.clone(),
@@ -108,6 +102,84 @@ pub fn light(
         .validate()
         .map_err(|m| SceneError::at(loc.clone(), m))?;
     Ok(Fallback::done(Some(light)))
+}
+
+/// pbrt-v4's `goniometric` light (intensity `I` times `scale` times the channel average of the
+/// square equal-area image `filename`; `power` Φ makes I·4π·mean(image) = Φ) and `projection`
+/// light (the image `filename` times `scale`, projected over `fov` degrees, 90 by default;
+/// `power` Φ makes the luminance it emits Φ).
+fn image_light(
+    r: &Reader,
+    ty: &str,
+    ctm: Transform,
+    power: f32,
+    loc: &Location,
+) -> Result<Fallback<LightDesc>, SceneError> {
+    let params = r.params;
+    let at = |message: String| SceneError::at(loc.clone(), message);
+    let (path, encoding) = r
+        .image_file(&format!("a \"{ty}\" light"))
+        .map_err(|e| locate(e, loc))?;
+    let image = r
+        .images
+        .rgb(&path, encoding)
+        .map_err(|e| at(e.to_string()))?;
+    if image.texels.iter().any(|t| !t.is_finite()) {
+        return Err(at(format!(
+            "{}: the image holds infinite or NaN values and cannot be a light",
+            path.display()
+        )));
+    }
+    let light = if ty == "goniometric" {
+        if image.width != image.height {
+            return Err(at(format!(
+                "{}: a goniometric light's image must be square (equal-area), not {}×{}",
+                path.display(),
+                image.width,
+                image.height
+            )));
+        }
+        let mut intensity = emission(params, "I", r.dir)?;
+        if power > 0.0 {
+            // Φ = I · 4π · mean(Y), Y the channel average.
+            let mean_y = image
+                .texels
+                .iter()
+                .map(|&t| {
+                    let c = Rgb::from(t);
+                    ((c.x + c.y + c.z) / 3.0) as f64
+                })
+                .sum::<f64>()
+                / image.texels.len() as f64;
+            let k = 4.0 * PI * mean_y as f32;
+            if k > 0.0 {
+                intensity *= power / k;
+            }
+        }
+        LightDesc::Goniometric {
+            light_to_world: ctm,
+            intensity,
+            image,
+        }
+    } else {
+        let fov = params.float_checked("fov", 90.0, "in (0, 180)", |v| v > 0.0 && v < 180.0)?;
+        let mut scale = params.float("scale", 1.0)?;
+        if power > 0.0 {
+            // Φ = scale · ∫ Y(image(ω)) dω over the projector's field.
+            let tan_half = (fov.to_radians() / 2.0).tan();
+            let k = lancer::light::projected_sum(&image, tan_half, lancer::math::luminance);
+            if k > 0.0 {
+                scale *= power / k;
+            }
+        }
+        LightDesc::Projection {
+            light_to_world: ctm,
+            scale,
+            fov,
+            image,
+        }
+    };
+    Ok(Fallback::done(light))
 }
 
 /// pbrt-v4's `infinite` light: a uniform sky of radiance `L`, or the image `filename`
@@ -324,8 +396,8 @@ mod tests {
                 l: Rgb::ONE
             }
         );
-        // Light travels from "from" to "to": it comes straight from above (cos θ = 1), so the
-        // colour times scale (5·2) is multiplied by E / cos θ = 3.
+        // Light travels from "from" to "to"; the colour times scale (5·2) is multiplied by
+        // E = 3, as pbrt-v4 does.
         let LightDesc::Distant { direction, l } = converted(
             r#"LightSource "distant" "point3 from" [0 1 0] "point3 to" [0 0 0] "rgb L" [5 5 5]
                "float scale" 2 "float illuminance" 3"#,
@@ -335,6 +407,15 @@ mod tests {
         };
         assert_eq!(direction, Vec3::new(0.0, 2.0, 0.0));
         assert_close(l, Rgb::splat(30.0));
+        // Slanted light gets the same factor: pbrt-v4 does not divide by the upward patch's
+        // cos θ.
+        let LightDesc::Distant { l, .. } = converted(
+            r#"LightSource "distant" "point3 from" [1 1 0] "point3 to" [0 0 0] "float illuminance" 3"#,
+            ID,
+        ) else {
+            panic!("a distant light")
+        };
+        assert_close(l, Rgb::splat(3.0));
         assert_eq!(
             error(r#"LightSource "distant" "point3 from" [0 0 1]"#),
             "t.pbrt:1:1: distant light with \"from\" equal to \"to\""
@@ -487,19 +568,64 @@ mod tests {
     }
 
     #[test]
-    fn lights_lancer_lacks() {
+    fn goniometric_and_projection_lights() {
+        // The images of shared/scenes/lights (skipped when the shared folder is absent).
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/scenes/lights");
+        if !dir.join("gonio.exr").exists() {
+            eprintln!("skipped: no {}", dir.display());
+            return;
+        }
+        let ctm = Transform::translate(Vec3::new(0.0, 1.0, 0.0));
         let (out, unused) = convert_in(
-            r#"LightSource "goniometric" "string filename" "g.exr""#,
-            Path::new("."),
-            ID,
+            r#"LightSource "goniometric" "string filename" "gonio.exr" "rgb I" [2 2 2] "float scale" 1.5"#,
+            &dir,
+            ctm,
         );
         let f = out.unwrap();
-        assert_eq!(f.value, None);
-        assert_eq!(
-            f.warnings,
-            ["light \"goniometric\" is not supported yet; skipped"]
+        assert!(f.warnings.is_empty() && unused.is_empty());
+        let Some(LightDesc::Goniometric {
+            light_to_world,
+            intensity,
+            image,
+        }) = f.value
+        else {
+            panic!("a goniometric light")
+        };
+        assert_eq!((light_to_world, intensity), (ctm, Rgb::splat(3.0)));
+        assert_eq!(image.width, image.height);
+        // `power` Φ: I · 4π · mean(Y) = Φ.
+        let (out, _) = convert_in(
+            r#"LightSource "goniometric" "string filename" "gonio.exr" "float power" 10"#,
+            &dir,
+            ID,
         );
-        assert_eq!(unused.len(), 1);
+        let Some(LightDesc::Goniometric {
+            intensity, image, ..
+        }) = out.unwrap().value
+        else {
+            panic!("a goniometric light")
+        };
+        let light = lancer::light::GoniometricLight::new(ID, intensity, &image).unwrap();
+        assert!((light.power() - 10.0).abs() < 1e-3, "{}", light.power());
+        let (out, unused) = convert_in(
+            r#"LightSource "projection" "string filename" "slide.png" "float fov" 35 "float scale" 6"#,
+            &dir,
+            ctm,
+        );
+        assert!(unused.is_empty());
+        let Some(LightDesc::Projection { scale, fov, .. }) = out.unwrap().value else {
+            panic!("a projection light")
+        };
+        assert_eq!((scale, fov), (6.0, 35.0));
+        assert_eq!(
+            err(convert_in(
+                "LightSource \"projection\" \"string filename\" \"slide.png\"\n  \"float fov\" 180",
+                &dir,
+                ID
+            )
+            .0),
+            "t.pbrt:2:3: \"float fov\" must be in (0, 180), not 180"
+        );
         assert_eq!(
             error(r#"LightSource "laser""#),
             "t.pbrt:1:1: unknown light \"laser\" (expected point, spot, distant, infinite, goniometric or projection)"

@@ -57,8 +57,8 @@ pub fn film(
     film.max_component_value =
         params.float_checked("maxcomponentvalue", f32::INFINITY, "positive", |v| v > 0.0)?;
     film.save_fp16 = params.bool("savefp16", false)?;
-    // Only the realistic camera uses the sensor's diagonal.
-    let _ = params.float("diagonal", 35.0)?;
+    // The sensor's diagonal in mm: the realistic camera's film size.
+    film.diagonal = params.float_checked("diagonal", 35.0, "positive", |v| v > 0.0)?;
     let sensor = params.string("sensor")?.unwrap_or_else(|| "cie1931".into());
     let white_balance = params.float("whitebalance", 0.0)?;
     if sensor != "cie1931" || white_balance != 0.0 {
@@ -382,6 +382,7 @@ mod tests {
             scale: 1.0,
             max_component_value: 10.0,
             save_fp16: true,
+            diagonal: 50.0,
         };
         assert_eq!((f.film, f.iso), (expected, 200.0));
         // A crop window or pixel bounds a later Film does not give are kept.

@@ -78,6 +78,23 @@ impl Light {
                     two_sided: *two_sided,
                 }
             }
+            // Image-shaped emitters at a point: bounded by their total power over the whole
+            // sphere of directions (coarser than pbrt-v4's per-light cones, but never zero
+            // where they shine, so the choice stays unbiased).
+            Light::Goniometric(g) => LightBounds {
+                bounds: Bounds3::from_point(g.position()),
+                phi: g.power(),
+                normals: DirectionCone::ENTIRE_SPHERE,
+                cos_theta_e: (PI / 2.0).cos(),
+                two_sided: false,
+            },
+            Light::Projection(pl) => LightBounds {
+                bounds: Bounds3::from_point(pl.position()),
+                phi: pl.power(),
+                normals: DirectionCone::ENTIRE_SPHERE,
+                cos_theta_e: (PI / 2.0).cos(),
+                two_sided: false,
+            },
             Light::Distant { .. } | Light::UniformInfinite { .. } | Light::ImageInfinite(_) => {
                 return LightExtent::Unbounded;
             }

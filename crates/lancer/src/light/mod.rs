@@ -7,14 +7,18 @@ mod bounds;
 mod bvh;
 mod distribution;
 mod extent;
+mod goniometric;
 mod image_infinite;
+mod projection;
 mod sample;
 mod sampler;
 
 pub use bounds::{DirectionCone, LightBounds, LightExtent};
 pub use bvh::BvhLightSampler;
 pub use distribution::LightDistribution;
+pub use goniometric::GoniometricLight;
 pub use image_infinite::{EnvMapping, ImageInfiniteLight, environment_mapping};
+pub use projection::{ProjectionLight, projected_sum};
 pub use sample::{LightLiSample, LightSampleContext};
 pub use sampler::{LightSampler, LightSamplerKind};
 
@@ -78,6 +82,10 @@ pub enum Light {
     /// Environment radiance from an image, importance-sampled (boxed: it holds the image's
     /// sampling tables, much larger than the other variants).
     ImageInfinite(Box<ImageInfiniteLight>),
+    /// pbrt-v4's `goniometric`: a point light with an equal-area intensity image.
+    Goniometric(Box<GoniometricLight>),
+    /// pbrt-v4's `projection`: a point light projecting an image.
+    Projection(Box<ProjectionLight>),
 }
 
 impl Light {
@@ -93,7 +101,11 @@ impl Light {
     pub fn is_delta(&self) -> bool {
         matches!(
             self,
-            Light::Point { .. } | Light::Spot { .. } | Light::Distant { .. }
+            Light::Point { .. }
+                | Light::Spot { .. }
+                | Light::Distant { .. }
+                | Light::Goniometric(_)
+                | Light::Projection(_)
         )
     }
 
@@ -230,6 +242,8 @@ impl Light {
                 })
             }
             Light::ImageInfinite(light) => light.sample_li(ctx, u),
+            Light::Goniometric(light) => light.sample_li(ctx),
+            Light::Projection(light) => light.sample_li(ctx),
         }
     }
 
@@ -293,6 +307,8 @@ impl Light {
             }
             // Φ = π·r²·∫L dω.
             Light::ImageInfinite(light) => light.power(),
+            Light::Goniometric(light) => light.power(),
+            Light::Projection(light) => light.power(),
         }
     }
 
@@ -304,7 +320,8 @@ impl Light {
             Light::Point { intensity, .. } | Light::Spot { intensity, .. } => Some(*intensity),
             Light::Distant { l, .. } | Light::UniformInfinite { l, .. } => Some(*l),
             Light::Area { l, .. } => Some((*l).into()),
-            Light::ImageInfinite(_) => None,
+            Light::Goniometric(light) => Some(light.intensity()),
+            Light::ImageInfinite(_) | Light::Projection(_) => None,
         }
     }
 

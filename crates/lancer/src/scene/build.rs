@@ -11,7 +11,9 @@ use super::prim::{
 };
 use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
-use crate::light::{ImageInfiniteLight, Light, LightDistribution, LightSampler};
+use crate::light::{
+    GoniometricLight, ImageInfiniteLight, Light, LightDistribution, LightSampler, ProjectionLight,
+};
 use crate::material::Material;
 use crate::math::{Bounds3, PackedRgb, PackedVec3, Transform, Vec3};
 use crate::shape::{
@@ -47,8 +49,7 @@ impl Scene {
         for o in &mut instances.objects {
             o.offset_prims(base);
         }
-        let camera = Camera::from_desc(&desc.camera, desc.film.xresolution, desc.film.yresolution)
-            .ok_or(BuildError::BadCamera)?;
+        let camera = Camera::from_desc(&desc.camera, &desc.film).map_err(BuildError::BadCamera)?;
         let extents: Vec<_> = lights
             .lights
             .iter()
@@ -460,6 +461,23 @@ fn light_of(l: &LightDesc, scene_radius: f32) -> Result<Light, BuildError> {
             l: *l,
             scene_radius,
         },
+        LightDesc::Goniometric {
+            light_to_world,
+            intensity,
+            image,
+        } => Light::Goniometric(Box::new(
+            GoniometricLight::new(*light_to_world, *intensity, image)
+                .map_err(BuildError::Invalid)?,
+        )),
+        LightDesc::Projection {
+            light_to_world,
+            scale,
+            fov,
+            image,
+        } => Light::Projection(Box::new(
+            ProjectionLight::new(*light_to_world, image.clone(), *scale, *fov)
+                .map_err(BuildError::Invalid)?,
+        )),
         LightDesc::Infinite {
             light_to_world,
             l,

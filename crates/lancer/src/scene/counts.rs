@@ -34,6 +34,8 @@ impl LightDesc {
             LightDesc::Spot { .. } => "spot",
             LightDesc::Distant { .. } => "distant",
             LightDesc::Infinite { .. } => "infinite",
+            LightDesc::Goniometric { .. } => "goniometric",
+            LightDesc::Projection { .. } => "projection",
         }
     }
 }

@@ -46,7 +46,7 @@ pub struct SceneDesc {
 }
 
 /// Camera projection.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Projection {
     /// pbrt's `perspective`.
     Perspective {
@@ -55,10 +55,17 @@ pub enum Projection {
     },
     /// pbrt's `orthographic`.
     Orthographic,
+    /// pbrt's `spherical`: the whole sphere of directions from one point.
+    Spherical {
+        /// How the image covers the sphere.
+        mapping: crate::camera::lens::SphericalMapping,
+    },
+    /// pbrt's `realistic`: a lens system traced ray by ray.
+    Realistic(Arc<crate::camera::lens::LensDesc>),
 }
 
 /// The camera.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct CameraDesc {
     /// Projection and its parameters.
     pub projection: Projection,
@@ -110,6 +117,9 @@ pub struct FilmDesc {
     pub max_component_value: f32,
     /// Write EXR as half floats (pbrt's `savefp16`; lancer defaults to full float).
     pub save_fp16: bool,
+    /// The sensor's diagonal in millimetres (pbrt's `diagonal`, 35 by default): the realistic
+    /// camera's film size.
+    pub diagonal: f32,
 }
 
 impl FilmDesc {
@@ -149,6 +159,7 @@ impl Default for FilmDesc {
             scale: 1.0,
             max_component_value: f32::INFINITY,
             save_fp16: false,
+            diagonal: 35.0,
         }
     }
 }
@@ -549,6 +560,26 @@ pub enum LightDesc {
         /// Environment map, equal-area octahedral (square) or lat-long (2:1).
         image: Option<Arc<crate::image::Image>>,
     },
+    /// pbrt-v4's `goniometric` light: intensity `intensity` times an equal-area image.
+    Goniometric {
+        /// Light space → world space (the CTM).
+        light_to_world: Transform,
+        /// Intensity colour (scaled and normalised).
+        intensity: Rgb,
+        /// Square equal-area image; its channel average modulates the intensity.
+        image: Arc<crate::image::Image>,
+    },
+    /// pbrt-v4's `projection` light: a slide projector.
+    Projection {
+        /// Light space → world space (the CTM).
+        light_to_world: Transform,
+        /// Multiplies the image's texels (scaled and normalised).
+        scale: f32,
+        /// Field of view of the image's shorter side, degrees.
+        fov: f32,
+        /// The slide.
+        image: Arc<crate::image::Image>,
+    },
 }
 
 impl ShapeDesc {
@@ -581,6 +612,8 @@ impl LightDesc {
             LightDesc::Infinite {
                 image: Some(image), ..
             } => crate::light::environment_mapping(image).map(|_| ()),
+            // The goniometric and projection lights check their images as they are made.
+            LightDesc::Goniometric { .. } | LightDesc::Projection { .. } => Ok(()),
         }
     }
 }

@@ -51,9 +51,10 @@ pub enum BuildError {
         /// The index given.
         material: u32,
     },
-    /// The camera's parameters give no valid projection.
-    #[error("the camera's parameters give no valid projection")]
-    BadCamera,
+    /// The camera cannot be built from its parameters (a degenerate projection, a lens
+    /// system that cannot focus).
+    #[error("camera: {0}")]
+    BadCamera(String),
     /// A zero or non-finite parameter that makes a shape or light meaningless.
     #[error("{0}")]
     Invalid(String),
