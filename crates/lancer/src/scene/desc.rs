@@ -106,6 +106,14 @@ pub struct FilmDesc {
     pub max_component_value: f32,
     /// Write EXR as half floats (pbrt's `savefp16`; lancer defaults to full float).
     pub save_fp16: bool,
+    /// The sensor (pbrt's `sensor`; CIE 1931 by default).
+    pub sensor: crate::spectrum::Sensor,
+    /// White balance temperature in kelvin (pbrt's `whitebalance`; 0: none).
+    pub white_balance: f32,
+    /// The output colour space (pbrt's film `colorspace`, or a `ColorSpace` before `Film`).
+    pub color_space: crate::spectrum::ColorSpace,
+    /// What the film writes besides colour (pbrt's `gbuffer` film).
+    pub gbuffer: Option<crate::gbuffer::GbufferDesc>,
 }
 
 impl FilmDesc {
@@ -145,6 +153,10 @@ impl Default for FilmDesc {
             scale: 1.0,
             max_component_value: f32::INFINITY,
             save_fp16: false,
+            sensor: crate::spectrum::Sensor::Cie1931,
+            white_balance: 0.0,
+            color_space: crate::spectrum::ColorSpace::Srgb,
+            gbuffer: None,
         }
     }
 }
