@@ -233,8 +233,9 @@ mod tests {
         let d = ColorSpace::Srgb.white_xyz();
         let m = white_balance(a, d);
         let got = m * a;
-        assert!((got - d).abs().max_element() < 1e-9, "{got} vs {d}");
+        // pbrt-v4's LMS → XYZ matrix is the inverse rounded to 6 digits.
+        assert!((got - d).abs().max_element() < 1e-5, "{got} vs {d}");
         let id = white_balance(d, d);
-        assert!(id.abs_diff_eq(DMat3::IDENTITY, 1e-12));
+        assert!(id.abs_diff_eq(DMat3::IDENTITY, 1e-5));
     }
 }
