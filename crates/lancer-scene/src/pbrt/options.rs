@@ -18,6 +18,10 @@ pub struct FilmOptions {
     pub iso: f32,
 }
 
+/// What lancer does not write yet of a `gbuffer` film.
+pub const GBUFFER_CHANNELS: &str = "the gbuffer film's auxiliary channels (albedo, position, \
+     normals, depth slopes, uv, variance) are not supported yet; lancer writes R, G, B only";
+
 /// The film `ty`, over `film` (what earlier directives set).
 pub fn film(
     params: &ParamList,
@@ -43,6 +47,7 @@ pub fn film(
                 }
             };
             film.gbuffer = Some(lancer::gbuffer::GbufferDesc { world_space });
+            warnings.push(GBUFFER_CHANNELS.into());
         }
         _ => warnings.push(format!(
             "film \"{ty}\" is not supported yet; lancer uses an \"rgb\" film"
@@ -340,11 +345,15 @@ mod tests {
 
     #[test]
     fn film_fallbacks_and_errors() {
-        let f = clean(
+        let (f, unused) = convert(
             r#"Film "gbuffer" "string sensor" "canon_eos_100d" "float whitebalance" 5000
                "string coordinatesystem" "world" "string filename" "g.exr""#,
             new_film,
         );
+        assert!(unused.is_empty(), "{unused:?}");
+        let f = f.unwrap();
+        assert_eq!(f.warnings, [GBUFFER_CHANNELS]);
+        let f = f.value;
         assert_eq!(f.film.sensor.name(), "canon_eos_100d");
         assert_eq!(f.film.white_balance, 5000.0);
         assert_eq!(

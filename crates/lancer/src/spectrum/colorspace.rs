@@ -12,7 +12,7 @@
 //! [`ColorSpace::to_srgb`] (the colour of a spectrum is linear in it); see
 //! [`super::gamut`] for how such colours become spectra.
 
-use glam::{DMat3, DVec3};
+use glam::{DMat3, DVec3, Mat3};
 
 use super::cie;
 use super::sensor_data::ACES_D60;
@@ -146,6 +146,31 @@ impl ColorSpace {
         let m = ColorSpace::Srgb.xyz_to_rgb() * adapt * self.rgb_to_xyz();
         (m * DVec3::from(rgb.map(f64::from))).as_vec3().to_array()
     }
+}
+
+/// The matrix from linear RGB with primaries `primaries` and white `white` (chromaticities
+/// xy, as an OpenEXR `chromaticities` attribute gives them) to linear sRGB, for reflectances:
+/// RGB → XYZ by P · diag(P⁻¹ W), then adapted from `white` to D65 (Bradford) and to sRGB.
+/// `None` for sRGB's own primaries and white (within 10⁻³), so that those images stay as they
+/// are bit for bit, and for degenerate primaries.
+pub fn chromaticities_to_srgb(primaries: [[f64; 2]; 3], white: [f64; 2]) -> Option<Mat3> {
+    let srgb = ColorSpace::Srgb.primaries();
+    let d65 = [0.3127, 0.329];
+    let close = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).abs() < 1e-3 && (a[1] - b[1]).abs() < 1e-3;
+    if (0..3).all(|i| close(primaries[i], srgb[i])) && close(white, d65) {
+        return None;
+    }
+    let xyz = |[x, y]: [f64; 2]| DVec3::new(x / y, 1.0, (1.0 - x - y) / y);
+    let p = primaries.map(xyz);
+    let p = DMat3::from_cols(p[0], p[1], p[2]);
+    let w = xyz(white);
+    if !(p.determinant().abs() > 1e-12) || !w.is_finite() {
+        return None;
+    }
+    let rgb_to_xyz = p * DMat3::from_diagonal(p.inverse() * w);
+    let adapt = white_balance(w, ColorSpace::Srgb.white_xyz());
+    let m = ColorSpace::Srgb.xyz_to_rgb() * adapt * rgb_to_xyz;
+    m.is_finite().then(|| m.as_mat3())
 }
 
 /// XYZ → LMS, the Bradford cone response (the matrix pbrt-v4 uses for white balance).
