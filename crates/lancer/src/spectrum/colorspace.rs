@@ -164,7 +164,8 @@ pub fn chromaticities_to_srgb(primaries: [[f64; 2]; 3], white: [f64; 2]) -> Opti
     let p = primaries.map(xyz);
     let p = DMat3::from_cols(p[0], p[1], p[2]);
     let w = xyz(white);
-    if !(p.determinant().abs() > 1e-12) || !w.is_finite() {
+    let det = p.determinant().abs();
+    if det.is_nan() || det <= 1e-12 || !w.is_finite() {
         return None;
     }
     let rgb_to_xyz = p * DMat3::from_diagonal(p.inverse() * w);
