@@ -391,7 +391,7 @@ fn read_exr(path: &Path, bytes: &[u8]) -> Result<Decoded, ImageReadError> {
             _ => {
                 let c = PackedRgb::new(planes[0][k], planes[1][k], planes[2][k]);
                 match &to_srgb {
-                    Some(m) => PackedRgb::from(*m * glam::Vec3::from(c)),
+                    Some(m) => *m * c,
                     None => c,
                 }
             }
