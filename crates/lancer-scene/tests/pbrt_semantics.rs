@@ -641,7 +641,7 @@ fn color_space_applies_to_rgb_values_inside_its_block() {
         .collect();
     // ACES white is its D60 illuminant at luminance 1: warmer than sRGB's white.
     assert!(i[0].x > 1.0 && i[0].z < 1.0, "{}", i[0]);
-    assert!((luminance(i[0].into()) - 1.0).abs() < 1e-3, "{}", i[0]);
+    assert!((luminance(i[0]) - 1.0).abs() < 1e-3, "{}", i[0]);
     // AttributeEnd restores sRGB.
     assert_close(i[1], Vec3::ONE);
     // Rec. 2020 green in linear sRGB (ITU-R BT.2087): (−0.5876, 1.1329, −0.1006).
