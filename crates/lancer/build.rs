@@ -3,17 +3,18 @@
 //!
 //! The fit is `src/spectrum/fit.rs` itself, included here with the CIE tables it reads: plain
 //! IEEE arithmetic in a fixed order, so any build of it gives the table the library would fit,
-//! bit for bit (the library's tests check it). The table goes to `$OUT_DIR/uplift_table.bin`
-//! as little-endian `f32`, 2.3 MB; it is fitted at each clean build rather than committed, as
-//! it does not compress (deflate keeps 94 % of it, xz 58 % after byte-plane shuffling and
-//! deltas).
+//! bit for bit (the library's tests check it). The tables go to `$OUT_DIR/uplift_table.bin`
+//! (sRGB) and `$OUT_DIR/uplift_table_rec2020.bin` (Rec. 2020, for colours outside the sRGB
+//! gamut) as little-endian `f32`, 2.3 MB each; they are fitted at each clean build rather than
+//! committed, as they do not compress (deflate keeps 94 % of one, xz 58 % after byte-plane
+//! shuffling and deltas).
 //!
 //! Build scripts are compiled without optimisation (unless the workspace's profile says
 //! otherwise, which a crate's own manifest cannot), and unoptimised the fit takes 18 s of
 //! processor time (40–60 s on a busy two-core machine). So this script compiles itself once
 //! more, optimised for the build machine (`rustc -C opt-level=2 -C target-cpu=native`, about
-//! 1 s), into `$OUT_DIR` and runs that copy with `--fit PATH THREADS` to write the table (0.5 s
-//! of processor time). Should that fail, it fits the table itself, slowly (the same table, bit
+//! 1 s), into `$OUT_DIR` and runs that copy with `--fit DIR THREADS` to write the tables (0.5 s
+//! of processor time each). Should that fail, it fits the table itself, slowly (the same table, bit
 //! for bit), and says so in a cargo warning.
 
 #[allow(dead_code)]
@@ -26,10 +27,23 @@ mod fit;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// Fits the table on `threads` threads and writes it to `path`: each coefficient an `f32`,
+/// The tables fitted: file name in `$OUT_DIR` and the rows of their XYZ → RGB matrix.
+const TABLES: [(&str, &[[f64; 3]; 3]); 2] = [
+    ("uplift_table.bin", &cie::XYZ_TO_SRGB),
+    ("uplift_table_rec2020.bin", &cie::XYZ_TO_REC2020),
+];
+
+/// Fits every table of [`TABLES`] on `threads` threads and writes them into `dir`.
+fn fit_to(dir: &Path, threads: usize) {
+    for (name, matrix) in TABLES {
+        fit_one(&dir.join(name), threads, matrix);
+    }
+}
+
+/// Fits one table on `threads` threads and writes it to `path`: each coefficient an `f32`,
 /// little-endian, in the table's index order (`fit::table_index`).
-fn fit_to(path: &Path, threads: usize) {
-    let coeffs = fit::fit_table(threads);
+fn fit_one(path: &Path, threads: usize, matrix: &[[f64; 3]; 3]) {
+    let coeffs = fit::fit_table(threads, matrix);
     let bytes: Vec<u8> = coeffs
         .iter()
         .flatten()
@@ -39,8 +53,8 @@ fn fit_to(path: &Path, threads: usize) {
         .unwrap_or_else(|e| panic!("cannot write the coefficient table {}: {e}", path.display()));
 }
 
-/// Compiles this file with optimisation into `out_dir` and runs it to fit the table into
-/// `path`; an error says which step failed.
+/// Compiles this file with optimisation into `out_dir` and runs it to fit the tables into
+/// `path` (a directory); an error says which step failed.
 fn fit_optimised(out_dir: &Path, path: &Path, threads: usize) -> Result<(), String> {
     let rustc = std::env::var_os("RUSTC").unwrap_or_else(|| "rustc".into());
     let dir = std::env::var_os("CARGO_MANIFEST_DIR").ok_or("CARGO_MANIFEST_DIR is not set")?;
@@ -108,9 +122,8 @@ fn main() {
         .or_else(|| std::thread::available_parallelism().ok().map(|n| n.get()))
         .unwrap_or(1);
     let out_dir = PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
-    let path = out_dir.join("uplift_table.bin");
-    if let Err(e) = fit_optimised(&out_dir, &path, threads) {
-        println!("cargo::warning=fitting the RGB → spectrum table unoptimised ({e})");
-        fit_to(&path, threads);
+    if let Err(e) = fit_optimised(&out_dir, &out_dir, threads) {
+        println!("cargo::warning=fitting the RGB → spectrum tables unoptimised ({e})");
+        fit_to(&out_dir, threads);
     }
 }

@@ -6,7 +6,9 @@
 //!   alpha included: pbrt-v4 stores the PNG's channels with one encoding and decodes them all.
 //! - JPEG is always sRGB (pbrt-v4 reads it through stb_image, which ignores `encoding`).
 //! - OpenEXR holds linear values already; `encoding` does not apply. Channels `R`, `G`, `B`
-//!   (and `A`) are used, or a lone `Y` (or any single channel) as grey.
+//!   (and `A`) are used, or a lone `Y` (or any single channel) as grey. RGB in other primaries
+//!   than sRGB's (a `chromaticities` attribute) is converted to linear sRGB, as a reflectance
+//!   ([`lancer::spectrum::colorspace::chromaticities_to_srgb`]).
 //! - A one-channel (grey) image gives the same value in R, G and B.
 //!
 //! The size a header claims is checked against [`MAX_SIDE`] and [`MAX_TEXELS`] before any
@@ -378,10 +380,29 @@ fn read_exr(path: &Path, bytes: &[u8]) -> Result<Decoded, ImageReadError> {
         .iter()
         .map(|&i| channel(i))
         .collect::<std::result::Result<_, _>>()?;
+    // pbrt-v4 takes an image's colour space from its `chromaticities` attribute (sRGB without
+    // one); lancer converts such texels to linear sRGB once, here.
+    let to_srgb = image
+        .attributes
+        .chromaticities
+        .and_then(|c| {
+            let xy = |v: exr::math::Vec2<f32>| [v.0 as f64, v.1 as f64];
+            lancer::spectrum::colorspace::chromaticities_to_srgb(
+                [xy(c.red), xy(c.green), xy(c.blue)],
+                xy(c.white),
+            )
+        })
+        .filter(|_| planes.len() == 3);
     let rgb = (0..n)
         .map(|k| match planes.len() {
             1 => PackedRgb::splat(planes[0][k]),
-            _ => PackedRgb::new(planes[0][k], planes[1][k], planes[2][k]),
+            _ => {
+                let c = PackedRgb::new(planes[0][k], planes[1][k], planes[2][k]);
+                match &to_srgb {
+                    Some(m) => *m * c,
+                    None => c,
+                }
+            }
         })
         .collect();
     let alpha = alpha.map(channel).transpose()?;

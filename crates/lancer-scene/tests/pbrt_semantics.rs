@@ -609,3 +609,50 @@ fn loopsubdiv_refines_its_control_mesh() {
     };
     assert_eq!(m.triangle_count(), 64);
 }
+
+#[test]
+fn color_space_applies_to_rgb_values_inside_its_block() {
+    let d = scene(
+        r#"ColorSpace "rec2020"
+        Film "rgb" "string sensor" "canon_eos_5d_mkiv" "float whitebalance" [5000]
+        ColorSpace "srgb"
+        WorldBegin
+        AttributeBegin
+          ColorSpace "aces2065-1"
+          LightSource "point" "rgb I" [1 1 1]
+        AttributeEnd
+        LightSource "point" "rgb I" [1 1 1]
+        AttributeBegin
+          ColorSpace "rec2020"
+          LightSource "point" "rgb I" [0 1 0]
+        AttributeEnd"#,
+    );
+    // The film writes in the space current at `Film`, with its sensor and white balance.
+    assert_eq!(d.film.color_space, lancer::spectrum::ColorSpace::Rec2020);
+    assert_eq!(d.film.sensor.name(), "canon_eos_5d_mkiv");
+    assert_eq!(d.film.white_balance, 5000.0);
+    let i: Vec<Vec3> = d
+        .lights
+        .iter()
+        .map(|l| match l {
+            LightDesc::Point { intensity, .. } => Vec3::from(*intensity),
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    // ACES white is its D60 illuminant at luminance 1: warmer than sRGB's white.
+    assert!(i[0].x > 1.0 && i[0].z < 1.0, "{}", i[0]);
+    assert!((luminance(i[0]) - 1.0).abs() < 1e-3, "{}", i[0]);
+    // AttributeEnd restores sRGB.
+    assert_close(i[1], Vec3::ONE);
+    // Rec. 2020 green in linear sRGB (ITU-R BT.2087): (−0.5876, 1.1329, −0.1006).
+    let want = Vec3::new(-0.5876, 1.1329, -0.1006);
+    assert!((i[2] - want).abs().max_element() < 2e-3, "{}", i[2]);
+    let e = load_pbrt_str(r#"ColorSpace "p3""#, "t.pbrt", Path::new("."))
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        e.starts_with("t.pbrt:1:1: unknown colour space \"p3\""),
+        "{e}"
+    );
+}

@@ -14,6 +14,7 @@ pub mod camera;
 pub mod counters;
 pub mod film;
 pub mod filter;
+pub mod gbuffer;
 pub mod image;
 pub mod image_io;
 pub mod integrator;

@@ -205,7 +205,21 @@ fn camera_sample(
         }
         None => crate::math::SampledSpectrum::ZERO,
     };
-    (film_rgb(lambda.as_ref(), l), weight)
+    (scene_film_rgb(scene, lambda.as_ref(), l), weight)
+}
+
+/// The film colour of a camera sample's radiance: the scene's film response (sensor, white
+/// balance, output space) when it has one, else the CIE 1931 observer's linear sRGB.
+#[inline]
+fn scene_film_rgb(
+    scene: &Scene,
+    lambda: Option<&crate::spectrum::sampled::SampledWavelengths>,
+    l: crate::math::SampledSpectrum,
+) -> crate::math::Rgb {
+    match &scene.film_response {
+        None => film_rgb(lambda, l),
+        Some(r) => r.film_rgb(lambda, l),
+    }
 }
 
 /// In spectral mode (radiance integrators only), the sample's wavelengths, drawn from the
@@ -259,7 +273,7 @@ pub fn trace_sample(
     };
     // The film's colour, as the render computed it (in spectral mode the path's vertices hold
     // values at the wavelengths).
-    (film_rgb(lambda.as_ref(), l), path)
+    (scene_film_rgb(scene, lambda.as_ref(), l), path)
 }
 
 /// The film's sums over `tile` (a part of its bounds), row-major.

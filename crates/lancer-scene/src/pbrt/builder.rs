@@ -19,6 +19,7 @@ use crate::image_read::ImageCache;
 use lancer::material::Material;
 use lancer::math::{Mat4, Transform, Vec3};
 use lancer::scene::desc::{AreaLightDesc, InstanceDesc, SceneDesc, ShapeDesc};
+use lancer::spectrum::ColorSpace;
 use std::collections::{HashMap, HashSet};
 
 /// The material a shape gets: one already in the list, or a name resolved at the end (pbrt-v4
@@ -45,6 +46,8 @@ struct GraphicsState {
     /// pbrt-v4's `Attribute "shape" …` defaults, by target.
     defaults: HashMap<String, Vec<Param>>,
     media: CurrentMedia,
+    /// The colour space of `rgb` values (`ColorSpace`; it persists through `WorldBegin`).
+    color_space: ColorSpace,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -115,6 +118,7 @@ impl Builder {
                 area_light: None,
                 defaults: HashMap::new(),
                 media: CurrentMedia::default(),
+                color_space: ColorSpace::Srgb,
             },
             stack: Vec::new(),
             named_coords: HashMap::new(),
@@ -238,6 +242,7 @@ impl Builder {
             self.require_world(directive, loc)?;
             self.defaults(category, params)
         };
+        let params = params.in_color_space(self.gs.color_space);
         body(self, &params)?;
         self.unused(&params, format!("{directive} \"{label}\""));
         Ok(())
@@ -316,11 +321,15 @@ impl Builder {
                 Ok(())
             }
             D::ColorSpace(name) => {
-                if name != "srgb" {
-                    let m =
-                        format!("colour space \"{name}\" is not supported yet; lancer uses srgb");
-                    self.warn(loc, m);
-                }
+                self.gs.color_space = ColorSpace::from_name(&name).ok_or_else(|| {
+                    SceneError::at(
+                        loc.clone(),
+                        format!(
+                            "unknown colour space \"{name}\" (pbrt-v4 knows srgb, rec2020, \
+                             aces2065-1 and dci-p3)"
+                        ),
+                    )
+                })?;
                 Ok(())
             }
             D::Camera(ty, params) => self.with_params("Camera", &ty, params, loc, |b, p| {
@@ -338,6 +347,8 @@ impl Builder {
             D::Film(ty, params) => self.with_params("Film", &ty, params, loc, |b, p| {
                 let f = b.accept(film(p, &ty, b.desc.film.clone())?, loc);
                 (b.desc.film, b.iso) = (f.film, f.iso);
+                // The film writes in the colour space current at `Film`.
+                b.desc.film.color_space = b.gs.color_space;
                 Ok(())
             }),
             D::Sampler(ty, params) => self.with_params("Sampler", &ty, params, loc, |b, p| {

@@ -7,6 +7,7 @@ use crate::error::SceneError;
 use lancer::light::LightSamplerKind;
 use lancer::sampling::{Randomization, SamplerKind};
 use lancer::scene::desc::{FilmDesc, FilterDesc, Integrator};
+use lancer::spectrum::Sensor;
 
 /// What `Film` sets: the film, and the sensor's ISO (the imaging ratio is exposure time ×
 /// ISO / 100, known once the camera's shutter is).
@@ -18,6 +19,10 @@ pub struct FilmOptions {
     pub iso: f32,
 }
 
+/// What lancer does not write yet of a `gbuffer` film.
+pub const GBUFFER_CHANNELS: &str = "the gbuffer film's auxiliary channels (albedo, position, \
+     normals, depth slopes, uv, variance) are not supported yet; lancer writes R, G, B only";
+
 /// The film `ty`, over `film` (what earlier directives set).
 pub fn film(
     params: &ParamList,
@@ -25,10 +30,29 @@ pub fn film(
     mut film: FilmDesc,
 ) -> Result<Fallback<FilmOptions>, SceneError> {
     let mut warnings = Vec::new();
-    if ty != "rgb" {
-        warnings.push(format!(
+    film.gbuffer = None;
+    match ty {
+        "rgb" => {}
+        "gbuffer" => {
+            let world_space = match params.string("coordinatesystem")?.as_deref() {
+                None | Some("camera") => false,
+                Some("world") => true,
+                Some(other) => {
+                    return Err(params.error_at(
+                        "coordinatesystem",
+                        format!(
+                            "unknown coordinate system \"{other}\" for the gbuffer film (pbrt-v4 \
+                             knows \"camera\" and \"world\")"
+                        ),
+                    ));
+                }
+            };
+            film.gbuffer = Some(lancer::gbuffer::GbufferDesc { world_space });
+            warnings.push(GBUFFER_CHANNELS.into());
+        }
+        _ => warnings.push(format!(
             "film \"{ty}\" is not supported yet; lancer uses an \"rgb\" film"
-        ));
+        )),
     }
     film.xresolution = params.int_in("xresolution", 1280, 1..=MAX_RESOLUTION)? as u32;
     film.yresolution = params.int_in("yresolution", 720, 1..=MAX_RESOLUTION)? as u32;
@@ -56,16 +80,24 @@ pub fn film(
     let iso = params.float_checked("iso", 100.0, "positive", |v| v > 0.0)?;
     film.max_component_value =
         params.float_checked("maxcomponentvalue", f32::INFINITY, "positive", |v| v > 0.0)?;
-    film.save_fp16 = params.bool("savefp16", false)?;
+    // pbrt-v4's gbuffer film writes half floats unless told otherwise.
+    film.save_fp16 = params.bool("savefp16", film.gbuffer.is_some())?;
     // The sensor's diagonal in mm: the realistic camera's film size.
     film.diagonal = params.float_checked("diagonal", 35.0, "positive", |v| v > 0.0)?;
-    let sensor = params.string("sensor")?.unwrap_or_else(|| "cie1931".into());
-    let white_balance = params.float("whitebalance", 0.0)?;
-    if sensor != "cie1931" || white_balance != 0.0 {
-        warnings.push(
-            "camera sensors and white balance are not supported yet; lancer uses the CIE 1931 observer without white balance".into(),
-        );
+    if let Some(name) = params.string("sensor")? {
+        film.sensor = Sensor::from_name(&name).ok_or_else(|| {
+            let known: Vec<&str> = Sensor::names().collect();
+            params.error_at(
+                "sensor",
+                format!(
+                    "unknown sensor \"{name}\" (pbrt-v4 knows {})",
+                    known.join(", ")
+                ),
+            )
+        })?;
     }
+    film.white_balance =
+        params.float_checked("whitebalance", 0.0, "0 (none) or positive", |v| v >= 0.0)?;
     Ok(Fallback {
         value: FilmOptions { film, iso },
         warnings,
@@ -383,6 +415,7 @@ mod tests {
             max_component_value: 10.0,
             save_fp16: true,
             diagonal: 50.0,
+            ..FilmDesc::default()
         };
         assert_eq!((f.film, f.iso), (expected, 200.0));
         // A crop window or pixel bounds a later Film does not give are kept.
@@ -399,15 +432,41 @@ mod tests {
 
     #[test]
     fn film_fallbacks_and_errors() {
+        let (f, unused) = convert(
+            r#"Film "gbuffer" "string sensor" "canon_eos_100d" "float whitebalance" 5000
+               "string coordinatesystem" "world" "string filename" "g.exr""#,
+            new_film,
+        );
+        assert!(unused.is_empty(), "{unused:?}");
+        let f = f.unwrap();
+        assert_eq!(f.warnings, [GBUFFER_CHANNELS]);
+        let f = f.value;
+        assert_eq!(f.film.sensor.name(), "canon_eos_100d");
+        assert_eq!(f.film.white_balance, 5000.0);
         assert_eq!(
-            warnings(
-                r#"Film "gbuffer" "string sensor" "canon_eos_100d" "float whitebalance" 5000"#,
+            f.film.gbuffer,
+            Some(lancer::gbuffer::GbufferDesc { world_space: true })
+        );
+        // pbrt-v4's gbuffer film writes half floats by default.
+        assert!(f.film.save_fp16);
+        assert_eq!(
+            warnings(r#"Film "spectral""#, new_film),
+            ["film \"spectral\" is not supported yet; lancer uses an \"rgb\" film"]
+        );
+        assert_eq!(
+            error("Film \"rgb\"\n  \"string sensor\" \"leica\"", new_film)
+                .split(" (")
+                .next()
+                .unwrap(),
+            "t.pbrt:2:3: unknown sensor \"leica\""
+        );
+        assert_eq!(
+            error(
+                "Film \"gbuffer\"\n  \"string coordinatesystem\" \"screen\"",
                 new_film
             ),
-            [
-                "film \"gbuffer\" is not supported yet; lancer uses an \"rgb\" film",
-                "camera sensors and white balance are not supported yet; lancer uses the CIE 1931 observer without white balance"
-            ]
+            "t.pbrt:2:3: unknown coordinate system \"screen\" for the gbuffer film (pbrt-v4 \
+             knows \"camera\" and \"world\")"
         );
         assert_eq!(
             error("Film \"rgb\"\n  \"integer xresolution\" 0", new_film),

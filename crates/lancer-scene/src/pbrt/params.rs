@@ -8,7 +8,7 @@
 use super::search_path::SearchPath;
 use crate::error::{Location, SceneError, Warning};
 use lancer::math::{PackedVec3, Rgb, Vec2, Vec3};
-use lancer::spectrum::{Ior, Spectrum, SpectrumKind, parse_spd, spectrum_to_rgb};
+use lancer::spectrum::{ColorSpace, Ior, Spectrum, SpectrumKind, parse_spd, spectrum_to_rgb};
 use std::cell::Cell;
 
 /// The declared type of a parameter.
@@ -307,6 +307,8 @@ pub struct ParamList {
     params: Vec<Param>,
     /// Earlier copies of a name given again, with where the copy that counts is declared.
     shadowed: Vec<(Param, Location)>,
+    /// The colour space `rgb` values are in (pbrt-v4's `ColorSpace` at the directive).
+    color_space: ColorSpace,
 }
 
 impl ParamList {
@@ -326,7 +328,14 @@ impl ParamList {
         Ok(ParamList {
             params: kept,
             shadowed,
+            color_space: ColorSpace::Srgb,
         })
+    }
+
+    /// The same list with its `rgb` values read in `space` (pbrt-v4's `ColorSpace`).
+    pub fn in_color_space(mut self, space: ColorSpace) -> ParamList {
+        self.color_space = space;
+        self
     }
 
     /// Adds `defaults` (pbrt's `Attribute` values) for the names this list does not give.
@@ -594,7 +603,10 @@ impl ParamList {
     }
 
     /// A colour given as `rgb`, `spectrum` (pairs, a named spectrum or an `.spd` file relative
-    /// to `dir`) or `blackbody`, reduced to linear RGB as `kind` asks.
+    /// to `dir`) or `blackbody`, reduced to linear RGB as `kind` asks. `rgb` values are in the
+    /// list's colour space ([`ParamList::in_color_space`]) and come back in linear sRGB
+    /// (possibly outside [0, 1]): an illuminant by the spaces' matrices, a reflectance or an
+    /// unbounded value as the colour it has under D65 ([`ColorSpace::reflectance_to_srgb`]).
     pub fn color(
         &self,
         name: &str,
@@ -627,7 +639,11 @@ impl ParamList {
                         c.z
                     )));
                 }
-                c
+                let a = c.to_array();
+                Rgb::from_array(match kind {
+                    SpectrumKind::Illuminant => self.color_space.rgb_to_srgb(a),
+                    _ => self.color_space.reflectance_to_srgb(a),
+                })
             }
             (ParamType::Blackbody, Values::Numbers(v)) => {
                 if v[0] <= 0.0 {

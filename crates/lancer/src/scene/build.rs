@@ -81,6 +81,11 @@ impl Scene {
             unbounded,
             bounds,
             spectra: std::sync::OnceLock::new(),
+            film_response: crate::spectrum::FilmResponse::new(
+                desc.film.sensor,
+                desc.film.white_balance,
+                desc.film.color_space,
+            ),
         })
     }
 }

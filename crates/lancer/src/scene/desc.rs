@@ -120,6 +120,14 @@ pub struct FilmDesc {
     /// The sensor's diagonal in millimetres (pbrt's `diagonal`, 35 by default): the realistic
     /// camera's film size.
     pub diagonal: f32,
+    /// The sensor (pbrt's `sensor`; CIE 1931 by default).
+    pub sensor: crate::spectrum::Sensor,
+    /// White balance temperature in kelvin (pbrt's `whitebalance`; 0: none).
+    pub white_balance: f32,
+    /// The output colour space (pbrt's film `colorspace`, or a `ColorSpace` before `Film`).
+    pub color_space: crate::spectrum::ColorSpace,
+    /// What the film writes besides colour (pbrt's `gbuffer` film).
+    pub gbuffer: Option<crate::gbuffer::GbufferDesc>,
 }
 
 impl FilmDesc {
@@ -160,6 +168,10 @@ impl Default for FilmDesc {
             max_component_value: f32::INFINITY,
             save_fp16: false,
             diagonal: 35.0,
+            sensor: crate::spectrum::Sensor::Cie1931,
+            white_balance: 0.0,
+            color_space: crate::spectrum::ColorSpace::Srgb,
+            gbuffer: None,
         }
     }
 }

@@ -75,6 +75,9 @@ pub struct Scene {
     bounds: Bounds3,
     /// Spectral mode's constant colours as spectra, made on first use.
     spectra: std::sync::OnceLock<spectra::SceneSpectra>,
+    /// The film's sensor, white balance and output space, unless it is the plain CIE 1931
+    /// observer into sRGB.
+    pub film_response: Option<crate::spectrum::FilmResponse>,
 }
 
 impl Scene {

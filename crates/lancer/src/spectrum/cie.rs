@@ -183,6 +183,15 @@ pub const XYZ_TO_SRGB: [[f64; 3]; 3] = [
     [0.055_643_4, -0.204_025_9, 1.057_225_2],
 ];
 
+/// Rows of the standard XYZ → linear Rec. 2020 matrix (ITU-R BT.2020 primaries, D65 white):
+/// the space of lancer's second RGB → spectrum table, which uplifts colours outside the sRGB
+/// gamut.
+pub const XYZ_TO_REC2020: [[f64; 3]; 3] = [
+    [1.716_651_2, -0.355_670_8, -0.253_366_3],
+    [-0.666_684_4, 1.616_481_2, 0.015_768_5],
+    [0.017_639_9, -0.042_770_6, 0.942_103_1],
+];
+
 /// CIE XYZ → linear sRGB: each component the dot product of a row of [`XYZ_TO_SRGB`] with
 /// `xyz`, summed left to right, (m₀·x + m₁·y) + m₂·z.
 pub fn xyz_to_srgb(xyz: [f64; 3]) -> [f64; 3] {

@@ -69,7 +69,10 @@ struct FitWeights {
 }
 
 impl FitWeights {
-    fn new() -> FitWeights {
+    /// The weights of the fit into the RGB space whose XYZ → RGB matrix has rows
+    /// `xyz_to_rgb` (each component m₀·x + m₁·y + m₂·z, summed left to right, as
+    /// [`cie::xyz_to_srgb`]).
+    fn new(xyz_to_rgb: &[[f64; 3]; 3]) -> FitWeights {
         let lambdas = || cie::INTEGRATION_RANGE.map(f64::from);
         let d65_cmf: Vec<V3> = lambdas()
             .map(|l| cie::cmf(l).map(|v| v * cie::d65(l)))
@@ -82,7 +85,8 @@ impl FitWeights {
         for (n, (l, wc)) in lambdas().zip(&d65_cmf).enumerate() {
             let (g, lane) = (n / LANES, n % LANES);
             fw.t[g][lane] = (l - cie::LAMBDA_MIN) / (cie::LAMBDA_MAX - cie::LAMBDA_MIN);
-            let rgb = cie::xyz_to_srgb(wc.map(|v| v / d65_y));
+            let xyz = wc.map(|v| v / d65_y);
+            let rgb = xyz_to_rgb.map(|m| m[0] * xyz[0] + m[1] * xyz[1] + m[2] * xyz[2]);
             for (w, v) in fw.w.iter_mut().zip(rgb) {
                 w[g][lane] = v;
             }
@@ -270,10 +274,16 @@ impl Default for Fitter {
 }
 
 impl Fitter {
-    /// A fitter with its weights (a few microseconds).
+    /// A fitter into linear sRGB with its weights (a few microseconds).
     pub fn new() -> Fitter {
+        Fitter::for_space(&cie::XYZ_TO_SRGB)
+    }
+
+    /// A fitter into the RGB space whose XYZ → RGB matrix has rows `xyz_to_rgb` (the colour
+    /// still seen under D65).
+    pub fn for_space(xyz_to_rgb: &[[f64; 3]; 3]) -> Fitter {
         Fitter {
-            weights: Box::new(FitWeights::new()),
+            weights: Box::new(FitWeights::new(xyz_to_rgb)),
         }
     }
 
@@ -434,8 +444,9 @@ impl Fitter {
 }
 
 /// Fits the whole table on `threads` threads (rows dealt out in turn; the result does not
-/// depend on the count): [`TABLE_LEN`] coefficient triples at [`table_index`].
-pub fn fit_table(threads: usize) -> Vec<[f32; 3]> {
+/// depend on the count): [`TABLE_LEN`] coefficient triples at [`table_index`], for the RGB
+/// space whose XYZ → RGB matrix has rows `xyz_to_rgb` (D65 white).
+pub fn fit_table(threads: usize, xyz_to_rgb: &[[f64; 3]; 3]) -> Vec<[f32; 3]> {
     let n = TABLE_RES;
     let rows = 3 * n;
     let threads = threads.clamp(1, rows);
@@ -443,7 +454,7 @@ pub fn fit_table(threads: usize) -> Vec<[f32; 3]> {
         let workers: Vec<_> = (0..threads)
             .map(|t| {
                 scope.spawn(move || {
-                    let fitter = Fitter::new();
+                    let fitter = Fitter::for_space(xyz_to_rgb);
                     (t..rows)
                         .step_by(threads)
                         .map(|row| (row, fitter.table_row(row)))

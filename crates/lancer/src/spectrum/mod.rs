@@ -18,18 +18,23 @@
 //! wavelengths and turns the path's radiance into film RGB.
 
 pub mod cie;
+pub mod colorspace;
 mod fit;
 pub mod hero;
 mod named;
 mod reduce;
 pub mod sampled;
 pub mod scattering_presets;
+pub mod sensor;
+mod sensor_data;
 mod table;
 pub mod uplift;
 
+pub use colorspace::ColorSpace;
 pub use named::{IOR_WAVELENGTH, Ior, named_ior, named_spectrum, named_spectrum_names};
 pub use reduce::{
     PrecomputedRgb, Spectrum, SpectrumKind, blackbody, cie_d65, cie_xyz, parse_spd,
     spectrum_to_rgb, spectrum_to_xyz_unnormalised, xyz_to_srgb,
 };
 pub use scattering_presets::{scattering_preset, scattering_preset_names};
+pub use sensor::{FilmResponse, Sensor};

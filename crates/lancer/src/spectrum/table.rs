@@ -17,6 +17,11 @@ use crate::math::Rgb;
 /// of [`fit::table_index`].
 static SHIPPED: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/uplift_table.bin"));
 
+/// The Rec. 2020 table fitted by the build script (for colours outside the sRGB gamut), in the
+/// same layout.
+static SHIPPED_REC2020: &[u8] =
+    include_bytes!(concat!(env!("OUT_DIR"), "/uplift_table_rec2020.bin"));
+
 /// φ(z) = S⁻¹(z) = (z − ½)/√(z(1 − z)) in single precision, for the table's z_k and its
 /// lookups alike (so that a lookup at z_k has a fraction of exactly 0 or 1).
 #[inline]
@@ -83,13 +88,20 @@ impl CoefficientTable {
     /// Fits every grid point now, on `threads` threads (about 0.6 s of processor time); the
     /// result is the table the build script shipped, bit for bit.
     pub fn fit(threads: usize) -> CoefficientTable {
-        CoefficientTable::from_coefficients(fit::fit_table(threads))
+        CoefficientTable::from_coefficients(fit::fit_table(threads, &super::cie::XYZ_TO_SRGB))
     }
 
     /// The table fitted at compile time, decoded on first use.
     pub fn get() -> &'static CoefficientTable {
         static TABLE: OnceLock<CoefficientTable> = OnceLock::new();
         TABLE.get_or_init(|| CoefficientTable::from_bytes(SHIPPED))
+    }
+
+    /// The Rec. 2020 table fitted at compile time (colours in linear Rec. 2020, seen under
+    /// D65, [`super::cie::XYZ_TO_REC2020`]), decoded on first use.
+    pub fn get_rec2020() -> &'static CoefficientTable {
+        static TABLE: OnceLock<CoefficientTable> = OnceLock::new();
+        TABLE.get_or_init(|| CoefficientTable::from_bytes(SHIPPED_REC2020))
     }
 
     /// The interpolated coefficients of a colour in [0, 1]³ that is not grey (so its largest

@@ -108,10 +108,14 @@ fn clamp_albedo(rgb: Rgb) -> Rgb {
     )
 }
 
-/// The sigmoid spectrum of a reflectance for rendering: clamped to [0, 1] first (NaN as 0);
-/// greys, black and white are constant spectra, every other colour is looked up in the
-/// [`CoefficientTable`] fitted at compile time (decoded on the first such colour).
+/// The sigmoid spectrum of a reflectance for rendering: NaN taken as 0; greys, black and white
+/// are constant spectra, every other colour of [0, 1]³ is looked up in the sRGB
+/// [`CoefficientTable`] fitted at compile time (decoded on the first such colour), and colours
+/// outside the cube in the Rec. 2020 one (`wide_albedo_spectrum`).
 pub fn albedo_spectrum(rgb: Rgb) -> SigmoidSpectrum {
+    if rgb.min_element() < 0.0 || rgb.max_element() > 1.0 {
+        return wide_albedo_spectrum(rgb);
+    }
     let rgb = clamp_albedo(rgb);
     if rgb.x == rgb.y && rgb.y == rgb.z {
         return SigmoidSpectrum::Constant(rgb.x);
@@ -119,11 +123,39 @@ pub fn albedo_spectrum(rgb: Rgb) -> SigmoidSpectrum {
     SigmoidSpectrum::Poly(CoefficientTable::get().lookup(rgb))
 }
 
-/// An unbounded colour (components ≥ 0, negatives clamped) as pbrt-v4's
-/// `RGBUnboundedSpectrum`: a scale 2m, m the largest component, and the albedo spectrum of
-/// rgb/(2m). Evaluate as `scale · spectrum.eval(λ)`; black is scale 0.
+/// A reflectance outside the sRGB cube (a component below 0 or above 1: a colour read in a
+/// wider space and converted to linear sRGB, [`super::ColorSpace`]; pbrt-v4 refuses sRGB
+/// reflectances above 1), uplifted through the Rec. 2020 table: its Rec. 2020 coordinates
+/// c = M_XYZ→2020 · M_sRGB→XYZ · rgb, clamped to [0, 1] (as pbrt-v4 clamps in the space it
+/// was given in), looked up there. Both tables fit the colour seen under D65, so the spectrum
+/// is the one the colour's own space would give.
+fn wide_albedo_spectrum(rgb: Rgb) -> SigmoidSpectrum {
+    use std::sync::OnceLock;
+    static TO_2020: OnceLock<glam::Mat3> = OnceLock::new();
+    let m = TO_2020.get_or_init(|| {
+        let srgb = glam::DMat3::from_cols_array_2d(&cie::XYZ_TO_SRGB).transpose();
+        let rec = glam::DMat3::from_cols_array_2d(&cie::XYZ_TO_REC2020).transpose();
+        (rec * srgb.inverse()).as_mat3()
+    });
+    let c = clamp_albedo(Rgb::from(*m * glam::Vec3::from(rgb)));
+    if c.x == c.y && c.y == c.z {
+        return SigmoidSpectrum::Constant(c.x);
+    }
+    SigmoidSpectrum::Poly(CoefficientTable::get_rec2020().lookup(c))
+}
+
+/// An unbounded colour as pbrt-v4's `RGBUnboundedSpectrum`: a scale 2m, m the largest
+/// component, and the albedo spectrum of rgb/(2m). Components ≥ 0 (negatives clamped), unless
+/// the colour lies outside the sRGB gamut with a positive largest component (a colour of a
+/// wider space), which keeps them for [`albedo_spectrum`]. Evaluate as
+/// `scale · spectrum.eval(λ)`; black is scale 0.
 pub fn unbounded_spectrum(rgb: Rgb) -> (f32, SigmoidSpectrum) {
-    let rgb = rgb.max(Rgb::ZERO);
+    let m = rgb.max_element();
+    let rgb = if m > 0.0 && rgb.min_element() < 0.0 {
+        rgb
+    } else {
+        rgb.max(Rgb::ZERO)
+    };
     let m = rgb.max_element();
     if m.is_nan() || m <= 0.0 || m.is_infinite() {
         return (0.0, SigmoidSpectrum::Constant(0.0));
@@ -211,7 +243,7 @@ mod tests {
             SigmoidSpectrum::Constant(0.0)
         );
         assert_eq!(
-            albedo_spectrum(Rgb::new(1.5, -0.2, f32::NAN)),
+            albedo_spectrum(Rgb::new(1.0, 0.0, f32::NAN)),
             albedo_spectrum(Rgb::new(1.0, 0.0, 0.0))
         );
         // Other colours come from the table.
@@ -303,6 +335,36 @@ mod tests {
                 (back - c).abs().max_element() < 1e-5,
                 "{c} came back as {back}"
             );
+        }
+    }
+
+    #[test]
+    fn colours_outside_the_srgb_gamut_keep_their_colour() {
+        // Rec. 2020 colours (a green, a blue) in linear sRGB leave the unit cube;
+        // their spectra, from the Rec. 2020 table, reduce back to that sRGB colour.
+        let to_srgb = crate::spectrum::ColorSpace::Rec2020;
+        // (A bright saturated red such as (0.8, 0.15, 0.1) lies beyond what a sigmoid spectrum
+        // reaches: it comes back 4 % redder, the nearest reachable colour.)
+        for c in [[0.2f32, 0.6, 0.25], [0.1, 0.2, 0.8]] {
+            let srgb = Rgb::from_array(to_srgb.rgb_to_srgb(c));
+            assert!(
+                srgb.min_element() < 0.0 || srgb.max_element() > 1.0,
+                "{srgb}"
+            );
+            // (The fitter's own reduction: the independent one clamps negatives.)
+            let s = albedo_spectrum(srgb);
+            let back = s.to_rgb();
+            assert!(
+                (back - srgb).abs().max_element() < 5e-3,
+                "{srgb} came back as {back}"
+            );
+            let (_, lo, hi) = reduce_independently(&s);
+            assert!(lo >= 0.0 && hi <= 1.0);
+            // As an unbounded colour: 2m · s(λ), s of rgb / 2m.
+            let (scale, s) = unbounded_spectrum(srgb * 3.0);
+            assert_eq!(scale, 6.0 * srgb.max_element());
+            let back = s.to_rgb() * scale;
+            assert!((back - srgb * 3.0).abs().max_element() < 2e-2, "{back}");
         }
     }
 

@@ -135,10 +135,15 @@ impl TextureEval<'_> {
         match &self.spectra[i as usize] {
             SpectrumTexture::Constant(v) => *v,
             SpectrumTexture::Image(it) => {
-                // pbrt-v4: max(0, invert ? 1 − scale·c : scale·c).
+                // pbrt-v4: max(0, invert ? 1 − scale·c : scale·c), in the image's own colour
+                // space: texels of a wider space than sRGB may be negative here (their spectra
+                // come from `spectrum::uplift`), so only an inverted value is clamped.
                 let v = image_value(it, tc) * it.scale;
-                let v = if it.invert { Rgb::ONE - v } else { v };
-                v.max(Rgb::ZERO)
+                if it.invert {
+                    (Rgb::ONE - v).max(Rgb::ZERO)
+                } else {
+                    v
+                }
             }
             SpectrumTexture::Checkerboard {
                 mapping,
