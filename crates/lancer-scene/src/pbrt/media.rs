@@ -137,7 +137,7 @@ pub fn medium(
     match ty {
         "homogeneous" => homogeneous(params, dir, warnings, loc).map(Some),
         "uniformgrid" | "rgbgrid" | "cloud" | "nanovdb" => {
-            Ok(grid_medium(params, ty, ctm, dir, loc)?.map(MediumDesc::Grid))
+            Ok(grid_medium(params, ty, ctm, dir, loc)?.map(|g| MediumDesc::Grid(Box::new(g))))
         }
         _ => Err(SceneError::at(
             loc.clone(),

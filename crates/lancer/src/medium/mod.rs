@@ -105,7 +105,7 @@ pub enum MediumDesc {
     },
     /// pbrt-v4's `uniformgrid`, `rgbgrid`, `cloud` and `nanovdb`: coefficients that vary in
     /// space, with a majorant grid (or box) for delta tracking.
-    Grid(GridMediumDesc),
+    Grid(Box<GridMediumDesc>),
 }
 
 /// A medium ready to render.
@@ -142,7 +142,7 @@ impl Medium {
     /// The renderer's medium for a description.
     pub fn from_desc(desc: &MediumDesc) -> Medium {
         match *desc {
-            MediumDesc::Grid(ref d) => Medium::Grid(Box::new(GridMedium::new(d.clone()))),
+            MediumDesc::Grid(ref d) => Medium::Grid(Box::new(GridMedium::new((**d).clone()))),
             MediumDesc::Homogeneous {
                 sigma_a,
                 sigma_s,
