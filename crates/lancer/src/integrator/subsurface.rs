@@ -128,7 +128,7 @@ pub(super) fn exit(
 }
 
 /// Next-event estimation at the exit point, as the path tracer does at a surface: one light
-/// by power, one point on it, weighted against BSDF sampling by the power heuristic.
+/// chosen by the scene's light sampler, one point on it, weighted against BSDF sampling by the power heuristic.
 fn direct_light(
     scene: &Scene,
     hit: &SceneHit,
@@ -144,7 +144,7 @@ fn direct_light(
         return SampledSpectrum::ZERO;
     }
     let si = &hit.si;
-    let Some((i, pmf)) = scene.light_distribution.sample(ul) else {
+    let Some((i, pmf)) = scene.light_sampler.sample(ctx, ul) else {
         return SampledSpectrum::ZERO;
     };
     let light = &scene.lights[i];

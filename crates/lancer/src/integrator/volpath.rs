@@ -175,7 +175,7 @@ impl Walk<'_> {
                     (false, Some(ctx)) => {
                         let e = scene.prims[hit.prim as usize].emission;
                         let p_l = e.map_or(0.0, |e| {
-                            scene.light_distribution.pmf(e.light as usize)
+                            scene.light_sampler.pmf(&ctx, e.light as usize)
                                 * scene.lights[e.light as usize].pdf_li(
                                     &ctx,
                                     normalize(s.ray.d),
@@ -278,7 +278,7 @@ impl Walk<'_> {
             let le = scene.light_radiance(i, self.lambda(), le, 1.0);
             match (s.depth == 0 || s.specular_bounce, s.prev_ctx) {
                 (false, Some(ctx)) => {
-                    let p_l = scene.light_distribution.pmf(i)
+                    let p_l = scene.light_sampler.pmf(&ctx, i)
                         * light.pdf_li(&ctx, normalize(s.ray.d), None);
                     s.l += s.beta * le / avg(s.r_u + s.r_l * p_l);
                 }
@@ -415,10 +415,10 @@ impl Walk<'_> {
     }
 
     /// Next-event estimation from a point (a surface or a point in a medium): one light chosen
-    /// by power, one point on it, its visibility and transmittance by ratio tracking through
-    /// media and `interface` surfaces. `scatter(wi)` gives the point's f·|cos| (or phase value)
-    /// and its sampling density; `origin(target)` the shadow ray towards a point; `medium` the
-    /// medium the shadow ray starts in; `beta` and `r_p` the path's throughput and ratios.
+    /// by the scene's light sampler, one point on it, its visibility and transmittance by ratio
+    /// tracking through media and `interface` surfaces. `scatter(wi)` gives the point's
+    /// f·|cos| (or phase value) and its sampling density; `origin(target)` the shadow ray
+    /// towards a point; `medium` the medium the shadow ray starts in; `beta` and `r_p` the path's throughput and ratios.
     #[allow(clippy::too_many_arguments)]
     fn sample_ld(
         &self,
@@ -432,7 +432,7 @@ impl Walk<'_> {
         r_p: SampledSpectrum,
     ) -> SampledSpectrum {
         let scene = self.scene;
-        let Some((i, pmf)) = scene.light_distribution.sample(ul) else {
+        let Some((i, pmf)) = scene.light_sampler.sample(ctx, ul) else {
             return SampledSpectrum::ZERO;
         };
         let light = &scene.lights[i];
