@@ -418,7 +418,8 @@ impl Walk<'_> {
     /// by the scene's light sampler, one point on it, its visibility and transmittance by ratio
     /// tracking through media and `interface` surfaces. `scatter(wi)` gives the point's
     /// f·|cos| (or phase value) and its sampling density; `origin(target)` the shadow ray
-    /// towards a point; `medium` the medium the shadow ray starts in; `beta` and `r_p` the path's throughput and ratios.
+    /// towards a point; `medium` the medium the shadow ray starts in; `beta` and `r_p` the
+    /// path's throughput and ratios.
     #[allow(clippy::too_many_arguments)]
     fn sample_ld(
         &self,
