@@ -100,6 +100,17 @@ pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
     for m in &desc.materials {
         *materials.entry(m.pbrt_name().to_string()).or_default() += 1;
     }
+    // Media by pbrt-v4's kind, with the bytes each kind holds (grids, majorants).
+    let mut media: BTreeMap<&str, (u64, u64)> = BTreeMap::new();
+    for m in &scene.media {
+        let e = media.entry(m.kind()).or_default();
+        e.0 += 1;
+        e.1 += (size_of_val(m) + m.heap_bytes()) as u64;
+    }
+    let media_json: serde_json::Map<String, Value> = media
+        .iter()
+        .map(|(k, (n, bytes))| (k.to_string(), json!({ "count": n, "bytes": bytes })))
+        .collect();
     let b = scene.bounds();
     let bounds = if b.is_empty() {
         Value::Null
@@ -148,6 +159,7 @@ pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
         "lights": lights,
         "materials": { "count": desc.materials.len(), "by_kind": materials },
         "textures": desc.float_textures.len() + desc.spectrum_textures.len(),
+        "media": { "count": scene.media.len(), "by_kind": media_json },
         "world_bounds": bounds,
         "warnings": loaded.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>(),
         "memory": mem.to_json(),
@@ -286,6 +298,17 @@ pub fn text(v: &Value) -> String {
         ),
     );
     line("textures", u(&v["textures"]).to_string());
+    if u(&v["media"]["count"]) > 0 {
+        let by_kind = v["media"]["by_kind"]
+            .as_object()
+            .cloned()
+            .unwrap_or_default();
+        let kinds: Vec<String> = by_kind
+            .iter()
+            .map(|(k, e)| format!("{} {k} ({})", u(&e["count"]), human_bytes(u(&e["bytes"]))))
+            .collect();
+        line("media", kinds.join(", "));
+    }
     let wb = &v["world_bounds"];
     line(
         "bounds",
@@ -299,12 +322,13 @@ pub fn text(v: &Value) -> String {
     line(
         "memory",
         format!(
-            "meshes {}, primitive records {}, BVH {} ({} nodes), textures {}, total {}",
+            "meshes {}, primitive records {}, BVH {} ({} nodes), textures {}, media {}, total {}",
             human_bytes(u(&m["mesh_bytes"])),
             human_bytes(u(&m["primitive_bytes"])),
             human_bytes(u(&m["bvh_bytes"])),
             u(&v["bvh"]["nodes"]),
             human_bytes(u(&m["texture_bytes"])),
+            human_bytes(u(&m["media_bytes"])),
             human_bytes(u(&m["total_bytes"]))
         ),
     );

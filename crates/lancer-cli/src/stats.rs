@@ -26,6 +26,8 @@ pub struct SceneMemory {
     pub bvh_bytes: u64,
     /// Texture and environment images (each shared image once).
     pub texture_bytes: u64,
+    /// Participating media (records and grids).
+    pub media_bytes: u64,
     /// Lights, materials, texture records and instancing.
     pub other_bytes: u64,
     /// Triangles in the scene.
@@ -45,6 +47,7 @@ impl SceneMemory {
             primitive_bytes: m.primitives as u64,
             bvh_bytes: m.bvh as u64,
             texture_bytes: m.images as u64,
+            media_bytes: m.media as u64,
             other_bytes: (m.lights + m.materials + m.textures + m.instances) as u64,
             triangles: scene.meshes.iter().map(|m| m.triangle_count() as u64).sum(),
             primitives: scene.shapes.len() as u64,
@@ -58,6 +61,7 @@ impl SceneMemory {
             + self.primitive_bytes
             + self.bvh_bytes
             + self.texture_bytes
+            + self.media_bytes
             + self.other_bytes
     }
 
@@ -76,6 +80,7 @@ impl SceneMemory {
             "primitive_bytes": self.primitive_bytes,
             "bvh_bytes": self.bvh_bytes,
             "texture_bytes": self.texture_bytes,
+            "media_bytes": self.media_bytes,
             "other_bytes": self.other_bytes,
             "total_bytes": self.total(),
             "bytes_per_triangle": self.bytes_per_triangle(),
@@ -252,13 +257,14 @@ mod tests {
             primitive_bytes: 500,
             bvh_bytes: 500,
             texture_bytes: 7,
+            media_bytes: 4,
             other_bytes: 3,
             triangles: 40,
             primitives: 40,
             bvh_nodes: 5,
         };
         assert_eq!(m.bytes_per_triangle(), Some(50.0));
-        assert_eq!(m.total(), 2010);
+        assert_eq!(m.total(), 2014);
         assert_eq!(SceneMemory::default().bytes_per_triangle(), None);
         assert_eq!(m.to_json()["bytes_per_triangle"].as_f64(), Some(50.0));
     }

@@ -569,3 +569,46 @@ fn strict_makes_every_reader_warning_an_error() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert!(stderr(&o).contains("warning: w.pbrt:5:22:"));
 }
+
+#[test]
+fn info_reports_media_by_kind_and_their_memory() {
+    let dir = ScratchDir::new("info-media");
+    // A homogeneous fog around the camera and a 2×2×2 density grid.
+    let scene = "MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n\
+                 MediumInterface \"\" \"fog\"\n\
+                 Camera \"perspective\"\n\
+                 WorldBegin\n\
+                 MakeNamedMedium \"smoke\" \"string type\" \"uniformgrid\" \"integer nx\" 2 \
+                 \"integer ny\" 2 \"integer nz\" 2 \"float density\" [0 1 0 1 0 1 0 1]\n\
+                 MediumInterface \"smoke\" \"fog\"\n\
+                 Material \"interface\"\n\
+                 Shape \"sphere\"\n";
+    let o = run_with_stdin(&dir, &["info", "-", "--json"], scene);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["media"]["count"].as_u64(), Some(2));
+    assert_eq!(
+        v["media"]["by_kind"]["homogeneous"]["count"].as_u64(),
+        Some(1)
+    );
+    assert_eq!(
+        v["media"]["by_kind"]["uniformgrid"]["count"].as_u64(),
+        Some(1)
+    );
+    // The grid holds its 8 densities (4 bytes each) and a majorant grid beside its record.
+    let grid = v["media"]["by_kind"]["uniformgrid"]["bytes"]
+        .as_u64()
+        .unwrap();
+    let fog = v["media"]["by_kind"]["homogeneous"]["bytes"]
+        .as_u64()
+        .unwrap();
+    assert!(grid >= fog + 32, "grid {grid} B, fog {fog} B");
+    assert!(v["memory"]["media_bytes"].as_u64().unwrap() >= grid + fog);
+    assert_eq!(v["warnings"].as_array().map(Vec::len), Some(0), "{v}");
+    let o = run_with_stdin(&dir, &["info", "-"], scene);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("media         1 homogeneous (") && text.contains("1 uniformgrid ("),
+        "{text}"
+    );
+}

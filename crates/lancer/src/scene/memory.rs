@@ -36,6 +36,8 @@ pub struct SceneMemory {
     pub lights: usize,
     /// Materials.
     pub materials: usize,
+    /// Participating media: their records and what their grids hold (density, majorants).
+    pub media: usize,
 }
 
 impl SceneMemory {
@@ -49,6 +51,7 @@ impl SceneMemory {
             + self.textures
             + self.lights
             + self.materials
+            + self.media
     }
 }
 
@@ -138,6 +141,8 @@ impl Scene {
                 + vec_bytes::<SpectrumTexture>(self.spectrum_textures.capacity()),
             lights,
             materials: vec_bytes::<Material>(self.materials.capacity()),
+            media: vec_bytes::<crate::medium::Medium>(self.media.capacity())
+                + self.media.iter().map(|m| m.heap_bytes()).sum::<usize>(),
         }
     }
 }
