@@ -191,10 +191,10 @@ mod tests {
     #[test]
     fn memory_grows_with_triangles() {
         let (small, large) = (mesh_scene(10), mesh_scene(100));
-        // One shape record and one 32-byte PrimInfo per triangle, nothing unbounded.
+        // One shape record and one PrimInfo per triangle, nothing unbounded.
         for (n, scene) in [(10, &small), (100, &large)] {
             let m = scene.memory();
-            assert_eq!(m.primitives, n * (size_of::<Shape>() + 32));
+            assert_eq!(m.primitives, n * (size_of::<Shape>() + size_of::<PrimInfo>()));
             // 3 positions of 12 bytes and 3 indices of 4 bytes per triangle, at least.
             assert!(m.meshes >= n * 3 * (12 + 4), "{m:?}");
             // No instance: the empty top-level tree only.
@@ -215,6 +215,7 @@ mod tests {
                 + large.textures
                 + large.lights
                 + large.materials
+                + large.media
         );
     }
 
@@ -242,7 +243,8 @@ mod tests {
         // Instanced meshes are no flattened primitive: no shape, no world mesh, only the
         // object's one PrimInfo record (in a vector of capacity 4); the rest is in `instances`.
         assert!(one.shapes.is_empty() && ten.shapes.is_empty());
-        assert_eq!((a.primitives, a.meshes, b.primitives), (4 * 32, 0, 4 * 32));
+        let p = size_of::<PrimInfo>();
+        assert_eq!((a.primitives, a.meshes, b.primitives), (4 * p, 0, 4 * p));
         assert_eq!(a.instances, one.instances.memory_bytes());
         // The object's 50 triangles at least: 3 positions and 3 indices each.
         assert!(a.instances > 50 * 3 * 16, "{a:?}");
