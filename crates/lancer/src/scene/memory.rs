@@ -194,7 +194,10 @@ mod tests {
         // One shape record and one PrimInfo per triangle, nothing unbounded.
         for (n, scene) in [(10, &small), (100, &large)] {
             let m = scene.memory();
-            assert_eq!(m.primitives, n * (size_of::<Shape>() + size_of::<PrimInfo>()));
+            assert_eq!(
+                m.primitives,
+                n * (size_of::<Shape>() + size_of::<PrimInfo>())
+            );
             // 3 positions of 12 bytes and 3 indices of 4 bytes per triangle, at least.
             assert!(m.meshes >= n * 3 * (12 + 4), "{m:?}");
             // No instance: the empty top-level tree only.

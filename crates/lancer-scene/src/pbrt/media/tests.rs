@@ -106,7 +106,7 @@ fn medium_errors_have_their_place() {
 }
 
 #[test]
-fn unsupported_media_warn_and_unknown_parameters_are_reported() {
+fn grid_media_are_read_and_unknown_parameters_are_reported() {
     let l = load(
         "WorldBegin\nMakeNamedMedium \"g\" \"string type\" \"uniformgrid\" \"float density\" [1]\n\
          MakeNamedMedium \"h\" \"string type\" \"homogeneous\" \"float sigma\" 1\n\
@@ -114,21 +114,22 @@ fn unsupported_media_warn_and_unknown_parameters_are_reported() {
     )
     .unwrap();
     let w = warnings(&l);
-    assert_eq!(w.len(), 2, "{w:?}");
+    assert_eq!(w.len(), 1, "{w:?}");
     assert_eq!(
         w[0],
-        "t.pbrt:2:1: medium type \"uniformgrid\" is not supported yet; lancer renders it as vacuum"
-    );
-    assert_eq!(
-        w[1],
         "t.pbrt:3:49: parameter \"float sigma\" of MakeNamedMedium \"h\" is not used by lancer; ignored"
     );
-    // The unsupported medium is vacuum; the homogeneous one is index 0.
+    // The grid is medium 0, the homogeneous one medium 1.
+    assert!(
+        matches!(l.desc.media[0], MediumDesc::Grid(_)),
+        "{:?}",
+        l.desc.media[0]
+    );
     assert_eq!(
         l.desc.shapes[0].medium_interface,
         Some(MediumInterface {
-            inside: None,
-            outside: Some(0)
+            inside: Some(0),
+            outside: Some(1)
         })
     );
 }
