@@ -331,3 +331,147 @@ impl PortalInfiniteLight {
         self.power
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::PackedRgb;
+    use crate::sampling::{hash_u64, u32_to_unit_f32};
+
+    fn rand2(i: u64, seed: u64) -> Vec2 {
+        let h = hash_u64(&[i, seed]);
+        Vec2::new(u32_to_unit_f32(h as u32), u32_to_unit_f32((h >> 32) as u32))
+    }
+
+    /// A 16×16 equal-area sky of uneven texels, rotated, behind a 2×1.5 window in the plane
+    /// x = 1 (corners in the order pbrt-v4 expects: z = (p3 − p0) × (p1 − p0) = +x).
+    fn light() -> (PortalInfiniteLight, ImageInfiniteLight) {
+        let texels = (0..256)
+            .map(|i| {
+                let u = rand2(i, 7);
+                PackedRgb::new(0.1 + 4.0 * u.x * u.x, 0.5 * u.y, 1.0)
+            })
+            .collect();
+        let image = Arc::new(Image::new(16, 16, texels).unwrap());
+        let to_world = Transform::rotate(30.0, Vec3::new(0.2, 1.0, 0.3)).unwrap();
+        let portal = [
+            Vec3::new(1.0, -0.5, -1.0),
+            Vec3::new(1.0, -0.5, 1.0),
+            Vec3::new(1.0, 1.0, 1.0),
+            Vec3::new(1.0, 1.0, -1.0),
+        ];
+        let scale = Rgb::splat(2.0);
+        (
+            PortalInfiniteLight::new(to_world, image.clone(), scale, portal, 10.0).unwrap(),
+            ImageInfiniteLight::new(to_world, image, scale, 10.0).unwrap(),
+        )
+    }
+
+    fn ctx(p: Vec3) -> LightSampleContext {
+        LightSampleContext {
+            p,
+            n: Vec3::X,
+            ns: Vec3::X,
+        }
+    }
+
+    /// Where the ray p + t·w meets the plane x = 1, if it does (t > 0).
+    fn through_window(p: Vec3, w: Vec3) -> Option<Vec3> {
+        (w.x > 0.0).then(|| p + w * ((1.0 - p.x) / w.x))
+    }
+
+    #[test]
+    fn the_frame_faces_out_of_the_window() {
+        let (l, _) = light();
+        assert!((l.frame.z - Vec3::X).length() < 1e-6, "{:?}", l.frame.z);
+        // The rectified map and its inverse agree, and the Jacobian is π² at the centre.
+        let (w, j) = rectified_to_local(Vec2::splat(0.5));
+        assert!((w - Vec3::Z).length() < 1e-6 && (j - PI * PI).abs() < 1e-4);
+        for i in 0..100 {
+            let uv = rand2(i, 1) * 0.98 + Vec2::splat(0.01);
+            let (w, _) = rectified_to_local(uv);
+            assert!((local_to_rectified(w).unwrap() - uv).length() < 1e-4);
+        }
+        assert_eq!(local_to_rectified(Vec3::new(0.0, 0.6, -0.8)), None);
+    }
+
+    #[test]
+    fn samples_pass_through_the_portal_with_the_pdf_of_pdf_li() {
+        let (l, _) = light();
+        for (k, p) in [
+            Vec3::ZERO,
+            Vec3::new(0.3, 0.8, -0.9),
+            Vec3::new(-2.0, 0.1, 0.4),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let mut n = 0;
+            for i in 0..5000 {
+                let Some(s) = l.sample_li(&ctx(p), rand2(i, 10 + k as u64)) else {
+                    continue;
+                };
+                n += 1;
+                let q = through_window(p, s.wi).expect("towards the window");
+                assert!(
+                    q.y >= -0.5 - 1e-3 && q.y <= 1.0 + 1e-3 && q.z.abs() <= 1.0 + 1e-3,
+                    "{q:?}"
+                );
+                let pdf = l.pdf_li(p, s.wi);
+                assert!((pdf - s.pdf).abs() <= 2e-3 * s.pdf, "{pdf} vs {}", s.pdf);
+                assert_eq!(s.l, l.le(s.wi));
+            }
+            assert!(n > 4900, "{n}");
+        }
+        // Directions that miss the window have density zero.
+        assert_eq!(
+            l.pdf_li(Vec3::ZERO, Vec3::new(1.0, 0.0, 3.0).normalize()),
+            0.0
+        );
+        assert_eq!(l.pdf_li(Vec3::ZERO, -Vec3::X), 0.0);
+    }
+
+    #[test]
+    fn the_pdf_integrates_to_one() {
+        // ∫ p dω over the sphere = E[p(ω)/p_u(ω)] with ω uniform on the hemisphere facing the
+        // window (p_u = 1/2π); the density is zero behind the portal's plane.
+        let (l, _) = light();
+        for p in [Vec3::new(0.5, 0.2, 0.1), Vec3::new(-1.0, 0.3, -0.6)] {
+            let n = 400_000u64;
+            let mut sum = 0.0f64;
+            for i in 0..n {
+                let w = crate::sampling::sample_uniform_hemisphere(rand2(i, 99));
+                let wi = Vec3::new(w.z, w.x, w.y);
+                sum += l.pdf_li(p, wi) as f64 * 2.0 * PI as f64;
+            }
+            let integral = sum / n as f64;
+            assert!((integral - 1.0).abs() < 0.02, "{p:?}: {integral}");
+            assert_eq!(l.pdf_li(p, Vec3::new(-0.5, 0.1, 0.2).normalize()), 0.0);
+        }
+    }
+
+    #[test]
+    fn radiance_is_the_environments_in_front_of_the_portal() {
+        let (l, env) = light();
+        for i in 0..200 {
+            let d = crate::sampling::sample_uniform_sphere(rand2(i, 5));
+            let want = if d.x > 0.0 { env.le(d) } else { Rgb::ZERO };
+            assert_eq!(l.le(d), want, "{d:?}");
+        }
+        // A sample's radiance is the environment's along its direction.
+        let s = l.sample_li(&ctx(Vec3::ZERO), Vec2::new(0.3, 0.7)).unwrap();
+        assert_eq!(s.l, env.le(s.wi));
+    }
+
+    #[test]
+    fn non_rectangles_are_refused() {
+        let square = [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y];
+        let f = portal_frame(&square).unwrap();
+        // x = p3 − p0 = +y, y = p1 − p0 = +x, z = x × y = −z.
+        assert!((f.z + Vec3::Z).length() < 1e-6);
+        let skew = [Vec3::ZERO, Vec3::X, Vec3::new(2.0, 1.0, 0.0), Vec3::Y];
+        assert!(portal_frame(&skew).unwrap_err().contains("rectangle"));
+        let point = [Vec3::ZERO; 4];
+        assert!(portal_frame(&point).unwrap_err().contains("coincident"));
+    }
+}
