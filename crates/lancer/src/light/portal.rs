@@ -24,7 +24,7 @@
 use super::image_infinite::ImageInfiniteLight;
 use super::sample::{LightLiSample, LightSampleContext};
 use crate::image::Image;
-use crate::math::{Frame, PI, Rgb, Transform, Vec2, Vec3};
+use crate::math::{Frame, PI, Rgb, Transform, Vec2, Vec3, cross, normalize};
 use std::sync::Arc;
 
 /// An image environment light that only lets light in through a rectangular portal.
@@ -54,7 +54,7 @@ pub struct PortalInfiniteLight {
 fn rectified_to_local(uv: Vec2) -> (Vec3, f32) {
     let alpha = -PI / 2.0 + uv.x * PI;
     let beta = -PI / 2.0 + uv.y * PI;
-    let w = Vec3::new(alpha.tan(), beta.tan(), 1.0).normalize();
+    let w = normalize(Vec3::new(alpha.tan(), beta.tan(), 1.0));
     (w, rectified_jacobian(w))
 }
 
@@ -96,7 +96,7 @@ pub fn portal_frame(portal: &[Vec3; 4]) -> Result<Frame, String> {
     Ok(Frame {
         x: p03,
         y: p01,
-        z: p03.cross(p01).normalize(),
+        z: normalize(cross(p03, p01)),
     })
 }
 
@@ -425,7 +425,7 @@ mod tests {
         }
         // Directions that miss the window have density zero.
         assert_eq!(
-            l.pdf_li(Vec3::ZERO, Vec3::new(1.0, 0.0, 3.0).normalize()),
+            l.pdf_li(Vec3::ZERO, normalize(Vec3::new(1.0, 0.0, 3.0))),
             0.0
         );
         assert_eq!(l.pdf_li(Vec3::ZERO, -Vec3::X), 0.0);
@@ -446,7 +446,7 @@ mod tests {
             }
             let integral = sum / n as f64;
             assert!((integral - 1.0).abs() < 0.02, "{p:?}: {integral}");
-            assert_eq!(l.pdf_li(p, Vec3::new(-0.5, 0.1, 0.2).normalize()), 0.0);
+            assert_eq!(l.pdf_li(p, normalize(Vec3::new(-0.5, 0.1, 0.2))), 0.0);
         }
     }
 
