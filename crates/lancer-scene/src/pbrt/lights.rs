@@ -233,19 +233,33 @@ fn infinite(r: &Reader, ctm: Transform, loc: &Location) -> Result<Fallback<Light
             ));
         }
     }
-    if params.point3s("portal")?.is_some() {
-        warnings.push(
-            "infinite light portals are not supported yet; lancer samples the whole image".into(),
-        );
-    }
-    Ok(Fallback {
-        value: LightDesc::Infinite {
+    // pbrt-v4's portal: four world-space corners (not moved by the CTM).
+    let value = match params.point3s("portal")? {
+        Some(p) => {
+            let portal: [Vec3; 4] = match p.as_slice() {
+                [a, b, c, d] => [(*a).into(), (*b).into(), (*c).into(), (*d).into()],
+                _ => {
+                    return Err(at(format!(
+                        "an infinite light's \"portal\" takes 4 points, not {}",
+                        p.len()
+                    )));
+                }
+            };
+            lancer::light::portal_frame(&portal).map_err(at)?;
+            LightDesc::PortalInfinite {
+                light_to_world: ctm,
+                l: Rgb::splat(scale),
+                image,
+                portal,
+            }
+        }
+        None => LightDesc::Infinite {
             light_to_world: ctm,
             l: Rgb::splat(scale),
             image: Some(image),
         },
-        warnings,
-    })
+    };
+    Ok(Fallback { value, warnings })
 }
 
 /// `AreaLightSource "diffuse"`: radiance `L` times `scale`, from one side or both
@@ -489,16 +503,29 @@ mod tests {
         let black = dir.join("black.png");
         assert_eq!(
             f.warnings,
-            [
-                format!(
-                    "{} is black above the horizon, so \"illuminance\" cannot scale it; ignored",
-                    black.display()
-                ),
-                "infinite light portals are not supported yet; lancer samples the whole image"
-                    .to_string()
-            ]
+            [format!(
+                "{} is black above the horizon, so \"illuminance\" cannot scale it; ignored",
+                black.display()
+            )]
         );
+        // The portal's corners are world space, whatever the CTM.
+        let Some(LightDesc::PortalInfinite { portal, .. }) = f.value else {
+            panic!("a portal light")
+        };
+        assert_eq!(portal[2], Vec3::new(1.0, 1.0, 0.0));
         let error = |text: &str| err(convert_in(text, &dir, ID).0);
+        assert_eq!(
+            error(
+                r#"LightSource "infinite" "string filename" "sky.png" "point3 portal" [0 0 0 1 0 0 1 1 0]"#
+            ),
+            "t.pbrt:1:1: an infinite light's \"portal\" takes 4 points, not 3"
+        );
+        assert_eq!(
+            error(
+                r#"LightSource "infinite" "string filename" "sky.png" "point3 portal" [0 0 0 1 0 0 2 1 0 0 1 0]"#
+            ),
+            "t.pbrt:1:1: an infinite light's portal must be a rectangle, its corners in order"
+        );
         assert_eq!(
             error(r#"LightSource "infinite" "string filename" "sky.png" "rgb L" [1 1 1]"#),
             "t.pbrt:1:1: an \"infinite\" light takes either \"L\" or \"filename\", not both"

@@ -95,7 +95,10 @@ impl Light {
                 cos_theta_e: (PI / 2.0).cos(),
                 two_sided: false,
             },
-            Light::Distant { .. } | Light::UniformInfinite { .. } | Light::ImageInfinite(_) => {
+            Light::Distant { .. }
+            | Light::UniformInfinite { .. }
+            | Light::ImageInfinite(_)
+            | Light::PortalInfinite(_) => {
                 return LightExtent::Unbounded;
             }
         };

@@ -9,6 +9,7 @@ mod distribution;
 mod extent;
 mod goniometric;
 mod image_infinite;
+mod portal;
 mod projection;
 mod sample;
 mod sampler;
@@ -18,6 +19,7 @@ pub use bvh::BvhLightSampler;
 pub use distribution::LightDistribution;
 pub use goniometric::GoniometricLight;
 pub use image_infinite::{EnvMapping, ImageInfiniteLight, environment_mapping};
+pub use portal::{PortalInfiniteLight, portal_frame};
 pub use projection::{ProjectionLight, projected_sum};
 pub use sample::{LightLiSample, LightSampleContext};
 pub use sampler::{LightSampler, LightSamplerKind};
@@ -82,6 +84,9 @@ pub enum Light {
     /// Environment radiance from an image, importance-sampled (boxed: it holds the image's
     /// sampling tables, much larger than the other variants).
     ImageInfinite(Box<ImageInfiniteLight>),
+    /// An image environment that lets light in only through a rectangular portal, sampled
+    /// through it (pbrt-v4's `PortalImageInfiniteLight`).
+    PortalInfinite(Box<PortalInfiniteLight>),
     /// pbrt-v4's `goniometric`: a point light with an equal-area intensity image.
     Goniometric(Box<GoniometricLight>),
     /// pbrt-v4's `projection`: a point light projecting an image.
@@ -93,7 +98,7 @@ impl Light {
     pub fn is_infinite(&self) -> bool {
         matches!(
             self,
-            Light::UniformInfinite { .. } | Light::ImageInfinite(_)
+            Light::UniformInfinite { .. } | Light::ImageInfinite(_) | Light::PortalInfinite(_)
         )
     }
 
@@ -242,6 +247,7 @@ impl Light {
                 })
             }
             Light::ImageInfinite(light) => light.sample_li(ctx, u),
+            Light::PortalInfinite(light) => light.sample_li(ctx, u),
             Light::Goniometric(light) => light.sample_li(ctx),
             Light::Projection(light) => light.sample_li(ctx),
         }
@@ -275,6 +281,7 @@ impl Light {
                 }
             }
             Light::ImageInfinite(light) => light.pdf_li(wi),
+            Light::PortalInfinite(light) => light.pdf_li(ctx.p, wi),
             _ => 0.0,
         }
     }
@@ -307,6 +314,7 @@ impl Light {
             }
             // Φ = π·r²·∫L dω.
             Light::ImageInfinite(light) => light.power(),
+            Light::PortalInfinite(light) => light.power(),
             Light::Goniometric(light) => light.power(),
             Light::Projection(light) => light.power(),
         }
@@ -321,7 +329,7 @@ impl Light {
             Light::Distant { l, .. } | Light::UniformInfinite { l, .. } => Some(*l),
             Light::Area { l, .. } => Some((*l).into()),
             Light::Goniometric(light) => Some(light.intensity()),
-            Light::ImageInfinite(_) | Light::Projection(_) => None,
+            Light::ImageInfinite(_) | Light::PortalInfinite(_) | Light::Projection(_) => None,
         }
     }
 
@@ -331,6 +339,7 @@ impl Light {
         match self {
             Light::UniformInfinite { l, .. } => *l,
             Light::ImageInfinite(light) => light.le(d),
+            Light::PortalInfinite(light) => light.le(d),
             _ => Rgb::ZERO,
         }
     }

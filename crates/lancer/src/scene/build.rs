@@ -12,7 +12,8 @@ use super::prim::{
 use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
 use crate::light::{
-    GoniometricLight, ImageInfiniteLight, Light, LightDistribution, LightSampler, ProjectionLight,
+    GoniometricLight, ImageInfiniteLight, Light, LightDistribution, LightSampler,
+    PortalInfiniteLight, ProjectionLight,
 };
 use crate::material::Material;
 use crate::math::{Bounds3, PackedRgb, PackedVec3, Transform, Vec3};
@@ -489,6 +490,15 @@ fn light_of(l: &LightDesc, scene_radius: f32) -> Result<Light, BuildError> {
             image: Some(image),
         } => Light::ImageInfinite(Box::new(
             ImageInfiniteLight::new(*light_to_world, image.clone(), *l, scene_radius)
+                .map_err(BuildError::Invalid)?,
+        )),
+        LightDesc::PortalInfinite {
+            light_to_world,
+            l,
+            image,
+            portal,
+        } => Light::PortalInfinite(Box::new(
+            PortalInfiniteLight::new(*light_to_world, image.clone(), *l, *portal, scene_radius)
                 .map_err(BuildError::Invalid)?,
         )),
     })

@@ -33,7 +33,7 @@ impl LightDesc {
             LightDesc::Point { .. } => "point",
             LightDesc::Spot { .. } => "spot",
             LightDesc::Distant { .. } => "distant",
-            LightDesc::Infinite { .. } => "infinite",
+            LightDesc::Infinite { .. } | LightDesc::PortalInfinite { .. } => "infinite",
             LightDesc::Goniometric { .. } => "goniometric",
             LightDesc::Projection { .. } => "projection",
         }

@@ -572,6 +572,18 @@ pub enum LightDesc {
         /// Environment map, equal-area octahedral (square) or lat-long (2:1).
         image: Option<Arc<crate::image::Image>>,
     },
+    /// An environment image that lights the scene only through a rectangular portal (pbrt-v4's
+    /// `infinite` light with `portal`), sampled through it.
+    PortalInfinite {
+        /// Light space → world space.
+        light_to_world: Transform,
+        /// Multiplies the image.
+        l: Rgb,
+        /// Environment map, equal-area octahedral (square) or lat-long (2:1).
+        image: Arc<crate::image::Image>,
+        /// The portal's corners, world space, in order around the rectangle.
+        portal: [Vec3; 4],
+    },
     /// pbrt-v4's `goniometric` light: intensity `intensity` times an equal-area image.
     Goniometric {
         /// Light space → world space (the CTM).
@@ -623,7 +635,10 @@ impl LightDesc {
             },
             LightDesc::Infinite {
                 image: Some(image), ..
-            } => crate::light::environment_mapping(image).map(|_| ()),
+            }
+            | LightDesc::PortalInfinite { image, .. } => {
+                crate::light::environment_mapping(image).map(|_| ())
+            }
             // The goniometric and projection lights check their images as they are made.
             LightDesc::Goniometric { .. } | LightDesc::Projection { .. } => Ok(()),
         }

@@ -112,6 +112,7 @@ impl Scene {
             }))
             .chain(self.lights.iter().filter_map(|l| match l {
                 Light::ImageInfinite(e) => Some(e.image()),
+                Light::PortalInfinite(e) => Some(e.image()),
                 _ => None,
             }));
         for img in texture_images {
@@ -125,6 +126,7 @@ impl Scene {
                 .iter()
                 .map(|l| match l {
                     Light::ImageInfinite(e) => size_of_val(&**e) + e.table_bytes(),
+                    Light::PortalInfinite(e) => size_of_val(&**e) + e.table_bytes(),
                     _ => 0,
                 })
                 .sum::<usize>()
