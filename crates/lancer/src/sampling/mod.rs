@@ -2,6 +2,7 @@
 
 pub mod halton;
 mod hash;
+mod pmj02;
 pub(crate) mod piecewise;
 mod randomization;
 mod rng;
