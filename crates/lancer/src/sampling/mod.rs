@@ -2,8 +2,8 @@
 
 pub mod halton;
 mod hash;
-mod pmj02;
 pub(crate) mod piecewise;
+mod pmj02;
 mod randomization;
 mod rng;
 mod sampler;
