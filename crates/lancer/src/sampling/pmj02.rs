@@ -47,7 +47,7 @@ pub type Pmj02Sets = [Vec<[u32; 2]>; N_PMJ02_SETS];
 pub fn pmj02_sets(n: u32) -> Arc<Pmj02Sets> {
     static SETS: [OnceLock<Arc<Pmj02Sets>>; 9] = [const { OnceLock::new() }; 9];
     let n = n.clamp(1, MAX_PMJ02_SAMPLES);
-    let log4 = (n.next_power_of_two().trailing_zeros() + 1) / 2;
+    let log4 = n.next_power_of_two().trailing_zeros().div_ceil(2);
     SETS[log4 as usize]
         .get_or_init(|| {
             let len = 1usize << (2 * log4);
