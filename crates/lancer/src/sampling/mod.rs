@@ -3,6 +3,7 @@
 pub mod halton;
 mod hash;
 pub(crate) mod piecewise;
+mod pmj02;
 mod randomization;
 mod rng;
 mod sampler;
