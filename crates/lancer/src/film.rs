@@ -133,6 +133,8 @@ pub struct Film {
     pub bounds: PixelBounds,
     /// Sums, row-major over `bounds`.
     pub pixels: Vec<PixelSum>,
+    /// The auxiliary sums of a `gbuffer` film (none for an `rgb` film).
+    pub gbuffer: Option<Box<crate::gbuffer::GbufferFilm>>,
 }
 
 impl Film {
@@ -143,6 +145,14 @@ impl Film {
             full_height,
             bounds,
             pixels: vec![PixelSum::default(); bounds.area() as usize],
+            gbuffer: None,
+        }
+    }
+
+    /// Adds a tile's g-buffer sums (pixels of `tile`, row-major), if the film has a g-buffer.
+    pub fn merge_gbuffer_tile(&mut self, tile: &PixelBounds, sums: &[crate::gbuffer::GPixel]) {
+        if let Some(g) = &mut self.gbuffer {
+            g.merge_tile(&self.bounds, tile, sums);
         }
     }
 
