@@ -114,16 +114,13 @@ pub fn encode_gbuffer_exr(
         other("renderTimeSeconds", AttributeValue::F32(t));
     }
     other(
-        "worldToCamera",
-        AttributeValue::Matrix4x4(header.world_to_camera),
-    );
-    if let Some(m) = header.world_to_ndc {
-        other("worldToNDC", AttributeValue::Matrix4x4(m));
-    }
-    other(
         "samplesPerPixel",
         AttributeValue::I32(header.samples_per_pixel),
     );
+    // The exr crate writes these two standard attributes under their names `worldToCamera`
+    // and `worldToNDC`.
+    attrs.world_to_camera = Some(header.world_to_camera);
+    attrs.world_to_normalized_device = header.world_to_ndc;
     // OpenEXR keeps a file's channels sorted by name.
     let layer = Layer::new((w, h), attrs, Encoding::SMALL_LOSSLESS, AnyChannels::sort(list));
     let mut image = Image::from_layer(layer);
