@@ -548,8 +548,8 @@ pub fn write(args: &RenderArgs, plan: &Plan, live: LiveOutputs) -> Result<f64, C
         .unwrap_or_else(std::env::temp_dir);
     let written = write_with_fallback(&plan.output, &fallback_dir, |path| {
         if let Some(h) = &plan.gbuffer {
-            let clamped = write_gbuffer_exr(path, film, plan.meta.scale, h)
-                .map_err(|e| e.to_string())?;
+            let clamped =
+                write_gbuffer_exr(path, film, plan.meta.scale, h).map_err(|e| e.to_string())?;
             if clamped > 0 && !args.quiet {
                 eprintln!(
                     "warning: {clamped} pixel values clamped to the largest half float, \

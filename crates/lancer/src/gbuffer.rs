@@ -194,7 +194,8 @@ pub fn visible_surface(
         // albedo ≈ (1/16) Σ f(wo, wᵢ)·|cos θᵢ| / pdf(wᵢ) over pbrt-v4's fixed samples.
         let mut rho = SampledSpectrum::ZERO;
         for (uc, u) in RHO_UC.iter().zip(RHO_U) {
-            if let Some(s) = bsdf.sample_f(si.wo, *uc, Vec2::new(u[0], u[1]), TransportMode::Radiance)
+            if let Some(s) =
+                bsdf.sample_f(si.wo, *uc, Vec2::new(u[0], u[1]), TransportMode::Radiance)
                 && s.pdf > 0.0
             {
                 rho += s.f * (s.wi.dot(si.shading.n).abs() / s.pdf);
@@ -441,5 +442,81 @@ impl GbufferFilm {
                 self.pixels[i].merge(s);
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn variance_matches_the_sample_variance_and_merges_exactly_enough() {
+        // 1, 2, 4, 7: mean 3.5, Σ(x − 3.5)² = 6.25 + 2.25 + 0.25 + 12.25 = 21, variance 7.
+        let mut a = Variance::default();
+        for x in [1.0, 2.0, 4.0, 7.0] {
+            a.add(x);
+        }
+        assert_eq!((a.n, a.mean), (4, 3.5));
+        assert!((a.variance() - 7.0).abs() < 1e-12);
+        assert!((a.relative() - 2.0).abs() < 1e-12);
+        let (mut b, mut c) = (Variance::default(), Variance::default());
+        b.add(1.0);
+        b.add(2.0);
+        c.add(4.0);
+        c.add(7.0);
+        b.merge(&c);
+        assert!((b.mean - 3.5).abs() < 1e-12 && (b.variance() - 7.0).abs() < 1e-12);
+        // One value: no variance; a zero mean: no relative variance.
+        let mut one = Variance::default();
+        one.add(5.0);
+        assert_eq!((one.variance(), Variance::default().relative()), (0.0, 0.0));
+    }
+
+    #[test]
+    fn pixel_channels_average_with_filter_weights() {
+        let vs = |z: f32, n: Vec3, u: f32| VisibleSurface {
+            p: Vec3::new(0.0, 0.0, z),
+            n,
+            ns: n,
+            uv: Vec2::new(u, 0.5),
+            dpdx: Vec3::new(0.0, 0.0, -0.5),
+            dpdy: Vec3::ZERO,
+            albedo: Rgb::splat(0.6),
+        };
+        let mut p = GPixel::default();
+        // Weights 3 and 1: P.Z = (3·2 + 1·6)/4 = 3, u = (3·0 + 1·1)/4 = 0.25.
+        p.add(Rgb::ONE, 3.0, Some(&vs(2.0, Vec3::Z, 0.0)));
+        p.add(Rgb::ONE, 1.0, Some(&vs(6.0, Vec3::X, 1.0)));
+        // A sample that saw nothing: only the albedo's divisor grows.
+        p.add(Rgb::ZERO, 2.0, None);
+        let c = p.channels();
+        // Albedo: Σw·a / Σw over every sample = 0.6·4/6.
+        assert!((c[0] - 0.4).abs() < 1e-6);
+        assert_eq!((c[3], c[4], c[5]), (0.0, 0.0, 3.0));
+        // |Σw·∂z/∂x| / Σw = 0.5, written as an absolute value.
+        assert_eq!((c[6], c[7]), (0.5, 0.0));
+        // N = normalise(3·z + 1·x) = (1, 0, 3)/√10.
+        let s = 10f32.sqrt();
+        assert!((c[8] - 1.0 / s).abs() < 1e-6 && c[9] == 0.0 && (c[10] - 3.0 / s).abs() < 1e-6);
+        assert_eq!((c[14], c[15]), (0.25, 0.5));
+        // Two colours of 1, unweighted: no variance.
+        assert_eq!((c[16], c[19]), (0.0, 0.0));
+    }
+
+    #[test]
+    fn differentials_scale_as_pbrt() {
+        assert_eq!(differential_scale(16), 0.25);
+        assert_eq!(differential_scale(1024), 0.125);
+        assert_eq!(differential_scale(1), 1.0);
+        // A ray from the origin along (0.1, 0, 1) meets the plane z = 2 at x = 0.2.
+        let r = Ray::new(Vec3::ZERO, Vec3::new(0.1, 0.0, 1.0));
+        let d = plane_offset(Vec3::new(0.0, 0.0, 2.0), -Vec3::Z, &r);
+        assert!((d - Vec3::new(0.2, 0.0, 0.0)).length() < 1e-6);
+        // Parallel to the plane: no offset.
+        let r = Ray::new(Vec3::ZERO, Vec3::X);
+        assert_eq!(
+            plane_offset(Vec3::new(0.0, 0.0, 2.0), Vec3::Z, &r),
+            Vec3::ZERO
+        );
     }
 }

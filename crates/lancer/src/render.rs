@@ -324,7 +324,12 @@ fn camera_ray_at(
     let (offset, weight) = settings.filter.sample(sampler.get_pixel_2d());
     let p_film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
     let p_lens = sampler.get_2d();
-    (scene.camera.generate_ray(p_film, p_lens), weight, p_film, p_lens)
+    (
+        scene.camera.generate_ray(p_film, p_lens),
+        weight,
+        p_film,
+        p_lens,
+    )
 }
 
 /// Replays one camera sample, recording the path the integrator followed (for

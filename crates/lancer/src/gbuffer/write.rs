@@ -122,7 +122,12 @@ pub fn encode_gbuffer_exr(
     attrs.world_to_camera = Some(header.world_to_camera);
     attrs.world_to_normalized_device = header.world_to_ndc;
     // OpenEXR keeps a file's channels sorted by name.
-    let layer = Layer::new((w, h), attrs, Encoding::SMALL_LOSSLESS, AnyChannels::sort(list));
+    let layer = Layer::new(
+        (w, h),
+        attrs,
+        Encoding::SMALL_LOSSLESS,
+        AnyChannels::sort(list),
+    );
     let mut image = Image::from_layer(layer);
     image.attributes.display_window =
         IntegerBounds::from_dimensions((film.full_width as usize, film.full_height as usize));
