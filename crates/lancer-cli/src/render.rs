@@ -232,7 +232,7 @@ fn new_film(desc: &SceneDesc, bounds: &PixelBounds) -> Film {
     let mut film = Film::new(desc.film.xresolution, desc.film.yresolution, *bounds);
     if let Some(g) = desc.film.gbuffer {
         let config = GbufferConfig::new(g, desc.camera.camera_from_world, desc.sampler.spp);
-        film.gbuffer = Some(Box::new(GbufferFilm::new(config, bounds)));
+        film.gbuffer = Some(Box::new(GbufferFilm::new(config, bounds.area() as usize)));
     }
     film
 }

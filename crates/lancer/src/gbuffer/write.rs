@@ -1,10 +1,10 @@
 //! Writing a g-buffer film as pbrt-v4 does: one OpenEXR file with the 25 channels of
-//! [`super::CHANNELS`], half floats when `savefp16` (the default of a `gbuffer` film), and
+//! [`CHANNELS`], half floats when `savefp16` (the default of a `gbuffer` film), and
 //! pbrt-v4's header attributes `renderTimeSeconds`, `samplesPerPixel`, `worldToCamera` and
 //! (projective cameras) `worldToNDC`.
 
-use super::CHANNELS;
 use crate::film::Film;
+use crate::film::gsums::CHANNELS;
 use crate::image_io::{ImageFormat, ImageWriteError, write_atomic};
 use crate::math::Transform;
 use crate::scene::desc::{Projection, SceneDesc};
@@ -61,7 +61,7 @@ impl GbufferHeader {
 }
 
 /// Encodes a g-buffer film as OpenEXR: colour Σw·L/Σw × `scale` (clamped to [`HALF_MAX`] in
-/// half floats, as pbrt-v4 does), the auxiliary channels of [`super::GPixel::channels`],
+/// half floats, as pbrt-v4 does), the auxiliary channels of [`crate::film::gsums::GPixel::channels`],
 /// placed at the film's bounds within the full image. Returns the bytes and the number of
 /// pixels whose colour was clamped.
 pub fn encode_gbuffer_exr(
@@ -105,8 +105,10 @@ pub fn encode_gbuffer_exr(
             AnyChannel::new(*name, samples)
         })
         .collect();
-    let mut attrs = LayerAttributes::default();
-    attrs.layer_position = Vec2(film.bounds.x0, film.bounds.y0);
+    let mut attrs = LayerAttributes {
+        layer_position: Vec2(film.bounds.x0, film.bounds.y0),
+        ..LayerAttributes::default()
+    };
     let mut other = |k: &str, v: AttributeValue| {
         attrs.other.insert(Text::from(k), v);
     };
