@@ -11,6 +11,8 @@ use crate::render_args::{RenderArgs, Resumed, apply_overrides, resume_args};
 use crate::split::{self, SAMPLES_PER_PASS, TILE_SIZE};
 use crate::{input, stats};
 use lancer::film::{Film, PixelBounds, PixelSum};
+use lancer::gbuffer::write::HALF_MAX;
+use lancer::gbuffer::{GbufferConfig, GbufferFilm, GbufferHeader, write_gbuffer_exr};
 use lancer::image_io::{ImageFormat, PartMeta, write_image, write_part};
 use lancer::render::{RenderSettings, RenderStats, WorkUnit, render_units, work_units};
 use lancer::{Scene, SceneDesc};
@@ -39,6 +41,9 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
             std::process::exit(130);
         }
     };
+    if let Some(h) = &mut plan.gbuffer {
+        h.render_time_seconds = Some(rendered.seconds as f32);
+    }
     let write_s = write(&args, &plan, rendered.live)?;
     let finished = Finished {
         stats: rendered.stats,
@@ -120,6 +125,9 @@ pub struct Plan {
     pub checkpoint: PathBuf,
     /// The film and finished units: fresh, or the resumed checkpoint's.
     pub state: RenderState,
+    /// For a `gbuffer` film, the header attributes of its image (the render time is filled in
+    /// once known).
+    pub gbuffer: Option<GbufferHeader>,
 }
 
 /// Step 2: checks the outputs and the options against the scene, before any long work, and
@@ -133,7 +141,14 @@ pub fn plan(
         .output
         .clone()
         .or_else(|| desc.film.filename.as_ref().map(PathBuf::from))
-        .unwrap_or_else(|| PathBuf::from("lancer.png"));
+        // pbrt-v4 writes a gbuffer film only as EXR.
+        .unwrap_or_else(|| {
+            PathBuf::from(if desc.film.gbuffer.is_some() {
+                "lancer.exr"
+            } else {
+                "lancer.png"
+            })
+        });
     check_output(&output)?;
     check_preview(args)?;
     let render_bounds = pixel_bounds(desc);
@@ -161,6 +176,9 @@ pub fn plan(
             output.display()
         )));
     }
+    if desc.film.gbuffer.is_some() {
+        check_gbuffer(args, &output, &pixels, resumed.is_some())?;
+    }
     let bounds = pixels.bounds;
     check_film_memory(&bounds, args.max_film_gib)?;
     let meta = PartMeta {
@@ -187,7 +205,7 @@ pub fn plan(
     let state = match resumed {
         Some(r) => resumed_state(r, desc, &bounds, &units, meta.scene_hash)?,
         None => RenderState {
-            film: Film::new(desc.film.xresolution, desc.film.yresolution, bounds),
+            film: new_film(desc, &bounds),
             done: vec![false; units.len()],
             cwd: std::env::current_dir().unwrap_or_default(),
             args: checkpoint::render_args(),
@@ -201,7 +219,56 @@ pub fn plan(
         units,
         checkpoint,
         state,
+        gbuffer: desc
+            .film
+            .gbuffer
+            .is_some()
+            .then(|| GbufferHeader::of(desc, None)),
     })
+}
+
+/// A fresh film over `bounds` for `desc`: with g-buffer sums for a `gbuffer` film.
+fn new_film(desc: &SceneDesc, bounds: &PixelBounds) -> Film {
+    let mut film = Film::new(desc.film.xresolution, desc.film.yresolution, *bounds);
+    if let Some(g) = desc.film.gbuffer {
+        let config = GbufferConfig::new(g, desc.camera.camera_from_world, desc.sampler.spp);
+        film.gbuffer = Some(Box::new(GbufferFilm::new(config, bounds.area() as usize)));
+    }
+    film
+}
+
+/// Refuses what a `gbuffer` film cannot do: an output other than EXR (pbrt-v4 writes it only
+/// as EXR), and the ways of rendering in pieces (split parts, sample ranges, checkpoints and
+/// resuming), whose files keep the colour sums only.
+fn check_gbuffer(
+    args: &RenderArgs,
+    output: &Path,
+    pixels: &split::Plan,
+    resumed: bool,
+) -> Result<(), CliError> {
+    if ImageFormat::from_path(output) != Some(ImageFormat::Exr) {
+        return Err(CliError::input(format!(
+            "{}: a gbuffer film is written only as OpenEXR (.exr), as in pbrt-v4; name the \
+             output .exr (or use Film \"rgb\" for a PNG)",
+            output.display()
+        )));
+    }
+    let piece = if pixels.is_part {
+        Some("a part of a split render (--split, --samples)")
+    } else if resumed {
+        Some("resuming from a checkpoint (--resume)")
+    } else if args.checkpoint_every.is_some() {
+        Some("a checkpointed render (--checkpoint-every)")
+    } else {
+        None
+    };
+    match piece {
+        Some(what) => Err(CliError::input(format!(
+            "a gbuffer film cannot be rendered as {what} yet: parts and checkpoints keep the \
+             colour sums only, not the g-buffer channels; render it in one go"
+        ))),
+        None => Ok(()),
+    }
 }
 
 /// Refuses a `--preview` that is not a PNG in a writable folder, or a nonsense interval.
@@ -395,7 +462,15 @@ pub fn render(
         }
         // Stopped by a signal or the checkpoint timer: save the image so far and the state.
         let image = (!plan.pixels.is_part).then_some(plan.output.as_path());
-        progress.suspend(|| save_checkpoint(image, state, &plan.meta, &plan.checkpoint))?;
+        progress.suspend(|| {
+            save_checkpoint(
+                image,
+                state,
+                &plan.meta,
+                plan.gbuffer.as_ref(),
+                &plan.checkpoint,
+            )
+        })?;
         state.checkpointed = true;
         if checkpoint::interrupted() {
             progress.finish_and_clear();
@@ -412,17 +487,22 @@ pub fn render(
 }
 
 /// Writes the image so far to `image` (not for a part: a part file is written once complete)
-/// and the checkpoint to `path`, both atomically.
+/// and the checkpoint to `path`, both atomically. A g-buffer film's image so far has all its
+/// channels (its checkpoint cannot be resumed: [`check_gbuffer`]).
 fn save_checkpoint(
     image: Option<&Path>,
     state: &RenderState,
     meta: &PartMeta,
+    gbuffer: Option<&GbufferHeader>,
     path: &Path,
 ) -> Result<(), CliError> {
     if let Some(output) = image {
         let b = state.film.bounds;
-        write_image(output, b.width(), b.height(), &state.film.image(meta.scale))
-            .map_err(|e| CliError::runtime(e.to_string()))?;
+        match gbuffer {
+            Some(h) => write_gbuffer_exr(output, &state.film, meta.scale, h).map(|_| ()),
+            None => write_image(output, b.width(), b.height(), &state.film.image(meta.scale)),
+        }
+        .map_err(|e| CliError::runtime(e.to_string()))?;
     }
     Checkpoint {
         cwd: state.cwd.clone(),
@@ -467,7 +547,17 @@ pub fn write(args: &RenderArgs, plan: &Plan, live: LiveOutputs) -> Result<f64, C
         .clone()
         .unwrap_or_else(std::env::temp_dir);
     let written = write_with_fallback(&plan.output, &fallback_dir, |path| {
-        if plan.pixels.is_part {
+        if let Some(h) = &plan.gbuffer {
+            let clamped =
+                write_gbuffer_exr(path, film, plan.meta.scale, h).map_err(|e| e.to_string())?;
+            if clamped > 0 && !args.quiet {
+                eprintln!(
+                    "warning: {clamped} pixel values clamped to the largest half float, \
+                     {HALF_MAX} (as pbrt-v4 does with savefp16)"
+                );
+            }
+            Ok(())
+        } else if plan.pixels.is_part {
             write_part(path, film, &plan.meta).map_err(|e| e.to_string())
         } else {
             write_image(path, bounds.width(), bounds.height(), &pixels).map_err(|e| e.to_string())

@@ -4,6 +4,8 @@
 //! fractional bits), so addition is associative: a render split by tiles or by sample ranges,
 //! across threads or machines, and merged in any order gives bit-identical pixels.
 
+pub mod gsums;
+
 use crate::math::Rgb;
 
 /// Fractional bits of the fixed-point accumulators (resolution 2⁻²⁴ ≈ 6·10⁻⁸).
@@ -133,6 +135,8 @@ pub struct Film {
     pub bounds: PixelBounds,
     /// Sums, row-major over `bounds`.
     pub pixels: Vec<PixelSum>,
+    /// The auxiliary sums of a `gbuffer` film (none for an `rgb` film).
+    pub gbuffer: Option<Box<gsums::GbufferFilm>>,
 }
 
 impl Film {
@@ -143,6 +147,21 @@ impl Film {
             full_height,
             bounds,
             pixels: vec![PixelSum::default(); bounds.area() as usize],
+            gbuffer: None,
+        }
+    }
+
+    /// Adds a tile's g-buffer sums (pixels of `tile`, row-major), if the film has a g-buffer.
+    pub fn merge_gbuffer_tile(&mut self, tile: &PixelBounds, sums: &[gsums::GPixel]) {
+        let Some(g) = &mut self.gbuffer else { return };
+        let (w, fw) = (tile.width() as usize, self.bounds.width() as usize);
+        let t = tile.intersect(&self.bounds);
+        for y in t.y0..t.y1 {
+            for x in t.x0..t.x1 {
+                let s = &sums[(y - tile.y0) as usize * w + (x - tile.x0) as usize];
+                let i = (y - self.bounds.y0) as usize * fw + (x - self.bounds.x0) as usize;
+                g.pixels[i].merge(s);
+            }
         }
     }
 

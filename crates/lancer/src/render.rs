@@ -2,6 +2,7 @@
 
 use crate::film::{Film, PixelBounds, PixelSum};
 use crate::filter::Filter;
+use crate::gbuffer::{GPixel, GbufferConfig, RayDifferentials, visible_surface};
 use crate::integrator::Integrator;
 use crate::math::Vec2;
 use crate::sampling::{Sampler, SamplerKind};
@@ -157,22 +158,7 @@ pub fn render_tile_samples(
             let sum = &mut sums[(y - tile.y0) as usize * w + (x - tile.x0) as usize];
             for s in samples.clone() {
                 let (l, weight) = camera_sample(scene, settings, &mut sampler, x, y, s);
-                // A non-finite sample is a bug upstream; it must not poison the pixel.
-                let l = if l.is_finite() {
-                    l
-                } else {
-                    stats.nonfinite += 1;
-                    if stats.first_nonfinite.is_none() {
-                        stats.first_nonfinite = Some(SampleId { y, x, sample: s });
-                    }
-                    crate::math::Rgb::ZERO
-                };
-                let m = l.max_element();
-                let l = if m > settings.max_component_value {
-                    l * (settings.max_component_value / m)
-                } else {
-                    l
-                };
+                let l = film_sample(settings, &mut stats, l, SampleId { y, x, sample: s });
                 sum.add(l, weight);
             }
         }
@@ -180,6 +166,82 @@ pub fn render_tile_samples(
     stats.samples = tile.area() * samples.len() as u64;
     stats.rays = rays_traced() - rays0;
     (sums, stats)
+}
+
+/// What a camera sample's colour adds to the film: black for a non-finite sample (a bug
+/// upstream, counted in `stats`; it must not poison the pixel), and scaled down to
+/// `maxcomponentvalue` when brighter.
+#[inline(always)]
+fn film_sample(
+    settings: &RenderSettings,
+    stats: &mut RenderStats,
+    l: crate::math::Rgb,
+    id: SampleId,
+) -> crate::math::Rgb {
+    let l = if l.is_finite() {
+        l
+    } else {
+        stats.nonfinite += 1;
+        if stats.first_nonfinite.is_none() {
+            stats.first_nonfinite = Some(id);
+        }
+        crate::math::Rgb::ZERO
+    };
+    let m = l.max_element();
+    if m > settings.max_component_value {
+        l * (settings.max_component_value / m)
+    } else {
+        l
+    }
+}
+
+/// [`render_tile_samples`] for a g-buffer film: the same colour sums, bit for bit, and the
+/// g-buffer sums of each pixel of `tile` (row-major), from each camera ray's first surface
+/// ([`crate::gbuffer::visible_surface`]). Only a `gbuffer` film takes this path.
+pub fn render_tile_gbuffer(
+    scene: &Scene,
+    settings: &RenderSettings,
+    config: &GbufferConfig,
+    tile: &PixelBounds,
+    samples: std::ops::Range<u32>,
+) -> (Vec<PixelSum>, Vec<GPixel>, RenderStats) {
+    let rays0 = rays_traced();
+    let mut stats = RenderStats::default();
+    let mut sampler = Sampler::new(settings.sampler, settings.spp, settings.seed);
+    let mut sums = vec![PixelSum::default(); tile.area() as usize];
+    let mut gsums = vec![GPixel::default(); tile.area() as usize];
+    let w = tile.width() as usize;
+    let diff_scale = crate::gbuffer::differential_scale(config.spp);
+    for y in tile.y0..tile.y1 {
+        for x in tile.x0..tile.x1 {
+            let i = (y - tile.y0) as usize * w + (x - tile.x0) as usize;
+            for s in samples.clone() {
+                let (ray, weight, p_film, p_lens) =
+                    camera_ray_at(scene, settings, &mut sampler, x, y, s);
+                let lambda = sample_wavelengths(settings, &mut sampler);
+                let l = match &ray {
+                    Some(r) => {
+                        settings
+                            .integrator
+                            .li(scene, &r.ray, &mut sampler, lambda.as_ref())
+                            * r.weight
+                    }
+                    None => crate::math::SampledSpectrum::ZERO,
+                };
+                let l = scene_film_rgb(scene, lambda.as_ref(), l);
+                let l = film_sample(settings, &mut stats, l, SampleId { y, x, sample: s });
+                sums[i].add(l, weight);
+                let vs = ray.and_then(|r| {
+                    let diff = RayDifferentials::of(scene, &r.ray, p_film, p_lens, diff_scale);
+                    visible_surface(scene, &r.ray, diff.as_ref())
+                });
+                gsums[i].add(l, weight, vs.map(|v| config.to_output(&v)).as_ref());
+            }
+        }
+    }
+    stats.samples = tile.area() * samples.len() as u64;
+    stats.rays = rays_traced() - rays0;
+    (sums, gsums, stats)
 }
 
 /// One camera sample of pixel (`x`, `y`): its radiance (linear sRGB) and filter weight. A pure
@@ -244,11 +306,30 @@ fn camera_ray(
     y: i32,
     s: u32,
 ) -> (Option<crate::camera::CameraRay>, f32) {
+    let (ray, weight, _, _) = camera_ray_at(scene, settings, sampler, x, y, s);
+    (ray, weight)
+}
+
+/// [`camera_ray`], with the film and lens points the ray was made from.
+#[inline(always)]
+fn camera_ray_at(
+    scene: &Scene,
+    settings: &RenderSettings,
+    sampler: &mut Sampler,
+    x: i32,
+    y: i32,
+    s: u32,
+) -> (Option<crate::camera::CameraRay>, f32, Vec2, Vec2) {
     sampler.start_pixel_sample(x, y, s as u64);
     let (offset, weight) = settings.filter.sample(sampler.get_pixel_2d());
     let p_film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
     let p_lens = sampler.get_2d();
-    (scene.camera.generate_ray(p_film, p_lens), weight)
+    (
+        scene.camera.generate_ray(p_film, p_lens),
+        weight,
+        p_film,
+        p_lens,
+    )
 }
 
 /// Replays one camera sample, recording the path the integrator followed (for
@@ -372,6 +453,7 @@ pub fn render_units(
     on_unit: UnitHook<'_>,
     stop: &(dyn Fn() -> bool + Sync),
 ) -> RenderStats {
+    let gbuffer = film.gbuffer.as_ref().map(|g| g.config);
     let state = Mutex::new((film, done));
     let totals = Mutex::new(RenderStats::default());
     let mut start = 0;
@@ -392,11 +474,24 @@ pub fn render_units(
                 return;
             }
             let u = &units[i];
-            let (sums, tile_stats) =
-                render_tile_samples(scene, settings, &u.tile, u.samples.clone());
+            let (sums, gsums, tile_stats) = match &gbuffer {
+                None => {
+                    let (sums, stats) =
+                        render_tile_samples(scene, settings, &u.tile, u.samples.clone());
+                    (sums, None, stats)
+                }
+                Some(config) => {
+                    let (sums, gsums, stats) =
+                        render_tile_gbuffer(scene, settings, config, &u.tile, u.samples.clone());
+                    (sums, Some(gsums), stats)
+                }
+            };
             let merged = {
                 let mut st = state.lock().unwrap();
                 st.0.merge_tile(&u.tile, &sums);
+                if let Some(g) = &gsums {
+                    st.0.merge_gbuffer_tile(&u.tile, g);
+                }
                 st.1[i] = true;
                 tile_sums(st.0, &u.tile)
             };

@@ -19,10 +19,6 @@ pub struct FilmOptions {
     pub iso: f32,
 }
 
-/// What lancer does not write yet of a `gbuffer` film.
-pub const GBUFFER_CHANNELS: &str = "the gbuffer film's auxiliary channels (albedo, position, \
-     normals, depth slopes, uv, variance) are not supported yet; lancer writes R, G, B only";
-
 /// The film `ty`, over `film` (what earlier directives set).
 pub fn film(
     params: &ParamList,
@@ -48,7 +44,6 @@ pub fn film(
                 }
             };
             film.gbuffer = Some(lancer::gbuffer::GbufferDesc { world_space });
-            warnings.push(GBUFFER_CHANNELS.into());
         }
         _ => warnings.push(format!(
             "film \"{ty}\" is not supported yet; lancer uses an \"rgb\" film"
@@ -437,7 +432,8 @@ mod tests {
         );
         assert!(unused.is_empty(), "{unused:?}");
         let f = f.unwrap();
-        assert_eq!(f.warnings, [GBUFFER_CHANNELS]);
+        // Its auxiliary channels are written (lancer::gbuffer): no warning.
+        assert!(f.warnings.is_empty(), "{:?}", f.warnings);
         let f = f.value;
         assert_eq!(f.film.sensor.name(), "canon_eos_100d");
         assert_eq!(f.film.white_balance, 5000.0);

@@ -127,7 +127,7 @@ pub struct FilmDesc {
     /// The output colour space (pbrt's film `colorspace`, or a `ColorSpace` before `Film`).
     pub color_space: crate::spectrum::ColorSpace,
     /// What the film writes besides colour (pbrt's `gbuffer` film).
-    pub gbuffer: Option<crate::gbuffer::GbufferDesc>,
+    pub gbuffer: Option<crate::film::gsums::GbufferDesc>,
 }
 
 impl FilmDesc {
