@@ -156,9 +156,10 @@ fn defaults_are_pbrt_v4_defaults() {
     assert_eq!(d.camera.projection, Projection::Perspective { fov: 90.0 });
     assert_eq!((d.film.xresolution, d.film.yresolution), (1280, 720));
     assert_eq!(d.sampler.spp, 16);
+    // pbrt-v4's default integrator is volpath.
     assert!(matches!(
         d.integrator,
-        Integrator::Path { max_depth: 5, .. }
+        Integrator::VolPath { max_depth: 5, .. }
     ));
     // fov spans the shorter axis: the ray through the top edge's middle is 45° off axis.
     assert!((edge_angle(&d, 640.0, 0.0) - 45.0).abs() < 1e-3);
