@@ -1,0 +1,18 @@
+//! The integration tests of this crate, one module per file, built as one test binary so
+//! that CI links and compiles the shared helpers once rather than once per file.
+
+mod common;
+
+mod course_scenes;
+mod gltf;
+mod hostile;
+mod img;
+mod malformed;
+mod meshes;
+mod nan_stress;
+mod orientation;
+mod path_tracing;
+mod pbrt_habits;
+mod preview;
+mod sdf_shapes;
+mod workflow;

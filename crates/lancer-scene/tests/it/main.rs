@@ -1,0 +1,17 @@
+//! The integration tests of this crate, one module per file, built as one test binary so
+//! that CI links and compiles the shared helpers once rather than once per file.
+
+mod common;
+
+mod alpha;
+mod curves_bilinear;
+mod envmap;
+mod gltf;
+mod imagemap;
+mod mesh_scene;
+mod objmesh;
+mod pbrt_parity;
+mod pbrt_semantics;
+mod plymesh;
+mod sdf_scene;
+mod vox;
