@@ -1,7 +1,6 @@
 //! The course's scenes rendered by `lancer render` agree with pbrt-v4's renders, and the same
 //! scene and seed give the same bytes whatever the thread count.
 
-use crate::common;
 use crate::common::*;
 
 /// Each course scene at 64 spp against pbrt-v4 (references shrunk 4× for the repository): the

@@ -1,7 +1,6 @@
 //! `lancer render model.gltf|model.glb`: a glTF model renders with no scene file, through its
 //! own camera, Draco-compressed or not; a file lancer cannot read fails with exit status 2 and a message naming it.
 
-use crate::common;
 use crate::common::*;
 use std::path::PathBuf;
 

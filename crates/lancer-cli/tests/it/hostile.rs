@@ -5,7 +5,6 @@
 //!
 //! The inputs are made here, byte by byte, so the list documents what each one lies about.
 
-use crate::common;
 use crate::common::*;
 use std::io::Write;
 use std::path::Path;

@@ -4,6 +4,7 @@
 mod common;
 
 mod course_scenes;
+mod gbuffer;
 mod gltf;
 mod hostile;
 mod img;

@@ -2,7 +2,6 @@
 //! exit status 2, no panic, and leaves an existing output image untouched. What lancer merely
 //! does not support is a warning, and the scene still renders.
 
-use crate::common;
 use crate::common::*;
 use std::path::Path;
 

@@ -3,7 +3,6 @@
 //! reference on channel means within 3 %. Needs the shared folder (the meshes are large);
 //! skipped with a note without it.
 
-use crate::common;
 use crate::common::*;
 
 #[test]

@@ -6,7 +6,6 @@
 //! The renderer replaces a non-finite sample by black before it reaches the film, so looking
 //! at the image would prove nothing: this test calls the integrators itself, sample by sample.
 
-use crate::common;
 use crate::common::*;
 use lancer::Scene;
 use lancer::filter::Filter;

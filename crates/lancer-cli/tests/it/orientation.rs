@@ -3,7 +3,6 @@
 //! `Scale -1 1 1` before `LookAt` (as Blender exports write) puts +x on the right, as the
 //! camera lancer makes for a bare mesh file does.
 
-use crate::common;
 use crate::common::*;
 
 /// Renders a red sphere at world +x and a blue one at world +y, seen from +z, and returns the

@@ -3,7 +3,6 @@
 //! spectral mode, and a long render of it has no NaN, no infinity and no pixel brighter than
 //! its light.
 
-use crate::common;
 use crate::common::*;
 
 /// 64 spp in RGB mode (`--rgb`) against Mitsuba 3 (`llvm_ad_rgb`, 4096 spp; both renderers

@@ -1,7 +1,6 @@
 //! `Shape "sdf"` from a scene file to an image: the team's shapes scene (whose last shape is a
 //! signed-distance object) renders, and the SDF object is where it must be, in its colour.
 
-use crate::common;
 use crate::common::*;
 
 /// Mean colour of the pixels in the rectangle [x0, x1) × [y0, y1) (rows from the top).

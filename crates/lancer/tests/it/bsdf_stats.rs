@@ -23,7 +23,6 @@ use lancer::math::{Rgb, SampledSpectrum, Vec2, Vec3, normalize, rgb_lanes};
 use lancer::sampling::Pcg32;
 use std::f64::consts::PI;
 
-use crate::common;
 use crate::common::chi2::*;
 
 /// Number of chi-square tests in this file, for the Šidák correction.

@@ -15,7 +15,6 @@ use lancer::material::{BxDF, HairBxdf, TransportMode, hair_sigma_a_from_concentr
 use lancer::math::{SampledSpectrum, Vec2, Vec3, rgb_lanes};
 use lancer::sampling::{Pcg32, sample_uniform_sphere, uniform_sphere_pdf};
 
-use crate::common;
 use crate::common::chi2::*;
 
 const RADIANCE: TransportMode = TransportMode::Radiance;

@@ -3,7 +3,6 @@
 //! binned over the sphere and compared with the bin integrals of the routine's own density
 //! (for lights, `pdf_li` where the direction meets the light, 0 where it misses).
 
-use crate::common;
 use crate::common::chi2::*;
 
 use lancer::Scene;
