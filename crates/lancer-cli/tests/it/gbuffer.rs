@@ -2,7 +2,6 @@
 //! hand-checkable values on a plane at a known depth (camera and world space), the header
 //! attributes, the colour identical to an `rgb` film's, and the outputs it refuses.
 
-
 use crate::common::{ScratchDir, run_in};
 use exr::prelude::{FlatSamples, read_all_flat_layers_from_file};
 use std::path::Path;

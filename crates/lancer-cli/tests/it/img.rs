@@ -1,7 +1,6 @@
 //! `lancer img diff / convert / info` and `lancer completions`, on tiny synthetic images
 //! written by the tests, against values worked out by hand.
 
-
 use crate::common::{ScratchDir, read_exr, run_in};
 use std::path::{Path, PathBuf};
 use std::process::Output;

@@ -3,7 +3,6 @@
 //! plain progress lines in a log, renders that survive a hang-up under `nohup`; and the small
 //! fixes of issue 21 (warnings printed once by `info`, a missing part named by `merge`).
 
-
 use crate::common::{ScratchDir, data, lancer, read_exr, run_in};
 use std::io::Write;
 use std::os::unix::process::CommandExt;

@@ -1,7 +1,6 @@
 //! Live outputs and reports of `lancer render` (`--display-server`, `--preview`, `--stats json`)
 //! and `lancer info`.
 
-
 use crate::common::{ScratchDir, data, read_exr, run_in};
 use std::collections::HashMap;
 use std::io::Read;

@@ -2,7 +2,6 @@
 //! the single render's exact bytes; an interrupted render resumed from its checkpoint gives the
 //! uninterrupted render's exact bytes; `lancer merge` refuses parts that do not belong together.
 
-
 use crate::common::{ScratchDir, data, read_exr, render_ok, run_in};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};

@@ -1,7 +1,6 @@
 //! pbrt-v4's `LightSource "infinite" "string filename"`: the image read beside the scene, its
 //! layout checked, `scale` and `illuminance` applied as pbrt-v4 does, and the light built.
 
-
 use crate::common::ScratchDir;
 use lancer::Scene;
 use lancer::light::{EnvMapping, Light};

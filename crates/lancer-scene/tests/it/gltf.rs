@@ -2,7 +2,6 @@
 //! punctual lights, the texture and image orientation of a rendered model, and clear errors on
 //! broken files.
 
-
 use crate::common::ScratchDir;
 use lancer::Scene;
 use lancer::film::{Film, PixelBounds};

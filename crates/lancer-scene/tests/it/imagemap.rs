@@ -2,7 +2,6 @@
 //! many textures name it, looked up with pbrt's (u, v) conventions; errors placed at the
 //! directive and naming the file.
 
-
 use crate::common::ScratchDir;
 use lancer::image_io::srgb_to_linear;
 use lancer::math::{Vec2, Vec3};

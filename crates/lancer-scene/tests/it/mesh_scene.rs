@@ -2,7 +2,6 @@
 //! way round, lights, materials from the MTL; and (when the shared scene folder is there) the
 //! real meshes.
 
-
 use crate::common::ScratchDir;
 use lancer::math::Vec3;
 use lancer::scene::desc::{CameraDesc, Geometry, LightDesc, Projection, SceneDesc};

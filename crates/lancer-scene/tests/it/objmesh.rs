@@ -1,7 +1,6 @@
 //! pbrt-v4's `Shape "objmesh"`: OBJ files found next to the scene, merged into one mesh, their
 //! errors placed at the Shape directive.
 
-
 use crate::common::ScratchDir;
 use lancer::scene::desc::Geometry;
 use lancer_scene::load;

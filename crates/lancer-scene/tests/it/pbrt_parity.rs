@@ -2,7 +2,6 @@
 //! scenes, `Import` (a copy of the graphics state that does not flow back), parameters given
 //! twice, singular transformations and inconsistent `trianglemesh` arrays.
 
-
 use crate::common::ScratchDir;
 use lancer::material::Material;
 use lancer::math::Vec3;

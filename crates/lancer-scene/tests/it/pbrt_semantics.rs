@@ -2,7 +2,6 @@
 //! transformation matrix and its blocks, named coordinate systems, defaults, light
 //! normalisation, named materials, instancing, film exposure and relative file names.
 
-
 use crate::common::ScratchDir;
 use lancer::material::Material;
 use lancer::math::{Vec3, normalize};

@@ -1,7 +1,6 @@
 //! pbrt-v4's `Shape "plymesh"`: PLY files found next to the scene, their errors placed at the
 //! Shape directive, and (when the shared scene folder is there) the real scenes that use them.
 
-
 use crate::common::ScratchDir;
 use lancer::scene::desc::{Geometry, SceneDesc};
 use lancer::shape::TriangleMesh;

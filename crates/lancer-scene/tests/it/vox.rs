@@ -2,7 +2,6 @@
 //! file has none, clear errors (naming the file) for truncated, lying or inconsistent files,
 //! and `Shape "voxels"` in pbrt scenes, from a file or inline.
 
-
 use crate::common::ScratchDir;
 use lancer::math::Rgb;
 use lancer::scene::desc::Geometry;

@@ -191,3 +191,81 @@ fn medium_interface_sides_follow_the_normal() {
         .is_transition()
     );
 }
+
+/// A `uniformgrid` whose density varies along x (two samples, a and b, cell-centred and
+/// falling to zero half a cell beyond them, as pbrt-v4's SampledGrid): crossed along x at the
+/// box's centre, d(x) rises from a/2 to a over [0, ¼], goes linearly to b over [¼, ¾] and
+/// falls to b/2 at 1, so its optical depth is σ_t·∫d(x)dx = σ_t·(0.1875a + 0.25(a + b) +
+/// 0.1875b) = σ_t·0.4375(a + b). Delta tracking through the majorant grid (DDA, null collisions where
+/// the density is below its cell's maximum) must average to exp of minus that in every lane.
+#[test]
+fn grid_transmittance_matches_the_integral_of_its_density() {
+    use crate::math::{Bounds3, Transform};
+    use grid::SampledGrid;
+    use uniform_grid::UniformGridDesc;
+    let (a, b) = (0.2f32, 1.0f32);
+    let sigma_a = Rgb::new(0.5, 1.0, 2.0);
+    let sigma_s = Rgb::splat(0.5);
+    let medium = Medium::from_desc(&MediumDesc::Grid(Box::new(GridMediumDesc::Uniform(
+        UniformGridDesc {
+            medium_to_render: Transform::IDENTITY,
+            bounds: Bounds3::new(Vec3::ZERO, Vec3::ONE),
+            sigma_a,
+            sigma_s,
+            scale: 1.0,
+            g: 0.0,
+            density: SampledGrid::new(vec![a, b], 2, 1, 1).unwrap(),
+            temperature: None,
+            temperature_scale: 1.0,
+            temperature_offset: 0.0,
+            le: Rgb::ZERO,
+            le_scale: SampledGrid::new(vec![1.0], 1, 1, 1).unwrap(),
+        },
+    ))));
+    // The density at a few points, by the formula above (σ_a's red lane is 0.5·density).
+    for (x, want) in [
+        (0.0, a / 2.0),
+        (0.25, a),
+        (0.5, (a + b) / 2.0),
+        (0.75, b),
+        (1.0, b / 2.0),
+    ] {
+        let d = medium.sample_point(Vec3::new(x, 0.5, 0.5), None).sigma_a[0] / 0.5;
+        assert!((d - want).abs() < 1e-5, "d({x}) = {d}, not {want}");
+    }
+    let sigma_t = crate::math::rgb_lanes(sigma_a + sigma_s);
+    let expected = majorant_transmittance(sigma_t, 0.4375 * (a + b));
+    let n = 200_000;
+    let hero = 1;
+    let mut rng = Pcg32::new(7, 3);
+    let mut sum = SampledSpectrum::ZERO;
+    for _ in 0..n {
+        let mut t_ray = SampledSpectrum::ONE;
+        let u = rng.uniform();
+        let t_maj = sample_t_maj(
+            &medium,
+            Vec3::new(-1.0, 0.5, 0.5),
+            Vec3::X,
+            3.0,
+            u,
+            &mut rng,
+            None,
+            hero,
+            |_, mp, sigma_maj, t_maj, _| {
+                let sigma_n = (sigma_maj - mp.sigma_a - mp.sigma_s).max(SampledSpectrum::ZERO);
+                t_ray *= t_maj * sigma_n / (t_maj[hero] * sigma_maj[hero]);
+                t_ray != SampledSpectrum::ZERO
+            },
+        );
+        sum += t_ray * t_maj / t_maj[hero];
+    }
+    let mean = sum / n as f32;
+    for lane in 0..4 {
+        assert!(
+            (mean[lane] - expected[lane]).abs() < 0.02 * expected[lane] + 2e-3,
+            "lane {lane}: {} vs exp(−σ_t·∫d) = {}",
+            mean[lane],
+            expected[lane]
+        );
+    }
+}

@@ -6,7 +6,6 @@
 //! These are the statistical checks over all of them; each shape's hand-computed hits,
 //! normals, cuts and closed-form areas are unit tests beside it, in `src/shape/`.
 
-
 use crate::common::shapes::{azimuth, placement, scene_of};
 use glam::DVec3;
 use lancer::math::{Transform, Vec2, Vec3, cross, normalize};

@@ -12,7 +12,6 @@
 //!   that parameterisation accepts the samples' histogram (similarity transforms: for
 //!   quadrics, like pbrt, the area sampling assumes the transform scales uniformly).
 
-
 use crate::common::chi2::{chi2_survival, pooled_chi2, sidak};
 use crate::common::shapes::{azimuth, placement, random_unit, scene_of};
 use glam::DVec3;
