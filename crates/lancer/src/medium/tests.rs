@@ -107,6 +107,41 @@ fn majorant_transmittance_is_beer_lambert() {
     assert_eq!(t, SampledSpectrum::new(1.0, 0.0, 1.0, 0.0));
 }
 
+/// The mean of `n` ratio-tracking estimates of the transmittance along the ray `(o, d, t_max)`
+/// through `medium` with hero lane `hero`, as the integrator's shadow rays estimate it: each
+/// tentative collision multiplies by T_maj·σ_n/(T_maj[h]·σ_maj[h]), the last stretch by
+/// T_maj/T_maj[h].
+fn ratio_tracked(
+    medium: &Medium,
+    (o, d, t_max): (Vec3, Vec3, f32),
+    hero: usize,
+    n: usize,
+    rng: &mut Pcg32,
+) -> SampledSpectrum {
+    let mut sum = SampledSpectrum::ZERO;
+    for _ in 0..n {
+        let mut t_ray = SampledSpectrum::ONE;
+        let u = rng.uniform();
+        let t_maj = sample_t_maj(
+            medium,
+            o,
+            d,
+            t_max,
+            u,
+            rng,
+            None,
+            hero,
+            |_, mp, sigma_maj, t_maj, _| {
+                let sigma_n = (sigma_maj - mp.sigma_a - mp.sigma_s).max(SampledSpectrum::ZERO);
+                t_ray *= t_maj * sigma_n / (t_maj[hero] * sigma_maj[hero]);
+                t_ray != SampledSpectrum::ZERO
+            },
+        );
+        sum += t_ray * t_maj / t_maj[hero];
+    }
+    sum / n as f32
+}
+
 /// A slab of thickness `d` of a homogeneous medium, crossed along its normal: the estimator
 /// of the integrator's shadow rays (ratio tracking; σ_n = 0 here, so a path that collides
 /// carries nothing, one that crosses carries T_maj/T_maj[hero]) averages to exp(−σ_t·d) in
@@ -135,29 +170,14 @@ fn homogeneous_slab_transmits_exp_minus_sigma_t_d() {
     let n = 400_000;
     for hero in [0usize, 2] {
         let mut rng = Pcg32::new(1, hero as u64);
-        let mut sum = SampledSpectrum::ZERO;
-        for _ in 0..n {
-            let mut t_ray = SampledSpectrum::ONE;
-            let u = rng.uniform();
-            // A direction of length 3: t_max = 0.5 in its units is distance 1.5.
-            let t_maj = sample_t_maj(
-                &medium,
-                Vec3::ZERO,
-                Vec3::new(0.0, 0.0, 3.0),
-                0.5,
-                u,
-                &mut rng,
-                None,
-                hero,
-                |_, mp, sigma_maj, t_maj, _| {
-                    let sigma_n = (sigma_maj - mp.sigma_a - mp.sigma_s).max(SampledSpectrum::ZERO);
-                    t_ray *= t_maj * sigma_n / (t_maj[hero] * sigma_maj[hero]);
-                    t_ray != SampledSpectrum::ZERO
-                },
-            );
-            sum += t_ray * t_maj / t_maj[hero];
-        }
-        let mean = sum / n as f32;
+        // A direction of length 3: t_max = 0.5 in its units is distance 1.5.
+        let mean = ratio_tracked(
+            &medium,
+            (Vec3::ZERO, Vec3::new(0.0, 0.0, 3.0), 0.5),
+            hero,
+            n,
+            &mut rng,
+        );
         for lane in 0..4 {
             // Binomial-like error of a rare-event weight: loose but meaningful.
             let tol = 4.0 * (expected[lane] * expected[hero]).sqrt()
@@ -235,31 +255,14 @@ fn grid_transmittance_matches_the_integral_of_its_density() {
     }
     let sigma_t = crate::math::rgb_lanes(sigma_a + sigma_s);
     let expected = majorant_transmittance(sigma_t, 0.4375 * (a + b));
-    let n = 200_000;
-    let hero = 1;
     let mut rng = Pcg32::new(7, 3);
-    let mut sum = SampledSpectrum::ZERO;
-    for _ in 0..n {
-        let mut t_ray = SampledSpectrum::ONE;
-        let u = rng.uniform();
-        let t_maj = sample_t_maj(
-            &medium,
-            Vec3::new(-1.0, 0.5, 0.5),
-            Vec3::X,
-            3.0,
-            u,
-            &mut rng,
-            None,
-            hero,
-            |_, mp, sigma_maj, t_maj, _| {
-                let sigma_n = (sigma_maj - mp.sigma_a - mp.sigma_s).max(SampledSpectrum::ZERO);
-                t_ray *= t_maj * sigma_n / (t_maj[hero] * sigma_maj[hero]);
-                t_ray != SampledSpectrum::ZERO
-            },
-        );
-        sum += t_ray * t_maj / t_maj[hero];
-    }
-    let mean = sum / n as f32;
+    let mean = ratio_tracked(
+        &medium,
+        (Vec3::new(-1.0, 0.5, 0.5), Vec3::X, 3.0),
+        1,
+        200_000,
+        &mut rng,
+    );
     for lane in 0..4 {
         assert!(
             (mean[lane] - expected[lane]).abs() < 0.02 * expected[lane] + 2e-3,
