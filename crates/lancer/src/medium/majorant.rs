@@ -96,6 +96,24 @@ pub fn ray_in_medium(
     Some((r.o, r.d, t0, t1.min(t_max)))
 }
 
+/// The majorant segments of render-space `ray` over [0, t_max] through a grid medium placed
+/// by `render_to_medium` over `bounds`: the DDA over `grid` inside the box (no segment outside
+/// it), each cell's value times `scale` (a spectrum: σ_t for density grids, 1 for grids that
+/// hold σ_maj itself).
+pub fn grid_majorants<'a>(
+    render_to_medium: &Transform,
+    bounds: &Bounds3,
+    grid: &'a MajorantGrid,
+    ray: &Ray,
+    t_max: f32,
+    scale: SampledSpectrum,
+) -> DdaMajorantIterator<'a> {
+    match ray_in_medium(render_to_medium, bounds, ray, t_max) {
+        Some((o, d, t0, t1)) => DdaMajorantIterator::new(o, d, t0, t1, grid, scale),
+        None => DdaMajorantIterator::empty(),
+    }
+}
+
 /// Walks a ray through a [`MajorantGrid`] cell by cell (Amanatides–Woo 3D DDA), yielding
 /// one [`MajorantSegment`] per cell crossed between `t_min` and `t_max`.
 #[derive(Clone, Debug)]

@@ -6,7 +6,7 @@
 //! L_e(p) = Lescale·B̂((T(x) − offset)·tscale), zero at or below 100 K.
 
 use super::coeff::{Coefficient, PointProperties, blackbody_at};
-use super::majorant::{DdaMajorantIterator, MajorantGrid, ray_in_medium};
+use super::majorant::{DdaMajorantIterator, MajorantGrid, grid_majorants};
 use super::vdb::VdbGrid;
 use crate::math::{Bounds3, Rgb, SampledSpectrum, Transform, Vec3};
 use crate::ray::Ray;
@@ -142,12 +142,15 @@ impl NanoVdbMedium {
         t_max: f32,
         lambda: Option<&SampledWavelengths>,
     ) -> DdaMajorantIterator<'_> {
-        let Some((o, d, t0, t1)) = ray_in_medium(&self.render_to_medium, &self.bounds, ray, t_max)
-        else {
-            return DdaMajorantIterator::empty();
-        };
         let sigma_t = (self.sigma_a.at(lambda) + self.sigma_s.at(lambda)) * self.scale;
-        DdaMajorantIterator::new(o, d, t0, t1, &self.majorant, sigma_t)
+        grid_majorants(
+            &self.render_to_medium,
+            &self.bounds,
+            &self.majorant,
+            ray,
+            t_max,
+            sigma_t,
+        )
     }
 }
 

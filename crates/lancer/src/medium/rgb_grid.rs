@@ -7,7 +7,7 @@
 
 use super::coeff::{Coefficient, PointProperties};
 use super::grid::SampledGrid;
-use super::majorant::{DdaMajorantIterator, MAJORANT_RES, MajorantGrid, ray_in_medium};
+use super::majorant::{DdaMajorantIterator, MAJORANT_RES, MajorantGrid, grid_majorants};
 use crate::math::{Bounds3, Rgb, SampledSpectrum, Transform, Vec3};
 use crate::ray::Ray;
 use crate::spectrum::sampled::SampledWavelengths;
@@ -132,12 +132,14 @@ impl RgbGridMedium {
         t_max: f32,
         _lambda: Option<&SampledWavelengths>,
     ) -> DdaMajorantIterator<'_> {
-        match ray_in_medium(&self.render_to_medium, &self.bounds, ray, t_max) {
-            Some((o, d, t0, t1)) => {
-                DdaMajorantIterator::new(o, d, t0, t1, &self.majorant, SampledSpectrum::ONE)
-            }
-            None => DdaMajorantIterator::empty(),
-        }
+        grid_majorants(
+            &self.render_to_medium,
+            &self.bounds,
+            &self.majorant,
+            ray,
+            t_max,
+            SampledSpectrum::ONE,
+        )
     }
 }
 

@@ -9,7 +9,7 @@
 
 use super::coeff::{Coefficient, PointProperties, blackbody_at};
 use super::grid::SampledGrid;
-use super::majorant::{DdaMajorantIterator, MAJORANT_RES, MajorantGrid, ray_in_medium};
+use super::majorant::{DdaMajorantIterator, MAJORANT_RES, MajorantGrid, grid_majorants};
 use crate::math::{Bounds3, Rgb, SampledSpectrum, Transform, Vec3};
 use crate::ray::Ray;
 use crate::spectrum::sampled::SampledWavelengths;
@@ -139,12 +139,15 @@ impl UniformGridMedium {
         t_max: f32,
         lambda: Option<&SampledWavelengths>,
     ) -> DdaMajorantIterator<'_> {
-        let Some((o, d, t0, t1)) = ray_in_medium(&self.render_to_medium, &self.bounds, ray, t_max)
-        else {
-            return DdaMajorantIterator::empty();
-        };
         let sigma_t = (self.sigma_a.at(lambda) + self.sigma_s.at(lambda)) * self.scale;
-        DdaMajorantIterator::new(o, d, t0, t1, &self.majorant, sigma_t)
+        grid_majorants(
+            &self.render_to_medium,
+            &self.bounds,
+            &self.majorant,
+            ray,
+            t_max,
+            sigma_t,
+        )
     }
 }
 
