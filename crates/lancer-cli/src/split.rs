@@ -123,7 +123,8 @@ impl std::fmt::Write for Fnv1a {
 /// overrides applied, but without what does not change a pixel's value (the output file name)
 /// or what a part records on its own (which pixels it holds: crop window, pixel bounds).
 /// The description's debug form is hashed as it is printed: every number at full precision,
-/// meshes and textures included; the path the scene was read from is not in it.
+/// except large arrays (mesh vertices, texels, voxels), which print as a digest of their bits;
+/// the path the scene was read from is not in it.
 pub fn scene_hash(desc: &SceneDesc) -> u64 {
     use std::fmt::Write;
     let mut d = desc.clone();

@@ -20,7 +20,7 @@ pub enum WrapMode {
 }
 
 /// A linear RGB image, row 0 at the top, stored row-major as `width × height` texels.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, PartialEq)]
 pub struct Image {
     /// Width in texels.
     pub width: u32,
@@ -28,6 +28,17 @@ pub struct Image {
     pub height: u32,
     /// Texels, `y·width + x` (packed: 12 bytes a texel).
     pub texels: Vec<PackedRgb>,
+}
+
+impl std::fmt::Debug for Image {
+    /// The texels as their count and digest ([`Digest`](crate::math::digest::Digest)).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Image")
+            .field("width", &self.width)
+            .field("height", &self.height)
+            .field("texels", &crate::math::digest::Digest(&self.texels))
+            .finish()
+    }
 }
 
 impl Image {

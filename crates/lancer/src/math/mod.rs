@@ -6,6 +6,7 @@
 //! rounding-error arithmetic ([`gamma`], [`offset_ray_origin`]).
 
 mod bounds;
+pub mod digest;
 mod float;
 mod frame;
 pub mod noise;

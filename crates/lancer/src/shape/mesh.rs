@@ -43,7 +43,7 @@ impl From<RuleError> for String {
 ///
 /// In a scene description the positions are in object space; once the scene is built they are
 /// in world space (the transform is applied once, not per ray).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, PartialEq)]
 pub struct IndexedMesh<const N: usize> {
     /// Vertex positions (packed: 12 bytes a vertex).
     pub positions: Vec<PackedVec3>,
@@ -56,6 +56,20 @@ pub struct IndexedMesh<const N: usize> {
     /// Geometric normals flipped: reverse orientation xor a handedness-swapping transform
     /// (pbrt's rule; ignored where per-vertex normals decide the side).
     pub flip_normal: bool,
+}
+
+impl<const N: usize> std::fmt::Debug for IndexedMesh<N> {
+    /// The arrays as their lengths and digests ([`Digest`](crate::math::digest::Digest)).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        use crate::math::digest::Digest;
+        f.debug_struct("IndexedMesh")
+            .field("positions", &Digest(&self.positions))
+            .field("normals", &Digest(&self.normals))
+            .field("uvs", &Digest(&self.uvs))
+            .field("indices", &Digest(&self.indices))
+            .field("flip_normal", &self.flip_normal)
+            .finish()
+    }
 }
 
 impl<const N: usize> Default for IndexedMesh<N> {

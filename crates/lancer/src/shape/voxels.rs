@@ -35,11 +35,15 @@ pub struct VoxelGrid {
 }
 
 impl std::fmt::Debug for VoxelGrid {
-    /// Dimensions and filled count only: the cells may be millions.
+    /// Dimensions, filled count and a digest of the cells and palette (the cells may be
+    /// millions).
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        use crate::math::digest::Digest;
         f.debug_struct("VoxelGrid")
             .field("dims", &self.dims)
             .field("filled", &self.filled_count())
+            .field("cells", &Digest(&self.cells))
+            .field("palette", &Digest(&self.palette[..]))
             .finish()
     }
 }
