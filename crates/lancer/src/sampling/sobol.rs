@@ -116,59 +116,85 @@ pub fn sobol_matrices() -> &'static [[u32; 32]] {
 }
 
 /// Dimension `dim` of Sobol point `a` (its low 32 bits) as a 32-bit binary fraction: the
-/// columns of C_dim for the set bits of a, XORed.
+/// columns of C_dim for the set bits of a, XORed. The loop visits only the set bits (lowest
+/// first, `a & (a − 1)` clearing it), so it runs popcount(a) times and its one data-dependent
+/// branch is the exit: testing every bit instead mispredicted about half of them.
 #[inline]
 pub fn sobol_sample(a: u64, dim: usize) -> u32 {
     let c = &sobol_matrices()[dim];
     let mut a = a as u32;
     let mut v = 0;
-    let mut k = 0;
     while a != 0 {
-        if a & 1 != 0 {
-            v ^= c[k];
-        }
-        a >>= 1;
-        k += 1;
+        v ^= c[(a.trailing_zeros() & 31) as usize];
+        a &= a - 1;
     }
     v
+}
+
+/// The largest `m` [`interval_to_index`] accepts (an image of 2¹⁶ pixels a side).
+pub const MAX_INTERVAL_LOG2: u32 = 16;
+
+/// For each `m`, the inverse of the m × m system [`interval_to_index`] solves, as the
+/// solutions for the unit right-hand sides: entry `b` is the x with Σ x_j c_j = 2^b, where
+/// c_j is the top m bits of dimension 1's column m + j. The system depends on m alone, so
+/// each is solved once (Gaussian elimination over GF(2)) and a pixel sample's index then
+/// costs a few XORs: x(rhs) = ⨁_{b set in rhs} x(2^b), by linearity.
+fn dim1_inverse(m: u32) -> &'static [u32; MAX_INTERVAL_LOG2 as usize] {
+    static INV: [std::sync::OnceLock<[u32; MAX_INTERVAL_LOG2 as usize]>;
+        MAX_INTERVAL_LOG2 as usize + 1] = [const { std::sync::OnceLock::new() }; 17];
+    INV[m as usize].get_or_init(|| {
+        let top = |v: u32| v >> (32 - m);
+        std::array::from_fn(|b| {
+            if b as u32 >= m {
+                return 0;
+            }
+            // (column image, which unknowns make it), eliminated towards the target 2^b.
+            let mut rows: Vec<(u32, u32)> = (0..m)
+                .map(|j| (top(sobol_1(1u32 << (m + j))), 1u32 << j))
+                .collect();
+            let mut x = 0u32;
+            let mut target = 1u32 << b;
+            for bit in (0..m).rev() {
+                let Some(p) = rows.iter().position(|r| r.0 >> bit & 1 != 0) else {
+                    continue;
+                };
+                let pivot = rows.swap_remove(p);
+                for r in rows.iter_mut() {
+                    if r.0 >> bit & 1 != 0 {
+                        r.0 ^= pivot.0;
+                        r.1 ^= pivot.1;
+                    }
+                }
+                if target >> bit & 1 != 0 {
+                    target ^= pivot.0;
+                    x ^= pivot.1;
+                }
+            }
+            x
+        })
+    })
 }
 
 /// The index of the `frame`-th Sobol point whose first two dimensions, scaled by 2^m, fall in
 /// pixel (`px`, `py`) (pbrt-v4's `SobolIntervalToIndex`, solved here directly): the index is
 /// `frame` followed by 2m low bits. The top m bits of dimension 0 are the low m bits of the
 /// index reversed, which `px` fixes; the top m bits of dimension 1 are then linear in the
-/// remaining m bits, a system over GF(2) that the (0, 2) property makes invertible.
+/// remaining m bits, a system over GF(2) that the (0, 2) property makes invertible (its
+/// inverse is computed once per m, [`dim1_inverse`]). `m` is at most [`MAX_INTERVAL_LOG2`].
 pub fn interval_to_index(m: u32, frame: u64, px: u32, py: u32) -> u64 {
     if m == 0 {
         return frame;
     }
-    let top = |v: u32| v >> (32 - m);
+    let m = m.min(MAX_INTERVAL_LOG2);
     // Bits 0..m: px mirrored.
     let low = (px.reverse_bits() >> (32 - m)) as u64;
     let known = (frame << (2 * m)) | low;
-    let rhs = py ^ top(sobol_1(known as u32));
-    // Columns m..2m of dimension 1, restricted to the top m bits: solve Σ x_j c_j = rhs.
-    let mut rows: Vec<(u32, u32)> = (0..m)
-        .map(|j| (top(sobol_1(1u32 << (m + j))), 1u32 << j))
-        .collect();
-    // Gaussian elimination on (column image, which unknowns make it).
+    let mut rhs = (py ^ (sobol_sample(known, 1) >> (32 - m))) & ((1u32 << m) - 1);
+    let inv = dim1_inverse(m);
     let mut x = 0u32;
-    let mut target = rhs;
-    for bit in (0..m).rev() {
-        let Some(p) = rows.iter().position(|r| r.0 >> bit & 1 != 0) else {
-            continue;
-        };
-        let pivot = rows.swap_remove(p);
-        for r in rows.iter_mut() {
-            if r.0 >> bit & 1 != 0 {
-                r.0 ^= pivot.0;
-                r.1 ^= pivot.1;
-            }
-        }
-        if target >> bit & 1 != 0 {
-            target ^= pivot.0;
-            x ^= pivot.1;
-        }
+    while rhs != 0 {
+        x ^= inv[(rhs.trailing_zeros() & 15) as usize];
+        rhs &= rhs - 1;
     }
     known | ((x as u64) << m)
 }
@@ -222,6 +248,19 @@ mod tests {
                 let a = interval_to_index(4, frame, x, y);
                 assert_eq!(a >> 8, frame);
                 assert_eq!((sobol_sample(a, 0) >> 28, sobol_sample(a, 1) >> 28), (x, y));
+            }
+        }
+        // Other scales, up to the largest: the point's top m bits are the pixel's.
+        for m in [1u32, 8, 11, MAX_INTERVAL_LOG2] {
+            let n = 1u32 << m;
+            for (x, y) in [(0, 0), (n - 1, 0), (n / 3, n - 1), (n / 2, n / 5)] {
+                for frame in [0u64, 1, 63] {
+                    let a = interval_to_index(m, frame, x, y);
+                    assert_eq!(a >> (2 * m), frame);
+                    let top = |v: u32| v >> (32 - m);
+                    let p = (top(sobol_sample(a, 0)), top(sobol_sample(a, 1)));
+                    assert_eq!(p, (x, y), "m = {m}");
+                }
             }
         }
     }
