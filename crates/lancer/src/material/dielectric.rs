@@ -174,8 +174,14 @@ impl Scatter for DielectricBxdf {
             if !same_hemisphere(wo, wi) {
                 return None;
             }
-            let pdf = d.pdf(wo, wm) / (4.0 * wo.dot(wm).abs()) * pr / (pr + pt);
-            let f = d.d(wm) * d.g(wo, wi) * r / (4.0 * cos_theta(wi) * cos_theta(wo));
+            // D(ωm) and Λ(ωo) serve both the density and the value.
+            let (d_wm, lambda_o) = (d.d(wm), d.lambda(wo));
+            let pdf = TrowbridgeReitz::d_visible_from(wo, wm, d_wm, lambda_o)
+                / (4.0 * wo.dot(wm).abs())
+                * pr
+                / (pr + pt);
+            let g = TrowbridgeReitz::g_from_lambdas(lambda_o, d.lambda(wi));
+            let f = d_wm * g * r / (4.0 * cos_theta(wi) * cos_theta(wo));
             return Some(BsdfSample::new(
                 SampledSpectrum::splat(f),
                 wi,
@@ -190,10 +196,12 @@ impl Scatter for DielectricBxdf {
         // dωm/dωi = |ωi·ωm| / (ωi·ωm + ωo·ωm/η')²
         let denom = (wi.dot(wm) + wo.dot(wm) / etap).powi(2);
         let dwm_dwi = wi.dot(wm).abs() / denom;
-        let pdf = d.pdf(wo, wm) * dwm_dwi * pt / (pr + pt);
+        let (d_wm, lambda_o) = (d.d(wm), d.lambda(wo));
+        let pdf =
+            TrowbridgeReitz::d_visible_from(wo, wm, d_wm, lambda_o) * dwm_dwi * pt / (pr + pt);
         let mut ft = (1.0 - r)
-            * d.d(wm)
-            * d.g(wo, wi)
+            * d_wm
+            * TrowbridgeReitz::g_from_lambdas(lambda_o, d.lambda(wi))
             * (wi.dot(wm) * wo.dot(wm) / (cos_theta(wi) * cos_theta(wo) * denom)).abs();
         if mode == TransportMode::Radiance {
             ft /= etap * etap;
