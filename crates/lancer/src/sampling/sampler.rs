@@ -9,8 +9,8 @@ use super::hash::{hash_u64, mix_bits, permutation_element, u32_to_unit_f32};
 use super::pmj02::{N_PMJ02_SETS, Pmj02Sets, pmj02_sets};
 use super::randomization::Randomization;
 use super::sobol::{
-    N_SOBOL_DIMENSIONS, fast_owen_scramble, interval_to_index, randomize, sobol_0, sobol_1,
-    sobol_sample,
+    N_SOBOL_DIMENSIONS, fast_owen_scramble, fast_owen_scramble_reversed, interval_to_index,
+    randomize, sobol_0, sobol_1, sobol_sample, sobol_sample_reversed,
 };
 use crate::math::Vec2;
 use std::sync::Arc;
@@ -386,11 +386,18 @@ impl Sampler {
             2 + (d - 2) % (n - 2)
         };
         let seed = self.sobol_seeds.get(d as usize).copied().unwrap_or(0);
-        u32_to_unit_f32(randomize(
-            sobol_sample(self.sobol_index, d as usize),
-            randomization,
-            seed,
-        ))
+        u32_to_unit_f32(match randomization {
+            // The default: the scramble takes the reversed bits the reversed columns give.
+            Randomization::FastOwen => fast_owen_scramble_reversed(
+                sobol_sample_reversed(self.sobol_index, d as usize),
+                seed,
+            ),
+            _ => randomize(
+                sobol_sample(self.sobol_index, d as usize),
+                randomization,
+                seed,
+            ),
+        })
     }
 
     /// Dimension `d` of the current Halton sample (dimensions 0 and 1 belong to the pixel).

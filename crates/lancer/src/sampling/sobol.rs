@@ -39,13 +39,7 @@ pub fn sobol_1(mut a: u32) -> u32 {
 /// significant than it, as Owen scrambling asks, with a cheap hash.
 #[inline]
 pub fn fast_owen_scramble(v: u32, seed: u32) -> u32 {
-    let mut x = v.reverse_bits();
-    x = x.wrapping_add(seed);
-    x ^= x.wrapping_mul(0x6c50_b47c);
-    x ^= x.wrapping_mul(0xb82f_1e52);
-    x ^= x.wrapping_mul(0xc7af_e638);
-    x ^= x.wrapping_mul(0x8d22_f6e6);
-    x.reverse_bits()
+    fast_owen_scramble_reversed(v.reverse_bits(), seed)
 }
 
 /// Owen scrambling bit by bit: bit 31 − b is flipped when a hash of (seed, the b bits above
@@ -60,6 +54,18 @@ pub fn owen_scramble(mut v: u32, seed: u32) -> u32 {
         }
     }
     v
+}
+
+/// [`fast_owen_scramble`] of the value whose bit reversal is `v_reversed`: the scramble works
+/// on reversed bits, so a caller holding them ([`sobol_sample_reversed`]) skips one reversal.
+#[inline]
+pub fn fast_owen_scramble_reversed(v_reversed: u32, seed: u32) -> u32 {
+    let mut x = v_reversed.wrapping_add(seed);
+    x ^= x.wrapping_mul(0x6c50_b47c);
+    x ^= x.wrapping_mul(0xb82f_1e52);
+    x ^= x.wrapping_mul(0xc7af_e638);
+    x ^= x.wrapping_mul(0x8d22_f6e6);
+    x.reverse_bits()
 }
 
 /// `v` randomised by `randomization` with the 32-bit `seed`.
@@ -113,6 +119,31 @@ pub fn sobol_matrices() -> &'static [[u32; 32]] {
         }
         out
     })
+}
+
+/// [`sobol_matrices`] with every column bit-reversed: XORing them gives the bit reversal of
+/// a Sobol value directly (reversal commutes with XOR), which is what Owen scrambling wants.
+fn sobol_matrices_reversed() -> &'static [[u32; 32]] {
+    static M: std::sync::OnceLock<Vec<[u32; 32]>> = std::sync::OnceLock::new();
+    M.get_or_init(|| {
+        sobol_matrices()
+            .iter()
+            .map(|c| c.map(u32::reverse_bits))
+            .collect()
+    })
+}
+
+/// The bit reversal of [`sobol_sample`]`(a, dim)`, from the reversed columns.
+#[inline]
+pub fn sobol_sample_reversed(a: u64, dim: usize) -> u32 {
+    let c = &sobol_matrices_reversed()[dim];
+    let mut a = a as u32;
+    let mut v = 0;
+    while a != 0 {
+        v ^= c[(a.trailing_zeros() & 31) as usize];
+        a &= a - 1;
+    }
+    v
 }
 
 /// Dimension `dim` of Sobol point `a` (its low 32 bits) as a 32-bit binary fraction: the
@@ -282,6 +313,21 @@ mod tests {
                 }
                 assert!(seen.iter().all(|&c| c == 1), "{r:?}");
             }
+        }
+        // The scramble from reversed Sobol values is the scramble of the values.
+        for (a, d, seed) in [
+            (5u64, 2usize, 9u32),
+            (0x2f_1234, 17, 0xdead_beef),
+            (0, 3, 1),
+        ] {
+            assert_eq!(
+                sobol_sample_reversed(a, d),
+                sobol_sample(a, d).reverse_bits()
+            );
+            assert_eq!(
+                fast_owen_scramble_reversed(sobol_sample_reversed(a, d), seed),
+                fast_owen_scramble(sobol_sample(a, d), seed)
+            );
         }
         // And they do change the points.
         assert_ne!(owen_scramble(0, 5), 0);
