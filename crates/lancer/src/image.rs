@@ -81,19 +81,7 @@ impl Image {
             let (x, y) = (x.clamp(0, w - 1), y.clamp(0, h - 1));
             return self.texels[(y * w + x) as usize].into();
         }
-        let fix = |v: i64, n: i64| -> Option<i64> {
-            match wrap {
-                WrapMode::Repeat => Some(v.rem_euclid(n)),
-                WrapMode::Clamp => Some(v.clamp(0, n - 1)),
-                WrapMode::Black => (0..n).contains(&v).then_some(v),
-                WrapMode::Mirror => {
-                    let m = v.rem_euclid(2 * n);
-                    Some(if m < n { m } else { 2 * n - 1 - m })
-                }
-                WrapMode::OctahedralSphere => unreachable!("handled above"),
-            }
-        };
-        match (fix(x, w), fix(y, h)) {
+        match (wrap_coord(x, w, wrap), wrap_coord(y, h, wrap)) {
             (Some(x), Some(y)) => self.texels[(y * w + x) as usize].into(),
             _ => Rgb::ZERO,
         }
@@ -114,10 +102,63 @@ impl Image {
         let (x0, y0) = (x.floor(), y.floor());
         let (dx, dy) = (x - x0, y - y0);
         let (xi, yi) = (x0 as i64, y0 as i64);
-        (1.0 - dx) * (1.0 - dy) * self.texel(xi, yi, wrap)
-            + dx * (1.0 - dy) * self.texel(xi + 1, yi, wrap)
-            + (1.0 - dx) * dy * self.texel(xi, yi + 1, wrap)
-            + dx * dy * self.texel(xi + 1, yi + 1, wrap)
+        if wrap == WrapMode::OctahedralSphere {
+            // Its wrap mixes x and y: each neighbour is wrapped on its own.
+            return (1.0 - dx) * (1.0 - dy) * self.texel(xi, yi, wrap)
+                + dx * (1.0 - dy) * self.texel(xi + 1, yi, wrap)
+                + (1.0 - dx) * dy * self.texel(xi, yi + 1, wrap)
+                + dx * dy * self.texel(xi + 1, yi + 1, wrap);
+        }
+        // The other wraps act on x and y separately: two columns and two rows, wrapped once.
+        let (w, h) = (self.width as i64, self.height as i64);
+        let (cx0, cx1) = wrap_pair(xi, w, wrap);
+        let (cy0, cy1) = wrap_pair(yi, h, wrap);
+        let t = |x: Option<i64>, y: Option<i64>| -> Rgb {
+            match (x, y) {
+                (Some(x), Some(y)) => self.texels[(y * w + x) as usize].into(),
+                _ => Rgb::ZERO,
+            }
+        };
+        (1.0 - dx) * (1.0 - dy) * t(cx0, cy0)
+            + dx * (1.0 - dy) * t(cx1, cy0)
+            + (1.0 - dx) * dy * t(cx0, cy1)
+            + dx * dy * t(cx1, cy1)
+    }
+}
+
+/// Coordinates `v` and `v + 1` of an axis of `n` texels with `wrap` applied: when tiling,
+/// v + 1 wraps to 0 past the last texel, (v + 1) mod n without a second division.
+#[inline]
+fn wrap_pair(v: i64, n: i64, wrap: WrapMode) -> (Option<i64>, Option<i64>) {
+    if wrap == WrapMode::Repeat {
+        let a = if (0..n).contains(&v) {
+            v
+        } else {
+            v.rem_euclid(n)
+        };
+        return (Some(a), Some(if a + 1 == n { 0 } else { a + 1 }));
+    }
+    (wrap_coord(v, n, wrap), wrap_coord(v + 1, n, wrap))
+}
+
+/// Coordinate `v` of an axis of `n` texels with `wrap` applied (`None`: black). Coordinates
+/// inside the image are returned as they are before any division: every mode leaves them
+/// alone, and they are nearly all lookups.
+#[inline]
+fn wrap_coord(v: i64, n: i64, wrap: WrapMode) -> Option<i64> {
+    if (0..n).contains(&v) {
+        return Some(v);
+    }
+    match wrap {
+        WrapMode::Repeat => Some(v.rem_euclid(n)),
+        WrapMode::Clamp => Some(v.clamp(0, n - 1)),
+        WrapMode::Black => None,
+        WrapMode::Mirror => {
+            let m = v.rem_euclid(2 * n);
+            Some(if m < n { m } else { 2 * n - 1 - m })
+        }
+        // Handled by `Image::texel` before any per-axis wrap.
+        WrapMode::OctahedralSphere => Some(v.clamp(0, n - 1)),
     }
 }
 
@@ -168,5 +209,44 @@ mod tests {
         // Point sampling picks round(s·w − ½): s = 0.49/3 → round(−0.01) = 0.
         let p = im.lookup(Vec2::new(0.49 / 3.0, 0.5), WrapMode::Clamp, true);
         assert_eq!(p.x, 0.0);
+    }
+
+    #[test]
+    fn bilinear_lookups_wrap_each_neighbour_as_texel_does() {
+        // The lookup wraps a column pair and a row pair once; the result must be the bilinear
+        // blend of the four texels `texel` returns, in every mode, inside and far outside.
+        let im = grid();
+        for wrap in [
+            WrapMode::Repeat,
+            WrapMode::Clamp,
+            WrapMode::Black,
+            WrapMode::Mirror,
+            WrapMode::OctahedralSphere,
+        ] {
+            for (s, t) in [
+                (0.5, 0.5),
+                (0.9, 0.05),
+                (-1.3, 2.71),
+                (4.99, -0.4),
+                (-0.01, 1.0),
+            ] {
+                let (x, y) = (s * 3.0 - 0.5f32, (1.0 - t) * 3.0 - 0.5f32);
+                let (x0, y0) = (x.floor(), y.floor());
+                let (dx, dy) = (x - x0, y - y0);
+                let (xi, yi) = (x0 as i64, y0 as i64);
+                let want = (1.0 - dx) * (1.0 - dy) * im.texel(xi, yi, wrap)
+                    + dx * (1.0 - dy) * im.texel(xi + 1, yi, wrap)
+                    + (1.0 - dx) * dy * im.texel(xi, yi + 1, wrap)
+                    + dx * dy * im.texel(xi + 1, yi + 1, wrap);
+                assert_eq!(
+                    im.lookup(Vec2::new(s, t), wrap, false),
+                    want,
+                    "{wrap:?} {s} {t}"
+                );
+            }
+        }
+        // Repeat: texel −1 is the last column, texel 3 the first.
+        assert_eq!(im.texel(-1, 0, WrapMode::Repeat).x, 2.0);
+        assert_eq!(im.texel(3, 4, WrapMode::Repeat), Rgb::new(0.0, 1.0, 0.0));
     }
 }

@@ -2,8 +2,8 @@
 
 use super::{PathVertex, bsdf_at, emitted, subsurface};
 use crate::light::LightSampleContext;
-use crate::material::TransportMode;
-use crate::math::{Rgb, SampledSpectrum, normalize};
+use crate::material::{Bsdf, TransportMode};
+use crate::math::{Rgb, SampledSpectrum, Vec3, normalize};
 use crate::ray::Ray;
 use crate::sampling::{Sampler, power_heuristic};
 use crate::scene::Scene;
@@ -24,6 +24,30 @@ pub fn li(
     regularize: bool,
 ) -> SampledSpectrum {
     li_observed(scene, ray, sampler, lambda, max_depth, regularize, &mut ())
+}
+
+/// The density with which the last bounce chose the ray's direction, as MIS against light
+/// sampling needs it when the ray reaches a light. A layered BSDF's sample carries only a
+/// proportional density; its MIS density is the BSDF's `pdf` estimate, a random walk of its
+/// own, kept here unevaluated: most rays reach no light, and `pdf` is a deterministic function
+/// of (wo, wi), so evaluating it later gives the same number.
+#[derive(Clone, Copy)]
+enum BouncePdf {
+    /// The density, known when the direction was sampled.
+    Known(f32),
+    /// `bsdf.pdf(wo, wi)`, evaluated on demand.
+    Deferred { bsdf: Bsdf, wo: Vec3, wi: Vec3 },
+}
+
+impl BouncePdf {
+    /// The density.
+    #[inline]
+    fn value(&self) -> f32 {
+        match self {
+            BouncePdf::Known(p) => *p,
+            BouncePdf::Deferred { bsdf, wo, wi } => bsdf.pdf(*wo, *wi, TransportMode::Radiance),
+        }
+    }
 }
 
 /// Receives the vertices of a path as [`li_observed`] follows it.
@@ -62,7 +86,7 @@ pub fn li_observed<O: PathObserver>(
     let mut ray = *ray;
     let mut depth = 0u32;
     let mut specular_bounce = false;
-    let mut p_b = 1.0f32;
+    let mut p_b = BouncePdf::Known(1.0);
     let mut prev_ctx: Option<LightSampleContext> = None;
     let mut eta_scale = 1.0f32;
     let mut any_non_specular = false;
@@ -70,6 +94,7 @@ pub fn li_observed<O: PathObserver>(
         let Some(hit) = scene.intersect(&ray) else {
             // Environment light: counted in full where no light sampling could have found it
             // (camera rays, specular bounces), otherwise weighted against light sampling.
+            let mut p_b_value = None;
             for &i in &scene.infinite_lights {
                 let (i, light) = (i as usize, &scene.lights[i as usize]);
                 let le = light.le(ray.d);
@@ -85,6 +110,7 @@ pub fn li_observed<O: PathObserver>(
                     (false, Some(ctx)) => {
                         let p_l = scene.light_sampler.pmf(&ctx, i)
                             * light.pdf_li(&ctx, normalize(ray.d), None);
+                        let p_b = *p_b_value.get_or_insert_with(|| p_b.value());
                         l += beta * power_heuristic(p_b, p_l) * le;
                     }
                     _ => l += beta * le,
@@ -107,7 +133,7 @@ pub fn li_observed<O: PathObserver>(
                     let light = &scene.lights[e.light as usize];
                     let p_l = scene.light_sampler.pmf(&ctx, e.light as usize)
                         * light.pdf_li(&ctx, normalize(ray.d), Some((si.p, si.n)));
-                    l += beta * power_heuristic(p_b, p_l) * le;
+                    l += beta * power_heuristic(p_b.value(), p_l) * le;
                 }
                 _ => l += beta * le,
             }
@@ -147,13 +173,20 @@ pub fn li_observed<O: PathObserver>(
             let u = sampler.get_2d();
             if let Some((i, pmf)) = scene.light_sampler.sample(&ctx, ul) {
                 let light = &scene.lights[i];
-                if let Some(ls) = light.sample_li(&ctx, u, &scene.shapes, &scene.meshes) {
-                    let f =
-                        bsdf.f(wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(si.shading.n).abs();
-                    if ls.pdf > 0.0
-                        && f != SampledSpectrum::ZERO
-                        && !scene.intersect_p(&si.spawn_ray_to(ls.p_light))
-                    {
+                if let Some(ls) = light
+                    .sample_li(&ctx, u, &scene.shapes, &scene.meshes)
+                    .filter(|ls| ls.pdf > 0.0)
+                {
+                    let unoccluded = || !scene.intersect_p(&si.spawn_ray_to(ls.p_light));
+                    // A layered BSDF's f is a random walk, dearer than the shadow ray: the ray
+                    // goes first for it, after f for the others (f is often zero for them).
+                    let walk = bsdf.bxdf.is_stochastic();
+                    let f = if walk && !unoccluded() {
+                        SampledSpectrum::ZERO
+                    } else {
+                        bsdf.f(wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(si.shading.n).abs()
+                    };
+                    if f != SampledSpectrum::ZERO && (walk || unoccluded()) {
                         let p_l = pmf * ls.pdf;
                         let w = if light.is_delta() {
                             1.0
@@ -193,11 +226,15 @@ pub fn li_observed<O: PathObserver>(
         };
         beta *= bs.f * bs.wi.dot(si.shading.n).abs() / bs.pdf;
         // A layered BSDF's sample density is only proportional to the true one; MIS needs the
-        // density the light-sampling side will also use.
+        // density the light-sampling side will also use, evaluated if a light is reached.
         p_b = if bs.pdf_is_proportional {
-            bsdf.pdf(wo, bs.wi, TransportMode::Radiance)
+            BouncePdf::Deferred {
+                bsdf,
+                wo,
+                wi: bs.wi,
+            }
         } else {
-            bs.pdf
+            BouncePdf::Known(bs.pdf)
         };
         specular_bounce = bs.flags.is_specular();
         any_non_specular |= !specular_bounce;
@@ -224,7 +261,7 @@ pub fn li_observed<O: PathObserver>(
                     ctx: exit_ctx,
                 } => {
                     ray = exit_ray;
-                    p_b = exit_pdf;
+                    p_b = BouncePdf::Known(exit_pdf);
                     prev_ctx = Some(exit_ctx);
                     specular_bounce = false;
                     any_non_specular = true;

@@ -61,6 +61,13 @@ impl BxDF {
         BxDF::Diffuse(DiffuseBxdf { r })
     }
 
+    /// True for the BxDFs whose f and pdf are random-walk estimates (the layered ones), far
+    /// dearer to evaluate than a shadow ray.
+    #[inline]
+    pub fn is_stochastic(&self) -> bool {
+        matches!(self, BxDF::CoatedDiffuse(_) | BxDF::CoatedConductor(_))
+    }
+
     /// The kinds of lobes this BxDF has.
     pub fn flags(&self) -> BxdfFlags {
         dispatch!(self, b => b.flags())

@@ -81,14 +81,19 @@ impl Scatter for ConductorBxdf {
         if !same_hemisphere(wo, wi) {
             return None;
         }
+        let d = &self.distrib;
+        // D(ωm) and Λ(ωo) serve both the density and the value.
+        let (d_wm, lambda_o) = (d.d(wm), d.lambda(wo));
         // dωm/dωi = 1/(4 |ωo·ωm|) for reflection.
-        let pdf = self.distrib.pdf(wo, wm) / (4.0 * wo.dot(wm).abs());
+        let pdf =
+            TrowbridgeReitz::d_visible_from(wo, wm, d_wm, lambda_o) / (4.0 * wo.dot(wm).abs());
         let (cos_o, cos_i) = (abs_cos_theta(wo), abs_cos_theta(wi));
         if cos_i == 0.0 || cos_o == 0.0 {
             return None;
         }
         let fr = fresnel_complex(wo.dot(wm).abs(), self.eta, self.k);
-        let f = self.distrib.d(wm) * fr * self.distrib.g(wo, wi) / (4.0 * cos_i * cos_o);
+        let g = TrowbridgeReitz::g_from_lambdas(lambda_o, d.lambda(wi));
+        let f = d_wm * fr * g / (4.0 * cos_i * cos_o);
         Some(BsdfSample::new(
             f,
             wi,

@@ -103,6 +103,20 @@ impl<B: Scatter> Side<'_, B> {
             Side::Bottom(b) => b.pdf(wo, wi, mode, mask),
         }
     }
+
+    #[inline]
+    fn f_pdf(
+        self,
+        wo: Vec3,
+        wi: Vec3,
+        mode: TransportMode,
+        mask: ReflTrans,
+    ) -> (SampledSpectrum, f32) {
+        match self {
+            Side::Top(t) => t.f_pdf(wo, wi, mode, mask),
+            Side::Bottom(b) => b.f_pdf(wo, wi, mode, mask),
+        }
+    }
 }
 
 /// Transmittance through a vertical distance `dz` of the unit-extinction slab along `w`:
@@ -277,9 +291,9 @@ impl<B: Scatter> Scatter for LayeredBxdf<B> {
                         if ((z < exit_z && w.z > 0.0) || (z > exit_z && w.z < 0.0))
                             && !exit_specular
                         {
-                            let f_exit = exit.f(-w, wi, mode);
+                            let (f_exit, exit_pdf) =
+                                exit.f_pdf(-w, wi, mode, ReflTrans::TRANSMISSION);
                             if f_exit != SampledSpectrum::ZERO {
-                                let exit_pdf = exit.pdf(-w, wi, mode, ReflTrans::TRANSMISSION);
                                 let wt = power_heuristic(p, exit_pdf);
                                 f += beta * tr(zp - exit_z, wp) * f_exit * wt;
                             }
@@ -328,12 +342,11 @@ impl<B: Scatter> Scatter for LayeredBxdf<B> {
                     w = bs.wi;
                     // ...and connect through the exit along the new direction.
                     if !exit_specular {
-                        let f_exit = exit.f(-w, wi, mode);
+                        let (f_exit, exit_pdf) = exit.f_pdf(-w, wi, mode, ReflTrans::TRANSMISSION);
                         if f_exit != SampledSpectrum::ZERO {
                             let wt = if non_exit_specular {
                                 1.0
                             } else {
-                                let exit_pdf = exit.pdf(-w, wi, mode, ReflTrans::TRANSMISSION);
                                 power_heuristic(bs.pdf, exit_pdf)
                             };
                             f += beta * tr(self.thickness, bs.wi) * f_exit * wt;

@@ -152,14 +152,28 @@ impl TrowbridgeReitz {
     /// directions, G(ωo, ωi) = 1 / (1 + Λ(ωo) + Λ(ωi)).
     #[inline]
     pub fn g(&self, wo: Vec3, wi: Vec3) -> f32 {
-        1.0 / (1.0 + self.lambda(wo) + self.lambda(wi))
+        Self::g_from_lambdas(self.lambda(wo), self.lambda(wi))
+    }
+
+    /// [`Self::g`] from Λ(ωo) and Λ(ωi) already computed: 1 / (1 + Λ(ωo) + Λ(ωi)).
+    #[inline]
+    pub fn g_from_lambdas(lambda_o: f32, lambda_i: f32) -> f32 {
+        1.0 / (1.0 + lambda_o + lambda_i)
     }
 
     /// Distribution of normals visible from `w`:
     /// D_ω(ωm) = G₁(ω) / |cos θ| · D(ωm) · |ω·ωm|, a density over the hemisphere of ωm.
     #[inline]
     pub fn d_visible(&self, w: Vec3, wm: Vec3) -> f32 {
-        self.g1(w) / w.z.abs() * self.d(wm) * w.dot(wm).abs()
+        Self::d_visible_from(w, wm, self.d(wm), self.lambda(w))
+    }
+
+    /// [`Self::d_visible`] from D(ωm) and Λ(ω) already computed, for the samplers that
+    /// need D and Λ(ωo) for the BxDF's value too:
+    /// D_ω(ωm) = 1/(1 + Λ(ω)) / |cos θ| · D(ωm) · |ω·ωm|.
+    #[inline]
+    pub fn d_visible_from(w: Vec3, wm: Vec3, d_wm: f32, lambda_w: f32) -> f32 {
+        1.0 / (1.0 + lambda_w) / w.z.abs() * d_wm * w.dot(wm).abs()
     }
 
     /// Density (solid angle of ωm) with which [`Self::sample_wm`] returns `wm`: D_ω(ωm).

@@ -225,4 +225,18 @@ pub trait Scatter {
     /// Density with which [`Scatter::sample_f`] (with the same `mask`) returns `wi`; zero for
     /// specular lobes.
     fn pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode, mask: ReflTrans) -> f32;
+
+    /// `(f(wo, wi), pdf(wo, wi, mask))` together, for callers that need both of one pair (the
+    /// layered walks' connections through an interface); a BxDF whose two share work
+    /// overrides it, with the same values.
+    #[inline]
+    fn f_pdf(
+        &self,
+        wo: Vec3,
+        wi: Vec3,
+        mode: TransportMode,
+        mask: ReflTrans,
+    ) -> (SampledSpectrum, f32) {
+        (self.f(wo, wi, mode), self.pdf(wo, wi, mode, mask))
+    }
 }

@@ -9,8 +9,8 @@ use super::hash::{hash_u64, mix_bits, permutation_element, u32_to_unit_f32};
 use super::pmj02::{N_PMJ02_SETS, Pmj02Sets, pmj02_sets};
 use super::randomization::Randomization;
 use super::sobol::{
-    N_SOBOL_DIMENSIONS, fast_owen_scramble, interval_to_index, randomize, sobol_0, sobol_1,
-    sobol_sample,
+    N_SOBOL_DIMENSIONS, fast_owen_scramble, fast_owen_scramble_reversed, interval_to_index,
+    randomize, sobol_0, sobol_1, sobol_sample, sobol_sample_reversed,
 };
 use crate::math::Vec2;
 use std::sync::Arc;
@@ -133,6 +133,10 @@ pub struct Sampler {
     halton: Option<HaltonState>,
     /// The `sobol` sampler's index of the current sample in the whole image's sequence.
     sobol_index: u64,
+    /// The `sobol` sampler's scrambling seed of each dimension, a hash of (dimension, seed)
+    /// computed once per sampler rather than once per sample and dimension (empty for the
+    /// other kinds).
+    sobol_seeds: Box<[u32]>,
     /// The `pmj02bn` sampler's point sets.
     pmj: Option<Arc<Pmj02Sets>>,
 }
@@ -163,6 +167,12 @@ impl Sampler {
             dim: 0,
             halton,
             sobol_index: 0,
+            sobol_seeds: match kind {
+                SamplerKind::Sobol { .. } => (0..N_SOBOL_DIMENSIONS as u64)
+                    .map(|d| mix_bits(hash_u64(&[d, seed])) as u32)
+                    .collect(),
+                _ => Box::default(),
+            },
             pmj: (kind == SamplerKind::Pmj02bn).then(|| pmj02_sets(spp)),
         }
     }
@@ -366,7 +376,8 @@ impl Sampler {
     }
 
     /// Dimension `d` of the current `sobol` sample, randomised by a hash of (dimension,
-    /// seed); past the table, dimensions start again from 2 (as pbrt-v4 does past its 1024).
+    /// seed) (`sobol_seeds`); past the table, dimensions start again from 2 (as
+    /// pbrt-v4 does past its 1024).
     fn sobol_dimension(&self, d: u32, randomization: Randomization) -> f32 {
         let n = N_SOBOL_DIMENSIONS as u32;
         let d = if d < n {
@@ -374,12 +385,19 @@ impl Sampler {
         } else {
             2 + (d - 2) % (n - 2)
         };
-        let h = mix_bits(hash_u64(&[d as u64, self.seed]));
-        u32_to_unit_f32(randomize(
-            sobol_sample(self.sobol_index, d as usize),
-            randomization,
-            h as u32,
-        ))
+        let seed = self.sobol_seeds.get(d as usize).copied().unwrap_or(0);
+        u32_to_unit_f32(match randomization {
+            // The default: the scramble takes the reversed bits the reversed columns give.
+            Randomization::FastOwen => fast_owen_scramble_reversed(
+                sobol_sample_reversed(self.sobol_index, d as usize),
+                seed,
+            ),
+            _ => randomize(
+                sobol_sample(self.sobol_index, d as usize),
+                randomization,
+                seed,
+            ),
+        })
     }
 
     /// Dimension `d` of the current Halton sample (dimensions 0 and 1 belong to the pixel).

@@ -39,13 +39,7 @@ pub fn sobol_1(mut a: u32) -> u32 {
 /// significant than it, as Owen scrambling asks, with a cheap hash.
 #[inline]
 pub fn fast_owen_scramble(v: u32, seed: u32) -> u32 {
-    let mut x = v.reverse_bits();
-    x = x.wrapping_add(seed);
-    x ^= x.wrapping_mul(0x6c50_b47c);
-    x ^= x.wrapping_mul(0xb82f_1e52);
-    x ^= x.wrapping_mul(0xc7af_e638);
-    x ^= x.wrapping_mul(0x8d22_f6e6);
-    x.reverse_bits()
+    fast_owen_scramble_reversed(v.reverse_bits(), seed)
 }
 
 /// Owen scrambling bit by bit: bit 31 − b is flipped when a hash of (seed, the b bits above
@@ -60,6 +54,18 @@ pub fn owen_scramble(mut v: u32, seed: u32) -> u32 {
         }
     }
     v
+}
+
+/// [`fast_owen_scramble`] of the value whose bit reversal is `v_reversed`: the scramble works
+/// on reversed bits, so a caller holding them ([`sobol_sample_reversed`]) skips one reversal.
+#[inline]
+pub fn fast_owen_scramble_reversed(v_reversed: u32, seed: u32) -> u32 {
+    let mut x = v_reversed.wrapping_add(seed);
+    x ^= x.wrapping_mul(0x6c50_b47c);
+    x ^= x.wrapping_mul(0xb82f_1e52);
+    x ^= x.wrapping_mul(0xc7af_e638);
+    x ^= x.wrapping_mul(0x8d22_f6e6);
+    x.reverse_bits()
 }
 
 /// `v` randomised by `randomization` with the 32-bit `seed`.
@@ -115,60 +121,111 @@ pub fn sobol_matrices() -> &'static [[u32; 32]] {
     })
 }
 
+/// [`sobol_matrices`] with every column bit-reversed: XORing them gives the bit reversal of
+/// a Sobol value directly (reversal commutes with XOR), which is what Owen scrambling wants.
+fn sobol_matrices_reversed() -> &'static [[u32; 32]] {
+    static M: std::sync::OnceLock<Vec<[u32; 32]>> = std::sync::OnceLock::new();
+    M.get_or_init(|| {
+        sobol_matrices()
+            .iter()
+            .map(|c| c.map(u32::reverse_bits))
+            .collect()
+    })
+}
+
+/// The bit reversal of [`sobol_sample`]`(a, dim)`, from the reversed columns.
+#[inline]
+pub fn sobol_sample_reversed(a: u64, dim: usize) -> u32 {
+    let c = &sobol_matrices_reversed()[dim];
+    let mut a = a as u32;
+    let mut v = 0;
+    while a != 0 {
+        v ^= c[(a.trailing_zeros() & 31) as usize];
+        a &= a - 1;
+    }
+    v
+}
+
 /// Dimension `dim` of Sobol point `a` (its low 32 bits) as a 32-bit binary fraction: the
-/// columns of C_dim for the set bits of a, XORed.
+/// columns of C_dim for the set bits of a, XORed. The loop visits only the set bits (lowest
+/// first, `a & (a − 1)` clearing it), so it runs popcount(a) times and its one data-dependent
+/// branch is the exit: testing every bit instead mispredicted about half of them.
 #[inline]
 pub fn sobol_sample(a: u64, dim: usize) -> u32 {
     let c = &sobol_matrices()[dim];
     let mut a = a as u32;
     let mut v = 0;
-    let mut k = 0;
     while a != 0 {
-        if a & 1 != 0 {
-            v ^= c[k];
-        }
-        a >>= 1;
-        k += 1;
+        v ^= c[(a.trailing_zeros() & 31) as usize];
+        a &= a - 1;
     }
     v
+}
+
+/// The largest `m` [`interval_to_index`] accepts (an image of 2¹⁶ pixels a side).
+pub const MAX_INTERVAL_LOG2: u32 = 16;
+
+/// For each `m`, the inverse of the m × m system [`interval_to_index`] solves, as the
+/// solutions for the unit right-hand sides: entry `b` is the x with Σ x_j c_j = 2^b, where
+/// c_j is the top m bits of dimension 1's column m + j. The system depends on m alone, so
+/// each is solved once (Gaussian elimination over GF(2)) and a pixel sample's index then
+/// costs a few XORs: x(rhs) = ⨁_{b set in rhs} x(2^b), by linearity.
+fn dim1_inverse(m: u32) -> &'static [u32; MAX_INTERVAL_LOG2 as usize] {
+    static INV: [std::sync::OnceLock<[u32; MAX_INTERVAL_LOG2 as usize]>;
+        MAX_INTERVAL_LOG2 as usize + 1] = [const { std::sync::OnceLock::new() }; 17];
+    INV[m as usize].get_or_init(|| {
+        let top = |v: u32| v >> (32 - m);
+        std::array::from_fn(|b| {
+            if b as u32 >= m {
+                return 0;
+            }
+            // (column image, which unknowns make it), eliminated towards the target 2^b.
+            let mut rows: Vec<(u32, u32)> = (0..m)
+                .map(|j| (top(sobol_1(1u32 << (m + j))), 1u32 << j))
+                .collect();
+            let mut x = 0u32;
+            let mut target = 1u32 << b;
+            for bit in (0..m).rev() {
+                let Some(p) = rows.iter().position(|r| r.0 >> bit & 1 != 0) else {
+                    continue;
+                };
+                let pivot = rows.swap_remove(p);
+                for r in rows.iter_mut() {
+                    if r.0 >> bit & 1 != 0 {
+                        r.0 ^= pivot.0;
+                        r.1 ^= pivot.1;
+                    }
+                }
+                if target >> bit & 1 != 0 {
+                    target ^= pivot.0;
+                    x ^= pivot.1;
+                }
+            }
+            x
+        })
+    })
 }
 
 /// The index of the `frame`-th Sobol point whose first two dimensions, scaled by 2^m, fall in
 /// pixel (`px`, `py`) (pbrt-v4's `SobolIntervalToIndex`, solved here directly): the index is
 /// `frame` followed by 2m low bits. The top m bits of dimension 0 are the low m bits of the
 /// index reversed, which `px` fixes; the top m bits of dimension 1 are then linear in the
-/// remaining m bits, a system over GF(2) that the (0, 2) property makes invertible.
+/// remaining m bits, a system over GF(2) that the (0, 2) property makes invertible (its
+/// inverse is computed once per m, [`dim1_inverse`]). `m` is at most [`MAX_INTERVAL_LOG2`].
 pub fn interval_to_index(m: u32, frame: u64, px: u32, py: u32) -> u64 {
     if m == 0 {
         return frame;
     }
-    let top = |v: u32| v >> (32 - m);
+    let m = m.min(MAX_INTERVAL_LOG2);
     // Bits 0..m: px mirrored.
     let low = (px.reverse_bits() >> (32 - m)) as u64;
     let known = (frame << (2 * m)) | low;
-    let rhs = py ^ top(sobol_1(known as u32));
-    // Columns m..2m of dimension 1, restricted to the top m bits: solve Σ x_j c_j = rhs.
-    let mut rows: Vec<(u32, u32)> = (0..m)
-        .map(|j| (top(sobol_1(1u32 << (m + j))), 1u32 << j))
-        .collect();
-    // Gaussian elimination on (column image, which unknowns make it).
+    let mut rhs = (py ^ (sobol_sample(known, 1) >> (32 - m))) & ((1u32 << m) - 1);
+    let inv = dim1_inverse(m);
     let mut x = 0u32;
-    let mut target = rhs;
-    for bit in (0..m).rev() {
-        let Some(p) = rows.iter().position(|r| r.0 >> bit & 1 != 0) else {
-            continue;
-        };
-        let pivot = rows.swap_remove(p);
-        for r in rows.iter_mut() {
-            if r.0 >> bit & 1 != 0 {
-                r.0 ^= pivot.0;
-                r.1 ^= pivot.1;
-            }
-        }
-        if target >> bit & 1 != 0 {
-            target ^= pivot.0;
-            x ^= pivot.1;
-        }
+    while rhs != 0 {
+        x ^= inv[(rhs.trailing_zeros() & 15) as usize];
+        rhs &= rhs - 1;
     }
     known | ((x as u64) << m)
 }
@@ -224,6 +281,19 @@ mod tests {
                 assert_eq!((sobol_sample(a, 0) >> 28, sobol_sample(a, 1) >> 28), (x, y));
             }
         }
+        // Other scales, up to the largest: the point's top m bits are the pixel's.
+        for m in [1u32, 8, 11, MAX_INTERVAL_LOG2] {
+            let n = 1u32 << m;
+            for (x, y) in [(0, 0), (n - 1, 0), (n / 3, n - 1), (n / 2, n / 5)] {
+                for frame in [0u64, 1, 63] {
+                    let a = interval_to_index(m, frame, x, y);
+                    assert_eq!(a >> (2 * m), frame);
+                    let top = |v: u32| v >> (32 - m);
+                    let p = (top(sobol_sample(a, 0)), top(sobol_sample(a, 1)));
+                    assert_eq!(p, (x, y), "m = {m}");
+                }
+            }
+        }
     }
 
     #[test]
@@ -243,6 +313,21 @@ mod tests {
                 }
                 assert!(seen.iter().all(|&c| c == 1), "{r:?}");
             }
+        }
+        // The scramble from reversed Sobol values is the scramble of the values.
+        for (a, d, seed) in [
+            (5u64, 2usize, 9u32),
+            (0x2f_1234, 17, 0xdead_beef),
+            (0, 3, 1),
+        ] {
+            assert_eq!(
+                sobol_sample_reversed(a, d),
+                sobol_sample(a, d).reverse_bits()
+            );
+            assert_eq!(
+                fast_owen_scramble_reversed(sobol_sample_reversed(a, d), seed),
+                fast_owen_scramble(sobol_sample(a, d), seed)
+            );
         }
         // And they do change the points.
         assert_ne!(owen_scramble(0, 5), 0);
