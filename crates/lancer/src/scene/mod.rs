@@ -75,6 +75,9 @@ pub struct Scene {
     bounds: Bounds3,
     /// Spectral mode's constant colours as spectra, made on first use.
     spectra: std::sync::OnceLock<spectra::SceneSpectra>,
+    /// What gives texture lookups their footprints, when a texture filters over them (an
+    /// image texture with a MIP pyramid) or a bump map steps by them; `None` otherwise.
+    pub footprints: Option<crate::camera::footprint::Footprints>,
     /// The film's sensor, white balance and output space, unless it is the plain CIE 1931
     /// observer into sRGB.
     pub film_response: Option<crate::spectrum::FilmResponse>,
@@ -124,7 +127,9 @@ impl Scene {
             if let Some(ih) = self.instances.intersect(&r) {
                 let (mut si, prim) = self.instances.interaction(ray, &ih);
                 let m = self.prims[prim as usize].material;
-                crate::material::apply_bump(&self.materials, &self.textures(), m, &mut si);
+                crate::material::apply_bump(&self.materials, &self.textures(), m, &mut si, |si| {
+                    self.tex_coord(si)
+                });
                 // Instanced objects are triangle meshes, which carry no colour of their own.
                 return Some(SceneHit {
                     si,
@@ -137,7 +142,9 @@ impl Scene {
         let shape = &self.shapes[prim as usize];
         let mut si = shape.interaction(ray, &h, &self.meshes);
         let m = self.prims[prim as usize].material;
-        crate::material::apply_bump(&self.materials, &self.textures(), m, &mut si);
+        crate::material::apply_bump(&self.materials, &self.textures(), m, &mut si, |si| {
+                    self.tex_coord(si)
+                });
         let albedo = shape.hit_albedo(&h);
         Some(SceneHit { si, prim, albedo })
     }
@@ -165,7 +172,7 @@ impl Scene {
         alpha: FloatTex,
     ) -> Option<crate::shape::ShapeHit> {
         let si = self.shapes[i as usize].interaction(ray, &h, &self.meshes);
-        let a = self.textures().float(alpha, &Scene::tex_coord(&si));
+        let a = self.textures().float(alpha, &Scene::tex_coord_at(&si));
         if a >= 1.0 {
             return Some(h);
         }
@@ -206,12 +213,27 @@ impl Scene {
         }
     }
 
-    /// Where textures are looked up for a hit.
-    pub fn tex_coord(si: &SurfaceInteraction) -> TexCoord {
+    /// Where textures are looked up for a hit, without a footprint.
+    pub fn tex_coord_at(si: &SurfaceInteraction) -> TexCoord {
         TexCoord {
             uv: si.uv,
             p: si.p,
             n: si.n,
+            ..TexCoord::default()
+        }
+    }
+
+    /// Where textures are looked up for a hit, with its footprint when the scene's textures
+    /// filter over one ([`crate::camera::footprint`]).
+    #[inline]
+    pub fn tex_coord(&self, si: &SurfaceInteraction) -> TexCoord {
+        let tc = Scene::tex_coord_at(si);
+        match &self.footprints {
+            None => tc,
+            Some(f) => {
+                let (dpdx, dpdy) = f.dp_dxy(si.p, si.n);
+                tc.with_footprint(si.dpdu, si.dpdv, dpdx, dpdy)
+            }
         }
     }
 }

@@ -3,6 +3,7 @@
 //! space). Texture space is the coordinate system current at the `Texture` directive: the
 //! mappings hold `texture_from_world`, the inverse of that transformation.
 
+use super::mipmap::StFootprint;
 use crate::math::{INV_2PI, INV_PI, PI, Transform, Vec2, Vec3, safe_acos};
 
 /// Where a texture is looked up.
@@ -14,6 +15,50 @@ pub struct TexCoord {
     pub p: Vec3,
     /// Geometric normal, world space (for `directionmix`).
     pub n: Vec3,
+    /// The footprint: ∂p/∂x and ∂p/∂y, the change of the point from one pixel to the next
+    /// (zero when unknown: filters then read the finest texels).
+    pub dpdx: Vec3,
+    /// ∂p/∂y.
+    pub dpdy: Vec3,
+    /// ∂u/∂x.
+    pub dudx: f32,
+    /// ∂u/∂y.
+    pub dudy: f32,
+    /// ∂v/∂x.
+    pub dvdx: f32,
+    /// ∂v/∂y.
+    pub dvdy: f32,
+}
+
+impl TexCoord {
+    /// This point with the footprint ∂p/∂x, ∂p/∂y and the (u, v) derivatives it gives on a
+    /// surface with tangents ∂p/∂u, ∂p/∂v (pbrt-v4's `ComputeDifferentials`): ∂p/∂x ≈
+    /// ∂p/∂u·∂u/∂x + ∂p/∂v·∂v/∂x solved in the least-squares sense,
+    /// (AᵀA)⁻¹Aᵀ·∂p/∂x with A = [∂p/∂u ∂p/∂v]; each derivative clamped to ±10⁸, 0 when the
+    /// system is singular.
+    pub fn with_footprint(self, dpdu: Vec3, dpdv: Vec3, dpdx: Vec3, dpdy: Vec3) -> TexCoord {
+        let (a00, a01, a11) = (dpdu.dot(dpdu), dpdu.dot(dpdv), dpdv.dot(dpdv));
+        let inv_det = 1.0 / (a00 * a11 - a01 * a01);
+        let inv_det = if inv_det.is_finite() { inv_det } else { 0.0 };
+        let (b0x, b1x) = (dpdu.dot(dpdx), dpdv.dot(dpdx));
+        let (b0y, b1y) = (dpdu.dot(dpdy), dpdv.dot(dpdy));
+        let fix = |v: f32| {
+            if v.is_finite() {
+                v.clamp(-1e8, 1e8)
+            } else {
+                0.0
+            }
+        };
+        TexCoord {
+            dpdx,
+            dpdy,
+            dudx: fix((a11 * b0x - a01 * b1x) * inv_det),
+            dvdx: fix((a00 * b1x - a01 * b0x) * inv_det),
+            dudy: fix((a11 * b0y - a01 * b1y) * inv_det),
+            dvdy: fix((a00 * b1y - a01 * b0y) * inv_det),
+            ..self
+        }
+    }
 }
 
 /// The (u, v) mapping of pbrt's textures: `(su·u + du, sv·v + dv)`.
@@ -117,6 +162,69 @@ impl Mapping2D {
                 let p = texture_from_world.point(tc.p);
                 Vec2::new(ds + p.dot(*vs), dt + p.dot(*vt))
             }
+        }
+    }
+}
+
+impl Mapping2D {
+    /// The texture coordinates of `tc` with their screen-space derivatives, by the chain rule
+    /// through the mapping (pbrt-v4's `TextureMapping2D::Map`): `uv` scales ∂u, ∂v by su, sv;
+    /// the others take `∂s/∂x = ∇s · ∂p/∂x` with ∂p/∂x in texture space.
+    #[inline]
+    pub fn map_footprint(&self, tc: &TexCoord) -> StFootprint {
+        let st = self.map(tc);
+        let grads = |tfw: &Transform, ds: Vec3, dt: Vec3| {
+            let (dpdx, dpdy) = (tfw.vector(tc.dpdx), tfw.vector(tc.dpdy));
+            StFootprint {
+                st,
+                dsdx: ds.dot(dpdx),
+                dsdy: ds.dot(dpdy),
+                dtdx: dt.dot(dpdx),
+                dtdy: dt.dot(dpdy),
+            }
+        };
+        let c = match self {
+            Mapping2D::Uv(m) => StFootprint {
+                st,
+                dsdx: m.su * tc.dudx,
+                dsdy: m.su * tc.dudy,
+                dtdx: m.sv * tc.dvdx,
+                dtdy: m.sv * tc.dvdy,
+            },
+            Mapping2D::Spherical { texture_from_world } => {
+                let p = texture_from_world.point(tc.p);
+                // ∇(φ/2π) = (−y, x, 0)/(2π(x² + y²)) and
+                // ∇(θ/π) = (xz/r, yz/r, −r)/(π(r² + z²)), r = √(x² + y²). pbrt-v4 pairs the
+                // first with s and the second with t although s = θ/π, t = φ/2π; lancer
+                // follows it, so that the filters see the same footprints.
+                let x2y2 = p.x * p.x + p.y * p.y;
+                let r = x2y2.sqrt();
+                let ds = Vec3::new(-p.y, p.x, 0.0) / (2.0 * PI * x2y2);
+                let dt = Vec3::new(p.x * p.z / r, p.y * p.z / r, -r) / (PI * (x2y2 + p.z * p.z));
+                grads(texture_from_world, ds, dt)
+            }
+            Mapping2D::Cylindrical { texture_from_world } => {
+                // s = (π + atan2(y, x))/2π: ∇s = (−y, x, 0)/(2π(x² + y²)); t = z: ∇t = ẑ.
+                let p = texture_from_world.point(tc.p);
+                let ds = Vec3::new(-p.y, p.x, 0.0) / (2.0 * PI * (p.x * p.x + p.y * p.y));
+                grads(texture_from_world, ds, Vec3::Z)
+            }
+            Mapping2D::Planar {
+                texture_from_world,
+                vs,
+                vt,
+                ..
+            } => grads(texture_from_world, *vs, *vt),
+        };
+        // Degenerate points (the axis of a spherical or cylindrical mapping) give no
+        // footprint rather than NaNs.
+        let finite = |v: f32| if v.is_finite() { v } else { 0.0 };
+        StFootprint {
+            st: c.st,
+            dsdx: finite(c.dsdx),
+            dsdy: finite(c.dsdy),
+            dtdx: finite(c.dtdx),
+            dtdy: finite(c.dtdy),
         }
     }
 }
