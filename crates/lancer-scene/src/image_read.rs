@@ -14,9 +14,10 @@
 //! The size a header claims is checked against [`MAX_SIDE`] and [`MAX_TEXELS`] before any
 //! buffer is allocated, so a corrupt or hostile file cannot ask for gigabytes.
 
-use lancer::image::Image;
+use lancer::image::{Image, WrapMode};
 use lancer::image_io::srgb_to_linear;
 use lancer::math::PackedRgb;
+use lancer::texture::MipMap;
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::fmt;
@@ -423,6 +424,9 @@ struct CacheEntry {
     decoded: Arc<DecodedImage>,
     /// Float images: [bilinear, point].
     floats: [Option<Arc<Image>>; 2],
+    /// MIP pyramids made of the image: by kind (0 RGB, 1 float averaged, 2 float first
+    /// channel) and wrap mode (which a non-power-of-two image's resampling depends on).
+    mipmaps: Vec<(u8, WrapMode, Arc<MipMap>)>,
 }
 
 impl ImageCache {
@@ -442,6 +446,7 @@ impl ImageCache {
             CacheEntry {
                 decoded: decoded.clone(),
                 floats: [None, None],
+                mipmaps: Vec::new(),
             },
         );
         Ok(decoded)
@@ -467,6 +472,37 @@ impl ImageCache {
         Ok(slot
             .get_or_insert_with(|| Arc::new(decoded.float_image(nearest)))
             .clone())
+    }
+
+    /// The MIP pyramid of `path`'s image for `wrap`: of its RGB image (`float` `None`), or of
+    /// its float image ([`DecodedImage::float_image`] with `nearest` = the flag), made once
+    /// per kind and wrap mode. A power-of-two image's level 0 is the cached image itself.
+    pub fn mipmap(
+        &self,
+        path: &Path,
+        encoding: Encoding,
+        float: Option<bool>,
+        wrap: WrapMode,
+    ) -> Result<Arc<MipMap>, ImageReadError> {
+        let kind = match float {
+            None => 0,
+            Some(first) => 1 + first as u8,
+        };
+        let key = (path.to_path_buf(), encoding.key());
+        if let Some(e) = self.entries.borrow().get(&key) {
+            if let Some((_, _, m)) = e.mipmaps.iter().find(|m| m.0 == kind && m.1 == wrap) {
+                return Ok(m.clone());
+            }
+        }
+        let image = match float {
+            None => self.rgb(path, encoding)?,
+            Some(first) => self.float(path, encoding, first)?,
+        };
+        let m = Arc::new(MipMap::new(image, wrap));
+        let mut entries = self.entries.borrow_mut();
+        let entry = entries.get_mut(&key).expect("just decoded");
+        entry.mipmaps.push((kind, wrap, m.clone()));
+        Ok(m)
     }
 
     /// How many distinct files (and encodings) were decoded.

@@ -171,10 +171,7 @@ impl Footprints {
             let o = self.min_pos[axis];
             let dir = Vec3::Z + self.min_dir[axis];
             let t = -(n_down.dot(o) - d) / n_down.dot(dir);
-            let v = self.spp_scale
-                * self
-                    .world_from_camera
-                    .vector(unapply(o + t * dir - p_down));
+            let v = self.spp_scale * self.world_from_camera.vector(unapply(o + t * dir - p_down));
             if v.is_finite() { v } else { Vec3::ZERO }
         };
         (offset(0), offset(1))

@@ -155,7 +155,11 @@ mod tests {
             ..TexCoord::default()
         };
         let sh = bump_shading(&tex, FloatTex::Tex(0), &si, &tc).unwrap();
-        assert!((sh.dpdu - Vec3::new(1.0, 0.0, 125.0)).length() < 1e-3, "{}", sh.dpdu);
+        assert!(
+            (sh.dpdu - Vec3::new(1.0, 0.0, 125.0)).length() < 1e-3,
+            "{}",
+            sh.dpdu
+        );
         // v had no footprint: its step is still 0.0005, inside the cell.
         assert_eq!(sh.dpdv, Vec3::Y);
     }

@@ -128,7 +128,7 @@ impl Scene {
                 let (mut si, prim) = self.instances.interaction(ray, &ih);
                 let m = self.prims[prim as usize].material;
                 crate::material::apply_bump(&self.materials, &self.textures(), m, &mut si, |si| {
-                    self.tex_coord(si)
+                    self.tex_coord_with_footprint(si)
                 });
                 // Instanced objects are triangle meshes, which carry no colour of their own.
                 return Some(SceneHit {
@@ -143,8 +143,8 @@ impl Scene {
         let mut si = shape.interaction(ray, &h, &self.meshes);
         let m = self.prims[prim as usize].material;
         crate::material::apply_bump(&self.materials, &self.textures(), m, &mut si, |si| {
-                    self.tex_coord(si)
-                });
+            self.tex_coord_with_footprint(si)
+        });
         let albedo = shape.hit_albedo(&h);
         Some(SceneHit { si, prim, albedo })
     }
@@ -172,7 +172,7 @@ impl Scene {
         alpha: FloatTex,
     ) -> Option<crate::shape::ShapeHit> {
         let si = self.shapes[i as usize].interaction(ray, &h, &self.meshes);
-        let a = self.textures().float(alpha, &Scene::tex_coord_at(&si));
+        let a = self.textures().float(alpha, &Scene::tex_coord(&si));
         if a >= 1.0 {
             return Some(h);
         }
@@ -214,7 +214,7 @@ impl Scene {
     }
 
     /// Where textures are looked up for a hit, without a footprint.
-    pub fn tex_coord_at(si: &SurfaceInteraction) -> TexCoord {
+    pub fn tex_coord(si: &SurfaceInteraction) -> TexCoord {
         TexCoord {
             uv: si.uv,
             p: si.p,
@@ -226,8 +226,8 @@ impl Scene {
     /// Where textures are looked up for a hit, with its footprint when the scene's textures
     /// filter over one ([`crate::camera::footprint`]).
     #[inline]
-    pub fn tex_coord(&self, si: &SurfaceInteraction) -> TexCoord {
-        let tc = Scene::tex_coord_at(si);
+    pub fn tex_coord_with_footprint(&self, si: &SurfaceInteraction) -> TexCoord {
+        let tc = Scene::tex_coord(si);
         match &self.footprints {
             None => tc,
             Some(f) => {

@@ -167,7 +167,8 @@ impl MipMap {
         let lod = (top as f32 + shorter.log2()).max(0.0);
         let il = lod.floor() as usize;
         let f = lod - il as f32;
-        (1.0 - f) * self.ewa(il, wrap, c.st, dst0, dst1) + f * self.ewa(il + 1, wrap, c.st, dst0, dst1)
+        (1.0 - f) * self.ewa(il, wrap, c.st, dst0, dst1)
+            + f * self.ewa(il + 1, wrap, c.st, dst0, dst1)
     }
 
     /// pbrt-v4's `MIPMap::EWA` at one level: the texels inside the ellipse
@@ -244,14 +245,25 @@ fn downsample(img: &Image) -> Image {
 fn resample_weights(old: u32, new: u32) -> Vec<(i64, [f32; 4])> {
     let sinc = |x: f32| {
         let px = std::f32::consts::PI * x;
-        if 1.0 - px * px == 1.0 { 1.0 } else { px.sin() / px }
+        if 1.0 - px * px == 1.0 {
+            1.0
+        } else {
+            px.sin() / px
+        }
     };
-    let windowed = |x: f32| if x.abs() > 2.0 { 0.0 } else { sinc(x) * sinc(x / 2.0) };
+    let windowed = |x: f32| {
+        if x.abs() > 2.0 {
+            0.0
+        } else {
+            sinc(x) * sinc(x / 2.0)
+        }
+    };
     (0..new)
         .map(|i| {
             let centre = (i as f32 + 0.5) * old as f32 / new as f32;
             let first = (centre - 2.0 + 0.5).floor();
-            let mut w: [f32; 4] = std::array::from_fn(|j| windowed(first + j as f32 + 0.5 - centre));
+            let mut w: [f32; 4] =
+                std::array::from_fn(|j| windowed(first + j as f32 + 0.5 - centre));
             let inv = 1.0 / w.iter().sum::<f32>();
             w.iter_mut().for_each(|v| *v *= inv);
             (first as i64, w)

@@ -53,7 +53,10 @@ fn non_power_of_two_images_are_resampled_up() {
     }
     // Equal sizes give the identity weights [0, 1, 0, 0] from the texel before.
     for (first, w) in resample_weights(4, 4) {
-        assert!(first >= -1 && (w[1] - 1.0).abs() < 1e-6 && w[0].abs() < 1e-6, "{w:?}");
+        assert!(
+            first >= -1 && (w[1] - 1.0).abs() < 1e-6 && w[0].abs() < 1e-6,
+            "{w:?}"
+        );
     }
     // 2 → 4: the new texel 0 is centred at 0.25 source texels; its four taps at −1.5 … 1.5
     // from ⌊0.25 − 1.5⌋ = −2, i.e. x − c = −1.75, −0.75, 0.25, 1.25.
