@@ -107,6 +107,10 @@ pub struct DecodedImage {
     pub rgb: Arc<Image>,
     /// Alpha per texel, same order as the texels; `None` when absent or 1 everywhere.
     pub alpha: Option<Vec<f32>>,
+    /// The matrix that took the file's own RGB (an EXR's `chromaticities`) to linear sRGB;
+    /// `None` for sRGB files. A MIP pyramid clamps its resampled texels in the file's space,
+    /// as pbrt-v4 does.
+    pub to_srgb: Option<lancer::math::Mat3>,
 }
 
 impl DecodedImage {
@@ -210,10 +214,15 @@ fn decode(
     format: Format,
     encoding: Encoding,
 ) -> Result<DecodedImage, ImageReadError> {
+    let mut to_srgb = None;
     let (width, height, texels, alpha) = match format {
         Format::Png => read_png(path, bytes, encoding)?,
         Format::Jpeg => read_jpeg(path, bytes)?,
-        Format::Exr => read_exr(path, bytes)?,
+        Format::Exr => {
+            let (decoded, m) = read_exr(path, bytes)?;
+            to_srgb = m;
+            decoded
+        }
         Format::Pfm => pfm::read_pfm(path, bytes)?,
     };
     let alpha = alpha.filter(|a| a.iter().any(|&v| v != 1.0));
@@ -222,6 +231,7 @@ fn decode(
     Ok(DecodedImage {
         rgb: Arc::new(rgb),
         alpha,
+        to_srgb,
     })
 }
 
@@ -326,7 +336,10 @@ fn read_jpeg(path: &Path, bytes: &[u8]) -> Result<Decoded, ImageReadError> {
     Ok(split_channels(width, height, 3, &samples))
 }
 
-fn read_exr(path: &Path, bytes: &[u8]) -> Result<Decoded, ImageReadError> {
+fn read_exr(
+    path: &Path,
+    bytes: &[u8],
+) -> Result<(Decoded, Option<lancer::math::Mat3>), ImageReadError> {
     use exr::prelude::{ReadChannels, ReadLayers, read};
     let meta = exr::meta::MetaData::read_from_buffered(Cursor::new(bytes), false)
         .map_err(|e| err(path, format!("bad OpenEXR header: {e}")))?;
@@ -407,7 +420,7 @@ fn read_exr(path: &Path, bytes: &[u8]) -> Result<Decoded, ImageReadError> {
         })
         .collect();
     let alpha = alpha.map(channel).transpose()?;
-    Ok((width, height, rgb, alpha))
+    Ok(((width, height, rgb, alpha), to_srgb))
 }
 
 /// Images decoded during one scene load, by file and encoding, so that a file many textures
@@ -498,7 +511,12 @@ impl ImageCache {
             None => self.rgb(path, encoding)?,
             Some(first) => self.float(path, encoding, first)?,
         };
-        let m = Arc::new(MipMap::new(image, wrap));
+        let to_srgb = self.decoded(path, encoding)?.to_srgb;
+        let m = Arc::new(MipMap::with_clamp_space(
+            image,
+            wrap,
+            to_srgb.filter(|_| float.is_none()),
+        ));
         let mut entries = self.entries.borrow_mut();
         let entry = entries.get_mut(&key).expect("just decoded");
         entry.mipmaps.push((kind, wrap, m.clone()));

@@ -26,6 +26,21 @@ pub struct Footprints {
     min_dir: [Vec3; 2],
     /// max(⅛, 1/√spp).
     spp_scale: f32,
+    /// A pinhole perspective camera's own differentials, for the rays it shoots.
+    pinhole: Option<Pinhole>,
+}
+
+/// What a pinhole perspective camera's ray differentials are made of (pbrt-v4's
+/// `PerspectiveCamera::GenerateRayDifferential` without a lens): the offset rays leave the eye
+/// through the film point one pixel over.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Pinhole {
+    /// The eye, world space, exactly as camera rays carry it (their origin).
+    eye: Vec3,
+    /// Camera-space z of the plane raster points map to.
+    z_film: f32,
+    /// One pixel along raster x and y on that plane, camera space.
+    step: [Vec3; 2],
 }
 
 /// pbrt-v4's scale of camera ray differentials for `spp` samples per pixel: max(⅛, 1/√spp).
@@ -140,13 +155,68 @@ impl Footprints {
                 *v = Vec3::ZERO;
             }
         }
+        let pinhole = match &camera.kind {
+            super::Kind::Projective {
+                camera_from_raster,
+                perspective: true,
+                lens_radius,
+                ..
+            } if *lens_radius == 0.0 => {
+                let o = camera_from_raster.point(Vec3::ZERO);
+                Some(Pinhole {
+                    eye: world_from_camera.point(Vec3::ZERO),
+                    z_film: o.z,
+                    step: [
+                        camera_from_raster.point(Vec3::X) - o,
+                        camera_from_raster.point(Vec3::Y) - o,
+                    ],
+                })
+            }
+            _ => None,
+        };
         Footprints {
             camera_from_world,
             world_from_camera,
             min_pos,
             min_dir,
             spp_scale: differential_scale(spp),
+            pinhole,
         }
+    }
+
+    /// ∂p/∂x and ∂p/∂y at the point `p` (normal `n`) that a ray from `origin` hit: the camera
+    /// ray's own differentials when the ray came from a pinhole camera's eye (pbrt-v4 carries
+    /// them on camera rays), [`Footprints::dp_dxy`]'s approximation otherwise.
+    #[inline]
+    pub fn at_hit(&self, origin: Vec3, p: Vec3, n: Vec3) -> (Vec3, Vec3) {
+        match &self.pinhole {
+            Some(ph) if origin == ph.eye => self
+                .camera_ray_dp_dxy(ph, p, n)
+                .unwrap_or_else(|| self.dp_dxy(p, n)),
+            _ => self.dp_dxy(p, n),
+        }
+    }
+
+    /// pbrt-v4's `ComputeDifferentials` for a pinhole camera's ray to `p`: the ray passes the
+    /// film plane at q = p·z_film/p_z (camera space); its offset rays point along
+    /// normalize(q + one pixel), scaled towards the ray by max(⅛, 1/√spp), and meet the
+    /// tangent plane n·(x − p) = 0 at t = n·p/(n·d'). `None` when p is not in front of the
+    /// camera or an offset ray runs along the plane.
+    fn camera_ray_dp_dxy(&self, ph: &Pinhole, p: Vec3, n: Vec3) -> Option<(Vec3, Vec3)> {
+        let pc = self.camera_from_world.point(p);
+        if pc.z <= 0.0 {
+            return None;
+        }
+        let nc = self.camera_from_world.normal(n);
+        let d = normalize(pc);
+        let q = pc * (ph.z_film / pc.z);
+        let offset = |step: Vec3| {
+            let dx = d + (normalize(q + step) - d) * self.spp_scale;
+            let t = nc.dot(pc) / nc.dot(dx);
+            let v = self.world_from_camera.vector(t * dx - pc);
+            v.is_finite().then_some(v)
+        };
+        Some((offset(ph.step[0])?, offset(ph.step[1])?))
     }
 
     /// ∂p/∂x and ∂p/∂y at world point `p` with normal `n` (pbrt-v4's `Approximate_dp_dxy`).
@@ -231,6 +301,39 @@ mod tests {
         let (d16, _) = fp16.dp_dxy(p, Vec3::Z);
         assert!((d16.length() - dpdx.length() / 4.0).abs() < 1e-6);
         assert_eq!(differential_scale(1024), 0.125);
+    }
+
+    #[test]
+    fn a_camera_ray_hitting_a_plane_head_on_spans_a_pixel() {
+        // The course camera's centre ray hits the plane z = −4 head-on: the ray one pixel
+        // over (0.02 on the image plane at distance 1) meets it 4·0.02 = 0.08 away; at 16 spp
+        // the differentials shrink to ¼: 0.02.
+        let cam = Camera::course(100, 100);
+        let eye = cam
+            .generate_ray(Vec2::new(50.0, 50.0), Vec2::ZERO)
+            .unwrap()
+            .ray
+            .o;
+        let p = Vec3::new(0.0, 0.0, -4.0);
+        for (spp, want) in [(1, 0.08), (16, 0.02)] {
+            let fp = Footprints::new(&cam, (100, 100), spp);
+            let (dpdx, dpdy) = fp.at_hit(eye, p, Vec3::Z);
+            assert!((dpdx - Vec3::new(want, 0.0, 0.0)).length() < 1e-5, "{dpdx}");
+            // Raster y grows downwards: one pixel down is −y.
+            assert!(
+                (dpdy - Vec3::new(0.0, -want, 0.0)).length() < 1e-5,
+                "{dpdy}"
+            );
+        }
+        // Off-axis: the camera ray through pixel (75, 50) hits the plane at x = 2; the next
+        // pixel's ray at 4·0.52 = 2.08, so ∂p/∂x = 0.08 there too (a plane parallel to the
+        // film).
+        let fp = Footprints::new(&cam, (100, 100), 1);
+        let (dpdx, _) = fp.at_hit(eye, Vec3::new(2.0, 0.0, -4.0), Vec3::Z);
+        assert!((dpdx - Vec3::new(0.08, 0.0, 0.0)).length() < 1e-4, "{dpdx}");
+        // A ray from elsewhere gets the approximation.
+        let (approx, _) = fp.at_hit(Vec3::new(0.0, 0.0, -1.0), p, Vec3::Z);
+        assert_eq!(approx, fp.dp_dxy(p, Vec3::Z).0);
     }
 
     #[test]

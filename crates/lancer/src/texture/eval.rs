@@ -102,16 +102,17 @@ impl TextureEval<'_> {
                 octaves,
                 omega,
             } => {
-                let z = crate::math::Vec3::ZERO;
-                fbm(mapping.map(tc), z, z, *omega, *octaves)
+                // pbrt-v4 fades out the octaves finer than the footprint.
+                let (p, dpdx, dpdy) = mapping.map_footprint(tc);
+                fbm(p, dpdx, dpdy, *omega, *octaves)
             }
             FloatTexture::Wrinkled {
                 mapping,
                 octaves,
                 omega,
             } => {
-                let z = crate::math::Vec3::ZERO;
-                turbulence(mapping.map(tc), z, z, *omega, *octaves)
+                let (p, dpdx, dpdy) = mapping.map_footprint(tc);
+                turbulence(p, dpdx, dpdy, *omega, *octaves)
             }
             FloatTexture::Windy { mapping } => windy(mapping.map(tc)),
             FloatTexture::DirectionMix { tex1, tex2, dir } => {

@@ -242,6 +242,14 @@ impl Mapping3D {
     pub fn map(&self, tc: &TexCoord) -> Vec3 {
         self.texture_from_world.point(tc.p)
     }
+
+    /// The texture-space point of `tc` with its footprint ∂p/∂x, ∂p/∂y in texture space
+    /// (pbrt-v4's `TexCoord3D`).
+    #[inline]
+    pub fn map_footprint(&self, tc: &TexCoord) -> (Vec3, Vec3, Vec3) {
+        let t = &self.texture_from_world;
+        (t.point(tc.p), t.vector(tc.dpdx), t.vector(tc.dpdy))
+    }
 }
 
 #[cfg(test)]
@@ -329,6 +337,111 @@ mod tests {
         // Texture point (0.2, 0.1, 0): s = 0.5 + 0.18 + 0.035, t = 0.4 − 0.07 + 0.09.
         let st = m.map(&at(Vec3::new(0.2, 0.6, 7.0)));
         assert!(close(st, Vec2::new(0.715, 0.42)), "{st}");
+    }
+
+    /// A lookup at `p` with footprint `dpdx`, `dpdy` and (u, v) derivatives.
+    fn moving(p: Vec3, dpdx: Vec3, dpdy: Vec3) -> TexCoord {
+        TexCoord {
+            p,
+            dpdx,
+            dpdy,
+            dudx: 0.1,
+            dudy: -0.2,
+            dvdx: 0.3,
+            dvdy: 0.4,
+            ..TexCoord::default()
+        }
+    }
+
+    #[test]
+    fn footprints_follow_the_chain_rule() {
+        let tc = moving(
+            Vec3::new(1.0, 0.0, 0.3),
+            Vec3::new(0.0, 0.01, 0.0),
+            Vec3::new(0.0, 0.0, 0.02),
+        );
+        // uv: ∂s/∂x = su·∂u/∂x …
+        let uv = Mapping2D::Uv(UvMapping {
+            su: 2.0,
+            sv: 3.0,
+            du: 0.5,
+            dv: 0.0,
+        })
+        .map_footprint(&tc);
+        assert_eq!(
+            (uv.dsdx, uv.dsdy, uv.dtdx, uv.dtdy),
+            (0.2, -0.4, 0.90000004, 1.2)
+        );
+        // planar: ∂s/∂x = v1·∂p/∂x, ∂p/∂x taken into texture space (scaled by ½ here).
+        let planar = Mapping2D::Planar {
+            texture_from_world: Transform::scale(Vec3::splat(2.0)).unwrap().inverse(),
+            vs: Vec3::new(0.0, 1.0, 0.0),
+            vt: Vec3::new(0.0, 0.0, 1.0),
+            ds: 0.0,
+            dt: 0.0,
+        }
+        .map_footprint(&tc);
+        let close = |a: f32, b: f32| (a - b).abs() < 1e-7;
+        assert!(close(planar.dsdx, 0.005) && close(planar.dtdy, 0.01) && planar.dsdy == 0.0);
+        // cylindrical at (1, 0, z): moving 0.01 along y turns by 0.01 rad, s by 0.01/2π; t
+        // is z.
+        let cyl = Mapping2D::Cylindrical {
+            texture_from_world: Transform::IDENTITY,
+        }
+        .map_footprint(&tc);
+        assert!(
+            close(cyl.dsdx, 0.01 / (2.0 * PI)) && close(cyl.dtdy, 0.02),
+            "{cyl:?}"
+        );
+        assert!(close(cyl.dtdx, 0.0) && close(cyl.dsdy, 0.0));
+        // The same finite difference through `map`.
+        let m = Mapping2D::Cylindrical {
+            texture_from_world: Transform::IDENTITY,
+        };
+        let ahead = m.map(&at(tc.p + tc.dpdx)).x - m.map(&at(tc.p)).x;
+        assert!((ahead - cyl.dsdx).abs() < 1e-5);
+        // spherical at (1, 0, 0): ∇(φ/2π) = (0, 1, 0)/2π goes to s (as pbrt-v4 pairs them),
+        // ∇(θ/π) = (0, 0, −1)/π to t.
+        let sph = Mapping2D::Spherical {
+            texture_from_world: Transform::IDENTITY,
+        }
+        .map_footprint(&moving(
+            Vec3::X,
+            Vec3::new(0.0, 0.01, 0.0),
+            Vec3::new(0.0, 0.0, 0.02),
+        ));
+        assert!(
+            close(sph.dsdx, 0.01 / (2.0 * PI)) && close(sph.dtdy, -0.02 / PI),
+            "{sph:?}"
+        );
+        // On the axis the gradient is undefined: no footprint rather than NaN.
+        let pole = Mapping2D::Spherical {
+            texture_from_world: Transform::IDENTITY,
+        }
+        .map_footprint(&moving(Vec3::Z, Vec3::X, Vec3::Y));
+        assert!(pole.dsdx == 0.0 && pole.dtdx == 0.0 && pole.dsdy == 0.0);
+    }
+
+    #[test]
+    fn uv_derivatives_are_the_least_squares_solution() {
+        // ∂p/∂u = (2, 0, 0), ∂p/∂v = (1, 3, 0): ∂p/∂x = 0.1·∂p/∂u + 0.2·∂p/∂v exactly, and
+        // ∂p/∂y has a component off the surface (along z) that least squares ignores.
+        let (dpdu, dpdv) = (Vec3::new(2.0, 0.0, 0.0), Vec3::new(1.0, 3.0, 0.0));
+        let dpdx = 0.1 * dpdu + 0.2 * dpdv;
+        let dpdy = -0.05 * dpdu + 0.3 * dpdv + Vec3::new(0.0, 0.0, 0.7);
+        let tc = TexCoord::default().with_footprint(dpdu, dpdv, dpdx, dpdy);
+        for (got, want) in [
+            (tc.dudx, 0.1),
+            (tc.dvdx, 0.2),
+            (tc.dudy, -0.05),
+            (tc.dvdy, 0.3),
+        ] {
+            assert!((got - want).abs() < 1e-6, "{got} vs {want}");
+        }
+        assert_eq!((tc.dpdx, tc.dpdy), (dpdx, dpdy));
+        // Parallel tangents: no (u, v) footprint.
+        let tc = TexCoord::default().with_footprint(dpdu, dpdu, dpdx, dpdy);
+        assert_eq!((tc.dudx, tc.dvdx, tc.dudy, tc.dvdy), (0.0, 0.0, 0.0, 0.0));
     }
 
     #[test]

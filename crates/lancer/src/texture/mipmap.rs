@@ -9,7 +9,7 @@
 //! texture convention) and the footprint's two axes ∂(s, t)/∂x and ∂(s, t)/∂y.
 
 use crate::image::{Image, WrapMode};
-use crate::math::{PackedRgb, Rgb, Vec2};
+use crate::math::{Mat3, PackedRgb, Rgb, Vec2};
 use std::sync::{Arc, LazyLock};
 
 /// How an image texture is filtered over its footprint (pbrt-v4's `filter`).
@@ -76,6 +76,14 @@ impl MipMap {
     /// The full pyramid of `image`; `wrap` says what lies beyond its edges when it has to be
     /// resampled to powers of two. A power-of-two image becomes level 0 as it is (shared).
     pub fn new(image: Arc<Image>, wrap: WrapMode) -> MipMap {
+        MipMap::with_clamp_space(image, wrap, None)
+    }
+
+    /// [`MipMap::new`] for an image whose texels were taken from the file's own RGB space to
+    /// linear sRGB by `to_srgb`: the resampling clamps negative values in the file's space
+    /// (where pbrt-v4 keeps the texels), not in sRGB's, where a wide-gamut colour may
+    /// rightly be negative.
+    pub fn with_clamp_space(image: Arc<Image>, wrap: WrapMode, to_srgb: Option<Mat3>) -> MipMap {
         let (w, h) = (image.width, image.height);
         let base = if w.is_power_of_two() && h.is_power_of_two() {
             image
@@ -85,6 +93,7 @@ impl MipMap {
                 w.next_power_of_two(),
                 h.next_power_of_two(),
                 wrap,
+                to_srgb,
             ))
         };
         let mut levels = vec![base];
@@ -272,8 +281,14 @@ fn resample_weights(old: u32, new: u32) -> Vec<(i64, [f32; 4])> {
 }
 
 /// `img` resampled up to `nw × nh` (pbrt-v4's `Image::FloatResizeUp`): separable, x first,
-/// source texels beyond the edges as `wrap` says; results clamped at 0.
-fn resize_up(img: &Image, nw: u32, nh: u32, wrap: WrapMode) -> Image {
+/// source texels beyond the edges as `wrap` says; results clamped at 0 (in the file's space
+/// when `to_srgb` took the texels out of it).
+fn resize_up(img: &Image, nw: u32, nh: u32, wrap: WrapMode, to_srgb: Option<Mat3>) -> Image {
+    let spaces = to_srgb.map(|m| (m, m.inverse()));
+    let clamp = |c: Rgb| match spaces {
+        None => c.max(Rgb::ZERO),
+        Some((m, inv)) => m * (inv * c).max(Rgb::ZERO),
+    };
     let xw = resample_weights(img.width, nw);
     let yw = resample_weights(img.height, nh);
     // x pass: every source row (plus the rows the y pass reaches beyond the edges, read
@@ -299,7 +314,7 @@ fn resize_up(img: &Image, nw: u32, nh: u32, wrap: WrapMode) -> Image {
             for (j, wj) in w.iter().enumerate() {
                 c += *wj * xbuf[(r0 + j) * nw as usize + x];
             }
-            texels.push(PackedRgb::from(c.max(Rgb::ZERO)));
+            texels.push(PackedRgb::from(clamp(c)));
         }
     }
     Image::new(nw, nh, texels).expect("non-empty resampled image")
