@@ -502,10 +502,10 @@ impl ImageCache {
             Some(first) => 1 + first as u8,
         };
         let key = (path.to_path_buf(), encoding.key());
-        if let Some(e) = self.entries.borrow().get(&key) {
-            if let Some((_, _, m)) = e.mipmaps.iter().find(|m| m.0 == kind && m.1 == wrap) {
-                return Ok(m.clone());
-            }
+        if let Some(e) = self.entries.borrow().get(&key)
+            && let Some((_, _, m)) = e.mipmaps.iter().find(|m| m.0 == kind && m.1 == wrap)
+        {
+            return Ok(m.clone());
         }
         let image = match float {
             None => self.rgb(path, encoding)?,

@@ -344,7 +344,7 @@ mod tests {
         let cam = Camera::course(100, 100);
         let fp = Footprints::new(&cam, (100, 100), 1);
         let p = Vec3::new(0.0, 0.0, -4.0);
-        let area = |(a, b): (Vec3, Vec3)| a.cross(b).length();
+        let area = |(a, b): (Vec3, Vec3)| crate::math::cross(a, b).length();
         let n = Vec3::new(0.0, 60f32.to_radians().sin(), 60f32.to_radians().cos());
         let (dx, dy) = fp.dp_dxy(p, n);
         let ratio = area((dx, dy)) / area(fp.dp_dxy(p, Vec3::Z));

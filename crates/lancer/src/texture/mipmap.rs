@@ -226,7 +226,12 @@ impl MipMap {
                 }
             }
         }
-        sum / sum_w
+        // The widened ellipse always covers a texel centre; the guard is for NaN footprints.
+        if sum_w > 0.0 {
+            sum / sum_w
+        } else {
+            img.lookup(st, wrap, false)
+        }
     }
 }
 
