@@ -52,9 +52,20 @@ pub struct StFootprint {
 }
 
 /// An image's MIP pyramid, finest level first.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, PartialEq)]
 pub struct MipMap {
     levels: Vec<Arc<Image>>,
+}
+
+/// Level 0 and the number of levels: the others follow from them, and printing them (the
+/// command line hashes a scene's description through `Debug`) would cost a third more again.
+impl std::fmt::Debug for MipMap {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("MipMap")
+            .field("levels", &self.levels.len())
+            .field("level0", &self.levels[0])
+            .finish()
+    }
 }
 
 /// The EWA filter's Gaussian weights, `e^(−α r²) − e^(−α)` with α = 2 at r² = i/127 (the table
