@@ -14,9 +14,10 @@
 //! The size a header claims is checked against [`MAX_SIDE`] and [`MAX_TEXELS`] before any
 //! buffer is allocated, so a corrupt or hostile file cannot ask for gigabytes.
 
-use lancer::image::Image;
+use lancer::image::{Image, WrapMode};
 use lancer::image_io::srgb_to_linear;
 use lancer::math::PackedRgb;
+use lancer::texture::MipMap;
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::fmt;
@@ -106,6 +107,10 @@ pub struct DecodedImage {
     pub rgb: Arc<Image>,
     /// Alpha per texel, same order as the texels; `None` when absent or 1 everywhere.
     pub alpha: Option<Vec<f32>>,
+    /// The matrix that took the file's own RGB (an EXR's `chromaticities`) to linear sRGB;
+    /// `None` for sRGB files. A MIP pyramid clamps its resampled texels in the file's space,
+    /// as pbrt-v4 does.
+    pub to_srgb: Option<lancer::math::Mat3>,
 }
 
 impl DecodedImage {
@@ -209,10 +214,15 @@ fn decode(
     format: Format,
     encoding: Encoding,
 ) -> Result<DecodedImage, ImageReadError> {
+    let mut to_srgb = None;
     let (width, height, texels, alpha) = match format {
         Format::Png => read_png(path, bytes, encoding)?,
         Format::Jpeg => read_jpeg(path, bytes)?,
-        Format::Exr => read_exr(path, bytes)?,
+        Format::Exr => {
+            let (decoded, m) = read_exr(path, bytes)?;
+            to_srgb = m;
+            decoded
+        }
         Format::Pfm => pfm::read_pfm(path, bytes)?,
     };
     let alpha = alpha.filter(|a| a.iter().any(|&v| v != 1.0));
@@ -221,6 +231,7 @@ fn decode(
     Ok(DecodedImage {
         rgb: Arc::new(rgb),
         alpha,
+        to_srgb,
     })
 }
 
@@ -325,7 +336,10 @@ fn read_jpeg(path: &Path, bytes: &[u8]) -> Result<Decoded, ImageReadError> {
     Ok(split_channels(width, height, 3, &samples))
 }
 
-fn read_exr(path: &Path, bytes: &[u8]) -> Result<Decoded, ImageReadError> {
+fn read_exr(
+    path: &Path,
+    bytes: &[u8],
+) -> Result<(Decoded, Option<lancer::math::Mat3>), ImageReadError> {
     use exr::prelude::{ReadChannels, ReadLayers, read};
     let meta = exr::meta::MetaData::read_from_buffered(Cursor::new(bytes), false)
         .map_err(|e| err(path, format!("bad OpenEXR header: {e}")))?;
@@ -406,7 +420,7 @@ fn read_exr(path: &Path, bytes: &[u8]) -> Result<Decoded, ImageReadError> {
         })
         .collect();
     let alpha = alpha.map(channel).transpose()?;
-    Ok((width, height, rgb, alpha))
+    Ok(((width, height, rgb, alpha), to_srgb))
 }
 
 /// Images decoded during one scene load, by file and encoding, so that a file many textures
@@ -423,6 +437,9 @@ struct CacheEntry {
     decoded: Arc<DecodedImage>,
     /// Float images: [bilinear, point].
     floats: [Option<Arc<Image>>; 2],
+    /// MIP pyramids made of the image: by kind (0 RGB, 1 float averaged, 2 float first
+    /// channel) and wrap mode (which a non-power-of-two image's resampling depends on).
+    mipmaps: Vec<(u8, WrapMode, Arc<MipMap>)>,
 }
 
 impl ImageCache {
@@ -442,6 +459,7 @@ impl ImageCache {
             CacheEntry {
                 decoded: decoded.clone(),
                 floats: [None, None],
+                mipmaps: Vec::new(),
             },
         );
         Ok(decoded)
@@ -467,6 +485,42 @@ impl ImageCache {
         Ok(slot
             .get_or_insert_with(|| Arc::new(decoded.float_image(nearest)))
             .clone())
+    }
+
+    /// The MIP pyramid of `path`'s image for `wrap`: of its RGB image (`float` `None`), or of
+    /// its float image ([`DecodedImage::float_image`] with `nearest` = the flag), made once
+    /// per kind and wrap mode. A power-of-two image's level 0 is the cached image itself.
+    pub fn mipmap(
+        &self,
+        path: &Path,
+        encoding: Encoding,
+        float: Option<bool>,
+        wrap: WrapMode,
+    ) -> Result<Arc<MipMap>, ImageReadError> {
+        let kind = match float {
+            None => 0,
+            Some(first) => 1 + first as u8,
+        };
+        let key = (path.to_path_buf(), encoding.key());
+        if let Some(e) = self.entries.borrow().get(&key)
+            && let Some((_, _, m)) = e.mipmaps.iter().find(|m| m.0 == kind && m.1 == wrap)
+        {
+            return Ok(m.clone());
+        }
+        let image = match float {
+            None => self.rgb(path, encoding)?,
+            Some(first) => self.float(path, encoding, first)?,
+        };
+        let to_srgb = self.decoded(path, encoding)?.to_srgb;
+        let m = Arc::new(MipMap::with_clamp_space(
+            image,
+            wrap,
+            to_srgb.filter(|_| float.is_none()),
+        ));
+        let mut entries = self.entries.borrow_mut();
+        let entry = entries.get_mut(&key).expect("just decoded");
+        entry.mipmaps.push((kind, wrap, m.clone()));
+        Ok(m)
     }
 
     /// How many distinct files (and encodings) were decoded.

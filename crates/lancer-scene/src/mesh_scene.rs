@@ -20,7 +20,9 @@ use lancer::scene::desc::{
     ShapeDesc,
 };
 use lancer::shape::TriangleMesh;
-use lancer::texture::{ImageTexture, SpectrumTex, SpectrumTexture, UvMapping, WrapMode};
+use lancer::texture::{
+    ImageFilter, ImageTexture, MipMap, SpectrumTex, SpectrumTexture, UvMapping, WrapMode,
+};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -210,12 +212,12 @@ fn image_texture(images: &ImageCache, path: &Path) -> Result<ImageTexture, Strin
         .rgb(path, Encoding::Srgb)
         .map_err(|e| e.to_string())?;
     Ok(ImageTexture {
-        image,
+        mipmap: std::sync::Arc::new(MipMap::single(image)),
         mapping: UvMapping::default().into(),
         wrap: WrapMode::Repeat,
         scale: 1.0,
         invert: false,
-        nearest: false,
+        filter: ImageFilter::Bilinear,
     })
 }
 

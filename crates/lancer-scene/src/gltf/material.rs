@@ -23,7 +23,8 @@ use lancer::image::Image;
 use lancer::material::Material;
 use lancer::math::Rgb;
 use lancer::texture::{
-    FloatTex, FloatTexture, ImageTexture, SpectrumTex, SpectrumTexture, UvMapping, WrapMode,
+    FloatTex, FloatTexture, ImageFilter, ImageTexture, MipMap, SpectrumTex, SpectrumTexture,
+    UvMapping, WrapMode,
 };
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -62,12 +63,18 @@ fn wrap_mode(w: WrappingMode) -> WrapMode {
 
 fn image_texture(image: Image, s: &Sampling) -> ImageTexture {
     ImageTexture {
-        image: Arc::new(image),
+        // Read without MIP filtering (as before footprints existed), point or bilinear as
+        // the sampler asks.
+        mipmap: Arc::new(MipMap::single(Arc::new(image))),
         mapping: s.mapping.into(),
         wrap: s.wrap,
         scale: 1.0,
         invert: false,
-        nearest: s.nearest,
+        filter: if s.nearest {
+            ImageFilter::Point
+        } else {
+            ImageFilter::Bilinear
+        },
     }
 }
 

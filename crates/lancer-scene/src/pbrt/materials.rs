@@ -11,7 +11,9 @@ use lancer::material::Material;
 use lancer::math::Rgb;
 use lancer::scene::desc::SceneDesc;
 use lancer::spectrum::{SpectrumKind, named_spectrum, spectrum_to_rgb};
-use lancer::texture::{FloatTex, ImageTexture, Mapping2D, SpectrumTexture, WrapMode};
+use lancer::texture::{
+    FloatTex, ImageFilter, ImageTexture, Mapping2D, MipMap, SpectrumTexture, WrapMode,
+};
 
 /// A material, and for a `mix` the two names it refers to and where they are written.
 #[derive(Clone, Debug)]
@@ -76,13 +78,14 @@ fn bump_maps(r: &Reader) -> Result<Option<BumpMaps>, SceneError> {
                 .images
                 .rgb(&r.dir.resolve(&name), Encoding::Linear)
                 .map_err(|e| r.params.error_at("normalmap", e.to_string()))?;
+            // pbrt-v4's NormalMap reads the image itself bilinearly (no MIP filtering).
             Some(ImageTexture {
-                image,
+                mipmap: std::sync::Arc::new(MipMap::single(image)),
                 mapping: Mapping2D::default(),
                 wrap: WrapMode::Repeat,
                 scale: 1.0,
                 invert: false,
-                nearest: false,
+                filter: ImageFilter::Bilinear,
             })
         }
     };

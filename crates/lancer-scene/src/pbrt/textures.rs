@@ -8,7 +8,8 @@ use crate::error::{Location, SceneError};
 use lancer::math::{Rgb, Transform, Vec3};
 use lancer::spectrum::SpectrumKind;
 use lancer::texture::{
-    FloatTexture, ImageTexture, Mapping2D, Mapping3D, SpectrumTexture, UvMapping, WrapMode,
+    FloatTexture, ImageFilter, ImageTexture, Mapping2D, Mapping3D, SpectrumTexture, UvMapping,
+    WrapMode,
 };
 
 /// The float texture of class `class` at `loc`, with texture space `ctm` (world from texture);
@@ -270,7 +271,8 @@ fn mapping_2d(r: &Reader, ctm: &Transform) -> Result<Mapping2D, SceneError> {
     })
 }
 
-/// pbrt-v4's `imagemap`: the image, its wrap mode and filter, `scale`, `invert` and the 2D
+/// pbrt-v4's `imagemap`: the image's MIP pyramid, its wrap mode and filter (`filter`,
+/// default `bilinear` as in pbrt-v4; `maxanisotropy` for `ewa`), `scale`, `invert` and the 2D
 /// mapping. Float textures read the value pbrt-v4's MIPMap gives (see
 /// [`crate::image_read::DecodedImage::float_image`]).
 fn image_texture(
@@ -294,13 +296,13 @@ fn image_texture(
             ));
         }
     };
-    // pbrt-v4's MIPMap picks its level from the lookup's footprint; lancer's rays carry no
-    // differentials, so every footprint is zero, and for a zero footprint pbrt-v4's
-    // `bilinear`, `trilinear` and `ewa` all reduce to the bilinear lookup of the finest level
-    // (MIPMap::Filter: level = −∞ → 0; EWA: shorter axis 0 → Bilerp(0, st)).
-    let nearest = match p.string("filter")?.as_deref().unwrap_or("bilinear") {
-        "bilinear" | "trilinear" | "ewa" | "EWA" => false,
-        "point" => true,
+    let filter = match p.string("filter")?.as_deref().unwrap_or("bilinear") {
+        "point" => ImageFilter::Point,
+        "bilinear" => ImageFilter::Bilinear,
+        "trilinear" => ImageFilter::Trilinear,
+        "ewa" | "EWA" => ImageFilter::Ewa {
+            max_anisotropy: p.float("maxanisotropy", 8.0)?,
+        },
         other => {
             return Err(p.error_at(
                 "filter",
@@ -310,21 +312,23 @@ fn image_texture(
             ));
         }
     };
-    // Only matters for the EWA filter.
+    // pbrt-v4 reads `maxanisotropy` whatever the filter.
     p.float("maxanisotropy", 8.0)?;
-    let image = if float {
-        r.images.float(&path, encoding, nearest)
-    } else {
-        r.images.rgb(&path, encoding)
-    }
-    .map_err(|e| SceneError::general(e.to_string()))?;
+    // A float texture of a colour image: pbrt-v4's point and EWA lookups read the first
+    // channel (`MIPMap::Texel<Float>`), bilinear and trilinear the average of R, G, B (alpha
+    // if there is one, `MIPMap::Bilerp<Float>`).
+    let first_channel = matches!(filter, ImageFilter::Point | ImageFilter::Ewa { .. });
+    let mipmap = r
+        .images
+        .mipmap(&path, encoding, float.then_some(first_channel), wrap)
+        .map_err(|e| SceneError::general(e.to_string()))?;
     let t = ImageTexture {
-        image,
+        mipmap,
         mapping: mapping_2d(r, ctm)?,
         wrap,
         scale: p.float("scale", 1.0)?,
         invert: p.bool("invert", false)?,
-        nearest,
+        filter,
     };
     Ok(Fallback::done(t))
 }

@@ -6,11 +6,11 @@ use crate::common::ScratchDir;
 use lancer::image_io::srgb_to_linear;
 use lancer::math::{Vec2, Vec3};
 use lancer::texture::{
-    FloatTex, FloatTexture, SpectrumTex, SpectrumTexture, TexCoord, TextureEval, WrapMode,
+    FloatTex, FloatTexture, ImageFilter, SpectrumTex, SpectrumTexture, TexCoord, TextureEval,
+    WrapMode,
 };
 use lancer_scene::load;
 use std::path::Path;
-use std::sync::Arc;
 
 /// A 2×2 8-bit RGB PNG: top row red, green; bottom row blue, white (values 200 where lit).
 fn quad_png(path: &Path) {
@@ -58,18 +58,20 @@ Shape "sphere"
         panic!("not image textures: {:?}", d.spectrum_textures)
     };
     // The file is decoded once for both textures with the same encoding.
-    assert!(Arc::ptr_eq(&c.image, &again.image));
+    assert!(std::ptr::eq(c.mipmap.level(0), again.mipmap.level(0)));
     assert_eq!(c.wrap, WrapMode::Repeat);
-    assert!(!c.nearest && !c.invert && c.scale == 1.0);
+    assert!(c.filter == ImageFilter::Bilinear && !c.invert && c.scale == 1.0);
 
     let eval = TextureEval {
         floats: &d.float_textures,
         spectra: &d.spectrum_textures,
     };
+    // No footprint: every filter reads the finest level.
     let at = |u: f32, v: f32| TexCoord {
         uv: Vec2::new(u, v),
         p: Vec3::ZERO,
         n: Vec3::Z,
+        ..TexCoord::default()
     };
     let lit = srgb_to_linear(200.0 / 255.0);
     // pbrt flips v: (u, v) = (0.25, 0.75) is the centre of the top-left texel (red), and
@@ -98,7 +100,7 @@ Shape "sphere"
     let FloatTexture::Image(f) = &d.float_textures[0] else {
         panic!("not an image")
     };
-    assert!(f.nearest);
+    assert_eq!(f.filter, ImageFilter::Point);
     assert!((eval.float(FloatTex::Tex(0), &at(0.125, 0.25)) - lit).abs() < 1e-6);
     // (0.375, 0.25) → (0.75, 0.75): green, whose R is 0.
     assert_eq!(eval.float(FloatTex::Tex(0), &at(0.375, 0.25)), 0.0);

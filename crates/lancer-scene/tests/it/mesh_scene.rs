@@ -251,7 +251,7 @@ fn map_kd_images_become_textures_when_the_faces_have_uvs() {
     let lancer::texture::SpectrumTexture::Image(t) = &d.spectrum_textures[0] else {
         panic!("not an image texture")
     };
-    assert_eq!((t.image.width, t.image.height), (2, 1));
+    assert_eq!((t.mipmap.level(0).width, t.mipmap.level(0).height), (2, 1));
     assert_eq!(
         d.materials[d.shapes[0].material as usize],
         lancer::material::Material::Diffuse {

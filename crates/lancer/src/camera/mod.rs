@@ -7,6 +7,7 @@
 //! ([`realistic`], a lens system traced ray by ray).
 
 mod aperture;
+pub mod footprint;
 pub mod lens;
 pub mod realistic;
 pub mod spherical;

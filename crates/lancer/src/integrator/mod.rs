@@ -142,7 +142,7 @@ pub(crate) fn bsdf_at(
 ) -> Option<(Bsdf, bool)> {
     let mut m = scene.prims[hit.prim as usize].material;
     let tex = scene.textures();
-    let tc = Scene::tex_coord(&hit.si);
+    let tc = Scene::tex_coord_with_footprint(hit);
     for _ in 0..16 {
         match &scene.materials[m as usize] {
             Material::Mix { materials, amount } => {

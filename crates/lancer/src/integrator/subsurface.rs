@@ -53,7 +53,7 @@ pub(super) fn exit(
     let m = scene.prims[hit.prim as usize].material;
     let material = &scene.materials[m as usize];
     let tex = scene.textures();
-    let tc = Scene::tex_coord(&hit.si);
+    let tc = Scene::tex_coord_with_footprint(hit);
     let spectral = lambda.map(|lambda| SpectralColours {
         lambda,
         consts: &scene.spectra().materials[m as usize],

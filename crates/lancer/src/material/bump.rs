@@ -8,8 +8,7 @@ use crate::math::{Vec2, Vec3, cross, face_forward, normalize};
 use crate::shape::{Shading, SurfaceInteraction};
 use crate::texture::{FloatTex, SpectrumTex, TexCoord, TextureEval};
 
-/// The finite-difference step in u and v. pbrt-v4 uses half the footprint's extent in (u, v),
-/// 0.0005 when it is zero; lancer's rays carry no differentials, so it is always 0.0005.
+/// The finite-difference step in u and v where the footprint is zero (pbrt-v4's `BumpMap`).
 const DELTA: f32 = 0.0005;
 
 /// The shading frame of the new ∂p/∂u, ∂p/∂v: `ns = normalize(∂p/∂u × ∂p/∂v)` on the side of
@@ -28,29 +27,36 @@ fn shading_from(dpdu: Vec3, dpdv: Vec3, n: Vec3) -> Option<Shading> {
     })
 }
 
-/// pbrt-v4's `BumpMap`: with d the displacement texture, δ = [`DELTA`],
-/// `∂p/∂u' = ∂p/∂u + (d(u + δ) − d(u))/δ · ns` (and the same in v), the texture shifted by
-/// δ·∂p/∂u in position and by δ in u. pbrt-v4 also adds `d · ∂n/∂u`; lancer's hits carry no
-/// normal derivatives, so that term (a relative change of d/radius on curved surfaces) is
-/// left out.
+/// pbrt-v4's `BumpMap`: with d the displacement texture and δ half the footprint's extent in
+/// u, `δ = ½(|∂u/∂x| + |∂u/∂y|)` ([`DELTA`] when that is 0),
+/// `∂p/∂u' = ∂p/∂u + (d(u + δ) − d(u))/δ · ns`, the texture shifted by δ·∂p/∂u in position
+/// and by δ in u (the same in v, with its own δ). `tc` is the hit's lookup point with its
+/// footprint. pbrt-v4 also adds `d · ∂n/∂u`; lancer's hits carry no normal derivatives, so
+/// that term (a relative change of d/radius on curved surfaces) is left out.
 pub fn bump_shading(
     tex: &TextureEval,
     displacement: FloatTex,
     si: &SurfaceInteraction,
+    tc: &TexCoord,
 ) -> Option<Shading> {
     let sh = &si.shading;
-    let at = |p: Vec3, uv: Vec2| TexCoord { uv, p, n: si.n };
-    let d = tex.float(displacement, &at(si.p, si.uv));
-    let du = tex.float(
+    let step = |a: f32, b: f32| {
+        let d = 0.5 * (a.abs() + b.abs());
+        if d == 0.0 { DELTA } else { d }
+    };
+    let (du, dv) = (step(tc.dudx, tc.dudy), step(tc.dvdx, tc.dvdy));
+    let at = |p: Vec3, uv: Vec2| TexCoord { uv, p, ..*tc };
+    let d = tex.float(displacement, tc);
+    let d_u = tex.float(
         displacement,
-        &at(si.p + DELTA * sh.dpdu, si.uv + Vec2::new(DELTA, 0.0)),
+        &at(si.p + du * sh.dpdu, si.uv + Vec2::new(du, 0.0)),
     );
-    let dv = tex.float(
+    let d_v = tex.float(
         displacement,
-        &at(si.p + DELTA * sh.dpdv, si.uv + Vec2::new(0.0, DELTA)),
+        &at(si.p + dv * sh.dpdv, si.uv + Vec2::new(0.0, dv)),
     );
-    let dpdu = sh.dpdu + (du - d) / DELTA * sh.n;
-    let dpdv = sh.dpdv + (dv - d) / DELTA * sh.n;
+    let dpdu = sh.dpdu + (d_u - d) / du * sh.n;
+    let dpdv = sh.dpdv + (d_v - d) / dv * sh.n;
     shading_from(dpdu, dpdv, si.n)
 }
 
@@ -69,6 +75,7 @@ pub fn normal_map_shading(
         uv: si.uv,
         p: si.p,
         n: si.n,
+        ..TexCoord::default()
     };
     let c = tex.spectrum(SpectrumTex::Tex(normal_map), &tc);
     let local = (2.0 * c - Vec3::ONE).try_normalize()?;
@@ -106,6 +113,57 @@ mod tests {
         }
     }
 
+    /// The bump frame at `si` with no footprint (steps of [`DELTA`]).
+    fn bump(tex: &TextureEval, d: FloatTex, si: &SurfaceInteraction) -> Shading {
+        let tc = TexCoord {
+            uv: si.uv,
+            p: si.p,
+            n: si.n,
+            ..TexCoord::default()
+        };
+        bump_shading(tex, d, si, &tc).unwrap()
+    }
+
+    #[test]
+    fn the_step_is_half_the_footprint_in_u_and_v() {
+        // Height h = 100·u² (bilerp cannot: use a checkerboard of 0 and 1 with cells of
+        // 0.01 in u): at u = 0.004 a step of 0.0005 stays in the cell (flat), a footprint with
+        // |∂u/∂x| + |∂u/∂y| = 0.016 steps 0.008 into the next cell (a slope of 1/0.008).
+        let floats = vec![FloatTexture::Checkerboard {
+            mapping: crate::texture::UvMapping {
+                su: 100.0,
+                sv: 1.0,
+                du: 0.0,
+                dv: 0.0,
+            }
+            .into(),
+            tex1: FloatTex::Const(0.0),
+            tex2: FloatTex::Const(1.0),
+        }];
+        let tex = TextureEval {
+            floats: &floats,
+            spectra: &[],
+        };
+        let si = flat(0.004, 0.5);
+        assert_eq!(bump(&tex, FloatTex::Tex(0), &si).dpdu, Vec3::X);
+        let tc = TexCoord {
+            uv: si.uv,
+            p: si.p,
+            n: si.n,
+            dudx: 0.01,
+            dudy: -0.006,
+            ..TexCoord::default()
+        };
+        let sh = bump_shading(&tex, FloatTex::Tex(0), &si, &tc).unwrap();
+        assert!(
+            (sh.dpdu - Vec3::new(1.0, 0.0, 125.0)).length() < 1e-3,
+            "{}",
+            sh.dpdu
+        );
+        // v had no footprint: its step is still 0.0005, inside the cell.
+        assert_eq!(sh.dpdv, Vec3::Y);
+    }
+
     #[test]
     fn bumps_tilt_the_normal_against_the_height_gradient() {
         // Height h(u, v) = 0.1·u + 0.2·v (bilerp 0, 0.2, 0.1, 0.3): the displaced surface
@@ -118,12 +176,12 @@ mod tests {
             floats: &floats,
             spectra: &[],
         };
-        let sh = bump_shading(&tex, FloatTex::Tex(0), &flat(0.3, 0.6)).unwrap();
+        let sh = bump(&tex, FloatTex::Tex(0), &flat(0.3, 0.6));
         let want = normalize(Vec3::new(-0.1, -0.2, 1.0));
         assert!((sh.n - want).length() < 2e-3, "{} vs {want}", sh.n);
         assert!((sh.dpdu - Vec3::new(1.0, 0.0, 0.1)).length() < 2e-3);
         // A constant height leaves the frame as it was.
-        let sh = bump_shading(&tex, FloatTex::Const(0.7), &flat(0.3, 0.6)).unwrap();
+        let sh = bump(&tex, FloatTex::Const(0.7), &flat(0.3, 0.6));
         assert_eq!((sh.n, sh.dpdu, sh.dpdv), (Vec3::Z, Vec3::X, Vec3::Y));
     }
 
@@ -141,7 +199,7 @@ mod tests {
         let mut si = flat(0.5, 0.5);
         si.n = -Vec3::Z;
         si.shading.n = -Vec3::Z;
-        let sh = bump_shading(&tex, FloatTex::Tex(0), &si).unwrap();
+        let sh = bump(&tex, FloatTex::Tex(0), &si);
         assert!(sh.n.z < 0.0, "{}", sh.n);
         // dpdu' = x̂ + 0.5·(−ẑ): the slope follows the shading normal.
         assert!(

@@ -227,13 +227,15 @@ fn conductor_index(
 
 /// Changes `si`'s shading frame as material `m`'s bump or normal map asks (pbrt-v4 does it
 /// in `SurfaceInteraction::GetBSDF`, before the BSDF and everything that uses the shading
-/// normal). Other materials leave it alone.
+/// normal). Other materials leave it alone. `tex_coord` gives the hit's texture lookup point
+/// with its footprint (asked for only when there is a bump map).
 #[inline]
 pub fn apply_bump(
     materials: &[Material],
     tex: &TextureEval,
     m: u32,
     si: &mut crate::shape::SurfaceInteraction,
+    tex_coord: impl FnOnce(&crate::shape::SurfaceInteraction) -> crate::texture::TexCoord,
 ) {
     if let Material::Bumped {
         displacement,
@@ -243,7 +245,7 @@ pub fn apply_bump(
     {
         let shading = match (normal_map, displacement) {
             (Some(nm), _) => normal_map_shading(tex, nm, si),
-            (None, Some(d)) => bump_shading(tex, d, si),
+            (None, Some(d)) => bump_shading(tex, d, si, &tex_coord(si)),
             (None, None) => None,
         };
         if let Some(sh) = shading {

@@ -58,7 +58,9 @@ impl Scene {
             .collect();
         let light_sampler =
             LightSampler::new(desc.sampler.light_sampler, &extents, &lights.distribution);
+        let footprints = crate::camera::footprint::Footprints::for_scene(desc, &camera);
         Ok(Scene {
+            footprints,
             light_sampler,
             shapes,
             prims,

@@ -103,13 +103,14 @@ impl Scene {
             .float_textures
             .iter()
             .filter_map(|t| match t {
-                FloatTexture::Image(i) => Some(&i.image),
+                FloatTexture::Image(i) => Some(i.mipmap.images()),
                 _ => None,
             })
             .chain(self.spectrum_textures.iter().filter_map(|t| match t {
-                SpectrumTexture::Image(i) => Some(&i.image),
+                SpectrumTexture::Image(i) => Some(i.mipmap.images()),
                 _ => None,
             }))
+            .flatten()
             .chain(self.lights.iter().filter_map(|l| match l {
                 Light::ImageInfinite(e) => Some(e.image()),
                 Light::PortalInfinite(e) => Some(e.image()),
@@ -156,7 +157,7 @@ mod tests {
     use crate::math::{PackedRgb, PackedVec3, Transform, Vec3};
     use crate::scene::desc::{Geometry, InstanceDesc, ObjectDesc, SceneDesc, ShapeDesc};
     use crate::shape::TriangleMesh;
-    use crate::texture::{ImageTexture, UvMapping};
+    use crate::texture::{ImageFilter, ImageTexture, MipMap, UvMapping};
 
     /// `n` separate unit triangles along x, none degenerate.
     fn strip(n: u32) -> Arc<TriangleMesh> {
@@ -265,12 +266,12 @@ mod tests {
             texels: vec![PackedRgb::ONE; 8],
         });
         let tex = ImageTexture {
-            image: image.clone(),
+            mipmap: Arc::new(MipMap::single(image.clone())),
             mapping: UvMapping::default().into(),
             wrap: WrapMode::Repeat,
             scale: 1.0,
             invert: false,
-            nearest: false,
+            filter: ImageFilter::Bilinear,
         };
         let desc = SceneDesc {
             float_textures: vec![FloatTexture::Image(tex.clone())],

@@ -16,7 +16,7 @@ use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
 use crate::light::{Light, LightDistribution, LightSampler};
 use crate::material::Material;
-use crate::math::{Bounds3, Rgb, SampledSpectrum, rgb_lanes};
+use crate::math::{Bounds3, Rgb, SampledSpectrum, Vec3, rgb_lanes};
 use crate::ray::Ray;
 use crate::shape::{Shape, SurfaceInteraction, TriangleMesh, TriangleRay};
 use crate::spectrum::sampled::SampledWavelengths;
@@ -32,6 +32,9 @@ pub struct SceneHit {
     /// Reflectance given by the shape itself (a voxel's palette colour), which a `diffuse`
     /// material uses instead of its own.
     pub albedo: Option<Rgb>,
+    /// The hit's footprint ∂p/∂x, ∂p/∂y (zero when the scene's textures need none; see
+    /// [`Scene::tex_coord_with_footprint`]).
+    pub footprint: [Vec3; 2],
 }
 
 /// A scene ready to render: primitives in a BVH, lights, materials, textures, camera.
@@ -75,6 +78,9 @@ pub struct Scene {
     bounds: Bounds3,
     /// Spectral mode's constant colours as spectra, made on first use.
     spectra: std::sync::OnceLock<spectra::SceneSpectra>,
+    /// What gives texture lookups their footprints, when a texture filters over them (an
+    /// image texture with a MIP pyramid) or a bump map steps by them; `None` otherwise.
+    pub footprints: Option<crate::camera::footprint::Footprints>,
     /// The film's sensor, white balance and output space, unless it is the plain CIE 1931
     /// observer into sRGB.
     pub film_response: Option<crate::spectrum::FilmResponse>,
@@ -123,23 +129,35 @@ impl Scene {
             }
             if let Some(ih) = self.instances.intersect(&r) {
                 let (mut si, prim) = self.instances.interaction(ray, &ih);
+                let footprint = self.footprint(ray, &si);
                 let m = self.prims[prim as usize].material;
-                crate::material::apply_bump(&self.materials, &self.textures(), m, &mut si);
+                crate::material::apply_bump(&self.materials, &self.textures(), m, &mut si, |si| {
+                    Scene::tex_coord_from(si, footprint)
+                });
                 // Instanced objects are triangle meshes, which carry no colour of their own.
                 return Some(SceneHit {
                     si,
                     prim,
                     albedo: None,
+                    footprint,
                 });
             }
         }
         let (h, prim) = best?;
         let shape = &self.shapes[prim as usize];
         let mut si = shape.interaction(ray, &h, &self.meshes);
+        let footprint = self.footprint(ray, &si);
         let m = self.prims[prim as usize].material;
-        crate::material::apply_bump(&self.materials, &self.textures(), m, &mut si);
+        crate::material::apply_bump(&self.materials, &self.textures(), m, &mut si, |si| {
+            Scene::tex_coord_from(si, footprint)
+        });
         let albedo = shape.hit_albedo(&h);
-        Some(SceneHit { si, prim, albedo })
+        Some(SceneHit {
+            si,
+            prim,
+            albedo,
+            footprint,
+        })
     }
 
     /// Primitive `i`'s hit by `ray`, unless its alpha cuts the surface away there.
@@ -206,13 +224,44 @@ impl Scene {
         }
     }
 
-    /// Where textures are looked up for a hit.
+    /// Where textures are looked up for a hit, without a footprint.
     pub fn tex_coord(si: &SurfaceInteraction) -> TexCoord {
         TexCoord {
             uv: si.uv,
             p: si.p,
             n: si.n,
+            ..TexCoord::default()
         }
+    }
+
+    /// The footprint of `ray`'s hit `si` when the scene's textures use footprints
+    /// ([`crate::camera::footprint`]), zero otherwise.
+    #[inline]
+    fn footprint(&self, ray: &Ray, si: &SurfaceInteraction) -> [Vec3; 2] {
+        match &self.footprints {
+            None => [Vec3::ZERO; 2],
+            Some(f) => {
+                let (dpdx, dpdy) = f.at_hit(ray.o, si.p, si.n);
+                [dpdx, dpdy]
+            }
+        }
+    }
+
+    /// Where textures are looked up for `si` with footprint ∂p/∂x, ∂p/∂y, and the (u, v)
+    /// derivatives that gives ([`TexCoord::with_footprint`]).
+    #[inline]
+    fn tex_coord_from(si: &SurfaceInteraction, footprint: [Vec3; 2]) -> TexCoord {
+        let tc = Scene::tex_coord(si);
+        if footprint == [Vec3::ZERO; 2] {
+            return tc;
+        }
+        tc.with_footprint(si.dpdu, si.dpdv, footprint[0], footprint[1])
+    }
+
+    /// Where textures are looked up for a hit, with its footprint.
+    #[inline]
+    pub fn tex_coord_with_footprint(hit: &SceneHit) -> TexCoord {
+        Scene::tex_coord_from(&hit.si, hit.footprint)
     }
 }
 

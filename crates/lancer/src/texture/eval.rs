@@ -20,11 +20,13 @@ fn checker_3d(mapping: &Mapping3D, tc: &TexCoord) -> bool {
     (p.x.floor() as i64 + p.y.floor() as i64 + p.z.floor() as i64) & 1 == 0
 }
 
-/// An image texture's texel colour at `tc`, before `scale` and `invert`. pbrt-v4 flips t
-/// (texture (0, 0) is the image's lower left); [`crate::image::Image::lookup`] does that.
+/// An image texture's filtered colour at `tc` over its footprint, before `scale` and
+/// `invert`. pbrt-v4 flips t (texture (0, 0) is the image's lower left); the MIP-map's
+/// lookups do that.
 #[inline]
 fn image_value(it: &ImageTexture, tc: &TexCoord) -> Rgb {
-    it.image.lookup(it.mapping.map(tc), it.wrap, it.nearest)
+    it.mipmap
+        .filter(it.filter, it.wrap, &it.mapping.map_footprint(tc))
 }
 
 impl TextureEval<'_> {
@@ -100,16 +102,17 @@ impl TextureEval<'_> {
                 octaves,
                 omega,
             } => {
-                let z = crate::math::Vec3::ZERO;
-                fbm(mapping.map(tc), z, z, *omega, *octaves)
+                // pbrt-v4 fades out the octaves finer than the footprint.
+                let (p, dpdx, dpdy) = mapping.map_footprint(tc);
+                fbm(p, dpdx, dpdy, *omega, *octaves)
             }
             FloatTexture::Wrinkled {
                 mapping,
                 octaves,
                 omega,
             } => {
-                let z = crate::math::Vec3::ZERO;
-                turbulence(mapping.map(tc), z, z, *omega, *octaves)
+                let (p, dpdx, dpdy) = mapping.map_footprint(tc);
+                turbulence(p, dpdx, dpdy, *omega, *octaves)
             }
             FloatTexture::Windy { mapping } => windy(mapping.map(tc)),
             FloatTexture::DirectionMix { tex1, tex2, dir } => {
@@ -215,7 +218,12 @@ mod tests {
     use crate::texture::UvMapping;
 
     fn at(uv: Vec2, p: Vec3, n: Vec3) -> TexCoord {
-        TexCoord { uv, p, n }
+        TexCoord {
+            uv,
+            p,
+            n,
+            ..TexCoord::default()
+        }
     }
 
     #[test]

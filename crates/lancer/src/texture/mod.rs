@@ -6,12 +6,13 @@
 
 mod eval;
 mod mapping;
+pub mod mipmap;
 pub mod procedural;
 
-use crate::image::Image;
 pub use crate::image::WrapMode;
 use crate::math::{Rgb, Vec3};
 pub use mapping::{Mapping2D, Mapping3D, TexCoord, UvMapping};
+pub use mipmap::{ImageFilter, MipMap, StFootprint};
 use std::sync::Arc;
 
 /// A float-valued material parameter: a constant, or the index of a float texture.
@@ -35,8 +36,8 @@ pub enum SpectrumTex {
 /// An image texture's parameters.
 #[derive(Clone, Debug)]
 pub struct ImageTexture {
-    /// Decoded texels, linear.
-    pub image: Arc<Image>,
+    /// Decoded texels, linear, and their MIP pyramid ([`MipMap::single`] for none).
+    pub mipmap: Arc<MipMap>,
     /// Texture-coordinate mapping.
     pub mapping: Mapping2D,
     /// Behaviour outside [0, 1].
@@ -45,8 +46,8 @@ pub struct ImageTexture {
     pub scale: f32,
     /// `1 − value` (`invert`).
     pub invert: bool,
-    /// Nearest-texel lookup instead of bilinear (`filter "point"`).
-    pub nearest: bool,
+    /// How lookups are filtered over their footprint (`filter`, `maxanisotropy`).
+    pub filter: ImageFilter,
 }
 
 /// A float texture (pbrt's float textures), plain data.

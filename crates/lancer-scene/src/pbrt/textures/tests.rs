@@ -433,15 +433,15 @@ fn imagemaps_read_the_image_and_every_parameter() {
     // PNG defaults to sRGB: 128/255 is decoded to linear.
     let t = image(r#"Texture "t" "spectrum" "imagemap" "string filename" "grey.png""#);
     let srgb = srgb_to_linear(128.0 / 255.0);
-    assert!(
-        (t.image.texels[0].x - srgb).abs() < 1e-6,
-        "{:?}",
-        t.image.texels[0]
-    );
+    let texel = t.mipmap.level(0).texels[0];
+    assert!((texel.x - srgb).abs() < 1e-6, "{texel:?}");
+    // pbrt-v4's default filter is bilinear (over a MIP pyramid).
     assert_eq!(
-        (t.wrap, t.scale, t.invert, t.nearest),
-        (WrapMode::Repeat, 1.0, false, false)
+        (t.wrap, t.scale, t.invert, t.filter),
+        (WrapMode::Repeat, 1.0, false, ImageFilter::Bilinear)
     );
+    // A 1×1 image is its own whole pyramid.
+    assert_eq!(t.mipmap.levels(), 1);
     assert_eq!(t.mapping, Mapping2D::default());
     let t = image(
         r#"Texture "t" "spectrum" "imagemap" "string filename" "grey.png"
@@ -449,10 +449,10 @@ fn imagemaps_read_the_image_and_every_parameter() {
            "float maxanisotropy" 4 "float scale" 2 "bool invert" true "float uscale" 3
            "string mapping" "uv""#,
     );
-    assert!((t.image.texels[0].x - 128.0 / 255.0).abs() < 1e-6);
+    assert!((t.mipmap.level(0).texels[0].x - 128.0 / 255.0).abs() < 1e-6);
     assert_eq!(
-        (t.wrap, t.scale, t.invert, t.nearest),
-        (WrapMode::Clamp, 2.0, true, true)
+        (t.wrap, t.scale, t.invert, t.filter),
+        (WrapMode::Clamp, 2.0, true, ImageFilter::Point)
     );
     assert!(matches!(t.mapping, Mapping2D::Uv(m) if m.su == 3.0));
     let FloatTexture::Image(t) = clean(float_in(
@@ -463,14 +463,32 @@ fn imagemaps_read_the_image_and_every_parameter() {
         panic!("an image")
     };
     assert_eq!(t.wrap, WrapMode::Black);
-    // Every pbrt-v4 filter is read; with lancer's zero footprints all but "point" are the
-    // finest level's bilinear lookup.
-    for f in ["bilinear", "trilinear", "ewa"] {
+    // Every pbrt-v4 filter is read, `maxanisotropy` (default 8) with `ewa`.
+    for (f, want) in [
+        ("bilinear", ImageFilter::Bilinear),
+        ("trilinear", ImageFilter::Trilinear),
+        (
+            "ewa",
+            ImageFilter::Ewa {
+                max_anisotropy: 8.0,
+            },
+        ),
+    ] {
         let t = image(&format!(
             r#"Texture "t" "spectrum" "imagemap" "string filename" "grey.png" "string filter" "{f}""#
         ));
-        assert!(!t.nearest);
+        assert_eq!(t.filter, want);
     }
+    let t = image(
+        r#"Texture "t" "spectrum" "imagemap" "string filename" "grey.png" "string filter" "ewa"
+           "float maxanisotropy" 3"#,
+    );
+    assert_eq!(
+        t.filter,
+        ImageFilter::Ewa {
+            max_anisotropy: 3.0
+        }
+    );
     let t = image(
         r#"Texture "t" "spectrum" "imagemap" "string filename" "grey.png" "string mapping" "planar""#,
     );
