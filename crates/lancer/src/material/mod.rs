@@ -11,6 +11,7 @@ mod fresnel;
 mod hair;
 mod layered;
 mod microfacet;
+mod mix;
 mod scatter;
 mod subsurface;
 
@@ -30,6 +31,7 @@ pub use hair::{
 };
 pub use layered::{CoatedConductorBxdf, CoatedDiffuseBxdf, LayeredBxdf};
 pub use microfacet::TrowbridgeReitz;
+pub use mix::{apply_bump, mix_choice, mix_pick, resolve_mix};
 pub use scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode};
 
 use crate::math::{Rgb, SampledSpectrum, rgb_lanes};
@@ -222,33 +224,6 @@ fn conductor_index(
             colour(0, eta, ColourKind::Unbounded),
             colour(1, k, ColourKind::Unbounded),
         ),
-    }
-}
-
-/// Changes `si`'s shading frame as material `m`'s bump or normal map asks (pbrt-v4 does it
-/// in `SurfaceInteraction::GetBSDF`, before the BSDF and everything that uses the shading
-/// normal). Other materials leave it alone.
-#[inline]
-pub fn apply_bump(
-    materials: &[Material],
-    tex: &TextureEval,
-    m: u32,
-    si: &mut crate::shape::SurfaceInteraction,
-) {
-    if let Material::Bumped {
-        displacement,
-        normal_map,
-        ..
-    } = materials[m as usize]
-    {
-        let shading = match (normal_map, displacement) {
-            (Some(nm), _) => normal_map_shading(tex, nm, si),
-            (None, Some(d)) => bump_shading(tex, d, si),
-            (None, None) => None,
-        };
-        if let Some(sh) = shading {
-            si.shading = sh;
-        }
     }
 }
 
