@@ -10,6 +10,7 @@ mod diffuse;
 mod fresnel;
 mod hair;
 mod layered;
+pub mod measured;
 mod microfacet;
 mod mix;
 mod scatter;
@@ -30,6 +31,7 @@ pub use hair::{
     hair_sigma_a_from_reflectance,
 };
 pub use layered::{CoatedConductorBxdf, CoatedDiffuseBxdf, LayeredBxdf};
+pub use measured::{MeasuredBxdf, MeasuredData};
 pub use microfacet::TrowbridgeReitz;
 pub use mix::{apply_bump, mix_choice, mix_pick, resolve_mix};
 pub use scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode};
@@ -153,6 +155,8 @@ pub enum Material {
     },
     /// Hair fibres (pbrt-v4's `hair`, [`HairBxdf`]), meant for `curve` shapes.
     Hair(HairMaterial),
+    /// A tabulated BRDF read from an RGL `.bsdf` file (pbrt-v4's `measured`, [`MeasuredBxdf`]).
+    Measured(&'static MeasuredData),
     /// A dielectric boundary over a scattering medium, rendered with a BSSRDF (pbrt-v4's
     /// `subsurface`, [`TabulatedBssrdf`]).
     Subsurface(SubsurfaceMaterial),
@@ -240,6 +244,7 @@ impl Material {
             Material::CoatedConductor { .. } => "coatedconductor",
             Material::Mix { .. } => "mix",
             Material::Hair { .. } => "hair",
+            Material::Measured(_) => "measured",
             Material::Subsurface { .. } => "subsurface",
             Material::Interface => "interface",
             Material::Bumped { .. } => "bumped",
@@ -302,6 +307,7 @@ impl Material {
             Material::Subsurface(ref m) => m.coefficients.colour_slots(),
             Material::Dielectric { .. }
             | Material::ThinDielectric { .. }
+            | Material::Measured(_)
             | Material::Mix { .. }
             | Material::Interface
             | Material::Bumped { .. } => [None; COLOUR_SLOTS],
@@ -489,6 +495,9 @@ impl Material {
                 spectral.map(|sc| sc.lambda),
                 &colour,
             )),
+            Material::Measured(data) => {
+                BxDF::Measured(MeasuredBxdf::new(data, spectral.map(|sc| sc.lambda)))
+            }
             Material::Subsurface(ref m) => BxDF::Dielectric(DielectricBxdf {
                 eta: nonzero_eta(m.eta),
                 distrib: distrib(m.uroughness, m.vroughness, m.remap_roughness),
