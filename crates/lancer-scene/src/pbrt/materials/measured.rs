@@ -79,11 +79,7 @@ mod tests {
     fn a_bsdf_file_becomes_a_measured_material() {
         let dir = ScratchDir::new("measured-ok");
         std::fs::write(&*dir.join("tiny.bsdf"), tiny("")).unwrap();
-        let f = read(
-            &*dir,
-            r#"Material "measured" "string filename" "tiny.bsdf""#,
-        )
-        .unwrap();
+        let f = read(&dir, r#"Material "measured" "string filename" "tiny.bsdf""#).unwrap();
         assert!(f.warnings.is_empty(), "{:?}", f.warnings);
         let Material::Measured(d) = f.value.material else {
             panic!("{:?}", f.value.material)

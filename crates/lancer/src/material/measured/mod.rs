@@ -287,7 +287,7 @@ impl MeasuredData {
             let (nl, nn) = (s[2], n * n);
             let mut out = Vec::with_capacity(sp.len() / nl * 3);
             for slice in sp.chunks_exact(nl * nn) {
-                for c in 0..3 {
+                for c in [0, 1, 2] {
                     for i in 0..nn {
                         let v: f64 = (0..nl).map(|k| slice[k * nn + i] as f64 * w[k][c]).sum();
                         out.push(v.max(0.0) as f32);
@@ -458,7 +458,12 @@ impl Scatter for MeasuredBxdf {
         let (theta_o, phi_o) = angles(wo);
         let u_wm = self.wm_to_u(wm, phi_o);
         let (ui, _) = self.data.vndf.invert(u_wm, &[phi_o, theta_o]);
-        self.reflectance(ui, phi_o, theta_o) * self.geometry(u_wm, theta_o, phi_o, wi.z)
+        let f = self.reflectance(ui, phi_o, theta_o) * self.geometry(u_wm, theta_o, phi_o, wi.z);
+        if f.is_finite() {
+            f
+        } else {
+            SampledSpectrum::ZERO
+        }
     }
 
     fn sample_f(
@@ -491,7 +496,7 @@ impl Scatter for MeasuredBxdf {
         }
         let f = self.reflectance(u, phi_o, theta_o) * self.geometry(u_wm, theta_o, phi_o, wi.z);
         let pdf = lum_pdf * vndf_pdf / (4.0 * wo.dot(wm) * square_jacobian(u_wm[0], sin_m));
-        if !(pdf > 0.0 && pdf.is_finite()) {
+        if !(pdf > 0.0 && pdf.is_finite() && f.is_finite()) {
             return None;
         }
         let wi = if flip { -wi } else { wi };
@@ -516,5 +521,111 @@ impl Scatter for MeasuredBxdf {
         let sin_m = (wm.x * wm.x + wm.y * wm.y).sqrt();
         let pdf = vndf_pdf * lum_pdf / (4.0 * wo.dot(wm) * square_jacobian(u_wm[0], sin_m));
         if pdf.is_finite() { pdf.max(0.0) } else { 0.0 }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Vec2;
+
+    /// A small consistent file: 3 × 3 tables, two θᵢ nodes, spectra at two wavelengths.
+    fn small() -> Vec<u8> {
+        let t = |v: f32| Field::f32(&[1, 2, 3, 3], &[v; 18]);
+        let ramp: Vec<f32> = (0..36).map(|i| 0.1 + 0.02 * i as f32).collect();
+        let fields = [
+            ("theta_i", Field::f32(&[2], &[0.0, 1.5])),
+            ("phi_i", Field::f32(&[1], &[0.0])),
+            ("ndf", Field::f32(&[3, 3], &[0.3; 9])),
+            ("sigma", Field::f32(&[3, 3], &[0.9; 9])),
+            ("vndf", t(1.0)),
+            ("luminance", t(2.0)),
+            ("wavelengths", Field::f32(&[2], &[400.0, 700.0])),
+            ("spectra", Field::f32(&[1, 2, 2, 3, 3], &ramp)),
+        ];
+        let refs: Vec<(&str, &Field)> = fields.iter().map(|(n, f)| (*n, f)).collect();
+        Tensor::write(&refs)
+    }
+
+    #[test]
+    fn a_grey_spectrum_reduces_to_grey_and_a_ramp_to_its_colour() {
+        let lambda: Vec<f32> = (0..=10).map(|i| 360.0 + 47.0 * i as f32).collect();
+        let w = rgb_weights(&lambda);
+        for c in 0..3 {
+            let grey: f64 = w.iter().map(|w| w[c]).sum();
+            assert!((grey - 1.0).abs() < 2e-3, "{c}: {grey}");
+        }
+        // More at long wavelengths: redder than blue.
+        let red: Vec<f64> = (0..3)
+            .map(|c| w.iter().enumerate().map(|(k, w)| k as f64 * w[c]).sum())
+            .collect();
+        assert!(red[0] > red[2], "{red:?}");
+    }
+
+    #[test]
+    fn shape_errors_name_the_field() {
+        let ok = MeasuredData::from_bytes(&small(), "s").unwrap();
+        assert!(ok.spectra.is_some() && ok.memory_bytes() > 0);
+        let bad = Tensor::write(&[
+            ("theta_i", &Field::f32(&[2], &[0.5, 0.1])),
+            ("phi_i", &Field::f32(&[1], &[0.0])),
+        ]);
+        assert_eq!(
+            MeasuredData::from_bytes(&bad, "s").unwrap_err(),
+            "field \"theta_i\" does not increase: [0.5, 0.1]"
+        );
+        let t = Tensor::parse(&small()).unwrap();
+        let mut fields: Vec<(&str, &Field)> =
+            t.fields.iter().map(|(n, f)| (n.as_str(), f)).collect();
+        let wrong = Field::f32(&[1, 3, 3, 3], &[1.0; 27]);
+        for f in fields.iter_mut().filter(|f| f.0 == "vndf") {
+            f.1 = &wrong;
+        }
+        assert_eq!(
+            MeasuredData::from_bytes(&Tensor::write(&fields), "s").unwrap_err(),
+            "field \"vndf\" has shape [1, 3, 3, 3]; [1, 2, n ≥ 2, n ≥ 2] is needed"
+        );
+        let nan = Field::f32(&[3, 3], &[0.3, 0.3, f32::NAN, 0.3, 0.3, 0.3, 0.3, 0.3, 0.3]);
+        for f in fields.iter_mut().filter(|f| f.0 == "ndf") {
+            f.1 = &nan;
+        }
+        assert!(
+            MeasuredData::from_bytes(&Tensor::write(&fields), "s")
+                .unwrap_err()
+                .starts_with("field \"")
+        );
+    }
+
+    /// Every byte of a valid file changed, and every truncation: never a panic, and what
+    /// loads evaluates to finite values.
+    #[test]
+    fn damaged_files_never_panic() {
+        let good = small();
+        let probe = |bytes: &[u8]| {
+            if let Ok(d) = MeasuredData::from_bytes(bytes, "x") {
+                let d: &'static MeasuredData = Box::leak(Box::new(d));
+                let b = MeasuredBxdf::new(d, None);
+                let (wo, wi) = (
+                    normalize(Vec3::new(0.3, 0.1, 0.9)),
+                    normalize(Vec3::new(-0.2, 0.4, 0.8)),
+                );
+                let m = TransportMode::Radiance;
+                assert!(b.f(wo, wi, m).is_finite());
+                assert!(b.pdf(wo, wi, m, ReflTrans::ALL).is_finite());
+                if let Some(s) = b.sample_f(wo, 0.5, Vec2::new(0.3, 0.6), m, ReflTrans::ALL) {
+                    assert!(s.f.is_finite() && s.pdf.is_finite());
+                }
+            }
+        };
+        for len in 0..good.len() {
+            probe(&good[..len]);
+        }
+        for i in 0..good.len() {
+            for v in [0x00, 0x01, 0x7f, 0x80, 0xff] {
+                let mut b = good.clone();
+                b[i] = v;
+                probe(&b);
+            }
+        }
     }
 }

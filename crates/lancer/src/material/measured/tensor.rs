@@ -201,6 +201,15 @@ impl Tensor {
                 bytes = bytes.saturating_mul(s);
                 shape.push(s as usize);
             }
+            if shape
+                .iter()
+                .try_fold(1usize, |a, &s| a.checked_mul(s))
+                .is_none()
+            {
+                return Err(format!(
+                    "field \"{name}\" has an impossible shape {shape:?}"
+                ));
+            }
             let end = offset.saturating_add(bytes);
             if end > b.len() as u64 {
                 return Err(format!(
