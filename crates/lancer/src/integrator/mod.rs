@@ -146,9 +146,9 @@ pub(crate) fn bsdf_at(
     for _ in 0..16 {
         match &scene.materials[m as usize] {
             Material::Mix { materials, amount } => {
-                m = crate::material::mix_pick(*materials, tex.float(*amount, &tc), hit.si.p);
+                m = crate::material::mix::mix_pick(*materials, tex.float(*amount, &tc), hit.si.p);
             }
-            // The bump map was applied at the hit (`crate::material::apply_bump`).
+            // The bump map was applied at the hit (`crate::material::mix::apply_bump`).
             Material::Bumped { base, .. } => m = *base,
             mat => {
                 let spectral = lambda.map(|lambda| SpectralColours {

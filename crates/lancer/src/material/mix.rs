@@ -1,5 +1,5 @@
 //! Resolving `mix` materials: the per-hit choice between a mix's two materials, shared by the
-//! bump step at the hit ([`super::apply_bump`]) and the BSDF set-up, so that both see the same
+//! bump step at the hit ([`apply_bump`]) and the BSDF set-up, so that both see the same
 //! material — and the material a mix picks has its own bump or normal map applied, as pbrt-v4
 //! applies the chosen material's displacement after `MixMaterial::ChooseMaterial`.
 

@@ -12,7 +12,7 @@ mod hair;
 mod layered;
 pub mod measured;
 mod microfacet;
-mod mix;
+pub mod mix;
 mod scatter;
 mod subsurface;
 
@@ -33,7 +33,6 @@ pub use hair::{
 pub use layered::{CoatedConductorBxdf, CoatedDiffuseBxdf, LayeredBxdf};
 pub use measured::{MeasuredBxdf, MeasuredData};
 pub use microfacet::TrowbridgeReitz;
-pub use mix::{apply_bump, mix_choice, mix_pick, resolve_mix};
 pub use scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode};
 
 use crate::math::{Rgb, SampledSpectrum, rgb_lanes};

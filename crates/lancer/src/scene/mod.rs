@@ -124,7 +124,7 @@ impl Scene {
             if let Some(ih) = self.instances.intersect(&r) {
                 let (mut si, prim) = self.instances.interaction(ray, &ih);
                 let m = self.prims[prim as usize].material;
-                crate::material::apply_bump(&self.materials, &self.textures(), m, &mut si);
+                crate::material::mix::apply_bump(&self.materials, &self.textures(), m, &mut si);
                 // Instanced objects are triangle meshes, which carry no colour of their own.
                 return Some(SceneHit {
                     si,
@@ -137,7 +137,7 @@ impl Scene {
         let shape = &self.shapes[prim as usize];
         let mut si = shape.interaction(ray, &h, &self.meshes);
         let m = self.prims[prim as usize].material;
-        crate::material::apply_bump(&self.materials, &self.textures(), m, &mut si);
+        crate::material::mix::apply_bump(&self.materials, &self.textures(), m, &mut si);
         let albedo = shape.hit_albedo(&h);
         Some(SceneHit { si, prim, albedo })
     }
