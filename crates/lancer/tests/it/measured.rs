@@ -247,3 +247,24 @@ fn white_furnace_never_gains_energy() {
         );
     }
 }
+
+/// Writes the generated files (`ggx.bsdf`: the spectral GGX conductor above; `lambert.bsdf`:
+/// Lambert 0.9) into the folder `$LANCER_BSDF_OUT`, for trying them in scenes:
+/// `LANCER_BSDF_OUT=/tmp/bsdf cargo test -p lancer --test it measured::write -- --ignored`.
+#[test]
+#[ignore]
+fn write_generated_files() {
+    let out = std::path::PathBuf::from(std::env::var("LANCER_BSDF_OUT").expect("LANCER_BSDF_OUT"));
+    std::fs::create_dir_all(&out).unwrap();
+    let lambert = |_: Vec3, wi: Vec3, _: f32| if wi.z > 0.0 { 0.9 * INV_PI } else { 0.0 };
+    std::fs::write(
+        out.join("ggx.bsdf"),
+        bsdf_file(ALPHA, ggx, N, &theta_nodes(), &WAVELENGTHS),
+    )
+    .unwrap();
+    std::fs::write(
+        out.join("lambert.bsdf"),
+        bsdf_file(ALPHA, lambert, N, &theta_nodes(), &WAVELENGTHS),
+    )
+    .unwrap();
+}
