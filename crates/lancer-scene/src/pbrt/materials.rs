@@ -2,6 +2,7 @@
 //! pbrt-v4's defaults. A `mix` names two materials that may not be defined yet: they come back
 //! beside it, for the builder to resolve once every name is known.
 
+mod measured;
 mod subsurface;
 
 use super::convert::{Fallback, Reader, locate};
@@ -262,12 +263,7 @@ fn convert(r: &Reader, ty: &str) -> Result<Fallback<MaterialWithNames>, SceneErr
         "interface" | "" | "none" => Material::Interface,
         "hair" => return hair(r),
         "subsurface" => return subsurface::subsurface(r),
-        "measured" => {
-            return Ok(Fallback::instead(
-                diffuse(0.5)?.into(),
-                format!("material \"{ty}\" is not supported yet; lancer renders it as \"diffuse\""),
-            ));
-        }
+        "measured" => return measured::measured(r),
         _ => {
             return Ok(Fallback::instead(
                 Material::default().into(),
@@ -621,23 +617,7 @@ mod tests {
     }
 
     #[test]
-    fn unsupported_materials_become_diffuse_with_a_warning() {
-        let (out, unused) = convert_with(
-            r#"Material "measured" "rgb reflectance" [0.3 0.2 0.1]"#,
-            &TextureNames::default(),
-        );
-        let f = out.unwrap();
-        assert!(unused.is_empty());
-        assert_eq!(
-            f.value.material,
-            Material::Diffuse {
-                reflectance: rgb(0.3, 0.2, 0.1)
-            }
-        );
-        assert_eq!(
-            f.warnings,
-            ["material \"measured\" is not supported yet; lancer renders it as \"diffuse\""]
-        );
+    fn unknown_materials_become_diffuse_with_a_warning() {
         let (out, unused) = convert_with(
             r#"Material "plastic" "float roughness" 0.1"#,
             &TextureNames::default(),

@@ -146,17 +146,9 @@ pub(crate) fn bsdf_at(
     for _ in 0..16 {
         match &scene.materials[m as usize] {
             Material::Mix { materials, amount } => {
-                let a = tex.float(*amount, &tc);
-                let u = mix_choice(hit.si.p);
-                m = if a <= 0.0 {
-                    materials[0]
-                } else if a >= 1.0 || u < a {
-                    materials[1]
-                } else {
-                    materials[0]
-                };
+                m = crate::material::mix::mix_pick(*materials, tex.float(*amount, &tc), hit.si.p);
             }
-            // The bump map was applied at the hit (`crate::material::apply_bump`).
+            // The bump map was applied at the hit (`crate::material::mix::apply_bump`).
             Material::Bumped { base, .. } => m = *base,
             mat => {
                 let spectral = lambda.map(|lambda| SpectralColours {
@@ -177,19 +169,6 @@ pub(crate) fn bsdf_at(
         }
     }
     None
-}
-
-/// The uniform number that picks a `mix` material's side at `p`: a hash of the point. Out of
-/// line, so that it is computed only for mixes (hoisted into `bsdf_at`'s entry, it cost every
-/// hit a hash).
-#[cold]
-#[inline(never)]
-fn mix_choice(p: Vec3) -> f32 {
-    crate::sampling::u32_to_unit_f32(crate::sampling::hash_u64(&[
-        p.x.to_bits() as u64,
-        p.y.to_bits() as u64,
-        p.z.to_bits() as u64,
-    ]) as u32)
 }
 
 /// Radiance emitted by the surface at `hit` towards `wo` (area lights), at the wavelengths

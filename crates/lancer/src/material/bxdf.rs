@@ -11,6 +11,7 @@ use super::dielectric::{DielectricBxdf, ThinDielectricBxdf};
 use super::diffuse::{DiffuseBxdf, DiffuseTransmissionBxdf};
 use super::hair::HairBxdf;
 use super::layered::{CoatedConductorBxdf, CoatedDiffuseBxdf};
+use super::measured::MeasuredBxdf;
 use super::scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode};
 use crate::math::{Frame, SampledSpectrum, Vec2, Vec3};
 
@@ -35,6 +36,8 @@ pub enum BxDF {
     Hair(HairBxdf),
     /// The exit lobe of a BSSRDF.
     NormalizedFresnel(NormalizedFresnelBxdf),
+    /// A tabulated BRDF (pbrt-v4's `MeasuredBxDF`).
+    Measured(MeasuredBxdf),
 }
 
 /// Calls `$body` with `$b` bound to the variant's inner BxDF, whatever the variant.
@@ -50,6 +53,7 @@ macro_rules! dispatch {
             BxDF::CoatedConductor($b) => $body,
             BxDF::Hair($b) => $body,
             BxDF::NormalizedFresnel($b) => $body,
+            BxDF::Measured($b) => $body,
         }
     };
 }
@@ -106,7 +110,8 @@ impl BxDF {
             | BxDF::ThinDielectric(_)
             | BxDF::DiffuseTransmission(_)
             | BxDF::Hair(_)
-            | BxDF::NormalizedFresnel(_) => {}
+            | BxDF::NormalizedFresnel(_)
+            | BxDF::Measured(_) => {}
         }
     }
 }

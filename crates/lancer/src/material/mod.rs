@@ -10,7 +10,9 @@ mod diffuse;
 mod fresnel;
 mod hair;
 mod layered;
+pub mod measured;
 mod microfacet;
+pub mod mix;
 mod scatter;
 mod subsurface;
 
@@ -29,6 +31,7 @@ pub use hair::{
     hair_sigma_a_from_reflectance,
 };
 pub use layered::{CoatedConductorBxdf, CoatedDiffuseBxdf, LayeredBxdf};
+pub use measured::{MeasuredBxdf, MeasuredData};
 pub use microfacet::TrowbridgeReitz;
 pub use scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode};
 
@@ -151,6 +154,8 @@ pub enum Material {
     },
     /// Hair fibres (pbrt-v4's `hair`, [`HairBxdf`]), meant for `curve` shapes.
     Hair(HairMaterial),
+    /// A tabulated BRDF read from an RGL `.bsdf` file (pbrt-v4's `measured`, [`MeasuredBxdf`]).
+    Measured(&'static MeasuredData),
     /// A dielectric boundary over a scattering medium, rendered with a BSSRDF (pbrt-v4's
     /// `subsurface`, [`TabulatedBssrdf`]).
     Subsurface(SubsurfaceMaterial),
@@ -225,35 +230,6 @@ fn conductor_index(
     }
 }
 
-/// Changes `si`'s shading frame as material `m`'s bump or normal map asks (pbrt-v4 does it
-/// in `SurfaceInteraction::GetBSDF`, before the BSDF and everything that uses the shading
-/// normal). Other materials leave it alone. `tex_coord` gives the hit's texture lookup point
-/// with its footprint (asked for only when there is a bump map).
-#[inline]
-pub fn apply_bump(
-    materials: &[Material],
-    tex: &TextureEval,
-    m: u32,
-    si: &mut crate::shape::SurfaceInteraction,
-    tex_coord: impl FnOnce(&crate::shape::SurfaceInteraction) -> crate::texture::TexCoord,
-) {
-    if let Material::Bumped {
-        displacement,
-        normal_map,
-        ..
-    } = materials[m as usize]
-    {
-        let shading = match (normal_map, displacement) {
-            (Some(nm), _) => normal_map_shading(tex, nm, si),
-            (None, Some(d)) => bump_shading(tex, d, si, &tex_coord(si)),
-            (None, None) => None,
-        };
-        if let Some(sh) = shading {
-            si.shading = sh;
-        }
-    }
-}
-
 impl Material {
     /// The pbrt-v4 name of this material (`Material "…"`): `diffuse`, `conductor`, …
     pub fn pbrt_name(&self) -> &'static str {
@@ -267,6 +243,7 @@ impl Material {
             Material::CoatedConductor { .. } => "coatedconductor",
             Material::Mix { .. } => "mix",
             Material::Hair { .. } => "hair",
+            Material::Measured(_) => "measured",
             Material::Subsurface { .. } => "subsurface",
             Material::Interface => "interface",
             Material::Bumped { .. } => "bumped",
@@ -329,6 +306,7 @@ impl Material {
             Material::Subsurface(ref m) => m.coefficients.colour_slots(),
             Material::Dielectric { .. }
             | Material::ThinDielectric { .. }
+            | Material::Measured(_)
             | Material::Mix { .. }
             | Material::Interface
             | Material::Bumped { .. } => [None; COLOUR_SLOTS],
@@ -516,6 +494,9 @@ impl Material {
                 spectral.map(|sc| sc.lambda),
                 &colour,
             )),
+            Material::Measured(data) => {
+                BxDF::Measured(MeasuredBxdf::new(data, spectral.map(|sc| sc.lambda)))
+            }
             Material::Subsurface(ref m) => BxDF::Dielectric(DielectricBxdf {
                 eta: nonzero_eta(m.eta),
                 distrib: distrib(m.uroughness, m.vroughness, m.remap_roughness),

@@ -2,6 +2,7 @@
 
 pub mod halton;
 mod hash;
+mod linear2d;
 pub(crate) mod piecewise;
 mod pmj02;
 mod randomization;
@@ -11,6 +12,7 @@ pub mod sobol;
 mod warp;
 
 pub use hash::{hash_u64, mix_bits, permutation_element, u32_to_unit_f32};
+pub use linear2d::Linear2D;
 pub use piecewise::{PiecewiseConstant1D, PiecewiseConstant2D};
 pub use randomization::Randomization;
 pub use rng::Pcg32;

@@ -131,7 +131,7 @@ impl Scene {
                 let (mut si, prim) = self.instances.interaction(ray, &ih);
                 let footprint = self.footprint(ray, &si);
                 let m = self.prims[prim as usize].material;
-                crate::material::apply_bump(&self.materials, &self.textures(), m, &mut si, |si| {
+                crate::material::mix::apply_bump(&self.materials, &self.textures(), m, &mut si, |si| {
                     Scene::tex_coord_from(si, footprint)
                 });
                 // Instanced objects are triangle meshes, which carry no colour of their own.
@@ -148,7 +148,7 @@ impl Scene {
         let mut si = shape.interaction(ray, &h, &self.meshes);
         let footprint = self.footprint(ray, &si);
         let m = self.prims[prim as usize].material;
-        crate::material::apply_bump(&self.materials, &self.textures(), m, &mut si, |si| {
+        crate::material::mix::apply_bump(&self.materials, &self.textures(), m, &mut si, |si| {
             Scene::tex_coord_from(si, footprint)
         });
         let albedo = shape.hit_albedo(&h);

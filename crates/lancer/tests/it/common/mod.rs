@@ -4,5 +4,6 @@
 //! unit tests; declare it here when an integration test writes files.
 #![allow(dead_code)]
 
+pub mod bsdf_file;
 pub mod chi2;
 pub mod shapes;

@@ -1,0 +1,193 @@
+//! Resolving `mix` materials: the per-hit choice between a mix's two materials, shared by the
+//! bump step at the hit ([`apply_bump`]) and the BSDF set-up, so that both see the same
+//! material — and the material a mix picks has its own bump or normal map applied, as pbrt-v4
+//! applies the chosen material's displacement after `MixMaterial::ChooseMaterial`.
+
+use super::{Material, bump_shading, normal_map_shading};
+use crate::math::Vec3;
+use crate::texture::{TexCoord, TextureEval};
+
+/// The uniform number that picks a `mix` material's side at `p`: a hash of the point. Out of
+/// line, so that it is computed only for mixes (hoisted into a caller's entry, it cost every
+/// hit a hash).
+#[cold]
+#[inline(never)]
+pub fn mix_choice(p: Vec3) -> f32 {
+    crate::sampling::u32_to_unit_f32(crate::sampling::hash_u64(&[
+        p.x.to_bits() as u64,
+        p.y.to_bits() as u64,
+        p.z.to_bits() as u64,
+    ]) as u32)
+}
+
+/// The side of the mix `materials`/`amount` taken at a hit at `p` with texture coordinates
+/// `tc`: the second when u < a (u = [`mix_choice`]`(p)`, a the amount there), always the first
+/// for a ≤ 0 and always the second for a ≥ 1.
+#[inline]
+pub fn mix_pick(materials: [u32; 2], amount: f32, p: Vec3) -> u32 {
+    if amount <= 0.0 {
+        materials[0]
+    } else if amount >= 1.0 || mix_choice(p) < amount {
+        materials[1]
+    } else {
+        materials[0]
+    }
+}
+
+/// Follows `mix` materials from `m` down to the material they choose at the hit (at most 16
+/// levels deep, as the BSDF set-up does); a non-mix `m` is returned as it is.
+#[inline]
+pub fn resolve_mix(materials: &[Material], tex: &TextureEval, tc: &TexCoord, mut m: u32) -> u32 {
+    for _ in 0..16 {
+        match materials[m as usize] {
+            Material::Mix {
+                materials: pair,
+                amount,
+            } => m = mix_pick(pair, tex.float(amount, tc), tc.p),
+            _ => return m,
+        }
+    }
+    m
+}
+
+/// Changes `si`'s shading frame as material `m`'s bump or normal map asks (pbrt-v4 does it
+/// in `SurfaceInteraction::GetBSDF`, before the BSDF and everything that uses the shading
+/// normal); for a `mix`, the map of the material it chooses at this hit ([`resolve_mix`], the
+/// same choice the BSDF set-up makes). Other materials leave it alone. `tex_coord` gives the
+/// hit's texture lookup point with its footprint.
+#[inline]
+pub fn apply_bump(
+    materials: &[Material],
+    tex: &TextureEval,
+    mut m: u32,
+    si: &mut crate::shape::SurfaceInteraction,
+    tex_coord: impl Fn(&crate::shape::SurfaceInteraction) -> TexCoord,
+) {
+    if let Material::Mix { .. } = materials[m as usize] {
+        m = resolve_mix(materials, tex, &tex_coord(si), m);
+    }
+    if let Material::Bumped {
+        displacement,
+        normal_map,
+        ..
+    } = materials[m as usize]
+    {
+        let shading = match (normal_map, displacement) {
+            (Some(nm), _) => normal_map_shading(tex, nm, si),
+            (None, Some(d)) => bump_shading(tex, d, si, &tex_coord(si)),
+            (None, None) => None,
+        };
+        if let Some(sh) = shading {
+            si.shading = sh;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::{Rgb, Vec2, normalize};
+    use crate::shape::{Shading, SurfaceInteraction};
+    use crate::texture::{FloatTex, FloatTexture, Mapping2D, SpectrumTex};
+
+    /// The lookup point of a hit, without a footprint.
+    fn plain_coord(si: &SurfaceInteraction) -> TexCoord {
+        TexCoord {
+            uv: si.uv,
+            p: si.p,
+            n: si.n,
+            ..TexCoord::default()
+        }
+    }
+
+    /// A hit on the plane z = 0 at (u, v) = (x, y), ∂p/∂u = x̂, ∂p/∂v = ŷ, n = ẑ.
+    fn flat(x: f32, y: f32) -> SurfaceInteraction {
+        SurfaceInteraction {
+            p: Vec3::new(x, y, 0.0),
+            p_error: Vec3::ZERO,
+            n: Vec3::Z,
+            uv: Vec2::new(x, y),
+            dpdu: Vec3::X,
+            dpdv: Vec3::Y,
+            shading: Shading {
+                n: Vec3::Z,
+                dpdu: Vec3::X,
+                dpdv: Vec3::Y,
+            },
+            wo: Vec3::Z,
+            t: 1.0,
+        }
+    }
+
+    /// Materials: 0 diffuse, 1 diffuse bumped by h(u, v) = 0.1·u + 0.2·v (normal
+    /// ∝ (−0.1, −0.2, 1)), 2 a mix of 0 and 1 with `amount`, 3 a mix of 2 and 2.
+    fn scene(amount: f32) -> Vec<Material> {
+        vec![
+            Material::Diffuse {
+                reflectance: SpectrumTex::Const(Rgb::splat(0.5)),
+            },
+            Material::Bumped {
+                base: 0,
+                displacement: Some(FloatTex::Tex(0)),
+                normal_map: None,
+            },
+            Material::Mix {
+                materials: [0, 1],
+                amount: FloatTex::Const(amount),
+            },
+            Material::Mix {
+                materials: [2, 2],
+                amount: FloatTex::Const(0.5),
+            },
+        ]
+    }
+
+    #[test]
+    fn a_mix_applies_the_bump_of_the_material_it_picks() {
+        let floats = vec![FloatTexture::Bilerp {
+            mapping: Mapping2D::default(),
+            v: [0.0, 0.2, 0.1, 0.3],
+        }];
+        let tex = TextureEval {
+            floats: &floats,
+            spectra: &[],
+        };
+        let bumped_n = normalize(Vec3::new(-0.1, -0.2, 1.0));
+        // Amount 1: always the bumped side, directly and under a mix of mixes.
+        for m in [1, 2, 3] {
+            let mut si = flat(0.3, 0.6);
+            apply_bump(&scene(1.0), &tex, m, &mut si, plain_coord);
+            assert!(
+                (si.shading.n - bumped_n).length() < 2e-3,
+                "{m}: {}",
+                si.shading.n
+            );
+        }
+        // Amount 0: always the plain side, whose frame stays.
+        let mut si = flat(0.3, 0.6);
+        apply_bump(&scene(0.0), &tex, 2, &mut si, plain_coord);
+        assert_eq!(si.shading.n, Vec3::Z);
+        // Amount 0.3: per point, the bump is there exactly when the mix picks material 1
+        // (the choice the BSDF set-up makes with `mix_pick`), about 30 % of the points.
+        let mats = scene(0.3);
+        let mut picked = 0;
+        let n = 2000;
+        for i in 0..n {
+            let (x, y) = ((i % 50) as f32 / 50.0 + 0.01, (i / 50) as f32 / 40.0 + 0.01);
+            let mut si = flat(x, y);
+            apply_bump(&mats, &tex, 2, &mut si, plain_coord);
+            let tc = plain_coord(&si);
+            let m = resolve_mix(&mats, &tex, &tc, 2);
+            assert_eq!(m, mix_pick([0, 1], 0.3, si.p));
+            if m == 1 {
+                picked += 1;
+                assert!((si.shading.n - bumped_n).length() < 2e-3);
+            } else {
+                assert_eq!(m, 0);
+                assert_eq!(si.shading.n, Vec3::Z);
+            }
+        }
+        // Binomial(2000, 0.3): σ ≈ 20.5; 5σ bounds.
+        assert!((picked as f32 - 600.0).abs() < 103.0, "{picked}");
+    }
+}
