@@ -272,6 +272,7 @@ fn scene_around(
             area_light: part.emission.map(|l| AreaLightDesc {
                 l,
                 two_sided: false,
+                spectrum: None,
             }),
             alpha: None,
         });

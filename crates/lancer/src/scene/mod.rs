@@ -73,6 +73,10 @@ pub struct Scene {
     /// Primitives without finite bounds (infinite planes), tested on every ray.
     unbounded: Vec<u32>,
     bounds: Bounds3,
+    /// Per light of `lights`: the spectrum its colour is a multiple of, when the scene gave
+    /// one ([`SceneDesc::light_spectra`](desc::SceneDesc::light_spectra),
+    /// [`AreaLightDesc::spectrum`](desc::AreaLightDesc::spectrum)).
+    light_spectra: Vec<Option<crate::spectrum::dense::Measured>>,
     /// Spectral mode's constant colours as spectra, made on first use.
     spectra: std::sync::OnceLock<spectra::SceneSpectra>,
     /// The film's sensor, white balance and output space, unless it is the plain CIE 1931
@@ -219,8 +223,9 @@ impl Scene {
 impl Scene {
     /// The scene's constant colours as spectra, prepared on the first call.
     pub fn spectra(&self) -> &spectra::SceneSpectra {
-        self.spectra
-            .get_or_init(|| spectra::SceneSpectra::new(&self.lights, &self.materials))
+        self.spectra.get_or_init(|| {
+            spectra::SceneSpectra::new(&self.lights, &self.light_spectra, &self.materials)
+        })
     }
 
     /// Emission `l` of light `i`, which is its constant colour times `factor` (see
@@ -238,7 +243,7 @@ impl Scene {
         match lambda {
             None => rgb_lanes(l),
             Some(w) => match &self.spectra().lights[i] {
-                Some(sp) => w.sample_illuminant(sp) * factor,
+                Some(sp) => w.sample_prepared_illuminant(sp) * factor,
                 None => w.illuminant(l),
             },
         }

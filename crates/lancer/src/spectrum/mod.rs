@@ -19,9 +19,11 @@
 
 pub mod cie;
 pub mod colorspace;
+pub mod dense;
 mod fit;
 pub mod hero;
 mod named;
+mod named_data;
 mod reduce;
 pub mod sampled;
 pub mod scattering_presets;
@@ -31,7 +33,9 @@ mod table;
 pub mod uplift;
 
 pub use colorspace::ColorSpace;
-pub use named::{IOR_WAVELENGTH, Ior, named_ior, named_spectrum, named_spectrum_names};
+pub use named::{
+    IOR_WAVELENGTH, Ior, named_ior, named_spectrum, named_spectrum_data, named_spectrum_names,
+};
 pub use reduce::{
     PrecomputedRgb, Spectrum, SpectrumKind, blackbody, cie_d65, cie_xyz, parse_spd,
     spectrum_to_rgb, spectrum_to_xyz_unnormalised, xyz_to_srgb,

@@ -21,6 +21,7 @@
 //! `glass-F11`, whose index of refraction follows Schott's Sellmeier formulas. A renderer
 //! without dispersion takes one index per glass: [`named_ior`] gives the value at 550 nm.
 
+use super::dense::{DenseSpectrum, intern};
 use super::{PrecomputedRgb, Spectrum, cie, spectrum_to_xyz_unnormalised};
 use crate::math::Rgb;
 
@@ -128,20 +129,44 @@ pub fn named_spectrum(name: &str) -> Option<Spectrum> {
         })
 }
 
+/// The data of the spectrum pbrt-v4 calls `name`, as pbrt-v4 evaluates it: the tabulated
+/// measurements of a metal or an illuminant ([`super::named_data`], piecewise linear, zero
+/// outside the table), a glass's Sellmeier index, the CIE D65 table; `None` for an unknown
+/// name. [`named_spectrum`] gives the same spectra as RGB mode reduces them (stored
+/// reductions for the tabulated ones).
+pub fn named_spectrum_data(name: &str) -> Option<Spectrum> {
+    match super::named_data::TABLES.iter().find(|(n, _)| *n == name) {
+        Some((_, pairs)) => {
+            let (lambda, values) = pairs.chunks_exact(2).map(|c| (c[0], c[1])).unzip();
+            Some(Spectrum::PiecewiseLinear { lambda, values })
+        }
+        None => named_spectrum(name),
+    }
+}
+
 /// The single index of refraction of a named glass (`glass-BK7`, …) for a renderer without
 /// dispersion: its value at [`IOR_WAVELENGTH`] (550 nm). `None` for any other name.
 pub fn named_ior(name: &str) -> Option<f32> {
     glass(name).map(|c| sellmeier(c, IOR_WAVELENGTH as f64) as f32)
 }
 
-/// A dielectric's index of refraction as a scene gives it: one number, or a named glass whose
-/// index varies with wavelength (Sellmeier), which disperses light in spectral mode.
+/// A dielectric's index of refraction as a scene gives it: one number, a named glass whose
+/// index varies with wavelength (Sellmeier), or any other spectrum (pairs, a file, an `rgb`
+/// uplifted as pbrt-v4's `RGBUnboundedSpectrum`); an index that varies disperses light in
+/// spectral mode.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Ior {
     /// The same index at every wavelength.
     Constant(f32),
     /// A named glass (`glass-F11`, …): its Sellmeier coefficients.
     Glass(&'static [f64; 6]),
+    /// A spectrum tabulated every nanometre ([`DenseSpectrum`]), not constant.
+    Tabulated {
+        /// n(λ).
+        spectrum: &'static DenseSpectrum,
+        /// The single index of RGB mode (the spectrum at [`IOR_WAVELENGTH`]).
+        rgb_mode: f32,
+    },
 }
 
 impl Ior {
@@ -156,7 +181,35 @@ impl Ior {
         match *self {
             Ior::Constant(eta) => eta,
             Ior::Glass(c) => sellmeier(c, IOR_WAVELENGTH as f64) as f32,
+            Ior::Tabulated { rgb_mode, .. } => rgb_mode,
         }
+    }
+
+    /// The index of `spectrum` (pairs, a file, a named spectrum other than a glass): constant
+    /// when it does not vary over 360–830 nm, otherwise [`Ior::Tabulated`] with RGB mode's
+    /// index `rgb_mode`.
+    pub fn from_spectrum(spectrum: DenseSpectrum, rgb_mode: f32) -> Ior {
+        if spectrum.is_constant() {
+            Ior::Constant(spectrum.at(IOR_WAVELENGTH))
+        } else {
+            Ior::Tabulated {
+                spectrum: intern(spectrum),
+                rgb_mode,
+            }
+        }
+    }
+
+    /// An index given as an `rgb` triple, as pbrt-v4 reads one (`RGBUnboundedSpectrum`:
+    /// 2m·s(λ), m the largest component, s the uplift of rgb/2m): a grey triple is that
+    /// constant; any other varies, and RGB mode takes its value at [`IOR_WAVELENGTH`].
+    pub fn from_rgb(rgb: Rgb) -> Ior {
+        if rgb.x == rgb.y && rgb.y == rgb.z {
+            return Ior::Constant(rgb.x.max(0.0));
+        }
+        let (scale, s) = super::uplift::unbounded_spectrum(rgb);
+        let table = DenseSpectrum::from_fn(|l| scale * s.eval(l));
+        let rgb_mode = table.at(IOR_WAVELENGTH);
+        Ior::from_spectrum(table, rgb_mode)
     }
 
     /// The index at `lambda_nm`: n(λ) from the Sellmeier formula for a glass.
@@ -164,13 +217,14 @@ impl Ior {
         match *self {
             Ior::Constant(eta) => eta,
             Ior::Glass(c) => sellmeier(c, lambda_nm as f64) as f32,
+            Ior::Tabulated { spectrum, .. } => spectrum.at(lambda_nm),
         }
     }
 
     /// Whether the index varies with wavelength, so that refraction separates wavelengths
     /// (pbrt-v4 then keeps only the path's hero wavelength).
     pub fn is_dispersive(&self) -> bool {
-        matches!(self, Ior::Glass(_))
+        matches!(self, Ior::Glass(_) | Ior::Tabulated { .. })
     }
 }
 
