@@ -60,9 +60,17 @@ impl DenseSpectrum {
         SampledSpectrum::new(self.at(l.x), self.at(l.y), self.at(l.z), self.at(l.w))
     }
 
-    /// Whether every value is the same (a refractive index that does not disperse).
+    /// Whether every value is the same, to single-precision rounding (relative 10⁻⁶: a
+    /// constant given as pairs comes back from interpolation a few ulps apart), as a
+    /// refractive index that does not disperse.
     pub fn is_constant(&self) -> bool {
-        self.values.iter().all(|&v| v == self.values[0])
+        let (lo, hi) = self
+            .values
+            .iter()
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), &v| {
+                (a.min(v), b.max(v))
+            });
+        hi - lo <= 1e-6 * hi.abs().max(lo.abs())
     }
 
     /// The luminance the film gives this spectrum taken as radiance: ∫ s·ȳ / ∫ ȳ (1 nm sums,
