@@ -13,8 +13,9 @@
 //! XYZ then goes to linear sRGB with the standard D65 matrix ([`xyz_to_srgb`]). Integrals are
 //! sums over 360–830 nm every 1 nm, the 5 nm tables being interpolated linearly.
 //!
-//! The opt-in spectral mode goes the other way during rendering: [`uplift`] turns RGB colours
-//! back into smooth spectra (Jakob–Hanika), and [`sampled`] evaluates them at each path's
+//! Spectral mode (the default) goes the other way during rendering: [`uplift`] turns RGB
+//! colours back into smooth spectra (Jakob–Hanika), constants given as spectra keep their
+//! spectra as 1 nm tables ([`dense`]), and [`sampled`] evaluates them at each path's
 //! wavelengths and turns the path's radiance into film RGB.
 
 pub mod cie;

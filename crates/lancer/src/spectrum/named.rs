@@ -1,25 +1,28 @@
 //! pbrt-v4's named spectra (`"spectrum eta" "metal-Au-eta"`, `"spectrum L" "stdillum-F2"`, …).
 //!
-//! lancer renders in RGB, so most named spectra are stored only as their linear-sRGB reductions
-//! ([`Spectrum::Precomputed`]), computed offline from the tabulated data pbrt-v4 uses:
+//! Each named spectrum is known twice:
 //!
-//! - `metal-*-eta`, `metal-*-k`: measured complex indices of refraction of silver, aluminium,
-//!   gold, copper, brass (CuZn), magnesium oxide and titanium dioxide;
-//! - `stdillum-A`, `stdillum-D50`, `stdillum-F1` … `stdillum-F12`: CIE standard illuminants;
-//! - `illum-acesD60`: the ACES white, CIE daylight at a correlated colour temperature of 6000 K.
+//! - as its **data** ([`named_spectrum_data`]), which spectral mode samples at each path's
+//!   wavelengths: the tabulated numbers of pbrt-v4's `src/pbrt/util/spectrum.cpp`, copied into
+//!   `named_data.rs` by `tools/gen_named_spectra.py` (measured complex indices of refraction of
+//!   silver, aluminium, gold, copper, brass (CuZn), magnesium oxide and titanium dioxide; CIE
+//!   standard illuminants A, D50, F1 … F12; the ACES white, daylight at 6000 K);
+//! - as its **RGB reductions** ([`named_spectrum`], [`Spectrum::Precomputed`]), which RGB mode
+//!   uses, computed offline from the same data and stored so that RGB renders keep their bits.
 //!
-//! Method: each spectrum (piecewise linear between its samples, zero outside them) was reduced
-//! with the rules of [`spectrum_to_rgb`](super::spectrum_to_rgb) exactly as this module computes
-//! them (1 nm sums over 360–830 nm of the interpolated 5 nm CIE 1931 and D65 tables): `unbounded`
-//! by the [`SpectrumKind::Unbounded`](super::SpectrumKind::Unbounded) rule (seen under D65) and
-//! `illuminant` by the [`SpectrumKind::Illuminant`](super::SpectrumKind::Illuminant) rule
-//! (luminance 1); negative components were set to 0. Illuminants are normalised to luminance 1
-//! first, as pbrt-v4 does.
+//! Method of the reductions: each spectrum (piecewise linear between its samples, zero outside
+//! them) was reduced with the rules of [`spectrum_to_rgb`](super::spectrum_to_rgb) exactly as
+//! this module computes them (1 nm sums over 360–830 nm of the interpolated 5 nm CIE 1931 and
+//! D65 tables): `unbounded` by the [`SpectrumKind::Unbounded`](super::SpectrumKind::Unbounded)
+//! rule (seen under D65) and `illuminant` by the
+//! [`SpectrumKind::Illuminant`](super::SpectrumKind::Illuminant) rule (luminance 1); negative
+//! components were set to 0. Illuminants are normalised to luminance 1 first, as pbrt-v4 does.
 //!
-//! Two spectra are exact here instead: `stdillum-D65` (the CIE table of [`cie`](super::cie)) and
-//! the glasses `glass-BK7`, `glass-BAF10`, `glass-FK51A`, `glass-LASF9`, `glass-F5`, `glass-F10`,
-//! `glass-F11`, whose index of refraction follows Schott's Sellmeier formulas. A renderer
-//! without dispersion takes one index per glass: [`named_ior`] gives the value at 550 nm.
+//! Two kinds are exact in both modes instead: `stdillum-D65` (the CIE table of [`cie`]) and the
+//! glasses `glass-BK7`, `glass-BAF10`, `glass-FK51A`, `glass-LASF9`, `glass-F5`, `glass-F10`,
+//! `glass-F11`, whose index of refraction follows Schott's Sellmeier formulas (pbrt-v4 tabulates
+//! them). RGB mode, without dispersion, takes one index per glass: [`named_ior`] gives the
+//! value at 550 nm.
 
 use super::dense::{DenseSpectrum, intern};
 use super::{PrecomputedRgb, Spectrum, cie, spectrum_to_xyz_unnormalised};
@@ -286,6 +289,7 @@ mod tests {
     /// pbrt-v4's spectrum.cpp), exact in the data and within 5e-3 (at a kink of k) in the 1 nm table spectral
     /// mode samples (linear interpolation between nanometres of a piecewise-linear table).
     #[test]
+    #[allow(clippy::excessive_precision)] // pbrt-v4's numbers as it writes them
     fn gold_is_tabulated_as_pbrt_tabulates_it() {
         let eta = named_spectrum_data("metal-Au-eta").unwrap();
         let k = named_spectrum_data("metal-Au-k").unwrap();
