@@ -28,7 +28,7 @@ pub struct AreaEmission {
     pub l: PackedRgb,
     /// Emits from both sides.
     pub two_sided: bool,
-    /// Index of its spectrum among the scene's area-light spectra, [`NO_SPECTRUM`] for an
+    /// Index of its spectrum among the scene's area-light spectra, `NO_SPECTRUM` (`u16::MAX`) for an
     /// RGB colour (16 bits, in what would be padding).
     pub spectrum: u16,
     /// Index of the light in [`Scene::lights`](super::Scene::lights).
