@@ -274,6 +274,7 @@ fn scene_around(
             area_light: part.emission.map(|l| AreaLightDesc {
                 l,
                 two_sided: false,
+                spectrum: None,
             }),
             alpha: None,
         });

@@ -299,6 +299,7 @@ impl GltfLoader<'_> {
                 area_light: info.emission.map(|l| AreaLightDesc {
                     l,
                     two_sided: info.double_sided,
+                    spectrum: None,
                 }),
                 alpha: info.alpha,
             });

@@ -4,6 +4,7 @@
 
 use super::cameras::{camera, frame_window};
 use super::convert::{Fallback, Reader, TextureNames};
+use super::light_spectra;
 use super::lights::{area_light, light};
 use super::materials::{MaterialWithNames, material};
 use super::media::{CurrentMedia, Media};
@@ -417,14 +418,18 @@ impl Builder {
                     }
                     let l = light(&b.reader(p, dir), &ty, b.gs.ctm, loc)?;
                     if let Some(l) = b.accept(l, loc) {
+                        let spectrum = light_spectra::light_spectrum(&l, p, dir)?;
                         b.desc.lights.push(l);
+                        light_spectra::record(&mut b.desc, spectrum);
                     }
                     Ok(())
                 })
             }
             D::AreaLightSource(ty, params) => {
                 self.with_params("AreaLightSource", &ty, params, loc, |b, p| {
-                    b.gs.area_light = Some(area_light(p, &ty, dir, loc)?);
+                    let mut a = area_light(p, &ty, dir, loc)?;
+                    a.spectrum = light_spectra::emission_spectrum(p, "L", dir)?;
+                    b.gs.area_light = Some(a);
                     Ok(())
                 })
             }

@@ -142,9 +142,20 @@ impl Reader<'_> {
         default: Rgb,
         kind: SpectrumKind,
     ) -> Result<SpectrumTex, SceneError> {
+        self.spectrum_tex_or(name, SpectrumTex::Const(default), kind)
+    }
+
+    /// A colour or spectrum texture `name`, or `default` (a spectrum, say).
+    pub fn spectrum_tex_or(
+        &self,
+        name: &str,
+        default: SpectrumTex,
+        kind: SpectrumKind,
+    ) -> Result<SpectrumTex, SceneError> {
         Ok(match self.params.color_or_texture(name, kind, self.dir)? {
-            None => SpectrumTex::Const(default),
+            None => default,
             Some(ColorParam::Const(c)) => SpectrumTex::Const(c),
+            Some(ColorParam::Measured(m)) => SpectrumTex::Measured(m),
             Some(ColorParam::Texture(t, loc)) => self.textures.spectrum(&t, &loc)?,
         })
     }

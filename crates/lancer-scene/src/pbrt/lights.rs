@@ -279,6 +279,7 @@ pub fn area_light(
     Ok(AreaLightDesc {
         l: emission(params, "L", dir)?,
         two_sided: params.bool("twosided", false)?,
+        spectrum: None,
     })
 }
 
@@ -671,7 +672,8 @@ mod tests {
             out,
             Ok(AreaLightDesc {
                 l: Rgb::ONE,
-                two_sided: false
+                two_sided: false,
+                spectrum: None
             })
         );
         assert!(unused.is_empty());
@@ -682,7 +684,8 @@ mod tests {
             out,
             Ok(AreaLightDesc {
                 l: Rgb::new(2.0, 4.0, 6.0),
-                two_sided: true
+                two_sided: true,
+                spectrum: None
             })
         );
         assert!(unused.is_empty());

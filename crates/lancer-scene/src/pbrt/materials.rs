@@ -13,7 +13,7 @@ use lancer::math::Rgb;
 use lancer::scene::desc::SceneDesc;
 use lancer::spectrum::{SpectrumKind, named_spectrum, spectrum_to_rgb};
 use lancer::texture::{
-    FloatTex, ImageFilter, ImageTexture, Mapping2D, MipMap, SpectrumTexture, WrapMode,
+    FloatTex, ImageFilter, ImageTexture, Mapping2D, MipMap, SpectrumTex, SpectrumTexture, WrapMode,
 };
 
 /// A material, and for a `mix` the two names it refers to and where they are written.
@@ -105,6 +105,18 @@ fn named_rgb(name: &str) -> Rgb {
         .expect("pbrt's named metal spectra are built in")
 }
 
+/// pbrt's named metal spectrum `name` as a conductor's default `eta` or `k`: the reduction RGB
+/// mode uses ([`named_rgb`]) and the tabulated data spectral mode samples.
+fn named_metal(name: &str) -> SpectrumTex {
+    let data = lancer::spectrum::named_spectrum_data(name)
+        .expect("pbrt's named metal spectra are built in");
+    SpectrumTex::Measured(lancer::spectrum::dense::Measured::new(
+        &data,
+        named_rgb(name),
+        SpectrumKind::Unbounded,
+    ))
+}
+
 /// `uroughness`/`vroughness`, each defaulting to `roughness` (all prefixed by `prefix`, as in
 /// `interface.` for the coated materials).
 fn roughness(r: &Reader, prefix: &str) -> Result<(FloatTex, FloatTex), SceneError> {
@@ -160,8 +172,8 @@ fn convert(r: &Reader, ty: &str) -> Result<Fallback<MaterialWithNames>, SceneErr
         "conductor" => {
             let (uroughness, vroughness) = roughness(r, "")?;
             Material::Conductor {
-                eta: r.spectrum_tex("eta", named_rgb("metal-Cu-eta"), Unbounded)?,
-                k: r.spectrum_tex("k", named_rgb("metal-Cu-k"), Unbounded)?,
+                eta: r.spectrum_tex_or("eta", named_metal("metal-Cu-eta"), Unbounded)?,
+                k: r.spectrum_tex_or("k", named_metal("metal-Cu-k"), Unbounded)?,
                 reflectance: r.opt_spectrum_tex("reflectance", Albedo)?,
                 uroughness,
                 vroughness,
@@ -211,8 +223,8 @@ fn convert(r: &Reader, ty: &str) -> Result<Fallback<MaterialWithNames>, SceneErr
             let (conductor_uroughness, conductor_vroughness) = roughness(r, "conductor.")?;
             let interface_eta = p.ior("interface.eta", 1.5, r.dir)?;
             let conductor_eta =
-                r.spectrum_tex("conductor.eta", named_rgb("metal-Cu-eta"), Unbounded)?;
-            let k = r.spectrum_tex("conductor.k", named_rgb("metal-Cu-k"), Unbounded)?;
+                r.spectrum_tex_or("conductor.eta", named_metal("metal-Cu-eta"), Unbounded)?;
+            let k = r.spectrum_tex_or("conductor.k", named_metal("metal-Cu-k"), Unbounded)?;
             let reflectance = r.opt_spectrum_tex("reflectance", Albedo)?;
             let thickness = r.float_tex("thickness", 0.01)?;
             let albedo = r.spectrum_tex("albedo", Rgb::ZERO, Albedo)?;
@@ -383,10 +395,7 @@ mod tests {
                 reflectance: grey(0.5)
             }
         );
-        let copper = (
-            SpectrumTex::Const(named_rgb("metal-Cu-eta")),
-            SpectrumTex::Const(named_rgb("metal-Cu-k")),
-        );
+        let copper = (named_metal("metal-Cu-eta"), named_metal("metal-Cu-k"));
         assert_eq!(
             converted(r#"Material "conductor""#),
             Material::Conductor {

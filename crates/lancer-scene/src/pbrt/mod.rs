@@ -14,6 +14,7 @@ pub mod builder;
 pub mod cameras;
 pub mod convert;
 pub mod lexer;
+pub mod light_spectra;
 pub mod lights;
 pub mod materials;
 pub mod media;

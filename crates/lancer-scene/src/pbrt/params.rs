@@ -288,6 +288,9 @@ impl Param {
 pub enum ColorParam {
     /// A constant colour.
     Const(Rgb),
+    /// A constant given as a spectrum (`blackbody`, pairs, a named spectrum, a file): its
+    /// reduction and its table.
+    Measured(lancer::spectrum::dense::Measured),
     /// `"texture name" "texname"`.
     Texture(String, Location),
 }

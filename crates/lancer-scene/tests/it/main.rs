@@ -14,4 +14,5 @@ mod pbrt_parity;
 mod pbrt_semantics;
 mod plymesh;
 mod sdf_scene;
+mod spectra;
 mod vox;

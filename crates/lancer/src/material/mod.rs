@@ -37,6 +37,7 @@ pub use scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode};
 
 use crate::math::{Rgb, SampledSpectrum, rgb_lanes};
 use crate::spectrum::Ior;
+use crate::spectrum::dense::PreparedSpectrum;
 use crate::spectrum::sampled::{ColourKind, RgbSpectrum, SampledWavelengths};
 use crate::texture::{FloatTex, SpectrumTex, TexCoord, TextureEval};
 
@@ -192,13 +193,14 @@ fn nonzero_eta(eta: f32) -> f32 {
 pub const COLOUR_SLOTS: usize = 4;
 
 /// Spectral mode's view of a material at a hit: the path's wavelengths and the material's
-/// constant colours, prepared once per scene ([`RgbSpectrum`], by [`Material::colour_slots`]).
+/// constant colours, prepared once per scene ([`PreparedSpectrum`], by
+/// [`Material::colour_slots`]).
 #[derive(Clone, Copy, Debug)]
 pub struct SpectralColours<'a> {
     /// The path's wavelengths.
     pub lambda: &'a SampledWavelengths,
     /// The material's constant colours as spectra, by slot (unused slots are anything).
-    pub consts: &'a [RgbSpectrum; COLOUR_SLOTS],
+    pub consts: &'a [PreparedSpectrum; COLOUR_SLOTS],
 }
 
 /// The conductor index pbrt-v4 uses: `eta`/`k` as given (slots 0 and 1), or, when an artist's
@@ -353,7 +355,9 @@ impl Material {
                         ColourKind::Unbounded => c,
                     })
                 }
-                (Some(sc), SpectrumTex::Const(_)) => sc.lambda.sample(&sc.consts[slot]),
+                (Some(sc), SpectrumTex::Const(_) | SpectrumTex::Measured(_)) => {
+                    sc.lambda.sample_prepared(&sc.consts[slot])
+                }
                 (Some(sc), SpectrumTex::Tex(_)) => sc
                     .lambda
                     .sample(&RgbSpectrum::new(tex.spectrum(t, tc), kind)),
@@ -546,7 +550,7 @@ mod tests {
             floats: &[],
             spectra: &[],
         };
-        let consts = [RgbSpectrum::new(Rgb::ZERO, ColourKind::Albedo); COLOUR_SLOTS];
+        let consts = [PreparedSpectrum::BLACK; COLOUR_SLOTS];
         let eta_at = |hero: f32| {
             let mut lambda = SampledWavelengths::sample_visible(0.5);
             lambda.lambda[0] = hero;
@@ -785,9 +789,11 @@ mod tests {
         let lambda = SampledWavelengths::sample_visible(0.37);
         for (constant, textured) in pairs {
             let consts = constant.colour_slots().map(|slot| match slot {
-                Some((SpectrumTex::Const(c), kind)) => RgbSpectrum::new(c, kind),
-                Some((SpectrumTex::Tex(_), _)) => panic!("these materials' colours are constants"),
-                None => RgbSpectrum::new(Rgb::ZERO, ColourKind::Albedo),
+                Some((SpectrumTex::Const(c), kind)) => {
+                    PreparedSpectrum::Rgb(RgbSpectrum::new(c, kind))
+                }
+                Some(_) => panic!("these materials' colours are RGB constants"),
+                None => PreparedSpectrum::BLACK,
             });
             let spectral = Some(SpectralColours {
                 lambda: &lambda,

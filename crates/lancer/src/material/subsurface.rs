@@ -57,7 +57,9 @@ impl Material {
                     ColourKind::Unbounded => c,
                 })
             }
-            (Some(sc), SpectrumTex::Const(_)) => sc.lambda.sample(&sc.consts[slot]),
+            (Some(sc), SpectrumTex::Const(_) | SpectrumTex::Measured(_)) => {
+                sc.lambda.sample_prepared(&sc.consts[slot])
+            }
             (Some(sc), SpectrumTex::Tex(_)) => sc
                 .lambda
                 .sample(&RgbSpectrum::new(tex.spectrum(t, tc), kind)),

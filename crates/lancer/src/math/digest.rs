@@ -87,7 +87,7 @@ mod tests {
         assert_ne!(Digest(&z).value(), Digest(&nz).value());
         assert_eq!(
             format!("{:?}", Digest(&a)),
-            format!("{:?}", Digest(&a.to_vec()))
+            format!("{:?}", Digest(&Vec::from(a)))
         );
         assert!(format!("{:?}", Digest(&a)).starts_with("[1; "));
         // Order matters: [1, 2] and [2, 1] differ.

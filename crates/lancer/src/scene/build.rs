@@ -7,7 +7,8 @@ use super::Scene;
 use super::desc::{Geometry, LightDesc, SceneDesc, ShapeDesc, ZERO_PLANE_NORMAL};
 use super::instance::{Instance, Instances, ObjectAccel};
 use super::prim::{
-    AreaEmission, BuildError, PrimInfo, check_media, check_shape, mesh_triangles, prim_media,
+    AreaEmission, BuildError, NO_SPECTRUM, PrimInfo, check_media, check_shape, mesh_triangles,
+    prim_media,
 };
 use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
@@ -21,6 +22,7 @@ use crate::shape::{
     BilinearMesh, Cone, Cuboid, Cylinder, Disk, Hyperboloid, Paraboloid, Placement, Plane, Sdf,
     Shape, Sphere, Triangle, TriangleMesh, Voxels,
 };
+use crate::spectrum::dense::Measured;
 use crate::texture::FloatTex;
 use std::sync::Arc;
 
@@ -43,7 +45,7 @@ impl Scene {
             bounds = Bounds3::from_point(Vec3::ZERO);
         }
         let (_, scene_radius) = bounds.bounding_sphere();
-        let lights = lights(desc, scene_radius, &shapes, &mut prims)?;
+        let lights = lights(desc, scene_radius, &shapes, &mut prims, &made.area_spectra)?;
         // The instanced meshes' entries, renumbered to follow the shapes'.
         let base = prims.len() as u32;
         prims.extend(flat.object_prims);
@@ -66,6 +68,7 @@ impl Scene {
             prims,
             meshes,
             lights: lights.lights,
+            light_spectra: lights.spectra,
             light_distribution: lights.distribution,
             infinite_lights: lights.infinite,
             materials,
@@ -168,6 +171,8 @@ struct Primitives {
     prims: Vec<PrimInfo>,
     /// The triangle meshes, world space.
     meshes: Vec<TriangleMesh>,
+    /// The distinct spectra of the area lights ([`AreaEmission::spectrum`] indexes them).
+    area_spectra: Vec<Measured>,
 }
 
 /// Phase 2. Each shape checked and moved to world space: meshes become their triangles, a
@@ -177,6 +182,7 @@ fn primitives(list: &[Placed<'_>], n_materials: usize) -> Result<Primitives, Bui
         shapes: Vec::new(),
         prims: Vec::new(),
         meshes: Vec::new(),
+        area_spectra: Vec::new(),
     };
     for &(index, sd, instance_xf) in list {
         check_shape(sd, index, n_materials)?;
@@ -197,6 +203,9 @@ fn primitives(list: &[Placed<'_>], n_materials: usize) -> Result<Primitives, Bui
             emission: sd.area_light.map(|a| AreaEmission {
                 l: a.l.into(),
                 two_sided: a.two_sided,
+                spectrum: a
+                    .spectrum
+                    .map_or(NO_SPECTRUM, |m| spectrum_index(&mut out.area_spectra, m)),
                 light: 0,
             }),
             // A constant alpha of 1 (pbrt's default) cuts nothing: no test needed.
@@ -386,6 +395,8 @@ fn packets(bvh: &Bvh, shapes: &[Shape], prims: &[PrimInfo]) -> Vec<Tri4> {
 struct Lights {
     /// The description's lights, then one per emitting primitive.
     lights: Vec<Light>,
+    /// Per light: the spectrum its colour is a multiple of, if the scene gave one.
+    spectra: Vec<Option<Measured>>,
     /// In proportion to power.
     distribution: LightDistribution,
     /// Indices of the environment lights.
@@ -400,12 +411,16 @@ fn lights(
     scene_radius: f32,
     shapes: &[Shape],
     prims: &mut [PrimInfo],
+    area_spectra: &[Measured],
 ) -> Result<Lights, BuildError> {
     let mut lights = desc
         .lights
         .iter()
         .map(|l| light_of(l, scene_radius))
         .collect::<Result<Vec<Light>, BuildError>>()?;
+    let mut spectra: Vec<Option<Measured>> = (0..lights.len())
+        .map(|i| desc.light_spectra.get(i).copied().flatten())
+        .collect();
     for (i, (shape, info)) in shapes.iter().zip(prims.iter_mut()).enumerate() {
         let Some(e) = info.emission.as_mut() else {
             continue;
@@ -422,6 +437,7 @@ fn lights(
             area,
             sphere: whole_sphere(shape),
         });
+        spectra.push(area_spectra.get(e.spectrum as usize).copied());
     }
     let powers: Vec<f32> = lights.iter().map(Light::power).collect();
     let distribution = LightDistribution::new(&powers);
@@ -430,9 +446,24 @@ fn lights(
         .collect();
     Ok(Lights {
         lights,
+        spectra,
         distribution,
         infinite,
     })
+}
+
+/// The index of `m` in `list` (appended when new; shared tables compare by address). Past
+/// 65535 distinct spectra the emission falls back to its RGB colour.
+fn spectrum_index(list: &mut Vec<Measured>, m: Measured) -> u16 {
+    let same = |o: &Measured| o.rgb == m.rgb && std::ptr::eq(o.spectrum, m.spectrum);
+    match list.iter().position(same) {
+        Some(i) => i as u16,
+        None if list.len() < NO_SPECTRUM as usize => {
+            list.push(m);
+            (list.len() - 1) as u16
+        }
+        None => NO_SPECTRUM,
+    }
 }
 
 /// One light of the description, for a scene of bounding radius `scene_radius`.

@@ -118,6 +118,7 @@ mod tests {
             area_light: emits.then_some(AreaLightDesc {
                 l: Rgb::ONE,
                 two_sided: false,
+                spectrum: None,
             }),
             alpha: None,
         }

@@ -35,6 +35,9 @@ pub struct SceneDesc {
     pub shapes: Vec<ShapeDesc>,
     /// Light sources other than area lights (those belong to their shapes).
     pub lights: Vec<LightDesc>,
+    /// Per light of `lights` (missing at the end: none): the spectrum its colour is a multiple
+    /// of, when the scene gave one (spectral mode emits it).
+    pub light_spectra: Vec<Option<crate::spectrum::dense::Measured>>,
     /// Object definitions (pbrt's `ObjectBegin`/`ObjectEnd`), for instancing.
     pub objects: Vec<ObjectDesc>,
     /// Placements of objects (pbrt's `ObjectInstance`).
@@ -510,6 +513,8 @@ pub struct AreaLightDesc {
     pub l: Rgb,
     /// Emits from both sides (otherwise only the side the normal faces).
     pub two_sided: bool,
+    /// The spectrum `l` is a multiple of, when the scene gave one (spectral mode emits it).
+    pub spectrum: Option<crate::spectrum::dense::Measured>,
 }
 
 /// A shape placed in the world with its material and optional emission.
@@ -772,6 +777,7 @@ mod tests {
             area_light: Some(AreaLightDesc {
                 l: Rgb::ONE,
                 two_sided: false,
+                spectrum: None,
             }),
             alpha: None,
         };

@@ -76,6 +76,10 @@ pub struct Scene {
     /// Primitives without finite bounds (infinite planes), tested on every ray.
     unbounded: Vec<u32>,
     bounds: Bounds3,
+    /// Per light of `lights`: the spectrum its colour is a multiple of, when the scene gave
+    /// one ([`SceneDesc::light_spectra`](desc::SceneDesc::light_spectra),
+    /// [`AreaLightDesc::spectrum`](desc::AreaLightDesc::spectrum)).
+    light_spectra: Vec<Option<crate::spectrum::dense::Measured>>,
     /// Spectral mode's constant colours as spectra, made on first use.
     spectra: std::sync::OnceLock<spectra::SceneSpectra>,
     /// What gives texture lookups their footprints, when a texture filters over them (an
@@ -131,9 +135,13 @@ impl Scene {
                 let (mut si, prim) = self.instances.interaction(ray, &ih);
                 let footprint = self.footprint(ray, &si);
                 let m = self.prims[prim as usize].material;
-                crate::material::mix::apply_bump(&self.materials, &self.textures(), m, &mut si, |si| {
-                    Scene::tex_coord_from(si, footprint)
-                });
+                crate::material::mix::apply_bump(
+                    &self.materials,
+                    &self.textures(),
+                    m,
+                    &mut si,
+                    |si| Scene::tex_coord_from(si, footprint),
+                );
                 // Instanced objects are triangle meshes, which carry no colour of their own.
                 return Some(SceneHit {
                     si,
@@ -268,8 +276,9 @@ impl Scene {
 impl Scene {
     /// The scene's constant colours as spectra, prepared on the first call.
     pub fn spectra(&self) -> &spectra::SceneSpectra {
-        self.spectra
-            .get_or_init(|| spectra::SceneSpectra::new(&self.lights, &self.materials))
+        self.spectra.get_or_init(|| {
+            spectra::SceneSpectra::new(&self.lights, &self.light_spectra, &self.materials)
+        })
     }
 
     /// Emission `l` of light `i`, which is its constant colour times `factor` (see
@@ -287,7 +296,7 @@ impl Scene {
         match lambda {
             None => rgb_lanes(l),
             Some(w) => match &self.spectra().lights[i] {
-                Some(sp) => w.sample_illuminant(sp) * factor,
+                Some(sp) => w.sample_prepared_illuminant(sp) * factor,
                 None => w.illuminant(l),
             },
         }

@@ -28,9 +28,15 @@ pub struct AreaEmission {
     pub l: PackedRgb,
     /// Emits from both sides.
     pub two_sided: bool,
+    /// Index of its spectrum among the scene's area-light spectra, `NO_SPECTRUM` (`u16::MAX`) for an
+    /// RGB colour (16 bits, in what would be padding).
+    pub spectrum: u16,
     /// Index of the light in [`Scene::lights`](super::Scene::lights).
     pub light: u32,
 }
+
+/// [`AreaEmission::spectrum`] of an emission given as an RGB colour.
+pub const NO_SPECTRUM: u16 = u16::MAX;
 
 /// Why a scene description could not be built.
 #[derive(Debug, thiserror::Error, PartialEq)]

@@ -1,10 +1,12 @@
 //! Spectral mode's preparation of a scene: every constant colour of its materials and lights
-//! turned into a spectrum once ([`RgbSpectrum`]), so that a path only evaluates it at its
-//! wavelengths. Textures and image environments keep their texels, uplifted per lookup.
+//! turned into a spectrum once ([`PreparedSpectrum`]: an uplifted RGB colour, or the table of a
+//! spectrum the scene gave as one), so that a path only evaluates it at its wavelengths.
+//! Textures and image environments keep their texels, uplifted per lookup.
 
 use crate::light::Light;
 use crate::material::{COLOUR_SLOTS, Material};
 use crate::math::Rgb;
+use crate::spectrum::dense::{Measured, PreparedSpectrum};
 use crate::spectrum::sampled::{ColourKind, RgbSpectrum};
 use crate::texture::SpectrumTex;
 
@@ -13,32 +15,38 @@ use crate::texture::SpectrumTex;
 #[derive(Debug)]
 pub struct SceneSpectra {
     /// Per light (the indices of [`super::Scene::lights`]): its constant colour
-    /// ([`Light::constant_colour`]) as an unbounded spectrum; `None` for image environments.
-    pub lights: Vec<Option<RgbSpectrum>>,
+    /// ([`Light::constant_colour`]) as an unbounded spectrum, or the spectrum the scene gave
+    /// scaled to that colour's luminance; `None` for image environments.
+    pub lights: Vec<Option<PreparedSpectrum>>,
     /// Per material (the indices of [`super::Scene::materials`]): its constant colours by slot
     /// ([`Material::colour_slots`]); slots without a constant hold black.
-    pub materials: Vec<[RgbSpectrum; COLOUR_SLOTS]>,
+    pub materials: Vec<[PreparedSpectrum; COLOUR_SLOTS]>,
 }
 
-const BLACK: RgbSpectrum = RgbSpectrum {
-    scale: 0.0,
-    s: crate::spectrum::uplift::SigmoidSpectrum::Constant(0.0),
-};
-
 impl SceneSpectra {
-    /// Uplifts the constant colours of `lights` and `materials`. Consecutive lights of the
-    /// same colour (the triangles of one emitting mesh) share one uplift.
-    pub fn new(lights: &[Light], materials: &[Material]) -> SceneSpectra {
-        let mut last: Option<(Rgb, RgbSpectrum)> = None;
+    /// Prepares the constant colours of `lights` (with `light_spectra`, per light the spectrum
+    /// its colour is a multiple of, if any) and `materials`. Consecutive lights of the same
+    /// colour and spectrum (the triangles of one emitting mesh) share one preparation.
+    pub fn new(
+        lights: &[Light],
+        light_spectra: &[Option<Measured>],
+        materials: &[Material],
+    ) -> SceneSpectra {
+        let mut last: Option<(Rgb, Option<Measured>, PreparedSpectrum)> = None;
         let lights = lights
             .iter()
-            .map(|l| {
+            .enumerate()
+            .map(|(i, l)| {
                 let c = l.constant_colour()?;
+                let m = light_spectra.get(i).copied().flatten();
                 let sp = match last {
-                    Some((lc, sp)) if lc == c => sp,
-                    _ => RgbSpectrum::new(c, ColourKind::Unbounded),
+                    Some((lc, lm, sp)) if lc == c && lm == m => sp,
+                    _ => match &m {
+                        Some(m) => PreparedSpectrum::light(c, m),
+                        None => PreparedSpectrum::Rgb(RgbSpectrum::new(c, ColourKind::Unbounded)),
+                    },
                 };
-                last = Some((c, sp));
+                last = Some((c, m, sp));
                 Some(sp)
             })
             .collect();
@@ -46,8 +54,14 @@ impl SceneSpectra {
             .iter()
             .map(|m| {
                 m.colour_slots().map(|slot| match slot {
-                    Some((SpectrumTex::Const(c), kind)) => RgbSpectrum::new(c, kind),
-                    _ => BLACK,
+                    Some((SpectrumTex::Const(c), kind)) => {
+                        PreparedSpectrum::Rgb(RgbSpectrum::new(c, kind))
+                    }
+                    Some((SpectrumTex::Measured(m), _)) => PreparedSpectrum::Dense {
+                        scale: 1.0,
+                        spectrum: m.spectrum,
+                    },
+                    _ => PreparedSpectrum::BLACK,
                 })
             })
             .collect();

@@ -13,15 +13,18 @@
 //! XYZ then goes to linear sRGB with the standard D65 matrix ([`xyz_to_srgb`]). Integrals are
 //! sums over 360–830 nm every 1 nm, the 5 nm tables being interpolated linearly.
 //!
-//! The opt-in spectral mode goes the other way during rendering: [`uplift`] turns RGB colours
-//! back into smooth spectra (Jakob–Hanika), and [`sampled`] evaluates them at each path's
+//! Spectral mode (the default) goes the other way during rendering: [`uplift`] turns RGB
+//! colours back into smooth spectra (Jakob–Hanika), constants given as spectra keep their
+//! spectra as 1 nm tables ([`dense`]), and [`sampled`] evaluates them at each path's
 //! wavelengths and turns the path's radiance into film RGB.
 
 pub mod cie;
 pub mod colorspace;
+pub mod dense;
 mod fit;
 pub mod hero;
 mod named;
+mod named_data;
 mod reduce;
 pub mod sampled;
 pub mod scattering_presets;
@@ -31,7 +34,9 @@ mod table;
 pub mod uplift;
 
 pub use colorspace::ColorSpace;
-pub use named::{IOR_WAVELENGTH, Ior, named_ior, named_spectrum, named_spectrum_names};
+pub use named::{
+    IOR_WAVELENGTH, Ior, named_ior, named_spectrum, named_spectrum_data, named_spectrum_names,
+};
 pub use reduce::{
     PrecomputedRgb, Spectrum, SpectrumKind, blackbody, cie_d65, cie_xyz, parse_spd,
     spectrum_to_rgb, spectrum_to_xyz_unnormalised, xyz_to_srgb,

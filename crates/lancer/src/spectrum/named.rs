@@ -1,26 +1,30 @@
 //! pbrt-v4's named spectra (`"spectrum eta" "metal-Au-eta"`, `"spectrum L" "stdillum-F2"`, …).
 //!
-//! lancer renders in RGB, so most named spectra are stored only as their linear-sRGB reductions
-//! ([`Spectrum::Precomputed`]), computed offline from the tabulated data pbrt-v4 uses:
+//! Each named spectrum is known twice:
 //!
-//! - `metal-*-eta`, `metal-*-k`: measured complex indices of refraction of silver, aluminium,
-//!   gold, copper, brass (CuZn), magnesium oxide and titanium dioxide;
-//! - `stdillum-A`, `stdillum-D50`, `stdillum-F1` … `stdillum-F12`: CIE standard illuminants;
-//! - `illum-acesD60`: the ACES white, CIE daylight at a correlated colour temperature of 6000 K.
+//! - as its **data** ([`named_spectrum_data`]), which spectral mode samples at each path's
+//!   wavelengths: the tabulated numbers of pbrt-v4's `src/pbrt/util/spectrum.cpp`, copied into
+//!   `named_data.rs` by `tools/gen_named_spectra.py` (measured complex indices of refraction of
+//!   silver, aluminium, gold, copper, brass (CuZn), magnesium oxide and titanium dioxide; CIE
+//!   standard illuminants A, D50, F1 … F12; the ACES white, daylight at 6000 K);
+//! - as its **RGB reductions** ([`named_spectrum`], [`Spectrum::Precomputed`]), which RGB mode
+//!   uses, computed offline from the same data and stored so that RGB renders keep their bits.
 //!
-//! Method: each spectrum (piecewise linear between its samples, zero outside them) was reduced
-//! with the rules of [`spectrum_to_rgb`](super::spectrum_to_rgb) exactly as this module computes
-//! them (1 nm sums over 360–830 nm of the interpolated 5 nm CIE 1931 and D65 tables): `unbounded`
-//! by the [`SpectrumKind::Unbounded`](super::SpectrumKind::Unbounded) rule (seen under D65) and
-//! `illuminant` by the [`SpectrumKind::Illuminant`](super::SpectrumKind::Illuminant) rule
-//! (luminance 1); negative components were set to 0. Illuminants are normalised to luminance 1
-//! first, as pbrt-v4 does.
+//! Method of the reductions: each spectrum (piecewise linear between its samples, zero outside
+//! them) was reduced with the rules of [`spectrum_to_rgb`](super::spectrum_to_rgb) exactly as
+//! this module computes them (1 nm sums over 360–830 nm of the interpolated 5 nm CIE 1931 and
+//! D65 tables): `unbounded` by the [`SpectrumKind::Unbounded`](super::SpectrumKind::Unbounded)
+//! rule (seen under D65) and `illuminant` by the
+//! [`SpectrumKind::Illuminant`](super::SpectrumKind::Illuminant) rule (luminance 1); negative
+//! components were set to 0. Illuminants are normalised to luminance 1 first, as pbrt-v4 does.
 //!
-//! Two spectra are exact here instead: `stdillum-D65` (the CIE table of [`cie`](super::cie)) and
-//! the glasses `glass-BK7`, `glass-BAF10`, `glass-FK51A`, `glass-LASF9`, `glass-F5`, `glass-F10`,
-//! `glass-F11`, whose index of refraction follows Schott's Sellmeier formulas. A renderer
-//! without dispersion takes one index per glass: [`named_ior`] gives the value at 550 nm.
+//! Two kinds are exact in both modes instead: `stdillum-D65` (the CIE table of [`cie`]) and the
+//! glasses `glass-BK7`, `glass-BAF10`, `glass-FK51A`, `glass-LASF9`, `glass-F5`, `glass-F10`,
+//! `glass-F11`, whose index of refraction follows Schott's Sellmeier formulas (pbrt-v4 tabulates
+//! them). RGB mode, without dispersion, takes one index per glass: [`named_ior`] gives the
+//! value at 550 nm.
 
+use super::dense::{DenseSpectrum, intern};
 use super::{PrecomputedRgb, Spectrum, cie, spectrum_to_xyz_unnormalised};
 use crate::math::Rgb;
 
@@ -128,20 +132,44 @@ pub fn named_spectrum(name: &str) -> Option<Spectrum> {
         })
 }
 
+/// The data of the spectrum pbrt-v4 calls `name`, as pbrt-v4 evaluates it: the tabulated
+/// measurements of a metal or an illuminant ([`super::named_data`], piecewise linear, zero
+/// outside the table), a glass's Sellmeier index, the CIE D65 table; `None` for an unknown
+/// name. [`named_spectrum`] gives the same spectra as RGB mode reduces them (stored
+/// reductions for the tabulated ones).
+pub fn named_spectrum_data(name: &str) -> Option<Spectrum> {
+    match super::named_data::TABLES.iter().find(|(n, _)| *n == name) {
+        Some((_, pairs)) => {
+            let (lambda, values) = pairs.chunks_exact(2).map(|c| (c[0], c[1])).unzip();
+            Some(Spectrum::PiecewiseLinear { lambda, values })
+        }
+        None => named_spectrum(name),
+    }
+}
+
 /// The single index of refraction of a named glass (`glass-BK7`, …) for a renderer without
 /// dispersion: its value at [`IOR_WAVELENGTH`] (550 nm). `None` for any other name.
 pub fn named_ior(name: &str) -> Option<f32> {
     glass(name).map(|c| sellmeier(c, IOR_WAVELENGTH as f64) as f32)
 }
 
-/// A dielectric's index of refraction as a scene gives it: one number, or a named glass whose
-/// index varies with wavelength (Sellmeier), which disperses light in spectral mode.
+/// A dielectric's index of refraction as a scene gives it: one number, a named glass whose
+/// index varies with wavelength (Sellmeier), or any other spectrum (pairs, a file, an `rgb`
+/// uplifted as pbrt-v4's `RGBUnboundedSpectrum`); an index that varies disperses light in
+/// spectral mode.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Ior {
     /// The same index at every wavelength.
     Constant(f32),
     /// A named glass (`glass-F11`, …): its Sellmeier coefficients.
     Glass(&'static [f64; 6]),
+    /// A spectrum tabulated every nanometre ([`DenseSpectrum`]), not constant.
+    Tabulated {
+        /// n(λ).
+        spectrum: &'static DenseSpectrum,
+        /// The single index of RGB mode (the spectrum at [`IOR_WAVELENGTH`]).
+        rgb_mode: f32,
+    },
 }
 
 impl Ior {
@@ -156,7 +184,35 @@ impl Ior {
         match *self {
             Ior::Constant(eta) => eta,
             Ior::Glass(c) => sellmeier(c, IOR_WAVELENGTH as f64) as f32,
+            Ior::Tabulated { rgb_mode, .. } => rgb_mode,
         }
+    }
+
+    /// The index of `spectrum` (pairs, a file, a named spectrum other than a glass): the
+    /// constant `rgb_mode` when it does not vary over 360–830 nm, otherwise [`Ior::Tabulated`] with RGB mode's
+    /// index `rgb_mode`.
+    pub fn from_spectrum(spectrum: DenseSpectrum, rgb_mode: f32) -> Ior {
+        if spectrum.is_constant() {
+            Ior::Constant(rgb_mode)
+        } else {
+            Ior::Tabulated {
+                spectrum: intern(spectrum),
+                rgb_mode,
+            }
+        }
+    }
+
+    /// An index given as an `rgb` triple, as pbrt-v4 reads one (`RGBUnboundedSpectrum`:
+    /// 2m·s(λ), m the largest component, s the uplift of rgb/2m): a grey triple is that
+    /// constant; any other varies, and RGB mode takes its value at [`IOR_WAVELENGTH`].
+    pub fn from_rgb(rgb: Rgb) -> Ior {
+        if rgb.x == rgb.y && rgb.y == rgb.z {
+            return Ior::Constant(rgb.x.max(0.0));
+        }
+        let (scale, s) = super::uplift::unbounded_spectrum(rgb);
+        let table = DenseSpectrum::from_fn(|l| scale * s.eval(l));
+        let rgb_mode = table.at(IOR_WAVELENGTH);
+        Ior::from_spectrum(table, rgb_mode)
     }
 
     /// The index at `lambda_nm`: n(λ) from the Sellmeier formula for a glass.
@@ -164,13 +220,14 @@ impl Ior {
         match *self {
             Ior::Constant(eta) => eta,
             Ior::Glass(c) => sellmeier(c, lambda_nm as f64) as f32,
+            Ior::Tabulated { spectrum, .. } => spectrum.at(lambda_nm),
         }
     }
 
     /// Whether the index varies with wavelength, so that refraction separates wavelengths
     /// (pbrt-v4 then keeps only the path's hero wavelength).
     pub fn is_dispersive(&self) -> bool {
-        matches!(self, Ior::Glass(_))
+        matches!(self, Ior::Glass(_) | Ior::Tabulated { .. })
     }
 }
 
@@ -226,6 +283,42 @@ mod tests {
         let k = rgb(&format!("metal-{metal}-k"), SpectrumKind::Unbounded);
         let r = |n: f32, k: f32| ((n - 1.0).powi(2) + k * k) / ((n + 1.0).powi(2) + k * k);
         Rgb::new(r(eta.x, k.x), r(eta.y, k.y), r(eta.z, k.z))
+    }
+
+    /// Gold's measured index at pbrt-v4's table wavelengths (values of `Au_eta`, `Au_k` in
+    /// pbrt-v4's spectrum.cpp), exact in the data and within 5e-3 (at a kink of k) in the 1 nm table spectral
+    /// mode samples (linear interpolation between nanometres of a piecewise-linear table).
+    #[test]
+    #[allow(clippy::excessive_precision)] // pbrt-v4's numbers as it writes them
+    fn gold_is_tabulated_as_pbrt_tabulates_it() {
+        let eta = named_spectrum_data("metal-Au-eta").unwrap();
+        let k = named_spectrum_data("metal-Au-k").unwrap();
+        let (deta, dk) = (
+            crate::spectrum::dense::DenseSpectrum::from_spectrum(&eta),
+            crate::spectrum::dense::DenseSpectrum::from_spectrum(&k),
+        );
+        for (l, n, kk) in [
+            (399.948975, 1.658, 1.956),
+            (495.936707, 0.916, 1.84),
+            (551.040771, 0.3455, 2.730625),
+            (652.548279, 0.166, 3.15),
+            (799.897949, 0.181375, 5.125813),
+        ] {
+            assert!((eta.eval(l) - n).abs() < 1e-6, "{l}: {}", eta.eval(l));
+            assert!((k.eval(l) - kk).abs() < 1e-6, "{l}: {}", k.eval(l));
+            assert!((deta.at(l) - n).abs() < 1e-3, "{l}: {}", deta.at(l));
+            assert!((dk.at(l) - kk).abs() < 5e-3, "{l}: {}", dk.at(l));
+        }
+        // Every tabulated name has data; the glasses and D65 keep their exact forms.
+        for n in named_spectrum_names() {
+            assert!(
+                matches!(
+                    named_spectrum_data(n),
+                    Some(Spectrum::PiecewiseLinear { .. })
+                ),
+                "{n}"
+            );
+        }
     }
 
     #[test]

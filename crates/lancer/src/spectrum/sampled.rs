@@ -12,9 +12,10 @@
 //!
 //! Conventions are pbrt-v4's: wavelengths follow its visible-wavelength density, RGB colours are
 //! uplifted by the Jakob–Hanika method ([`super::uplift`]), illuminants are the uplift times
-//! D65, and the film integrates against the CIE 1931 functions. Blackbody and named spectra
-//! reach this point already reduced to RGB at load, and are uplifted from that RGB like any
-//! colour. A dielectric of a named glass disperses: its index is taken at the hero wavelength
+//! D65, and the film integrates against the CIE 1931 functions. Constants given as spectra
+//! (blackbody, named spectra, `.spd` files) are not uplifted: they come as tables
+//! ([`super::dense`]) sampled at the path's wavelengths. A dielectric whose index varies
+//! disperses: its index is taken at the hero wavelength
 //! and the path keeps only that wavelength from then on ([`super::hero`]).
 
 use super::cie::{self, INTEGRATION_RANGE};

@@ -128,6 +128,7 @@ impl TextureEval<'_> {
         // Constants inline (most parameters), textures out of line.
         match t {
             SpectrumTex::Const(v) => v,
+            SpectrumTex::Measured(m) => m.rgb,
             SpectrumTex::Tex(i) => self.spectrum_texture(i, tc),
         }
     }

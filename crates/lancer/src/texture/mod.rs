@@ -11,6 +11,7 @@ pub mod procedural;
 
 pub use crate::image::WrapMode;
 use crate::math::{Rgb, Vec3};
+use crate::spectrum::dense::Measured;
 pub use mapping::{Mapping2D, Mapping3D, TexCoord, UvMapping};
 pub use mipmap::{ImageFilter, MipMap, StFootprint};
 use std::sync::Arc;
@@ -29,6 +30,9 @@ pub enum FloatTex {
 pub enum SpectrumTex {
     /// The same colour everywhere.
     Const(Rgb),
+    /// The same spectrum everywhere, given as a spectrum (a named spectrum, `blackbody`, an
+    /// `.spd` file): RGB mode reads its reduction, spectral mode its table.
+    Measured(Measured),
     /// Index into the scene's spectrum textures.
     Tex(u32),
 }

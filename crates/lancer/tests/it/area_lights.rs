@@ -21,6 +21,7 @@ fn emitter(geometry: Geometry, to_world: Transform, reverse: bool, l: f32) -> Sh
         area_light: Some(AreaLightDesc {
             l: Rgb::splat(l),
             two_sided: false,
+            spectrum: None,
         }),
         alpha: None,
     }

@@ -346,6 +346,7 @@ fn an_emitting_curve_is_an_error() {
             area_light: Some(AreaLightDesc {
                 l: Vec3::ONE,
                 two_sided: false,
+                spectrum: None,
             }),
             alpha: None,
         }],

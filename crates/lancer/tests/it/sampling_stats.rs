@@ -220,6 +220,7 @@ fn emitter(geometry: Geometry, to_world: Transform) -> ShapeDesc {
         area_light: Some(AreaLightDesc {
             l: Rgb::ONE,
             two_sided: false,
+            spectrum: None,
         }),
         alpha: None,
     }

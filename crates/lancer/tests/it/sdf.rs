@@ -632,6 +632,7 @@ fn scenes_build_sdf_objects_and_refuse_them_as_emitters() {
     let light = AreaLightDesc {
         l: Rgb::ONE,
         two_sided: false,
+        spectrum: None,
     };
     let e = Scene::build(&shape("sphere(1)", None, Some(light)))
         .err()

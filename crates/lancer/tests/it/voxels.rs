@@ -361,6 +361,7 @@ fn voxels_refuse_to_emit_and_empty_grids_vanish() {
             area_light: Some(AreaLightDesc {
                 l: Rgb::ONE,
                 two_sided: false,
+                spectrum: None,
             }),
             alpha: None,
         }],

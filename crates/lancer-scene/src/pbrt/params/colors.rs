@@ -3,6 +3,7 @@
 //! numbers and strings of `params.rs`.
 
 use super::*;
+use lancer::spectrum::dense::{DenseSpectrum, Measured};
 
 impl ParamList {
     /// A colour given as `rgb`, `spectrum` (pairs, a named spectrum or an `.spd` file relative
@@ -16,6 +17,20 @@ impl ParamList {
         kind: SpectrumKind,
         dir: &SearchPath,
     ) -> Result<Option<Rgb>, SceneError> {
+        Ok(self.measured_color(name, kind, dir)?.map(|(c, _)| c))
+    }
+
+    /// [`ParamList::color`], with, when the colour was given as a spectrum (`blackbody`,
+    /// pairs, a named spectrum, a file), that spectrum ready for spectral mode
+    /// ([`Measured::new`]): named spectra from their tabulated data
+    /// ([`lancer::spectrum::named_spectrum_data`]), while the reduction stays the one RGB mode
+    /// has always used.
+    pub fn measured_color(
+        &self,
+        name: &str,
+        kind: SpectrumKind,
+        dir: &SearchPath,
+    ) -> Result<Option<(Rgb, Option<Measured>)>, SceneError> {
         let Some(p) = self.find(
             name,
             &[ParamType::Rgb, ParamType::Spectrum, ParamType::Blackbody],
@@ -23,7 +38,8 @@ impl ParamList {
         else {
             return Ok(None);
         };
-        let rgb = match (p.ty, &p.values) {
+        let measured = |s: &Spectrum, rgb: Rgb| Some(Measured::new(s, rgb, kind));
+        let (rgb, m) = match (p.ty, &p.values) {
             (ParamType::Rgb, Values::Numbers(v)) => {
                 if v.len() != 3 {
                     return Err(p.error(format!(
@@ -43,10 +59,11 @@ impl ParamList {
                     )));
                 }
                 let a = c.to_array();
-                Rgb::from_array(match kind {
+                let rgb = Rgb::from_array(match kind {
                     SpectrumKind::Illuminant => self.color_space.rgb_to_srgb(a),
                     _ => self.color_space.reflectance_to_srgb(a),
-                })
+                });
+                (rgb, None)
             }
             (ParamType::Blackbody, Values::Numbers(v)) => {
                 if v[0] <= 0.0 {
@@ -59,7 +76,10 @@ impl ParamList {
                 // pbrt-v4's blackbody is normalised to a peak of 1; pbrt-v3 wrote a second
                 // value, a scale.
                 let scale = v.get(1).copied().unwrap_or(1.0);
-                spectrum_to_rgb(&Spectrum::Blackbody { kelvin: v[0] }, kind) * scale
+                let s = Spectrum::Blackbody { kelvin: v[0] };
+                let rgb = spectrum_to_rgb(&s, kind) * scale;
+                let table = DenseSpectrum::from_spectrum(&s).map(|x| x * scale);
+                (rgb, Some(Measured::from_table(table, rgb, kind)))
             }
             (ParamType::Spectrum, Values::Numbers(v)) => {
                 let (lambda, values): (Vec<f32>, Vec<f32>) =
@@ -67,15 +87,19 @@ impl ParamList {
                 if lambda.windows(2).any(|w| w[1] <= w[0]) {
                     return Err(p.error(format!("{}: wavelengths must increase", p.decl())));
                 }
-                spectrum_to_rgb(&Spectrum::PiecewiseLinear { lambda, values }, kind)
+                let s = Spectrum::PiecewiseLinear { lambda, values };
+                let rgb = spectrum_to_rgb(&s, kind);
+                (rgb, measured(&s, rgb))
             }
             (ParamType::Spectrum, Values::Strings(v)) => {
                 let s = named_or_file_spectrum(&v[0], dir).map_err(|m| p.error(m))?;
-                spectrum_to_rgb(&s, kind)
+                let rgb = spectrum_to_rgb(&s, kind);
+                let data = lancer::spectrum::named_spectrum_data(&v[0]).unwrap_or(s);
+                (rgb, measured(&data, rgb))
             }
             _ => unreachable!("types checked by find"),
         };
-        Ok(Some(rgb))
+        Ok(Some((rgb, m)))
     }
 
     /// `rgb` values (any number of triples: a grid of colours), with where they are declared.
@@ -90,47 +114,61 @@ impl ParamList {
         }))
     }
 
-    /// An index of refraction as one number: a `float`, or a `spectrum` (pairs, a named glass,
-    /// a file) sampled at [`lancer::spectrum::IOR_WAVELENGTH`] (coatings, which do not disperse).
+    /// An index of refraction as one number: a `float`, or a `spectrum` or `rgb` taken at
+    /// [`lancer::spectrum::IOR_WAVELENGTH`] (coatings, which do not disperse).
     pub fn ior(&self, name: &str, default: f32, dir: &SearchPath) -> Result<f32, SceneError> {
         Ok(self.dielectric_ior(name, default, dir)?.constant_value())
     }
 
-    /// A dielectric's index of refraction: a `float`, or a `spectrum`. A named glass
-    /// (`glass-F11`, …) stays a spectrum ([`Ior::Glass`]), which disperses in spectral mode;
-    /// pairs and files are sampled at [`lancer::spectrum::IOR_WAVELENGTH`].
+    /// A dielectric's index of refraction as pbrt-v4 reads one (a `float`, or any spectrum:
+    /// `GetOneSpectrum` of type `Unbounded`). A named glass (`glass-F11`, …) stays its
+    /// Sellmeier formula ([`Ior::Glass`]); pairs, files and other named spectra are tabulated
+    /// ([`Ior::from_spectrum`]); an `rgb` triple is uplifted as pbrt-v4's
+    /// `RGBUnboundedSpectrum` ([`Ior::from_rgb`]). An index that varies disperses in spectral
+    /// mode; RGB mode takes its value at [`lancer::spectrum::IOR_WAVELENGTH`].
     pub fn dielectric_ior(
         &self,
         name: &str,
         default: f32,
         dir: &SearchPath,
     ) -> Result<Ior, SceneError> {
-        let Some(p) = self.find(name, &[ParamType::Float, ParamType::Spectrum])? else {
+        let Some(p) = self.find(
+            name,
+            &[ParamType::Float, ParamType::Spectrum, ParamType::Rgb],
+        )?
+        else {
             return Ok(Ior::Constant(default));
         };
         let lambda = lancer::spectrum::IOR_WAVELENGTH;
+        let tabulated = |s: &Spectrum, rgb_mode: f32| {
+            Ior::from_spectrum(DenseSpectrum::from_spectrum(s), rgb_mode)
+        };
         let eta = match &p.values {
             Values::Numbers(v) if p.ty == ParamType::Float => match v.as_slice() {
                 [eta] => Ior::Constant(*eta),
                 _ => return Err(p.error(format!("{} takes one value", p.decl()))),
             },
+            Values::Numbers(_) if p.ty == ParamType::Rgb => {
+                let c = self
+                    .color(name, SpectrumKind::Unbounded, dir)?
+                    .expect("found above");
+                Ior::from_rgb(c)
+            }
             Values::Numbers(v) => {
                 let (lambda_s, values) = v.chunks_exact(2).map(|c| (c[0], c[1])).unzip();
-                Ior::Constant(
-                    Spectrum::PiecewiseLinear {
-                        lambda: lambda_s,
-                        values,
-                    }
-                    .eval(lambda),
-                )
+                let s = Spectrum::PiecewiseLinear {
+                    lambda: lambda_s,
+                    values,
+                };
+                tabulated(&s, s.eval(lambda))
             }
             Values::Strings(v) => match Ior::named_glass(&v[0]) {
                 Some(glass) => glass,
-                None => Ior::Constant(
-                    named_or_file_spectrum(&v[0], dir)
-                        .map_err(|m| p.error(m))?
-                        .eval(lambda),
-                ),
+                None => {
+                    let s = named_or_file_spectrum(&v[0], dir).map_err(|m| p.error(m))?;
+                    let data = lancer::spectrum::named_spectrum_data(&v[0]).unwrap_or(s.clone());
+                    tabulated(&data, s.eval(lambda))
+                }
             },
             _ => unreachable!("types checked by find"),
         };
@@ -157,7 +195,9 @@ impl ParamList {
             let t = self.string_of(name, ParamType::Texture)?.expect("given");
             return Ok(Some(ColorParam::Texture(t, p.loc.clone())));
         }
-        Ok(self.color(name, kind, dir)?.map(ColorParam::Const))
+        Ok(self
+            .measured_color(name, kind, dir)?
+            .map(|(c, m)| m.map_or(ColorParam::Const(c), ColorParam::Measured)))
     }
 
     /// A float or a texture name.

@@ -14,6 +14,7 @@ fn glowing_desc(geometry: Geometry) -> lancer::scene::desc::ShapeDesc {
         area_light: Some(lancer::scene::desc::AreaLightDesc {
             l: Rgb::ONE,
             two_sided: false,
+            spectrum: None,
         }),
         alpha: None,
     }
