@@ -17,8 +17,10 @@ use super::textures::{float_texture, spectrum_texture};
 use crate::error::{Location, SceneError, Warning};
 use crate::image_read::ImageCache;
 use lancer::material::Material;
-use lancer::math::{Mat4, Transform, Vec3};
-use lancer::scene::desc::{AreaLightDesc, InstanceDesc, SceneDesc, ShapeDesc};
+use lancer::math::{AnimatedTransform, Mat4, Transform, Vec3};
+use lancer::scene::desc::{
+    AreaLightDesc, InstanceDesc, MovingInstanceDesc, MovingShapeDesc, SceneDesc, ShapeDesc,
+};
 use lancer::spectrum::ColorSpace;
 use std::collections::{HashMap, HashSet};
 
@@ -40,6 +42,12 @@ mod blocks;
 #[derive(Clone, Debug)]
 struct GraphicsState {
     ctm: Transform,
+    /// The CTM at the shutter's end time (pbrt keeps two; they differ for moving things).
+    ctm_end: Transform,
+    /// Which of the two the transformation directives change (`ActiveTransform`).
+    active: Active,
+    /// The times of the two CTMs (`TransformTimes`; 0 and 1 by default).
+    times: [f32; 2],
     reverse_orientation: bool,
     material: MaterialRef,
     area_light: Option<AreaLightDesc>,
@@ -48,6 +56,20 @@ struct GraphicsState {
     media: CurrentMedia,
     /// The colour space of `rgb` values (`ColorSpace`; it persists through `WorldBegin`).
     color_space: ColorSpace,
+}
+
+/// `ActiveTransform StartTime`, `EndTime` or `All`: which CTMs change.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Active {
+    start: bool,
+    end: bool,
+}
+
+impl Active {
+    const ALL: Active = Active {
+        start: true,
+        end: true,
+    };
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -74,6 +96,7 @@ impl Block {
 enum Slot {
     Shape(usize),
     ObjectShape(u32, usize),
+    MovingShape(usize),
     Mix(u32, usize),
 }
 
@@ -82,7 +105,8 @@ pub struct Builder {
     desc: SceneDesc,
     gs: GraphicsState,
     stack: Vec<(Block, GraphicsState, Location)>,
-    named_coords: HashMap<String, Transform>,
+    /// Named coordinate systems: both CTMs, as pbrt-v4 keeps them.
+    named_coords: HashMap<String, (Transform, Transform)>,
     named_materials: HashMap<String, u32>,
     textures: TextureNames,
     media: Media,
@@ -92,11 +116,9 @@ pub struct Builder {
     current_object: Option<u32>,
     in_world: bool,
     pending_materials: Vec<(Slot, String, Location)>,
-    pending_instances: Vec<(String, Transform, Location)>,
+    pending_instances: Vec<(String, AnimatedTransform, Location)>,
     warnings: Vec<Warning>,
     warned: HashSet<&'static str>,
-    /// Transforms apply to the shutter's start (`ActiveTransform StartTime`/`All`).
-    start_active: bool,
     frame_aspect: Option<f32>,
     iso: f32,
     option_seed: Option<u64>,
@@ -113,6 +135,9 @@ impl Builder {
             desc,
             gs: GraphicsState {
                 ctm: Transform::IDENTITY,
+                ctm_end: Transform::IDENTITY,
+                active: Active::ALL,
+                times: [0.0, 1.0],
                 reverse_orientation: false,
                 material: MaterialRef::Index(0),
                 area_light: None,
@@ -133,7 +158,6 @@ impl Builder {
             pending_instances: Vec::new(),
             warnings: Vec::new(),
             warned: HashSet::new(),
-            start_active: true,
             frame_aspect: None,
             iso: 100.0,
             option_seed: None,
@@ -203,10 +227,29 @@ impl Builder {
                 ),
             )
         })?;
-        if self.start_active {
+        if self.gs.active.start {
             self.gs.ctm = self.gs.ctm * t;
         }
+        if self.gs.active.end {
+            self.gs.ctm_end = self.gs.ctm_end * t;
+        }
         Ok(())
+    }
+
+    /// Sets the active CTMs to `t` (`Identity`, `Transform`).
+    fn set_ctm(&mut self, t: Transform) {
+        if self.gs.active.start {
+            self.gs.ctm = t;
+        }
+        if self.gs.active.end {
+            self.gs.ctm_end = t;
+        }
+    }
+
+    /// The CTM over the shutter interval (moving when the two CTMs differ).
+    fn animated_ctm(&self) -> AnimatedTransform {
+        let [t0, t1] = self.gs.times;
+        AnimatedTransform::new(self.gs.ctm, t0, self.gs.ctm_end, t1)
     }
 
     fn defaults(&self, target: &str, params: ParamList) -> ParamList {
@@ -333,15 +376,19 @@ impl Builder {
                 Ok(())
             }
             D::Camera(ty, params) => self.with_params("Camera", &ty, params, loc, |b, p| {
-                if is_singular(&b.gs.ctm) {
+                if is_singular(&b.gs.ctm) || is_singular(&b.gs.ctm_end) {
                     let m = "the camera's transformation is singular (it flattens space)";
                     return Err(SceneError::at(loc.clone(), m));
                 }
                 let c = b.accept(camera(&b.reader(p, dir), &ty, b.gs.ctm, loc)?, loc);
                 (b.desc.camera, b.frame_aspect) = (c.camera, c.frame_aspect);
                 b.media.set_camera(&b.gs.media, loc);
-                b.named_coords
-                    .insert("camera".to_string(), b.gs.ctm.inverse());
+                // pbrt-v4 interpolates camera → world, the inverse of the CTM.
+                let [t0, t1] = b.gs.times;
+                let (start, end) = (b.gs.ctm.inverse(), b.gs.ctm_end.inverse());
+                let moving = AnimatedTransform::new(start, t0, end, t1);
+                b.desc.motion.camera = moving.is_animated().then_some(moving);
+                b.named_coords.insert("camera".to_string(), (start, end));
                 Ok(())
             }),
             D::Film(ty, params) => self.with_params("Film", &ty, params, loc, |b, p| {
@@ -415,6 +462,14 @@ impl Builder {
                         b.warn(loc, unplaced(&format!("LightSource \"{ty}\"")));
                         return Ok(());
                     }
+                    if b.gs.ctm != b.gs.ctm_end {
+                        b.warn_once(
+                            "moving-light",
+                            loc,
+                            "a light's transformation changes during the shutter: pbrt-v4 \
+                             keeps lights at their start pose, and so does lancer",
+                        );
+                    }
                     let l = light(&b.reader(p, dir), &ty, b.gs.ctm, loc)?;
                     if let Some(l) = b.accept(l, loc) {
                         b.desc.lights.push(l);
@@ -438,13 +493,8 @@ impl Builder {
     /// The directives that change the current transformation (and the orientation).
     fn transform(&mut self, d: Directive, loc: &Location) -> Result<(), SceneError> {
         use Directive as D;
-        let motion = "motion blur is not supported yet: lancer uses the transformations at the shutter's opening";
         match d {
-            D::Identity => {
-                if self.start_active {
-                    self.gs.ctm = Transform::IDENTITY;
-                }
-            }
+            D::Identity => self.set_ctm(Transform::IDENTITY),
             D::Translate([x, y, z]) => self.concat(
                 Some(Transform::translate(Vec3::new(x, y, z))),
                 "Translate",
@@ -481,9 +531,7 @@ impl Builder {
             D::Transform(m) => {
                 // pbrt's 16 numbers are the matrix column by column.
                 let t = kept(Mat4::from_cols_array(&m));
-                if self.start_active {
-                    self.gs.ctm = Transform::IDENTITY;
-                }
+                self.set_ctm(Transform::IDENTITY);
                 self.concat(Some(t), "Transform", loc)?
             }
             D::ConcatTransform(m) => {
@@ -491,22 +539,34 @@ impl Builder {
                 self.concat(Some(t), "ConcatTransform", loc)?
             }
             D::CoordinateSystem(name) => {
-                self.named_coords.insert(name, self.gs.ctm);
+                self.named_coords
+                    .insert(name, (self.gs.ctm, self.gs.ctm_end));
             }
             D::CoordSysTransform(name) => match self.named_coords.get(&name) {
-                Some(t) => self.gs.ctm = *t,
+                Some(&(t0, t1)) => (self.gs.ctm, self.gs.ctm_end) = (t0, t1),
                 None => self.warn(
                     loc,
                     format!("no coordinate system named \"{name}\"; CoordSysTransform ignored"),
                 ),
             },
             D::ActiveTransform(which) => {
-                self.start_active = which != "EndTime";
-                if which != "StartTime" {
-                    self.warn_once("motion", loc, motion);
+                self.gs.active = Active {
+                    start: which != "EndTime",
+                    end: which != "StartTime",
                 }
             }
-            D::TransformTimes(_) => self.warn_once("motion", loc, motion),
+            D::TransformTimes([t0, t1]) => {
+                self.require_options("TransformTimes", loc)?;
+                if !(t0 <= t1) {
+                    return Err(SceneError::at(
+                        loc.clone(),
+                        format!(
+                            "TransformTimes: the end time {t1} comes before the start time {t0}"
+                        ),
+                    ));
+                }
+                self.gs.times = [t0, t1];
+            }
             D::ReverseOrientation => self.gs.reverse_orientation ^= true,
             other => unreachable!("not a transformation directive: {other:?}"),
         }
@@ -614,7 +674,10 @@ impl Builder {
             params.mark_all_used();
             return Ok(());
         };
-        let (geometry, object_to_world) = if is_singular(&self.gs.ctm) {
+        let moving = self.moving_shape(emits, loc)?;
+        let (geometry, object_to_world) = if moving.is_some() {
+            (geometry, Transform::IDENTITY)
+        } else if is_singular(&self.gs.ctm) {
             match self.accept(flatten(geometry, ty, &self.gs.ctm), loc) {
                 Some(g) => (g, Transform::IDENTITY),
                 None => return Ok(()),
@@ -647,13 +710,21 @@ impl Builder {
             area_light,
             alpha,
         };
-        let slot = match self.current_object {
-            Some(o) => {
+        let slot = match (self.current_object, moving) {
+            (_, Some(world_from_object)) => {
+                let moving = &mut self.desc.motion.shapes;
+                moving.push(MovingShapeDesc {
+                    shape: sd,
+                    world_from_object,
+                });
+                Slot::MovingShape(moving.len() - 1)
+            }
+            (Some(o), None) => {
                 let shapes = &mut self.desc.objects[o as usize].shapes;
                 shapes.push(sd);
                 Slot::ObjectShape(o, shapes.len() - 1)
             }
-            None => {
+            (None, None) => {
                 self.desc.shapes.push(sd);
                 Slot::Shape(self.desc.shapes.len() - 1)
             }
@@ -662,6 +733,46 @@ impl Builder {
             self.pending_materials.push((slot, name, nloc));
         }
         Ok(())
+    }
+
+    /// The moving transformation of a shape about to be added, when the two CTMs differ
+    /// (pbrt-v4's animated shapes). pbrt-v4 refuses moving area lights; a moving shape inside
+    /// an object definition, or one whose transformation is singular at either end, stands at
+    /// its start pose (with a warning).
+    fn moving_shape(
+        &mut self,
+        emits: bool,
+        loc: &Location,
+    ) -> Result<Option<AnimatedTransform>, SceneError> {
+        let moving = self.animated_ctm();
+        if !moving.is_animated() {
+            return Ok(None);
+        }
+        if emits {
+            return Err(SceneError::at(
+                loc.clone(),
+                "this area light's shape moves during the shutter: pbrt-v4 refuses moving area \
+                 lights (keep the AreaLightSource outside the ActiveTransform block)",
+            ));
+        }
+        if self.current_object.is_some() {
+            self.warn_once(
+                "object-motion",
+                loc,
+                "shapes moving inside an object definition are not supported yet: lancer uses \
+                 their start pose (move the ObjectInstance instead)",
+            );
+            return Ok(None);
+        }
+        if is_singular(&self.gs.ctm) || is_singular(&self.gs.ctm_end) {
+            self.warn(
+                loc,
+                "this moving shape's transformation is singular at one end: lancer uses its \
+                 start pose",
+            );
+            return Ok(None);
+        }
+        Ok(Some(moving))
     }
 
     /// Resolves what could be named before its definition, checks every block is closed, and
@@ -689,6 +800,7 @@ impl Builder {
             };
             match slot {
                 Slot::Shape(i) => self.desc.shapes[i].material = index,
+                Slot::MovingShape(i) => self.desc.motion.shapes[i].shape.material = index,
                 Slot::ObjectShape(o, i) => self.desc.objects[o as usize].shapes[i].material = index,
                 Slot::Mix(m, k) => {
                     if let Material::Mix { materials, .. } = &mut self.desc.materials[m as usize] {
@@ -704,10 +816,17 @@ impl Builder {
                     format!("no object named \"{name}\" (ObjectBegin defines one)"),
                 ));
             };
-            self.desc.instances.push(InstanceDesc {
-                object,
-                object_to_world: ctm,
-            });
+            if ctm.is_animated() {
+                self.desc.motion.instances.push(MovingInstanceDesc {
+                    object,
+                    object_to_world: ctm,
+                });
+            } else {
+                self.desc.instances.push(InstanceDesc {
+                    object,
+                    object_to_world: *ctm.start(),
+                });
+            }
         }
         self.desc.camera_medium = self.media.camera_medium()?;
         let camera = &mut self.desc.camera;

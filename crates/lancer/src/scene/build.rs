@@ -38,7 +38,12 @@ impl Scene {
         let (shapes, mut prims, bvh, unbounded) = bvh_order(made.shapes, made.prims);
         let packets = packets(&bvh, &shapes, &prims);
         let mut instances = flat.instances;
+        let mut moving_prims = Vec::new();
+        let mut motion = super::motion::Motion::build(desc, materials.len(), &mut moving_prims)?;
         let mut bounds = bvh.bounds().union(&instances.bounds());
+        if let Some(m) = &motion {
+            bounds = bounds.union(&m.bounds());
+        }
         if bounds.is_empty() {
             bounds = Bounds3::from_point(Vec3::ZERO);
         }
@@ -50,7 +55,14 @@ impl Scene {
         for o in &mut instances.objects {
             o.offset_prims(base);
         }
-        let camera = Camera::from_desc(&desc.camera, &desc.film).map_err(BuildError::BadCamera)?;
+        // The moving primitives' entries after those.
+        if let Some(m) = &mut motion {
+            m.offset_prims(prims.len() as u32);
+            prims.extend(moving_prims);
+        }
+        let mut camera =
+            Camera::from_desc(&desc.camera, &desc.film).map_err(BuildError::BadCamera)?;
+        camera.set_motion(desc.motion.camera);
         let extents: Vec<_> = lights
             .lights
             .iter()
@@ -79,6 +91,7 @@ impl Scene {
             bvh,
             packets,
             instances,
+            motion: motion.map(Box::new),
             unbounded,
             bounds,
             spectra: std::sync::OnceLock::new(),
@@ -209,7 +222,7 @@ fn primitives(list: &[Placed<'_>], n_materials: usize) -> Result<Primitives, Bui
 
 /// The world-space primitives of a shape already checked by [`check_shape`], appended to `out`
 /// (a triangle mesh's to `meshes` too). Errors left are those only the constructors find.
-fn shapes_of(
+pub(super) fn shapes_of(
     sd: &ShapeDesc,
     index: usize,
     meshes: &mut Vec<TriangleMesh>,

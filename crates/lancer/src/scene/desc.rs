@@ -12,6 +12,9 @@ use crate::shape::{RuleError, TriangleMesh};
 use crate::texture::{FloatTex, FloatTexture, SpectrumTexture};
 use std::sync::Arc;
 
+mod motion;
+pub use motion::{MotionDesc, MovingInstanceDesc, MovingShapeDesc};
+
 /// A whole scene: what to render and how.
 #[derive(Clone, Debug, Default)]
 pub struct SceneDesc {
@@ -43,6 +46,8 @@ pub struct SceneDesc {
     pub media: Vec<crate::medium::MediumDesc>,
     /// The medium the camera sits in (`None`: vacuum).
     pub camera_medium: Option<u32>,
+    /// What moves during the shutter interval (motion blur).
+    pub motion: MotionDesc,
 }
 
 /// Camera projection.
