@@ -6,8 +6,8 @@
 //! interpolated separately: T and S linearly, R along the great arc between two unit
 //! quaternions (slerp), which turns at a constant angular speed.
 
-use super::{Bounds3, Mat4, Transform, Vec3};
-use glam::{Mat3A, Quat, Vec4};
+use super::{Bounds3, Transform, Vec3};
+use glam::{Mat3A, Mat4, Quat, Vec4};
 
 /// A transformation keyframed at two times; in between, its decomposed parts are interpolated.
 ///
@@ -174,7 +174,7 @@ pub fn decompose(m: &Mat4) -> (Vec3, Quat, Mat3A) {
             .map(|row| row.abs().element_sum())
             .fold(0.0f32, f32::max);
         r = next;
-        if !(norm > 1e-4) {
+        if norm <= 1e-4 || norm.is_nan() {
             break;
         }
     }

@@ -39,7 +39,8 @@ impl Scene {
         let packets = packets(&bvh, &shapes, &prims);
         let mut instances = flat.instances;
         let mut moving_prims = Vec::new();
-        let mut motion = super::motion::Motion::build(desc, materials.len(), &mut moving_prims)?;
+        let mut motion =
+            super::motion::Motion::build(desc, materials.len(), &mut moving_prims, shapes_of)?;
         let mut bounds = bvh.bounds().union(&instances.bounds());
         if let Some(m) = &motion {
             bounds = bounds.union(&m.bounds());
@@ -222,7 +223,7 @@ fn primitives(list: &[Placed<'_>], n_materials: usize) -> Result<Primitives, Bui
 
 /// The world-space primitives of a shape already checked by [`check_shape`], appended to `out`
 /// (a triangle mesh's to `meshes` too). Errors left are those only the constructors find.
-pub(super) fn shapes_of(
+fn shapes_of(
     sd: &ShapeDesc,
     index: usize,
     meshes: &mut Vec<TriangleMesh>,

@@ -68,6 +68,11 @@ enum What {
     Shapes(Range<u32>),
 }
 
+/// How the build turns a shape into its primitives (appending a mesh's to the meshes): passed
+/// in by the build, which owns that conversion.
+pub(crate) type ShapesOf =
+    fn(&ShapeDesc, usize, &mut Vec<TriangleMesh>, &mut Vec<Shape>) -> Result<(), BuildError>;
+
 /// A hit on a moving primitive: which, which part, the object-space hit and the pose.
 #[derive(Clone, Copy, Debug)]
 pub struct MovingHit {
@@ -80,11 +85,13 @@ pub struct MovingHit {
 
 impl Motion {
     /// The moving parts of `desc` with their records appended to `prims`; `None` when
-    /// nothing moves. `n_materials` bounds the material indices.
+    /// nothing moves. `n_materials` bounds the material indices; `shapes_of` makes the
+    /// object-space primitives of the shapes that are not plain meshes.
     pub(crate) fn build(
         desc: &SceneDesc,
         n_materials: usize,
         prims: &mut Vec<PrimInfo>,
+        shapes_of: ShapesOf,
     ) -> Result<Option<Motion>, BuildError> {
         let m = &desc.motion;
         if m.is_empty() {
@@ -107,7 +114,7 @@ impl Motion {
             };
             let what = match ObjectAccel::build(&obj, prims, n_materials)? {
                 Some(acc) => motion.add_object(acc),
-                None => motion.add_shapes(&ms.shape, index, prims)?,
+                None => motion.add_shapes(&ms.shape, index, prims, shapes_of)?,
             };
             motion.prims.push(MovingPrim {
                 xf: ms.world_from_object,
@@ -129,7 +136,7 @@ impl Motion {
                             let start = motion.shapes.len() as u32;
                             for sd in &obj.shapes {
                                 check_shape(sd, desc.shapes.len(), n_materials)?;
-                                motion.add_shapes(sd, desc.shapes.len(), prims)?;
+                                motion.add_shapes(sd, desc.shapes.len(), prims, shapes_of)?;
                             }
                             What::Shapes(start..motion.shapes.len() as u32)
                         }
@@ -168,6 +175,7 @@ impl Motion {
         sd: &ShapeDesc,
         index: usize,
         prims: &mut Vec<PrimInfo>,
+        shapes_of: ShapesOf,
     ) -> Result<What, BuildError> {
         if matches!(sd.geometry, Geometry::Plane { .. }) {
             return Err(BuildError::Invalid(format!(
@@ -175,7 +183,7 @@ impl Motion {
             )));
         }
         let mut made = Vec::new();
-        super::build::shapes_of(sd, index, &mut self.meshes, &mut made)?;
+        shapes_of(sd, index, &mut self.meshes, &mut made)?;
         let record = prims.len() as u32;
         prims.push(PrimInfo {
             material: sd.material,

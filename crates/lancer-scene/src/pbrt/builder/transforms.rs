@@ -117,7 +117,7 @@ impl Builder {
             }
             D::TransformTimes([t0, t1]) => {
                 self.require_options("TransformTimes", loc)?;
-                if !(t0 <= t1) {
+                if t0 > t1 || t0.is_nan() || t1.is_nan() {
                     return Err(SceneError::at(
                         loc.clone(),
                         format!(
