@@ -423,7 +423,7 @@ impl Builder {
                         b.warn(loc, unplaced(&format!("LightSource \"{ty}\"")));
                         return Ok(());
                     }
-                    if b.gs.ctm != b.gs.ctm_end {
+                    if b.gs.ctm.m != b.gs.ctm_end.m {
                         b.warn_once(
                             "moving-light",
                             loc,

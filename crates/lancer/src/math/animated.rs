@@ -37,7 +37,8 @@ impl AnimatedTransform {
     /// `start` at `start_time` moving to `end` at `end_time` (pbrt's `TransformTimes`, 0 and 1
     /// by default).
     pub fn new(start: Transform, start_time: f32, end: Transform, end_time: f32) -> Self {
-        let animated = start != end;
+        // The matrices decide (a singular matrix's inverse may hold NaNs, never equal).
+        let animated = start.m != end.m;
         let (t0, r0, s0) = decompose(&start.m);
         let (t1, mut r1, s1) = decompose(&end.m);
         // q and −q are the same rotation: take the end on the start's side, the shorter way.
