@@ -323,9 +323,20 @@ fn camera_ray_at(
     sampler.start_pixel_sample(x, y, s as u64);
     let (offset, weight) = settings.filter.sample(sampler.get_pixel_2d());
     let p_film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
+    // With motion blur, the sample's time comes next (as in pbrt-v4's GetCameraSample), and
+    // every ray of its path shares it; a still scene draws no time, so its dimensions stay
+    // as they were.
+    let time = scene.motion.as_ref().map(|m| {
+        let time = m.sample_time(sampler.get_1d());
+        crate::scene::motion::set_path_time(time);
+        time
+    });
     let p_lens = sampler.get_2d();
     (
-        scene.camera.generate_ray(p_film, p_lens),
+        match time {
+            None => scene.camera.generate_ray(p_film, p_lens),
+            Some(t) => scene.camera.generate_ray_at(p_film, p_lens, t),
+        },
         weight,
         p_film,
         p_lens,

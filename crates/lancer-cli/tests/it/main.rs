@@ -10,6 +10,7 @@ mod hostile;
 mod img;
 mod malformed;
 mod meshes;
+mod motion_workflow;
 mod nan_stress;
 mod orientation;
 mod path_tracing;

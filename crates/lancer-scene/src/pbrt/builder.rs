@@ -13,13 +13,15 @@ use super::params::{Param, ParamList};
 use super::parser::{Directive, Located, Parser};
 use super::search_path::SearchPath;
 use super::shapes::{ShapeGeometry, shape};
-use super::singular::{flatten, is_singular, kept, unplaced};
+use super::singular::{flatten, is_singular, unplaced};
 use super::textures::{float_texture, spectrum_texture};
 use crate::error::{Location, SceneError, Warning};
 use crate::image_read::ImageCache;
 use lancer::material::Material;
-use lancer::math::{Mat4, Transform, Vec3};
-use lancer::scene::desc::{AreaLightDesc, InstanceDesc, SceneDesc, ShapeDesc};
+use lancer::math::{AnimatedTransform, Transform};
+use lancer::scene::desc::{
+    AreaLightDesc, InstanceDesc, MovingInstanceDesc, MovingShapeDesc, SceneDesc, ShapeDesc,
+};
 use lancer::spectrum::ColorSpace;
 use std::collections::{HashMap, HashSet};
 
@@ -36,11 +38,18 @@ enum MaterialRef {
 pub const MAX_NESTING: usize = 10_000;
 
 mod blocks;
+mod transforms;
 
 /// What `AttributeBegin` saves.
 #[derive(Clone, Debug)]
 struct GraphicsState {
     ctm: Transform,
+    /// The CTM at the shutter's end time (pbrt keeps two; they differ for moving things).
+    ctm_end: Transform,
+    /// Which of the two the transformation directives change (`ActiveTransform`).
+    active: Active,
+    /// The times of the two CTMs (`TransformTimes`; 0 and 1 by default).
+    times: [f32; 2],
     reverse_orientation: bool,
     material: MaterialRef,
     area_light: Option<AreaLightDesc>,
@@ -49,6 +58,20 @@ struct GraphicsState {
     media: CurrentMedia,
     /// The colour space of `rgb` values (`ColorSpace`; it persists through `WorldBegin`).
     color_space: ColorSpace,
+}
+
+/// `ActiveTransform StartTime`, `EndTime` or `All`: which CTMs change.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Active {
+    start: bool,
+    end: bool,
+}
+
+impl Active {
+    const ALL: Active = Active {
+        start: true,
+        end: true,
+    };
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -75,6 +98,7 @@ impl Block {
 enum Slot {
     Shape(usize),
     ObjectShape(u32, usize),
+    MovingShape(usize),
     Mix(u32, usize),
 }
 
@@ -83,7 +107,8 @@ pub struct Builder {
     desc: SceneDesc,
     gs: GraphicsState,
     stack: Vec<(Block, GraphicsState, Location)>,
-    named_coords: HashMap<String, Transform>,
+    /// Named coordinate systems: both CTMs, as pbrt-v4 keeps them.
+    named_coords: HashMap<String, (Transform, Transform)>,
     named_materials: HashMap<String, u32>,
     textures: TextureNames,
     media: Media,
@@ -93,11 +118,9 @@ pub struct Builder {
     current_object: Option<u32>,
     in_world: bool,
     pending_materials: Vec<(Slot, String, Location)>,
-    pending_instances: Vec<(String, Transform, Location)>,
+    pending_instances: Vec<(String, AnimatedTransform, Location)>,
     warnings: Vec<Warning>,
     warned: HashSet<&'static str>,
-    /// Transforms apply to the shutter's start (`ActiveTransform StartTime`/`All`).
-    start_active: bool,
     frame_aspect: Option<f32>,
     iso: f32,
     option_seed: Option<u64>,
@@ -114,6 +137,9 @@ impl Builder {
             desc,
             gs: GraphicsState {
                 ctm: Transform::IDENTITY,
+                ctm_end: Transform::IDENTITY,
+                active: Active::ALL,
+                times: [0.0, 1.0],
                 reverse_orientation: false,
                 material: MaterialRef::Index(0),
                 area_light: None,
@@ -134,7 +160,6 @@ impl Builder {
             pending_instances: Vec::new(),
             warnings: Vec::new(),
             warned: HashSet::new(),
-            start_active: true,
             frame_aspect: None,
             iso: 100.0,
             option_seed: None,
@@ -185,27 +210,6 @@ impl Builder {
                 loc.clone(),
                 format!("{name} is only allowed after WorldBegin"),
             ));
-        }
-        Ok(())
-    }
-
-    /// `ctm ← ctm · t`, as pbrt post-multiplies every transformation.
-    fn concat(
-        &mut self,
-        t: Option<Transform>,
-        what: &str,
-        loc: &Location,
-    ) -> Result<(), SceneError> {
-        let t = t.ok_or_else(|| {
-            SceneError::at(
-                loc.clone(),
-                format!(
-                    "{what} gives a singular transformation (it flattens space and cannot be inverted)"
-                ),
-            )
-        })?;
-        if self.start_active {
-            self.gs.ctm = self.gs.ctm * t;
         }
         Ok(())
     }
@@ -334,15 +338,19 @@ impl Builder {
                 Ok(())
             }
             D::Camera(ty, params) => self.with_params("Camera", &ty, params, loc, |b, p| {
-                if is_singular(&b.gs.ctm) {
+                if is_singular(&b.gs.ctm) || is_singular(&b.gs.ctm_end) {
                     let m = "the camera's transformation is singular (it flattens space)";
                     return Err(SceneError::at(loc.clone(), m));
                 }
                 let c = b.accept(camera(&b.reader(p, dir), &ty, b.gs.ctm, loc)?, loc);
                 (b.desc.camera, b.frame_aspect) = (c.camera, c.frame_aspect);
                 b.media.set_camera(&b.gs.media, loc);
-                b.named_coords
-                    .insert("camera".to_string(), b.gs.ctm.inverse());
+                // pbrt-v4 interpolates camera → world, the inverse of the CTM.
+                let [t0, t1] = b.gs.times;
+                let (start, end) = (b.gs.ctm.inverse(), b.gs.ctm_end.inverse());
+                let moving = AnimatedTransform::new(start, t0, end, t1);
+                b.desc.motion.camera = moving.is_animated().then_some(moving);
+                b.named_coords.insert("camera".to_string(), (start, end));
                 Ok(())
             }),
             D::Film(ty, params) => self.with_params("Film", &ty, params, loc, |b, p| {
@@ -416,6 +424,14 @@ impl Builder {
                         b.warn(loc, unplaced(&format!("LightSource \"{ty}\"")));
                         return Ok(());
                     }
+                    if b.gs.ctm.m != b.gs.ctm_end.m {
+                        b.warn_once(
+                            "moving-light",
+                            loc,
+                            "a light's transformation changes during the shutter: pbrt-v4 \
+                             keeps lights at their start pose, and so does lancer",
+                        );
+                    }
                     let l = light(&b.reader(p, dir), &ty, b.gs.ctm, loc)?;
                     if let Some(l) = b.accept(l, loc) {
                         let spectrum = light_spectra::light_spectrum(&l, p, dir)?;
@@ -438,84 +454,6 @@ impl Builder {
             }
             other => unreachable!("not a world directive: {other:?}"),
         }
-    }
-
-    /// The directives that change the current transformation (and the orientation).
-    fn transform(&mut self, d: Directive, loc: &Location) -> Result<(), SceneError> {
-        use Directive as D;
-        let motion = "motion blur is not supported yet: lancer uses the transformations at the shutter's opening";
-        match d {
-            D::Identity => {
-                if self.start_active {
-                    self.gs.ctm = Transform::IDENTITY;
-                }
-            }
-            D::Translate([x, y, z]) => self.concat(
-                Some(Transform::translate(Vec3::new(x, y, z))),
-                "Translate",
-                loc,
-            )?,
-            D::Scale([x, y, z]) => {
-                // Transform::scale's exact reciprocals when it has them (as before).
-                let s = Vec3::new(x, y, z);
-                let t = Transform::scale(s).unwrap_or_else(|| kept(Mat4::from_scale(s.into())));
-                self.concat(Some(t), "Scale", loc)?
-            }
-            D::Rotate([a, x, y, z]) => {
-                let r = Transform::rotate(a, Vec3::new(x, y, z));
-                if r.is_none() {
-                    return Err(SceneError::at(loc.clone(), "Rotate about a zero axis"));
-                }
-                self.concat(r, "Rotate", loc)?
-            }
-            D::LookAt(v) => {
-                let t = Transform::look_at(
-                    Vec3::new(v[0], v[1], v[2]),
-                    Vec3::new(v[3], v[4], v[5]),
-                    Vec3::new(v[6], v[7], v[8]),
-                );
-                if t.is_none() {
-                    return Err(SceneError::at(
-                        loc.clone(),
-                        "LookAt: the eye and the point looked at coincide, or 'up' is parallel \
-                         to the viewing direction",
-                    ));
-                }
-                self.concat(t, "LookAt", loc)?
-            }
-            D::Transform(m) => {
-                // pbrt's 16 numbers are the matrix column by column.
-                let t = kept(Mat4::from_cols_array(&m));
-                if self.start_active {
-                    self.gs.ctm = Transform::IDENTITY;
-                }
-                self.concat(Some(t), "Transform", loc)?
-            }
-            D::ConcatTransform(m) => {
-                let t = kept(Mat4::from_cols_array(&m));
-                self.concat(Some(t), "ConcatTransform", loc)?
-            }
-            D::CoordinateSystem(name) => {
-                self.named_coords.insert(name, self.gs.ctm);
-            }
-            D::CoordSysTransform(name) => match self.named_coords.get(&name) {
-                Some(t) => self.gs.ctm = *t,
-                None => self.warn(
-                    loc,
-                    format!("no coordinate system named \"{name}\"; CoordSysTransform ignored"),
-                ),
-            },
-            D::ActiveTransform(which) => {
-                self.start_active = which != "EndTime";
-                if which != "StartTime" {
-                    self.warn_once("motion", loc, motion);
-                }
-            }
-            D::TransformTimes(_) => self.warn_once("motion", loc, motion),
-            D::ReverseOrientation => self.gs.reverse_orientation ^= true,
-            other => unreachable!("not a transformation directive: {other:?}"),
-        }
-        Ok(())
     }
 
     /// Adds a material; a `mix` has its two names resolved at the end.
@@ -619,7 +557,10 @@ impl Builder {
             params.mark_all_used();
             return Ok(());
         };
-        let (geometry, object_to_world) = if is_singular(&self.gs.ctm) {
+        let moving = self.moving_shape(emits, alpha.is_some(), loc)?;
+        let (geometry, object_to_world) = if moving.is_some() {
+            (geometry, Transform::IDENTITY)
+        } else if is_singular(&self.gs.ctm) {
             match self.accept(flatten(geometry, ty, &self.gs.ctm), loc) {
                 Some(g) => (g, Transform::IDENTITY),
                 None => return Ok(()),
@@ -652,13 +593,21 @@ impl Builder {
             area_light,
             alpha,
         };
-        let slot = match self.current_object {
-            Some(o) => {
+        let slot = match (self.current_object, moving) {
+            (_, Some(world_from_object)) => {
+                let moving = &mut self.desc.motion.shapes;
+                moving.push(MovingShapeDesc {
+                    shape: sd,
+                    world_from_object,
+                });
+                Slot::MovingShape(moving.len() - 1)
+            }
+            (Some(o), None) => {
                 let shapes = &mut self.desc.objects[o as usize].shapes;
                 shapes.push(sd);
                 Slot::ObjectShape(o, shapes.len() - 1)
             }
-            None => {
+            (None, None) => {
                 self.desc.shapes.push(sd);
                 Slot::Shape(self.desc.shapes.len() - 1)
             }
@@ -694,6 +643,7 @@ impl Builder {
             };
             match slot {
                 Slot::Shape(i) => self.desc.shapes[i].material = index,
+                Slot::MovingShape(i) => self.desc.motion.shapes[i].shape.material = index,
                 Slot::ObjectShape(o, i) => self.desc.objects[o as usize].shapes[i].material = index,
                 Slot::Mix(m, k) => {
                     if let Material::Mix { materials, .. } = &mut self.desc.materials[m as usize] {
@@ -709,10 +659,17 @@ impl Builder {
                     format!("no object named \"{name}\" (ObjectBegin defines one)"),
                 ));
             };
-            self.desc.instances.push(InstanceDesc {
-                object,
-                object_to_world: ctm,
-            });
+            if ctm.is_animated() {
+                self.desc.motion.instances.push(MovingInstanceDesc {
+                    object,
+                    object_to_world: ctm,
+                });
+            } else {
+                self.desc.instances.push(InstanceDesc {
+                    object,
+                    object_to_world: *ctm.start(),
+                });
+            }
         }
         self.desc.camera_medium = self.media.camera_medium()?;
         let camera = &mut self.desc.camera;

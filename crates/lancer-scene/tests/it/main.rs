@@ -9,6 +9,7 @@ mod envmap;
 mod gltf;
 mod imagemap;
 mod mesh_scene;
+mod motion;
 mod objmesh;
 mod pbrt_parity;
 mod pbrt_semantics;

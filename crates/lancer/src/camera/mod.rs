@@ -12,7 +12,7 @@ pub mod lens;
 pub mod realistic;
 pub mod spherical;
 
-use crate::math::{Transform, Vec2, Vec3, normalize};
+use crate::math::{AnimatedTransform, Transform, Vec2, Vec3, normalize};
 use crate::ray::Ray;
 use crate::sampling::sample_uniform_disk_concentric;
 use crate::scene::desc::{CameraDesc, FilmDesc, Projection};
@@ -57,8 +57,10 @@ enum Kind {
 /// A camera able to generate primary rays.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Camera {
-    /// Camera space → world space.
+    /// Camera space → world space (at the shutter's opening when the camera moves).
     pub world_from_camera: Transform,
+    /// Camera space → world space over time, when the camera moves (motion blur).
+    motion: Option<Box<AnimatedTransform>>,
     kind: Kind,
 }
 
@@ -90,8 +92,31 @@ impl Camera {
         };
         Ok(Camera {
             world_from_camera: desc.camera_from_world.inverse(),
+            motion: None,
             kind,
         })
+    }
+
+    /// Makes the camera move: `world_from_camera` over time (`None`: it stands still).
+    pub fn set_motion(&mut self, world_from_camera: Option<AnimatedTransform>) {
+        self.motion = world_from_camera
+            .filter(AnimatedTransform::is_animated)
+            .map(Box::new);
+    }
+
+    /// True when the camera moves during the shutter.
+    pub fn moves(&self) -> bool {
+        self.motion.is_some()
+    }
+
+    /// [`Camera::generate_ray`] at `time`: a moving camera's ray leaves its pose at that
+    /// time (pbrt-v4's `CameraTransform` interpolated at the ray's time).
+    #[inline]
+    pub fn generate_ray_at(&self, p_film: Vec2, p_lens: Vec2, time: f32) -> Option<CameraRay> {
+        match &self.motion {
+            None => self.generate_ray(p_film, p_lens),
+            Some(m) => self.ray_from(p_film, p_lens, &m.interpolate(time)),
+        }
     }
 
     fn projective(desc: &CameraDesc, xres: u32, yres: u32) -> Option<Kind> {
@@ -146,6 +171,17 @@ impl Camera {
     /// camera's axis, which its own issue tracker reports as a bug).
     #[inline]
     pub fn generate_ray(&self, p_film: Vec2, p_lens: Vec2) -> Option<CameraRay> {
+        self.ray_from(p_film, p_lens, &self.world_from_camera)
+    }
+
+    /// The ray of [`Camera::generate_ray`] with the camera placed by `world_from_camera`.
+    #[inline(always)]
+    fn ray_from(
+        &self,
+        p_film: Vec2,
+        p_lens: Vec2,
+        world_from_camera: &Transform,
+    ) -> Option<CameraRay> {
         let (ray, weight) = match &self.kind {
             Kind::Projective {
                 camera_from_raster,
@@ -184,8 +220,8 @@ impl Camera {
                 (Ray::new(s.ray.o, s.ray.d), s.weight)
             }
         };
-        let o = self.world_from_camera.point(ray.o);
-        let d = normalize(self.world_from_camera.vector(ray.d));
+        let o = world_from_camera.point(ray.o);
+        let d = normalize(world_from_camera.vector(ray.d));
         Some(CameraRay {
             ray: Ray::new(o, d),
             weight,

@@ -5,6 +5,7 @@
 //! carrying its inverse, axis-aligned [`Bounds3`], orthonormal [`Frame`]s and conservative
 //! rounding-error arithmetic ([`gamma`], [`offset_ray_origin`]).
 
+pub mod animated;
 mod bounds;
 pub mod digest;
 mod float;
@@ -13,6 +14,7 @@ pub mod noise;
 mod transform;
 mod vector;
 
+pub use animated::AnimatedTransform;
 pub use bounds::Bounds3;
 pub use float::{
     INV_2PI, INV_4PI, INV_PI, MACHINE_EPSILON, PI, difference_of_products, gamma, lerp,

@@ -40,7 +40,13 @@ impl Scene {
         let (shapes, mut prims, bvh, unbounded) = bvh_order(made.shapes, made.prims);
         let packets = packets(&bvh, &shapes, &prims);
         let mut instances = flat.instances;
+        let mut moving_prims = Vec::new();
+        let mut motion =
+            super::motion::Motion::build(desc, materials.len(), &mut moving_prims, shapes_of)?;
         let mut bounds = bvh.bounds().union(&instances.bounds());
+        if let Some(m) = &motion {
+            bounds = bounds.union(&m.bounds());
+        }
         if bounds.is_empty() {
             bounds = Bounds3::from_point(Vec3::ZERO);
         }
@@ -52,7 +58,14 @@ impl Scene {
         for o in &mut instances.objects {
             o.offset_prims(base);
         }
-        let camera = Camera::from_desc(&desc.camera, &desc.film).map_err(BuildError::BadCamera)?;
+        // The moving primitives' entries after those.
+        if let Some(m) = &mut motion {
+            m.offset_prims(prims.len() as u32);
+            prims.extend(moving_prims);
+        }
+        let mut camera =
+            Camera::from_desc(&desc.camera, &desc.film).map_err(BuildError::BadCamera)?;
+        camera.set_motion(desc.motion.camera);
         let extents: Vec<_> = lights
             .lights
             .iter()
@@ -84,6 +97,7 @@ impl Scene {
             bvh,
             packets,
             instances,
+            motion: motion.map(Box::new),
             unbounded,
             bounds,
             spectra: std::sync::OnceLock::new(),

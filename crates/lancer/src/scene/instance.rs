@@ -90,6 +90,43 @@ impl ObjectAccel {
         }
     }
 
+    /// Bounds of the object, object space.
+    pub(crate) fn bounds(&self) -> Bounds3 {
+        self.bvh.bounds()
+    }
+
+    /// The nearest hit of an object-space ray: (triangle, hit).
+    #[inline]
+    pub(crate) fn intersect(&self, ro: &Ray) -> Option<(u32, ShapeHit)> {
+        self.bvh.intersect(ro, &TriangleRay::new(ro))
+    }
+
+    /// True if an object-space ray hits the object.
+    #[inline]
+    pub(crate) fn intersect_any(&self, ro: &Ray) -> bool {
+        self.bvh.intersect_any(ro, &TriangleRay::new(ro))
+    }
+
+    /// The object-space interaction of triangle `tri`'s hit by `ro`, whether its mesh has
+    /// vertex normals, and the mesh's [`PrimInfo`] index.
+    pub(crate) fn local_interaction(
+        &self,
+        ro: &Ray,
+        tri: u32,
+        hit: &ShapeHit,
+    ) -> (SurfaceInteraction, bool, u32) {
+        let (mesh, index) = self.tris[tri as usize];
+        let m = &self.meshes[mesh as usize];
+        let v = m.vertices(index);
+        let t = Triangle {
+            p: [m.positions[v[0]], m.positions[v[1]], m.positions[v[2]]],
+            mesh,
+            index,
+        };
+        let si = t.interaction(ro, hit, m);
+        (si, !m.normals.is_empty(), self.prim[mesh as usize])
+    }
+
     /// Bytes of the tree, the meshes, the triangle table and the record indices.
     pub fn memory_bytes(&self) -> usize {
         self.bvh.memory_bytes()

@@ -5,6 +5,7 @@ mod counts;
 pub mod desc;
 pub mod instance;
 pub mod memory;
+pub mod motion;
 mod prim;
 mod spectra;
 
@@ -73,6 +74,8 @@ pub struct Scene {
     packets: Vec<Tri4>,
     /// Instanced objects and their placements (the two-level part of the scene).
     pub instances: instance::Instances,
+    /// What moves during the shutter (motion blur); `None` for a still scene.
+    pub motion: Option<Box<motion::Motion>>,
     /// Primitives without finite bounds (infinite planes), tested on every ray.
     unbounded: Vec<u32>,
     bounds: Bounds3,
@@ -127,9 +130,20 @@ impl Scene {
                 Some(h.t)
             })
         });
-        if !self.instances.is_empty() {
+        // The nearest moving hit, nearer than every still one so far.
+        let mut moving = None;
+        if let Some(m) = &self.motion {
             if let Some(b) = best {
                 r.t_max = b.0.t;
+            }
+            moving = m.intersect(&r, motion::path_time());
+            if let Some(mh) = &moving {
+                r.t_max = mh.hit.t;
+            }
+        }
+        if !self.instances.is_empty() {
+            if let Some(b) = best {
+                r.t_max = r.t_max.min(b.0.t);
             }
             if let Some(ih) = self.instances.intersect(&r) {
                 let (mut si, prim) = self.instances.interaction(ray, &ih);
@@ -150,6 +164,24 @@ impl Scene {
                     footprint,
                 });
             }
+        }
+        if let (Some(m), Some(mh)) = (&self.motion, moving) {
+            let (mut si, prim, albedo) = m.interaction(ray, &mh);
+            let mat = self.prims[prim as usize].material;
+            let footprint = self.footprint(ray, &si);
+            crate::material::mix::apply_bump(
+                &self.materials,
+                &self.textures(),
+                mat,
+                &mut si,
+                |si| Scene::tex_coord_from(si, footprint),
+            );
+            return Some(SceneHit {
+                si,
+                prim,
+                albedo,
+                footprint,
+            });
         }
         let (h, prim) = best?;
         let shape = &self.shapes[prim as usize];
@@ -222,6 +254,10 @@ impl Scene {
                     .leaf_any(leaf, r, &mut |i, r| self.hit(i, r, &pre).is_some())
             })
             || (!self.instances.is_empty() && self.instances.intersect_any(ray))
+            || self
+                .motion
+                .as_ref()
+                .is_some_and(|m| m.intersect_any(ray, motion::path_time()))
     }
 
     /// Texture evaluation against this scene's textures.

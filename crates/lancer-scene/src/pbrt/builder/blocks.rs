@@ -50,8 +50,12 @@ impl Builder {
         }
         self.in_world = true;
         self.gs.ctm = Transform::IDENTITY;
-        self.named_coords
-            .insert("world".to_string(), Transform::IDENTITY);
+        self.gs.ctm_end = Transform::IDENTITY;
+        self.gs.active = super::Active::ALL;
+        self.named_coords.insert(
+            "world".to_string(),
+            (Transform::IDENTITY, Transform::IDENTITY),
+        );
         Ok(())
     }
 
@@ -91,12 +95,12 @@ impl Builder {
                 "ObjectInstance inside an object definition",
             ));
         }
-        if is_singular(&self.gs.ctm) {
+        if is_singular(&self.gs.ctm) || is_singular(&self.gs.ctm_end) {
             self.warn(loc, unplaced(&format!("ObjectInstance \"{name}\"")));
             return Ok(());
         }
         self.pending_instances
-            .push((name, self.gs.ctm, loc.clone()));
+            .push((name, self.animated_ctm(), loc.clone()));
         Ok(())
     }
 
@@ -135,6 +139,8 @@ impl Builder {
             Some((_, saved_gs, _)) => {
                 if block == Block::Transform {
                     self.gs.ctm = saved_gs.ctm;
+                    self.gs.ctm_end = saved_gs.ctm_end;
+                    self.gs.active = saved_gs.active;
                 } else {
                     self.gs = saved_gs;
                 }

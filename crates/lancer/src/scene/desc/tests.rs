@@ -1,0 +1,154 @@
+//! The description's validation rules, one message per rule.
+
+use super::*;
+
+fn sphere(radius: f32) -> Geometry {
+    Geometry::Sphere {
+        radius,
+        z_min: -1.0,
+        z_max: 1.0,
+        phi_max: 360.0,
+    }
+}
+
+#[test]
+fn each_geometry_rule_has_one_message() {
+    assert_eq!(sphere(1.0).validate(), Ok(()));
+    assert_eq!(
+        sphere(0.0).validate(),
+        Err(RuleError::on(&["radius"], "radius must be positive, got 0"))
+    );
+    assert_eq!(
+        sphere(f32::NAN).validate(),
+        Err(RuleError::on(
+            &["radius"],
+            "radius must be positive, got NaN"
+        ))
+    );
+    let cone = Geometry::Cone {
+        radius: 1.0,
+        height: -2.0,
+        phi_max: 360.0,
+    };
+    assert_eq!(
+        cone.validate(),
+        Err(RuleError::on(
+            &["height"],
+            "height must be positive, got -2"
+        ))
+    );
+    let paraboloid = Geometry::Paraboloid {
+        radius: 1.0,
+        z_min: -3.0,
+        z_max: -1.0,
+        phi_max: 360.0,
+    };
+    assert_eq!(
+        paraboloid.validate(),
+        Err(RuleError::on(&["z_max"], "zmax must be positive, got -1"))
+    );
+    let flat = Geometry::Hyperboloid {
+        p1: Vec3::new(1.0, 0.0, 0.5),
+        p2: Vec3::new(0.0, 1.0, 0.5),
+        phi_max: 360.0,
+    };
+    assert_eq!(
+        flat.validate(),
+        Err(RuleError::on(
+            &["p1", "p2"],
+            "the hyperboloid's \"p1\" [1, 0, 0.5] and \"p2\" [0, 1, 0.5] must be finite and at \
+             different heights (at one height the swept segment is a flat annulus: use a disk)"
+        ))
+    );
+    let inverted = Geometry::Box {
+        min: Vec3::new(0.0, 0.0, 1.0),
+        max: Vec3::ONE,
+    };
+    assert_eq!(
+        inverted.validate(),
+        Err(RuleError::on(
+            &["min", "max"],
+            "the box's \"min\" [0, 0, 1] must be finite and below its \"max\" [1, 1, 1] on \
+             every axis"
+        ))
+    );
+    let plane = Geometry::Plane {
+        p: Vec3::ZERO,
+        n: Vec3::ZERO,
+    };
+    assert_eq!(
+        plane.validate(),
+        Err(RuleError::on(&["n"], "the plane's normal \"n\" is zero"))
+    );
+    let mut mesh = TriangleMesh::default();
+    mesh.positions.push(crate::math::PackedVec3::ZERO);
+    mesh.indices.extend([0, 0, 1]);
+    let mesh = Geometry::TriangleMesh(Arc::new(mesh));
+    assert!(mesh.is_mesh());
+    assert_eq!(
+        mesh.validate(),
+        Err(RuleError::on(
+            &["indices"],
+            "index 1 out of range for 1 vertices"
+        ))
+    );
+}
+
+#[test]
+fn emission_and_light_rules() {
+    let voxels = ShapeDesc {
+        medium_interface: None,
+        geometry: Geometry::Voxels(Arc::new(
+            crate::shape::VoxelGrid::new([1, 1, 1], vec![1], [Rgb::ONE; 256]).unwrap(),
+        )),
+        object_to_world: Transform::IDENTITY,
+        reverse_orientation: false,
+        material: 0,
+        area_light: Some(AreaLightDesc {
+            l: Rgb::ONE,
+            two_sided: false,
+            spectrum: None,
+        }),
+        alpha: None,
+    };
+    assert_eq!(
+        voxels.validate(),
+        Err(RuleError::on(
+            &[],
+            "a \"voxels\" shape cannot be an area light (AttributeBegin/AttributeEnd around \
+             the AreaLightSource keeps it from the voxels)"
+        ))
+    );
+    let spot = LightDesc::Spot {
+        from: Vec3::ONE,
+        to: Vec3::ONE,
+        intensity: Rgb::ONE,
+        cone_angle: 30.0,
+        cone_delta_angle: 5.0,
+    };
+    assert_eq!(
+        spot.validate(),
+        Err("spot light with \"from\" equal to \"to\"".into())
+    );
+    let sun = LightDesc::Distant {
+        direction: Vec3::ZERO,
+        l: Rgb::ONE,
+    };
+    assert_eq!(
+        sun.validate(),
+        Err("distant light with \"from\" equal to \"to\"".into())
+    );
+    let env = LightDesc::Infinite {
+        light_to_world: Transform::IDENTITY,
+        l: Rgb::ONE,
+        image: Some(Arc::new(crate::image::Image {
+            width: 3,
+            height: 2,
+            texels: vec![crate::math::PackedRgb::ONE; 6],
+        })),
+    };
+    assert_eq!(
+        env.validate(),
+        Err("an environment image must be square (equal-area octahedral) or twice as wide as high (latitude-longitude), not 3×2".into())
+    );
+}
