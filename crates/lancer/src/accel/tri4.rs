@@ -38,6 +38,24 @@ impl Tri4 {
         t
     }
 
+    /// A packet of the triangles `tris` (up to four, as vertex indices into `positions`, each
+    /// in range), lane k with id `first + k`: the vertices are copied in from the shared
+    /// array, the same values [`Tri4::new`] would hold.
+    #[inline(always)]
+    pub fn gather(positions: &[PackedVec3], tris: &[[u32; 3]], first: u32) -> Tri4 {
+        let mut t = Tri4::EMPTY;
+        for (lane, v) in tris.iter().take(4).enumerate() {
+            for (k, &i) in v.iter().enumerate() {
+                let p = positions[i as usize];
+                t.p[k][0][lane] = p.x;
+                t.p[k][1][lane] = p.y;
+                t.p[k][2][lane] = p.z;
+            }
+            t.ids[lane] = first + lane as u32;
+        }
+        t
+    }
+
     /// A packet that holds no triangle.
     pub const EMPTY: Tri4 = Tri4 {
         p: [[[0.0; 4]; 3]; 3],

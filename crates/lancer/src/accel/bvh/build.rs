@@ -471,6 +471,10 @@ impl Bvh {
         let mut out = Out::default();
         let root = build_rec(&mut out, &mut refs, 0, all, 0, None);
         let indices = refs.par_iter().map(PrimRef::index).collect();
+        drop(refs);
+        // The arrays grew by doubling: give back what they hold in reserve.
+        out.nodes.shrink_to_fit();
+        out.leaves.shrink_to_fit();
         Bvh {
             nodes: out.nodes,
             leaves: out.leaves,
