@@ -26,7 +26,14 @@ impl IndexedTris {
     /// Builds the tree (in parallel on the current rayon pool) over `tris`, triangles of
     /// `positions` none of which is degenerate, with every index in range. Returns the tree and
     /// for each slot the index of its triangle in `tris`.
+    ///
+    /// Panics if an index is out of range (the packets' gathers rely on it).
     pub fn build(positions: Vec<PackedVec3>, tris: Vec<[u32; 3]>) -> (IndexedTris, Vec<u32>) {
+        let n = positions.len();
+        assert!(
+            tris.iter().flatten().all(|&i| (i as usize) < n),
+            "a triangle's vertex index is out of range"
+        );
         let bounds: Vec<Bounds3> = tris
             .par_iter()
             .map(|t| {

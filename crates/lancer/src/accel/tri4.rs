@@ -38,11 +38,19 @@ impl Tri4 {
         t
     }
 
-    /// A packet of the triangles `tris` (up to four, as vertex indices into `positions`, each
+    /// A packet of the triangles `tris` (one to four, as vertex indices into `positions`, each
     /// in range), lane k with id `first + k`: the vertices are copied in from the shared
-    /// array, the same values [`Tri4::new`] would hold.
+    /// array, the same values [`Tri4::new`] would hold (unused lanes repeat the last
+    /// triangle; their ids mark them unused).
     #[inline(always)]
     pub fn gather(positions: &[PackedVec3], tris: &[[u32; 3]], first: u32) -> Tri4 {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+        if positions.len() <= (i32::MAX / 3) as usize && !tris.is_empty() {
+            // SAFETY: AVX2 is enabled (cfg); every index read is below `tris.len()` (lanes
+            // are clamped to the last triangle) and every vertex index below
+            // `positions.len()` (the caller's contract), whose 3·i + 2 fits an i32 (checked).
+            return unsafe { Self::gather_avx2(positions, tris, first) };
+        }
         let mut t = Tri4::EMPTY;
         for (lane, v) in tris.iter().take(4).enumerate() {
             for (k, &i) in v.iter().enumerate() {
@@ -51,6 +59,35 @@ impl Tri4 {
                 t.p[k][1][lane] = p.y;
                 t.p[k][2][lane] = p.z;
             }
+            t.ids[lane] = first + lane as u32;
+        }
+        t
+    }
+
+    /// [`Tri4::gather`] by AVX2 gathers: per vertex of the four triangles, one gather of its
+    /// indices and one per axis of its coordinates.
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+    #[inline(always)]
+    unsafe fn gather_avx2(positions: &[PackedVec3], tris: &[[u32; 3]], first: u32) -> Tri4 {
+        use std::arch::x86_64::*;
+        let n = tris.len().min(4);
+        let mut t = Tri4::EMPTY;
+        // SAFETY: see `gather`; the pointers are read only at offsets it keeps in range.
+        unsafe {
+            let lane = _mm_min_epi32(_mm_setr_epi32(0, 1, 2, 3), _mm_set1_epi32(n as i32 - 1));
+            let tri_off = _mm_add_epi32(lane, _mm_add_epi32(lane, lane));
+            let tp = tris.as_ptr() as *const i32;
+            let pp = positions.as_ptr() as *const f32;
+            for k in 0..3 {
+                let vi = _mm_i32gather_epi32::<4>(tp.add(k), tri_off);
+                let off = _mm_add_epi32(vi, _mm_add_epi32(vi, vi));
+                for a in 0..3 {
+                    let x = _mm_i32gather_ps::<4>(pp.add(a), off);
+                    _mm_storeu_ps(t.p[k][a].as_mut_ptr(), x);
+                }
+            }
+        }
+        for lane in 0..n {
             t.ids[lane] = first + lane as u32;
         }
         t
