@@ -1,9 +1,11 @@
 //! Triangles that share their vertices, in a BVH whose leaves name their triangles instead of
 //! copying them: per triangle the three indices of its vertices (12 bytes) beside the tree,
-//! where a packet of copied vertices takes 40. A leaf's triangles are gathered into a [`Tri4`]
-//! packet when a ray reaches it, so that the test (and every hit it finds) is the packet's.
+//! where a packet of copied vertices takes 40. A leaf's triangles are gathered into vector
+//! lanes when a ray reaches it and tested as a [`super::Tri4`] packet tests them, so that
+//! every hit it finds is the packet's, bit for bit.
 
-use super::{Bvh, Tri4};
+use super::Bvh;
+use super::tri4::IndexedTri4;
 use crate::math::{Bounds3, PackedVec3, Vec3};
 use crate::ray::Ray;
 use crate::shape::{ShapeHit, TriangleRay};
@@ -103,15 +105,21 @@ impl IndexedTris {
         self.bvh.bounds()
     }
 
-    /// Leaf `leaf`'s triangles as a packet; lane k holds slot `first + k`.
+    /// Leaf `leaf`'s triangles as a packet, and the slot of its first (lane k holds slot
+    /// `first + k`).
     #[inline(always)]
-    fn packet(&self, leaf: u32) -> Tri4 {
+    fn packet(&self, leaf: u32) -> (IndexedTri4<'_>, u32) {
         let range = self.bvh.leaf_range(leaf);
-        Tri4::gather(
-            &self.positions,
-            &self.tris[range.clone()],
-            range.start as u32,
-        )
+        let first = range.start as u32;
+        debug_assert!(range.end <= self.tris.len());
+        // SAFETY: the leaves' ranges split 0..tris.len(): the tree and `tris` are built
+        // together (`build`) and never changed.
+        let tris = unsafe { self.tris.get_unchecked(range) };
+        let p = IndexedTri4 {
+            positions: &self.positions,
+            tris,
+        };
+        (p, first)
     }
 
     /// The nearest hit with 0 < t < `ray.t_max`: (slot of the triangle, hit).
@@ -119,9 +127,9 @@ impl IndexedTris {
     pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<(u32, ShapeHit)> {
         let mut best = None;
         self.bvh.intersect_leaves(ray, |leaf, r| {
-            let p = self.packet(leaf);
+            let (p, first) = self.packet(leaf);
             let (lane, h) = p.intersect(r, pre)?;
-            best = Some((p.ids[lane], h));
+            best = Some((first + lane as u32, h));
             Some(h.t)
         });
         best
@@ -131,7 +139,7 @@ impl IndexedTris {
     #[inline]
     pub fn intersect_any(&self, ray: &Ray, pre: &TriangleRay) -> bool {
         self.bvh
-            .intersect_any_leaves(ray, |leaf, r| self.packet(leaf).intersect_any(r, pre))
+            .intersect_any_leaves(ray, |leaf, r| self.packet(leaf).0.intersect_any(r, pre))
     }
 }
 

@@ -149,18 +149,18 @@ impl Scene {
         if let Some((_, h)) = best_tri {
             r.t_max = h.t;
         }
-        if !self.instances.is_empty() {
-            if let Some(ih) = self.instances.intersect(&r) {
-                let (mut si, prim) = self.instances.interaction(ray, &ih);
-                let m = self.prims[prim as usize].material;
-                crate::material::apply_bump(&self.materials, &self.textures(), m, &mut si);
-                // Instanced objects are triangle meshes, which carry no colour of their own.
-                return Some(SceneHit {
-                    si,
-                    prim,
-                    albedo: None,
-                });
-            }
+        if !self.instances.is_empty()
+            && let Some(ih) = self.instances.intersect(&r)
+        {
+            let (mut si, prim) = self.instances.interaction(ray, &ih);
+            let m = self.prims[prim as usize].material;
+            crate::material::apply_bump(&self.materials, &self.textures(), m, &mut si);
+            // Instanced objects are triangle meshes, which carry no colour of their own.
+            return Some(SceneHit {
+                si,
+                prim,
+                albedo: None,
+            });
         }
         if let Some((slot, h)) = best_tri {
             let (mut si, prim) = self.tris.interaction(ray, slot, &h);
