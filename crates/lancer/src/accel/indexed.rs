@@ -9,7 +9,6 @@ use super::tri4::IndexedTri4;
 use crate::math::{Bounds3, PackedVec3, Vec3};
 use crate::ray::Ray;
 use crate::shape::{ShapeHit, TriangleRay};
-use rayon::prelude::*;
 
 /// Vertex positions and triangles (three vertex indices each) in a BVH. The triangles are kept
 /// in the tree's leaf order: a triangle is named by its slot in that order.
@@ -36,15 +35,10 @@ impl IndexedTris {
             tris.iter().flatten().all(|&i| (i as usize) < n),
             "a triangle's vertex index is out of range"
         );
-        let bounds: Vec<Bounds3> = tris
-            .par_iter()
-            .map(|t| {
-                let [a, b, c] = t.map(|i| Vec3::from(positions[i as usize]));
-                Bounds3::from_point(a).union_point(b).union_point(c)
-            })
-            .collect();
-        let mut bvh = Bvh::build(&bounds);
-        drop(bounds);
+        let mut bvh = Bvh::build_with(tris.len(), |k| {
+            let [a, b, c] = tris[k].map(|i| Vec3::from(positions[i as usize]));
+            Bounds3::from_point(a).union_point(b).union_point(c)
+        });
         let order = std::mem::take(&mut bvh.indices);
         let sorted: Vec<[u32; 3]> = order.iter().map(|&i| tris[i as usize]).collect();
         drop(tris);
