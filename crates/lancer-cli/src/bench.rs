@@ -1,6 +1,6 @@
 //! `lancer bench rays MESH`: the BVH's build time and ray throughput on one mesh, with rays
 //! generated as `embree_rays.py` (the Embree peer) generates them, so that the two can be
-//! compared line by line.
+//! compared line by line; `lancer bench scene SCENE` is in `bench_scene.rs`.
 
 use crate::cli_error::CliError;
 use clap::{Args, Subcommand};
@@ -18,6 +18,9 @@ use std::time::Instant;
 pub enum BenchCommand {
     /// Build a BVH over a mesh and time primary, incoherent and shadow rays.
     Rays(RaysArgs),
+    /// Render a scene and report time per phase, rays/s, samples/s, peak memory and the
+    /// relMSE against a reference image.
+    Scene(crate::bench_scene::SceneArgs),
 }
 
 /// Options of `lancer bench rays`.
@@ -40,6 +43,7 @@ pub struct RaysArgs {
 pub fn run(cmd: BenchCommand) -> Result<(), CliError> {
     match cmd {
         BenchCommand::Rays(args) => rays(args),
+        BenchCommand::Scene(args) => crate::bench_scene::run(args),
     }
 }
 

@@ -6,6 +6,7 @@
 //! image, an interrupted render).
 
 mod bench;
+mod bench_scene;
 mod checkpoint;
 mod cli_error;
 mod completions;
@@ -51,7 +52,8 @@ enum Command {
     Info(info::InfoArgs),
     /// Merge the parts of a split render (`render --split i/N`) into the final image.
     Merge(merge::MergeArgs),
-    /// Measure the renderer's parts (`bench rays MESH`: BVH build and ray throughput).
+    /// Measure the renderer's parts (`bench rays MESH`: BVH build and ray throughput; `bench
+    /// scene SCENE`: a render's phases, throughput, peak memory and relMSE).
     #[command(subcommand)]
     Bench(bench::BenchCommand),
     /// Compare, convert and inspect images (`img diff`, `img convert`, `img info`).

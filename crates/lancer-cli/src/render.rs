@@ -34,6 +34,8 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     let build_s = t_build.elapsed().as_secs_f64();
     let load_s = t0.elapsed().as_secs_f64();
     let settings = render_settings(&desc, &plan.pixels, args.spectral_mode());
+    // The scene holds what it needs: the description's meshes need not stay for the render.
+    drop(desc);
     let rendered = match render(&scene, &settings, &args, &mut plan)? {
         Outcome::Done(r) => r,
         Outcome::Interrupted(message) => {

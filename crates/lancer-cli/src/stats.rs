@@ -19,8 +19,8 @@ pub enum StatsFormat {
 pub struct SceneMemory {
     /// Triangle meshes: positions, normals, uvs, indices.
     pub mesh_bytes: u64,
-    /// Primitive records: one shape and one material/emission record per primitive (a
-    /// triangle's record holds its three world-space vertices).
+    /// Primitive records: shapes and material/emission records (a plain mesh's triangles
+    /// share one record; see `lancer::scene::memory::SceneMemory::primitives`).
     pub primitive_bytes: u64,
     /// The acceleration structure.
     pub bvh_bytes: u64,
@@ -49,9 +49,9 @@ impl SceneMemory {
             texture_bytes: m.images as u64,
             media_bytes: m.media as u64,
             other_bytes: (m.lights + m.materials + m.textures + m.instances) as u64,
-            triangles: scene.meshes.iter().map(|m| m.triangle_count() as u64).sum(),
-            primitives: scene.shapes.len() as u64,
-            bvh_nodes: scene.bvh().node_count() as u64,
+            triangles: scene.triangle_count() as u64,
+            primitives: (scene.shapes.len() + scene.tris.len()) as u64,
+            bvh_nodes: scene.bvh_node_count() as u64,
         }
     }
 

@@ -189,6 +189,11 @@ fn read(path: &Path) -> Result<Loaded, CliError> {
     })
 }
 
+/// The linear pixels of the image at `path`, as [`read`] reads them.
+pub(crate) fn read_picture(path: &Path) -> Result<Picture, CliError> {
+    Ok(read(path)?.picture)
+}
+
 /// Refuses an output whose extension names no format lancer writes, before any work.
 fn check_output_format(path: &Path) -> Result<(), CliError> {
     match ImageFormat::from_path(path) {

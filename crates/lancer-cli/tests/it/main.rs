@@ -3,6 +3,7 @@
 
 mod common;
 
+mod bench_scene;
 mod course_scenes;
 mod gbuffer;
 mod gltf;

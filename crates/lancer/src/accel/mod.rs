@@ -2,10 +2,12 @@
 //! testing every object.
 
 mod bvh;
+mod indexed;
 mod mesh;
 mod simd;
 mod tri4;
 
 pub use bvh::{Bvh, MAX_LEAF};
+pub use indexed::IndexedTris;
 pub use mesh::MeshBvh;
 pub use tri4::Tri4;

@@ -26,6 +26,11 @@ mod imp {
             // SAFETY: `a` is four readable floats; the load has no alignment requirement.
             F4(unsafe { _mm_loadu_ps(a.as_ptr()) })
         }
+        /// The lanes of an SSE register.
+        #[inline(always)]
+        pub fn from_m128(v: __m128) -> F4 {
+            F4(v)
+        }
         #[inline(always)]
         pub fn to_array(self) -> [f32; 4] {
             let mut out = [0.0f32; 4];

@@ -68,142 +68,271 @@ impl Tri4 {
     /// the lowest lane wins, as when the lanes are tested one after another.
     #[inline]
     pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<(usize, ShapeHit)> {
-        let (mut mask, t, b1, b2, redo) = self.test(ray, pre);
-        let mut best: Option<(usize, ShapeHit)> = None;
-        let mut t_max = ray.t_max;
-        for lane in 0..4 {
-            let bit = 1 << lane;
-            if redo & bit != 0 {
-                mask &= !bit;
-                let [p0, p1, p2] = self.vertices(lane);
-                let r = Ray { t_max, ..*ray };
-                if let Some(h) = intersect_triangle_with(&r, pre, p0, p1, p2) {
-                    t_max = h.t;
-                    best = Some((lane, h));
-                }
-            } else if mask & bit != 0 && t[lane] < t_max {
-                t_max = t[lane];
-                best = Some((
-                    lane,
-                    ShapeHit {
-                        t: t[lane],
-                        u: b1[lane],
-                        v: b2[lane],
-                    },
-                ));
-            }
-        }
-        best
+        let found = test(ray, pre, self.permuted(pre), self.used());
+        nearest(ray, pre, found, |lane| self.vertices(lane))
     }
 
     /// True if any of the four is hit with 0 < t < `ray.t_max`.
     #[inline]
     pub fn intersect_any(&self, ray: &Ray, pre: &TriangleRay) -> bool {
-        let (mask, _, _, _, redo) = self.test(ray, pre);
-        if mask & !redo != 0 {
-            return true;
-        }
-        (0..4).any(|lane| {
-            redo & (1 << lane) != 0 && {
-                let [p0, p1, p2] = self.vertices(lane);
-                intersect_triangle_with(ray, pre, p0, p1, p2).is_some()
-            }
-        })
+        let found = test(ray, pre, self.permuted(pre), self.used());
+        any(ray, pre, found, |lane| self.vertices(lane))
     }
 
-    /// The four tests: (hit mask, t, b₁, b₂, lanes to redo with the scalar test).
+    /// The vertices' coordinates in the ray's axis order (kx, ky, kz), as lanes:
+    /// `[vertex][axis]`.
     #[inline(always)]
-    fn test(&self, ray: &Ray, pre: &TriangleRay) -> (u32, [f32; 4], [f32; 4], [f32; 4], u32) {
+    fn permuted(&self, pre: &TriangleRay) -> [[F4; 3]; 3] {
         let kz = pre.kz();
         let (kx, ky) = pre.kxy();
-        let o = ray.o.to_array();
-        let (ox, oy, oz) = (F4::splat(o[kx]), F4::splat(o[ky]), F4::splat(o[kz]));
-        let s = pre.shear();
-        let (sx, sy, sz) = (F4::splat(s.x), F4::splat(s.y), F4::splat(s.z));
-        // Translate to the ray's origin, permute (kx, ky, kz), shear in x and y:
-        // x' = x + S_x·z, y' = y + S_y·z.
-        let vert = |k: usize| {
-            let z = F4::load(&self.p[k][kz]).sub(oz);
-            let x = F4::load(&self.p[k][kx]).sub(ox).add(sx.mul(z));
-            let y = F4::load(&self.p[k][ky]).sub(oy).add(sy.mul(z));
-            (x, y, z)
-        };
-        let (p0x, p0y, p0z) = vert(0);
-        let (p1x, p1y, p1z) = vert(1);
-        let (p2x, p2y, p2z) = vert(2);
-        // Edge functions e_i = a·b − c·d by Kahan's difference of products:
-        // cd = c·d, err = fma(−c, d, cd), dop = fma(a, b, −cd), e = dop + err.
-        let dop = |a: F4, b: F4, c: F4, d: F4| {
-            let cd = c.mul(d);
-            let err = c.neg_mul_add(d, cd);
-            a.mul_sub(b, cd).add(err)
-        };
-        let e0 = dop(p1x, p2y, p1y, p2x);
-        let e1 = dop(p2x, p0y, p2y, p0x);
-        let e2 = dop(p0x, p1y, p0y, p1x);
-        let zero = F4::splat(0.0);
-        let used = self.used();
-        let redo = e0.eq(zero).or(e1.eq(zero)).or(e2.eq(zero)).bits() & used;
-        // Same signs: not (some negative and some positive).
-        let some_neg = e0.lt(zero).or(e1.lt(zero)).or(e2.lt(zero));
-        let some_pos = e0.gt(zero).or(e1.gt(zero)).or(e2.gt(zero));
-        let edges_ok = some_neg.and(some_pos).bits() ^ 0xf;
-        if edges_ok & used & !redo == 0 {
-            // The ray passes outside every triangle (the common case): stop early.
-            return (0, [0.0; 4], [0.0; 4], [0.0; 4], redo);
-        }
-        let det = e0.add(e1).add(e2);
-        let (p0z, p1z, p2z) = (p0z.mul(sz), p1z.mul(sz), p2z.mul(sz));
-        // t_scaled = e₀z₀ + e₁z₁ + e₂z₂, compared with t_max·det on det's side.
-        let t_scaled = e0.mul(p0z).add(e1.mul(p1z)).add(e2.mul(p2z));
-        let tmd = F4::splat(ray.t_max).mul(det);
-        let neg_ok = det.lt(zero).and(t_scaled.lt(zero)).and(t_scaled.ge(tmd));
-        let pos_ok = det.gt(zero).and(t_scaled.gt(zero)).and(t_scaled.le(tmd));
-        let inside: M4 = neg_ok.or(pos_ok).and_not(some_neg.and(some_pos));
-        let mut mask = inside.bits() & used & !redo;
-        if mask == 0 {
-            return (0, [0.0; 4], [0.0; 4], [0.0; 4], redo);
-        }
-        let inv_det = F4::splat(1.0).div(det);
-        let t = t_scaled.mul(inv_det);
-        // Conservative bound on t's rounding error (PBRT-v4 §6.8.7): t must exceed δ_t.
-        let max3 = |a: F4, b: F4, c: F4| {
-            let (a, b, c) = (a.abs(), b.abs(), c.abs());
-            c.max(b).max(a)
-        };
-        let max_zt = max3(p0z, p1z, p2z);
-        let max_xt = max3(p0x, p1x, p2x);
-        let max_yt = max3(p0y, p1y, p2y);
-        let delta_z = F4::splat(gamma(3)).mul(max_zt);
-        let g5 = F4::splat(gamma(5));
-        let delta_x = g5.mul(max_xt.add(max_zt));
-        let delta_y = g5.mul(max_yt.add(max_zt));
-        // δ_e = 2(γ₂·max_x·max_y + δ_y·max_x + δ_x·max_y)
-        let delta_e = F4::splat(2.0).mul(
-            F4::splat(gamma(2))
-                .mul(max_xt)
-                .mul(max_yt)
-                .add(delta_y.mul(max_xt))
-                .add(delta_x.mul(max_yt)),
-        );
-        let max_e = max3(e0, e1, e2);
-        // δ_t = 3(γ₃·max_e·max_z + δ_e·max_z + δ_z·max_e)·|1/det|
-        let delta_t = F4::splat(3.0)
-            .mul(
-                F4::splat(gamma(3))
-                    .mul(max_e)
-                    .mul(max_zt)
-                    .add(delta_e.mul(max_zt))
-                    .add(delta_z.mul(max_e)),
-            )
-            .mul(inv_det.abs());
-        mask &= t.gt(delta_t).bits();
-        (
-            mask,
-            t.to_array(),
-            e1.mul(inv_det).to_array(),
-            e2.mul(inv_det).to_array(),
-            redo,
-        )
+        [0, 1, 2].map(|k| {
+            [
+                F4::load(&self.p[k][kx]),
+                F4::load(&self.p[k][ky]),
+                F4::load(&self.p[k][kz]),
+            ]
+        })
     }
+}
+
+/// Up to four triangles named by their vertex indices into a shared position array, tested as
+/// a [`Tri4`] packet would test them (the same operations on the same values, so the same hits
+/// bit for bit) without copying their vertices into one.
+#[derive(Clone, Copy, Debug)]
+pub struct IndexedTri4<'a> {
+    /// The shared vertex positions.
+    pub positions: &'a [PackedVec3],
+    /// One to four triangles, each as three indices into `positions` (all in range).
+    pub tris: &'a [[u32; 3]],
+}
+
+impl IndexedTri4<'_> {
+    /// The nearest hit with 0 < t < `ray.t_max` among the triangles: (index in `tris`, hit).
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<(usize, ShapeHit)> {
+        let found = test(ray, pre, self.permuted(pre), self.used());
+        nearest(ray, pre, found, |lane| self.vertices(lane))
+    }
+
+    /// True if any of the triangles is hit with 0 < t < `ray.t_max`.
+    #[inline]
+    pub fn intersect_any(&self, ray: &Ray, pre: &TriangleRay) -> bool {
+        let found = test(ray, pre, self.permuted(pre), self.used());
+        any(ray, pre, found, |lane| self.vertices(lane))
+    }
+
+    /// Lanes holding triangles, as a mask.
+    #[inline(always)]
+    fn used(&self) -> u32 {
+        (1u32 << self.tris.len().min(4)) - 1
+    }
+
+    /// Lane `lane`'s vertices.
+    #[inline]
+    fn vertices(&self, lane: usize) -> [Vec3; 3] {
+        self.tris[lane].map(|i| Vec3::from(self.positions[i as usize]))
+    }
+
+    /// The vertices' coordinates in the ray's axis order, as lanes (unused lanes repeat the
+    /// last triangle).
+    #[inline(always)]
+    fn permuted(&self, pre: &TriangleRay) -> [[F4; 3]; 3] {
+        let kz = pre.kz();
+        let (kx, ky) = pre.kxy();
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+        if self.positions.len() <= (i32::MAX / 3) as usize && !self.tris.is_empty() {
+            // SAFETY: AVX2 is enabled (cfg); every triangle read is below `tris.len()` (lanes
+            // are clamped to the last one) and every vertex index below `positions.len()`
+            // (the type's contract), whose 3·i + 2 fits an i32 (checked).
+            return unsafe { self.gather_avx2([kx, ky, kz]) };
+        }
+        let n = self.tris.len().min(4);
+        let at = |lane: usize, k: usize, axis: usize| {
+            let v = self.tris[lane.min(n - 1)];
+            self.positions[v[k] as usize][axis]
+        };
+        [0, 1, 2].map(|k| [kx, ky, kz].map(|a| F4::load(&std::array::from_fn(|l| at(l, k, a)))))
+    }
+
+    /// [`IndexedTri4::permuted`] by AVX2 gathers: per vertex of the four triangles, one gather
+    /// of its indices and one per axis of its coordinates.
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+    #[inline(always)]
+    unsafe fn gather_avx2(&self, axes: [usize; 3]) -> [[F4; 3]; 3] {
+        use std::arch::x86_64::*;
+        let n = self.tris.len().min(4);
+        // SAFETY: see `permuted`: the offsets read stay inside both arrays.
+        unsafe {
+            let lane = _mm_min_epi32(_mm_setr_epi32(0, 1, 2, 3), _mm_set1_epi32(n as i32 - 1));
+            let tri_off = _mm_add_epi32(lane, _mm_add_epi32(lane, lane));
+            let tp = self.tris.as_ptr() as *const i32;
+            let pp = self.positions.as_ptr() as *const f32;
+            [0, 1, 2].map(|k| {
+                let vi = _mm_i32gather_epi32::<4>(tp.add(k), tri_off);
+                let off = _mm_add_epi32(vi, _mm_add_epi32(vi, vi));
+                axes.map(|a| F4::from_m128(_mm_i32gather_ps::<4>(pp.add(a), off)))
+            })
+        }
+    }
+}
+
+/// The nearest of the hits `found` by [`test`]: (lane, hit), lanes to redo tested by the scalar
+/// test on `vertices(lane)`. Among equal t the lowest lane wins, as when the lanes are tested
+/// one after another.
+#[inline(always)]
+fn nearest(
+    ray: &Ray,
+    pre: &TriangleRay,
+    found: (u32, [f32; 4], [f32; 4], [f32; 4], u32),
+    vertices: impl Fn(usize) -> [Vec3; 3],
+) -> Option<(usize, ShapeHit)> {
+    let (mut mask, t, b1, b2, redo) = found;
+    let mut best: Option<(usize, ShapeHit)> = None;
+    let mut t_max = ray.t_max;
+    for lane in 0..4 {
+        let bit = 1 << lane;
+        if redo & bit != 0 {
+            mask &= !bit;
+            let [p0, p1, p2] = vertices(lane);
+            let r = Ray { t_max, ..*ray };
+            if let Some(h) = intersect_triangle_with(&r, pre, p0, p1, p2) {
+                t_max = h.t;
+                best = Some((lane, h));
+            }
+        } else if mask & bit != 0 && t[lane] < t_max {
+            t_max = t[lane];
+            best = Some((
+                lane,
+                ShapeHit {
+                    t: t[lane],
+                    u: b1[lane],
+                    v: b2[lane],
+                },
+            ));
+        }
+    }
+    best
+}
+
+/// True if [`test`] `found` a hit, lanes to redo tested by the scalar test on
+/// `vertices(lane)`.
+#[inline(always)]
+fn any(
+    ray: &Ray,
+    pre: &TriangleRay,
+    found: (u32, [f32; 4], [f32; 4], [f32; 4], u32),
+    vertices: impl Fn(usize) -> [Vec3; 3],
+) -> bool {
+    let (mask, _, _, _, redo) = found;
+    if mask & !redo != 0 {
+        return true;
+    }
+    (0..4).any(|lane| {
+        redo & (1 << lane) != 0 && {
+            let [p0, p1, p2] = vertices(lane);
+            intersect_triangle_with(ray, pre, p0, p1, p2).is_some()
+        }
+    })
+}
+
+/// The four tests on the lanes `used` of vertices `v` (`[vertex][axis]`, axes in the ray's
+/// order kx, ky, kz): (hit mask, t, b₁, b₂, lanes to redo with the scalar test).
+#[inline(always)]
+fn test(
+    ray: &Ray,
+    pre: &TriangleRay,
+    v: [[F4; 3]; 3],
+    used: u32,
+) -> (u32, [f32; 4], [f32; 4], [f32; 4], u32) {
+    let kz = pre.kz();
+    let (kx, ky) = pre.kxy();
+    let o = ray.o.to_array();
+    let (ox, oy, oz) = (F4::splat(o[kx]), F4::splat(o[ky]), F4::splat(o[kz]));
+    let s = pre.shear();
+    let (sx, sy, sz) = (F4::splat(s.x), F4::splat(s.y), F4::splat(s.z));
+    // Translate to the ray's origin, permute (kx, ky, kz), shear in x and y:
+    // x' = x + S_x·z, y' = y + S_y·z.
+    let vert = |k: usize| {
+        let [x, y, z] = v[k];
+        let z = z.sub(oz);
+        let x = x.sub(ox).add(sx.mul(z));
+        let y = y.sub(oy).add(sy.mul(z));
+        (x, y, z)
+    };
+    let (p0x, p0y, p0z) = vert(0);
+    let (p1x, p1y, p1z) = vert(1);
+    let (p2x, p2y, p2z) = vert(2);
+    // Edge functions e_i = a·b − c·d by Kahan's difference of products:
+    // cd = c·d, err = fma(−c, d, cd), dop = fma(a, b, −cd), e = dop + err.
+    let dop = |a: F4, b: F4, c: F4, d: F4| {
+        let cd = c.mul(d);
+        let err = c.neg_mul_add(d, cd);
+        a.mul_sub(b, cd).add(err)
+    };
+    let e0 = dop(p1x, p2y, p1y, p2x);
+    let e1 = dop(p2x, p0y, p2y, p0x);
+    let e2 = dop(p0x, p1y, p0y, p1x);
+    let zero = F4::splat(0.0);
+    let redo = e0.eq(zero).or(e1.eq(zero)).or(e2.eq(zero)).bits() & used;
+    // Same signs: not (some negative and some positive).
+    let some_neg = e0.lt(zero).or(e1.lt(zero)).or(e2.lt(zero));
+    let some_pos = e0.gt(zero).or(e1.gt(zero)).or(e2.gt(zero));
+    let edges_ok = some_neg.and(some_pos).bits() ^ 0xf;
+    if edges_ok & used & !redo == 0 {
+        // The ray passes outside every triangle (the common case): stop early.
+        return (0, [0.0; 4], [0.0; 4], [0.0; 4], redo);
+    }
+    let det = e0.add(e1).add(e2);
+    let (p0z, p1z, p2z) = (p0z.mul(sz), p1z.mul(sz), p2z.mul(sz));
+    // t_scaled = e₀z₀ + e₁z₁ + e₂z₂, compared with t_max·det on det's side.
+    let t_scaled = e0.mul(p0z).add(e1.mul(p1z)).add(e2.mul(p2z));
+    let tmd = F4::splat(ray.t_max).mul(det);
+    let neg_ok = det.lt(zero).and(t_scaled.lt(zero)).and(t_scaled.ge(tmd));
+    let pos_ok = det.gt(zero).and(t_scaled.gt(zero)).and(t_scaled.le(tmd));
+    let inside: M4 = neg_ok.or(pos_ok).and_not(some_neg.and(some_pos));
+    let mut mask = inside.bits() & used & !redo;
+    if mask == 0 {
+        return (0, [0.0; 4], [0.0; 4], [0.0; 4], redo);
+    }
+    let inv_det = F4::splat(1.0).div(det);
+    let t = t_scaled.mul(inv_det);
+    // Conservative bound on t's rounding error (PBRT-v4 §6.8.7): t must exceed δ_t.
+    let max3 = |a: F4, b: F4, c: F4| {
+        let (a, b, c) = (a.abs(), b.abs(), c.abs());
+        c.max(b).max(a)
+    };
+    let max_zt = max3(p0z, p1z, p2z);
+    let max_xt = max3(p0x, p1x, p2x);
+    let max_yt = max3(p0y, p1y, p2y);
+    let delta_z = F4::splat(gamma(3)).mul(max_zt);
+    let g5 = F4::splat(gamma(5));
+    let delta_x = g5.mul(max_xt.add(max_zt));
+    let delta_y = g5.mul(max_yt.add(max_zt));
+    // δ_e = 2(γ₂·max_x·max_y + δ_y·max_x + δ_x·max_y)
+    let delta_e = F4::splat(2.0).mul(
+        F4::splat(gamma(2))
+            .mul(max_xt)
+            .mul(max_yt)
+            .add(delta_y.mul(max_xt))
+            .add(delta_x.mul(max_yt)),
+    );
+    let max_e = max3(e0, e1, e2);
+    // δ_t = 3(γ₃·max_e·max_z + δ_e·max_z + δ_z·max_e)·|1/det|
+    let delta_t = F4::splat(3.0)
+        .mul(
+            F4::splat(gamma(3))
+                .mul(max_e)
+                .mul(max_zt)
+                .add(delta_e.mul(max_zt))
+                .add(delta_z.mul(max_e)),
+        )
+        .mul(inv_det.abs());
+    mask &= t.gt(delta_t).bits();
+    (
+        mask,
+        t.to_array(),
+        e1.mul(inv_det).to_array(),
+        e2.mul(inv_det).to_array(),
+        redo,
+    )
 }

@@ -10,6 +10,7 @@ use super::prim::{
     AreaEmission, BuildError, NO_SPECTRUM, PrimInfo, check_media, check_shape, mesh_triangles,
     prim_media,
 };
+use super::tris::SceneTrisBuilder;
 use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
 use crate::light::{
@@ -37,13 +38,17 @@ impl Scene {
         let flat = flatten_instances(desc, materials.len())?;
         let made = primitives(&flat.shapes, materials.len())?;
         let meshes = made.meshes;
+        let mut tris = made.tris.build();
         let (shapes, mut prims, bvh, unbounded) = bvh_order(made.shapes, made.prims);
         let packets = packets(&bvh, &shapes, &prims);
         let mut instances = flat.instances;
         let mut moving_prims = Vec::new();
         let mut motion =
             super::motion::Motion::build(desc, materials.len(), &mut moving_prims, shapes_of)?;
-        let mut bounds = bvh.bounds().union(&instances.bounds());
+        let mut bounds = bvh
+            .bounds()
+            .union(&tris.bounds())
+            .union(&instances.bounds());
         if let Some(m) = &motion {
             bounds = bounds.union(&m.bounds());
         }
@@ -52,7 +57,10 @@ impl Scene {
         }
         let (_, scene_radius) = bounds.bounding_sphere();
         let lights = lights(desc, scene_radius, &shapes, &mut prims, &made.area_spectra)?;
-        // The instanced meshes' entries, renumbered to follow the shapes'.
+        // The plain meshes' entries, then the instanced meshes', renumbered to follow the
+        // shapes'.
+        tris.offset_prims(prims.len() as u32);
+        prims.extend(made.tri_prims);
         let base = prims.len() as u32;
         prims.extend(flat.object_prims);
         for o in &mut instances.objects {
@@ -80,6 +88,7 @@ impl Scene {
             shapes,
             prims,
             meshes,
+            tris,
             lights: lights.lights,
             light_spectra: lights.spectra,
             light_distribution: lights.distribution,
@@ -183,10 +192,15 @@ struct Primitives {
     shapes: Vec<Shape>,
     /// Its material, emission and alpha.
     prims: Vec<PrimInfo>,
-    /// The triangle meshes, world space.
+    /// The triangle meshes whose triangles are primitives of their own (emitting or
+    /// alpha-tested), world space.
     meshes: Vec<TriangleMesh>,
     /// The distinct spectra of the area lights ([`AreaEmission::spectrum`] indexes them).
     area_spectra: Vec<Measured>,
+    /// The other triangle meshes: no record per triangle.
+    tris: SceneTrisBuilder,
+    /// One record per mesh in `tris`.
+    tri_prims: Vec<PrimInfo>,
 }
 
 /// Phase 2. Each shape checked and moved to world space: meshes become their triangles, a
@@ -197,6 +211,8 @@ fn primitives(list: &[Placed<'_>], n_materials: usize) -> Result<Primitives, Bui
         prims: Vec::new(),
         meshes: Vec::new(),
         area_spectra: Vec::new(),
+        tris: SceneTrisBuilder::default(),
+        tri_prims: Vec::new(),
     };
     for &(index, sd, instance_xf) in list {
         check_shape(sd, index, n_materials)?;
@@ -210,8 +226,6 @@ fn primitives(list: &[Placed<'_>], n_materials: usize) -> Result<Primitives, Bui
             };
             &placed
         };
-        let first = out.shapes.len();
-        shapes_of(sd, index, &mut out.meshes, &mut out.shapes)?;
         let info = PrimInfo {
             material: sd.material,
             emission: sd.area_light.map(|a| AreaEmission {
@@ -226,6 +240,18 @@ fn primitives(list: &[Placed<'_>], n_materials: usize) -> Result<Primitives, Bui
             alpha: sd.alpha.filter(|a| *a != FloatTex::Const(1.0)),
             media: prim_media(sd),
         };
+        if let Geometry::TriangleMesh(m) = &sd.geometry
+            && info.emission.is_none()
+            && info.alpha.is_none()
+        {
+            // A plain mesh: its triangles share one record.
+            let world = m.transformed(&sd.object_to_world, sd.reverse_orientation);
+            out.tris.add(world, out.tri_prims.len() as u32);
+            out.tri_prims.push(info);
+            continue;
+        }
+        let first = out.shapes.len();
+        shapes_of(sd, index, &mut out.meshes, &mut out.shapes)?;
         out.prims
             .extend(std::iter::repeat_n(info, out.shapes.len() - first));
     }

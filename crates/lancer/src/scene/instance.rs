@@ -412,6 +412,8 @@ mod tests {
         // few hundred bytes), not another copy of the geometry (tens of KiB here).
         assert!(m1 > 40_000, "one object of 400 triangles: {m1} bytes");
         assert!(m50 < m1 + 49 * 256, "1 instance {m1} bytes, 50: {m50}");
-        assert_eq!(flat.shapes.len(), 50 * 400);
+        // Flattened, the copies are plain meshes: 400 triangles each, no shape record.
+        assert_eq!(flat.tris.len(), 50 * 400);
+        assert!(flat.shapes.is_empty());
     }
 }

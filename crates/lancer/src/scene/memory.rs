@@ -16,14 +16,18 @@ use std::sync::Arc;
 /// A built scene's memory, in bytes, by kind of data.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct SceneMemory {
-    /// World-space meshes: positions, normals, uvs, indices (the triangle meshes, and the
+    /// World-space meshes: positions, normals, uvs, indices (the triangle meshes, the plain
+    /// meshes' shared vertex arrays, triangles' vertex indices and per-mesh records, and the
     /// bilinear meshes that patches share, each once).
     pub meshes: usize,
     /// Primitive records: one shape (with what its box holds: a voxel grid's cells, a curve's
-    /// shared segment) and one material/emission record per primitive, and the list of
-    /// unbounded primitives. A triangle's record holds its three world-space vertices.
+    /// shared segment) and one material/emission record per primitive (a plain mesh has one
+    /// record for all its triangles, and no shape record), and the list of unbounded
+    /// primitives. An emitting or alpha-tested triangle's shape record holds its three
+    /// world-space vertices.
     pub primitives: usize,
-    /// The BVH over the primitives and its leaves' triangle packets.
+    /// The BVH over the primitives and its leaves' triangle packets, and the plain meshes'
+    /// BVH.
     pub bvh: usize,
     /// Instancing: the objects' trees, meshes and tables, the placements and their tree.
     pub instances: usize,
@@ -135,9 +139,13 @@ impl Scene {
             + self.light_sampler.memory_bytes()
             + vec_bytes::<u32>(self.infinite_lights.capacity());
         SceneMemory {
-            meshes: meshes + vec_bytes::<crate::shape::TriangleMesh>(self.meshes.capacity()),
+            meshes: meshes
+                + vec_bytes::<crate::shape::TriangleMesh>(self.meshes.capacity())
+                + self.tris.mesh_bytes(),
             primitives,
-            bvh: self.bvh.memory_bytes() + vec_bytes::<Tri4>(self.packets.capacity()),
+            bvh: self.bvh.memory_bytes()
+                + vec_bytes::<Tri4>(self.packets.capacity())
+                + self.tris.tree_bytes(),
             instances: Instances::memory_bytes(&self.instances),
             images,
             textures: vec_bytes::<FloatTexture>(self.float_textures.capacity())
@@ -194,15 +202,16 @@ mod tests {
     #[test]
     fn memory_grows_with_triangles() {
         let (small, large) = (mesh_scene(10), mesh_scene(100));
-        // One shape record and one PrimInfo per triangle, nothing unbounded.
+        // A plain mesh: no shape record, one PrimInfo for all its triangles (in a vector
+        // that grew to capacity 4), nothing unbounded.
         for (n, scene) in [(10, &small), (100, &large)] {
             let m = scene.memory();
-            assert_eq!(
-                m.primitives,
-                n * (size_of::<Shape>() + size_of::<PrimInfo>())
-            );
-            // 3 positions of 12 bytes and 3 indices of 4 bytes per triangle, at least.
-            assert!(m.meshes >= n * 3 * (12 + 4), "{m:?}");
+            assert!(scene.shapes.is_empty());
+            assert_eq!(scene.tris.len(), n);
+            assert_eq!(m.primitives, 4 * size_of::<PrimInfo>());
+            // 3 positions of 12 bytes and 3 indices of 4 bytes per triangle, and one mesh
+            // record of 20 bytes.
+            assert_eq!(m.meshes, n * 3 * (12 + 4) + 20, "{m:?}");
             // No instance: the empty top-level tree only.
             assert!(scene.instances.objects.is_empty());
             assert_eq!(m.instances, scene.instances.memory_bytes());

@@ -8,10 +8,12 @@ pub mod memory;
 pub mod motion;
 mod prim;
 mod spectra;
+mod tris;
 
 pub use counts::DescCounts;
 pub use prim::{AreaEmission, BuildError, PrimInfo};
 pub use spectra::SceneSpectra;
+pub use tris::SceneTris;
 
 use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
@@ -45,8 +47,11 @@ pub struct Scene {
     pub shapes: Vec<Shape>,
     /// Every primitive's material and emission, same indices as `shapes`.
     pub prims: Vec<PrimInfo>,
-    /// Triangle meshes, world space.
+    /// Triangle meshes whose triangles are primitives of their own (emitting or alpha-tested
+    /// ones), world space.
     pub meshes: Vec<TriangleMesh>,
+    /// The other triangle meshes, with one record per mesh rather than per triangle.
+    pub tris: SceneTris,
     /// Lights, area lights included.
     pub lights: Vec<Light>,
     /// The lights in proportion to power (pbrt's `power` light sampler).
@@ -104,6 +109,22 @@ impl Scene {
         &self.bvh
     }
 
+    /// Triangles the scene holds: those of the plain meshes and those that are primitives of
+    /// their own (degenerate ones, which no ray can hit, are not kept).
+    pub fn triangle_count(&self) -> usize {
+        self.tris.len()
+            + self
+                .shapes
+                .iter()
+                .filter(|s| matches!(s, Shape::Triangle(_)))
+                .count()
+    }
+
+    /// Nodes of the acceleration structures (the primitives' tree and the plain meshes').
+    pub fn bvh_node_count(&self) -> usize {
+        self.bvh.node_count() + self.tris.node_count()
+    }
+
     /// The course's "keep the nearest valid hit": the smallest t with 0 < t < t_max over all
     /// primitives, found through the BVH.
     pub fn intersect(&self, ray: &Ray) -> Option<SceneHit> {
@@ -130,40 +151,42 @@ impl Scene {
                 Some(h.t)
             })
         });
-        // The nearest moving hit, nearer than every still one so far.
+        if let Some(b) = best {
+            r.t_max = b.0.t;
+        }
+        // The plain meshes (shared vertices), the moving things, then the instances: each
+        // searched below the nearest hit so far, so the last one found is the nearest.
+        let best_tri = if self.tris.is_empty() {
+            None
+        } else {
+            self.tris.intersect(&r, &pre)
+        };
+        if let Some((_, h)) = best_tri {
+            r.t_max = h.t;
+        }
         let mut moving = None;
         if let Some(m) = &self.motion {
-            if let Some(b) = best {
-                r.t_max = b.0.t;
-            }
             moving = m.intersect(&r, motion::path_time());
             if let Some(mh) = &moving {
                 r.t_max = mh.hit.t;
             }
         }
-        if !self.instances.is_empty() {
-            if let Some(b) = best {
-                r.t_max = r.t_max.min(b.0.t);
-            }
-            if let Some(ih) = self.instances.intersect(&r) {
-                let (mut si, prim) = self.instances.interaction(ray, &ih);
-                let footprint = self.footprint(ray, &si);
-                let m = self.prims[prim as usize].material;
-                crate::material::mix::apply_bump(
-                    &self.materials,
-                    &self.textures(),
-                    m,
-                    &mut si,
-                    |si| Scene::tex_coord_from(si, footprint),
-                );
-                // Instanced objects are triangle meshes, which carry no colour of their own.
-                return Some(SceneHit {
-                    si,
-                    prim,
-                    albedo: None,
-                    footprint,
-                });
-            }
+        if !self.instances.is_empty()
+            && let Some(ih) = self.instances.intersect(&r)
+        {
+            let (mut si, prim) = self.instances.interaction(ray, &ih);
+            let footprint = self.footprint(ray, &si);
+            let m = self.prims[prim as usize].material;
+            crate::material::mix::apply_bump(&self.materials, &self.textures(), m, &mut si, |si| {
+                Scene::tex_coord_from(si, footprint)
+            });
+            // Instanced objects are triangle meshes, which carry no colour of their own.
+            return Some(SceneHit {
+                si,
+                prim,
+                albedo: None,
+                footprint,
+            });
         }
         if let (Some(m), Some(mh)) = (&self.motion, moving) {
             let (mut si, prim, albedo) = m.interaction(ray, &mh);
@@ -180,6 +203,20 @@ impl Scene {
                 si,
                 prim,
                 albedo,
+                footprint,
+            });
+        }
+        if let Some((slot, h)) = best_tri {
+            let (mut si, prim) = self.tris.interaction(ray, slot, &h);
+            let footprint = self.footprint(ray, &si);
+            let m = self.prims[prim as usize].material;
+            crate::material::mix::apply_bump(&self.materials, &self.textures(), m, &mut si, |si| {
+                Scene::tex_coord_from(si, footprint)
+            });
+            return Some(SceneHit {
+                si,
+                prim,
+                albedo: None,
                 footprint,
             });
         }
@@ -253,6 +290,7 @@ impl Scene {
                 self.bvh
                     .leaf_any(leaf, r, &mut |i, r| self.hit(i, r, &pre).is_some())
             })
+            || (!self.tris.is_empty() && self.tris.intersect_any(ray, &pre))
             || (!self.instances.is_empty() && self.instances.intersect_any(ray))
             || self
                 .motion

@@ -48,7 +48,8 @@ pub use plane::Plane;
 pub use sdf::{Sdf, SdfFunction};
 pub use sphere::Sphere;
 pub use triangle::{
-    Triangle, TriangleMesh, TriangleRay, intersect_triangle, intersect_triangle_with, is_degenerate,
+    Triangle, TriangleMesh, TriangleRay, intersect_triangle, intersect_triangle_with,
+    is_degenerate, triangle_interaction,
 };
 pub use voxels::{BRICK, VoxelGrid, Voxels, srgb8_to_linear};
 

@@ -50,9 +50,7 @@ impl Triangle {
         intersect_triangle_with(ray, pre, p0, p1, p2)
     }
 
-    /// Full interaction: p = b₀p₀ + b₁p₁ + b₂p₂ with error ≤ γ₇ Σ|bᵢpᵢ|; ∂p/∂u, ∂p/∂v from the
-    /// (u, v) of the vertices; geometric normal (p₀ − p₂) × (p₁ − p₂), turned to agree with the
-    /// interpolated vertex normal when there is one (pbrt's rule).
+    /// Full interaction (see [`triangle_interaction`]) with the mesh's normals and (u, v).
     pub fn interaction(
         &self,
         ray: &Ray,
@@ -60,21 +58,42 @@ impl Triangle {
         mesh: &TriangleMesh,
     ) -> SurfaceInteraction {
         let v = mesh.vertices(self.index);
-        let [p0, p1, p2] = self.vertices();
-        let (b1, b2) = (hit.u, hit.v);
-        let b0 = 1.0 - b1 - b2;
-        let (dp02, dp12) = (p0 - p2, p1 - p2);
-        let mut n = cross(dp02, dp12).normalize_or_zero();
-        let (mut dpdu, mut dpdv, uv_hit, degenerate);
-        if mesh.uvs.is_empty() {
+        let normals = (!mesh.normals.is_empty()).then(|| v.map(|i| mesh.normal(i)));
+        let uvs = (!mesh.uvs.is_empty()).then(|| v.map(|i| mesh.uvs[i]));
+        triangle_interaction(ray, hit, self.vertices(), normals, uvs, mesh.flip_normal)
+    }
+}
+
+/// Full interaction of a triangle with vertices `p`, per-vertex shading `normals` and `uvs`
+/// when its mesh has them, and `flip` its mesh's [`IndexedMesh::flip_normal`]:
+/// p = b₀p₀ + b₁p₁ + b₂p₂ with error ≤ γ₇ Σ|bᵢpᵢ|; ∂p/∂u, ∂p/∂v from the (u, v) of the
+/// vertices; geometric normal (p₀ − p₂) × (p₁ − p₂), turned to agree with the interpolated
+/// vertex normal when there is one (pbrt's rule).
+#[inline]
+pub fn triangle_interaction(
+    ray: &Ray,
+    hit: &ShapeHit,
+    p: [Vec3; 3],
+    normals: Option<[Vec3; 3]>,
+    uvs: Option<[Vec2; 3]>,
+    flip: bool,
+) -> SurfaceInteraction {
+    let [p0, p1, p2] = p;
+    let (b1, b2) = (hit.u, hit.v);
+    let b0 = 1.0 - b1 - b2;
+    let (dp02, dp12) = (p0 - p2, p1 - p2);
+    let mut n = cross(dp02, dp12).normalize_or_zero();
+    let (mut dpdu, mut dpdv, uv_hit, degenerate);
+    match uvs {
+        None => {
             // pbrt's default corners (0, 0), (1, 0), (1, 1): the general formulas below reduce
             // to ∂p/∂u = p₁ − p₀, ∂p/∂v = p₂ − p₁ and (u, v) = (b₁ + b₂, b₂).
             dpdu = p1 - p0;
             dpdv = p2 - p1;
             uv_hit = Vec2::new(b1 + b2, b2);
             degenerate = n == Vec3::ZERO;
-        } else {
-            let uv = [mesh.uvs[v[0]], mesh.uvs[v[1]], mesh.uvs[v[2]]];
+        }
+        Some(uv) => {
             let (duv02, duv12) = (uv[0] - uv[2], uv[1] - uv[2]);
             let det = difference_of_products(duv02.x, duv12.y, duv02.y, duv12.x);
             let degenerate_uv = det.abs() < 1e-9;
@@ -87,50 +106,50 @@ impl Triangle {
             uv_hit = b0 * uv[0] + b1 * uv[1] + b2 * uv[2];
             degenerate = degenerate_uv || cross(dpdu, dpdv).length_squared() == 0.0;
         }
-        if degenerate {
-            let f = Frame::from_z(n);
-            dpdu = f.x;
-            dpdv = f.y;
-        }
-        let p = b0 * p0 + b1 * p1 + b2 * p2;
-        let p_error = gamma(7) * ((b0 * p0).abs() + (b1 * p1).abs() + (b2 * p2).abs());
+    }
+    if degenerate {
+        let f = Frame::from_z(n);
+        dpdu = f.x;
+        dpdv = f.y;
+    }
+    let p = b0 * p0 + b1 * p1 + b2 * p2;
+    let p_error = gamma(7) * ((b0 * p0).abs() + (b1 * p1).abs() + (b2 * p2).abs());
 
-        let mut ns = n;
-        if !mesh.normals.is_empty() {
-            let interp = b0 * mesh.normal(v[0]) + b1 * mesh.normal(v[1]) + b2 * mesh.normal(v[2]);
-            if let Some(s) = interp.try_normalize() {
-                ns = s;
-            }
-            n = if n.dot(ns) < 0.0 { -n } else { n };
-        } else if mesh.flip_normal {
-            n = -n;
-            ns = n;
+    let mut ns = n;
+    if let Some(vn) = normals {
+        let interp = b0 * vn[0] + b1 * vn[1] + b2 * vn[2];
+        if let Some(s) = interp.try_normalize() {
+            ns = s;
         }
-        // Shading tangents: ∂p/∂u made perpendicular to the shading normal.
-        let mut ss = dpdu.normalize_or_zero();
-        let mut ts = cross(ns, ss);
-        if ts.length_squared() > 0.0 {
-            ss = cross(ts, ns);
-        } else {
-            let f = Frame::from_z(ns);
-            ss = f.x;
-            ts = f.y;
-        }
-        SurfaceInteraction {
-            p,
-            p_error,
-            n,
-            uv: uv_hit,
-            dpdu,
-            dpdv,
-            shading: Shading {
-                n: ns,
-                dpdu: ss,
-                dpdv: ts,
-            },
-            wo: -normalize(ray.d),
-            t: hit.t,
-        }
+        n = if n.dot(ns) < 0.0 { -n } else { n };
+    } else if flip {
+        n = -n;
+        ns = n;
+    }
+    // Shading tangents: ∂p/∂u made perpendicular to the shading normal.
+    let mut ss = dpdu.normalize_or_zero();
+    let mut ts = cross(ns, ss);
+    if ts.length_squared() > 0.0 {
+        ss = cross(ts, ns);
+    } else {
+        let f = Frame::from_z(ns);
+        ss = f.x;
+        ts = f.y;
+    }
+    SurfaceInteraction {
+        p,
+        p_error,
+        n,
+        uv: uv_hit,
+        dpdu,
+        dpdv,
+        shading: Shading {
+            n: ns,
+            dpdu: ss,
+            dpdv: ts,
+        },
+        wo: -normalize(ray.d),
+        t: hit.t,
     }
 }
 

@@ -2,8 +2,8 @@
 //!
 //! `build.rs` fits every grid point with [`super::fit`] (the same code the library runs) and
 //! writes the coefficients as little-endian `f32` (3 × 40³ × 3 of them, 2.3 MB) to the build's
-//! output directory; the library includes those bytes and decodes them on first use, in about
-//! a millisecond. A process therefore pays nothing to fit the table, and every build has the
+//! output directory; the library includes those bytes and reads its lookups from them in place
+//! (no decoded copy: a process reads in only the pages its lookups touch). A process therefore pays nothing to fit the table, and every build has the
 //! same table bit for bit (the fit is plain IEEE arithmetic in a fixed order, whatever the
 //! optimisation level or the number of threads). [`CoefficientTable::fit`] fits it afresh at
 //! run time; the tests check that the two agree bit for bit.
@@ -54,12 +54,51 @@ pub struct CoefficientTable {
     /// x_i (and y_i), ascending from 0 to 1.
     ratio: [f32; TABLE_RES],
     /// Coefficients, at index ((l·n + k)·n + j)·n + i for z_k, x_i, y_j.
-    coeffs: Vec<[f32; 3]>,
+    coeffs: Coeffs,
+}
+
+/// The coefficient triples: fitted in this process, or read in place from the bytes the
+/// build script shipped (so that a process holds no decoded copy of the 2.3 MB, and only the
+/// pages its lookups touch are read in).
+enum Coeffs {
+    Fitted(Vec<[f32; 3]>),
+    /// Little-endian `f32`, three per entry.
+    Encoded(&'static [u8]),
+}
+
+impl Coeffs {
+    /// Number of triples.
+    fn len(&self) -> usize {
+        match self {
+            Coeffs::Fitted(v) => v.len(),
+            Coeffs::Encoded(b) => b.len() / 12,
+        }
+    }
+
+    /// Triple `i`.
+    #[inline]
+    fn get(&self, i: usize) -> [f32; 3] {
+        match self {
+            Coeffs::Fitted(v) => v[i],
+            Coeffs::Encoded(b) => {
+                let e = &b[12 * i..12 * i + 12];
+                std::array::from_fn(|m| {
+                    f32::from_le_bytes([e[4 * m], e[4 * m + 1], e[4 * m + 2], e[4 * m + 3]])
+                })
+            }
+        }
+    }
+
+    /// Every triple, in order.
+    #[cfg(test)]
+    fn to_vec(&self) -> Vec<[f32; 3]> {
+        (0..self.len()).map(|i| self.get(i)).collect()
+    }
 }
 
 impl CoefficientTable {
     /// A table of [`fit::TABLE_LEN`] coefficient triples in the grid's index order.
-    fn from_coefficients(coeffs: Vec<[f32; 3]>) -> CoefficientTable {
+    fn from_coefficients(coeffs: Coeffs) -> CoefficientTable {
         assert_eq!(
             coeffs.len(),
             TABLE_LEN,
@@ -74,31 +113,28 @@ impl CoefficientTable {
         }
     }
 
-    /// Decodes a table written by the build script (little-endian `f32`).
-    fn from_bytes(bytes: &[u8]) -> CoefficientTable {
-        let coeffs = bytes
-            .chunks_exact(12)
-            .map(|e| {
-                std::array::from_fn(|m| f32::from_le_bytes(e[4 * m..4 * m + 4].try_into().unwrap()))
-            })
-            .collect();
-        CoefficientTable::from_coefficients(coeffs)
+    /// A table written by the build script (little-endian `f32`), read in place.
+    fn from_bytes(bytes: &'static [u8]) -> CoefficientTable {
+        CoefficientTable::from_coefficients(Coeffs::Encoded(bytes))
     }
 
     /// Fits every grid point now, on `threads` threads (about 0.6 s of processor time); the
     /// result is the table the build script shipped, bit for bit.
     pub fn fit(threads: usize) -> CoefficientTable {
-        CoefficientTable::from_coefficients(fit::fit_table(threads, &super::cie::XYZ_TO_SRGB))
+        CoefficientTable::from_coefficients(Coeffs::Fitted(fit::fit_table(
+            threads,
+            &super::cie::XYZ_TO_SRGB,
+        )))
     }
 
-    /// The table fitted at compile time, decoded on first use.
+    /// The table fitted at compile time, set up on first use.
     pub fn get() -> &'static CoefficientTable {
         static TABLE: OnceLock<CoefficientTable> = OnceLock::new();
         TABLE.get_or_init(|| CoefficientTable::from_bytes(SHIPPED))
     }
 
     /// The Rec. 2020 table fitted at compile time (colours in linear Rec. 2020, seen under
-    /// D65, [`super::cie::XYZ_TO_REC2020`]), decoded on first use.
+    /// D65, [`super::cie::XYZ_TO_REC2020`]), set up on first use.
     pub fn get_rec2020() -> &'static CoefficientTable {
         static TABLE: OnceLock<CoefficientTable> = OnceLock::new();
         TABLE.get_or_init(|| CoefficientTable::from_bytes(SHIPPED_REC2020))
@@ -133,7 +169,7 @@ impl CoefficientTable {
         let k = self.z.partition_point(|&zk| zk <= z).clamp(1, n - 1) - 1;
         let fz = (phi_f32(z) - self.phi[k]) / (self.phi[k + 1] - self.phi[k]);
         let at = |dk: usize, dj: usize, di: usize| {
-            self.coeffs[fit::table_index(l, k + dk, i + di, j + dj)]
+            self.coeffs.get(fit::table_index(l, k + dk, i + di, j + dj))
         };
         let lerp =
             |a: [f32; 3], b: [f32; 3], t: f32| std::array::from_fn(|m| a[m] + (b[m] - a[m]) * t);
@@ -165,7 +201,7 @@ mod tests {
         assert_eq!(shipped.coeffs.len(), TABLE_LEN);
         let fresh = CoefficientTable::fit(2);
         assert!(
-            bits(&shipped.coeffs) == bits(&fresh.coeffs),
+            bits(&shipped.coeffs.to_vec()) == bits(&fresh.coeffs.to_vec()),
             "the shipped table differs from a fresh fit"
         );
         assert_eq!(shipped.z, fresh.z);
@@ -180,7 +216,7 @@ mod tests {
             let values = fitter.table_row(row);
             for k in 0..n {
                 for i in 0..n {
-                    let shipped = shipped.coeffs[fit::table_index(l, k, i, j)];
+                    let shipped = shipped.coeffs.get(fit::table_index(l, k, i, j));
                     assert_eq!(
                         shipped.map(f32::to_bits),
                         values[k * n + i].map(f32::to_bits),
@@ -204,8 +240,8 @@ mod tests {
             .collect();
         assert_eq!(bytes.len(), TABLE_LEN * 12);
         assert_eq!(&bytes[..4], &[0x00, 0x00, 0x80, 0x3f]);
-        let table = CoefficientTable::from_bytes(&bytes);
-        assert!(bits(&table.coeffs) == bits(&coeffs));
+        let table = CoefficientTable::from_bytes(Vec::leak(bytes));
+        assert!(bits(&table.coeffs.to_vec()) == bits(&coeffs));
     }
 
     #[test]
@@ -216,7 +252,7 @@ mod tests {
         for (l, k, i, j) in [(0, 10, 3, 30), (1, 25, 38, 0), (2, 38, 20, 21)] {
             let c = Rgb::from_array(fit::grid_colour(l, k, i, j).map(|v| v as f32));
             let got = table.lookup(c);
-            let stored = table.coeffs[fit::table_index(l, k, i, j)];
+            let stored = table.coeffs.get(fit::table_index(l, k, i, j));
             for m in 0..3 {
                 assert!(
                     (got[m] - stored[m]).abs() <= 1e-4 * stored[m].abs().max(1.0),

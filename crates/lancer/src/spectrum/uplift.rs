@@ -110,7 +110,7 @@ fn clamp_albedo(rgb: Rgb) -> Rgb {
 
 /// The sigmoid spectrum of a reflectance for rendering: NaN taken as 0; greys, black and white
 /// are constant spectra, every other colour of [0, 1]³ is looked up in the sRGB
-/// [`CoefficientTable`] fitted at compile time (decoded on the first such colour), and colours
+/// [`CoefficientTable`] fitted at compile time (set up on the first such colour), and colours
 /// outside the cube in the Rec. 2020 one (`wide_albedo_spectrum`).
 pub fn albedo_spectrum(rgb: Rgb) -> SigmoidSpectrum {
     if rgb.min_element() < 0.0 || rgb.max_element() > 1.0 {

@@ -434,6 +434,11 @@ fn build_rec(
                 (o, root)
             })
             .collect();
+        // Room for all of them at once: growing by doubling would hold up to twice the tree.
+        out.nodes
+            .reserve_exact(subs.iter().map(|(o, _)| o.nodes.len()).sum());
+        out.leaves
+            .reserve_exact(subs.iter().map(|(o, _)| o.leaves.len()).sum());
         subs.into_iter().map(|(o, r)| out.append(o, r)).collect()
     } else {
         refs_of_kids
@@ -456,12 +461,20 @@ impl Bvh {
     /// Builds the tree over `bounds[i]` for every primitive `i` (binned SAH, in parallel on
     /// the current rayon pool).
     pub fn build(bounds: &[Bounds3]) -> Bvh {
-        let mut refs: Vec<PrimRef> = bounds
-            .par_iter()
-            .enumerate()
-            .map(|(i, b)| PrimRef {
-                lo: b.min.extend(f32::from_bits(i as u32)),
-                hi: b.max.extend(0.0),
+        Bvh::build_with(bounds.len(), |i| bounds[i])
+    }
+
+    /// [`Bvh::build`] over `n` primitives whose bounds `bounds(i)` gives, without a list of
+    /// them (the build's own references hold them).
+    pub fn build_with(n: usize, bounds: impl Fn(usize) -> Bounds3 + Sync) -> Bvh {
+        let mut refs: Vec<PrimRef> = (0..n)
+            .into_par_iter()
+            .map(|i| {
+                let b = bounds(i);
+                PrimRef {
+                    lo: b.min.extend(f32::from_bits(i as u32)),
+                    hi: b.max.extend(0.0),
+                }
             })
             .collect();
         if refs.is_empty() {
@@ -471,12 +484,16 @@ impl Bvh {
         let mut out = Out::default();
         let root = build_rec(&mut out, &mut refs, 0, all, 0, None);
         let indices = refs.par_iter().map(PrimRef::index).collect();
+        drop(refs);
+        // The arrays grew by doubling: give back what they hold in reserve.
+        out.nodes.shrink_to_fit();
+        out.leaves.shrink_to_fit();
         Bvh {
             nodes: out.nodes,
             leaves: out.leaves,
             bounds: all.bounds3(),
             root,
-            len: bounds.len(),
+            len: n,
             indices,
         }
     }

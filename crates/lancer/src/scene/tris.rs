@@ -1,0 +1,185 @@
+//! The world's plain triangle meshes (neither emitting nor alpha-tested): their vertices in
+//! shared arrays and their triangles in an [`IndexedTris`] tree, with no record per triangle.
+//! A triangle costs its three vertex indices and its share of the tree and of the vertices;
+//! its material, media and orientation are its mesh's, kept once per mesh.
+
+use crate::accel::IndexedTris;
+use crate::math::{Bounds3, PackedVec3, Vec2, Vec3};
+use crate::ray::Ray;
+use crate::shape::{ShapeHit, SurfaceInteraction, TriangleMesh, TriangleRay, is_degenerate};
+
+/// Marks a mesh without per-vertex normals or (u, v).
+const NONE: u32 = u32::MAX;
+
+/// What a mesh keeps of its own: where its vertices start, where its normals and (u, v) start
+/// in the shared arrays (or [`NONE`]), its orientation and its primitive record.
+#[derive(Clone, Copy, Debug)]
+struct MeshRecord {
+    first_vertex: u32,
+    normals: u32,
+    uvs: u32,
+    flip_normal: bool,
+    prim: u32,
+}
+
+/// The plain triangle meshes of a scene, world space.
+#[derive(Debug, Default)]
+pub struct SceneTris {
+    accel: IndexedTris,
+    /// Per-vertex shading normals of the meshes that have them, one mesh after another.
+    normals: Vec<PackedVec3>,
+    /// Per-vertex (u, v) of the meshes that have them, one mesh after another.
+    uvs: Vec<Vec2>,
+    /// By first vertex.
+    meshes: Vec<MeshRecord>,
+}
+
+/// Gathers meshes for a [`SceneTris`].
+#[derive(Debug, Default)]
+pub(crate) struct SceneTrisBuilder {
+    positions: Vec<PackedVec3>,
+    tris: Vec<[u32; 3]>,
+    normals: Vec<PackedVec3>,
+    uvs: Vec<Vec2>,
+    meshes: Vec<MeshRecord>,
+}
+
+impl SceneTrisBuilder {
+    /// Adds `mesh` (world space, checked), whose triangles are primitive record `prim`'s; its
+    /// degenerate triangles, which no ray can hit, are left out.
+    pub(crate) fn add(&mut self, mesh: TriangleMesh, prim: u32) {
+        let base = self.positions.len() as u32;
+        let record = MeshRecord {
+            first_vertex: base,
+            normals: if mesh.normals.is_empty() {
+                NONE
+            } else {
+                self.normals.len() as u32
+            },
+            uvs: if mesh.uvs.is_empty() {
+                NONE
+            } else {
+                self.uvs.len() as u32
+            },
+            flip_normal: mesh.flip_normal,
+            prim,
+        };
+        for f in mesh.indices.chunks_exact(3) {
+            let [a, b, c] = [f[0], f[1], f[2]].map(|i| Vec3::from(mesh.positions[i as usize]));
+            if !is_degenerate(a, b, c) {
+                self.tris.push([f[0] + base, f[1] + base, f[2] + base]);
+            }
+        }
+        self.positions.extend_from_slice(&mesh.positions);
+        self.normals.extend_from_slice(&mesh.normals);
+        self.uvs.extend_from_slice(&mesh.uvs);
+        self.meshes.push(record);
+    }
+
+    /// The tree over every triangle added.
+    pub(crate) fn build(mut self) -> SceneTris {
+        self.positions.shrink_to_fit();
+        self.normals.shrink_to_fit();
+        self.uvs.shrink_to_fit();
+        self.meshes.shrink_to_fit();
+        let (accel, _) = IndexedTris::build(self.positions, self.tris);
+        SceneTris {
+            accel,
+            normals: self.normals,
+            uvs: self.uvs,
+            meshes: self.meshes,
+        }
+    }
+}
+
+impl SceneTris {
+    /// Number of triangles (degenerate ones left out).
+    pub fn len(&self) -> usize {
+        self.accel.len()
+    }
+
+    /// True when there is no triangle.
+    pub fn is_empty(&self) -> bool {
+        self.accel.is_empty()
+    }
+
+    /// Bounds of all triangles.
+    pub fn bounds(&self) -> Bounds3 {
+        self.accel.bounds()
+    }
+
+    /// Nodes of the tree.
+    pub fn node_count(&self) -> usize {
+        self.accel.node_count()
+    }
+
+    /// Bytes of the vertices (positions, normals, (u, v)), the triangles' vertex indices and
+    /// the mesh records.
+    pub fn mesh_bytes(&self) -> usize {
+        self.accel.geometry_bytes()
+            + self.normals.capacity() * std::mem::size_of::<PackedVec3>()
+            + self.uvs.capacity() * std::mem::size_of::<Vec2>()
+            + self.meshes.capacity() * std::mem::size_of::<MeshRecord>()
+    }
+
+    /// Bytes of the tree.
+    pub fn tree_bytes(&self) -> usize {
+        self.accel.tree_bytes()
+    }
+
+    /// Adds `base` to the meshes' primitive record indices.
+    pub(crate) fn offset_prims(&mut self, base: u32) {
+        for m in &mut self.meshes {
+            m.prim += base;
+        }
+    }
+
+    /// The vertex positions of triangle `slot` (0 ≤ slot < [`SceneTris::len`]).
+    pub fn vertices(&self, slot: u32) -> [Vec3; 3] {
+        self.accel.vertices(slot)
+    }
+
+    /// The primitive record of triangle `slot`: its mesh's.
+    pub fn prim(&self, slot: u32) -> u32 {
+        self.mesh_of(self.accel.triangle(slot)[0]).prim
+    }
+
+    /// The mesh that vertex `v` belongs to.
+    #[inline]
+    fn mesh_of(&self, v: u32) -> &MeshRecord {
+        let k = self.meshes.partition_point(|m| m.first_vertex <= v);
+        &self.meshes[k - 1]
+    }
+
+    /// The nearest hit with 0 < t < `ray.t_max`: (triangle slot, hit).
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<(u32, ShapeHit)> {
+        self.accel.intersect(ray, pre)
+    }
+
+    /// True if any triangle is hit with 0 < t < `ray.t_max`.
+    #[inline]
+    pub fn intersect_any(&self, ray: &Ray, pre: &TriangleRay) -> bool {
+        self.accel.intersect_any(ray, pre)
+    }
+
+    /// The full interaction of a hit on triangle `slot` found by [`SceneTris::intersect`] on
+    /// the same ray, and the triangle's primitive record.
+    pub fn interaction(&self, ray: &Ray, slot: u32, hit: &ShapeHit) -> (SurfaceInteraction, u32) {
+        let v = self.accel.triangle(slot);
+        let m = self.mesh_of(v[0]);
+        let local = v.map(|i| (i - m.first_vertex) as usize);
+        let normals =
+            (m.normals != NONE).then(|| local.map(|i| self.normals[m.normals as usize + i].into()));
+        let uvs = (m.uvs != NONE).then(|| local.map(|i| self.uvs[m.uvs as usize + i]));
+        let si = crate::shape::triangle_interaction(
+            ray,
+            hit,
+            self.accel.vertices(slot),
+            normals,
+            uvs,
+            m.flip_normal,
+        );
+        (si, m.prim)
+    }
+}
