@@ -116,7 +116,7 @@ impl IndexedTris {
         (p, first)
     }
 
-    /// The nearest hit with 0 < t < `ray.t_max`: (slot of the triangle, hit).
+    /// The nearest hit with 0 < t ≤ `ray.t_max`: (slot of the triangle, hit).
     #[inline]
     pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<(u32, ShapeHit)> {
         let mut best = None;
@@ -129,7 +129,7 @@ impl IndexedTris {
         best
     }
 
-    /// True if any triangle is hit with 0 < t < `ray.t_max`.
+    /// True if any triangle is hit with 0 < t ≤ `ray.t_max`.
     #[inline]
     pub fn intersect_any(&self, ray: &Ray, pre: &TriangleRay) -> bool {
         self.bvh

@@ -61,7 +61,7 @@ impl MeshBvh {
         self.bvh.bounds()
     }
 
-    /// The nearest hit with 0 < t < `ray.t_max`: (input index of the triangle, hit).
+    /// The nearest hit with 0 < t ≤ `ray.t_max`: (input index of the triangle, hit).
     #[inline]
     pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<(u32, ShapeHit)> {
         let mut best = None;
@@ -74,7 +74,7 @@ impl MeshBvh {
         best
     }
 
-    /// True if any triangle is hit with 0 < t < `ray.t_max`.
+    /// True if any triangle is hit with 0 < t ≤ `ray.t_max`.
     #[inline]
     pub fn intersect_any(&self, ray: &Ray, pre: &TriangleRay) -> bool {
         self.bvh.intersect_any_leaves(ray, |leaf, r| {

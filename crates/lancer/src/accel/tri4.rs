@@ -64,15 +64,18 @@ impl Tri4 {
             | ((self.ids[3] != u32::MAX) as u32) << 3
     }
 
-    /// The nearest hit with 0 < t < `ray.t_max` among the four: (lane, hit). Among equal t
-    /// the lowest lane wins, as when the lanes are tested one after another.
+    /// The nearest hit with 0 < t ≤ `ray.t_max` among the four: (lane, hit). As in the
+    /// scalar test and pbrt-v4's `IntersectTriangle`, a hit at exactly `t_max` is accepted, so
+    /// among equal t the highest lane wins, exactly as when the lanes are tested one after
+    /// another, each against the ray shortened to the hit before. (Coplanar surfaces, such as
+    /// a prism standing on a floor, then resolve as in pbrt-v4: the triangle tested last.)
     #[inline]
     pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<(usize, ShapeHit)> {
         let found = test(ray, pre, self.permuted(pre), self.used());
         nearest(ray, pre, found, |lane| self.vertices(lane))
     }
 
-    /// True if any of the four is hit with 0 < t < `ray.t_max`.
+    /// True if any of the four is hit with 0 < t ≤ `ray.t_max`.
     #[inline]
     pub fn intersect_any(&self, ray: &Ray, pre: &TriangleRay) -> bool {
         let found = test(ray, pre, self.permuted(pre), self.used());
@@ -107,14 +110,14 @@ pub struct IndexedTri4<'a> {
 }
 
 impl IndexedTri4<'_> {
-    /// The nearest hit with 0 < t < `ray.t_max` among the triangles: (index in `tris`, hit).
+    /// The nearest hit with 0 < t ≤ `ray.t_max` among the triangles: (index in `tris`, hit).
     #[inline]
     pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<(usize, ShapeHit)> {
         let found = test(ray, pre, self.permuted(pre), self.used());
         nearest(ray, pre, found, |lane| self.vertices(lane))
     }
 
-    /// True if any of the triangles is hit with 0 < t < `ray.t_max`.
+    /// True if any of the triangles is hit with 0 < t ≤ `ray.t_max`.
     #[inline]
     pub fn intersect_any(&self, ray: &Ray, pre: &TriangleRay) -> bool {
         let found = test(ray, pre, self.permuted(pre), self.used());
@@ -177,8 +180,10 @@ impl IndexedTri4<'_> {
 }
 
 /// The nearest of the hits `found` by [`test`]: (lane, hit), lanes to redo tested by the scalar
-/// test on `vertices(lane)`. Among equal t the lowest lane wins, as when the lanes are tested
-/// one after another.
+/// test on `vertices(lane)`. As in the scalar test and pbrt-v4's `IntersectTriangle`, a hit
+/// at exactly `t_max` is accepted, so among equal t the highest lane wins, exactly as when the
+/// lanes are tested one after another, each against the ray shortened to the hit before.
+/// (Coplanar surfaces, such as a prism standing on a floor, then resolve as in pbrt-v4.)
 #[inline(always)]
 fn nearest(
     ray: &Ray,
@@ -199,7 +204,7 @@ fn nearest(
                 t_max = h.t;
                 best = Some((lane, h));
             }
-        } else if mask & bit != 0 && t[lane] < t_max {
+        } else if mask & bit != 0 && t[lane] <= t_max {
             t_max = t[lane];
             best = Some((
                 lane,
@@ -335,4 +340,36 @@ fn test(
         e2.mul(inv_det).to_array(),
         redo,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two coplanar triangles overlapping under the ray (z = 0, ray straight down from z = 1):
+    /// both are hit at t = 1 exactly. The packet must pick what testing the lanes one after
+    /// another picks: the scalar test accepts t = t_max, so the later lane wins.
+    #[test]
+    fn equal_t_goes_to_the_later_lane_as_in_the_scalar_test() {
+        let a = [[-1.0, -1.0, 0.0], [2.0, -1.0, 0.0], [-1.0, 2.0, 0.0]].map(PackedVec3::from);
+        let b = [[-2.0, -2.0, 0.0], [3.0, -2.0, 0.0], [-2.0, 3.0, 0.0]].map(PackedVec3::from);
+        let ray = Ray::new(Vec3::new(0.1, 0.2, 1.0), Vec3::new(0.0, 0.0, -1.0));
+        let pre = TriangleRay::new(&ray);
+        let p = Tri4::new(&[(a, 7), (b, 9)]);
+        let (lane, h) = p.intersect(&ray, &pre).expect("both triangles are hit");
+        assert_eq!(h.t, 1.0);
+        assert_eq!((lane, p.ids[lane]), (1, 9));
+        // The scalar sequence: b is tested against the ray shortened to a's hit, and kept.
+        let ha = intersect_triangle_with(&ray, &pre, a[0].into(), a[1].into(), a[2].into());
+        let short = Ray {
+            t_max: ha.expect("a is hit").t,
+            ..ray
+        };
+        assert!(
+            intersect_triangle_with(&short, &pre, b[0].into(), b[1].into(), b[2].into()).is_some()
+        );
+        // And a hit beyond t_max is still refused.
+        let shorter = Ray { t_max: 0.99, ..ray };
+        assert!(p.intersect(&shorter, &pre).is_none());
+    }
 }

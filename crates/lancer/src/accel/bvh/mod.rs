@@ -14,7 +14,7 @@
 mod build;
 
 use super::simd::F8;
-use crate::math::{Bounds3, Vec3, gamma};
+use crate::math::{Bounds3, Vec3, gamma, next_float_down};
 use crate::ray::Ray;
 
 /// Most primitives in one leaf.
@@ -197,7 +197,8 @@ impl Bvh {
                 sp -= 1;
                 // SAFETY: every entry below the stack pointer was written by a push.
                 let (c, t) = unsafe { stack[sp].assume_init() };
-                if t <= r.t_max {
+                // Entered before t_max, as in the slab test.
+                if t < r.t_max {
                     cur = c;
                     break;
                 }
@@ -277,14 +278,16 @@ impl Slabs {
     }
 
     /// The slab test against a node's eight boxes at once: per axis t = (b − o)·(1/d);
-    /// t_near = max(0, entry distances), t_far = min(t_max, exit distances·(1 + 2γ₃)) (the
-    /// enlargement keeps rounding from culling a box the ray crosses); a box is crossed when
-    /// t_near ≤ t_far. Returns the entry distances and the mask of crossed boxes (bit k for
+    /// t_near = max(0, entry distances), t_far = min(t_max⁻, exit distances·(1 + 2γ₃)) (the
+    /// enlargement keeps rounding from culling a box the ray crosses; t_max⁻ is the float
+    /// below t_max); a box is crossed when t_near ≤ t_far. So a box entered at t_max or later
+    /// is culled, as pbrt-v4's `Bounds3::IntersectP` (`tMin < raytMax`) does: of two coplanar
+    /// surfaces at the same t, the one in a box the ray enters only at that t is not tested. Returns the entry distances and the mask of crossed boxes (bit k for
     /// child k). NaNs (0·∞ when the origin lies on a slab plane) leave the bound unchanged.
     #[inline(always)]
     fn test(&self, node: &Node, t_max: f32) -> ([f32; WIDTH], u32) {
         let mut t0 = F8::splat(0.0);
-        let mut t1 = F8::splat(t_max);
+        let mut t1 = F8::splat(next_float_down(t_max));
         let grow = F8::splat(1.0 + 2.0 * gamma(3));
         for a in 0..3 {
             let (near, far) = if self.neg[a] {
