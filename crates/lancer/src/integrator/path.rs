@@ -271,7 +271,7 @@ pub fn li_observed<O: PathObserver>(
         // Russian roulette once the path carries little.
         let rr = beta * eta_scale;
         let m = rr.max_element();
-        if m < 1.0 && depth > 1 {
+        if m < 1.0 && depth > super::RR_AFTER_DEPTH {
             let q = (1.0 - m).max(0.0);
             if sampler.get_1d() < q {
                 break;

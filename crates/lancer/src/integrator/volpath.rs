@@ -255,7 +255,7 @@ impl Walk<'_> {
             // Russian roulette on the throughput relative to the lanes' average density.
             let rr = s.beta * s.eta_scale / avg(s.r_u);
             let m = rr.max_element();
-            if m < 1.0 && s.depth > 1 {
+            if m < 1.0 && s.depth > super::RR_AFTER_DEPTH {
                 let q = (1.0 - m).max(0.0);
                 if sampler.get_1d() < q {
                     break;
