@@ -174,67 +174,45 @@ impl Scene {
         if !self.instances.is_empty()
             && let Some(ih) = self.instances.intersect(&r)
         {
-            let (mut si, prim) = self.instances.interaction(ray, &ih);
-            let footprint = self.footprint(ray, &si);
-            let m = self.prims[prim as usize].material;
-            crate::material::mix::apply_bump(&self.materials, &self.textures(), m, &mut si, |si| {
-                Scene::tex_coord_from(si, footprint)
-            });
+            let (si, prim) = self.instances.interaction(ray, &ih);
             // Instanced objects are triangle meshes, which carry no colour of their own.
-            return Some(SceneHit {
-                si,
-                prim,
-                albedo: None,
-                footprint,
-            });
+            return Some(self.finish_hit(ray, si, prim, None));
         }
         if let (Some(m), Some(mh)) = (&self.motion, moving) {
-            let (mut si, prim, albedo) = m.interaction(ray, &mh);
-            let mat = self.prims[prim as usize].material;
-            let footprint = self.footprint(ray, &si);
-            crate::material::mix::apply_bump(
-                &self.materials,
-                &self.textures(),
-                mat,
-                &mut si,
-                |si| Scene::tex_coord_from(si, footprint),
-            );
-            return Some(SceneHit {
-                si,
-                prim,
-                albedo,
-                footprint,
-            });
+            let (si, prim, albedo) = m.interaction(ray, &mh);
+            return Some(self.finish_hit(ray, si, prim, albedo));
         }
         if let Some((slot, h)) = best_tri {
-            let (mut si, prim) = self.tris.interaction(ray, slot, &h);
-            let footprint = self.footprint(ray, &si);
-            let m = self.prims[prim as usize].material;
-            crate::material::mix::apply_bump(&self.materials, &self.textures(), m, &mut si, |si| {
-                Scene::tex_coord_from(si, footprint)
-            });
-            return Some(SceneHit {
-                si,
-                prim,
-                albedo: None,
-                footprint,
-            });
+            let (si, prim) = self.tris.interaction(ray, slot, &h);
+            return Some(self.finish_hit(ray, si, prim, None));
         }
         let (h, prim) = best?;
         let shape = &self.shapes[prim as usize];
-        let mut si = shape.interaction(ray, &h, &self.meshes);
+        let si = shape.interaction(ray, &h, &self.meshes);
+        Some(self.finish_hit(ray, si, prim, shape.hit_albedo(&h)))
+    }
+
+    /// The hit of primitive `prim` at `si`: its footprint, and its shading frame changed by
+    /// its material's bump or normal map (for a `mix`, the picked material's).
+    #[inline]
+    fn finish_hit(
+        &self,
+        ray: &Ray,
+        mut si: SurfaceInteraction,
+        prim: u32,
+        albedo: Option<Rgb>,
+    ) -> SceneHit {
         let footprint = self.footprint(ray, &si);
         let m = self.prims[prim as usize].material;
         crate::material::mix::apply_bump(&self.materials, &self.textures(), m, &mut si, |si| {
             Scene::tex_coord_from(si, footprint)
         });
-        let albedo = shape.hit_albedo(&h);
-        Some(SceneHit {
+        SceneHit {
             si,
             prim,
             albedo,
             footprint,
-        })
+        }
     }
 
     /// Primitive `i`'s hit by `ray`, unless its alpha cuts the surface away there.
