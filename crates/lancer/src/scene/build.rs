@@ -207,7 +207,7 @@ struct Primitives {
 /// them as primitives of their own in the one BVH: their memory is small, and a second tree
 /// with indexed leaves costs every ray a second traversal (on the Cornell box, 23 % of the
 /// render time). From this many on, they go to [`SceneTrisBuilder`] (no record per triangle).
-const SHARED_VERTEX_MIN_TRIANGLES: usize = 4096;
+pub(super) const SHARED_VERTEX_MIN_TRIANGLES: usize = 4096;
 
 /// Whether a placed shape is a plain triangle mesh: no emission, no alpha cut-out.
 fn is_plain_mesh(sd: &ShapeDesc) -> bool {

@@ -201,10 +201,13 @@ mod tests {
 
     #[test]
     fn memory_grows_with_triangles() {
-        let (small, large) = (mesh_scene(10), mesh_scene(100));
-        // A plain mesh: no shape record, one PrimInfo for all its triangles (in a vector
-        // that grew to capacity 4), nothing unbounded.
-        for (n, scene) in [(10, &small), (100, &large)] {
+        // Below the shared-vertex threshold a plain mesh's triangles are shapes of their own.
+        assert_eq!(mesh_scene(10).shapes.len(), 10);
+        let n0 = super::super::build::SHARED_VERTEX_MIN_TRIANGLES;
+        let (small, large) = (mesh_scene(n0 as u32), mesh_scene(2 * n0 as u32));
+        // From it on, a plain mesh: no shape record, one PrimInfo for all its triangles (in a
+        // vector that grew to capacity 4), nothing unbounded.
+        for (n, scene) in [(n0, &small), (2 * n0, &large)] {
             let m = scene.memory();
             assert!(scene.shapes.is_empty());
             assert_eq!(scene.tris.len(), n);
