@@ -89,13 +89,13 @@ pub fn normal_map_shading(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::math::Rgb;
     use crate::texture::{FloatTexture, Mapping2D, SpectrumTexture};
 
     /// A hit on the plane z = 0 at (u, v) = (x, y), ∂p/∂u = x̂, ∂p/∂v = ŷ, n = ẑ.
-    fn flat(x: f32, y: f32) -> SurfaceInteraction {
+    pub(crate) fn flat(x: f32, y: f32) -> SurfaceInteraction {
         SurfaceInteraction {
             p: Vec3::new(x, y, 0.0),
             p_error: Vec3::ZERO,

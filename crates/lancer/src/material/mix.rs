@@ -86,38 +86,9 @@ pub fn apply_bump(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::math::{Rgb, Vec2, normalize};
-    use crate::shape::{Shading, SurfaceInteraction};
+    use crate::material::bump::tests::flat;
+    use crate::math::{Rgb, normalize};
     use crate::texture::{FloatTex, FloatTexture, Mapping2D, SpectrumTex};
-
-    /// The lookup point of a hit, without a footprint.
-    fn plain_coord(si: &SurfaceInteraction) -> TexCoord {
-        TexCoord {
-            uv: si.uv,
-            p: si.p,
-            n: si.n,
-            ..TexCoord::default()
-        }
-    }
-
-    /// A hit on the plane z = 0 at (u, v) = (x, y), ∂p/∂u = x̂, ∂p/∂v = ŷ, n = ẑ.
-    fn flat(x: f32, y: f32) -> SurfaceInteraction {
-        SurfaceInteraction {
-            p: Vec3::new(x, y, 0.0),
-            p_error: Vec3::ZERO,
-            n: Vec3::Z,
-            uv: Vec2::new(x, y),
-            dpdu: Vec3::X,
-            dpdv: Vec3::Y,
-            shading: Shading {
-                n: Vec3::Z,
-                dpdu: Vec3::X,
-                dpdv: Vec3::Y,
-            },
-            wo: Vec3::Z,
-            t: 1.0,
-        }
-    }
 
     /// Materials: 0 diffuse, 1 diffuse bumped by h(u, v) = 0.1·u + 0.2·v (normal
     /// ∝ (−0.1, −0.2, 1)), 2 a mix of 0 and 1 with `amount`, 3 a mix of 2 and 2.
@@ -156,7 +127,13 @@ mod tests {
         // Amount 1: always the bumped side, directly and under a mix of mixes.
         for m in [1, 2, 3] {
             let mut si = flat(0.3, 0.6);
-            apply_bump(&scene(1.0), &tex, m, &mut si, plain_coord);
+            apply_bump(
+                &scene(1.0),
+                &tex,
+                m,
+                &mut si,
+                crate::scene::Scene::tex_coord,
+            );
             assert!(
                 (si.shading.n - bumped_n).length() < 2e-3,
                 "{m}: {}",
@@ -165,7 +142,13 @@ mod tests {
         }
         // Amount 0: always the plain side, whose frame stays.
         let mut si = flat(0.3, 0.6);
-        apply_bump(&scene(0.0), &tex, 2, &mut si, plain_coord);
+        apply_bump(
+            &scene(0.0),
+            &tex,
+            2,
+            &mut si,
+            crate::scene::Scene::tex_coord,
+        );
         assert_eq!(si.shading.n, Vec3::Z);
         // Amount 0.3: per point, the bump is there exactly when the mix picks material 1
         // (the choice the BSDF set-up makes with `mix_pick`), about 30 % of the points.
@@ -175,8 +158,8 @@ mod tests {
         for i in 0..n {
             let (x, y) = ((i % 50) as f32 / 50.0 + 0.01, (i / 50) as f32 / 40.0 + 0.01);
             let mut si = flat(x, y);
-            apply_bump(&mats, &tex, 2, &mut si, plain_coord);
-            let tc = plain_coord(&si);
+            apply_bump(&mats, &tex, 2, &mut si, crate::scene::Scene::tex_coord);
+            let tc = crate::scene::Scene::tex_coord(&si);
             let m = resolve_mix(&mats, &tex, &tc, 2);
             assert_eq!(m, mix_pick([0, 1], 0.3, si.p));
             if m == 1 {
