@@ -18,9 +18,19 @@ use crate::math::{Rgb, SampledSpectrum};
 pub const DENSE_SAMPLES: usize = (LAMBDA_MAX - LAMBDA_MIN) as usize + 1;
 
 /// A spectrum sampled every 1 nm over 360–830 nm, read by linear interpolation.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, PartialEq)]
 pub struct DenseSpectrum {
     values: [f32; DENSE_SAMPLES],
+}
+
+impl std::fmt::Debug for DenseSpectrum {
+    /// The table as its length and digest ([`Digest`](crate::math::digest::Digest)): a scene's
+    /// debug form (which the CLI hashes) need not print 471 numbers per constant.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("DenseSpectrum")
+            .field("values", &crate::math::digest::Digest(&self.values[..]))
+            .finish()
+    }
 }
 
 impl DenseSpectrum {
