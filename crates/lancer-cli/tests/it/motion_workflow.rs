@@ -4,10 +4,9 @@
 //! spectral and in RGB mode. Each camera sample's time is a pure function of (seed, pixel,
 //! sample index), like its other dimensions.
 
-use crate::common::{ScratchDir, data, render_ok, run_in};
+use crate::common::{ScratchDir, data, render_ok, run_in, signal_after_first_checkpoint};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
 
 fn bytes(p: &Path) -> Vec<u8> {
     std::fs::read(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
@@ -88,7 +87,7 @@ fn an_interrupted_motion_blurred_render_resumes_to_the_same_bytes() {
 
     // Interrupted after its first checkpoint (every 60 ms), as in the workflow tests.
     let ckpt = dir.join("int.exr.ckpt");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_lancer"))
+    let child = Command::new(env!("CARGO_BIN_EXE_lancer"))
         .current_dir(&dir)
         .args(["render", "motion.pbrt", "-o", "int.exr", "--quiet"])
         .args(opts)
@@ -97,21 +96,7 @@ fn an_interrupted_motion_blurred_render_resumes_to_the_same_bytes() {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    let t0 = Instant::now();
-    while !ckpt.exists() {
-        assert!(
-            child.try_wait().unwrap().is_none(),
-            "the render ended before its first checkpoint"
-        );
-        assert!(t0.elapsed() < Duration::from_secs(300), "no checkpoint");
-        std::thread::sleep(Duration::from_millis(10));
-    }
-    let kill = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(kill.success());
-    let o = child.wait_with_output().unwrap();
+    let o = signal_after_first_checkpoint(child, &ckpt, "INT");
     assert_eq!(
         o.status.code(),
         Some(130),

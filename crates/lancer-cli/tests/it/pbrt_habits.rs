@@ -3,12 +3,11 @@
 //! plain progress lines in a log, renders that survive a hang-up under `nohup`; and the small
 //! fixes of issue 21 (warnings printed once by `info`, a missing part named by `merge`).
 
-use crate::common::{ScratchDir, data, lancer, read_exr, run_in};
+use crate::common::{ScratchDir, data, lancer, read_exr, run_in, signal_after_first_checkpoint};
 use std::io::Write;
 use std::os::unix::process::CommandExt;
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
-use std::time::{Duration, Instant};
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
@@ -414,23 +413,8 @@ fn render_hung_up(dir: &Path, ignore_hangup: bool) -> Output {
             Ok(())
         });
     }
-    let mut child = cmd.spawn().unwrap();
-    let ckpt = dir.join("h.exr.ckpt");
-    let t0 = Instant::now();
-    while !ckpt.exists() {
-        assert!(
-            child.try_wait().unwrap().is_none(),
-            "the render ended before its first checkpoint"
-        );
-        assert!(t0.elapsed() < Duration::from_secs(300), "no checkpoint");
-        std::thread::sleep(Duration::from_millis(10));
-    }
-    let kill = Command::new("kill")
-        .args(["-HUP", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(kill.success());
-    child.wait_with_output().unwrap()
+    let child = cmd.spawn().unwrap();
+    signal_after_first_checkpoint(child, &dir.join("h.exr.ckpt"), "HUP")
 }
 
 #[test]

@@ -2,10 +2,9 @@
 //! the single render's exact bytes; an interrupted render resumed from its checkpoint gives the
 //! uninterrupted render's exact bytes; `lancer merge` refuses parts that do not belong together.
 
-use crate::common::{ScratchDir, data, read_exr, render_ok, run_in};
+use crate::common::{ScratchDir, data, read_exr, render_ok, run_in, signal_after_first_checkpoint};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
 
 /// Options shared by the split tests: 40 × 72 pixels is 5 rows of 16-pixel tiles.
 const OPTS: [&str; 6] = ["--spp", "8", "--seed", "5", "--resolution", "40x72"];
@@ -187,7 +186,7 @@ fn an_interrupted_render_resumes_to_the_uninterrupted_pixels() {
     // the first one, whatever the machine's load, and the render is far from done by then.
     let out = dir.join("int.exr");
     let ckpt = dir.join("int.exr.ckpt");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_lancer"))
+    let child = Command::new(env!("CARGO_BIN_EXE_lancer"))
         .current_dir(&dir)
         .args(["render", "cbox.pbrt", "-o", "int.exr", "--quiet"])
         .args(opts)
@@ -196,21 +195,7 @@ fn an_interrupted_render_resumes_to_the_uninterrupted_pixels() {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    let t0 = Instant::now();
-    while !ckpt.exists() {
-        assert!(
-            child.try_wait().unwrap().is_none(),
-            "the render ended before its first checkpoint"
-        );
-        assert!(t0.elapsed() < Duration::from_secs(300), "no checkpoint");
-        std::thread::sleep(Duration::from_millis(10));
-    }
-    let kill = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(kill.success());
-    let o = child.wait_with_output().unwrap();
+    let o = signal_after_first_checkpoint(child, &ckpt, "INT");
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(130), "{err}");
     assert!(err.contains("--resume"), "{err}");

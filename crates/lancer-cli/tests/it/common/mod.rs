@@ -158,3 +158,31 @@ pub fn compare(name: &str, test: &Img, reference: &Img, max_mre: f64, max_nrmse:
         "{name}: nrmse {nrmse:.4} (> {max_nrmse})"
     );
 }
+
+/// Waits until the render `child` has written its first checkpoint `ckpt` (failing if the
+/// render ends first or none comes within five minutes), then sends it `signal` (`"INT"`,
+/// `"HUP"`, …) and returns its output once it has stopped.
+pub fn signal_after_first_checkpoint(
+    mut child: std::process::Child,
+    ckpt: &Path,
+    signal: &str,
+) -> Output {
+    let t0 = std::time::Instant::now();
+    while !ckpt.exists() {
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "the render ended before its first checkpoint"
+        );
+        assert!(
+            t0.elapsed() < std::time::Duration::from_secs(300),
+            "no checkpoint"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    let kill = Command::new("kill")
+        .args([&format!("-{signal}"), &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    child.wait_with_output().unwrap()
+}
