@@ -285,11 +285,24 @@ pub fn encode_part(film: &Film, meta: &PartMeta) -> Result<Vec<u8>, String> {
             AttributeValue::Text(Text::from(v.as_str())),
         );
     }
+    encode_film_layer(film, layer_attrs, list)
+}
+
+/// Encodes one EXR layer of `channels` covering `film`'s bounds (its data window), inside the
+/// full image as display window, losslessly compressed; the layer's attributes are the
+/// caller's. OpenEXR keeps a file's channels sorted by name, so they are sorted here.
+pub(crate) fn encode_film_layer(
+    film: &Film,
+    attributes: exr::prelude::LayerAttributes,
+    channels: exr::prelude::SmallVec<[exr::prelude::AnyChannel<exr::prelude::FlatSamples>; 4]>,
+) -> Result<Vec<u8>, String> {
+    use exr::prelude::*;
+    let (w, h) = (film.bounds.width() as usize, film.bounds.height() as usize);
     let layer = Layer::new(
         (w, h),
-        layer_attrs,
+        attributes,
         Encoding::SMALL_LOSSLESS,
-        AnyChannels::sort(list),
+        AnyChannels::sort(channels),
     );
     let mut image = Image::from_layer(layer);
     image.attributes.display_window =

@@ -123,23 +123,10 @@ pub fn encode_gbuffer_exr(
     // and `worldToNDC`.
     attrs.world_to_camera = Some(header.world_to_camera);
     attrs.world_to_normalized_device = header.world_to_ndc;
-    // OpenEXR keeps a file's channels sorted by name.
-    let layer = Layer::new(
-        (w, h),
-        attrs,
-        Encoding::SMALL_LOSSLESS,
-        AnyChannels::sort(list),
-    );
-    let mut image = Image::from_layer(layer);
-    image.attributes.display_window =
-        IntegerBounds::from_dimensions((film.full_width as usize, film.full_height as usize));
-    let mut buf = std::io::Cursor::new(Vec::new());
-    image
-        .write()
-        .non_parallel()
-        .to_buffered(&mut buf)
-        .map_err(|e| e.to_string())?;
-    Ok((buf.into_inner(), clamped))
+    Ok((
+        crate::image_io::encode_film_layer(film, attrs, list)?,
+        clamped,
+    ))
 }
 
 /// Writes a g-buffer film to `path` atomically (see [`encode_gbuffer_exr`]); only `.exr`, as
