@@ -10,7 +10,7 @@ use super::pmj02::{N_PMJ02_SETS, Pmj02Sets, pmj02_sets};
 use super::randomization::Randomization;
 use super::sobol::{
     fast_owen_scramble, fast_owen_scramble_reversed, interval_to_index, randomize, sobol_0,
-    sobol_1, sobol_sample, sobol_sample_reversed,
+    sobol_sample, sobol_sample_reversed,
 };
 use super::sobol_block::{BLOCK, padded_seeds, sobol_block, table_dimension};
 use crate::math::Vec2;
@@ -372,14 +372,22 @@ impl Sampler {
                 let h2 = mix_bits(h);
                 Vec2::new(
                     u32_to_unit_f32(randomize(sobol_0(i), randomization, (h >> 32) as u32)),
-                    u32_to_unit_f32(randomize(sobol_1(i), randomization, h2 as u32)),
+                    u32_to_unit_f32(randomize(
+                        sobol_sample(i as u64, 1),
+                        randomization,
+                        h2 as u32,
+                    )),
                 )
             }
             SamplerKind::PaddedSobol { randomization } => {
                 let i = self.permuted_index(h);
                 Vec2::new(
                     u32_to_unit_f32(randomize(sobol_0(i), randomization, h as u32)),
-                    u32_to_unit_f32(randomize(sobol_1(i), randomization, (h >> 32) as u32)),
+                    u32_to_unit_f32(randomize(
+                        sobol_sample(i as u64, 1),
+                        randomization,
+                        (h >> 32) as u32,
+                    )),
                 )
             }
             SamplerKind::Halton { randomization, .. } => Vec2::new(
@@ -411,9 +419,12 @@ impl Sampler {
                     self.dim = 2;
                     let m = sobol_log2_scale(resolution);
                     let a = self.sobol_index;
+                    // Dimension 1 from its table (a loop over a's set bits), not the bit-by-bit
+                    // recurrence of `sobol::sobol_1`: the same matrix, fewer and better
+                    // predicted steps.
                     Vec2::new(
                         u32_to_unit_f32(sobol_0(a as u32) << m),
-                        u32_to_unit_f32(sobol_1(a as u32) << m),
+                        u32_to_unit_f32(sobol_sample(a, 1) << m),
                     )
                 }
                 _ => self.get_2d(),

@@ -117,6 +117,16 @@ mod tests {
     }
 
     #[test]
+    fn dimension_one_table_is_pascals_recurrence_on_every_column() {
+        // The samplers read dimension 1 from the table instead of `sobol_1`; both are linear
+        // over GF(2), so agreeing on the 32 unit indices makes them agree everywhere.
+        use crate::sampling::sobol::{sobol_1, sobol_sample};
+        for k in 0..32 {
+            assert_eq!(sobol_sample(1 << k, 1), sobol_1(1 << k), "column {k}");
+        }
+    }
+
+    #[test]
     fn padding_continues_the_wrapped_dimensions() {
         let n = N_SOBOL_DIMENSIONS;
         assert_eq!(table_dimension(5), 5);
