@@ -60,70 +60,103 @@ impl Image {
 
     /// The texel at integer coordinates, with the wrap mode applied.
     pub fn texel(&self, x: i64, y: i64, wrap: WrapMode) -> Rgb {
-        let (w, h) = (self.width as i64, self.height as i64);
-        if wrap == WrapMode::OctahedralSphere {
-            // pbrt-v4's rule for equal-area octahedral maps: a step off the left or right edge
-            // comes back mirrored in x (about the edge texel, as pbrt writes it: x → −x or
-            // 2w − 1 − x) and in y (y → h − 1 − y); off the top or bottom likewise with the
-            // roles swapped. The square's edges meet their mirror images on the sphere.
-            let (mut x, mut y) = (x, y);
-            if x < 0 {
-                (x, y) = (-x, h - 1 - y);
-            } else if x >= w {
-                (x, y) = (2 * w - 1 - x, h - 1 - y);
-            }
-            if y < 0 {
-                (x, y) = (w - 1 - x, -y);
-            } else if y >= h {
-                (x, y) = (w - 1 - x, 2 * h - 1 - y);
-            }
-            // Further than one image away (or a 1-texel side) only clamping makes sense.
-            let (x, y) = (x.clamp(0, w - 1), y.clamp(0, h - 1));
-            return self.texels[(y * w + x) as usize].into();
-        }
-        match (wrap_coord(x, w, wrap), wrap_coord(y, h, wrap)) {
-            (Some(x), Some(y)) => self.texels[(y * w + x) as usize].into(),
-            _ => Rgb::ZERO,
-        }
+        texel_in(self.width, self.height, x, y, wrap, |i| {
+            self.texels[i].into()
+        })
     }
 
     /// Bilinear (or nearest) lookup at texture coordinates `st`, where (0, 0) is the image's
     /// bottom-left corner and (1, 1) its top-right (pbrt's convention: v grows upwards).
     pub fn lookup(&self, st: Vec2, wrap: WrapMode, nearest: bool) -> Rgb {
-        let x = st.x * self.width as f32 - 0.5;
-        let y = (1.0 - st.y) * self.height as f32 - 0.5;
-        if !x.is_finite() || !y.is_finite() {
-            return Rgb::ZERO;
-        }
-        if nearest {
-            // pbrt-v4's point filter: the texel round(s·w − ½), halves rounded away from 0.
-            return self.texel(x.round() as i64, y.round() as i64, wrap);
-        }
-        let (x0, y0) = (x.floor(), y.floor());
-        let (dx, dy) = (x - x0, y - y0);
-        let (xi, yi) = (x0 as i64, y0 as i64);
-        if wrap == WrapMode::OctahedralSphere {
-            // Its wrap mixes x and y: each neighbour is wrapped on its own.
-            return (1.0 - dx) * (1.0 - dy) * self.texel(xi, yi, wrap)
-                + dx * (1.0 - dy) * self.texel(xi + 1, yi, wrap)
-                + (1.0 - dx) * dy * self.texel(xi, yi + 1, wrap)
-                + dx * dy * self.texel(xi + 1, yi + 1, wrap);
-        }
-        // The other wraps act on x and y separately: two columns and two rows, wrapped once.
-        let (w, h) = (self.width as i64, self.height as i64);
-        let (cx0, cx1) = wrap_pair(xi, w, wrap);
-        let (cy0, cy1) = wrap_pair(yi, h, wrap);
-        let t = |x: Option<i64>, y: Option<i64>| -> Rgb {
-            match (x, y) {
-                (Some(x), Some(y)) => self.texels[(y * w + x) as usize].into(),
-                _ => Rgb::ZERO,
-            }
-        };
-        (1.0 - dx) * (1.0 - dy) * t(cx0, cy0)
-            + dx * (1.0 - dy) * t(cx1, cy0)
-            + (1.0 - dx) * dy * t(cx0, cy1)
-            + dx * dy * t(cx1, cy1)
+        lookup_in(self.width, self.height, st, wrap, nearest, |i| {
+            self.texels[i].into()
+        })
     }
+}
+
+/// [`Image::texel`] for any storage of a `width × height` image: `fetch(y·width + x)` gives
+/// the texel at (x, y) inside the image.
+#[inline(always)]
+pub fn texel_in(
+    width: u32,
+    height: u32,
+    x: i64,
+    y: i64,
+    wrap: WrapMode,
+    fetch: impl Fn(usize) -> Rgb,
+) -> Rgb {
+    let (w, h) = (width as i64, height as i64);
+    if wrap == WrapMode::OctahedralSphere {
+        // pbrt-v4's rule for equal-area octahedral maps: a step off the left or right edge
+        // comes back mirrored in x (about the edge texel, as pbrt writes it: x → −x or
+        // 2w − 1 − x) and in y (y → h − 1 − y); off the top or bottom likewise with the
+        // roles swapped. The square's edges meet their mirror images on the sphere.
+        let (mut x, mut y) = (x, y);
+        if x < 0 {
+            (x, y) = (-x, h - 1 - y);
+        } else if x >= w {
+            (x, y) = (2 * w - 1 - x, h - 1 - y);
+        }
+        if y < 0 {
+            (x, y) = (w - 1 - x, -y);
+        } else if y >= h {
+            (x, y) = (w - 1 - x, 2 * h - 1 - y);
+        }
+        // Further than one image away (or a 1-texel side) only clamping makes sense.
+        let (x, y) = (x.clamp(0, w - 1), y.clamp(0, h - 1));
+        return fetch((y * w + x) as usize);
+    }
+    match (wrap_coord(x, w, wrap), wrap_coord(y, h, wrap)) {
+        (Some(x), Some(y)) => fetch((y * w + x) as usize),
+        _ => Rgb::ZERO,
+    }
+}
+
+/// [`Image::lookup`] for any storage of a `width × height` image (`fetch` as for
+/// [`texel_in`]).
+#[inline(always)]
+pub fn lookup_in(
+    width: u32,
+    height: u32,
+    st: Vec2,
+    wrap: WrapMode,
+    nearest: bool,
+    fetch: impl Fn(usize) -> Rgb,
+) -> Rgb {
+    let x = st.x * width as f32 - 0.5;
+    let y = (1.0 - st.y) * height as f32 - 0.5;
+    if !x.is_finite() || !y.is_finite() {
+        return Rgb::ZERO;
+    }
+    let texel = |x: i64, y: i64| texel_in(width, height, x, y, wrap, &fetch);
+    if nearest {
+        // pbrt-v4's point filter: the texel round(s·w − ½), halves rounded away from 0.
+        return texel(x.round() as i64, y.round() as i64);
+    }
+    let (x0, y0) = (x.floor(), y.floor());
+    let (dx, dy) = (x - x0, y - y0);
+    let (xi, yi) = (x0 as i64, y0 as i64);
+    if wrap == WrapMode::OctahedralSphere {
+        // Its wrap mixes x and y: each neighbour is wrapped on its own.
+        return (1.0 - dx) * (1.0 - dy) * texel(xi, yi)
+            + dx * (1.0 - dy) * texel(xi + 1, yi)
+            + (1.0 - dx) * dy * texel(xi, yi + 1)
+            + dx * dy * texel(xi + 1, yi + 1);
+    }
+    // The other wraps act on x and y separately: two columns and two rows, wrapped once.
+    let (w, h) = (width as i64, height as i64);
+    let (cx0, cx1) = wrap_pair(xi, w, wrap);
+    let (cy0, cy1) = wrap_pair(yi, h, wrap);
+    let t = |x: Option<i64>, y: Option<i64>| -> Rgb {
+        match (x, y) {
+            (Some(x), Some(y)) => fetch((y * w + x) as usize),
+            _ => Rgb::ZERO,
+        }
+    };
+    (1.0 - dx) * (1.0 - dy) * t(cx0, cy0)
+        + dx * (1.0 - dy) * t(cx1, cy0)
+        + (1.0 - dx) * dy * t(cx0, cy1)
+        + dx * dy * t(cx1, cy1)
 }
 
 /// Coordinates `v` and `v + 1` of an axis of `n` texels with `wrap` applied: when tiling,

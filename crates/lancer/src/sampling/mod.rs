@@ -9,6 +9,7 @@ mod randomization;
 mod rng;
 mod sampler;
 pub mod sobol;
+mod sobol_block;
 mod warp;
 
 pub use hash::{hash_u64, mix_bits, permutation_element, u32_to_unit_f32};

@@ -9,9 +9,10 @@ use super::hash::{hash_u64, mix_bits, permutation_element, u32_to_unit_f32};
 use super::pmj02::{N_PMJ02_SETS, Pmj02Sets, pmj02_sets};
 use super::randomization::Randomization;
 use super::sobol::{
-    N_SOBOL_DIMENSIONS, fast_owen_scramble, fast_owen_scramble_reversed, interval_to_index,
-    randomize, sobol_0, sobol_1, sobol_sample, sobol_sample_reversed,
+    fast_owen_scramble, fast_owen_scramble_reversed, interval_to_index, randomize, sobol_0,
+    sobol_sample, sobol_sample_reversed,
 };
+use super::sobol_block::{BLOCK, padded_seeds, sobol_block, table_dimension};
 use crate::math::Vec2;
 use std::sync::Arc;
 
@@ -118,6 +119,10 @@ struct HaltonState {
     index: u64,
 }
 
+/// `Sampler::sobol_block_start` when the block holds nothing of the current sample: far above
+/// any dimension a path asks for, so that no dimension falls inside it.
+const NO_BLOCK: u32 = 1 << 31;
+
 /// A sampler positioned at one pixel sample; hands out the sample's dimensions in turn.
 #[derive(Clone, Debug)]
 pub struct Sampler {
@@ -134,9 +139,14 @@ pub struct Sampler {
     /// The `sobol` sampler's index of the current sample in the whole image's sequence.
     sobol_index: u64,
     /// The `sobol` sampler's scrambling seed of each dimension, a hash of (dimension, seed)
-    /// computed once per sampler rather than once per sample and dimension (empty for the
-    /// other kinds).
+    /// computed once per sampler rather than once per sample and dimension, padded past the
+    /// table as [`padded_seeds`] says (empty for the other kinds).
     sobol_seeds: Box<[u32]>,
+    /// The `sobol` sampler's (fast Owen) dimensions `sobol_block_start` … + 7 of the current
+    /// sample, computed together ([`sobol_block`]) when the first of them is asked for.
+    sobol_block: [f32; BLOCK],
+    /// First dimension held in `sobol_block`; [`NO_BLOCK`] when it holds none of this sample.
+    sobol_block_start: u32,
     /// The `pmj02bn` sampler's point sets.
     pmj: Option<Arc<Pmj02Sets>>,
 }
@@ -168,11 +178,13 @@ impl Sampler {
             halton,
             sobol_index: 0,
             sobol_seeds: match kind {
-                SamplerKind::Sobol { .. } => (0..N_SOBOL_DIMENSIONS as u64)
-                    .map(|d| mix_bits(hash_u64(&[d, seed])) as u32)
-                    .collect(),
+                SamplerKind::Sobol { .. } => {
+                    padded_seeds(|d| mix_bits(hash_u64(&[d as u64, seed])) as u32)
+                }
                 _ => Box::default(),
             },
+            sobol_block: [0.0; BLOCK],
+            sobol_block_start: NO_BLOCK,
             pmj: (kind == SamplerKind::Pmj02bn).then(|| pmj02_sets(spp)),
         }
     }
@@ -204,6 +216,7 @@ impl Sampler {
         if let SamplerKind::Sobol { resolution, .. } = self.kind {
             let m = sobol_log2_scale(resolution);
             self.sobol_index = interval_to_index(m, index, x as u32, y as u32);
+            self.sobol_block_start = NO_BLOCK;
         }
     }
 
@@ -224,8 +237,34 @@ impl Sampler {
         // The independent case inline (a few instructions), the point sets out of line.
         match self.kind {
             SamplerKind::Independent => self.independent(d),
+            SamplerKind::Sobol {
+                randomization: Randomization::FastOwen,
+                ..
+            } if d >= 2 => self.sobol_block[self.sobol_block_at(d, 1)],
             _ => self.get_1d_at(d),
         }
+    }
+
+    /// Where dimensions `d` … `d + count − 1` (`count` ≤ 2) of the current `sobol` sample
+    /// sit in `sobol_block`, computing the block from `d` first unless it already holds
+    /// them. Dimensions are asked for in increasing order, so each block serves the next
+    /// several requests.
+    #[inline(always)]
+    fn sobol_block_at(&mut self, d: u32, count: u32) -> usize {
+        // d − start, wrapped: a d below the start (or no block) gives a huge offset.
+        let off = d.wrapping_sub(self.sobol_block_start);
+        if off > BLOCK as u32 - count {
+            self.fill_sobol_block(d);
+            return 0;
+        }
+        off as usize
+    }
+
+    /// Computes `sobol_block` from dimension `d` on.
+    #[inline(never)]
+    fn fill_sobol_block(&mut self, d: u32) {
+        self.sobol_block = sobol_block(self.sobol_index, d as usize, &self.sobol_seeds);
+        self.sobol_block_start = d;
     }
 
     /// Dimension `d` of a stratified or Sobol sample.
@@ -293,6 +332,13 @@ impl Sampler {
         self.dim += 2;
         match self.kind {
             SamplerKind::Independent => self.independent_2d(d),
+            SamplerKind::Sobol {
+                randomization: Randomization::FastOwen,
+                ..
+            } if d >= 2 => {
+                let i = self.sobol_block_at(d, 2);
+                Vec2::new(self.sobol_block[i], self.sobol_block[i + 1])
+            }
             _ => self.get_2d_at(d),
         }
     }
@@ -326,14 +372,22 @@ impl Sampler {
                 let h2 = mix_bits(h);
                 Vec2::new(
                     u32_to_unit_f32(randomize(sobol_0(i), randomization, (h >> 32) as u32)),
-                    u32_to_unit_f32(randomize(sobol_1(i), randomization, h2 as u32)),
+                    u32_to_unit_f32(randomize(
+                        sobol_sample(i as u64, 1),
+                        randomization,
+                        h2 as u32,
+                    )),
                 )
             }
             SamplerKind::PaddedSobol { randomization } => {
                 let i = self.permuted_index(h);
                 Vec2::new(
                     u32_to_unit_f32(randomize(sobol_0(i), randomization, h as u32)),
-                    u32_to_unit_f32(randomize(sobol_1(i), randomization, (h >> 32) as u32)),
+                    u32_to_unit_f32(randomize(
+                        sobol_sample(i as u64, 1),
+                        randomization,
+                        (h >> 32) as u32,
+                    )),
                 )
             }
             SamplerKind::Halton { randomization, .. } => Vec2::new(
@@ -365,9 +419,12 @@ impl Sampler {
                     self.dim = 2;
                     let m = sobol_log2_scale(resolution);
                     let a = self.sobol_index;
+                    // Dimension 1 from its table (a loop over a's set bits), not the bit-by-bit
+                    // recurrence of `sobol::sobol_1`: the same matrix, fewer and better
+                    // predicted steps.
                     Vec2::new(
                         u32_to_unit_f32(sobol_0(a as u32) << m),
-                        u32_to_unit_f32(sobol_1(a as u32) << m),
+                        u32_to_unit_f32(sobol_sample(a, 1) << m),
                     )
                 }
                 _ => self.get_2d(),
@@ -379,12 +436,7 @@ impl Sampler {
     /// seed) (`sobol_seeds`); past the table, dimensions start again from 2 (as
     /// pbrt-v4 does past its 1024).
     fn sobol_dimension(&self, d: u32, randomization: Randomization) -> f32 {
-        let n = N_SOBOL_DIMENSIONS as u32;
-        let d = if d < n {
-            d.max(2)
-        } else {
-            2 + (d - 2) % (n - 2)
-        };
+        let d = table_dimension(d.max(2) as usize) as u32;
         let seed = self.sobol_seeds.get(d as usize).copied().unwrap_or(0);
         u32_to_unit_f32(match randomization {
             // The default: the scramble takes the reversed bits the reversed columns give.
@@ -485,6 +537,33 @@ mod tests {
             for _ in 0..40 {
                 assert_eq!(a.get_2d(), b.get_2d(), "{kind:?}");
                 assert_eq!(a.get_1d(), b.get_1d(), "{kind:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn sobol_blocks_hand_out_the_one_dimension_values() {
+        // get_1d/get_2d read the eight-dimension blocks; get_1d_at is the one-dimension
+        // path. Mixed 1D and 2D requests cross block boundaries and the table's end (128),
+        // and a new pixel sample must not reuse the previous sample's block.
+        let kind = SamplerKind::Sobol {
+            randomization: Randomization::FastOwen,
+            resolution: [40, 30],
+        };
+        let mut s = Sampler::new(kind, 16, 9);
+        for (x, y, i) in [(3, 4, 0), (3, 4, 1), (39, 29, 15), (0, 0, 7)] {
+            s.start_pixel_sample(x, y, i);
+            s.get_pixel_2d();
+            let mut d = 2;
+            while d < 300 {
+                if d % 3 == 0 {
+                    let v = s.get_2d();
+                    assert_eq!((v.x, v.y), (s.get_1d_at(d), s.get_1d_at(d + 1)), "d {d}");
+                    d += 2;
+                } else {
+                    assert_eq!(s.get_1d(), s.get_1d_at(d), "d {d}");
+                    d += 1;
+                }
             }
         }
     }

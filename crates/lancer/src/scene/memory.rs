@@ -125,6 +125,23 @@ impl Scene {
                 images += img.memory_bytes();
             }
         }
+        // The byte forms of the pyramids' levels that have them, each shared pyramid once.
+        let mipmaps = self
+            .float_textures
+            .iter()
+            .filter_map(|t| match t {
+                FloatTexture::Image(i) => Some(&i.mipmap),
+                _ => None,
+            })
+            .chain(self.spectrum_textures.iter().filter_map(|t| match t {
+                SpectrumTexture::Image(i) => Some(&i.mipmap),
+                _ => None,
+            }));
+        for m in mipmaps {
+            if seen.insert(Arc::as_ptr(m) as usize) {
+                images += m.palette_bytes();
+            }
+        }
         let lights = vec_bytes::<Light>(self.lights.capacity())
             + self
                 .lights
@@ -291,7 +308,8 @@ mod tests {
             ..SceneDesc::default()
         };
         let m = Scene::build(&desc).unwrap().memory();
-        assert_eq!(m.images, 8 * 12);
+        // The texels, and once their byte form: 8 one-byte indices into a table of one texel.
+        assert_eq!(m.images, 8 * 12 + 8 + 12);
         assert_eq!(
             m.textures,
             size_of::<FloatTexture>() + size_of::<SpectrumTexture>()

@@ -10,7 +10,10 @@
 
 use crate::image::{Image, WrapMode};
 use crate::math::{Mat3, PackedRgb, Rgb, Vec2};
+use palette::PaletteLevel;
 use std::sync::{Arc, LazyLock};
+
+mod palette;
 
 /// How an image texture is filtered over its footprint (pbrt-v4's `filter`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -55,6 +58,9 @@ pub struct StFootprint {
 #[derive(Clone, PartialEq)]
 pub struct MipMap {
     levels: Vec<Arc<Image>>,
+    /// Per level, the same texels at one byte each when the level has at most 256 distinct
+    /// ones ([`PaletteLevel`]): lookups read these, a twelfth of the memory traffic.
+    palettes: Vec<Option<PaletteLevel>>,
 }
 
 /// Level 0 and the number of levels: the others follow from them, and printing them (the
@@ -79,9 +85,41 @@ impl MipMap {
     /// A single-level map: lookups always read `image` itself, whatever the footprint (image
     /// textures of formats that ask for no MIP filtering, and normal maps).
     pub fn single(image: Arc<Image>) -> MipMap {
-        MipMap {
-            levels: vec![image],
+        MipMap::from_levels(vec![image])
+    }
+
+    /// A map of these levels, with their byte forms where they have few distinct texels.
+    fn from_levels(levels: Vec<Arc<Image>>) -> MipMap {
+        let palettes = levels.iter().map(|l| PaletteLevel::from_image(l)).collect();
+        MipMap { levels, palettes }
+    }
+
+    /// [`Image::texel`] of level `i`, read from its byte form when it has one.
+    #[inline]
+    fn texel(&self, i: usize, x: i64, y: i64, wrap: WrapMode) -> Rgb {
+        match &self.palettes[i] {
+            Some(p) => p.texel(x, y, wrap),
+            None => self.levels[i].texel(x, y, wrap),
         }
+    }
+
+    /// [`Image::lookup`] of level `i`, read from its byte form when it has one.
+    #[inline]
+    fn lookup(&self, i: usize, st: Vec2, wrap: WrapMode, nearest: bool) -> Rgb {
+        match &self.palettes[i] {
+            Some(p) => p.lookup(st, wrap, nearest),
+            None => self.levels[i].lookup(st, wrap, nearest),
+        }
+    }
+
+    /// Bytes of the levels' byte forms (the images themselves are counted with
+    /// [`MipMap::images`]).
+    pub fn palette_bytes(&self) -> usize {
+        self.palettes
+            .iter()
+            .flatten()
+            .map(PaletteLevel::memory_bytes)
+            .sum()
     }
 
     /// The full pyramid of `image`; `wrap` says what lies beyond its edges when it has to be
@@ -116,7 +154,7 @@ impl MipMap {
             let next = downsample(last);
             levels.push(Arc::new(next));
         }
-        MipMap { levels }
+        MipMap::from_levels(levels)
     }
 
     /// Number of levels.
@@ -139,7 +177,7 @@ impl MipMap {
     pub fn filter(&self, filter: ImageFilter, wrap: WrapMode, c: &StFootprint) -> Rgb {
         let (dst0, dst1) = (Vec2::new(c.dsdx, c.dtdx), Vec2::new(c.dsdy, c.dtdy));
         if self.levels.len() == 1 {
-            return self.levels[0].lookup(c.st, wrap, filter == ImageFilter::Point);
+            return self.lookup(0, c.st, wrap, filter == ImageFilter::Point);
         }
         let top = self.levels.len() - 1;
         let max_anisotropy = match filter {
@@ -150,17 +188,17 @@ impl MipMap {
                 let width = 2.0 * dst0.abs().max(dst1.abs()).max_element();
                 let level = top as f32 + width.max(1e-8).log2();
                 if level >= top as f32 {
-                    return self.levels[top].texel(0, 0, wrap);
+                    return self.texel(top, 0, 0, wrap);
                 }
                 let il = (level.floor() as i64).max(0) as usize;
                 return match filter {
-                    ImageFilter::Point => self.levels[il].lookup(c.st, wrap, true),
-                    ImageFilter::Bilinear => self.levels[il].lookup(c.st, wrap, false),
-                    _ if il == 0 => self.levels[0].lookup(c.st, wrap, false),
+                    ImageFilter::Point => self.lookup(il, c.st, wrap, true),
+                    ImageFilter::Bilinear => self.lookup(il, c.st, wrap, false),
+                    _ if il == 0 => self.lookup(0, c.st, wrap, false),
                     _ => {
                         let f = level - il as f32;
-                        let a = self.levels[il].lookup(c.st, wrap, false);
-                        let b = self.levels[il + 1].lookup(c.st, wrap, false);
+                        let a = self.lookup(il, c.st, wrap, false);
+                        let b = self.lookup(il + 1, c.st, wrap, false);
                         (1.0 - f) * a + f * b
                     }
                 };
@@ -181,7 +219,7 @@ impl MipMap {
             shorter *= scale;
         }
         if shorter == 0.0 {
-            return self.levels[0].lookup(c.st, wrap, false);
+            return self.lookup(0, c.st, wrap, false);
         }
         // The level where the shorter axis spans about a texel: ℓ = max(0, (n − 1) + log₂ |b|).
         let lod = (top as f32 + shorter.log2()).max(0.0);
@@ -196,7 +234,7 @@ impl MipMap {
     /// texel), weighted by the Gaussian table.
     fn ewa(&self, level: usize, wrap: WrapMode, st: Vec2, a: Vec2, b: Vec2) -> Rgb {
         let Some(img) = self.levels.get(level) else {
-            return self.levels[self.levels.len() - 1].texel(0, 0, wrap);
+            return self.texel(self.levels.len() - 1, 0, 0, wrap);
         };
         let res = Vec2::new(img.width as f32, img.height as f32);
         // Image rows run downwards: t flips (its derivatives need not: the ellipse is
@@ -232,7 +270,7 @@ impl MipMap {
                 let r2 = ea * ss * ss + eb * ss * tt + ec * tt * tt;
                 if r2 < 1.0 {
                     let w = lut[((r2 * 128.0) as usize).min(127)];
-                    sum += w * img.texel(is, it, wrap);
+                    sum += w * self.texel(level, is, it, wrap);
                     sum_w += w;
                 }
             }
@@ -241,7 +279,7 @@ impl MipMap {
         if sum_w > 0.0 {
             sum / sum_w
         } else {
-            img.lookup(st, wrap, false)
+            self.lookup(level, st, wrap, false)
         }
     }
 }

@@ -75,11 +75,11 @@ fn non_power_of_two_images_are_resampled_up() {
 
 /// Levels holding their own index: 8×8 of 0, 4×4 of 1, 2×2 of 2, 1×1 of 3.
 fn numbered_levels() -> MipMap {
-    MipMap {
-        levels: (0..4)
+    MipMap::from_levels(
+        (0..4)
             .map(|l| image(8 >> l, 8 >> l, move |_, _| l as f32))
             .collect(),
-    }
+    )
 }
 
 #[test]
