@@ -45,9 +45,20 @@ impl BouncePdf {
     fn value(&self) -> f32 {
         match self {
             BouncePdf::Known(p) => *p,
-            BouncePdf::Deferred { bsdf, wo, wi } => bsdf.pdf(*wo, *wi, TransportMode::Radiance),
+            BouncePdf::Deferred { bsdf, wo, wi } => deferred_pdf(bsdf, *wo, *wi),
         }
     }
+}
+
+/// A layered BSDF's MIS density, out of line. Inlined, LLVM hoisted the start of `pdf` (the
+/// frame's `to_local` of `wo` and `wi`) to the loop's back edge, where it ran on every bounce
+/// on the `Deferred` payload even when `p_b` was `Known`: stale stack bytes, often denormal
+/// floats whose multiplies take microcode assists (cbox: `li` fell from 31 % to 15 % of the
+/// cpu-clock samples out of line, renders byte-identical).
+#[cold]
+#[inline(never)]
+fn deferred_pdf(bsdf: &Bsdf, wo: Vec3, wi: Vec3) -> f32 {
+    bsdf.pdf(wo, wi, TransportMode::Radiance)
 }
 
 /// Receives the vertices of a path as [`li_observed`] follows it.
