@@ -45,9 +45,20 @@ impl BouncePdf {
     fn value(&self) -> f32 {
         match self {
             BouncePdf::Known(p) => *p,
-            BouncePdf::Deferred { bsdf, wo, wi } => bsdf.pdf(*wo, *wi, TransportMode::Radiance),
+            BouncePdf::Deferred { bsdf, wo, wi } => deferred_pdf(bsdf, *wo, *wi),
         }
     }
+}
+
+/// A layered BSDF's MIS density, out of line. Inlined, LLVM hoisted the start of `pdf` (the
+/// frame's `to_local` of `wo` and `wi`) to the loop's back edge, where it ran on every bounce
+/// on the `Deferred` payload even when `p_b` was `Known`: stale stack bytes, often denormal
+/// floats whose multiplies take microcode assists (cbox: `li` fell from 31 % to 15 % of the
+/// cpu-clock samples out of line, renders byte-identical).
+#[cold]
+#[inline(never)]
+fn deferred_pdf(bsdf: &Bsdf, wo: Vec3, wi: Vec3) -> f32 {
+    bsdf.pdf(wo, wi, TransportMode::Radiance)
 }
 
 /// Receives the vertices of a path as [`li_observed`] follows it.
@@ -91,7 +102,11 @@ pub fn li_observed<O: PathObserver>(
     let mut eta_scale = 1.0f32;
     let mut any_non_specular = false;
     loop {
-        let Some(hit) = scene.intersect(&ray) else {
+        // Bound by reference, here and for the BSDF: moving the records out of the returned
+        // Options copied them with wide loads right after the callee's narrower stores, which
+        // stalled on store forwarding.
+        let found = scene.intersect(&ray);
+        let Some(hit) = &found else {
             // Environment light: counted in full where no light sampling could have found it
             // (camera rays, specular bounces), otherwise weighted against light sampling.
             let mut p_b_value = None;
@@ -122,7 +137,7 @@ pub fn li_observed<O: PathObserver>(
         let wo = si.wo;
         // An area light hit by a BSDF-sampled ray: weighted against the chance that light
         // sampling picked the same point.
-        let le = emitted(scene, &hit, wo, wavelengths.as_ref());
+        let le = emitted(scene, hit, wo, wavelengths.as_ref());
         if le != SampledSpectrum::ZERO {
             match (
                 depth == 0 || specular_bounce,
@@ -138,7 +153,8 @@ pub fn li_observed<O: PathObserver>(
                 _ => l += beta * le,
             }
         }
-        let Some((mut bsdf, disperses)) = bsdf_at(scene, &hit, wavelengths.as_ref()) else {
+        let mut scattering = bsdf_at(scene, hit, wavelengths.as_ref());
+        let Some((bsdf, disperses)) = &mut scattering else {
             // An interface between media: no surface, the ray goes on unchanged.
             ray = si.spawn_ray(ray.d);
             continue;
@@ -148,7 +164,7 @@ pub fn li_observed<O: PathObserver>(
         // (pbrt-v4's TerminateSecondary, see [`crate::spectrum::hero`]), once.
         if let Some(lam) = wavelengths
             .as_mut()
-            .filter(|l| disperses && !l.secondary_terminated())
+            .filter(|l| *disperses && !l.secondary_terminated())
         {
             lam.terminate_secondary();
             l *= HERO_ONLY;
@@ -229,7 +245,7 @@ pub fn li_observed<O: PathObserver>(
         // density the light-sampling side will also use, evaluated if a light is reached.
         p_b = if bs.pdf_is_proportional {
             BouncePdf::Deferred {
-                bsdf,
+                bsdf: *bsdf,
                 wo,
                 wi: bs.wi,
             }
@@ -245,14 +261,7 @@ pub fn li_observed<O: PathObserver>(
         ray = si.spawn_ray(bs.wi);
         // Refracted into a subsurface material: a BSSRDF picks where the light leaves.
         if bs.is_transmission() {
-            match subsurface::exit(
-                scene,
-                &hit,
-                sampler,
-                wavelengths.as_ref(),
-                &mut beta,
-                &mut l,
-            ) {
+            match subsurface::exit(scene, hit, sampler, wavelengths.as_ref(), &mut beta, &mut l) {
                 subsurface::Exit::NotSubsurface => {}
                 subsurface::Exit::Lost => break,
                 subsurface::Exit::Left {
