@@ -127,13 +127,7 @@ mod tests {
         // Amount 1: always the bumped side, directly and under a mix of mixes.
         for m in [1, 2, 3] {
             let mut si = flat(0.3, 0.6);
-            apply_bump(
-                &scene(1.0),
-                &tex,
-                m,
-                &mut si,
-                crate::scene::Scene::tex_coord,
-            );
+            apply_bump(&scene(1.0), &tex, m, &mut si, TexCoord::at);
             assert!(
                 (si.shading.n - bumped_n).length() < 2e-3,
                 "{m}: {}",
@@ -142,13 +136,7 @@ mod tests {
         }
         // Amount 0: always the plain side, whose frame stays.
         let mut si = flat(0.3, 0.6);
-        apply_bump(
-            &scene(0.0),
-            &tex,
-            2,
-            &mut si,
-            crate::scene::Scene::tex_coord,
-        );
+        apply_bump(&scene(0.0), &tex, 2, &mut si, TexCoord::at);
         assert_eq!(si.shading.n, Vec3::Z);
         // Amount 0.3: per point, the bump is there exactly when the mix picks material 1
         // (the choice the BSDF set-up makes with `mix_pick`), about 30 % of the points.
@@ -158,8 +146,8 @@ mod tests {
         for i in 0..n {
             let (x, y) = ((i % 50) as f32 / 50.0 + 0.01, (i / 50) as f32 / 40.0 + 0.01);
             let mut si = flat(x, y);
-            apply_bump(&mats, &tex, 2, &mut si, crate::scene::Scene::tex_coord);
-            let tc = crate::scene::Scene::tex_coord(&si);
+            apply_bump(&mats, &tex, 2, &mut si, TexCoord::at);
+            let tc = TexCoord::at(&si);
             let m = resolve_mix(&mats, &tex, &tc, 2);
             assert_eq!(m, mix_pick([0, 1], 0.3, si.p));
             if m == 1 {

@@ -286,12 +286,7 @@ impl Scene {
 
     /// Where textures are looked up for a hit, without a footprint.
     pub fn tex_coord(si: &SurfaceInteraction) -> TexCoord {
-        TexCoord {
-            uv: si.uv,
-            p: si.p,
-            n: si.n,
-            ..TexCoord::default()
-        }
+        TexCoord::at(si)
     }
 
     /// The footprint of `ray`'s hit `si` when the scene's textures use footprints

@@ -31,6 +31,17 @@ pub struct TexCoord {
 }
 
 impl TexCoord {
+    /// Where textures are looked up at a surface point, without a footprint: its (u, v),
+    /// position and geometric normal.
+    pub fn at(si: &crate::shape::SurfaceInteraction) -> TexCoord {
+        TexCoord {
+            uv: si.uv,
+            p: si.p,
+            n: si.n,
+            ..TexCoord::default()
+        }
+    }
+
     /// This point with the footprint ∂p/∂x, ∂p/∂y and the (u, v) derivatives it gives on a
     /// surface with tangents ∂p/∂u, ∂p/∂v (pbrt-v4's `ComputeDifferentials`): ∂p/∂x ≈
     /// ∂p/∂u·∂u/∂x + ∂p/∂v·∂v/∂x solved in the least-squares sense,
