@@ -3,6 +3,7 @@
 //! with half-angle θ_o, plus the emission spread θ_e beyond each normal). From these,
 //! [`LightBounds::importance`] bounds how much the group can light a point.
 
+use super::compact::{CompactLightBounds, safe_sqrt};
 use crate::math::{Bounds3, Vec3, cross, normalize};
 use std::f32::consts::PI;
 
@@ -28,10 +29,6 @@ pub struct DirectionCone {
 
 pub(super) fn safe_acos(x: f32) -> f32 {
     x.clamp(-1.0, 1.0).acos()
-}
-
-fn safe_sqrt(x: f32) -> f32 {
-    x.max(0.0).sqrt()
 }
 
 impl DirectionCone {
@@ -89,26 +86,6 @@ pub struct LightBounds {
     pub two_sided: bool,
 }
 
-/// cos(θ_a − θ_b) clamped to 1 when θ_a < θ_b, from sines and cosines.
-#[inline]
-fn cos_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> f32 {
-    if cos_a > cos_b {
-        1.0
-    } else {
-        cos_a * cos_b + sin_a * sin_b
-    }
-}
-
-/// sin(θ_a − θ_b) clamped to 0 when θ_a < θ_b.
-#[inline]
-fn sin_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> f32 {
-    if cos_a > cos_b {
-        0.0
-    } else {
-        sin_a * cos_b - cos_a * sin_b
-    }
-}
-
 impl LightBounds {
     /// The bounds of two groups together: boxes and cones united, powers added, the wider
     /// spread.
@@ -142,43 +119,26 @@ impl LightBounds {
     /// cone's axis to `p`, θ_b the half-angle the box subtends from `p`), zero when θ′ ≥ θ_e;
     /// θ′ᵢ = max(0, θᵢ − θ_b) likewise for the angle θᵢ between `n` and the box.
     pub fn importance(&self, p: Vec3, n: Vec3) -> f32 {
-        let pc = self.bounds.centroid();
-        let d2 = (p - pc)
-            .length_squared()
-            .max(self.bounds.diagonal().length() / 2.0);
-        // The direction from the light towards p.
-        let wi = (p - pc).normalize_or_zero();
-        let mut cos_theta_w = self.normals.w.dot(wi);
-        if self.two_sided {
-            cos_theta_w = cos_theta_w.abs();
-        }
-        let sin_theta_w = safe_sqrt(1.0 - cos_theta_w * cos_theta_w);
-        // The half-angle of the cone from p holding the box's bounding sphere.
-        let (c, r) = self.bounds.bounding_sphere();
-        let dc2 = (p - c).length_squared();
-        let cos_theta_b = if dc2 < r * r {
-            -1.0
-        } else {
-            safe_sqrt(1.0 - r * r / dc2)
-        };
-        let sin_theta_b = safe_sqrt(1.0 - cos_theta_b * cos_theta_b);
-        // θ_x = max(0, θ_w − θ_o), then θ′ = max(0, θ_x − θ_b).
+        self.compact().importance(p, n)
+    }
+
+    /// What [`LightBounds::importance`] needs, precomputed: the box's centre and half
+    /// diagonal, its bounding sphere's r², cos θ_o and sin θ_o = √(1 − cos² θ_o). (A light's
+    /// box is never empty: a point light's is one point.)
+    pub fn compact(&self) -> CompactLightBounds {
+        let (centre, r) = self.bounds.bounding_sphere();
         let cos_theta_o = self.normals.cos_theta;
-        let sin_theta_o = safe_sqrt(1.0 - cos_theta_o * cos_theta_o);
-        let cos_theta_x = cos_sub_clamped(sin_theta_w, cos_theta_w, sin_theta_o, cos_theta_o);
-        let sin_theta_x = sin_sub_clamped(sin_theta_w, cos_theta_w, sin_theta_o, cos_theta_o);
-        let cos_theta_p = cos_sub_clamped(sin_theta_x, cos_theta_x, sin_theta_b, cos_theta_b);
-        if cos_theta_p <= self.cos_theta_e {
-            return 0.0;
+        CompactLightBounds {
+            centre,
+            w: self.normals.w,
+            phi: self.phi,
+            min_d2: self.bounds.diagonal().length() / 2.0,
+            r2: r * r,
+            cos_theta_o,
+            sin_theta_o: safe_sqrt(1.0 - cos_theta_o * cos_theta_o),
+            cos_theta_e: self.cos_theta_e,
+            two_sided: self.two_sided,
         }
-        let mut importance = self.phi * cos_theta_p / d2;
-        // The surface at p sees the box at best at angle max(0, θᵢ − θ_b).
-        if n != Vec3::ZERO {
-            let cos_theta_i = wi.dot(n).abs();
-            let sin_theta_i = safe_sqrt(1.0 - cos_theta_i * cos_theta_i);
-            importance *= cos_sub_clamped(sin_theta_i, cos_theta_i, sin_theta_b, cos_theta_b);
-        }
-        importance.max(0.0)
     }
 }
 

@@ -9,6 +9,7 @@
 //! [`BvhLightSampler::pmf`] retraces it for multiple importance sampling.
 
 use super::bounds::{LightBounds, LightExtent};
+use super::compact::CompactLightBounds;
 use super::sample::LightSampleContext;
 use crate::math::{Bounds3, Vec3};
 use std::f32::consts::PI;
@@ -16,11 +17,11 @@ use std::f32::consts::PI;
 /// The largest float below 1.
 const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 
-/// A node: the bounds of its lights; an interior node's first child follows it, the second is
+/// A node: the bounds of its lights, prepared for importance; an interior node's first child follows it, the second is
 /// at `child_or_light`; a leaf holds one light.
 #[derive(Clone, Copy, Debug)]
 struct Node {
-    bounds: LightBounds,
+    bounds: CompactLightBounds,
     child_or_light: u32,
     is_leaf: bool,
 }
@@ -108,7 +109,7 @@ impl BvhLightSampler {
         if lights.len() == 1 {
             let (i, b) = lights[0];
             self.nodes.push(Node {
-                bounds: b,
+                bounds: b.compact(),
                 child_or_light: i,
                 is_leaf: true,
             });
@@ -169,7 +170,7 @@ impl BvhLightSampler {
         }
         let node = self.nodes.len();
         self.nodes.push(Node {
-            bounds: lights[0].1,
+            bounds: lights[0].1.compact(),
             child_or_light: 0,
             is_leaf: false,
         });
@@ -179,7 +180,7 @@ impl BvhLightSampler {
         let b1 = self.build(right, trail | (1u64 << depth), depth + 1);
         let b = b0.union(&b1);
         self.nodes[node] = Node {
-            bounds: b,
+            bounds: b.compact(),
             child_or_light: second,
             is_leaf: false,
         };
