@@ -9,7 +9,7 @@
 //! [`BvhLightSampler::pmf`] retraces it for multiple importance sampling.
 
 use super::bounds::{LightBounds, LightExtent};
-use super::compact::CompactLightBounds;
+use super::compact::{CompactLightBounds, CompactLightBounds4};
 use super::sample::LightSampleContext;
 use crate::math::{Bounds3, Vec3};
 use std::f32::consts::PI;
@@ -17,12 +17,14 @@ use std::f32::consts::PI;
 /// The largest float below 1.
 const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 
-/// A node: the bounds of its lights, prepared for importance; an interior node's first child follows it, the second is
-/// at `child_or_light`; a leaf holds one light.
+/// A node: the bounds of its lights, prepared for importance; an interior node's first child
+/// follows it, the second is at `child_or_light`, and both children's bounds are side by side
+/// at `pairs[pair]`; a leaf holds one light.
 #[derive(Clone, Copy, Debug)]
 struct Node {
     bounds: CompactLightBounds,
     child_or_light: u32,
+    pair: u32,
     is_leaf: bool,
 }
 
@@ -35,6 +37,9 @@ const NEVER: u64 = u64::MAX - 1;
 #[derive(Clone, Debug, Default)]
 pub struct BvhLightSampler {
     nodes: Vec<Node>,
+    /// Per interior node, its two children's bounds in lanes 0 and 1 (lanes 2 and 3 repeat
+    /// child 1), so that one 4-wide evaluation gives both importances.
+    pairs: Vec<CompactLightBounds4>,
     /// Lights without bounds (distant, infinite).
     infinite: Vec<u32>,
     /// Per light: its bit trail in the BVH, or [`UNBOUNDED`] / [`NEVER`].
@@ -76,6 +81,7 @@ impl BvhLightSampler {
     pub fn new(lights: &[LightExtent]) -> BvhLightSampler {
         let mut s = BvhLightSampler {
             nodes: Vec::new(),
+            pairs: Vec::new(),
             infinite: Vec::new(),
             trails: vec![NEVER; lights.len()],
         };
@@ -99,6 +105,7 @@ impl BvhLightSampler {
     /// Bytes of the tables (capacity included).
     pub fn memory_bytes(&self) -> usize {
         self.nodes.capacity() * std::mem::size_of::<Node>()
+            + self.pairs.capacity() * std::mem::size_of::<CompactLightBounds4>()
             + self.infinite.capacity() * 4
             + self.trails.capacity() * 8
     }
@@ -111,6 +118,7 @@ impl BvhLightSampler {
             self.nodes.push(Node {
                 bounds: b.compact(),
                 child_or_light: i,
+                pair: 0,
                 is_leaf: true,
             });
             self.trails[i as usize] = trail;
@@ -172,6 +180,7 @@ impl BvhLightSampler {
         self.nodes.push(Node {
             bounds: lights[0].1.compact(),
             child_or_light: 0,
+            pair: 0,
             is_leaf: false,
         });
         let (left, right) = lights.split_at_mut(mid);
@@ -179,9 +188,12 @@ impl BvhLightSampler {
         let second = self.nodes.len() as u32;
         let b1 = self.build(right, trail | (1u64 << depth), depth + 1);
         let b = b0.union(&b1);
+        let (c0, c1) = (b0.compact(), b1.compact());
+        self.pairs.push(CompactLightBounds4::new([c0, c1, c1, c1]));
         self.nodes[node] = Node {
             bounds: b.compact(),
             child_or_light: second,
+            pair: (self.pairs.len() - 1) as u32,
             is_leaf: false,
         };
         b
@@ -219,8 +231,8 @@ impl BvhLightSampler {
                 return None;
             }
             let c = [node + 1, nd.child_or_light as usize];
-            let i0 = self.nodes[c[0]].bounds.importance(p, n);
-            let i1 = self.nodes[c[1]].bounds.importance(p, n);
+            let imp = self.pairs[nd.pair as usize].importance(p, n);
+            let (i0, i1) = (imp.x, imp.y);
             if i0 == 0.0 && i1 == 0.0 {
                 return None;
             }
@@ -262,8 +274,8 @@ impl BvhLightSampler {
                 };
             }
             let c = [node + 1, nd.child_or_light as usize];
-            let i0 = self.nodes[c[0]].bounds.importance(p, n);
-            let i1 = self.nodes[c[1]].bounds.importance(p, n);
+            let imp = self.pairs[nd.pair as usize].importance(p, n);
+            let (i0, i1) = (imp.x, imp.y);
             if i0 == 0.0 && i1 == 0.0 {
                 return 0.0;
             }
