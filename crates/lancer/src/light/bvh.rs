@@ -359,13 +359,21 @@ mod tests {
         // The infinite light gets 1/2; the black point light and the quad, which faces away
         // from the point, nothing.
         assert!((pmf[38] - 0.5).abs() < 1e-6 && pmf[39] == 0.0 && pmf[40] == 0.0);
-        // Chi-square of the sampled counts against the PMF.
+        // 99.9th percentile of χ² with ~40 degrees of freedom is about 73.
+        let (chi2, bins) = chi_square(&s, &c, &pmf);
+        assert!(chi2 < 73.0, "chi2 {chi2} over {bins} bins");
+    }
+
+    /// χ² of 200 000 choices (u stratified and scrambled) against the PMF, and the number of
+    /// bins it sums over (those expecting more than 5); also checks that each choice reports
+    /// its light's PMF and that lights of PMF zero are never chosen.
+    fn chi_square(s: &BvhLightSampler, c: &LightSampleContext, pmf: &[f64]) -> (f64, usize) {
         let n = 200_000;
-        let mut counts = vec![0u32; lights.len()];
+        let mut counts = vec![0u32; pmf.len()];
         for k in 0..n {
             let u = (k as f32 + 0.5) / n as f32;
             let u = (u * 7919.0).fract();
-            let (i, p) = s.sample(&c, u).expect("a light");
+            let (i, p) = s.sample(c, u).expect("a light");
             assert!((p as f64 - pmf[i]).abs() < 1e-5 * pmf[i].max(1e-3), "{i}");
             counts[i] += 1;
         }
@@ -380,8 +388,68 @@ mod tests {
                 assert!(e > 0.0 || o == 0);
             }
         }
-        // 99.9th percentile of χ² with ~40 degrees of freedom is about 73.
-        assert!(chi2 < 73.0, "chi2 {chi2} over {dof} bins");
+        (chi2, dof)
+    }
+
+    /// A one-sided quad light of half-size `h` at height `y`, facing down, as the Cornell
+    /// box's (an area light: θ_o = 0, θ_e = π/2).
+    fn ceiling_quad(x: f32, y: f32, h: f32, phi: f32) -> LightExtent {
+        LightExtent::Bounded(LightBounds {
+            bounds: Bounds3::new(Vec3::new(x - h, y, -h), Vec3::new(x + h, y, h)),
+            phi,
+            normals: DirectionCone {
+                w: -Vec3::Y,
+                cos_theta: 1.0,
+            },
+            cos_theta_e: 0.0,
+            two_sided: false,
+        })
+    }
+
+    #[test]
+    fn few_lights_sample_as_their_pmf_says() {
+        // Two, three and four area lights (the sizes the light BVH meets in small scenes),
+        // lit from points on the floor, on a wall, and in a medium (n = 0).
+        let sets = [
+            vec![
+                ceiling_quad(0.0, 2.0, 0.3, 5.0),
+                ceiling_quad(0.1, 2.0, 0.3, 5.0),
+            ],
+            vec![
+                ceiling_quad(-1.0, 2.0, 0.2, 3.0),
+                ceiling_quad(1.0, 1.5, 0.4, 8.0),
+                point(0.0, 1.0, 0.5, 0.2),
+            ],
+            vec![
+                ceiling_quad(-1.0, 2.0, 0.2, 3.0),
+                ceiling_quad(1.0, 1.5, 0.4, 8.0),
+                point(0.0, 1.0, 0.5, 0.2),
+                point(0.5, 0.3, -0.5, 1.0),
+            ],
+        ];
+        let points = [
+            (Vec3::new(0.3, 0.0, 0.2), Vec3::Y),
+            (Vec3::new(-1.5, 1.0, 0.0), Vec3::X),
+            (Vec3::new(0.2, 1.0, 0.1), Vec3::ZERO),
+        ];
+        for lights in &sets {
+            let s = BvhLightSampler::new(lights);
+            for &(p, n) in &points {
+                let c = LightSampleContext { p, n, ns: n };
+                let pmf: Vec<f64> = (0..lights.len()).map(|i| s.pmf(&c, i) as f64).collect();
+                let total: f64 = pmf.iter().sum();
+                assert!((total - 1.0).abs() < 1e-5, "{total}");
+                // Each lit light's PMF is its share of importance down the tree: never 0
+                // here, where every light faces the point.
+                assert!(pmf.iter().all(|&q| q > 0.0), "{pmf:?}");
+                // 99.9th percentile of χ² with 1, 2, 3 degrees of freedom (bins − 1): 10.8,
+                // 13.8, 16.3.
+                let (chi2, bins) = chi_square(&s, &c, &pmf);
+                assert_eq!(bins, lights.len());
+                let bound = [10.8, 13.8, 16.3][bins - 2];
+                assert!(chi2 < bound, "chi2 {chi2} over {bins} bins");
+            }
+        }
     }
 
     #[test]
