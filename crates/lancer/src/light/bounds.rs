@@ -145,6 +145,8 @@ impl LightBounds {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::light::compact::CompactLightBounds4;
+    use crate::sampling::Pcg32;
 
     fn quad_light(two_sided: bool) -> LightBounds {
         // A small light at the origin facing +z.
@@ -190,5 +192,56 @@ mod tests {
         assert!((u.w - normalize(Vec3::new(1.0, 1.0, 0.0))).length() < 1e-5);
         let c = DirectionCone::union(a, DirectionCone::ENTIRE_SPHERE);
         assert_eq!(c.cos_theta, -1.0);
+    }
+
+    /// Random bounds: boxes from points to wide ones, cones from a line to the whole sphere,
+    /// one- and two-sided.
+    fn random_bounds(rng: &mut Pcg32) -> LightBounds {
+        let mut v = || Vec3::new(rng.uniform(), rng.uniform(), rng.uniform()) * 4.0 - 2.0;
+        let (a, size, w) = (v(), v().abs() * 0.5, normalize(v()));
+        let size = if a.x > 1.0 { Vec3::ZERO } else { size };
+        LightBounds {
+            bounds: Bounds3::new(a, a + size),
+            phi: rng.uniform() * 10.0,
+            normals: DirectionCone {
+                w,
+                cos_theta: rng.uniform() * 2.0 - 1.0,
+            },
+            cos_theta_e: rng.uniform() * 1.2 - 0.1,
+            two_sided: rng.uniform() < 0.3,
+        }
+    }
+
+    #[test]
+    fn four_lanes_give_the_bits_of_one_at_a_time() {
+        let mut rng = Pcg32::new(11, 3);
+        let mut nonzero = 0;
+        for _ in 0..2000 {
+            let b = [(); 4].map(|_| random_bounds(&mut rng));
+            let lanes = CompactLightBounds4::new(b.map(|b| b.compact()));
+            let p = Vec3::new(rng.uniform(), rng.uniform(), rng.uniform()) * 6.0 - 3.0;
+            let n = match (rng.uniform() * 3.0) as u32 {
+                0 => Vec3::ZERO,
+                _ => normalize(Vec3::new(rng.uniform(), rng.uniform(), rng.uniform()) - 0.5),
+            };
+            // Also the point at a box's centre (wi = 0) and inside its sphere.
+            let p = if rng.uniform() < 0.05 {
+                b[0].centroid()
+            } else {
+                p
+            };
+            let got = lanes.importance(p, n).to_array();
+            for (i, b) in b.iter().enumerate() {
+                let want = b.importance(p, n);
+                assert_eq!(
+                    got[i].to_bits(),
+                    want.to_bits(),
+                    "lane {i}: {b:?} at {p:?} {n:?}"
+                );
+                nonzero += usize::from(want > 0.0);
+            }
+        }
+        // The cases are not all trivial zeros.
+        assert!(nonzero > 1000, "{nonzero}");
     }
 }
