@@ -44,6 +44,8 @@ pub struct BvhLightSampler {
     infinite: Vec<u32>,
     /// Per light: its bit trail in the BVH, or [`UNBOUNDED`] / [`NEVER`].
     trails: Vec<u64>,
+    /// Probability of choosing an unbounded light, n_∞/(n_∞ + 1) (or 1 without a BVH).
+    p_inf: f32,
 }
 
 /// Buckets per axis for the split search.
@@ -83,6 +85,7 @@ impl BvhLightSampler {
             nodes: Vec::new(),
             pairs: Vec::new(),
             infinite: Vec::new(),
+            p_inf: 0.0,
             trails: vec![NEVER; lights.len()],
         };
         let mut bounded = Vec::new();
@@ -99,6 +102,8 @@ impl BvhLightSampler {
         if !bounded.is_empty() {
             s.build(&mut bounded, 0, 0);
         }
+        let n = s.infinite.len();
+        s.p_inf = n as f32 / (n + usize::from(!s.nodes.is_empty())).max(1) as f32;
         s
     }
 
@@ -199,16 +204,10 @@ impl BvhLightSampler {
         b
     }
 
-    /// Probability of choosing an unbounded light, n_∞/(n_∞ + 1) (or 1 without a BVH).
-    fn p_infinite(&self) -> f32 {
-        let n = self.infinite.len();
-        n as f32 / (n + usize::from(!self.nodes.is_empty())).max(1) as f32
-    }
-
     /// Chooses a light for the point `ctx` with the uniform number `u`: its index and
     /// probability, or `None` when no light can light the point.
     pub fn sample(&self, ctx: &LightSampleContext, u: f32) -> Option<(usize, f32)> {
-        let p_inf = self.p_infinite();
+        let p_inf = self.p_inf;
         if u < p_inf {
             let n = self.infinite.len();
             let k = ((u / p_inf * n as f32) as usize).min(n - 1);
@@ -256,14 +255,14 @@ impl BvhLightSampler {
             return 0.0;
         };
         match trail {
-            UNBOUNDED => return self.p_infinite() / self.infinite.len() as f32,
+            UNBOUNDED => return self.p_inf / self.infinite.len() as f32,
             NEVER => return 0.0,
             _ => {}
         }
         let (p, n) = (ctx.p, ctx.ns);
         let mut trail = trail;
         let mut node = 0usize;
-        let mut pmf = 1.0 - self.p_infinite();
+        let mut pmf = 1.0 - self.p_inf;
         loop {
             let nd = &self.nodes[node];
             if nd.is_leaf {
