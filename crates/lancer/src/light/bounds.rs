@@ -3,6 +3,7 @@
 //! with half-angle θ_o, plus the emission spread θ_e beyond each normal). From these,
 //! [`LightBounds::importance`] bounds how much the group can light a point.
 
+use super::compact::{CompactLightBounds, safe_sqrt};
 use crate::math::{Bounds3, Vec3, cross, normalize};
 use std::f32::consts::PI;
 
@@ -28,10 +29,6 @@ pub struct DirectionCone {
 
 pub(super) fn safe_acos(x: f32) -> f32 {
     x.clamp(-1.0, 1.0).acos()
-}
-
-fn safe_sqrt(x: f32) -> f32 {
-    x.max(0.0).sqrt()
 }
 
 impl DirectionCone {
@@ -89,26 +86,6 @@ pub struct LightBounds {
     pub two_sided: bool,
 }
 
-/// cos(θ_a − θ_b) clamped to 1 when θ_a < θ_b, from sines and cosines.
-#[inline]
-fn cos_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> f32 {
-    if cos_a > cos_b {
-        1.0
-    } else {
-        cos_a * cos_b + sin_a * sin_b
-    }
-}
-
-/// sin(θ_a − θ_b) clamped to 0 when θ_a < θ_b.
-#[inline]
-fn sin_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> f32 {
-    if cos_a > cos_b {
-        0.0
-    } else {
-        sin_a * cos_b - cos_a * sin_b
-    }
-}
-
 impl LightBounds {
     /// The bounds of two groups together: boxes and cones united, powers added, the wider
     /// spread.
@@ -142,49 +119,34 @@ impl LightBounds {
     /// cone's axis to `p`, θ_b the half-angle the box subtends from `p`), zero when θ′ ≥ θ_e;
     /// θ′ᵢ = max(0, θᵢ − θ_b) likewise for the angle θᵢ between `n` and the box.
     pub fn importance(&self, p: Vec3, n: Vec3) -> f32 {
-        let pc = self.bounds.centroid();
-        let d2 = (p - pc)
-            .length_squared()
-            .max(self.bounds.diagonal().length() / 2.0);
-        // The direction from the light towards p.
-        let wi = (p - pc).normalize_or_zero();
-        let mut cos_theta_w = self.normals.w.dot(wi);
-        if self.two_sided {
-            cos_theta_w = cos_theta_w.abs();
-        }
-        let sin_theta_w = safe_sqrt(1.0 - cos_theta_w * cos_theta_w);
-        // The half-angle of the cone from p holding the box's bounding sphere.
-        let (c, r) = self.bounds.bounding_sphere();
-        let dc2 = (p - c).length_squared();
-        let cos_theta_b = if dc2 < r * r {
-            -1.0
-        } else {
-            safe_sqrt(1.0 - r * r / dc2)
-        };
-        let sin_theta_b = safe_sqrt(1.0 - cos_theta_b * cos_theta_b);
-        // θ_x = max(0, θ_w − θ_o), then θ′ = max(0, θ_x − θ_b).
+        self.compact().importance(p, n)
+    }
+
+    /// What [`LightBounds::importance`] needs, precomputed: the box's centre and half
+    /// diagonal, its bounding sphere's r², cos θ_o and sin θ_o = √(1 − cos² θ_o). (A light's
+    /// box is never empty: a point light's is one point.)
+    pub fn compact(&self) -> CompactLightBounds {
+        let (centre, r) = self.bounds.bounding_sphere();
         let cos_theta_o = self.normals.cos_theta;
-        let sin_theta_o = safe_sqrt(1.0 - cos_theta_o * cos_theta_o);
-        let cos_theta_x = cos_sub_clamped(sin_theta_w, cos_theta_w, sin_theta_o, cos_theta_o);
-        let sin_theta_x = sin_sub_clamped(sin_theta_w, cos_theta_w, sin_theta_o, cos_theta_o);
-        let cos_theta_p = cos_sub_clamped(sin_theta_x, cos_theta_x, sin_theta_b, cos_theta_b);
-        if cos_theta_p <= self.cos_theta_e {
-            return 0.0;
+        CompactLightBounds {
+            centre,
+            w: self.normals.w,
+            phi: self.phi,
+            min_d2: self.bounds.diagonal().length() / 2.0,
+            r2: r * r,
+            cos_theta_o,
+            sin_theta_o: safe_sqrt(1.0 - cos_theta_o * cos_theta_o),
+            cos_theta_e: self.cos_theta_e,
+            two_sided: self.two_sided,
         }
-        let mut importance = self.phi * cos_theta_p / d2;
-        // The surface at p sees the box at best at angle max(0, θᵢ − θ_b).
-        if n != Vec3::ZERO {
-            let cos_theta_i = wi.dot(n).abs();
-            let sin_theta_i = safe_sqrt(1.0 - cos_theta_i * cos_theta_i);
-            importance *= cos_sub_clamped(sin_theta_i, cos_theta_i, sin_theta_b, cos_theta_b);
-        }
-        importance.max(0.0)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::light::compact::CompactLightBounds4;
+    use crate::sampling::Pcg32;
 
     fn quad_light(two_sided: bool) -> LightBounds {
         // A small light at the origin facing +z.
@@ -230,5 +192,56 @@ mod tests {
         assert!((u.w - normalize(Vec3::new(1.0, 1.0, 0.0))).length() < 1e-5);
         let c = DirectionCone::union(a, DirectionCone::ENTIRE_SPHERE);
         assert_eq!(c.cos_theta, -1.0);
+    }
+
+    /// Random bounds: boxes from points to wide ones, cones from a line to the whole sphere,
+    /// one- and two-sided.
+    fn random_bounds(rng: &mut Pcg32) -> LightBounds {
+        let mut v = || Vec3::new(rng.uniform(), rng.uniform(), rng.uniform()) * 4.0 - 2.0;
+        let (a, size, w) = (v(), v().abs() * 0.5, normalize(v()));
+        let size = if a.x > 1.0 { Vec3::ZERO } else { size };
+        LightBounds {
+            bounds: Bounds3::new(a, a + size),
+            phi: rng.uniform() * 10.0,
+            normals: DirectionCone {
+                w,
+                cos_theta: rng.uniform() * 2.0 - 1.0,
+            },
+            cos_theta_e: rng.uniform() * 1.2 - 0.1,
+            two_sided: rng.uniform() < 0.3,
+        }
+    }
+
+    #[test]
+    fn four_lanes_give_the_bits_of_one_at_a_time() {
+        let mut rng = Pcg32::new(11, 3);
+        let mut nonzero = 0;
+        for _ in 0..2000 {
+            let b = [(); 4].map(|_| random_bounds(&mut rng));
+            let lanes = CompactLightBounds4::new(b.map(|b| b.compact()));
+            let p = Vec3::new(rng.uniform(), rng.uniform(), rng.uniform()) * 6.0 - 3.0;
+            let n = match (rng.uniform() * 3.0) as u32 {
+                0 => Vec3::ZERO,
+                _ => normalize(Vec3::new(rng.uniform(), rng.uniform(), rng.uniform()) - 0.5),
+            };
+            // Also the point at a box's centre (wi = 0) and inside its sphere.
+            let p = if rng.uniform() < 0.05 {
+                b[0].centroid()
+            } else {
+                p
+            };
+            let got = lanes.importance(p, n).to_array();
+            for (i, b) in b.iter().enumerate() {
+                let want = b.importance(p, n);
+                assert_eq!(
+                    got[i].to_bits(),
+                    want.to_bits(),
+                    "lane {i}: {b:?} at {p:?} {n:?}"
+                );
+                nonzero += usize::from(want > 0.0);
+            }
+        }
+        // The cases are not all trivial zeros.
+        assert!(nonzero > 1000, "{nonzero}");
     }
 }

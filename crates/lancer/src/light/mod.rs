@@ -5,6 +5,7 @@
 
 mod bounds;
 mod bvh;
+mod compact;
 mod distribution;
 mod extent;
 mod goniometric;
@@ -16,6 +17,7 @@ mod sampler;
 
 pub use bounds::{DirectionCone, LightBounds, LightExtent};
 pub use bvh::BvhLightSampler;
+pub use compact::CompactLightBounds;
 pub use distribution::LightDistribution;
 pub use goniometric::GoniometricLight;
 pub use image_infinite::{EnvMapping, ImageInfiniteLight, environment_mapping};
