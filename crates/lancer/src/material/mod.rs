@@ -358,6 +358,10 @@ impl Material {
                 (Some(sc), SpectrumTex::Const(_) | SpectrumTex::Measured(_)) => {
                     sc.lambda.sample_prepared(&sc.consts[slot])
                 }
+                // A tree with a spectrum given as a spectrum: walked at the wavelengths.
+                (Some(sc), SpectrumTex::Tex(_)) if tex.has_measured(t) => {
+                    tex.spectrum_sampled(t, tc, sc.lambda, kind)
+                }
                 (Some(sc), SpectrumTex::Tex(_)) => sc
                     .lambda
                     .sample(&RgbSpectrum::new(tex.spectrum(t, tc), kind)),
