@@ -41,6 +41,24 @@ impl TextureEval<'_> {
         }
     }
 
+    /// A spectrum texture at `tc` and the wavelengths `lambda` as a material reads it: the
+    /// uplift (as `kind`) of its RGB value, or, for a tree holding a spectrum given as a
+    /// spectrum, [`TextureEval::spectrum_sampled`].
+    #[inline]
+    pub fn spectrum_at(
+        &self,
+        t: SpectrumTex,
+        tc: &TexCoord,
+        lambda: &SampledWavelengths,
+        kind: ColourKind,
+    ) -> SampledSpectrum {
+        if self.has_measured(t) {
+            self.spectrum_sampled(t, tc, lambda, kind)
+        } else {
+            lambda.sample(&RgbSpectrum::new(self.spectrum(t, tc), kind))
+        }
+    }
+
     /// The value of `t` at `tc` and the wavelengths `lambda`, its RGB values uplifted as
     /// `kind`; an albedo is clamped to [0, 1] at the end, as pbrt-v4's materials clamp
     /// reflectances.
