@@ -4,12 +4,13 @@
 //! `uv`, `spherical`, `cylindrical` and `planar`. Texture space is the CTM at the directive.
 
 use super::convert::{Fallback, Reader, locate};
+use super::params::ColorParam;
 use crate::error::{Location, SceneError};
 use lancer::math::{Rgb, Transform, Vec3};
 use lancer::spectrum::SpectrumKind;
 use lancer::texture::{
-    FloatTexture, ImageFilter, ImageTexture, Mapping2D, Mapping3D, SpectrumTexture, UvMapping,
-    WrapMode,
+    FloatTex, FloatTexture, ImageFilter, ImageTexture, Mapping2D, Mapping3D, SpectrumTex,
+    SpectrumTexture, UvMapping, WrapMode,
 };
 
 /// The float texture of class `class` at `loc`, with texture space `ctm` (world from texture);
@@ -161,9 +162,17 @@ fn spectrum(
 ) -> Result<Fallback<SpectrumTexture>, SceneError> {
     use SpectrumKind::Albedo;
     let t = match class {
-        "constant" => {
-            SpectrumTexture::Constant(r.params.color("value", Albedo, r.dir)?.unwrap_or(Rgb::ONE))
-        }
+        // A value given as a spectrum stays one (spectral mode samples its table): lancer's
+        // constant texture holds RGB, so it is the spectrum scaled by 1.
+        "constant" => match r.params.color_or_texture("value", Albedo, r.dir)? {
+            Some(ColorParam::Measured(m)) => SpectrumTexture::Scale {
+                tex: SpectrumTex::Measured(m),
+                scale: FloatTex::Const(1.0),
+            },
+            _ => SpectrumTexture::Constant(
+                r.params.color("value", Albedo, r.dir)?.unwrap_or(Rgb::ONE),
+            ),
+        },
         "scale" => SpectrumTexture::Scale {
             tex: r.spectrum_tex("tex", Rgb::ONE, Albedo)?,
             scale: r.float_tex("scale", 1.0)?,

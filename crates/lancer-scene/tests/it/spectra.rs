@@ -161,3 +161,47 @@ LightSource "point" "rgb I" [1 1 1]"#,
     assert!(d.light_spectra[0].is_some());
     assert!(d.light_spectra.get(1).copied().flatten().is_none());
 }
+
+/// A spectrum given inside a texture (the `constant` texture's `value`, a `checkerboard`'s
+/// `tex1`/`tex2`) is sampled at the path's wavelengths as the same spectrum given to the
+/// material directly: the renders agree, in both modes (issue 17).
+#[test]
+fn spectra_inside_textures_render_as_the_same_spectrum_given_directly() {
+    const GREEN: &str = "[400 0 500 0.9 540 0.9 600 0 700 0]";
+    let with = |defs: &str, material: &str| {
+        scene(&format!(
+            r#"LookAt 0 0 -3  0 0 0  0 1 0
+Camera "perspective" "float fov" 30
+Film "rgb" "integer xresolution" 16 "integer yresolution" 16
+Sampler "independent" "integer pixelsamples" 16
+WorldBegin
+LightSource "infinite" "rgb L" [1 1 1]
+{defs}
+Material "diffuse" {material}
+Shape "sphere" "float radius" 1
+"#
+        ))
+    };
+    let direct = with("", &format!(r#""spectrum reflectance" {GREEN}"#));
+    let constant = with(
+        &format!(r#"Texture "g" "spectrum" "constant" "spectrum value" {GREEN}"#),
+        r#""texture reflectance" "g""#,
+    );
+    let checker = with(
+        &format!(
+            r#"Texture "g" "spectrum" "checkerboard" "float uscale" 8
+    "spectrum tex1" {GREEN} "spectrum tex2" {GREEN}"#
+        ),
+        r#""texture reflectance" "g""#,
+    );
+    for spectral in [true, false] {
+        let want = mean(&direct, spectral);
+        for desc in [&constant, &checker] {
+            let got = mean(desc, spectral);
+            assert!(
+                (got - want).abs().max_element() <= 1e-5 * want.max_element(),
+                "spectral {spectral}: {got} against {want}"
+            );
+        }
+    }
+}

@@ -10,6 +10,7 @@ pub const RR_AFTER_DEPTH: u32 = 2;
 
 mod debug;
 mod path;
+pub mod specular_differentials;
 mod subsurface;
 mod volpath;
 mod whitted;

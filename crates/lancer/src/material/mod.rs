@@ -38,7 +38,7 @@ pub use scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode};
 use crate::math::{Rgb, SampledSpectrum, rgb_lanes};
 use crate::spectrum::Ior;
 use crate::spectrum::dense::PreparedSpectrum;
-use crate::spectrum::sampled::{ColourKind, RgbSpectrum, SampledWavelengths};
+use crate::spectrum::sampled::{ColourKind, SampledWavelengths};
 use crate::texture::{FloatTex, SpectrumTex, TexCoord, TextureEval};
 
 /// A material as given in a scene (pbrt-v4's names and parameters), plain data.
@@ -358,9 +358,7 @@ impl Material {
                 (Some(sc), SpectrumTex::Const(_) | SpectrumTex::Measured(_)) => {
                     sc.lambda.sample_prepared(&sc.consts[slot])
                 }
-                (Some(sc), SpectrumTex::Tex(_)) => sc
-                    .lambda
-                    .sample(&RgbSpectrum::new(tex.spectrum(t, tc), kind)),
+                (Some(sc), SpectrumTex::Tex(_)) => tex.spectrum_at(t, tc, sc.lambda, kind),
             }
         };
         let albedo = |slot: usize, t: SpectrumTex| colour(slot, t, ColourKind::Albedo);
@@ -513,6 +511,7 @@ impl Material {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::spectrum::sampled::RgbSpectrum;
     use crate::texture::SpectrumTexture;
 
     fn eval(m: &Material) -> BxDF {

@@ -140,7 +140,31 @@ pub fn named_spectrum(name: &str) -> Option<Spectrum> {
 pub fn named_spectrum_data(name: &str) -> Option<Spectrum> {
     match super::named_data::TABLES.iter().find(|(n, _)| *n == name) {
         Some((_, pairs)) => {
-            let (lambda, values) = pairs.chunks_exact(2).map(|c| (c[0], c[1])).unzip();
+            let (mut lambda, mut values): (Vec<f32>, Vec<f32>) =
+                pairs.chunks_exact(2).map(|c| (c[0], c[1])).unzip();
+            // pbrt-v4's `FromInterleaved`: a table that stops inside [360, 830] nm is extended
+            // by its end values, one nm beyond the range.
+            let (lo, hi) = (cie::LAMBDA_MIN as f32, cie::LAMBDA_MAX as f32);
+            if lambda[0] > lo {
+                lambda.insert(0, lo - 1.0);
+                values.insert(0, values[0]);
+            }
+            if lambda[lambda.len() - 1] < hi {
+                lambda.push(hi + 1.0);
+                values.push(values[values.len() - 1]);
+            }
+            let raw = Spectrum::PiecewiseLinear { lambda, values };
+            // pbrt-v4 normalises the illuminants to luminance 1: ∫ s·ȳ = ∫ ȳ (it matters
+            // where one is used as a reflectance; lights rescale by luminance anyway).
+            if !(name.starts_with("stdillum-") || name.starts_with("illum-")) {
+                return Some(raw);
+            }
+            let y = spectrum_to_xyz_unnormalised(&raw)[1]
+                / spectrum_to_xyz_unnormalised(&Spectrum::Constant(1.0))[1];
+            let Spectrum::PiecewiseLinear { lambda, values } = raw else {
+                unreachable!()
+            };
+            let values = values.into_iter().map(|v| v / y).collect();
             Some(Spectrum::PiecewiseLinear { lambda, values })
         }
         None => named_spectrum(name),
@@ -243,6 +267,28 @@ pub fn named_spectrum_names() -> impl Iterator<Item = &'static str> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// pbrt-v4's illuminant tables have luminance 1 (∫ s·ȳ = ∫ ȳ) and are extended by their
+    /// end values outside their range: F2's table runs 380–780 nm with 1.18 at 380 and 0.82
+    /// at 780 (raw values), so 370 nm has the value of 380 nm and 820 nm that of 780 nm.
+    #[test]
+    fn illuminant_tables_are_normalised_and_extended_as_pbrts() {
+        let f2 = named_spectrum_data("stdillum-F2").unwrap();
+        let y = spectrum_to_xyz_unnormalised(&f2)[1]
+            / spectrum_to_xyz_unnormalised(&Spectrum::Constant(1.0))[1];
+        assert!((y - 1.0).abs() < 1e-4, "{y}");
+        assert_eq!(f2.eval(370.0), f2.eval(380.0));
+        assert_eq!(f2.eval(820.0), f2.eval(780.0));
+        assert!(f2.eval(370.0) > 0.0);
+        // Metals keep their measured values.
+        let cu = named_spectrum_data("metal-Cu-k").unwrap();
+        let raw = super::super::named_data::TABLES
+            .iter()
+            .find(|(n, _)| *n == "metal-Cu-k")
+            .unwrap()
+            .1;
+        assert_eq!(cu.eval(raw[2 * 10]), raw[2 * 10 + 1]);
+    }
 
     /// A glass's index at two wavelengths is the Sellmeier formula's, computed here by hand for
     /// SF11 (pbrt's glass-F11): n² = 1 + Σ Bᵢλ²/(λ² − Cᵢ).

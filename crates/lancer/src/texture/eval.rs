@@ -9,13 +9,13 @@ use crate::math::noise::{fbm, turbulence};
 
 /// True on the even cells of the 2D checkerboard: `⌊s⌋ + ⌊t⌋` even (pbrt-v4's filtered
 /// checkerboard with a zero footprint).
-fn checker(mapping: &Mapping2D, tc: &TexCoord) -> bool {
+pub(super) fn checker(mapping: &Mapping2D, tc: &TexCoord) -> bool {
     let st = mapping.map(tc);
     (st.x.floor() as i64 + st.y.floor() as i64) & 1 == 0
 }
 
 /// True on the even cells of the 3D checkerboard: `⌊x⌋ + ⌊y⌋ + ⌊z⌋` even in texture space.
-fn checker_3d(mapping: &Mapping3D, tc: &TexCoord) -> bool {
+pub(super) fn checker_3d(mapping: &Mapping3D, tc: &TexCoord) -> bool {
     let p = mapping.map(tc);
     (p.x.floor() as i64 + p.y.floor() as i64 + p.z.floor() as i64) & 1 == 0
 }

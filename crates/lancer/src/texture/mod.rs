@@ -8,6 +8,7 @@ mod eval;
 mod mapping;
 pub mod mipmap;
 pub mod procedural;
+mod spectral;
 
 pub use crate::image::WrapMode;
 use crate::math::{Rgb, Vec3};

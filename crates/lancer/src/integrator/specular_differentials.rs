@@ -1,0 +1,166 @@
+//! Ray differentials through perfectly specular bounces, pbrt-v4's
+//! `SurfaceInteraction::SpawnRay(ray, bsdf, wi, flags, eta)` (src/pbrt/interaction.cpp): the
+//! offset rays one pixel over in x and y, followed through a mirror or a refraction so that a
+//! texture seen in a mirror or through glass is filtered over its own footprint.
+//!
+//! Not yet used by the path integrator: lancer's footprints come from the camera's minimum
+//! differentials at every hit (`camera/footprint.rs`); carrying these through specular
+//! bounces is issue 17's remaining step.
+
+use crate::math::Vec3;
+
+/// The offset rays of a ray differential: origins and directions one pixel over in x and y.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Differentials {
+    /// Origin of the x offset ray.
+    pub rx_origin: Vec3,
+    /// Origin of the y offset ray.
+    pub ry_origin: Vec3,
+    /// Direction of the x offset ray.
+    pub rx_dir: Vec3,
+    /// Direction of the y offset ray.
+    pub ry_dir: Vec3,
+}
+
+/// What the hit gives the specular differentials: the point, its footprint ∂p/∂x, ∂p/∂y,
+/// the shading normal and its screen derivatives ∂n/∂x = ∂n/∂u·∂u/∂x + ∂n/∂v·∂v/∂x (and y).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpecularHit {
+    /// The hit point.
+    pub p: Vec3,
+    /// ∂p/∂x, ∂p/∂y.
+    pub dpdx: Vec3,
+    /// See `dpdx`.
+    pub dpdy: Vec3,
+    /// The shading normal.
+    pub n: Vec3,
+    /// ∂n/∂x, ∂n/∂y.
+    pub dndx: Vec3,
+    /// See `dndx`.
+    pub dndy: Vec3,
+}
+
+/// The differentials after a perfect mirror bounce: the incoming ray's offset directions
+/// `rx_in`, `ry_in`, `wo` (towards where the ray came from) and `wi` (the reflected
+/// direction). With ∂ωo/∂x = −rx_in − ωo and ∂(ωo·n)/∂x = ∂ωo/∂x·n + ωo·∂n/∂x:
+/// ω_rx = ωi − ∂ωo/∂x + 2((ωo·n)·∂n/∂x + ∂(ωo·n)/∂x·n), and the same in y; origins p + ∂p/∂x.
+pub fn reflected(h: &SpecularHit, rx_in: Vec3, ry_in: Vec3, wo: Vec3, wi: Vec3) -> Differentials {
+    let (n, won) = (h.n, wo.dot(h.n));
+    let dir = |r_in: Vec3, dndx: Vec3| {
+        let dwo = -r_in - wo;
+        let dwon = dwo.dot(n) + wo.dot(dndx);
+        wi - dwo + 2.0 * (won * dndx + dwon * n)
+    };
+    Differentials {
+        rx_origin: h.p + h.dpdx,
+        ry_origin: h.p + h.dpdy,
+        rx_dir: dir(rx_in, h.dndx),
+        ry_dir: dir(ry_in, h.dndy),
+    }
+}
+
+/// The differentials after a perfect refraction into `wi` with relative index `eta` (the
+/// BSDF sample's, as pbrt-v4 passes it). The normal is flipped to ωo's side first; then with
+/// μ = (ωo·n)/η − |ωi·n| and ∂μ/∂x = ∂(ωo·n)/∂x · (1/η + (ωo·n)/(η²·(ωi·n))):
+/// ω_rx = ωi − η·∂ωo/∂x + μ·∂n/∂x + ∂μ/∂x·n, and the same in y (pbrt-v4's formula as it
+/// stands, to match its images).
+pub fn refracted(
+    h: &SpecularHit,
+    rx_in: Vec3,
+    ry_in: Vec3,
+    wo: Vec3,
+    wi: Vec3,
+    eta: f32,
+) -> Differentials {
+    let flip = if wo.dot(h.n) < 0.0 { -1.0 } else { 1.0 };
+    let (n, won, win) = (flip * h.n, flip * wo.dot(h.n), flip * wi.dot(h.n));
+    let mu = won / eta - win.abs();
+    let dir = |r_in: Vec3, dndx: Vec3| {
+        let dndx = flip * dndx;
+        let dwo = -r_in - wo;
+        let dwon = dwo.dot(n) + wo.dot(dndx);
+        let dmu = dwon * (1.0 / eta + won / (eta * eta * win));
+        wi - eta * dwo + mu * dndx + dmu * n
+    };
+    Differentials {
+        rx_origin: h.p + h.dpdx,
+        ry_origin: h.p + h.dpdy,
+        rx_dir: dir(rx_in, h.dndx),
+        ry_dir: dir(ry_in, h.dndy),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn flat() -> SpecularHit {
+        SpecularHit {
+            p: Vec3::ZERO,
+            dpdx: Vec3::new(0.01, 0.0, 0.0),
+            dpdy: Vec3::new(0.0, 0.01, 0.0),
+            n: Vec3::Z,
+            dndx: Vec3::ZERO,
+            dndy: Vec3::ZERO,
+        }
+    }
+
+    /// A flat mirror (∂n/∂x = 0) hit head-on: the reflected offset ray is the incoming offset
+    /// ray mirrored in the plane. rx_in = (a, 0, −c) with c = √(1 − a²): ∂ωo/∂x = (−a, 0,
+    /// c − 1), ∂(ωo·n)/∂x = c − 1, so ω_rx = (0, 0, 1) − (−a, 0, c − 1) + 2(c − 1)(0, 0, 1)
+    /// = (a, 0, c).
+    #[test]
+    fn a_flat_mirror_reflects_the_offset_rays() {
+        let a = 0.01f32;
+        let c = (1.0 - a * a).sqrt();
+        let rx = Vec3::new(a, 0.0, -c);
+        let ry = Vec3::new(0.0, a, -c);
+        let d = reflected(&flat(), rx, ry, Vec3::Z, Vec3::Z);
+        assert!(
+            (d.rx_dir - Vec3::new(a, 0.0, c)).length() < 1e-6,
+            "{}",
+            d.rx_dir
+        );
+        assert!(
+            (d.ry_dir - Vec3::new(0.0, a, c)).length() < 1e-6,
+            "{}",
+            d.ry_dir
+        );
+        assert_eq!(d.rx_origin, Vec3::new(0.01, 0.0, 0.0));
+    }
+
+    /// A curved mirror adds 2(ωo·n)·∂n/∂x: head-on with ∂n/∂x = (k, 0, 0) and an undeviated
+    /// offset ray (rx_in = −ωo), ω_rx = ωi + 2k·x̂.
+    #[test]
+    fn a_curved_mirror_spreads_the_offset_rays() {
+        let h = SpecularHit {
+            dndx: Vec3::new(0.5, 0.0, 0.0),
+            ..flat()
+        };
+        let d = reflected(&h, -Vec3::Z, -Vec3::Z, Vec3::Z, Vec3::Z);
+        assert!(
+            (d.rx_dir - Vec3::new(1.0, 0.0, 1.0)).length() < 1e-6,
+            "{}",
+            d.rx_dir
+        );
+        assert!((d.ry_dir - Vec3::Z).length() < 1e-6);
+    }
+
+    /// Head-on refraction through a flat surface, η = 1.5: μ = 1/1.5 − 1 = −⅓, and with
+    /// rx_in = (a, 0, −c): ∂ωo/∂x = (−a, 0, c − 1), ∂μ/∂x = (c − 1)(1/1.5 − 1/2.25), so
+    /// ω_rx = (0, 0, −1) − 1.5(−a, 0, c − 1) + ∂μ/∂x·(0, 0, 1).
+    #[test]
+    fn a_flat_refraction_follows_pbrt_v4s_formula() {
+        let (a, eta) = (0.01f32, 1.5f32);
+        let c = (1.0 - a * a).sqrt();
+        let rx = Vec3::new(a, 0.0, -c);
+        let d = refracted(&flat(), rx, rx, Vec3::Z, -Vec3::Z, eta);
+        let dmu = (c - 1.0) * (1.0 / eta - 1.0 / (eta * eta));
+        let want = Vec3::new(eta * a, 0.0, -1.0 - eta * (c - 1.0) + dmu);
+        assert!((d.rx_dir - want).length() < 1e-6, "{} {want}", d.rx_dir);
+        // From below (ωo·n < 0) the normal is flipped: the mirror-image case gives the
+        // mirror-image direction.
+        let below = refracted(&flat(), -rx, -rx, -Vec3::Z, Vec3::Z, eta);
+        assert!((below.rx_dir + want).length() < 1e-6, "{}", below.rx_dir);
+    }
+}
