@@ -276,10 +276,15 @@ pub fn area_light(
             format!("unknown area light \"{ty}\" (expected \"diffuse\")"),
         ));
     }
+    // pbrt-v4's `power` Φ: the radiance is scaled by Φ / (π · sides · area) per primitive,
+    // which only the scene build knows (the area of each triangle in world space, of each
+    // quadric in object space).
+    let power = params.float("power", -1.0)?;
     Ok(AreaLightDesc {
         l: emission(params, "L", dir)?,
         two_sided: params.bool("twosided", false)?,
         spectrum: None,
+        power: (power > 0.0).then_some(power),
     })
 }
 
@@ -673,7 +678,8 @@ mod tests {
             Ok(AreaLightDesc {
                 l: Rgb::ONE,
                 two_sided: false,
-                spectrum: None
+                spectrum: None,
+                power: None,
             })
         );
         assert!(unused.is_empty());
@@ -685,10 +691,18 @@ mod tests {
             Ok(AreaLightDesc {
                 l: Rgb::new(2.0, 4.0, 6.0),
                 two_sided: true,
-                spectrum: None
+                spectrum: None,
+                power: None,
             })
         );
         assert!(unused.is_empty());
+        // `power` is kept for the build (which knows each primitive's area); 0 or less is
+        // pbrt-v4's "not given".
+        let (out, unused) = area(r#"AreaLightSource "diffuse" "float power" 20"#);
+        assert_eq!(out.unwrap().power, Some(20.0));
+        assert!(unused.is_empty());
+        let (out, _) = area(r#"AreaLightSource "diffuse" "float power" 0"#);
+        assert_eq!(out.unwrap().power, None);
         // A spectrum is normalised to luminance 1 (before `scale`).
         let (out, _) = area(r#"AreaLightSource "diffuse" "blackbody L" 3000"#);
         let l = out.unwrap().l;
