@@ -275,6 +275,7 @@ fn scene_around(
                 l,
                 two_sided: false,
                 spectrum: None,
+                power: None,
             }),
             alpha: None,
         });

@@ -300,6 +300,7 @@ impl GltfLoader<'_> {
                     l,
                     two_sided: info.double_sided,
                     spectrum: None,
+                    power: None,
                 }),
                 alpha: info.alpha,
             });

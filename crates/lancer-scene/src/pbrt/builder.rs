@@ -38,6 +38,7 @@ enum MaterialRef {
 pub const MAX_NESTING: usize = 10_000;
 
 mod blocks;
+mod object_motion;
 mod transforms;
 
 /// What `AttributeBegin` saves.
@@ -99,6 +100,7 @@ enum Slot {
     Shape(usize),
     ObjectShape(u32, usize),
     MovingShape(usize),
+    ObjectMovingShape(usize),
     Mix(u32, usize),
 }
 
@@ -119,6 +121,8 @@ pub struct Builder {
     in_world: bool,
     pending_materials: Vec<(Slot, String, Location)>,
     pending_instances: Vec<(String, AnimatedTransform, Location)>,
+    /// Shapes moving inside object definitions, by object (see `object_motion`).
+    object_moving: Vec<(u32, MovingShapeDesc)>,
     warnings: Vec<Warning>,
     warned: HashSet<&'static str>,
     frame_aspect: Option<f32>,
@@ -158,6 +162,7 @@ impl Builder {
             in_world: false,
             pending_materials: Vec::new(),
             pending_instances: Vec::new(),
+            object_moving: Vec::new(),
             warnings: Vec::new(),
             warned: HashSet::new(),
             frame_aspect: None,
@@ -594,7 +599,17 @@ impl Builder {
             alpha,
         };
         let slot = match (self.current_object, moving) {
-            (_, Some(world_from_object)) => {
+            (Some(o), Some(world_from_object)) => {
+                self.object_moving.push((
+                    o,
+                    MovingShapeDesc {
+                        shape: sd,
+                        world_from_object,
+                    },
+                ));
+                Slot::ObjectMovingShape(self.object_moving.len() - 1)
+            }
+            (None, Some(world_from_object)) => {
                 let moving = &mut self.desc.motion.shapes;
                 moving.push(MovingShapeDesc {
                     shape: sd,
@@ -644,6 +659,7 @@ impl Builder {
             match slot {
                 Slot::Shape(i) => self.desc.shapes[i].material = index,
                 Slot::MovingShape(i) => self.desc.motion.shapes[i].shape.material = index,
+                Slot::ObjectMovingShape(i) => self.object_moving[i].1.shape.material = index,
                 Slot::ObjectShape(o, i) => self.desc.objects[o as usize].shapes[i].material = index,
                 Slot::Mix(m, k) => {
                     if let Material::Mix { materials, .. } = &mut self.desc.materials[m as usize] {
@@ -659,6 +675,7 @@ impl Builder {
                     format!("no object named \"{name}\" (ObjectBegin defines one)"),
                 ));
             };
+            self.place_moving_object_shapes(object, &ctm, &loc);
             if ctm.is_animated() {
                 self.desc.motion.instances.push(MovingInstanceDesc {
                     object,

@@ -187,10 +187,12 @@ fn image_light(
 /// With `illuminance` E, a sky is scaled so that an upward patch receives E (L·π = E); an
 /// image is scaled by E over the illuminance pbrt-v4 computes for it, which is half the
 /// physical one (see `EnvMapping::pbrt_illuminance`), so that lancer matches pbrt-v4's images.
+/// A `portal` with `L` and no image is, as in pbrt-v4, a 1×1 image of L's colour.
 fn infinite(r: &Reader, ctm: Transform, loc: &Location) -> Result<Fallback<LightDesc>, SceneError> {
     let params = r.params;
     let illuminance = params.float("illuminance", -1.0)?;
-    if !params.has("filename") {
+    let portal_sky = !params.has("filename") && params.has("portal");
+    if !params.has("filename") && !portal_sky {
         let mut l = emission(params, "L", r.dir)?;
         if illuminance > 0.0 {
             // A uniform sky of radiance L gives an illuminance of π·L.
@@ -203,24 +205,38 @@ fn infinite(r: &Reader, ctm: Transform, loc: &Location) -> Result<Fallback<Light
         }));
     }
     let at = |message: String| SceneError::at(loc.clone(), message);
-    if params.has("L") {
+    if params.has("L") && !portal_sky {
         return Err(at(
             "an \"infinite\" light takes either \"L\" or \"filename\", not both".into(),
         ));
     }
     let mut scale = params.float("scale", 1.0)?;
-    // pbrt-v4 reads environment images with their default encoding (sRGB for PNG).
-    let (path, _) = r
-        .image_file("an \"infinite\" light with an image")
-        .map_err(|e| locate(e, loc))?;
-    let image = r
-        .images
-        .rgb(&path, Encoding::Srgb)
-        .map_err(|e| at(e.to_string()))?;
+    let (image, name) = if portal_sky {
+        // pbrt-v4 makes a uniform `L` behind a portal a 1×1 image of L's RGB colour (so the
+        // sky is lit only in front of the portal's plane, and sampled through the portal).
+        let c = params
+            .color("L", SpectrumKind::Illuminant, r.dir)?
+            .unwrap_or(Rgb::ONE);
+        let texels = vec![c.into()];
+        let image = lancer::image::Image::new(1, 1, texels).expect("1×1 with one texel");
+        (
+            std::sync::Arc::new(image),
+            "the \"L\" of an infinite light".to_string(),
+        )
+    } else {
+        // pbrt-v4 reads environment images with their default encoding (sRGB for PNG).
+        let (path, _) = r
+            .image_file("an \"infinite\" light with an image")
+            .map_err(|e| locate(e, loc))?;
+        let image = r
+            .images
+            .rgb(&path, Encoding::Srgb)
+            .map_err(|e| at(e.to_string()))?;
+        (image, path.display().to_string())
+    };
     // lancer's rules on environment images (the ones `LightDesc::validate` checks), after the
     // file's name.
-    let mapping =
-        environment_mapping(&image).map_err(|m| at(format!("{}: {m}", path.display())))?;
+    let mapping = environment_mapping(&image).map_err(|m| at(format!("{name}: {m}")))?;
     let mut warnings = Vec::new();
     if illuminance > 0.0 {
         let e = mapping.pbrt_illuminance(&image);
@@ -228,8 +244,7 @@ fn infinite(r: &Reader, ctm: Transform, loc: &Location) -> Result<Fallback<Light
             scale *= illuminance / e;
         } else {
             warnings.push(format!(
-                "{} is black above the horizon, so \"illuminance\" cannot scale it; ignored",
-                path.display()
+                "{name} is black above the horizon, so \"illuminance\" cannot scale it; ignored"
             ));
         }
     }
@@ -276,10 +291,15 @@ pub fn area_light(
             format!("unknown area light \"{ty}\" (expected \"diffuse\")"),
         ));
     }
+    // pbrt-v4's `power` Φ: the radiance is scaled by Φ / (π · sides · area) per primitive,
+    // which only the scene build knows (the area of each triangle in world space, of each
+    // quadric in object space).
+    let power = params.float("power", -1.0)?;
     Ok(AreaLightDesc {
         l: emission(params, "L", dir)?,
         two_sided: params.bool("twosided", false)?,
         spectrum: None,
+        power: (power > 0.0).then_some(power),
     })
 }
 
@@ -514,6 +534,19 @@ mod tests {
             panic!("a portal light")
         };
         assert_eq!(portal[2], Vec3::new(1.0, 1.0, 0.0));
+        // A uniform `L` behind a portal: pbrt-v4's 1×1 image of L's colour, `scale` apart;
+        // its `illuminance` divides by pbrt-v4's 2π·Y of that texel (2π·0.5 = π here).
+        let (f, unused) = convert(
+            r#"LightSource "infinite" "rgb L" [0.5 0.5 0.5] "float scale" 2
+               "float illuminance" 6.2831853 "point3 portal" [0 0 0 1 0 0 1 1 0 0 1 0]"#,
+        );
+        assert!(f.warnings.is_empty() && unused.is_empty());
+        let Some(LightDesc::PortalInfinite { l, image, .. }) = f.value else {
+            panic!("a portal light")
+        };
+        assert_eq!((image.width, image.height, image.texels[0].x), (1, 1, 0.5));
+        // scale 2 · E / (2π·0.5) = 2 · 2π / π = 4.
+        assert!((l.x - 4.0).abs() < 1e-4, "{l:?}");
         let error = |text: &str| err(convert_in(text, &dir, ID).0);
         assert_eq!(
             error(
@@ -673,7 +706,8 @@ mod tests {
             Ok(AreaLightDesc {
                 l: Rgb::ONE,
                 two_sided: false,
-                spectrum: None
+                spectrum: None,
+                power: None,
             })
         );
         assert!(unused.is_empty());
@@ -685,10 +719,18 @@ mod tests {
             Ok(AreaLightDesc {
                 l: Rgb::new(2.0, 4.0, 6.0),
                 two_sided: true,
-                spectrum: None
+                spectrum: None,
+                power: None,
             })
         );
         assert!(unused.is_empty());
+        // `power` is kept for the build (which knows each primitive's area); 0 or less is
+        // pbrt-v4's "not given".
+        let (out, unused) = area(r#"AreaLightSource "diffuse" "float power" 20"#);
+        assert_eq!(out.unwrap().power, Some(20.0));
+        assert!(unused.is_empty());
+        let (out, _) = area(r#"AreaLightSource "diffuse" "float power" 0"#);
+        assert_eq!(out.unwrap().power, None);
         // A spectrum is normalised to luminance 1 (before `scale`).
         let (out, _) = area(r#"AreaLightSource "diffuse" "blackbody L" 3000"#);
         let l = out.unwrap().l;

@@ -117,6 +117,42 @@ fn moving_instances_and_still_ones() {
 }
 
 #[test]
+fn shapes_moving_inside_objects_move_in_every_instance() {
+    // pbrt-v4: a shape moving by A(t) inside an object stands at T·A(t) in an instance T.
+    let d = scene(&format!(
+        r#"WorldBegin
+        ObjectBegin "o"
+          {SPHERE}
+          ActiveTransform EndTime
+          Translate 0 1 0
+          ActiveTransform All
+          {SPHERE}
+        ObjectEnd
+        AttributeBegin
+          Translate 2 0 0
+          Rotate 90 0 0 1
+          Scale 2 2 2
+          ObjectInstance "o"
+        AttributeEnd
+        ObjectInstance "o""#
+    ));
+    // The still sphere stays in the object; the moving one becomes a moving shape per instance.
+    assert_eq!(d.objects[0].shapes.len(), 1);
+    assert_eq!(d.instances.len(), 2);
+    assert_eq!(d.motion.shapes.len(), 2);
+    let m = &d.motion.shapes[0].world_from_object;
+    assert_close(m.start().point(Vec3::ZERO), Vec3::new(2.0, 0.0, 0.0));
+    // (0, 1, 0) scaled by 2 and turned 90° about z: (−2, 0, 0), then moved by (2, 0, 0).
+    assert_close(m.end().point(Vec3::ZERO), Vec3::ZERO);
+    // Halfway: T·A(0.5) = T·(0, 0.5, 0) = (1, 0, 0), and the radius is scaled by 2.
+    let half = m.interpolate(0.5);
+    assert_close(half.point(Vec3::ZERO), Vec3::new(1.0, 0.0, 0.0));
+    assert_close(half.vector(Vec3::X), Vec3::new(0.0, 2.0, 0.0));
+    let m = &d.motion.shapes[1].world_from_object;
+    assert_close(m.end().point(Vec3::ZERO), Vec3::new(0.0, 1.0, 0.0));
+}
+
+#[test]
 fn moving_area_lights_are_refused_and_oddities_warned() {
     let e = load_pbrt_str(
         &format!(

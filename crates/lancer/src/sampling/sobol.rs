@@ -80,9 +80,10 @@ pub fn randomize(v: u32, randomization: Randomization, seed: u32) -> u32 {
 }
 
 /// Dimensions of the `sobol` sampler's generator matrices: dimension 0 (van der Corput) and
-/// the 127 of Joe and Kuo's `new-joe-kuo-6.21201` direction numbers (search criterion D(6))
-/// listed in `joe_kuo.txt`. pbrt-v4 has 1024; past the table, dimensions start again from 2.
-pub const N_SOBOL_DIMENSIONS: usize = 128;
+/// the 1023 of Joe and Kuo's `new-joe-kuo-6.21201` direction numbers (search criterion D(6))
+/// listed in `joe_kuo.txt` (one line `d s a m₁ … m_s` per dimension), as pbrt-v4's 1024; past
+/// the table, dimensions start again from 2, as in pbrt-v4.
+pub const N_SOBOL_DIMENSIONS: usize = 1024;
 
 /// The generator matrices, one 32-column matrix per dimension (column k = direction number
 /// v_{k+1} as a 32-bit binary fraction), built from the direction numbers once.
@@ -255,6 +256,88 @@ mod tests {
         let c = &sobol_matrices()[2];
         assert_eq!([c[0] >> 29, c[1] >> 29, c[2] >> 29], [0b100, 0b110, 0b011]);
         assert_eq!(sobol_matrices().len(), N_SOBOL_DIMENSIONS);
+    }
+
+    #[test]
+    fn matrices_equal_pbrt_v4s() {
+        // Columns 0..4 and 31 of pbrt-v4's SobolMatrices32 for these dimensions (copied from
+        // its src/pbrt/util/sobolmatrices.cpp by hand).
+        let pbrt: [(usize, [u32; 5]); 7] = [
+            (
+                0,
+                [
+                    0x8000_0000,
+                    0x4000_0000,
+                    0x2000_0000,
+                    0x1000_0000,
+                    0x0000_0001,
+                ],
+            ),
+            (
+                1,
+                [
+                    0x8000_0000,
+                    0xc000_0000,
+                    0xa000_0000,
+                    0xf000_0000,
+                    0xffff_ffff,
+                ],
+            ),
+            (
+                2,
+                [
+                    0x8000_0000,
+                    0xc000_0000,
+                    0x6000_0000,
+                    0x9000_0000,
+                    0xc500_5555,
+                ],
+            ),
+            (
+                127,
+                [
+                    0x8000_0000,
+                    0xc000_0000,
+                    0x6000_0000,
+                    0x7000_0000,
+                    0xa0e5_41bf,
+                ],
+            ),
+            (
+                128,
+                [
+                    0x8000_0000,
+                    0xc000_0000,
+                    0xe000_0000,
+                    0x7000_0000,
+                    0xcd72_9c6f,
+                ],
+            ),
+            (
+                500,
+                [
+                    0x8000_0000,
+                    0xc000_0000,
+                    0xa000_0000,
+                    0x1000_0000,
+                    0x2c95_1429,
+                ],
+            ),
+            (
+                1023,
+                [
+                    0x8000_0000,
+                    0x4000_0000,
+                    0xa000_0000,
+                    0xb000_0000,
+                    0x651d_e84d,
+                ],
+            ),
+        ];
+        for (d, want) in pbrt {
+            let c = &sobol_matrices()[d];
+            assert_eq!([c[0], c[1], c[2], c[3], c[31]], want, "dimension {d}");
+        }
     }
 
     #[test]

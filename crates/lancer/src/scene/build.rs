@@ -4,8 +4,9 @@
 //! made; the order of every list (and so every render) is the order these phases give.
 
 use super::Scene;
-use super::desc::{Geometry, LightDesc, SceneDesc, ShapeDesc, ZERO_PLANE_NORMAL};
+use super::desc::{AreaLightDesc, Geometry, LightDesc, SceneDesc, ShapeDesc, ZERO_PLANE_NORMAL};
 use super::instance::{Instance, Instances, ObjectAccel};
+use super::power::{emission_area, power_radiance};
 use super::prim::{
     AreaEmission, BuildError, NO_SPECTRUM, PrimInfo, check_media, check_shape, mesh_triangles,
     prim_media,
@@ -275,8 +276,26 @@ fn primitives(list: &[Placed<'_>], n_materials: usize) -> Result<Primitives, Bui
         }
         let first = out.shapes.len();
         shapes_of(sd, index, &mut out.meshes, &mut out.shapes)?;
-        out.prims
-            .extend(std::iter::repeat_n(info, out.shapes.len() - first));
+        match (sd.area_light, info.emission) {
+            // Given by power: each primitive emits Φ on its own, as in pbrt-v4.
+            (
+                Some(
+                    a @ AreaLightDesc {
+                        power: Some(phi), ..
+                    },
+                ),
+                Some(e),
+            ) => out.prims.extend(out.shapes[first..].iter().map(|s| {
+                let l = power_radiance(a.l, phi, a.two_sided, emission_area(s));
+                PrimInfo {
+                    emission: Some(AreaEmission { l: l.into(), ..e }),
+                    ..info
+                }
+            })),
+            _ => out
+                .prims
+                .extend(std::iter::repeat_n(info, out.shapes.len() - first)),
+        }
     }
     Ok(out)
 }

@@ -119,6 +119,7 @@ mod tests {
                 l: Rgb::ONE,
                 two_sided: false,
                 spectrum: None,
+                power: None,
             }),
             alpha: None,
         }

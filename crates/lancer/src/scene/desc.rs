@@ -517,6 +517,10 @@ pub struct AreaLightDesc {
     pub two_sided: bool,
     /// The spectrum `l` is a multiple of, when the scene gave one (spectral mode emits it).
     pub spectrum: Option<crate::spectrum::dense::Measured>,
+    /// pbrt-v4's `power` Φ in watts, when given: each primitive the shape becomes (a mesh's
+    /// every triangle, as in pbrt-v4) then emits `l · Φ / (π · sides · area)`, sides 2 when
+    /// two-sided, area the primitive's own (see [`crate::scene::power::emission_area`]).
+    pub power: Option<f32>,
 }
 
 /// A shape placed in the world with its material and optional emission.

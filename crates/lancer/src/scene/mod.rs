@@ -6,6 +6,7 @@ pub mod desc;
 pub mod instance;
 pub mod memory;
 pub mod motion;
+pub mod power;
 mod prim;
 mod spectra;
 mod tris;

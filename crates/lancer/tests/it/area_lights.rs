@@ -22,6 +22,7 @@ fn emitter(geometry: Geometry, to_world: Transform, reverse: bool, l: f32) -> Sh
             l: Rgb::splat(l),
             two_sided: false,
             spectrum: None,
+            power: None,
         }),
         alpha: None,
     }

@@ -347,6 +347,7 @@ fn an_emitting_curve_is_an_error() {
                 l: Vec3::ONE,
                 two_sided: false,
                 spectrum: None,
+                power: None,
             }),
             alpha: None,
         }],

@@ -221,6 +221,7 @@ fn emitter(geometry: Geometry, to_world: Transform) -> ShapeDesc {
             l: Rgb::ONE,
             two_sided: false,
             spectrum: None,
+            power: None,
         }),
         alpha: None,
     }

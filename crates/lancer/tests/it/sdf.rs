@@ -633,6 +633,7 @@ fn scenes_build_sdf_objects_and_refuse_them_as_emitters() {
         l: Rgb::ONE,
         two_sided: false,
         spectrum: None,
+        power: None,
     };
     let e = Scene::build(&shape("sphere(1)", None, Some(light)))
         .err()

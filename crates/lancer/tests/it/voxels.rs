@@ -362,6 +362,7 @@ fn voxels_refuse_to_emit_and_empty_grids_vanish() {
                 l: Rgb::ONE,
                 two_sided: false,
                 spectrum: None,
+                power: None,
             }),
             alpha: None,
         }],

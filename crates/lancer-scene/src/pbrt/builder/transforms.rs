@@ -134,9 +134,10 @@ impl Builder {
     }
 
     /// The moving transformation of a shape about to be added, when the two CTMs differ
-    /// (pbrt-v4's animated shapes). pbrt-v4 refuses moving area lights; a moving shape inside
-    /// an object definition, or one whose transformation is singular at either end, stands at
-    /// its start pose, and a moving shape's alpha is ignored (each with a warning).
+    /// (pbrt-v4's animated shapes; inside an object definition, see `object_motion`). pbrt-v4
+    /// refuses moving area lights; a moving shape whose transformation is singular at either
+    /// end stands at its start pose, and a moving shape's alpha is ignored (each with a
+    /// warning).
     pub(super) fn moving_shape(
         &mut self,
         emits: bool,
@@ -153,15 +154,6 @@ impl Builder {
                 "this area light's shape moves during the shutter: pbrt-v4 refuses moving area \
                  lights (keep the AreaLightSource outside the ActiveTransform block)",
             ));
-        }
-        if self.current_object.is_some() {
-            self.warn_once(
-                "object-motion",
-                loc,
-                "shapes moving inside an object definition are not supported yet: lancer uses \
-                 their start pose (move the ObjectInstance instead)",
-            );
-            return Ok(None);
         }
         if alpha {
             self.warn_once(

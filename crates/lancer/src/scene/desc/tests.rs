@@ -108,6 +108,7 @@ fn emission_and_light_rules() {
             l: Rgb::ONE,
             two_sided: false,
             spectrum: None,
+            power: None,
         }),
         alpha: None,
     };

@@ -15,6 +15,7 @@ fn glowing_desc(geometry: Geometry) -> lancer::scene::desc::ShapeDesc {
             l: Rgb::ONE,
             two_sided: false,
             spectrum: None,
+            power: None,
         }),
         alpha: None,
     }
