@@ -1,0 +1,295 @@
+//! Unit tests of the material set-up: BSDFs built from materials at a hit.
+
+use super::*;
+use crate::spectrum::sampled::RgbSpectrum;
+use crate::texture::SpectrumTexture;
+
+fn eval(m: &Material) -> BxDF {
+    let tex = TextureEval {
+        floats: &[],
+        spectra: &[],
+    };
+    m.bxdf(&tex, &TexCoord::default(), None)
+        .expect("a surface material")
+}
+
+fn c(v: f32) -> FloatTex {
+    FloatTex::Const(v)
+}
+
+/// A flint-glass dielectric disperses: in spectral mode its index is the glass's at the
+/// hero wavelength, so a ray refracts more for a blue hero than for a red one (the prism's
+/// fringes); RGB mode keeps the 550 nm index; a constant index does not disperse.
+#[test]
+fn named_glass_refracts_blue_more_than_red() {
+    let glass = Material::Dielectric {
+        eta: Ior::named_glass("glass-F11").unwrap(),
+        uroughness: c(0.0),
+        vroughness: c(0.0),
+        remap_roughness: false,
+    };
+    assert!(glass.disperses());
+    assert!(
+        !Material::ThinDielectric {
+            eta: Ior::Constant(1.5)
+        }
+        .disperses()
+    );
+    let tex = TextureEval {
+        floats: &[],
+        spectra: &[],
+    };
+    let consts = [PreparedSpectrum::BLACK; COLOUR_SLOTS];
+    let eta_at = |hero: f32| {
+        let mut lambda = SampledWavelengths::sample_visible(0.5);
+        lambda.lambda[0] = hero;
+        let spectral = Some(SpectralColours {
+            lambda: &lambda,
+            consts: &consts,
+        });
+        match glass.bxdf(&tex, &TexCoord::default(), spectral) {
+            Some(BxDF::Dielectric(d)) => d.eta,
+            other => panic!("{other:?}"),
+        }
+    };
+    let (blue, red) = (eta_at(450.0), eta_at(650.0));
+    assert_eq!(blue, Ior::named_glass("glass-F11").unwrap().at(450.0));
+    assert!(
+        matches!(eval(&glass), BxDF::Dielectric(d) if d.eta == crate::spectrum::named_ior("glass-F11").unwrap())
+    );
+    // Snell at 45°: sin θt = sin 45° / n; blue bends further towards the normal.
+    let wi = crate::math::normalize(crate::math::Vec3::new(1.0, 0.0, 1.0));
+    let n = crate::math::Vec3::Z;
+    let (tb, _) = refract(wi, n, blue).unwrap();
+    let (tr, _) = refract(wi, n, red).unwrap();
+    let sin45 = std::f32::consts::FRAC_1_SQRT_2;
+    assert!((tb.x.abs() - sin45 / blue).abs() < 1e-5);
+    assert!((tr.x.abs() - sin45 / red).abs() < 1e-5);
+    // ≈ 0.58° apart: sin⁻¹(0.7071/1.7766) − sin⁻¹(0.7071/1.8192).
+    let spread = (tr.x.abs().asin() - tb.x.abs().asin()).to_degrees();
+    assert!((spread - 0.58).abs() < 0.15, "{spread}°");
+}
+
+fn rgb(v: f32) -> SpectrumTex {
+    SpectrumTex::Const(Rgb::splat(v))
+}
+
+#[test]
+fn conductors_remap_roughness_and_honour_an_artists_reflectance() {
+    let m = Material::Conductor {
+        eta: rgb(0.2),
+        k: rgb(3.0),
+        reflectance: Some(SpectrumTex::Const(Rgb::new(0.9, 0.5, 0.1))),
+        uroughness: c(0.25),
+        vroughness: c(0.04),
+        remap_roughness: true,
+    };
+    let BxDF::Conductor(b) = eval(&m) else {
+        panic!("not a conductor")
+    };
+    // α = √roughness.
+    assert_eq!((b.distrib.alpha_x(), b.distrib.alpha_y()), (0.5, 0.2));
+    // η = 1, k = 2√r/√(1 − r): the normal-incidence reflectance is r.
+    let f0 = fresnel_complex(1.0, b.eta, b.k);
+    assert!(
+        (f0 - rgb_lanes(Rgb::new(0.9, 0.5, 0.1)))
+            .abs()
+            .max_element()
+            < 1e-4,
+        "{f0}"
+    );
+    // Without remapping the roughness is α itself; zero makes a mirror.
+    let m = Material::Conductor {
+        eta: rgb(0.2),
+        k: rgb(3.0),
+        reflectance: None,
+        uroughness: c(0.0),
+        vroughness: c(0.0),
+        remap_roughness: false,
+    };
+    let BxDF::Conductor(b) = eval(&m) else {
+        panic!("not a conductor")
+    };
+    assert!(b.distrib.effectively_smooth());
+    assert_eq!(
+        (b.eta, b.k),
+        (SampledSpectrum::splat(0.2), SampledSpectrum::splat(3.0))
+    );
+}
+
+#[test]
+fn every_material_becomes_its_own_bxdf() {
+    let d = eval(&Material::Dielectric {
+        eta: Ior::Constant(0.0),
+        uroughness: c(0.09),
+        vroughness: c(0.09),
+        remap_roughness: true,
+    });
+    // An index of 0 means 1, as in pbrt.
+    assert!(
+        matches!(d, BxDF::Dielectric(b) if b.eta == 1.0 && (b.distrib.alpha_x() - 0.3).abs() < 1e-6)
+    );
+    let t = eval(&Material::ThinDielectric {
+        eta: Ior::Constant(1.33),
+    });
+    assert!(matches!(t, BxDF::ThinDielectric(b) if b.eta == 1.33));
+    // Diffuse transmission: both albedos scaled, then clamped to one.
+    let dt = eval(&Material::DiffuseTransmission {
+        reflectance: rgb(0.3),
+        transmittance: rgb(0.6),
+        scale: 2.0,
+    });
+    assert!(
+        matches!(dt, BxDF::DiffuseTransmission(b) if b.r == SampledSpectrum::splat(0.6) && b.t == SampledSpectrum::ONE)
+    );
+    let cd = eval(&Material::CoatedDiffuse {
+        reflectance: rgb(1.5),
+        uroughness: c(0.0),
+        vroughness: c(0.0),
+        thickness: c(0.01),
+        eta: 1.5,
+        albedo: rgb(0.2),
+        g: c(3.0),
+        max_depth: 10,
+        n_samples: 2,
+        remap_roughness: true,
+    });
+    let BxDF::CoatedDiffuse(l) = cd else {
+        panic!("not a coated diffuse")
+    };
+    assert_eq!(l.bottom.r, SampledSpectrum::ONE);
+    assert_eq!((l.top.eta, l.thickness, l.g), (1.5, 0.01, 1.0));
+    assert_eq!(
+        (l.albedo, l.max_depth, l.n_samples),
+        (SampledSpectrum::splat(0.2), 10, 2)
+    );
+    // Under its coating the conductor's index is relative to the coating's.
+    let cc = eval(&Material::CoatedConductor {
+        interface_uroughness: c(0.0),
+        interface_vroughness: c(0.0),
+        interface_eta: 1.5,
+        conductor_eta: rgb(0.3),
+        k: rgb(3.0),
+        reflectance: None,
+        conductor_uroughness: c(0.16),
+        conductor_vroughness: c(0.16),
+        thickness: c(0.01),
+        albedo: rgb(0.0),
+        g: c(0.0),
+        max_depth: 10,
+        n_samples: 1,
+        remap_roughness: true,
+    });
+    let BxDF::CoatedConductor(l) = cc else {
+        panic!("not a coated conductor")
+    };
+    assert!(
+        (l.bottom.eta - SampledSpectrum::splat(0.2))
+            .abs()
+            .max_element()
+            < 1e-6
+    );
+    assert!(
+        (l.bottom.k - SampledSpectrum::splat(2.0))
+            .abs()
+            .max_element()
+            < 1e-6
+    );
+    assert!((l.bottom.distrib.alpha_x() - 0.4).abs() < 1e-6);
+    let none = TextureEval {
+        floats: &[],
+        spectra: &[],
+    };
+    assert!(
+        Material::Interface
+            .bxdf(&none, &TexCoord::default(), None)
+            .is_none()
+    );
+}
+
+#[test]
+fn prepared_constant_colours_give_what_an_uplift_per_hit_gives() {
+    // Each colour once as a constant (prepared by slot, as a scene does) and once as a
+    // constant texture (uplifted at the hit): the BxDFs must be identical in spectral mode.
+    let colours = [
+        Rgb::new(0.8, 0.3, 0.1),
+        Rgb::new(0.2, 0.9, 1.4),
+        Rgb::new(3.9, 2.4, 1.6),
+        Rgb::new(0.1, 0.6, 0.3),
+    ];
+    let textures: Vec<SpectrumTexture> = colours
+        .iter()
+        .map(|&c| SpectrumTexture::Constant(c))
+        .collect();
+    let tex = TextureEval {
+        floats: &[],
+        spectra: &textures,
+    };
+    let (k, t) = (SpectrumTex::Const, SpectrumTex::Tex);
+    let coated_conductor = |eta, kk, r, a| Material::CoatedConductor {
+        interface_uroughness: c(0.1),
+        interface_vroughness: c(0.1),
+        interface_eta: 1.5,
+        conductor_eta: eta,
+        k: kk,
+        reflectance: r,
+        conductor_uroughness: c(0.2),
+        conductor_vroughness: c(0.2),
+        thickness: c(0.01),
+        albedo: a,
+        g: c(0.0),
+        max_depth: 10,
+        n_samples: 1,
+        remap_roughness: false,
+    };
+    let pairs = [
+        (
+            Material::Diffuse {
+                reflectance: k(colours[0]),
+            },
+            Material::Diffuse { reflectance: t(0) },
+        ),
+        (
+            Material::DiffuseTransmission {
+                reflectance: k(colours[0]),
+                transmittance: k(colours[3]),
+                scale: 0.7,
+            },
+            Material::DiffuseTransmission {
+                reflectance: t(0),
+                transmittance: t(3),
+                scale: 0.7,
+            },
+        ),
+        (
+            coated_conductor(k(colours[1]), k(colours[2]), None, k(colours[3])),
+            coated_conductor(t(1), t(2), None, t(3)),
+        ),
+        (
+            coated_conductor(
+                k(colours[1]),
+                k(colours[2]),
+                Some(k(colours[0])),
+                k(colours[3]),
+            ),
+            coated_conductor(t(1), t(2), Some(t(0)), t(3)),
+        ),
+    ];
+    let lambda = SampledWavelengths::sample_visible(0.37);
+    for (constant, textured) in pairs {
+        let consts = constant.colour_slots().map(|slot| match slot {
+            Some((SpectrumTex::Const(c), kind)) => PreparedSpectrum::Rgb(RgbSpectrum::new(c, kind)),
+            Some(_) => panic!("these materials' colours are RGB constants"),
+            None => PreparedSpectrum::BLACK,
+        });
+        let spectral = Some(SpectralColours {
+            lambda: &lambda,
+            consts: &consts,
+        });
+        let a = constant.bxdf(&tex, &TexCoord::default(), spectral);
+        let b = textured.bxdf(&tex, &TexCoord::default(), spectral);
+        assert_eq!(a, b, "{constant:?}");
+        // And they are spectra, not the colours' RGB lanes.
+        assert_ne!(a, constant.bxdf(&tex, &TexCoord::default(), None));
+    }
+}
