@@ -291,7 +291,7 @@ impl GltfLoader<'_> {
             uroughness: alpha_r,
             vroughness: alpha_r,
             thickness: FloatTex::Const(COAT_THICKNESS),
-            eta: DIELECTRIC_ETA,
+            eta: lancer::spectrum::Ior::Constant(DIELECTRIC_ETA),
             albedo: SpectrumTex::Const(Rgb::ZERO),
             g: FloatTex::Const(0.0),
             max_depth: 10,

@@ -201,7 +201,7 @@ fn convert(r: &Reader, ty: &str) -> Result<Fallback<MaterialWithNames>, SceneErr
             let (uroughness, vroughness) = roughness(r, "")?;
             let reflectance = r.spectrum_tex("reflectance", Rgb::splat(0.5), Albedo)?;
             let thickness = r.float_tex("thickness", 0.01)?;
-            let eta = p.ior("eta", 1.5, r.dir)?;
+            let eta = p.dielectric_ior("eta", 1.5, r.dir)?;
             let albedo = r.spectrum_tex("albedo", Rgb::ZERO, Albedo)?;
             let g = r.float_tex("g", 0.0)?;
             let (max_depth, n_samples) = walk(r)?;
@@ -221,7 +221,7 @@ fn convert(r: &Reader, ty: &str) -> Result<Fallback<MaterialWithNames>, SceneErr
         "coatedconductor" => {
             let (interface_uroughness, interface_vroughness) = roughness(r, "interface.")?;
             let (conductor_uroughness, conductor_vroughness) = roughness(r, "conductor.")?;
-            let interface_eta = p.ior("interface.eta", 1.5, r.dir)?;
+            let interface_eta = p.dielectric_ior("interface.eta", 1.5, r.dir)?;
             let conductor_eta =
                 r.spectrum_tex_or("conductor.eta", named_metal("metal-Cu-eta"), Unbounded)?;
             let k = r.spectrum_tex_or("conductor.k", named_metal("metal-Cu-k"), Unbounded)?;
@@ -437,7 +437,7 @@ mod tests {
                 uroughness: ZERO,
                 vroughness: ZERO,
                 thickness: FloatTex::Const(0.01),
-                eta: 1.5,
+                eta: lancer::spectrum::Ior::Constant(1.5),
                 albedo: grey(0.0),
                 g: ZERO,
                 max_depth: 10,
@@ -450,7 +450,7 @@ mod tests {
             Material::CoatedConductor {
                 interface_uroughness: ZERO,
                 interface_vroughness: ZERO,
-                interface_eta: 1.5,
+                interface_eta: lancer::spectrum::Ior::Constant(1.5),
                 conductor_eta: copper.0,
                 k: copper.1,
                 reflectance: None,
@@ -535,7 +535,7 @@ mod tests {
                 uroughness: FloatTex::Const(0.1),
                 vroughness: FloatTex::Const(0.1),
                 thickness: FloatTex::Const(0.2),
-                eta: 1.4,
+                eta: lancer::spectrum::Ior::Constant(1.4),
                 albedo: grey(0.5),
                 g: FloatTex::Const(0.3),
                 max_depth: 4,
@@ -556,7 +556,7 @@ mod tests {
             Material::CoatedConductor {
                 interface_uroughness: FloatTex::Const(0.1),
                 interface_vroughness: FloatTex::Const(0.15),
-                interface_eta: 1.3,
+                interface_eta: lancer::spectrum::Ior::Constant(1.3),
                 conductor_eta: grey(0.2),
                 k: grey(4.0),
                 reflectance: Some(grey(0.9)),

@@ -293,7 +293,7 @@ fn metallic_roughness_materials_map_to_lancer_materials() {
         } => {
             assert_eq!(*reflectance, base);
             assert_eq!(*uroughness, FloatTex::Const(0.25));
-            assert_eq!(*eta, 1.5);
+            assert_eq!(*eta, lancer::spectrum::Ior::Constant(1.5));
             assert!(!remap_roughness);
         }
         m => panic!("{m:?}"),

@@ -102,8 +102,9 @@ pub enum Material {
         vroughness: FloatTex,
         /// Thickness of the medium between coating and base.
         thickness: FloatTex,
-        /// Index of refraction of the coating.
-        eta: f32,
+        /// Index of refraction of the coating; one that varies with wavelength is taken at
+        /// the hero wavelength, as a dielectric's (see [`Material::disperses`]).
+        eta: Ior,
         /// Albedo of the medium in the coating.
         albedo: SpectrumTex,
         /// Henyey–Greenstein asymmetry of that medium.
@@ -121,8 +122,8 @@ pub enum Material {
         interface_uroughness: FloatTex,
         /// Coating roughness along v.
         interface_vroughness: FloatTex,
-        /// Coating index of refraction.
-        interface_eta: f32,
+        /// Coating index of refraction (taken at the hero wavelength when it varies).
+        interface_eta: Ior,
         /// Conductor's `eta`.
         conductor_eta: SpectrumTex,
         /// Conductor's `k`.
@@ -315,14 +316,18 @@ impl Material {
         }
     }
 
-    /// Whether this material's index varies with wavelength (a dielectric of a named glass):
-    /// in spectral mode a path that meets it keeps only its hero wavelength, as pbrt-v4's
-    /// dielectric materials call `TerminateSecondary` whenever `eta` is not constant.
+    /// Whether this material's index varies with wavelength (a dielectric, or a coating, of a
+    /// named glass): in spectral mode a path that meets it keeps only its hero wavelength, as
+    /// pbrt-v4's dielectric and coated materials call `TerminateSecondary` whenever their
+    /// `eta` is not constant.
     pub fn disperses(&self) -> bool {
         match self {
-            Material::Dielectric { eta, .. } | Material::ThinDielectric { eta } => {
-                eta.is_dispersive()
-            }
+            Material::Dielectric { eta, .. }
+            | Material::ThinDielectric { eta }
+            | Material::CoatedDiffuse { eta, .. }
+            | Material::CoatedConductor {
+                interface_eta: eta, ..
+            } => eta.is_dispersive(),
             _ => false,
         }
     }
@@ -432,7 +437,7 @@ impl Material {
                 remap_roughness,
             } => BxDF::CoatedDiffuse(CoatedDiffuseBxdf::new(
                 DielectricBxdf {
-                    eta: nonzero_eta(eta),
+                    eta: nonzero_eta(ior(eta)),
                     distrib: distrib(uroughness, vroughness, remap_roughness),
                 },
                 DiffuseBxdf {
@@ -460,7 +465,7 @@ impl Material {
                 n_samples,
                 remap_roughness,
             } => {
-                let ieta = nonzero_eta(interface_eta);
+                let ieta = nonzero_eta(ior(interface_eta));
                 let (ce, ck) = conductor_index(&colour, conductor_eta, k, reflectance);
                 BxDF::CoatedConductor(CoatedConductorBxdf::new(
                     DielectricBxdf {

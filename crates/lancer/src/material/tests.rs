@@ -70,6 +70,73 @@ fn named_glass_refracts_blue_more_than_red() {
     assert!((spread - 0.58).abs() < 0.15, "{spread}°");
 }
 
+/// A coating whose index is a named glass disperses as a dielectric does (pbrt-v4's coated
+/// materials take `eta(λ₀)` and terminate the secondary wavelengths unless it is constant):
+/// its interface has the glass's index at the hero wavelength, RGB mode the 550 nm index.
+#[test]
+fn a_coating_of_named_glass_takes_its_index_at_the_hero_wavelength() {
+    let f11 = Ior::named_glass("glass-F11").unwrap();
+    let coated = Material::CoatedDiffuse {
+        reflectance: rgb(0.5),
+        uroughness: c(0.0),
+        vroughness: c(0.0),
+        thickness: c(0.01),
+        eta: f11,
+        albedo: rgb(0.0),
+        g: c(0.0),
+        max_depth: 10,
+        n_samples: 1,
+        remap_roughness: false,
+    };
+    let metal = Material::CoatedConductor {
+        interface_uroughness: c(0.0),
+        interface_vroughness: c(0.0),
+        interface_eta: f11,
+        conductor_eta: rgb(0.2),
+        k: rgb(3.0),
+        reflectance: None,
+        conductor_uroughness: c(0.0),
+        conductor_vroughness: c(0.0),
+        thickness: c(0.01),
+        albedo: rgb(0.0),
+        g: c(0.0),
+        max_depth: 10,
+        n_samples: 1,
+        remap_roughness: false,
+    };
+    assert!(coated.disperses() && metal.disperses());
+    let mut plain = coated.clone();
+    if let Material::CoatedDiffuse { eta, .. } = &mut plain {
+        *eta = Ior::Constant(1.5);
+    }
+    assert!(!plain.disperses());
+    let tex = TextureEval {
+        floats: &[],
+        spectra: &[],
+    };
+    let consts = [PreparedSpectrum::BLACK; COLOUR_SLOTS];
+    let mut lambda = SampledWavelengths::sample_visible(0.5);
+    lambda.lambda[0] = 450.0;
+    let spectral = Some(SpectralColours {
+        lambda: &lambda,
+        consts: &consts,
+    });
+    let blue = f11.at(450.0);
+    match coated.bxdf(&tex, &TexCoord::default(), spectral) {
+        Some(BxDF::CoatedDiffuse(b)) => assert_eq!(b.top.eta, blue),
+        other => panic!("{other:?}"),
+    }
+    match metal.bxdf(&tex, &TexCoord::default(), spectral) {
+        Some(BxDF::CoatedConductor(b)) => assert_eq!(b.top.eta, blue),
+        other => panic!("{other:?}"),
+    }
+    match eval(&coated) {
+        BxDF::CoatedDiffuse(b) => assert_eq!(b.top.eta, f11.constant_value()),
+        other => panic!("{other:?}"),
+    }
+    assert!((blue - f11.constant_value()).abs() > 0.01);
+}
+
 fn rgb(v: f32) -> SpectrumTex {
     SpectrumTex::Const(Rgb::splat(v))
 }
@@ -147,7 +214,7 @@ fn every_material_becomes_its_own_bxdf() {
         uroughness: c(0.0),
         vroughness: c(0.0),
         thickness: c(0.01),
-        eta: 1.5,
+        eta: Ior::Constant(1.5),
         albedo: rgb(0.2),
         g: c(3.0),
         max_depth: 10,
@@ -167,7 +234,7 @@ fn every_material_becomes_its_own_bxdf() {
     let cc = eval(&Material::CoatedConductor {
         interface_uroughness: c(0.0),
         interface_vroughness: c(0.0),
-        interface_eta: 1.5,
+        interface_eta: Ior::Constant(1.5),
         conductor_eta: rgb(0.3),
         k: rgb(3.0),
         reflectance: None,
@@ -229,7 +296,7 @@ fn prepared_constant_colours_give_what_an_uplift_per_hit_gives() {
     let coated_conductor = |eta, kk, r, a| Material::CoatedConductor {
         interface_uroughness: c(0.1),
         interface_vroughness: c(0.1),
-        interface_eta: 1.5,
+        interface_eta: Ior::Constant(1.5),
         conductor_eta: eta,
         k: kk,
         reflectance: r,
