@@ -10,7 +10,7 @@
 //! [`super::sobol::fast_owen_scramble_reversed`]).
 
 use super::hash::u32_to_unit_f32;
-use super::sobol::{N_SOBOL_DIMENSIONS, sobol_matrices};
+use super::sobol::{N_SOBOL_DIMENSIONS, fast_owen_scramble_reversed, sobol_matrices};
 
 /// Dimensions computed together.
 pub const BLOCK: usize = 8;
@@ -65,17 +65,11 @@ pub fn sobol_block(a: u64, d: usize, seeds: &[u32]) -> [f32; BLOCK] {
         }
         a &= a - 1;
     }
-    // fast_owen_scramble_reversed, lane by lane: (v + seed), four xor–multiply rounds, then
-    // the bit reversal back.
+    // The scramble lane by lane (inlined, the loop is vector code).
     let seeds = &seeds[t..t + BLOCK];
     let mut out = [0.0f32; BLOCK];
     for ((o, x), s) in out.iter_mut().zip(v).zip(seeds) {
-        let mut x = x.wrapping_add(*s);
-        x ^= x.wrapping_mul(0x6c50_b47c);
-        x ^= x.wrapping_mul(0xb82f_1e52);
-        x ^= x.wrapping_mul(0xc7af_e638);
-        x ^= x.wrapping_mul(0x8d22_f6e6);
-        *o = u32_to_unit_f32(x.reverse_bits());
+        *o = u32_to_unit_f32(fast_owen_scramble_reversed(x, *s));
     }
     out
 }
@@ -83,7 +77,7 @@ pub fn sobol_block(a: u64, d: usize, seeds: &[u32]) -> [f32; BLOCK] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sampling::sobol::{fast_owen_scramble_reversed, sobol_sample_reversed};
+    use crate::sampling::sobol::sobol_sample_reversed;
 
     #[test]
     fn blocks_equal_the_one_dimension_path_bit_for_bit() {
