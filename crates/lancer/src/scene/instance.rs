@@ -256,31 +256,42 @@ impl Instances {
         };
         let ro = self.object_ray(h.instance, ray);
         let si = tri.interaction(&ro, &h.hit, m);
-        let xf = &inst.to_world;
-        let (p, p_error) = xf.point_with_error_in(si.p, si.p_error);
-        let mut n = xf.normal(si.n).normalize_or_zero();
-        let ns = xf.normal(si.shading.n).normalize_or_zero();
-        if !m.normals.is_empty() && n.dot(ns) < 0.0 {
-            n = -n;
-        }
-        // Shading tangents: ∂p/∂u made perpendicular to the shading normal again.
-        let Frame { x: ss, y: ts, .. } = Frame::from_xz(xf.vector(si.shading.dpdu), ns);
-        let si = SurfaceInteraction {
-            p,
-            p_error,
-            n,
-            uv: si.uv,
-            dpdu: xf.vector(si.dpdu),
-            dpdv: xf.vector(si.dpdv),
-            shading: Shading {
-                n: ns,
-                dpdu: ss,
-                dpdv: ts,
-            },
-            wo: -normalize(ray.d),
-            t: h.hit.t,
-        };
+        let si = to_world(&si, !m.normals.is_empty(), &inst.to_world, ray);
         (si, obj.prim[mesh as usize])
+    }
+}
+
+/// An object-space interaction moved to the world by `xf` (as an instance's): p and its error
+/// bound and ∂p/∂u, ∂p/∂v by M, the normals by (M⁻¹)ᵀ, the geometric normal turned to the
+/// shading normal's side for meshes with vertex normals, the shading tangents made
+/// perpendicular to the shading normal again.
+pub(super) fn to_world(
+    si: &SurfaceInteraction,
+    normals: bool,
+    xf: &Transform,
+    ray: &Ray,
+) -> SurfaceInteraction {
+    let (p, p_error) = xf.point_with_error_in(si.p, si.p_error);
+    let mut n = xf.normal(si.n).normalize_or_zero();
+    let ns = xf.normal(si.shading.n).normalize_or_zero();
+    if normals && n.dot(ns) < 0.0 {
+        n = -n;
+    }
+    let Frame { x: ss, y: ts, .. } = Frame::from_xz(xf.vector(si.shading.dpdu), ns);
+    SurfaceInteraction {
+        p,
+        p_error,
+        n,
+        uv: si.uv,
+        dpdu: xf.vector(si.dpdu),
+        dpdv: xf.vector(si.dpdv),
+        shading: Shading {
+            n: ns,
+            dpdu: ss,
+            dpdv: ts,
+        },
+        wo: -normalize(ray.d),
+        t: si.t,
     }
 }
 

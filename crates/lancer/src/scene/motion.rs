@@ -13,12 +13,12 @@
 //! primitives read; rays, interactions and integrators stay as they are.
 
 use super::desc::{Geometry, ObjectDesc, SceneDesc, ShapeDesc};
-use super::instance::ObjectAccel;
+use super::instance::{ObjectAccel, to_world};
 use super::prim::{BuildError, PrimInfo, check_shape, prim_media};
 use crate::accel::Bvh;
-use crate::math::{AnimatedTransform, Bounds3, Frame, Rgb, Transform, normalize};
+use crate::math::{AnimatedTransform, Bounds3, Rgb, Transform};
 use crate::ray::Ray;
-use crate::shape::{Shading, Shape, ShapeHit, SurfaceInteraction, TriangleMesh, TriangleRay};
+use crate::shape::{Shape, ShapeHit, SurfaceInteraction, TriangleMesh, TriangleRay};
 use std::cell::Cell;
 use std::ops::Range;
 
@@ -303,40 +303,6 @@ impl Motion {
             }
         };
         (to_world(&si, normals, &h.xf, ray), record, albedo)
-    }
-}
-
-/// An object-space interaction moved to the world by `xf` (as an instance's): p and its error
-/// bound and ∂p/∂u, ∂p/∂v by M, the normals by (M⁻¹)ᵀ, the geometric normal turned to the
-/// shading normal's side for meshes with vertex normals, the shading tangents made
-/// perpendicular to the shading normal again.
-fn to_world(
-    si: &SurfaceInteraction,
-    normals: bool,
-    xf: &Transform,
-    ray: &Ray,
-) -> SurfaceInteraction {
-    let (p, p_error) = xf.point_with_error_in(si.p, si.p_error);
-    let mut n = xf.normal(si.n).normalize_or_zero();
-    let ns = xf.normal(si.shading.n).normalize_or_zero();
-    if normals && n.dot(ns) < 0.0 {
-        n = -n;
-    }
-    let Frame { x: ss, y: ts, .. } = Frame::from_xz(xf.vector(si.shading.dpdu), ns);
-    SurfaceInteraction {
-        p,
-        p_error,
-        n,
-        uv: si.uv,
-        dpdu: xf.vector(si.dpdu),
-        dpdv: xf.vector(si.dpdv),
-        shading: Shading {
-            n: ns,
-            dpdu: ss,
-            dpdv: ts,
-        },
-        wo: -normalize(ray.d),
-        t: si.t,
     }
 }
 
