@@ -15,13 +15,14 @@ mod subsurface;
 mod volpath;
 mod whitted;
 
-use crate::material::{Bsdf, Material, SpectralColours};
+use crate::material::{Bsdf, BxDF, Material, SpectralColours};
 use crate::math::{Rgb, SampledSpectrum, Vec3, rgb_lanes};
 use crate::ray::Ray;
 use crate::sampling::Sampler;
 pub use crate::scene::desc::Integrator;
 use crate::scene::{Scene, SceneHit};
 use crate::spectrum::sampled::{SampledWavelengths, albedo_at};
+use crate::texture::SpectrumTex;
 
 impl Integrator {
     /// The pbrt-v4 name of this integrator (`Integrator "…"`): `path`, `volpath`, `whitted`,
@@ -144,7 +145,40 @@ pub struct PathVertex {
 /// which the ray passes straight through. With `lambda` (spectral mode) the material's colours
 /// are evaluated at those wavelengths. The flag says whether the material disperses
 /// ([`Material::disperses`]): a spectral path then keeps only its hero wavelength.
+///
+/// A diffuse material of constant colour (the commonest kind) is built inline, with the same
+/// values as [`Material::bxdf`] gives it: out of line, the BSDF came back through memory, in
+/// stores narrower than the caller's loads, a store-forwarding stall at every bounce.
+#[inline]
 pub(crate) fn bsdf_at(
+    scene: &Scene,
+    hit: &SceneHit,
+    lambda: Option<&SampledWavelengths>,
+) -> Option<(Bsdf, bool)> {
+    let m = scene.prims[hit.prim as usize].material;
+    let constant_diffuse = match (&scene.materials[m as usize], hit.albedo) {
+        (Material::Diffuse { reflectance }, None) => match reflectance {
+            SpectrumTex::Const(c) => Some(*c),
+            SpectrumTex::Measured(s) => Some(s.rgb),
+            SpectrumTex::Tex(_) => None,
+        },
+        _ => None,
+    };
+    if let Some(c) = constant_diffuse {
+        // Spectral: the reflectance prepared at build (slot 0); RGB: clamp(ρ, 0, 1) as lanes.
+        let rho = match lambda {
+            Some(lambda) => lambda.sample_prepared(&scene.spectra().materials[m as usize][0]),
+            None => rgb_lanes(c.clamp(Rgb::ZERO, Rgb::ONE)),
+        };
+        let bsdf = Bsdf::new(BxDF::diffuse(rho), hit.si.shading.n, hit.si.shading.dpdu);
+        return Some((bsdf, false));
+    }
+    bsdf_at_general(scene, hit, lambda)
+}
+
+/// [`bsdf_at`] for every material.
+#[inline(never)]
+fn bsdf_at_general(
     scene: &Scene,
     hit: &SceneHit,
     lambda: Option<&SampledWavelengths>,

@@ -141,30 +141,46 @@ impl Bsdf {
     }
 
     /// f(wo, wi) for world-space directions.
+    #[inline]
     pub fn f(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> SampledSpectrum {
         let (wo, wi) = (self.frame.to_local(wo), self.frame.to_local(wi));
         if wo.z == 0.0 {
             return SampledSpectrum::ZERO;
         }
-        self.bxdf.f(wo, wi, mode)
+        // Lambert, the commonest BxDF, inline (see `sample_f`).
+        match &self.bxdf {
+            BxDF::Diffuse(d) => d.f(wo, wi, mode),
+            b => b.f(wo, wi, mode),
+        }
     }
 
     /// Density of sampling world-space `wi` given `wo`.
+    #[inline]
     pub fn pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
         let (wo, wi) = (self.frame.to_local(wo), self.frame.to_local(wi));
         if wo.z == 0.0 {
             return 0.0;
         }
-        self.bxdf.pdf(wo, wi, mode)
+        match &self.bxdf {
+            BxDF::Diffuse(d) => d.pdf(wo, wi, mode, ReflTrans::ALL),
+            b => b.pdf(wo, wi, mode),
+        }
     }
 
     /// Samples a world-space incident direction.
+    #[inline]
     pub fn sample_f(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample> {
         let wo_l = self.frame.to_local(wo);
         if wo_l.z == 0.0 {
             return None;
         }
-        let mut s = self.bxdf.sample_f(wo_l, uc, u, mode)?;
+        // Lambert, the commonest BxDF, inline: through the out-of-line dispatch its sample came
+        // back in memory, written in narrow stores and read in wide loads (a store-forwarding
+        // stall per bounce). `BxDF::sample_f`'s pdf > 0 filter is the test below.
+        let mut s = match &self.bxdf {
+            BxDF::Diffuse(d) => d.sample_f(wo_l, uc, u, mode, ReflTrans::ALL)?,
+            b => b.sample_f(wo_l, uc, u, mode)?,
+        };
         if s.pdf <= 0.0 || !s.f.is_finite() || s.f == SampledSpectrum::ZERO || s.wi.z == 0.0 {
             return None;
         }

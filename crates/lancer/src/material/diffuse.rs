@@ -15,6 +15,7 @@ pub struct DiffuseBxdf {
 }
 
 impl Scatter for DiffuseBxdf {
+    #[inline]
     fn flags(&self) -> BxdfFlags {
         if self.r == SampledSpectrum::ZERO {
             BxdfFlags::NONE
@@ -23,6 +24,7 @@ impl Scatter for DiffuseBxdf {
         }
     }
 
+    #[inline]
     fn f(&self, wo: Vec3, wi: Vec3, _mode: TransportMode) -> SampledSpectrum {
         if same_hemisphere(wo, wi) {
             self.r * INV_PI
@@ -31,6 +33,7 @@ impl Scatter for DiffuseBxdf {
         }
     }
 
+    #[inline]
     fn sample_f(
         &self,
         wo: Vec3,
@@ -57,6 +60,7 @@ impl Scatter for DiffuseBxdf {
         })
     }
 
+    #[inline]
     fn pdf(&self, wo: Vec3, wi: Vec3, _mode: TransportMode, mask: ReflTrans) -> f32 {
         if !mask.reflection() || !same_hemisphere(wo, wi) {
             return 0.0;
