@@ -297,7 +297,10 @@ fn sample_wavelengths(
 }
 
 /// The camera ray of sample `s` of pixel (`x`, `y`) (`None` when a lens blocks it) and its
-/// filter weight, leaving `sampler` ready for the integrator's dimensions.
+/// filter weight, leaving `sampler` ready for the integrator's dimensions. Inlined: returned
+/// from a call, the ray came back through memory in narrow stores that the caller read in
+/// wide loads, a store-forwarding stall per camera sample.
+#[inline(always)]
 fn camera_ray(
     scene: &Scene,
     settings: &RenderSettings,
