@@ -10,6 +10,7 @@ pub const RR_AFTER_DEPTH: u32 = 2;
 
 mod debug;
 mod path;
+mod path_spectra;
 pub mod specular_differentials;
 mod subsurface;
 mod volpath;
@@ -23,6 +24,7 @@ pub use crate::scene::desc::Integrator;
 use crate::scene::{Scene, SceneHit};
 use crate::spectrum::sampled::{SampledWavelengths, albedo_at};
 use crate::texture::SpectrumTex;
+use path_spectra::PathSpectra;
 
 impl Integrator {
     /// The pbrt-v4 name of this integrator (`Integrator "…"`): `path`, `volpath`, `whitted`,
@@ -155,6 +157,17 @@ pub(crate) fn bsdf_at(
     hit: &SceneHit,
     lambda: Option<&SampledWavelengths>,
 ) -> Option<(Bsdf, bool)> {
+    bsdf_at_memo(scene, hit, lambda, None)
+}
+
+/// [`bsdf_at`], taking a constant diffuse reflectance from the path's `memo` when given.
+#[inline(always)]
+pub(crate) fn bsdf_at_memo(
+    scene: &Scene,
+    hit: &SceneHit,
+    lambda: Option<&SampledWavelengths>,
+    memo: Option<&mut PathSpectra>,
+) -> Option<(Bsdf, bool)> {
     let m = scene.prims[hit.prim as usize].material;
     let constant_diffuse = match (&scene.materials[m as usize], hit.albedo) {
         (Material::Diffuse { reflectance }, None) => match reflectance {
@@ -167,7 +180,13 @@ pub(crate) fn bsdf_at(
     if let Some(c) = constant_diffuse {
         // Spectral: the reflectance prepared at build (slot 0); RGB: clamp(ρ, 0, 1) as lanes.
         let rho = match lambda {
-            Some(lambda) => lambda.sample_prepared(&scene.spectra().materials[m as usize][0]),
+            Some(lambda) => {
+                let eval = || lambda.sample_prepared(&scene.spectra().materials[m as usize][0]);
+                match memo {
+                    Some(memo) => memo.material(m, eval),
+                    None => eval(),
+                }
+            }
             None => rgb_lanes(c.clamp(Rgb::ZERO, Rgb::ONE)),
         };
         let bsdf = Bsdf::new(BxDF::diffuse(rho), hit.si.shading.n, hit.si.shading.dpdu);

@@ -1,6 +1,7 @@
 //! Unidirectional path tracing with next-event estimation and multiple importance sampling.
 
-use super::{PathVertex, bsdf_at, emitted, subsurface};
+use super::path_spectra::PathSpectra;
+use super::{PathVertex, bsdf_at_memo, subsurface};
 use crate::light::LightSampleContext;
 use crate::material::{Bsdf, TransportMode};
 use crate::math::{Rgb, SampledSpectrum, Vec3, normalize};
@@ -101,6 +102,8 @@ pub fn li_observed<O: PathObserver>(
     let mut prev_ctx: Option<LightSampleContext> = None;
     let mut eta_scale = 1.0f32;
     let mut any_non_specular = false;
+    // Constant spectra at the path's wavelengths, evaluated once (spectral mode).
+    let mut memo = PathSpectra::new();
     loop {
         // Bound by reference, here and for the BSDF: moving the records out of the returned
         // Options copied them with wide loads right after the callee's narrower stores, which
@@ -137,7 +140,7 @@ pub fn li_observed<O: PathObserver>(
         let wo = si.wo;
         // An area light hit by a BSDF-sampled ray: weighted against the chance that light
         // sampling picked the same point.
-        let le = emitted(scene, hit, wo, wavelengths.as_ref());
+        let le = memo.emitted(scene, hit, wo, wavelengths.as_ref());
         if le != SampledSpectrum::ZERO {
             match (
                 depth == 0 || specular_bounce,
@@ -153,7 +156,7 @@ pub fn li_observed<O: PathObserver>(
                 _ => l += beta * le,
             }
         }
-        let mut scattering = bsdf_at(scene, hit, wavelengths.as_ref());
+        let mut scattering = bsdf_at_memo(scene, hit, wavelengths.as_ref(), Some(&mut memo));
         let Some((bsdf, disperses)) = &mut scattering else {
             // An interface between media: no surface, the ray goes on unchanged.
             ray = si.spawn_ray(ray.d);
@@ -211,7 +214,7 @@ pub fn li_observed<O: PathObserver>(
                         };
                         l += beta
                             * f
-                            * scene.light_radiance(i, wavelengths.as_ref(), ls.l, ls.factor)
+                            * memo.light_radiance(scene, i, wavelengths.as_ref(), ls.l, ls.factor)
                             * (w / p_l);
                     }
                 }

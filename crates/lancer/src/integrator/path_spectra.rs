@@ -1,0 +1,102 @@
+//! A path's memo of the scene's constant spectra at its wavelengths.
+//!
+//! In spectral mode a constant colour is uplifted once per scene (a sigmoid polynomial, see
+//! [`crate::spectrum::dense::PreparedSpectrum`]), but it still has to be evaluated at each
+//! path's four wavelengths: s(λ) = ½ + x / (2√(1 + x²)), a square root and a division per
+//! lane, at every hit (the material's reflectance) and every light sample (the emitter's
+//! spectrum). A path keeps its wavelengths from the camera to its end (terminating the
+//! secondary wavelengths changes their densities, not their values), and in most scenes it
+//! meets the same few materials and lights again and again, so it evaluates each once and
+//! reuses the value: the same numbers, bit for bit, as evaluating it each time.
+
+use crate::math::{Rgb, SampledSpectrum, Vec3};
+use crate::scene::{Scene, SceneHit};
+use crate::spectrum::sampled::SampledWavelengths;
+
+/// Slots of the material memo, chosen by the material's index modulo this.
+const MATERIAL_SLOTS: usize = 4;
+
+/// No key: a slot that holds nothing.
+const EMPTY: u32 = u32::MAX;
+
+/// The memo of one path (spectral mode only; RGB mode has nothing to evaluate).
+pub(crate) struct PathSpectra {
+    /// Material index whose reflectance each slot holds.
+    material_keys: [u32; MATERIAL_SLOTS],
+    /// Those reflectances at the path's wavelengths.
+    materials: [SampledSpectrum; MATERIAL_SLOTS],
+    /// Light whose prepared spectrum `light` holds.
+    light_key: u32,
+    /// Its emission at the path's wavelengths, before the sample's factor.
+    light: SampledSpectrum,
+}
+
+impl PathSpectra {
+    /// An empty memo, for a new path.
+    #[inline]
+    pub(crate) fn new() -> PathSpectra {
+        PathSpectra {
+            material_keys: [EMPTY; MATERIAL_SLOTS],
+            materials: [SampledSpectrum::ZERO; MATERIAL_SLOTS],
+            light_key: EMPTY,
+            light: SampledSpectrum::ZERO,
+        }
+    }
+
+    /// The constant reflectance of material `m` at the path's wavelengths, evaluated by
+    /// `eval` on its first use.
+    #[inline(always)]
+    pub(crate) fn material(
+        &mut self,
+        m: u32,
+        eval: impl FnOnce() -> SampledSpectrum,
+    ) -> SampledSpectrum {
+        let slot = m as usize % MATERIAL_SLOTS;
+        if self.material_keys[slot] != m {
+            self.materials[slot] = eval();
+            self.material_keys[slot] = m;
+        }
+        self.materials[slot]
+    }
+
+    /// [`Scene::light_radiance`], remembering the last light's prepared spectrum: with one, the
+    /// radiance is that spectrum times `factor` whatever `l` is (`l` is its colour times
+    /// `factor`), so the spectrum is evaluated once per path (as `light_radiance` with factor 1,
+    /// an exact product).
+    #[inline]
+    pub(crate) fn light_radiance(
+        &mut self,
+        scene: &Scene,
+        i: usize,
+        lambda: Option<&SampledWavelengths>,
+        l: Rgb,
+        factor: f32,
+    ) -> SampledSpectrum {
+        let prepared = lambda.is_some() && scene.spectra().lights[i].is_some();
+        if !prepared {
+            return scene.light_radiance(i, lambda, l, factor);
+        }
+        if self.light_key != i as u32 {
+            self.light = scene.light_radiance(i, lambda, l, 1.0);
+            self.light_key = i as u32;
+        }
+        self.light * factor
+    }
+
+    /// [`super::emitted`], through [`PathSpectra::light_radiance`].
+    #[inline]
+    pub(crate) fn emitted(
+        &mut self,
+        scene: &Scene,
+        hit: &SceneHit,
+        wo: Vec3,
+        lambda: Option<&SampledWavelengths>,
+    ) -> SampledSpectrum {
+        match scene.prims[hit.prim as usize].emission {
+            Some(e) if e.two_sided || hit.si.n.dot(wo) > 0.0 => {
+                self.light_radiance(scene, e.light as usize, lambda, e.l.into(), 1.0)
+            }
+            _ => SampledSpectrum::ZERO,
+        }
+    }
+}
