@@ -71,14 +71,23 @@ struct Norms {
 }
 
 impl Norms {
-    /// The row of `rows` at `lambda` ∈ [360, 830] nm, interpolated linearly:
-    /// x = (λ − 360)/5, i = ⌊x⌋ (at most the last interval), row = rᵢ + (x − i)·(rᵢ₊₁ − rᵢ).
+    /// The row of `rows` at x = max((λ − 360)/5, 0), λ ∈ [360, 830] nm, interpolated linearly:
+    /// i = ⌊x⌋ (at most the last interval), row = rᵢ + (x − i)·(rᵢ₊₁ − rᵢ).
+    /// The index goes through i32, which holds every x of the tables' range exactly: a
+    /// conversion to usize saturates through 64-bit checks, a dozen instructions per wavelength.
     #[inline]
-    fn row_at(&self, lambda: f32) -> SampledSpectrum {
-        let x = ((lambda - LAMBDA_MIN) * (1.0 / cie::LAMBDA_STEP as f32)).max(0.0);
-        let i = (x as usize).min(cie::SAMPLES - 2);
+    fn row_at_x(&self, x: f32) -> SampledSpectrum {
+        let i = (x as i32).clamp(0, cie::SAMPLES as i32 - 2) as usize;
         let (a, b) = (self.rows[i], self.rows[i + 1]);
         a + (x - i as f32) * (b - a)
+    }
+
+    /// The rows at four wavelengths ([`Norms::row_at_x`]), x computed in one 4-lane operation.
+    #[inline]
+    fn rows_at(&self, lambda: SampledSpectrum) -> [SampledSpectrum; 4] {
+        let x = ((lambda - SampledSpectrum::splat(LAMBDA_MIN)) * (1.0 / cie::LAMBDA_STEP as f32))
+            .max(SampledSpectrum::ZERO);
+        x.to_array().map(|x| self.row_at_x(x))
     }
 }
 
@@ -171,7 +180,7 @@ impl SampledWavelengths {
         let pdf = n.vis_pdf_scale * (SampledSpectrum::ONE - x * x);
         // One row (x̄, ȳ, z̄, k·D65) per wavelength from the f32 table, then transposed so that
         // each quantity has one lane per wavelength.
-        let r = lambda.to_array().map(|l| n.row_at(l));
+        let r = n.rows_at(lambda);
         let [x, y, z, d65] =
             [0, 1, 2, 3].map(|j| SampledSpectrum::new(r[0][j], r[1][j], r[2][j], r[3][j]));
         SampledWavelengths {
@@ -416,7 +425,7 @@ mod tests {
         let n = norms();
         let k = (1.0 / n.inv_y_integral / weights().d65_y) as f32;
         for l in [360.0f32, 362.5, 557.3, 560.0, 701.9, 829.99, 830.0] {
-            let r = n.row_at(l);
+            let r = n.rows_at(SampledSpectrum::splat(l))[0];
             let (c, d) = (cie_xyz(l), cie_d65(l) * k);
             for j in 0..3 {
                 assert!(
@@ -426,7 +435,7 @@ mod tests {
             }
             assert!((r[3] - d).abs() < 1e-5 * d, "{l} nm: D65 {} vs {d}", r[3]);
         }
-        assert!((n.row_at(560.0)[1] - 0.995).abs() < 1e-6);
+        assert!((n.rows_at(SampledSpectrum::splat(560.0))[2][1] - 0.995).abs() < 1e-6);
     }
 
     #[test]
