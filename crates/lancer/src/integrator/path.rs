@@ -186,6 +186,8 @@ pub fn li_observed<O: PathObserver>(
             ns: si.shading.n,
         };
         let flags = bsdf.flags();
+        // wo in the shading frame, once for f, pdf and the sample.
+        let wo_l = bsdf.frame.to_local(wo);
         if flags.is_non_specular() && !scene.lights.is_empty() {
             // Next-event estimation: one light chosen by the scene's light sampler, one point on it.
             let ul = sampler.get_1d();
@@ -203,14 +205,15 @@ pub fn li_observed<O: PathObserver>(
                     let f = if walk && !unoccluded() {
                         SampledSpectrum::ZERO
                     } else {
-                        bsdf.f(wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(si.shading.n).abs()
+                        bsdf.f_lo(wo_l, ls.wi, TransportMode::Radiance)
+                            * ls.wi.dot(si.shading.n).abs()
                     };
                     if f != SampledSpectrum::ZERO && (walk || unoccluded()) {
                         let p_l = pmf * ls.pdf;
                         let w = if light.is_delta() {
                             1.0
                         } else {
-                            power_heuristic(p_l, bsdf.pdf(wo, ls.wi, TransportMode::Radiance))
+                            power_heuristic(p_l, bsdf.pdf_lo(wo_l, ls.wi, TransportMode::Radiance))
                         };
                         l += beta
                             * f
@@ -226,7 +229,7 @@ pub fn li_observed<O: PathObserver>(
         }
         let uc = sampler.get_1d();
         let u = sampler.get_2d();
-        let bs = bsdf.sample_f(wo, uc, u, TransportMode::Radiance);
+        let bs = bsdf.sample_f_lo(wo_l, uc, u, TransportMode::Radiance);
         obs.vertex(PathVertex {
             depth,
             prim: hit.prim,

@@ -143,11 +143,18 @@ impl Bsdf {
     /// f(wo, wi) for world-space directions.
     #[inline]
     pub fn f(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> SampledSpectrum {
-        let (wo, wi) = (self.frame.to_local(wo), self.frame.to_local(wi));
+        self.f_lo(self.frame.to_local(wo), wi, mode)
+    }
+
+    /// [`Bsdf::f`] with `wo` already in the local frame (`frame.to_local(wo)`), for callers
+    /// that ask f, pdf and a sample for the same `wo` and transform it once.
+    #[inline]
+    pub fn f_lo(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> SampledSpectrum {
+        let wi = self.frame.to_local(wi);
         if wo.z == 0.0 {
             return SampledSpectrum::ZERO;
         }
-        // Lambert, the commonest BxDF, inline (see `sample_f`).
+        // Lambert, the commonest BxDF, inline (see `sample_f_lo`).
         match &self.bxdf {
             BxDF::Diffuse(d) => d.f(wo, wi, mode),
             b => b.f(wo, wi, mode),
@@ -157,7 +164,13 @@ impl Bsdf {
     /// Density of sampling world-space `wi` given `wo`.
     #[inline]
     pub fn pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
-        let (wo, wi) = (self.frame.to_local(wo), self.frame.to_local(wi));
+        self.pdf_lo(self.frame.to_local(wo), wi, mode)
+    }
+
+    /// [`Bsdf::pdf`] with `wo` in the local frame.
+    #[inline]
+    pub fn pdf_lo(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
+        let wi = self.frame.to_local(wi);
         if wo.z == 0.0 {
             return 0.0;
         }
@@ -170,7 +183,18 @@ impl Bsdf {
     /// Samples a world-space incident direction.
     #[inline]
     pub fn sample_f(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample> {
-        let wo_l = self.frame.to_local(wo);
+        self.sample_f_lo(self.frame.to_local(wo), uc, u, mode)
+    }
+
+    /// [`Bsdf::sample_f`] with `wo` in the local frame (the sample's `wi` is in the world).
+    #[inline]
+    pub fn sample_f_lo(
+        &self,
+        wo_l: Vec3,
+        uc: f32,
+        u: Vec2,
+        mode: TransportMode,
+    ) -> Option<BsdfSample> {
         if wo_l.z == 0.0 {
             return None;
         }
