@@ -202,18 +202,19 @@ pub fn li_observed<O: PathObserver>(
                     // A layered BSDF's f is a random walk, dearer than the shadow ray: the ray
                     // goes first for it, after f for the others (f is often zero for them).
                     let walk = bsdf.bxdf.is_stochastic();
+                    // wi in the shading frame: its z is wi·ns, the cosine (the frame's z is ns).
+                    let wi_l = bsdf.frame.to_local(ls.wi);
                     let f = if walk && !unoccluded() {
                         SampledSpectrum::ZERO
                     } else {
-                        bsdf.f_lo(wo_l, ls.wi, TransportMode::Radiance)
-                            * ls.wi.dot(si.shading.n).abs()
+                        bsdf.f_lo(wo_l, wi_l, TransportMode::Radiance) * wi_l.z.abs()
                     };
                     if f != SampledSpectrum::ZERO && (walk || unoccluded()) {
                         let p_l = pmf * ls.pdf;
                         let w = if light.is_delta() {
                             1.0
                         } else {
-                            power_heuristic(p_l, bsdf.pdf_lo(wo_l, ls.wi, TransportMode::Radiance))
+                            power_heuristic(p_l, bsdf.pdf_lo(wo_l, wi_l, TransportMode::Radiance))
                         };
                         l += beta
                             * f

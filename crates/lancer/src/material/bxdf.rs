@@ -143,14 +143,13 @@ impl Bsdf {
     /// f(wo, wi) for world-space directions.
     #[inline]
     pub fn f(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> SampledSpectrum {
-        self.f_lo(self.frame.to_local(wo), wi, mode)
+        self.f_lo(self.frame.to_local(wo), self.frame.to_local(wi), mode)
     }
 
-    /// [`Bsdf::f`] with `wo` already in the local frame (`frame.to_local(wo)`), for callers
-    /// that ask f, pdf and a sample for the same `wo` and transform it once.
+    /// [`Bsdf::f`] with `wo` and `wi` already in the local frame (`frame.to_local`), for
+    /// callers that ask f, pdf and a sample for the same directions and transform them once.
     #[inline]
     pub fn f_lo(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> SampledSpectrum {
-        let wi = self.frame.to_local(wi);
         if wo.z == 0.0 {
             return SampledSpectrum::ZERO;
         }
@@ -164,13 +163,12 @@ impl Bsdf {
     /// Density of sampling world-space `wi` given `wo`.
     #[inline]
     pub fn pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
-        self.pdf_lo(self.frame.to_local(wo), wi, mode)
+        self.pdf_lo(self.frame.to_local(wo), self.frame.to_local(wi), mode)
     }
 
-    /// [`Bsdf::pdf`] with `wo` in the local frame.
+    /// [`Bsdf::pdf`] with `wo` and `wi` in the local frame.
     #[inline]
     pub fn pdf_lo(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
-        let wi = self.frame.to_local(wi);
         if wo.z == 0.0 {
             return 0.0;
         }
