@@ -31,22 +31,25 @@ pub fn li(
 /// sampling needs it when the ray reaches a light. A layered BSDF's sample carries only a
 /// proportional density; its MIS density is the BSDF's `pdf` estimate, a random walk of its
 /// own, kept here unevaluated: most rays reach no light, and `pdf` is a deterministic function
-/// of (wo, wi), so evaluating it later gives the same number.
+/// of (wo, wi), so evaluating it later gives the same number. The BSDF itself waits beside it
+/// (`deferred_bsdf` in [`li_observed`]): held in the enum, its 160 bytes were copied into
+/// `p_b` at every bounce, `Known` or not.
 #[derive(Clone, Copy)]
 enum BouncePdf {
     /// The density, known when the direction was sampled.
     Known(f32),
-    /// `bsdf.pdf(wo, wi)`, evaluated on demand.
-    Deferred { bsdf: Bsdf, wo: Vec3, wi: Vec3 },
+    /// `bsdf.pdf(wo, wi)` of the BSDF kept for it, evaluated on demand.
+    Deferred { wo: Vec3, wi: Vec3 },
 }
 
 impl BouncePdf {
-    /// The density.
+    /// The density; `bsdf` is the BSDF kept for a `Deferred` one (always there for it).
     #[inline]
-    fn value(&self) -> f32 {
-        match self {
-            BouncePdf::Known(p) => *p,
-            BouncePdf::Deferred { bsdf, wo, wi } => deferred_pdf(bsdf, *wo, *wi),
+    fn value(&self, bsdf: &Option<Bsdf>) -> f32 {
+        match (self, bsdf) {
+            (BouncePdf::Known(p), _) => *p,
+            (BouncePdf::Deferred { wo, wi }, Some(bsdf)) => deferred_pdf(bsdf, *wo, *wi),
+            (BouncePdf::Deferred { .. }, None) => 0.0,
         }
     }
 }
@@ -99,6 +102,7 @@ pub fn li_observed<O: PathObserver>(
     let mut depth = 0u32;
     let mut specular_bounce = false;
     let mut p_b = BouncePdf::Known(1.0);
+    let mut deferred_bsdf: Option<Bsdf> = None;
     let mut prev_ctx: Option<LightSampleContext> = None;
     let mut eta_scale = 1.0f32;
     let mut any_non_specular = false;
@@ -128,7 +132,7 @@ pub fn li_observed<O: PathObserver>(
                     (false, Some(ctx)) => {
                         let p_l = scene.light_sampler.pmf(&ctx, i)
                             * light.pdf_li(&ctx, normalize(ray.d), None);
-                        let p_b = *p_b_value.get_or_insert_with(|| p_b.value());
+                        let p_b = *p_b_value.get_or_insert_with(|| p_b.value(&deferred_bsdf));
                         l += beta * power_heuristic(p_b, p_l) * le;
                     }
                     _ => l += beta * le,
@@ -151,7 +155,7 @@ pub fn li_observed<O: PathObserver>(
                     let light = &scene.lights[e.light as usize];
                     let p_l = scene.light_sampler.pmf(&ctx, e.light as usize)
                         * light.pdf_li(&ctx, normalize(ray.d), Some((si.p, si.n)));
-                    l += beta * power_heuristic(p_b.value(), p_l) * le;
+                    l += beta * power_heuristic(p_b.value(&deferred_bsdf), p_l) * le;
                 }
                 _ => l += beta * le,
             }
@@ -251,11 +255,8 @@ pub fn li_observed<O: PathObserver>(
         // A layered BSDF's sample density is only proportional to the true one; MIS needs the
         // density the light-sampling side will also use, evaluated if a light is reached.
         p_b = if bs.pdf_is_proportional {
-            BouncePdf::Deferred {
-                bsdf: *bsdf,
-                wo,
-                wi: bs.wi,
-            }
+            deferred_bsdf = Some(*bsdf);
+            BouncePdf::Deferred { wo, wi: bs.wi }
         } else {
             BouncePdf::Known(bs.pdf)
         };
