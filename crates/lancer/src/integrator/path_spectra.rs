@@ -16,7 +16,7 @@ use crate::spectrum::sampled::SampledWavelengths;
 /// Slots of the material memo, chosen by the material's index modulo this.
 const MATERIAL_SLOTS: usize = 4;
 
-/// No key: a slot that holds nothing.
+/// No key: a slot that holds nothing (no scene has 2³² − 1 materials or lights).
 const EMPTY: u32 = u32::MAX;
 
 /// The memo of one path (spectral mode only; RGB mode has nothing to evaluate).
@@ -98,5 +98,28 @@ impl PathSpectra {
             }
             _ => SampledSpectrum::ZERO,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each material is evaluated once while it keeps its slot; one that shares the slot
+    /// (index + 4) replaces it, and every lookup returns its own material's value.
+    #[test]
+    fn material_memo_evaluates_once_per_slot_holder() {
+        let value = |m: u32| SampledSpectrum::new(m as f32, 0.5, 0.25, 1.0 / (m as f32 + 1.0));
+        let mut memo = PathSpectra::new();
+        let mut evals = Vec::new();
+        for m in [1u32, 1, 2, 1, 5, 5, 1, 0, 2, u32::MAX - 1] {
+            let got = memo.material(m, || {
+                evals.push(m);
+                value(m)
+            });
+            assert_eq!(got, value(m), "material {m}");
+        }
+        // 1 and 5 share slot 1 and evict each other; 2 and 0 keep theirs.
+        assert_eq!(evals, vec![1, 2, 5, 1, 0, u32::MAX - 1]);
     }
 }
