@@ -200,7 +200,7 @@ impl Sampler {
     }
 
     /// Positions the sampler at sample `index` of pixel `(x, y)`, dimension 0.
-    #[inline]
+    #[inline(always)]
     pub fn start_pixel_sample(&mut self, x: i32, y: i32, index: u64) {
         // A pixel's samples are taken in a row: its hash is reused between them.
         if self.pixel != (x, y) {
@@ -210,6 +210,16 @@ impl Sampler {
         self.sample_hash = mix_bits(self.pixel_hash ^ index.wrapping_mul(0xd6e8_feb8_6659_fd93));
         self.index = index;
         self.dim = 0;
+        // The independent sampler (inline, a few instructions per camera sample) needs no more.
+        if !matches!(self.kind, SamplerKind::Independent) {
+            self.start_point_set_sample(x, y, index);
+        }
+    }
+
+    /// The rest of [`Sampler::start_pixel_sample`] for the point sets: their index of the
+    /// sample, out of line.
+    #[inline(never)]
+    fn start_point_set_sample(&mut self, x: i32, y: i32, index: u64) {
         if let Some(h) = &mut self.halton {
             h.index = h.tiling.index(x, y, index);
         }
@@ -403,8 +413,18 @@ impl Sampler {
     }
 
     /// The 2D sample that positions the sample on the film (the first two dimensions).
-    #[inline]
+    #[inline(always)]
     pub fn get_pixel_2d(&mut self) -> Vec2 {
+        // The independent sampler inline: its first two dimensions, as any other two.
+        if matches!(self.kind, SamplerKind::Independent) {
+            return self.get_2d();
+        }
+        self.point_set_pixel_2d()
+    }
+
+    /// [`Sampler::get_pixel_2d`] for the point sets, out of line.
+    #[inline(never)]
+    fn point_set_pixel_2d(&mut self) -> Vec2 {
         match &self.halton {
             // The Halton tiling's own first two dimensions, past the digits that chose the
             // pixel; the other dimensions start at 2.
