@@ -119,6 +119,17 @@ mod imp {
             (unsafe { _mm_movemask_ps(self.0) }) as u32
         }
     }
+
+    /// Bit k set when `ids[k]` is not `u32::MAX` (one compare of the four at once).
+    #[inline(always)]
+    pub fn not_max_bits(ids: &[u32; 4]) -> u32 {
+        // SAFETY: `ids` is sixteen readable bytes; the load has no alignment requirement.
+        let eq = unsafe {
+            let v = _mm_loadu_si128(ids.as_ptr() as *const __m128i);
+            _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(v, _mm_set1_epi32(-1))))
+        };
+        eq as u32 ^ 0xf
+    }
 }
 
 #[cfg(not(all(
@@ -247,9 +258,15 @@ mod imp {
             (0..4).filter(|&k| self.0[k]).map(|k| 1u32 << k).sum()
         }
     }
+
+    /// Bit k set when `ids[k]` is not `u32::MAX`.
+    #[inline(always)]
+    pub fn not_max_bits(ids: &[u32; 4]) -> u32 {
+        (0..4).filter(|&k| ids[k] != u32::MAX).map(|k| 1u32 << k).sum()
+    }
 }
 
-pub(crate) use imp::{F4, M4};
+pub(crate) use imp::{F4, M4, not_max_bits};
 
 // Eight `f32` lanes (AVX on x86-64-v3, arrays elsewhere): only what the 8-wide slab test
 // needs.

@@ -6,7 +6,7 @@
 //! Lanes whose edge function rounds to zero, where the scalar test redoes them in double
 //! precision, are handed to the scalar test itself.
 
-use super::simd::{F4, M4};
+use super::simd::{F4, M4, not_max_bits};
 use crate::math::{PackedVec3, Vec3, gamma};
 use crate::ray::Ray;
 use crate::shape::{ShapeHit, TriangleRay, intersect_triangle_with};
@@ -58,10 +58,7 @@ impl Tri4 {
     /// Lanes holding triangles, as a mask (bit k for lane k).
     #[inline(always)]
     fn used(&self) -> u32 {
-        (self.ids[0] != u32::MAX) as u32
-            | ((self.ids[1] != u32::MAX) as u32) << 1
-            | ((self.ids[2] != u32::MAX) as u32) << 2
-            | ((self.ids[3] != u32::MAX) as u32) << 3
+        not_max_bits(&self.ids)
     }
 
     /// The nearest hit with 0 < t ≤ `ray.t_max` among the four: (lane, hit). As in the
@@ -71,14 +68,25 @@ impl Tri4 {
     /// a prism standing on a floor, then resolve as in pbrt-v4: the triangle tested last.)
     #[inline]
     pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<(usize, ShapeHit)> {
-        let found = test(ray, pre, self.permuted(pre), self.used());
-        nearest(ray, pre, found, |lane| self.vertices(lane))
+        self.intersect_to(ray, ray.t_max, pre)
+    }
+
+    /// [`Tri4::intersect`] with the ray ending at `t_max` instead of `ray.t_max`.
+    #[inline]
+    pub fn intersect_to(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        pre: &TriangleRay,
+    ) -> Option<(usize, ShapeHit)> {
+        let found = test(ray, t_max, pre, self.permuted(pre), self.used());
+        nearest(ray, t_max, pre, found, |lane| self.vertices(lane))
     }
 
     /// True if any of the four is hit with 0 < t ≤ `ray.t_max`.
     #[inline]
     pub fn intersect_any(&self, ray: &Ray, pre: &TriangleRay) -> bool {
-        let found = test(ray, pre, self.permuted(pre), self.used());
+        let found = test(ray, ray.t_max, pre, self.permuted(pre), self.used());
         any(ray, pre, found, |lane| self.vertices(lane))
     }
 
@@ -110,17 +118,22 @@ pub struct IndexedTri4<'a> {
 }
 
 impl IndexedTri4<'_> {
-    /// The nearest hit with 0 < t ≤ `ray.t_max` among the triangles: (index in `tris`, hit).
+    /// The nearest hit with 0 < t ≤ `t_max` among the triangles: (index in `tris`, hit).
     #[inline]
-    pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<(usize, ShapeHit)> {
-        let found = test(ray, pre, self.permuted(pre), self.used());
-        nearest(ray, pre, found, |lane| self.vertices(lane))
+    pub fn intersect_to(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        pre: &TriangleRay,
+    ) -> Option<(usize, ShapeHit)> {
+        let found = test(ray, t_max, pre, self.permuted(pre), self.used());
+        nearest(ray, t_max, pre, found, |lane| self.vertices(lane))
     }
 
     /// True if any of the triangles is hit with 0 < t ≤ `ray.t_max`.
     #[inline]
     pub fn intersect_any(&self, ray: &Ray, pre: &TriangleRay) -> bool {
-        let found = test(ray, pre, self.permuted(pre), self.used());
+        let found = test(ray, ray.t_max, pre, self.permuted(pre), self.used());
         any(ray, pre, found, |lane| self.vertices(lane))
     }
 
@@ -179,21 +192,62 @@ impl IndexedTri4<'_> {
     }
 }
 
-/// The nearest of the hits `found` by [`test`]: (lane, hit), lanes to redo tested by the scalar
-/// test on `vertices(lane)`. As in the scalar test and pbrt-v4's `IntersectTriangle`, a hit
-/// at exactly `t_max` is accepted, so among equal t the highest lane wins, exactly as when the
-/// lanes are tested one after another, each against the ray shortened to the hit before.
-/// (Coplanar surfaces, such as a prism standing on a floor, then resolve as in pbrt-v4.)
+/// The nearest of the hits `found` by [`test`] on the ray ending at `t_max`: (lane, hit),
+/// lanes to redo tested by the scalar test on `vertices(lane)`. As in the scalar test and
+/// pbrt-v4's `IntersectTriangle`, a hit at exactly `t_max` is accepted, so among equal t the
+/// highest lane wins, exactly as when the lanes are tested one after another, each against the
+/// ray shortened to the hit before. (Coplanar surfaces, such as a prism standing on a floor,
+/// then resolve as in pbrt-v4.)
 #[inline(always)]
 fn nearest(
     ray: &Ray,
+    t_max: f32,
+    pre: &TriangleRay,
+    found: (u32, [f32; 4], [f32; 4], [f32; 4], u32),
+    vertices: impl Fn(usize) -> [Vec3; 3],
+) -> Option<(usize, ShapeHit)> {
+    let (mut mask, t, b1, b2, redo) = found;
+    if redo != 0 {
+        return nearest_redo(ray, t_max, pre, found, vertices);
+    }
+    // Lanes in increasing order, each kept if not beyond the nearest so far (the scaled test
+    // in `test` compares t·det, so t itself may still round past t_max).
+    let mut best = None;
+    let mut t_max = t_max;
+    while mask != 0 {
+        let lane = mask.trailing_zeros() as usize;
+        mask &= mask - 1;
+        if t[lane] <= t_max {
+            t_max = t[lane];
+            best = Some(lane);
+        }
+    }
+    best.map(|lane| {
+        (
+            lane,
+            ShapeHit {
+                t: t[lane],
+                u: b1[lane],
+                v: b2[lane],
+            },
+        )
+    })
+}
+
+/// [`nearest`] when some lanes are to be redone by the scalar test (an edge function rounded
+/// to zero): the lanes in order, each against the ray shortened to the nearest hit so far.
+#[cold]
+#[inline(never)]
+fn nearest_redo(
+    ray: &Ray,
+    t_max: f32,
     pre: &TriangleRay,
     found: (u32, [f32; 4], [f32; 4], [f32; 4], u32),
     vertices: impl Fn(usize) -> [Vec3; 3],
 ) -> Option<(usize, ShapeHit)> {
     let (mut mask, t, b1, b2, redo) = found;
     let mut best: Option<(usize, ShapeHit)> = None;
-    let mut t_max = ray.t_max;
+    let mut t_max = t_max;
     for lane in 0..4 {
         let bit = 1 << lane;
         if redo & bit != 0 {
@@ -241,10 +295,11 @@ fn any(
 }
 
 /// The four tests on the lanes `used` of vertices `v` (`[vertex][axis]`, axes in the ray's
-/// order kx, ky, kz): (hit mask, t, b₁, b₂, lanes to redo with the scalar test).
+/// order kx, ky, kz), the ray ending at `t_max`: (hit mask, t, b₁, b₂, lanes to redo with the scalar test).
 #[inline(always)]
 fn test(
     ray: &Ray,
+    t_max: f32,
     pre: &TriangleRay,
     v: [[F4; 3]; 3],
     used: u32,
@@ -291,7 +346,7 @@ fn test(
     let (p0z, p1z, p2z) = (p0z.mul(sz), p1z.mul(sz), p2z.mul(sz));
     // t_scaled = e₀z₀ + e₁z₁ + e₂z₂, compared with t_max·det on det's side.
     let t_scaled = e0.mul(p0z).add(e1.mul(p1z)).add(e2.mul(p2z));
-    let tmd = F4::splat(ray.t_max).mul(det);
+    let tmd = F4::splat(t_max).mul(det);
     let neg_ok = det.lt(zero).and(t_scaled.lt(zero)).and(t_scaled.ge(tmd));
     let pos_ok = det.gt(zero).and(t_scaled.gt(zero)).and(t_scaled.le(tmd));
     let inside: M4 = neg_ok.or(pos_ok).and_not(some_neg.and(some_pos));
