@@ -196,8 +196,12 @@ impl Scene {
         }
         let (h, prim) = best?;
         let shape = &self.shapes[prim as usize];
-        let si = shape.interaction(ray, &h, &self.meshes);
-        Some(self.finish_hit(ray, si, prim, shape.hit_albedo(&h)))
+        let (si, albedo) = match shape {
+            // The common case first, without the dispatch over every shape.
+            Shape::Triangle(t) => (t.interaction(ray, &h, &self.meshes[t.mesh as usize]), None),
+            _ => (shape.interaction(ray, &h, &self.meshes), shape.hit_albedo(&h)),
+        };
+        Some(self.finish_hit(ray, si, prim, albedo))
     }
 
     /// The hit of primitive `prim` at `si`: its footprint, and its shading frame changed by
