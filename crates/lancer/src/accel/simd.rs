@@ -31,6 +31,17 @@ mod imp {
         pub fn from_m128(v: __m128) -> F4 {
             F4(v)
         }
+        /// Lane `i` (0 ≤ i < 4), taken in registers (no round trip through memory).
+        #[inline(always)]
+        pub fn lane(self, i: usize) -> f32 {
+            #[cfg(target_feature = "avx")]
+            // SAFETY: AVX is enabled (cfg); the permute reads only the low two bits of `i`.
+            unsafe {
+                _mm_cvtss_f32(_mm_permutevar_ps(self.0, _mm_cvtsi32_si128(i as i32)))
+            }
+            #[cfg(not(target_feature = "avx"))]
+            self.to_array()[i & 3]
+        }
         #[inline(always)]
         pub fn to_array(self) -> [f32; 4] {
             let mut out = [0.0f32; 4];
@@ -169,6 +180,11 @@ mod imp {
         #[inline(always)]
         pub fn load(a: &[f32; 4]) -> F4 {
             F4(*a)
+        }
+        /// Lane `i` (0 ≤ i < 4).
+        #[inline(always)]
+        pub fn lane(self, i: usize) -> f32 {
+            self.0[i & 3]
         }
         #[inline(always)]
         pub fn to_array(self) -> [f32; 4] {

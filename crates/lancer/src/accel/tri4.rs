@@ -204,10 +204,16 @@ fn nearest(
     ray: &Ray,
     t_max: f32,
     pre: &TriangleRay,
-    found: (u32, [f32; 4], [f32; 4], [f32; 4], u32),
+    found: Found,
     vertices: impl Fn(usize) -> [Vec3; 3],
 ) -> Option<(usize, ShapeHit)> {
-    let (mut mask, t, b1, b2, redo) = found;
+    let Found {
+        mut mask,
+        t,
+        b1,
+        b2,
+        redo,
+    } = found;
     if redo != 0 {
         return nearest_redo(ray, t_max, pre, found, vertices);
     }
@@ -218,18 +224,20 @@ fn nearest(
     while mask != 0 {
         let lane = mask.trailing_zeros() as usize;
         mask &= mask - 1;
-        if t[lane] <= t_max {
-            t_max = t[lane];
+        let t_lane = t.lane(lane);
+        if t_lane <= t_max {
+            t_max = t_lane;
             best = Some(lane);
         }
     }
+    // Read from the registers: a hit record copied through memory in pieces stalled here.
     best.map(|lane| {
         (
             lane,
             ShapeHit {
-                t: t[lane],
-                u: b1[lane],
-                v: b2[lane],
+                t: t_max,
+                u: b1.lane(lane),
+                v: b2.lane(lane),
             },
         )
     })
@@ -237,16 +245,20 @@ fn nearest(
 
 /// [`nearest`] when some lanes are to be redone by the scalar test (an edge function rounded
 /// to zero): the lanes in order, each against the ray shortened to the nearest hit so far.
-#[cold]
-#[inline(never)]
+/// Inlined although rare: its result then meets the common path's in registers, where a
+/// result returned through memory stalled every hit (the hit record read back in pieces).
+#[inline(always)]
 fn nearest_redo(
     ray: &Ray,
     t_max: f32,
     pre: &TriangleRay,
-    found: (u32, [f32; 4], [f32; 4], [f32; 4], u32),
+    found: Found,
     vertices: impl Fn(usize) -> [Vec3; 3],
 ) -> Option<(usize, ShapeHit)> {
-    let (mut mask, t, b1, b2, redo) = found;
+    let Found {
+        mut mask, redo, ..
+    } = found;
+    let (t, b1, b2) = (found.t.to_array(), found.b1.to_array(), found.b2.to_array());
     let mut best: Option<(usize, ShapeHit)> = None;
     let mut t_max = t_max;
     for lane in 0..4 {
@@ -280,10 +292,10 @@ fn nearest_redo(
 fn any(
     ray: &Ray,
     pre: &TriangleRay,
-    found: (u32, [f32; 4], [f32; 4], [f32; 4], u32),
+    found: Found,
     vertices: impl Fn(usize) -> [Vec3; 3],
 ) -> bool {
-    let (mask, _, _, _, redo) = found;
+    let Found { mask, redo, .. } = found;
     if mask & !redo != 0 {
         return true;
     }
@@ -295,8 +307,34 @@ fn any(
     })
 }
 
+/// What [`test`] finds, kept in vector registers: the lanes hit, their t and barycentrics
+/// (b₁, b₂), and the lanes to redo with the scalar test.
+#[derive(Clone, Copy)]
+struct Found {
+    mask: u32,
+    t: F4,
+    b1: F4,
+    b2: F4,
+    redo: u32,
+}
+
+impl Found {
+    /// No lane hit; lanes `redo` to redo.
+    #[inline(always)]
+    fn none(redo: u32) -> Found {
+        let zero = F4::splat(0.0);
+        Found {
+            mask: 0,
+            t: zero,
+            b1: zero,
+            b2: zero,
+            redo,
+        }
+    }
+}
+
 /// The four tests on the lanes `used` of vertices `v` (`[vertex][axis]`, axes in the ray's
-/// order kx, ky, kz), the ray ending at `t_max`: (hit mask, t, b₁, b₂, lanes to redo with the scalar test).
+/// order kx, ky, kz), the ray ending at `t_max`.
 #[inline(always)]
 fn test(
     ray: &Ray,
@@ -304,7 +342,7 @@ fn test(
     pre: &TriangleRay,
     v: [[F4; 3]; 3],
     used: u32,
-) -> (u32, [f32; 4], [f32; 4], [f32; 4], u32) {
+) -> Found {
     let kz = pre.kz();
     let (kx, ky) = pre.kxy();
     let o = ray.o.to_array();
@@ -341,7 +379,7 @@ fn test(
     let edges_ok = some_neg.and(some_pos).bits() ^ 0xf;
     if edges_ok & used & !redo == 0 {
         // The ray passes outside every triangle (the common case): stop early.
-        return (0, [0.0; 4], [0.0; 4], [0.0; 4], redo);
+        return Found::none(redo);
     }
     let det = e0.add(e1).add(e2);
     let (p0z, p1z, p2z) = (p0z.mul(sz), p1z.mul(sz), p2z.mul(sz));
@@ -353,7 +391,7 @@ fn test(
     let inside: M4 = neg_ok.or(pos_ok).and_not(some_neg.and(some_pos));
     let mut mask = inside.bits() & used & !redo;
     if mask == 0 {
-        return (0, [0.0; 4], [0.0; 4], [0.0; 4], redo);
+        return Found::none(redo);
     }
     let inv_det = F4::splat(1.0).div(det);
     let t = t_scaled.mul(inv_det);
@@ -389,13 +427,13 @@ fn test(
         )
         .mul(inv_det.abs());
     mask &= t.gt(delta_t).bits();
-    (
+    Found {
         mask,
-        t.to_array(),
-        e1.mul(inv_det).to_array(),
-        e2.mul(inv_det).to_array(),
+        t,
+        b1: e1.mul(inv_det),
+        b2: e2.mul(inv_det),
         redo,
-    )
+    }
 }
 
 #[cfg(test)]
