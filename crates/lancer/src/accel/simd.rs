@@ -278,7 +278,10 @@ mod imp {
     /// Bit k set when `ids[k]` is not `u32::MAX`.
     #[inline(always)]
     pub fn not_max_bits(ids: &[u32; 4]) -> u32 {
-        (0..4).filter(|&k| ids[k] != u32::MAX).map(|k| 1u32 << k).sum()
+        (0..4)
+            .filter(|&k| ids[k] != u32::MAX)
+            .map(|k| 1u32 << k)
+            .sum()
     }
 }
 

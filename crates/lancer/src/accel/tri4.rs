@@ -255,9 +255,7 @@ fn nearest_redo(
     found: Found,
     vertices: impl Fn(usize) -> [Vec3; 3],
 ) -> Option<(usize, ShapeHit)> {
-    let Found {
-        mut mask, redo, ..
-    } = found;
+    let Found { mut mask, redo, .. } = found;
     let (t, b1, b2) = (found.t.to_array(), found.b1.to_array(), found.b2.to_array());
     let mut best: Option<(usize, ShapeHit)> = None;
     let mut t_max = t_max;
@@ -289,12 +287,7 @@ fn nearest_redo(
 /// True if [`test`] `found` a hit, lanes to redo tested by the scalar test on
 /// `vertices(lane)`.
 #[inline(always)]
-fn any(
-    ray: &Ray,
-    pre: &TriangleRay,
-    found: Found,
-    vertices: impl Fn(usize) -> [Vec3; 3],
-) -> bool {
+fn any(ray: &Ray, pre: &TriangleRay, found: Found, vertices: impl Fn(usize) -> [Vec3; 3]) -> bool {
     let Found { mask, redo, .. } = found;
     if mask & !redo != 0 {
         return true;
@@ -336,13 +329,7 @@ impl Found {
 /// The four tests on the lanes `used` of vertices `v` (`[vertex][axis]`, axes in the ray's
 /// order kx, ky, kz), the ray ending at `t_max`.
 #[inline(always)]
-fn test(
-    ray: &Ray,
-    t_max: f32,
-    pre: &TriangleRay,
-    v: [[F4; 3]; 3],
-    used: u32,
-) -> Found {
+fn test(ray: &Ray, t_max: f32, pre: &TriangleRay, v: [[F4; 3]; 3], used: u32) -> Found {
     let kz = pre.kz();
     let (kx, ky) = pre.kxy();
     let o = ray.o.to_array();

@@ -199,7 +199,10 @@ impl Scene {
         let (si, albedo) = match shape {
             // The common case first, without the dispatch over every shape.
             Shape::Triangle(t) => (t.interaction(ray, &h, &self.meshes[t.mesh as usize]), None),
-            _ => (shape.interaction(ray, &h, &self.meshes), shape.hit_albedo(&h)),
+            _ => (
+                shape.interaction(ray, &h, &self.meshes),
+                shape.hit_albedo(&h),
+            ),
         };
         Some(self.finish_hit(ray, si, prim, albedo))
     }
