@@ -119,10 +119,21 @@ impl IndexedTris {
     /// The nearest hit with 0 < t ≤ `ray.t_max`: (slot of the triangle, hit).
     #[inline]
     pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<(u32, ShapeHit)> {
+        self.intersect_to(ray, ray.t_max, pre)
+    }
+
+    /// [`IndexedTris::intersect`] with the ray ending at `t_max` instead of `ray.t_max`.
+    #[inline]
+    pub fn intersect_to(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        pre: &TriangleRay,
+    ) -> Option<(u32, ShapeHit)> {
         let mut best = None;
-        self.bvh.intersect_leaves(ray, |leaf, r| {
+        self.bvh.traverse(ray, t_max, |leaf, t_max| {
             let (p, first) = self.packet(leaf);
-            let (lane, h) = p.intersect(r, pre)?;
+            let (lane, h) = p.intersect_to(ray, t_max, pre)?;
             best = Some((first + lane as u32, h));
             Some(h.t)
         });

@@ -65,9 +65,9 @@ impl MeshBvh {
     #[inline]
     pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<(u32, ShapeHit)> {
         let mut best = None;
-        self.bvh.intersect_leaves(ray, |leaf, r| {
+        self.bvh.traverse(ray, ray.t_max, |leaf, t_max| {
             let p = &self.packets[leaf as usize];
-            let (lane, h) = p.intersect(r, pre)?;
+            let (lane, h) = p.intersect_to(ray, t_max, pre)?;
             best = Some((p.ids[lane], h));
             Some(h.t)
         });

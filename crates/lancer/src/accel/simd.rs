@@ -31,6 +31,17 @@ mod imp {
         pub fn from_m128(v: __m128) -> F4 {
             F4(v)
         }
+        /// Lane `i` (0 ≤ i < 4), taken in registers (no round trip through memory).
+        #[inline(always)]
+        pub fn lane(self, i: usize) -> f32 {
+            #[cfg(target_feature = "avx")]
+            // SAFETY: AVX is enabled (cfg); the permute reads only the low two bits of `i`.
+            unsafe {
+                _mm_cvtss_f32(_mm_permutevar_ps(self.0, _mm_cvtsi32_si128(i as i32)))
+            }
+            #[cfg(not(target_feature = "avx"))]
+            self.to_array()[i & 3]
+        }
         #[inline(always)]
         pub fn to_array(self) -> [f32; 4] {
             let mut out = [0.0f32; 4];
@@ -119,6 +130,17 @@ mod imp {
             (unsafe { _mm_movemask_ps(self.0) }) as u32
         }
     }
+
+    /// Bit k set when `ids[k]` is not `u32::MAX` (one compare of the four at once).
+    #[inline(always)]
+    pub fn not_max_bits(ids: &[u32; 4]) -> u32 {
+        // SAFETY: `ids` is sixteen readable bytes; the load has no alignment requirement.
+        let eq = unsafe {
+            let v = _mm_loadu_si128(ids.as_ptr() as *const __m128i);
+            _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(v, _mm_set1_epi32(-1))))
+        };
+        eq as u32 ^ 0xf
+    }
 }
 
 #[cfg(not(all(
@@ -158,6 +180,11 @@ mod imp {
         #[inline(always)]
         pub fn load(a: &[f32; 4]) -> F4 {
             F4(*a)
+        }
+        /// Lane `i` (0 ≤ i < 4).
+        #[inline(always)]
+        pub fn lane(self, i: usize) -> f32 {
+            self.0[i & 3]
         }
         #[inline(always)]
         pub fn to_array(self) -> [f32; 4] {
@@ -247,9 +274,18 @@ mod imp {
             (0..4).filter(|&k| self.0[k]).map(|k| 1u32 << k).sum()
         }
     }
+
+    /// Bit k set when `ids[k]` is not `u32::MAX`.
+    #[inline(always)]
+    pub fn not_max_bits(ids: &[u32; 4]) -> u32 {
+        (0..4)
+            .filter(|&k| ids[k] != u32::MAX)
+            .map(|k| 1u32 << k)
+            .sum()
+    }
 }
 
-pub(crate) use imp::{F4, M4};
+pub(crate) use imp::{F4, M4, not_max_bits};
 
 // Eight `f32` lanes (AVX on x86-64-v3, arrays elsewhere): only what the 8-wide slab test
 // needs.

@@ -6,7 +6,7 @@
 //! Lanes whose edge function rounds to zero, where the scalar test redoes them in double
 //! precision, are handed to the scalar test itself.
 
-use super::simd::{F4, M4};
+use super::simd::{F4, M4, not_max_bits};
 use crate::math::{PackedVec3, Vec3, gamma};
 use crate::ray::Ray;
 use crate::shape::{ShapeHit, TriangleRay, intersect_triangle_with};
@@ -58,10 +58,7 @@ impl Tri4 {
     /// Lanes holding triangles, as a mask (bit k for lane k).
     #[inline(always)]
     fn used(&self) -> u32 {
-        (self.ids[0] != u32::MAX) as u32
-            | ((self.ids[1] != u32::MAX) as u32) << 1
-            | ((self.ids[2] != u32::MAX) as u32) << 2
-            | ((self.ids[3] != u32::MAX) as u32) << 3
+        not_max_bits(&self.ids)
     }
 
     /// The nearest hit with 0 < t ≤ `ray.t_max` among the four: (lane, hit). As in the
@@ -71,14 +68,26 @@ impl Tri4 {
     /// a prism standing on a floor, then resolve as in pbrt-v4: the triangle tested last.)
     #[inline]
     pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<(usize, ShapeHit)> {
-        let found = test(ray, pre, self.permuted(pre), self.used());
-        nearest(ray, pre, found, |lane| self.vertices(lane))
+        self.intersect_to(ray, ray.t_max, pre)
+    }
+
+    /// [`Tri4::intersect`] with the ray ending at `t_max` instead of `ray.t_max`. Inlined into
+    /// the traversal loops: the ray and its set-up stay in registers across the leaves.
+    #[inline(always)]
+    pub fn intersect_to(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        pre: &TriangleRay,
+    ) -> Option<(usize, ShapeHit)> {
+        let found = test(ray, t_max, pre, self.permuted(pre), self.used());
+        nearest(ray, t_max, pre, found, |lane| self.vertices(lane))
     }
 
     /// True if any of the four is hit with 0 < t ≤ `ray.t_max`.
     #[inline]
     pub fn intersect_any(&self, ray: &Ray, pre: &TriangleRay) -> bool {
-        let found = test(ray, pre, self.permuted(pre), self.used());
+        let found = test(ray, ray.t_max, pre, self.permuted(pre), self.used());
         any(ray, pre, found, |lane| self.vertices(lane))
     }
 
@@ -110,17 +119,22 @@ pub struct IndexedTri4<'a> {
 }
 
 impl IndexedTri4<'_> {
-    /// The nearest hit with 0 < t ≤ `ray.t_max` among the triangles: (index in `tris`, hit).
+    /// The nearest hit with 0 < t ≤ `t_max` among the triangles: (index in `tris`, hit).
     #[inline]
-    pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<(usize, ShapeHit)> {
-        let found = test(ray, pre, self.permuted(pre), self.used());
-        nearest(ray, pre, found, |lane| self.vertices(lane))
+    pub fn intersect_to(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        pre: &TriangleRay,
+    ) -> Option<(usize, ShapeHit)> {
+        let found = test(ray, t_max, pre, self.permuted(pre), self.used());
+        nearest(ray, t_max, pre, found, |lane| self.vertices(lane))
     }
 
     /// True if any of the triangles is hit with 0 < t ≤ `ray.t_max`.
     #[inline]
     pub fn intersect_any(&self, ray: &Ray, pre: &TriangleRay) -> bool {
-        let found = test(ray, pre, self.permuted(pre), self.used());
+        let found = test(ray, ray.t_max, pre, self.permuted(pre), self.used());
         any(ray, pre, found, |lane| self.vertices(lane))
     }
 
@@ -179,21 +193,72 @@ impl IndexedTri4<'_> {
     }
 }
 
-/// The nearest of the hits `found` by [`test`]: (lane, hit), lanes to redo tested by the scalar
-/// test on `vertices(lane)`. As in the scalar test and pbrt-v4's `IntersectTriangle`, a hit
-/// at exactly `t_max` is accepted, so among equal t the highest lane wins, exactly as when the
-/// lanes are tested one after another, each against the ray shortened to the hit before.
-/// (Coplanar surfaces, such as a prism standing on a floor, then resolve as in pbrt-v4.)
+/// The nearest of the hits `found` by [`test`] on the ray ending at `t_max`: (lane, hit),
+/// lanes to redo tested by the scalar test on `vertices(lane)`. As in the scalar test and
+/// pbrt-v4's `IntersectTriangle`, a hit at exactly `t_max` is accepted, so among equal t the
+/// highest lane wins, exactly as when the lanes are tested one after another, each against the
+/// ray shortened to the hit before. (Coplanar surfaces, such as a prism standing on a floor,
+/// then resolve as in pbrt-v4.)
 #[inline(always)]
 fn nearest(
     ray: &Ray,
+    t_max: f32,
     pre: &TriangleRay,
-    found: (u32, [f32; 4], [f32; 4], [f32; 4], u32),
+    found: Found,
     vertices: impl Fn(usize) -> [Vec3; 3],
 ) -> Option<(usize, ShapeHit)> {
-    let (mut mask, t, b1, b2, redo) = found;
+    let Found {
+        mut mask,
+        t,
+        b1,
+        b2,
+        redo,
+    } = found;
+    if redo != 0 {
+        return nearest_redo(ray, t_max, pre, found, vertices);
+    }
+    // Lanes in increasing order, each kept if not beyond the nearest so far (the scaled test
+    // in `test` compares t·det, so t itself may still round past t_max).
+    let mut best = None;
+    let mut t_max = t_max;
+    while mask != 0 {
+        let lane = mask.trailing_zeros() as usize;
+        mask &= mask - 1;
+        let t_lane = t.lane(lane);
+        if t_lane <= t_max {
+            t_max = t_lane;
+            best = Some(lane);
+        }
+    }
+    // Read from the registers: a hit record copied through memory in pieces stalled here.
+    best.map(|lane| {
+        (
+            lane,
+            ShapeHit {
+                t: t_max,
+                u: b1.lane(lane),
+                v: b2.lane(lane),
+            },
+        )
+    })
+}
+
+/// [`nearest`] when some lanes are to be redone by the scalar test (an edge function rounded
+/// to zero): the lanes in order, each against the ray shortened to the nearest hit so far.
+/// Inlined although rare: its result then meets the common path's in registers, where a
+/// result returned through memory stalled every hit (the hit record read back in pieces).
+#[inline(always)]
+fn nearest_redo(
+    ray: &Ray,
+    t_max: f32,
+    pre: &TriangleRay,
+    found: Found,
+    vertices: impl Fn(usize) -> [Vec3; 3],
+) -> Option<(usize, ShapeHit)> {
+    let Found { mut mask, redo, .. } = found;
+    let (t, b1, b2) = (found.t.to_array(), found.b1.to_array(), found.b2.to_array());
     let mut best: Option<(usize, ShapeHit)> = None;
-    let mut t_max = ray.t_max;
+    let mut t_max = t_max;
     for lane in 0..4 {
         let bit = 1 << lane;
         if redo & bit != 0 {
@@ -222,13 +287,8 @@ fn nearest(
 /// True if [`test`] `found` a hit, lanes to redo tested by the scalar test on
 /// `vertices(lane)`.
 #[inline(always)]
-fn any(
-    ray: &Ray,
-    pre: &TriangleRay,
-    found: (u32, [f32; 4], [f32; 4], [f32; 4], u32),
-    vertices: impl Fn(usize) -> [Vec3; 3],
-) -> bool {
-    let (mask, _, _, _, redo) = found;
+fn any(ray: &Ray, pre: &TriangleRay, found: Found, vertices: impl Fn(usize) -> [Vec3; 3]) -> bool {
+    let Found { mask, redo, .. } = found;
     if mask & !redo != 0 {
         return true;
     }
@@ -240,15 +300,36 @@ fn any(
     })
 }
 
+/// What [`test`] finds, kept in vector registers: the lanes hit, their t and barycentrics
+/// (b₁, b₂), and the lanes to redo with the scalar test.
+#[derive(Clone, Copy)]
+struct Found {
+    mask: u32,
+    t: F4,
+    b1: F4,
+    b2: F4,
+    redo: u32,
+}
+
+impl Found {
+    /// No lane hit; lanes `redo` to redo.
+    #[inline(always)]
+    fn none(redo: u32) -> Found {
+        let zero = F4::splat(0.0);
+        Found {
+            mask: 0,
+            t: zero,
+            b1: zero,
+            b2: zero,
+            redo,
+        }
+    }
+}
+
 /// The four tests on the lanes `used` of vertices `v` (`[vertex][axis]`, axes in the ray's
-/// order kx, ky, kz): (hit mask, t, b₁, b₂, lanes to redo with the scalar test).
+/// order kx, ky, kz), the ray ending at `t_max`.
 #[inline(always)]
-fn test(
-    ray: &Ray,
-    pre: &TriangleRay,
-    v: [[F4; 3]; 3],
-    used: u32,
-) -> (u32, [f32; 4], [f32; 4], [f32; 4], u32) {
+fn test(ray: &Ray, t_max: f32, pre: &TriangleRay, v: [[F4; 3]; 3], used: u32) -> Found {
     let kz = pre.kz();
     let (kx, ky) = pre.kxy();
     let o = ray.o.to_array();
@@ -285,19 +366,19 @@ fn test(
     let edges_ok = some_neg.and(some_pos).bits() ^ 0xf;
     if edges_ok & used & !redo == 0 {
         // The ray passes outside every triangle (the common case): stop early.
-        return (0, [0.0; 4], [0.0; 4], [0.0; 4], redo);
+        return Found::none(redo);
     }
     let det = e0.add(e1).add(e2);
     let (p0z, p1z, p2z) = (p0z.mul(sz), p1z.mul(sz), p2z.mul(sz));
     // t_scaled = e₀z₀ + e₁z₁ + e₂z₂, compared with t_max·det on det's side.
     let t_scaled = e0.mul(p0z).add(e1.mul(p1z)).add(e2.mul(p2z));
-    let tmd = F4::splat(ray.t_max).mul(det);
+    let tmd = F4::splat(t_max).mul(det);
     let neg_ok = det.lt(zero).and(t_scaled.lt(zero)).and(t_scaled.ge(tmd));
     let pos_ok = det.gt(zero).and(t_scaled.gt(zero)).and(t_scaled.le(tmd));
     let inside: M4 = neg_ok.or(pos_ok).and_not(some_neg.and(some_pos));
     let mut mask = inside.bits() & used & !redo;
     if mask == 0 {
-        return (0, [0.0; 4], [0.0; 4], [0.0; 4], redo);
+        return Found::none(redo);
     }
     let inv_det = F4::splat(1.0).div(det);
     let t = t_scaled.mul(inv_det);
@@ -333,13 +414,13 @@ fn test(
         )
         .mul(inv_det.abs());
     mask &= t.gt(delta_t).bits();
-    (
+    Found {
         mask,
-        t.to_array(),
-        e1.mul(inv_det).to_array(),
-        e2.mul(inv_det).to_array(),
+        t,
+        b1: e1.mul(inv_det),
+        b2: e2.mul(inv_det),
         redo,
-    )
+    }
 }
 
 #[cfg(test)]

@@ -131,49 +131,56 @@ impl Scene {
     pub fn intersect(&self, ray: &Ray) -> Option<SceneHit> {
         crate::counters::count_ray();
         let mut best: Option<(crate::shape::ShapeHit, u32)> = None;
-        let mut r = *ray;
+        // The ray is read in place and its end kept apart: a copy of a ray its caller has
+        // just written field by field costs a stall per ray (store forwarding).
+        let mut t_max = ray.t_max;
         let pre = TriangleRay::new(ray);
-        for &i in &self.unbounded {
-            if let Some(h) = self.hit(i, &r, &pre) {
-                r.t_max = h.t;
-                best = Some((h, i));
+        if !self.unbounded.is_empty() {
+            let mut r = *ray;
+            for &i in &self.unbounded {
+                if let Some(h) = self.hit(i, &r, &pre) {
+                    r.t_max = h.t;
+                    best = Some((h, i));
+                }
             }
+            t_max = r.t_max;
         }
-        self.bvh.intersect_leaves(&r, |leaf, r| {
+        self.bvh.traverse(ray, t_max, |leaf, t_max| {
             let p = &self.packets[leaf as usize];
             if !p.is_empty() {
-                let (lane, h) = p.intersect(r, &pre)?;
+                let (lane, h) = p.intersect_to(ray, t_max, &pre)?;
                 best = Some((h, p.ids[lane]));
                 return Some(h.t);
             }
-            self.bvh.leaf_nearest(leaf, r, &mut |i, r| {
+            let r = Ray { t_max, ..*ray };
+            self.bvh.leaf_nearest(leaf, &r, &mut |i, r| {
                 let h = self.hit(i, r, &pre)?;
                 best = Some((h, i));
                 Some(h.t)
             })
         });
         if let Some(b) = best {
-            r.t_max = b.0.t;
+            t_max = b.0.t;
         }
         // The plain meshes (shared vertices), the moving things, then the instances: each
         // searched below the nearest hit so far, so the last one found is the nearest.
         let best_tri = if self.tris.is_empty() {
             None
         } else {
-            self.tris.intersect(&r, &pre)
+            self.tris.intersect(ray, t_max, &pre)
         };
         if let Some((_, h)) = best_tri {
-            r.t_max = h.t;
+            t_max = h.t;
         }
         let mut moving = None;
         if let Some(m) = &self.motion {
-            moving = m.intersect(&r, motion::path_time());
+            moving = m.intersect(&Ray { t_max, ..*ray }, motion::path_time());
             if let Some(mh) = &moving {
-                r.t_max = mh.hit.t;
+                t_max = mh.hit.t;
             }
         }
         if !self.instances.is_empty()
-            && let Some(ih) = self.instances.intersect(&r)
+            && let Some(ih) = self.instances.intersect(&Ray { t_max, ..*ray })
         {
             let (si, prim) = self.instances.interaction(ray, &ih);
             // Instanced objects are triangle meshes, which carry no colour of their own.
@@ -189,8 +196,15 @@ impl Scene {
         }
         let (h, prim) = best?;
         let shape = &self.shapes[prim as usize];
-        let si = shape.interaction(ray, &h, &self.meshes);
-        Some(self.finish_hit(ray, si, prim, shape.hit_albedo(&h)))
+        let (si, albedo) = match shape {
+            // The common case first, without the dispatch over every shape.
+            Shape::Triangle(t) => (t.interaction(ray, &h, &self.meshes[t.mesh as usize]), None),
+            _ => (
+                shape.interaction(ray, &h, &self.meshes),
+                shape.hit_albedo(&h),
+            ),
+        };
+        Some(self.finish_hit(ray, si, prim, albedo))
     }
 
     /// The hit of primitive `prim` at `si`: its footprint, and its shading frame changed by

@@ -151,10 +151,11 @@ impl SceneTris {
         &self.meshes[k - 1]
     }
 
-    /// The nearest hit with 0 < t < `ray.t_max`: (triangle slot, hit).
+    /// The nearest hit with 0 < t ≤ `t_max` (the ray's own end is not read): (triangle
+    /// slot, hit).
     #[inline]
-    pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<(u32, ShapeHit)> {
-        self.accel.intersect(ray, pre)
+    pub fn intersect(&self, ray: &Ray, t_max: f32, pre: &TriangleRay) -> Option<(u32, ShapeHit)> {
+        self.accel.intersect_to(ray, t_max, pre)
     }
 
     /// True if any triangle is hit with 0 < t < `ray.t_max`.

@@ -51,15 +51,23 @@ impl Triangle {
     }
 
     /// Full interaction (see [`triangle_interaction`]) with the mesh's normals and (u, v).
+    /// The triangle's vertex indices are read only when the mesh has either.
+    #[inline]
     pub fn interaction(
         &self,
         ray: &Ray,
         hit: &ShapeHit,
         mesh: &TriangleMesh,
     ) -> SurfaceInteraction {
-        let v = mesh.vertices(self.index);
-        let normals = (!mesh.normals.is_empty()).then(|| v.map(|i| mesh.normal(i)));
-        let uvs = (!mesh.uvs.is_empty()).then(|| v.map(|i| mesh.uvs[i]));
+        let (normals, uvs) = if mesh.normals.is_empty() && mesh.uvs.is_empty() {
+            (None, None)
+        } else {
+            let v = mesh.vertices(self.index);
+            (
+                (!mesh.normals.is_empty()).then(|| v.map(|i| mesh.normal(i))),
+                (!mesh.uvs.is_empty()).then(|| v.map(|i| mesh.uvs[i])),
+            )
+        };
         triangle_interaction(ray, hit, self.vertices(), normals, uvs, mesh.flip_normal)
     }
 }

@@ -136,11 +136,25 @@ impl Bvh {
         ray: &Ray,
         mut leaf: F,
     ) -> bool {
+        self.traverse(ray, ray.t_max, |id, t_max| leaf(id, &Ray { t_max, ..*ray }))
+    }
+
+    /// [`Bvh::intersect_leaves`] for callers that read the ray themselves: `leaf(id, t_max)`
+    /// gets the current end of the ray (`ray` itself is never copied, so a ray its caller
+    /// has just written field by field is read once, by the slab set-up), and the search
+    /// starts with `t_max` rather than `ray.t_max`.
+    #[inline(always)]
+    pub fn traverse<F: FnMut(u32, f32) -> Option<f32>>(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        mut leaf: F,
+    ) -> bool {
         if self.len == 0 {
             return false;
         }
         let slabs = Slabs::new(ray);
-        let mut r = *ray;
+        let mut t_max = t_max;
         // Left uninitialised: zeroing its 3 KiB cost 5 % of a path tracer's time per ray.
         let mut stack = [std::mem::MaybeUninit::<(u32, f32)>::uninit(); STACK];
         let mut sp = 0usize;
@@ -149,44 +163,61 @@ impl Bvh {
         loop {
             if cur & LEAF == 0 {
                 let node = &self.nodes[cur as usize];
-                let (t_near, mut mask) = slabs.test(node, r.t_max);
-                match mask.count_ones() {
-                    0 => {}
-                    1 => {
-                        cur = node.child[mask.trailing_zeros() as usize];
+                let (t_near, all) = slabs.test(node, t_max);
+                let mut mask = all;
+                if mask != 0 {
+                    let k0 = mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    if mask == 0 {
+                        cur = node.child[k0];
                         continue;
                     }
-                    _ => {
-                        // Order the crossed children by entry distance: push the farther
-                        // ones (farthest first), descend into the nearest.
-                        let mut hits = [(0.0f32, 0u32); WIDTH];
-                        let mut n = 0;
-                        while mask != 0 {
-                            let k = mask.trailing_zeros() as usize;
-                            mask &= mask - 1;
-                            let mut j = n;
-                            while j > 0 && hits[j - 1].0 < t_near[k] {
-                                hits[j] = hits[j - 1];
-                                j -= 1;
-                            }
-                            hits[j] = (t_near[k], node.child[k]);
-                            n += 1;
-                        }
-                        for &(t, c) in &hits[..n - 1] {
-                            self.prefetch(c);
-                            stack[sp].write((c, t));
-                            sp += 1;
-                        }
-                        cur = hits[n - 1].1;
+                    let k1 = mask.trailing_zeros() as usize;
+                    if mask & (mask - 1) == 0 {
+                        // Two crossed children (k0 < k1): the nearer first, and on equal
+                        // entry distances the later one, as the general order below.
+                        let (near, far) = if t_near[k1] <= t_near[k0] {
+                            (k1, k0)
+                        } else {
+                            (k0, k1)
+                        };
+                        self.prefetch(node.child[far]);
+                        stack[sp].write((node.child[far], t_near[far]));
+                        sp += 1;
+                        cur = node.child[near];
                         continue;
                     }
+                    // Order the crossed children by entry distance: push the farther ones
+                    // (farthest first), descend into the nearest. Among equal distances the
+                    // later child goes nearer the top, so it is visited first.
+                    let mut mask = all;
+                    let mut hits = [(0.0f32, 0u32); WIDTH];
+                    let mut n = 0;
+                    while mask != 0 {
+                        let k = mask.trailing_zeros() as usize;
+                        mask &= mask - 1;
+                        let mut j = n;
+                        while j > 0 && hits[j - 1].0 < t_near[k] {
+                            hits[j] = hits[j - 1];
+                            j -= 1;
+                        }
+                        hits[j] = (t_near[k], node.child[k]);
+                        n += 1;
+                    }
+                    for &(t, c) in &hits[..n - 1] {
+                        self.prefetch(c);
+                        stack[sp].write((c, t));
+                        sp += 1;
+                    }
+                    cur = hits[n - 1].1;
+                    continue;
                 }
-            } else if let Some(t) = leaf(cur & !LEAF, &r) {
+            } else if let Some(t) = leaf(cur & !LEAF, t_max) {
                 // −∞ is the any-hit query's "stop": nothing can be nearer.
                 if t == f32::NEG_INFINITY {
                     return true;
                 }
-                r.t_max = t;
+                t_max = t;
                 found = true;
             }
             // Pop the next subtree that may still hold a closer hit.
@@ -198,7 +229,7 @@ impl Bvh {
                 // SAFETY: every entry below the stack pointer was written by a push.
                 let (c, t) = unsafe { stack[sp].assume_init() };
                 // Entered before t_max, as in the slab test.
-                if t < r.t_max {
+                if t < t_max {
                     cur = c;
                     break;
                 }
@@ -215,7 +246,10 @@ impl Bvh {
         ray: &Ray,
         mut leaf: F,
     ) -> bool {
-        self.intersect_leaves(ray, |id, r| leaf(id, r).then_some(f32::NEG_INFINITY))
+        // The first hit ends the search, so the ray is never shortened: no copy of it.
+        self.traverse(ray, ray.t_max, |id, _| {
+            leaf(id, ray).then_some(f32::NEG_INFINITY)
+        })
     }
 
     /// Visits the primitives whose leaves the ray crosses, nearest leaf first. `hit(i, ray)`
