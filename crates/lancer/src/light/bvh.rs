@@ -17,16 +17,18 @@ use std::f32::consts::PI;
 /// The largest float below 1.
 const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 
-/// A node: the bounds of its lights, prepared for importance; an interior node's first child
-/// follows it, the second is at `child_or_light`, and both children's bounds are side by side
-/// at `pairs[pair]`; a leaf holds one light.
+/// An interior node: its two children's bounds side by side (lanes 0 and 1; lanes 2 and 3
+/// repeat child 1), so that one 4-wide evaluation gives both importances, and where each child
+/// is: an interior node's index, or a light's index with [`LEAF`] set. Leaves are not nodes of
+/// their own, so a walk ends on the choice of a leaf without visiting it.
 #[derive(Clone, Copy, Debug)]
 struct Node {
-    bounds: CompactLightBounds,
-    child_or_light: u32,
-    pair: u32,
-    is_leaf: bool,
+    children: CompactLightBounds4,
+    child: [u32; 2],
 }
+
+/// Marks a child that is a light (a leaf).
+const LEAF: u32 = 1 << 31;
 
 /// Where a light is in the sampler.
 const UNBOUNDED: u64 = u64::MAX;
@@ -36,10 +38,11 @@ const NEVER: u64 = u64::MAX - 1;
 /// pbrt-v4's light BVH sampler.
 #[derive(Clone, Debug, Default)]
 pub struct BvhLightSampler {
+    /// The interior nodes, the root first (none when at most one light has bounds).
     nodes: Vec<Node>,
-    /// Per interior node, its two children's bounds in lanes 0 and 1 (lanes 2 and 3 repeat
-    /// child 1), so that one 4-wide evaluation gives both importances.
-    pairs: Vec<CompactLightBounds4>,
+    /// The one bounded light when there is exactly one: its index and bounds (pbrt-v4 checks
+    /// a lone root leaf's importance before choosing it).
+    lone: Option<(u32, CompactLightBounds)>,
     /// Lights without bounds (distant, infinite).
     infinite: Vec<u32>,
     /// Per light: its bit trail in the BVH, or [`UNBOUNDED`] / [`NEVER`].
@@ -83,7 +86,7 @@ impl BvhLightSampler {
     pub fn new(lights: &[LightExtent]) -> BvhLightSampler {
         let mut s = BvhLightSampler {
             nodes: Vec::new(),
-            pairs: Vec::new(),
+            lone: None,
             infinite: Vec::new(),
             p_inf: 0.0,
             trails: vec![NEVER; lights.len()],
@@ -99,113 +102,63 @@ impl BvhLightSampler {
                 LightExtent::Dark => {}
             }
         }
-        if !bounded.is_empty() {
+        let has_bvh = !bounded.is_empty();
+        if let [(i, b)] = bounded[..] {
+            s.lone = Some((i, b.compact()));
+            s.trails[i as usize] = 0;
+        } else if has_bvh {
             s.build(&mut bounded, 0, 0);
         }
         let n = s.infinite.len();
-        s.p_inf = n as f32 / (n + usize::from(!s.nodes.is_empty())).max(1) as f32;
+        s.p_inf = n as f32 / (n + usize::from(has_bvh)).max(1) as f32;
         s
     }
 
     /// Bytes of the tables (capacity included).
     pub fn memory_bytes(&self) -> usize {
         self.nodes.capacity() * std::mem::size_of::<Node>()
-            + self.pairs.capacity() * std::mem::size_of::<CompactLightBounds4>()
             + self.infinite.capacity() * 4
             + self.trails.capacity() * 8
     }
 
-    /// Builds the subtree over `lights`, whose path from the root is `trail` (`depth` bits);
-    /// returns its bounds.
-    fn build(&mut self, lights: &mut [(u32, LightBounds)], trail: u64, depth: u32) -> LightBounds {
-        if lights.len() == 1 {
-            let (i, b) = lights[0];
-            self.nodes.push(Node {
-                bounds: b.compact(),
-                child_or_light: i,
-                pair: 0,
-                is_leaf: true,
-            });
+    /// Builds the subtree over `lights` (at least one), whose path from the root is `trail`
+    /// (`depth` bits); returns the reference to it its parent keeps (a light's index with
+    /// [`LEAF`], or the index of its node) and its bounds.
+    fn build(
+        &mut self,
+        lights: &mut [(u32, LightBounds)],
+        trail: u64,
+        depth: u32,
+    ) -> (u32, LightBounds) {
+        if let [(i, b)] = *lights {
             self.trails[i as usize] = trail;
-            return b;
+            return (i | LEAF, b);
         }
-        let mut bounds = Bounds3::EMPTY;
-        let mut centroids = Bounds3::EMPTY;
-        for (_, b) in lights.iter() {
-            bounds = bounds.union(&b.bounds);
-            centroids = centroids.union_point(b.centroid());
-        }
-        // The cheapest of the bucket boundaries along the three axes.
-        let mut best: Option<(f32, usize, usize)> = None;
-        let bucket_of = |c: Vec3, dim: usize| -> usize {
-            let t = (c[dim] - centroids.min[dim]) / (centroids.max[dim] - centroids.min[dim]);
-            ((t * BUCKETS as f32) as usize).min(BUCKETS - 1)
-        };
-        // Past 48 levels only halving keeps the bit trail within 64 bits.
-        for dim in 0..3 {
-            if depth >= 48 || centroids.max[dim] == centroids.min[dim] {
-                continue;
-            }
-            let mut buckets = [None::<LightBounds>; BUCKETS];
-            for (_, b) in lights.iter() {
-                let k = bucket_of(b.centroid(), dim);
-                buckets[k] = Some(buckets[k].map_or(*b, |a| a.union(b)));
-            }
-            let union = |r: &[Option<LightBounds>]| {
-                r.iter().flatten().fold(None::<LightBounds>, |acc, b| {
-                    Some(acc.map_or(*b, |a| a.union(b)))
-                })
-            };
-            for k in 1..BUCKETS - 1 {
-                let c = union(&buckets[..=k]).map_or(0.0, |b| cost(&b, &bounds, dim))
-                    + union(&buckets[k + 1..]).map_or(0.0, |b| cost(&b, &bounds, dim));
-                if c > 0.0 && best.is_none_or(|(m, _, _)| c < m) {
-                    best = Some((c, dim, k));
-                }
-            }
-        }
-        let mut mid = match best {
-            Some((_, dim, k)) => {
-                // Partition: buckets ≤ k first.
-                let mut m = 0;
-                for j in 0..lights.len() {
-                    if bucket_of(lights[j].1.centroid(), dim) <= k {
-                        lights.swap(j, m);
-                        m += 1;
-                    }
-                }
-                m
-            }
-            None => lights.len() / 2,
-        };
-        if mid == 0 || mid == lights.len() {
-            mid = lights.len() / 2;
-        }
+        let mid = split(lights, depth);
         let node = self.nodes.len();
         self.nodes.push(Node {
-            bounds: lights[0].1.compact(),
-            child_or_light: 0,
-            pair: 0,
-            is_leaf: false,
+            children: CompactLightBounds4::new([lights[0].1.compact(); 4]),
+            child: [0; 2],
         });
         let (left, right) = lights.split_at_mut(mid);
-        let b0 = self.build(left, trail, depth + 1);
-        let second = self.nodes.len() as u32;
-        let b1 = self.build(right, trail | (1u64 << depth), depth + 1);
-        let b = b0.union(&b1);
+        let (r0, b0) = self.build(left, trail, depth + 1);
+        let (r1, b1) = self.build(right, trail | (1u64 << depth), depth + 1);
         let (c0, c1) = (b0.compact(), b1.compact());
-        self.pairs.push(CompactLightBounds4::new([c0, c1, c1, c1]));
         self.nodes[node] = Node {
-            bounds: b.compact(),
-            child_or_light: second,
-            pair: (self.pairs.len() - 1) as u32,
-            is_leaf: false,
+            children: CompactLightBounds4::new([c0, c1, c1, c1]),
+            child: [r0, r1],
         };
-        b
+        (node as u32, b0.union(&b1))
     }
 
     /// Chooses a light for the point `ctx` with the uniform number `u`: its index and
     /// probability, or `None` when no light can light the point.
+    ///
+    /// Walking down, child 0 is taken with probability p₀ = I₀/(I₀ + I₁) (the children's
+    /// importances at the point) and `u` is rescaled to the part it fell in, so one number
+    /// makes every choice; the light's probability is the product of the choices' (times the
+    /// BVH's share 1 − p_∞).
+    #[inline]
     pub fn sample(&self, ctx: &LightSampleContext, u: f32) -> Option<(usize, f32)> {
         let p_inf = self.p_inf;
         if u < p_inf {
@@ -213,43 +166,41 @@ impl BvhLightSampler {
             let k = ((u / p_inf * n as f32) as usize).min(n - 1);
             return Some((self.infinite[k] as usize, p_inf / n as f32));
         }
-        if self.nodes.is_empty() {
-            return None;
-        }
         let (p, n) = (ctx.p, ctx.ns);
-        let mut u = ((u - p_inf) / (1.0 - p_inf)).min(ONE_MINUS_EPSILON);
-        let mut node = 0usize;
         let mut pmf = 1.0 - p_inf;
+        let Some(root) = self.nodes.first() else {
+            // One light: chosen wherever its importance is not zero.
+            let (i, b) = self.lone.as_ref()?;
+            return (b.importance(p, n) > 0.0).then_some((*i as usize, pmf));
+        };
+        let mut u = ((u - p_inf) / (1.0 - p_inf)).min(ONE_MINUS_EPSILON);
+        let mut nd = root;
         loop {
-            let nd = &self.nodes[node];
-            if nd.is_leaf {
-                // A lone light's own importance decides whether it can light p.
-                if node > 0 || nd.bounds.importance(p, n) > 0.0 {
-                    return Some((nd.child_or_light as usize, pmf));
-                }
-                return None;
-            }
-            let c = [node + 1, nd.child_or_light as usize];
-            let imp = self.pairs[nd.pair as usize].importance(p, n);
+            let imp = nd.children.importance(p, n);
             let (i0, i1) = (imp.x, imp.y);
             if i0 == 0.0 && i1 == 0.0 {
                 return None;
             }
-            // Child 0 with probability i0/(i0 + i1); u is rescaled to the chosen part.
             let p0 = i0 / (i0 + i1);
-            if u < p0 {
-                u = (u / p0).min(ONE_MINUS_EPSILON);
+            let child = if u < p0 {
                 pmf *= p0;
-                node = c[0];
+                u = (u / p0).min(ONE_MINUS_EPSILON);
+                nd.child[0]
             } else {
-                u = ((u - p0) / (1.0 - p0)).min(ONE_MINUS_EPSILON);
                 pmf *= 1.0 - p0;
-                node = c[1];
+                u = ((u - p0) / (1.0 - p0)).min(ONE_MINUS_EPSILON);
+                nd.child[1]
+            };
+            if child & LEAF != 0 {
+                return Some(((child & !LEAF) as usize, pmf));
             }
+            nd = &self.nodes[child as usize];
         }
     }
 
-    /// Probability that [`BvhLightSampler::sample`] chooses light `light` at `ctx`.
+    /// Probability that [`BvhLightSampler::sample`] chooses light `light` at `ctx`: the
+    /// product of the child probabilities along the light's bit trail.
+    #[inline]
     pub fn pmf(&self, ctx: &LightSampleContext, light: usize) -> f32 {
         let Some(&trail) = self.trails.get(light) else {
             return 0.0;
@@ -260,20 +211,16 @@ impl BvhLightSampler {
             _ => {}
         }
         let (p, n) = (ctx.p, ctx.ns);
-        let mut trail = trail;
-        let mut node = 0usize;
-        let mut pmf = 1.0 - self.p_inf;
+        let pmf = 1.0 - self.p_inf;
+        let Some(root) = self.nodes.first() else {
+            return match &self.lone {
+                Some((_, b)) if b.importance(p, n) > 0.0 => pmf,
+                _ => 0.0,
+            };
+        };
+        let (mut trail, mut pmf, mut nd) = (trail, pmf, root);
         loop {
-            let nd = &self.nodes[node];
-            if nd.is_leaf {
-                return if node > 0 || nd.bounds.importance(p, n) > 0.0 {
-                    pmf
-                } else {
-                    0.0
-                };
-            }
-            let c = [node + 1, nd.child_or_light as usize];
-            let imp = self.pairs[nd.pair as usize].importance(p, n);
+            let imp = nd.children.importance(p, n);
             let (i0, i1) = (imp.x, imp.y);
             if i0 == 0.0 && i1 == 0.0 {
                 return 0.0;
@@ -281,10 +228,79 @@ impl BvhLightSampler {
             let p0 = i0 / (i0 + i1);
             let bit = (trail & 1) as usize;
             pmf *= if bit == 0 { p0 } else { 1.0 - p0 };
-            node = c[bit];
+            let child = nd.child[bit];
+            if child & LEAF != 0 {
+                return pmf;
+            }
+            nd = &self.nodes[child as usize];
             trail >>= 1;
         }
     }
+}
+
+/// Where to split `lights` (more than one), at tree depth `depth`: the bucket boundary of
+/// least [`cost`] over the three axes (pbrt-v4's `buildBVH`), the lights of the buckets
+/// below it moved first; the middle when no boundary has a cost.
+fn split(lights: &mut [(u32, LightBounds)], depth: u32) -> usize {
+    let mut bounds = Bounds3::EMPTY;
+    let mut centroids = Bounds3::EMPTY;
+    for (_, b) in lights.iter() {
+        bounds = bounds.union(&b.bounds);
+        centroids = centroids.union_point(b.centroid());
+    }
+    // The cheapest of the bucket boundaries along the three axes.
+    let mut best: Option<(f32, usize, usize)> = None;
+    let bucket_of = |c: Vec3, dim: usize| -> usize {
+        let t = (c[dim] - centroids.min[dim]) / (centroids.max[dim] - centroids.min[dim]);
+        ((t * BUCKETS as f32) as usize).min(BUCKETS - 1)
+    };
+    // Past 48 levels only halving keeps the bit trail within 64 bits.
+    for dim in 0..3 {
+        if depth >= 48 || centroids.max[dim] == centroids.min[dim] {
+            continue;
+        }
+        let mut buckets = [None::<LightBounds>; BUCKETS];
+        for (_, b) in lights.iter() {
+            let k = bucket_of(b.centroid(), dim);
+            buckets[k] = Some(buckets[k].map_or(*b, |a| a.union(b)));
+        }
+        let add = |acc: Option<LightBounds>, b: &Option<LightBounds>| match (acc, b) {
+            (Some(a), Some(b)) => Some(a.union(b)),
+            (a, b) => a.or(*b),
+        };
+        // The buckets up to k united from the first on, as pbrt-v4 folds them: one running
+        // union gives every k the same bits. Those after k are folded from k + 1 each time
+        // (union is not associative in its last bits: a running union from the end would
+        // differ).
+        let mut below = buckets[0];
+        for k in 1..BUCKETS - 1 {
+            below = add(below, &buckets[k]);
+            let above = buckets[k + 1..].iter().fold(None, add);
+            let c = below.map_or(0.0, |b| cost(&b, &bounds, dim))
+                + above.map_or(0.0, |b| cost(&b, &bounds, dim));
+            if c > 0.0 && best.is_none_or(|(m, _, _)| c < m) {
+                best = Some((c, dim, k));
+            }
+        }
+    }
+    let mut mid = match best {
+        Some((_, dim, k)) => {
+            // Partition: buckets ≤ k first.
+            let mut m = 0;
+            for j in 0..lights.len() {
+                if bucket_of(lights[j].1.centroid(), dim) <= k {
+                    lights.swap(j, m);
+                    m += 1;
+                }
+            }
+            m
+        }
+        None => lights.len() / 2,
+    };
+    if mid == 0 || mid == lights.len() {
+        mid = lights.len() / 2;
+    }
+    mid
 }
 
 #[cfg(test)]
@@ -449,6 +465,38 @@ mod tests {
                 assert!(chi2 < bound, "chi2 {chi2} over {bins} bins");
             }
         }
+    }
+
+    #[test]
+    fn a_lone_light_is_chosen_wherever_it_can_light() {
+        // One quad facing down at y = 2, then with a sky beside it (which takes half).
+        for sky in [false, true] {
+            let mut lights = vec![ceiling_quad(0.0, 2.0, 0.3, 5.0)];
+            if sky {
+                lights.push(LightExtent::Unbounded);
+            }
+            let s = BvhLightSampler::new(&lights);
+            let share = if sky { 0.5 } else { 1.0 };
+            let below = ctx();
+            assert_eq!(s.pmf(&below, 0), share);
+            assert_eq!(s.sample(&below, 0.99), Some((0, share)));
+            // Above the quad, its back faces the point: never chosen.
+            let above = LightSampleContext {
+                p: Vec3::new(0.0, 3.0, 0.0),
+                n: Vec3::Y,
+                ns: Vec3::Y,
+            };
+            assert_eq!(s.pmf(&above, 0), 0.0);
+            assert_eq!(s.sample(&above, 0.99), None);
+            if sky {
+                assert_eq!(s.sample(&above, 0.2), Some((1, 0.5)));
+                assert_eq!(s.pmf(&above, 1), 0.5);
+            }
+        }
+        // No light with bounds: nothing to choose.
+        let s = BvhLightSampler::new(&[LightExtent::Dark]);
+        assert_eq!(s.sample(&ctx(), 0.5), None);
+        assert_eq!(s.pmf(&ctx(), 0), 0.0);
     }
 
     #[test]
