@@ -6,6 +6,7 @@
 mod area;
 mod bounds;
 mod bvh;
+mod bvh_build;
 mod compact;
 mod distribution;
 mod extent;
