@@ -10,7 +10,7 @@
 use super::sample::{LightLiSample, LightSampleContext};
 use crate::math::{Frame, PackedRgb, PackedVec3, Vec2, Vec3, cross};
 use crate::sampling::sample_uniform_triangle;
-use crate::shape::{Shape, TriangleMesh};
+use crate::shape::{Shape, ShapeSample, TriangleMesh};
 
 /// The surface of an area light, as its samples need it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -87,7 +87,6 @@ impl Emitter {
 /// Samples incident light at `ctx` from the area light on primitive `prim` (radiance `l`,
 /// emitting on both sides when `two_sided`, world area `area`, surface `emitter`).
 #[allow(clippy::too_many_arguments)]
-#[inline]
 pub(super) fn sample_area_li(
     prim: u32,
     l: PackedRgb,
@@ -99,17 +98,8 @@ pub(super) fn sample_area_li(
     shapes: &[Shape],
     meshes: &[TriangleMesh],
 ) -> Option<LightLiSample> {
-    // Read through the reference: a copy of the record to the stack, reloaded at other
-    // offsets, stalled on store forwarding.
     let ss = match emitter {
-        Emitter::Triangle { p, n } => {
-            let [b0, b1, b2] = sample_uniform_triangle(u);
-            let (p0, p1, p2) = (Vec3::from(p[0]), Vec3::from(p[1]), Vec3::from(p[2]));
-            crate::shape::ShapeSample {
-                p: b0 * p0 + b1 * p1 + b2 * p2,
-                n: Vec3::from(*n),
-            }
-        }
+        Emitter::Triangle { p, n } => triangle_point(p, n, u),
         &Emitter::Sphere { centre, radius } => {
             let c = Vec3::from(centre);
             if let Some(cone) = SphereCone::new(ctx.p, c, radius) {
@@ -120,7 +110,47 @@ pub(super) fn sample_area_li(
         }
         Emitter::Shape => shapes[prim as usize].sample_area(u, meshes)?,
     };
-    // Uniform by area, turned into a density per solid angle: p_ω = p_A · d² / |cos θ_light|.
+    li_from_point(&ss, l, two_sided, area, ctx)
+}
+
+/// [`sample_area_li`] for a triangle of vertices `p` and oriented normal `n` (small enough to
+/// be inlined where lights are sampled).
+#[inline(always)]
+pub(super) fn sample_triangle_li(
+    p: &[PackedVec3; 3],
+    n: &PackedVec3,
+    l: PackedRgb,
+    two_sided: bool,
+    area: f32,
+    ctx: &LightSampleContext,
+    u: Vec2,
+) -> Option<LightLiSample> {
+    li_from_point(&triangle_point(p, n, u), l, two_sided, area, ctx)
+}
+
+/// A point uniform on the triangle of vertices `p` (b₀p₀ + b₁p₁ + b₂p₂, as
+/// [`Shape::sample_area`] computes it) and its normal `n`. The vertices are read in place: a
+/// copy of the record to the stack, reloaded at other offsets, stalled on store forwarding.
+#[inline(always)]
+fn triangle_point(p: &[PackedVec3; 3], n: &PackedVec3, u: Vec2) -> ShapeSample {
+    let [b0, b1, b2] = sample_uniform_triangle(u);
+    let (p0, p1, p2) = (Vec3::from(p[0]), Vec3::from(p[1]), Vec3::from(p[2]));
+    ShapeSample {
+        p: b0 * p0 + b1 * p1 + b2 * p2,
+        n: Vec3::from(*n),
+    }
+}
+
+/// Light arriving at `ctx` from the point `ss` of an area light, sampled uniformly by area:
+/// its density per solid angle is p_ω = p_A · d² / |cos θ_light| with p_A = 1/A.
+#[inline(always)]
+fn li_from_point(
+    ss: &ShapeSample,
+    l: PackedRgb,
+    two_sided: bool,
+    area: f32,
+    ctx: &LightSampleContext,
+) -> Option<LightLiSample> {
     let d = ss.p - ctx.p;
     let d2 = d.length_squared();
     if d2 == 0.0 {

@@ -121,7 +121,33 @@ impl Light {
 
     /// Samples incident light at `ctx`; `None` when the light contributes nothing there.
     /// `shapes` and `meshes` are the scene's, where area lights find their surface.
+    ///
+    /// Triangles of emitting meshes, the commonest lights, are sampled in the caller's code;
+    /// the other lights through a call.
+    #[inline(always)]
     pub fn sample_li(
+        &self,
+        ctx: &LightSampleContext,
+        u: Vec2,
+        shapes: &[Shape],
+        meshes: &[TriangleMesh],
+    ) -> Option<LightLiSample> {
+        if let Light::Area {
+            l,
+            two_sided,
+            area,
+            emitter: Emitter::Triangle { p, n },
+            ..
+        } = self
+        {
+            return area::sample_triangle_li(p, n, *l, *two_sided, *area, ctx, u);
+        }
+        self.sample_li_other(ctx, u, shapes, meshes)
+    }
+
+    /// [`Light::sample_li`] for every light but a triangle.
+    #[inline(never)]
+    fn sample_li_other(
         &self,
         ctx: &LightSampleContext,
         u: Vec2,
