@@ -22,6 +22,8 @@ pub enum Emitter {
         centre: PackedVec3,
         /// Radius, world space.
         radius: f32,
+        /// Normals point inwards (ReverseOrientation).
+        flip: bool,
     },
     /// A triangle whose emitting side is the same all over it: sampled uniformly by area.
     Triangle {
@@ -48,7 +50,12 @@ impl Emitter {
         whole_sphere: Option<(PackedVec3, f32)>,
     ) -> Emitter {
         if let Some((centre, radius)) = whole_sphere {
-            return Emitter::Sphere { centre, radius };
+            let flip = matches!(shape, Shape::Sphere(s) if s.placement.flip_normal);
+            return Emitter::Sphere {
+                centre,
+                radius,
+                flip,
+            };
         }
         let Shape::Triangle(t) = shape else {
             return Emitter::Shape;
@@ -100,10 +107,14 @@ pub(super) fn sample_area_li(
 ) -> Option<LightLiSample> {
     let ss = match emitter {
         Emitter::Triangle { p, n } => triangle_point(p, n, u),
-        &Emitter::Sphere { centre, radius } => {
+        &Emitter::Sphere {
+            centre,
+            radius,
+            flip,
+        } => {
             let c = Vec3::from(centre);
             if let Some(cone) = SphereCone::new(ctx.p, c, radius) {
-                return sample_sphere_cone(&cone, prim, l, two_sided, ctx, u, shapes, c, radius);
+                return sample_sphere_cone(&cone, flip, l, two_sided, ctx, u, c, radius);
             }
             // From inside: by area.
             shapes[prim as usize].sample_area(u, meshes)?
@@ -171,17 +182,17 @@ fn li_from_point(
     })
 }
 
-/// Light from a whole sphere seen from outside: a direction uniform in the cone it fills (of
-/// half-angle θmax, sin θmax = r/d), then the point where it meets the sphere.
+/// Light from a whole sphere (centre `c`, radius `r`, normals inwards when `flip`) seen from
+/// outside: a direction uniform in the cone it fills (of half-angle θmax, sin θmax = r/d),
+/// then the point where it meets the sphere.
 #[allow(clippy::too_many_arguments)]
 fn sample_sphere_cone(
     cone: &SphereCone,
-    prim: u32,
+    flip: bool,
     l: PackedRgb,
     two_sided: bool,
     ctx: &LightSampleContext,
     u: Vec2,
-    shapes: &[Shape],
     c: Vec3,
     r: f32,
 ) -> Option<LightLiSample> {
@@ -189,9 +200,7 @@ fn sample_sphere_cone(
     let wi = cone.frame.from_local(local);
     let p = cone.hit(ctx.p, wi, c, r);
     let mut n = (p - c) / r;
-    if let Shape::Sphere(s) = &shapes[prim as usize]
-        && s.placement.flip_normal
-    {
+    if flip {
         n = -n;
     }
     if !two_sided && n.dot(wi) >= 0.0 {
@@ -217,7 +226,7 @@ pub(super) fn area_pdf_li(
     wi: Vec3,
     hit: Option<(Vec3, Vec3)>,
 ) -> f32 {
-    if let Emitter::Sphere { centre, radius } = *emitter
+    if let Emitter::Sphere { centre, radius, .. } = *emitter
         && let Some(cone) = SphereCone::new(ctx.p, centre.into(), radius)
     {
         return crate::sampling::uniform_cone_pdf(cone.cos_theta_max);
@@ -281,6 +290,7 @@ impl SphereCone {
 mod tests {
     use super::*;
     use crate::shape::Triangle;
+    use std::f32::consts::PI;
 
     /// The triangle (0, 0, 0), (2, 0, 0), (0, 2, 0) of a mesh with these vertex normals (none
     /// when empty) and orientation; its geometric normal (p₀ − p₂) × (p₁ − p₂) is +z.
@@ -383,6 +393,46 @@ mod tests {
     }
 
     #[test]
+    fn a_reversed_sphere_lights_only_its_inside_unless_two_sided() {
+        use crate::math::Transform;
+        use crate::shape::{Placement, Sphere};
+        let c = Vec3::new(0.0, 0.0, 5.0);
+        let ctx = LightSampleContext {
+            p: Vec3::ZERO,
+            n: Vec3::Z,
+            ns: Vec3::Z,
+        };
+        for reverse in [false, true] {
+            let placement = Placement::new(Transform::translate(c), reverse);
+            let sphere = Shape::Sphere(Box::new(Sphere::new(placement, 1.0, -1.0, 1.0, 360.0)));
+            let e = Emitter::new(&sphere, &[], Some((c.into(), 1.0)));
+            assert!(matches!(e, Emitter::Sphere { flip, .. } if flip == reverse));
+            let shapes = std::slice::from_ref(&sphere);
+            let l = PackedRgb::ONE;
+            for two_sided in [false, true] {
+                let s = sample_area_li(
+                    0,
+                    l,
+                    two_sided,
+                    4.0 * PI,
+                    &e,
+                    &ctx,
+                    Vec2::new(0.3, 0.6),
+                    shapes,
+                    &[],
+                );
+                // Seen from outside, the cone of the sphere (sin θmax = 1/5) is sampled.
+                assert_eq!(s.is_some(), two_sided || !reverse, "{reverse} {two_sided}");
+                if let Some(s) = s {
+                    let cos_max = (1.0f32 - 1.0 / 25.0).sqrt();
+                    assert!((s.pdf - 1.0 / (2.0 * PI * (1.0 - cos_max))).abs() < 1e-3 * s.pdf);
+                    assert!(((Vec3::from(s.p_light) - c).length() - 1.0).abs() < 1e-5);
+                }
+            }
+        }
+    }
+
+    #[test]
     fn whole_spheres_and_other_shapes() {
         let (tri, mesh) = triangle(&[], false);
         let c = PackedVec3::new(1.0, 2.0, 3.0);
@@ -390,7 +440,8 @@ mod tests {
             Emitter::new(&tri, std::slice::from_ref(&mesh), Some((c, 0.5))),
             Emitter::Sphere {
                 centre: c,
-                radius: 0.5
+                radius: 0.5,
+                flip: false
             }
         );
         // A triangle whose mesh is missing is sampled through the shape.
