@@ -42,6 +42,14 @@ impl DirectionCone {
     /// θ = (θ_a + θ_d + θ_b)/2 around an axis rotated from `a` towards `b`, θ_d being the angle
     /// between the axes.
     pub fn union(a: DirectionCone, b: DirectionCone) -> DirectionCone {
+        // A whole sphere holds the other cone: what the tests below answer (θ = π, and
+        // min(·, π) ≤ π), without their arc cosines.
+        if a.cos_theta <= -1.0 {
+            return a;
+        }
+        if b.cos_theta <= -1.0 {
+            return b;
+        }
         let theta_a = safe_acos(a.cos_theta);
         let theta_b = safe_acos(b.cos_theta);
         let theta_d = safe_acos(a.w.dot(b.w));

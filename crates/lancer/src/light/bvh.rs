@@ -1,5 +1,5 @@
 //! pbrt-v4's `BVHLightSampler`: a bounding volume hierarchy over the lights that have bounds,
-//! walked from the root by choosing each child in proportion to its [`LightBounds::importance`]
+//! walked from the root by choosing each child in proportion to its [`super::LightBounds::importance`]
 //! at the point being lit, so that lights near and facing the point get the shadow rays. The
 //! lights without bounds (distant and infinite) are chosen apart, each with probability
 //! 1/(n_∞ + 1), the BVH as a whole taking the remaining 1/(n_∞ + 1).
@@ -7,25 +7,37 @@
 //! The probability of a light is the product of the child probabilities on the way to its
 //! leaf; each light's path is kept as a bit trail (bit k = which child at depth k) so that
 //! [`BvhLightSampler::pmf`] retraces it for multiple importance sampling.
+//!
+//! The binary tree ([`super::bvh_build`]) is walked two levels at a time: a [`Quad`] holds a
+//! node's two children and their four children, so that the importances of both levels are
+//! evaluated side by side rather than one after the other, each level's choice waiting on the
+//! previous one (the walk is a chain of square roots and divisions, bound by their latency).
+//! Every importance and probability has the bits of the one-level walk.
 
-use super::bounds::{LightBounds, LightExtent};
+use super::bounds::LightExtent;
+use super::bvh_build::{BinaryNode, LEAF, build_tree};
 use super::compact::{CompactLightBounds, CompactLightBounds4};
 use super::sample::LightSampleContext;
-use crate::math::{Bounds3, Vec3};
-use std::f32::consts::PI;
+use glam::Vec4;
 
 /// The largest float below 1.
 const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 
-/// A node: the bounds of its lights, prepared for importance; an interior node's first child
-/// follows it, the second is at `child_or_light`, and both children's bounds are side by side
-/// at `pairs[pair]`; a leaf holds one light.
+/// Two levels of the tree below a node: its children A and B (lanes 0 and 1 of `children`;
+/// lanes 2 and 3 repeat B) and their children A₀, A₁, B₀, B₁ (lanes 0–3 of `grandchildren`),
+/// each evaluated by one 4-wide [`CompactLightBounds4::importance`].
 #[derive(Clone, Copy, Debug)]
-struct Node {
-    bounds: CompactLightBounds,
-    child_or_light: u32,
-    pair: u32,
-    is_leaf: bool,
+struct Quad {
+    children: CompactLightBounds4,
+    grandchildren: CompactLightBounds4,
+    /// A and B: a light's index with [`LEAF`], or anything else for an interior node (whose
+    /// children are the grandchildren).
+    child: [u32; 2],
+    /// A₀, A₁, B₀, B₁ (those of a child that is a leaf unused): a light's index with
+    /// [`LEAF`], or the index of the quad below that node.
+    grandchild: [u32; 4],
+    /// Some child is an interior node (otherwise `grandchildren` is not evaluated).
+    deep: bool,
 }
 
 /// Where a light is in the sampler.
@@ -36,10 +48,11 @@ const NEVER: u64 = u64::MAX - 1;
 /// pbrt-v4's light BVH sampler.
 #[derive(Clone, Debug, Default)]
 pub struct BvhLightSampler {
-    nodes: Vec<Node>,
-    /// Per interior node, its two children's bounds in lanes 0 and 1 (lanes 2 and 3 repeat
-    /// child 1), so that one 4-wide evaluation gives both importances.
-    pairs: Vec<CompactLightBounds4>,
+    /// The quads, the root's first (none when at most one light has bounds).
+    quads: Vec<Quad>,
+    /// The one bounded light when there is exactly one: its index and bounds (pbrt-v4 checks
+    /// a lone root leaf's importance before choosing it).
+    lone: Option<(u32, CompactLightBounds)>,
     /// Lights without bounds (distant, infinite).
     infinite: Vec<u32>,
     /// Per light: its bit trail in the BVH, or [`UNBOUNDED`] / [`NEVER`].
@@ -48,42 +61,87 @@ pub struct BvhLightSampler {
     p_inf: f32,
 }
 
-/// Buckets per axis for the split search.
-const BUCKETS: usize = 12;
-
-/// The cost of a group of lights in a split (pbrt-v4's `EvaluateCost`): power × the solid
-/// angle measure of its emission, M_Ω = 2π(1 − cos θ_o) + π/2·(2θ_w sin θ_o − cos(θ_o − 2θ_w)
-/// − 2θ_o sin θ_o + cos θ_o) with θ_w = min(θ_o + θ_e, π), × its box's surface area, × how
-/// elongated the parent box is along the split axis.
-fn cost(b: &LightBounds, parent: &Bounds3, dim: usize) -> f32 {
-    if b.phi == 0.0 {
-        return 0.0;
+/// Child 0 with probability p₀ = i₀/(i₀ + i₁), else child 1, by `u`, which is rescaled to the
+/// part it fell in (so that one number makes every choice); `pmf` is multiplied by the
+/// choice's probability. `None` when neither child has importance.
+#[inline(always)]
+fn choose(i0: f32, i1: f32, u: &mut f32, pmf: &mut f32) -> Option<usize> {
+    if i0 == 0.0 && i1 == 0.0 {
+        return None;
     }
-    let theta_o = b.normals.cos_theta.clamp(-1.0, 1.0).acos();
-    let theta_e = b.cos_theta_e.clamp(-1.0, 1.0).acos();
-    let theta_w = (theta_o + theta_e).min(PI);
-    let sin_theta_o = theta_o.sin();
-    let m_omega = 2.0 * PI * (1.0 - theta_o.cos())
-        + PI / 2.0
-            * (2.0 * theta_w * sin_theta_o
-                - (theta_o - 2.0 * theta_w).cos()
-                - 2.0 * theta_o * sin_theta_o
-                + theta_o.cos());
-    let d = parent.diagonal();
-    let kr = if d[dim] > 0.0 {
-        d.max_element() / d[dim]
+    let p0 = i0 / (i0 + i1);
+    if *u < p0 {
+        *pmf *= p0;
+        *u = (*u / p0).min(ONE_MINUS_EPSILON);
+        Some(0)
     } else {
-        1.0
-    };
-    b.phi * m_omega * kr * b.bounds.surface_area()
+        *pmf *= 1.0 - p0;
+        *u = ((*u - p0) / (1.0 - p0)).min(ONE_MINUS_EPSILON);
+        Some(1)
+    }
+}
+
+/// The probability of child `bit` (0 or 1) at a node whose children have importances i₀, i₁;
+/// `None` when neither has any.
+#[inline(always)]
+fn child_pmf(i0: f32, i1: f32, bit: usize) -> Option<f32> {
+    if i0 == 0.0 && i1 == 0.0 {
+        return None;
+    }
+    let p0 = i0 / (i0 + i1);
+    Some(if bit == 0 { p0 } else { 1.0 - p0 })
+}
+
+/// Lanes 2k and 2k + 1 of `v`.
+#[inline(always)]
+fn lane_pair(v: Vec4, k: usize) -> (f32, f32) {
+    if k == 0 { (v.x, v.y) } else { (v.z, v.w) }
+}
+
+/// Lays out the binary tree `nodes` (root first) as quads: the quad of node `node`, then
+/// those below it; returns its index.
+fn lay_out(nodes: &[BinaryNode], node: usize, quads: &mut Vec<Quad>) -> u32 {
+    let nd = &nodes[node];
+    let index = quads.len();
+    let [a, b] = nd.bounds;
+    quads.push(Quad {
+        children: CompactLightBounds4::new([a, b, b, b]),
+        grandchildren: CompactLightBounds4::new([a, b, b, b]),
+        child: nd.child,
+        grandchild: [0; 4],
+        deep: false,
+    });
+    // A leaf child's lanes repeat the other child's (never used).
+    let mut lanes = [a, a, b, b];
+    let mut grandchild = [0; 4];
+    for (k, &c) in nd.child.iter().enumerate() {
+        if c & LEAF != 0 {
+            continue;
+        }
+        let below = &nodes[c as usize];
+        lanes[2 * k] = below.bounds[0];
+        lanes[2 * k + 1] = below.bounds[1];
+        for (g, &r) in below.child.iter().enumerate() {
+            grandchild[2 * k + g] = if r & LEAF != 0 {
+                r
+            } else {
+                lay_out(nodes, r as usize, quads)
+            };
+        }
+    }
+    let q = &mut quads[index];
+    q.deep = nd.child.iter().any(|&c| c & LEAF == 0);
+    q.grandchildren = CompactLightBounds4::new(lanes);
+    q.grandchild = grandchild;
+    index as u32
 }
 
 impl BvhLightSampler {
     /// The sampler over lights of these extents ([`super::Light::extent`]).
     pub fn new(lights: &[LightExtent]) -> BvhLightSampler {
         let mut s = BvhLightSampler {
-            nodes: Vec::new(),
-            pairs: Vec::new(),
+            quads: Vec::new(),
+            lone: None,
             infinite: Vec::new(),
             p_inf: 0.0,
             trails: vec![NEVER; lights.len()],
@@ -99,113 +157,33 @@ impl BvhLightSampler {
                 LightExtent::Dark => {}
             }
         }
-        if !bounded.is_empty() {
-            s.build(&mut bounded, 0, 0);
+        let has_bvh = !bounded.is_empty();
+        if let [(i, b)] = bounded[..] {
+            s.lone = Some((i, b.compact()));
+            s.trails[i as usize] = 0;
+        } else if has_bvh {
+            let nodes = build_tree(&mut bounded, &mut s.trails);
+            lay_out(&nodes, 0, &mut s.quads);
         }
         let n = s.infinite.len();
-        s.p_inf = n as f32 / (n + usize::from(!s.nodes.is_empty())).max(1) as f32;
+        s.p_inf = n as f32 / (n + usize::from(has_bvh)).max(1) as f32;
         s
     }
 
     /// Bytes of the tables (capacity included).
     pub fn memory_bytes(&self) -> usize {
-        self.nodes.capacity() * std::mem::size_of::<Node>()
-            + self.pairs.capacity() * std::mem::size_of::<CompactLightBounds4>()
+        self.quads.capacity() * std::mem::size_of::<Quad>()
             + self.infinite.capacity() * 4
             + self.trails.capacity() * 8
     }
 
-    /// Builds the subtree over `lights`, whose path from the root is `trail` (`depth` bits);
-    /// returns its bounds.
-    fn build(&mut self, lights: &mut [(u32, LightBounds)], trail: u64, depth: u32) -> LightBounds {
-        if lights.len() == 1 {
-            let (i, b) = lights[0];
-            self.nodes.push(Node {
-                bounds: b.compact(),
-                child_or_light: i,
-                pair: 0,
-                is_leaf: true,
-            });
-            self.trails[i as usize] = trail;
-            return b;
-        }
-        let mut bounds = Bounds3::EMPTY;
-        let mut centroids = Bounds3::EMPTY;
-        for (_, b) in lights.iter() {
-            bounds = bounds.union(&b.bounds);
-            centroids = centroids.union_point(b.centroid());
-        }
-        // The cheapest of the bucket boundaries along the three axes.
-        let mut best: Option<(f32, usize, usize)> = None;
-        let bucket_of = |c: Vec3, dim: usize| -> usize {
-            let t = (c[dim] - centroids.min[dim]) / (centroids.max[dim] - centroids.min[dim]);
-            ((t * BUCKETS as f32) as usize).min(BUCKETS - 1)
-        };
-        // Past 48 levels only halving keeps the bit trail within 64 bits.
-        for dim in 0..3 {
-            if depth >= 48 || centroids.max[dim] == centroids.min[dim] {
-                continue;
-            }
-            let mut buckets = [None::<LightBounds>; BUCKETS];
-            for (_, b) in lights.iter() {
-                let k = bucket_of(b.centroid(), dim);
-                buckets[k] = Some(buckets[k].map_or(*b, |a| a.union(b)));
-            }
-            let union = |r: &[Option<LightBounds>]| {
-                r.iter().flatten().fold(None::<LightBounds>, |acc, b| {
-                    Some(acc.map_or(*b, |a| a.union(b)))
-                })
-            };
-            for k in 1..BUCKETS - 1 {
-                let c = union(&buckets[..=k]).map_or(0.0, |b| cost(&b, &bounds, dim))
-                    + union(&buckets[k + 1..]).map_or(0.0, |b| cost(&b, &bounds, dim));
-                if c > 0.0 && best.is_none_or(|(m, _, _)| c < m) {
-                    best = Some((c, dim, k));
-                }
-            }
-        }
-        let mut mid = match best {
-            Some((_, dim, k)) => {
-                // Partition: buckets ≤ k first.
-                let mut m = 0;
-                for j in 0..lights.len() {
-                    if bucket_of(lights[j].1.centroid(), dim) <= k {
-                        lights.swap(j, m);
-                        m += 1;
-                    }
-                }
-                m
-            }
-            None => lights.len() / 2,
-        };
-        if mid == 0 || mid == lights.len() {
-            mid = lights.len() / 2;
-        }
-        let node = self.nodes.len();
-        self.nodes.push(Node {
-            bounds: lights[0].1.compact(),
-            child_or_light: 0,
-            pair: 0,
-            is_leaf: false,
-        });
-        let (left, right) = lights.split_at_mut(mid);
-        let b0 = self.build(left, trail, depth + 1);
-        let second = self.nodes.len() as u32;
-        let b1 = self.build(right, trail | (1u64 << depth), depth + 1);
-        let b = b0.union(&b1);
-        let (c0, c1) = (b0.compact(), b1.compact());
-        self.pairs.push(CompactLightBounds4::new([c0, c1, c1, c1]));
-        self.nodes[node] = Node {
-            bounds: b.compact(),
-            child_or_light: second,
-            pair: (self.pairs.len() - 1) as u32,
-            is_leaf: false,
-        };
-        b
-    }
-
     /// Chooses a light for the point `ctx` with the uniform number `u`: its index and
     /// probability, or `None` when no light can light the point.
+    ///
+    /// Walking down, child 0 is taken with probability p₀ = I₀/(I₀ + I₁) (the children's
+    /// importances at the point; see [`choose`]); the light's probability is the product of
+    /// the choices' (times the BVH's share 1 − p_∞).
+    #[inline]
     pub fn sample(&self, ctx: &LightSampleContext, u: f32) -> Option<(usize, f32)> {
         let p_inf = self.p_inf;
         if u < p_inf {
@@ -213,43 +191,41 @@ impl BvhLightSampler {
             let k = ((u / p_inf * n as f32) as usize).min(n - 1);
             return Some((self.infinite[k] as usize, p_inf / n as f32));
         }
-        if self.nodes.is_empty() {
-            return None;
-        }
         let (p, n) = (ctx.p, ctx.ns);
-        let mut u = ((u - p_inf) / (1.0 - p_inf)).min(ONE_MINUS_EPSILON);
-        let mut node = 0usize;
         let mut pmf = 1.0 - p_inf;
+        let Some(root) = self.quads.first() else {
+            // One light: chosen wherever its importance is not zero.
+            let (i, b) = self.lone.as_ref()?;
+            return (b.importance(p, n) > 0.0).then_some((*i as usize, pmf));
+        };
+        let mut u = ((u - p_inf) / (1.0 - p_inf)).min(ONE_MINUS_EPSILON);
+        let mut q = root;
         loop {
-            let nd = &self.nodes[node];
-            if nd.is_leaf {
-                // A lone light's own importance decides whether it can light p.
-                if node > 0 || nd.bounds.importance(p, n) > 0.0 {
-                    return Some((nd.child_or_light as usize, pmf));
-                }
-                return None;
-            }
-            let c = [node + 1, nd.child_or_light as usize];
-            let imp = self.pairs[nd.pair as usize].importance(p, n);
-            let (i0, i1) = (imp.x, imp.y);
-            if i0 == 0.0 && i1 == 0.0 {
-                return None;
-            }
-            // Child 0 with probability i0/(i0 + i1); u is rescaled to the chosen part.
-            let p0 = i0 / (i0 + i1);
-            if u < p0 {
-                u = (u / p0).min(ONE_MINUS_EPSILON);
-                pmf *= p0;
-                node = c[0];
+            // Both levels' importances first: neither waits on a choice.
+            let imp = q.children.importance(p, n);
+            let grand = if q.deep {
+                q.grandchildren.importance(p, n)
             } else {
-                u = ((u - p0) / (1.0 - p0)).min(ONE_MINUS_EPSILON);
-                pmf *= 1.0 - p0;
-                node = c[1];
+                Vec4::ZERO
+            };
+            let c = choose(imp.x, imp.y, &mut u, &mut pmf)?;
+            let r = q.child[c];
+            if r & LEAF != 0 {
+                return Some(((r & !LEAF) as usize, pmf));
             }
+            let (g0, g1) = lane_pair(grand, c);
+            let g = choose(g0, g1, &mut u, &mut pmf)?;
+            let r = q.grandchild[2 * c + g];
+            if r & LEAF != 0 {
+                return Some(((r & !LEAF) as usize, pmf));
+            }
+            q = &self.quads[r as usize];
         }
     }
 
-    /// Probability that [`BvhLightSampler::sample`] chooses light `light` at `ctx`.
+    /// Probability that [`BvhLightSampler::sample`] chooses light `light` at `ctx`: the
+    /// product of the child probabilities along the light's bit trail.
+    #[inline]
     pub fn pmf(&self, ctx: &LightSampleContext, light: usize) -> f32 {
         let Some(&trail) = self.trails.get(light) else {
             return 0.0;
@@ -260,29 +236,36 @@ impl BvhLightSampler {
             _ => {}
         }
         let (p, n) = (ctx.p, ctx.ns);
-        let mut trail = trail;
-        let mut node = 0usize;
-        let mut pmf = 1.0 - self.p_inf;
+        let pmf = 1.0 - self.p_inf;
+        let Some(root) = self.quads.first() else {
+            return match &self.lone {
+                Some((_, b)) if b.importance(p, n) > 0.0 => pmf,
+                _ => 0.0,
+            };
+        };
+        let (mut trail, mut pmf, mut q) = (trail, pmf, root);
         loop {
-            let nd = &self.nodes[node];
-            if nd.is_leaf {
-                return if node > 0 || nd.bounds.importance(p, n) > 0.0 {
-                    pmf
-                } else {
-                    0.0
-                };
-            }
-            let c = [node + 1, nd.child_or_light as usize];
-            let imp = self.pairs[nd.pair as usize].importance(p, n);
-            let (i0, i1) = (imp.x, imp.y);
-            if i0 == 0.0 && i1 == 0.0 {
+            let imp = q.children.importance(p, n);
+            let c = (trail & 1) as usize;
+            let Some(pc) = child_pmf(imp.x, imp.y, c) else {
                 return 0.0;
+            };
+            pmf *= pc;
+            if q.child[c] & LEAF != 0 {
+                return pmf;
             }
-            let p0 = i0 / (i0 + i1);
-            let bit = (trail & 1) as usize;
-            pmf *= if bit == 0 { p0 } else { 1.0 - p0 };
-            node = c[bit];
-            trail >>= 1;
+            let (g0, g1) = lane_pair(q.grandchildren.importance(p, n), c);
+            let g = ((trail >> 1) & 1) as usize;
+            let Some(pg) = child_pmf(g0, g1, g) else {
+                return 0.0;
+            };
+            pmf *= pg;
+            let r = q.grandchild[2 * c + g];
+            if r & LEAF != 0 {
+                return pmf;
+            }
+            q = &self.quads[r as usize];
+            trail >>= 2;
         }
     }
 }
@@ -291,6 +274,9 @@ impl BvhLightSampler {
 mod tests {
     use super::*;
     use crate::light::DirectionCone;
+    use crate::light::LightBounds;
+    use crate::math::{Bounds3, Vec3};
+    use std::f32::consts::PI;
 
     /// A point light's extent: φ = 4π·I, emitting everywhere.
     fn point(x: f32, y: f32, z: f32, i: f32) -> LightExtent {
@@ -449,6 +435,104 @@ mod tests {
                 assert!(chi2 < bound, "chi2 {chi2} over {bins} bins");
             }
         }
+    }
+
+    #[test]
+    fn a_lone_light_is_chosen_wherever_it_can_light() {
+        // One quad facing down at y = 2, then with a sky beside it (which takes half).
+        for sky in [false, true] {
+            let mut lights = vec![ceiling_quad(0.0, 2.0, 0.3, 5.0)];
+            if sky {
+                lights.push(LightExtent::Unbounded);
+            }
+            let s = BvhLightSampler::new(&lights);
+            let share = if sky { 0.5 } else { 1.0 };
+            let below = ctx();
+            assert_eq!(s.pmf(&below, 0), share);
+            assert_eq!(s.sample(&below, 0.99), Some((0, share)));
+            // Above the quad, its back faces the point: never chosen.
+            let above = LightSampleContext {
+                p: Vec3::new(0.0, 3.0, 0.0),
+                n: Vec3::Y,
+                ns: Vec3::Y,
+            };
+            assert_eq!(s.pmf(&above, 0), 0.0);
+            assert_eq!(s.sample(&above, 0.99), None);
+            if sky {
+                assert_eq!(s.sample(&above, 0.2), Some((1, 0.5)));
+                assert_eq!(s.pmf(&above, 1), 0.5);
+            }
+        }
+        // No light with bounds: nothing to choose.
+        let s = BvhLightSampler::new(&[LightExtent::Dark]);
+        assert_eq!(s.sample(&ctx(), 0.5), None);
+        assert_eq!(s.pmf(&ctx(), 0), 0.0);
+    }
+
+    /// pbrt-v4's walk, one level at a time over the binary tree, each child's importance
+    /// evaluated on its own.
+    fn one_level_sample(
+        nodes: &[BinaryNode],
+        c: &LightSampleContext,
+        u: f32,
+    ) -> Option<(usize, f32)> {
+        let (mut u, mut pmf, mut node) = (u.min(ONE_MINUS_EPSILON), 1.0f32, 0usize);
+        loop {
+            let nd = &nodes[node];
+            let [i0, i1] = nd.bounds.map(|b| b.importance(c.p, c.ns));
+            let k = choose(i0, i1, &mut u, &mut pmf)?;
+            if nd.child[k] & LEAF != 0 {
+                return Some(((nd.child[k] & !LEAF) as usize, pmf));
+            }
+            node = nd.child[k] as usize;
+        }
+    }
+
+    #[test]
+    fn two_levels_at_a_time_give_the_bits_of_one() {
+        // The bounded lights of `lights()` (a tree some 7 levels deep, odd and even leaf
+        // depths), from points all around.
+        let lights: Vec<LightExtent> = lights()
+            .into_iter()
+            .filter(|l| matches!(l, LightExtent::Bounded(_)))
+            .collect();
+        let s = BvhLightSampler::new(&lights);
+        let mut bounded: Vec<_> = lights
+            .iter()
+            .enumerate()
+            .map(|(i, l)| match l {
+                LightExtent::Bounded(b) => (i as u32, *b),
+                _ => unreachable!(),
+            })
+            .collect();
+        let nodes = build_tree(&mut bounded, &mut vec![0; lights.len()]);
+        let mut rng = crate::sampling::Pcg32::new(7, 2);
+        let mut chosen = 0;
+        for _ in 0..300 {
+            let p = Vec3::new(rng.uniform(), rng.uniform(), rng.uniform()) * 8.0 - 4.0;
+            let n = match (rng.uniform() * 3.0) as u32 {
+                0 => Vec3::ZERO,
+                _ => crate::math::normalize(
+                    Vec3::new(rng.uniform(), rng.uniform(), rng.uniform()) - 0.5,
+                ),
+            };
+            let c = LightSampleContext { p, n, ns: n };
+            for _ in 0..20 {
+                let u = rng.uniform();
+                let got = s.sample(&c, u);
+                let want = one_level_sample(&nodes, &c, u);
+                assert_eq!(
+                    got.map(|(i, q)| (i, q.to_bits())),
+                    want.map(|(i, q)| (i, q.to_bits())),
+                    "{c:?} u {u}"
+                );
+                if let Some((i, q)) = got {
+                    assert_eq!(s.pmf(&c, i).to_bits(), q.to_bits());
+                    chosen += 1;
+                }
+            }
+        }
+        assert!(chosen > 3000, "{chosen}");
     }
 
     #[test]

@@ -3,8 +3,10 @@
 //! [`Light::sample_li`] answers, for a point being shaded, "from which direction does this
 //! light arrive, how much, and where must a shadow ray go to check that nothing is in the way".
 
+mod area;
 mod bounds;
 mod bvh;
+mod bvh_build;
 mod compact;
 mod distribution;
 mod extent;
@@ -15,6 +17,7 @@ mod projection;
 mod sample;
 mod sampler;
 
+pub use area::Emitter;
 pub use bounds::{DirectionCone, LightBounds, LightExtent};
 pub use bvh::BvhLightSampler;
 pub use compact::CompactLightBounds;
@@ -26,7 +29,7 @@ pub use projection::{ProjectionLight, projected_sum};
 pub use sample::{LightLiSample, LightSampleContext};
 pub use sampler::{LightSampler, LightSamplerKind};
 
-use crate::math::{Frame, INV_PI, PackedRgb, PackedVec3, Rgb, Vec2, Vec3, smooth_step};
+use crate::math::{Frame, INV_PI, PackedRgb, Rgb, Vec2, Vec3, smooth_step};
 use crate::shape::{Shape, TriangleMesh};
 
 /// A light source of the scene.
@@ -72,9 +75,9 @@ pub enum Light {
         two_sided: bool,
         /// Surface area, world space.
         area: f32,
-        /// Centre and radius of a whole sphere, which is sampled by the cone of directions it
-        /// subtends rather than by area.
-        sphere: Option<(PackedVec3, f32)>,
+        /// Its surface, prepared for sampling (a whole sphere is sampled by the cone of
+        /// directions it subtends rather than by area).
+        emitter: Emitter,
     },
     /// Constant-radiance environment ("sky").
     UniformInfinite {
@@ -118,7 +121,33 @@ impl Light {
 
     /// Samples incident light at `ctx`; `None` when the light contributes nothing there.
     /// `shapes` and `meshes` are the scene's, where area lights find their surface.
+    ///
+    /// Triangles of emitting meshes, the commonest lights, are sampled in the caller's code;
+    /// the other lights through a call.
+    #[inline(always)]
     pub fn sample_li(
+        &self,
+        ctx: &LightSampleContext,
+        u: Vec2,
+        shapes: &[Shape],
+        meshes: &[TriangleMesh],
+    ) -> Option<LightLiSample> {
+        if let Light::Area {
+            l,
+            two_sided,
+            area,
+            emitter: Emitter::Triangle { p, n },
+            ..
+        } = self
+        {
+            return area::sample_triangle_li(p, n, *l, *two_sided, *area, ctx, u);
+        }
+        self.sample_li_other(ctx, u, shapes, meshes)
+    }
+
+    /// [`Light::sample_li`] for every light but a triangle.
+    #[inline(never)]
+    fn sample_li_other(
         &self,
         ctx: &LightSampleContext,
         u: Vec2,
@@ -131,57 +160,10 @@ impl Light {
                 l,
                 two_sided,
                 area,
-                sphere,
-            } => {
-                if let Some((c, r)) = *sphere
-                    && let Some(cone) = SphereCone::new(ctx.p, c.into(), r)
-                {
-                    // Seen from outside, a sphere fills a cone of half-angle θmax with
-                    // sin θmax = r/d: sample directions uniformly inside it, then find where
-                    // the direction meets the sphere.
-                    let c = Vec3::from(c);
-                    let local = crate::sampling::sample_uniform_cone(u, cone.cos_theta_max);
-                    let wi = cone.frame.from_local(local);
-                    let p = cone.hit(ctx.p, wi, c, r);
-                    let mut n = (p - c) / r;
-                    if let Shape::Sphere(s) = &shapes[*prim as usize]
-                        && s.placement.flip_normal
-                    {
-                        n = -n;
-                    }
-                    if !*two_sided && n.dot(wi) >= 0.0 {
-                        return None;
-                    }
-                    return Some(LightLiSample {
-                        l: (*l).into(),
-                        factor: 1.0,
-                        wi,
-                        pdf: crate::sampling::uniform_cone_pdf(cone.cos_theta_max),
-                        p_light: p,
-                    });
-                }
-                // Uniform by area, turned into a density per solid angle:
-                // p_ω = p_A · d² / |cos θ_light|.
-                let ss = shapes[*prim as usize].sample_area(u, meshes)?;
-                let d = ss.p - ctx.p;
-                let d2 = d.length_squared();
-                if d2 == 0.0 {
-                    return None;
-                }
-                let wi = d / d2.sqrt();
-                let cos_light = ss.n.dot(-wi);
-                if cos_light == 0.0 || (!*two_sided && cos_light < 0.0) {
-                    return None;
-                }
-                let pdf = d2 / (cos_light.abs() * area);
-                pdf.is_finite().then_some(LightLiSample {
-                    l: (*l).into(),
-                    factor: 1.0,
-                    wi,
-                    pdf,
-                    p_light: ss.p,
-                })
-            }
+                emitter,
+            } => area::sample_area_li(
+                *prim, *l, *two_sided, *area, emitter, ctx, u, shapes, meshes,
+            ),
             Light::Point { p, intensity } => {
                 let d = *p - ctx.p;
                 let r2 = d.length_squared();
@@ -260,21 +242,7 @@ impl Light {
     /// geometric normal.
     pub fn pdf_li(&self, ctx: &LightSampleContext, wi: Vec3, hit: Option<(Vec3, Vec3)>) -> f32 {
         match self {
-            Light::Area { area, sphere, .. } => {
-                if let Some((c, r)) = *sphere
-                    && let Some(cone) = SphereCone::new(ctx.p, c.into(), r)
-                {
-                    return crate::sampling::uniform_cone_pdf(cone.cos_theta_max);
-                }
-                let Some((p, n)) = hit else { return 0.0 };
-                let d2 = (p - ctx.p).length_squared();
-                let cos_light = n.dot(wi).abs();
-                if cos_light == 0.0 {
-                    0.0
-                } else {
-                    d2 / (cos_light * area)
-                }
-            }
+            Light::Area { area, emitter, .. } => area::area_pdf_li(*area, emitter, ctx, wi, hit),
             Light::UniformInfinite { .. } => {
                 if ctx.ns != Vec3::ZERO {
                     wi.dot(ctx.ns).max(0.0) * INV_PI
@@ -344,50 +312,5 @@ impl Light {
             Light::PortalInfinite(light) => light.le(d),
             _ => Rgb::ZERO,
         }
-    }
-}
-
-/// The cone of directions in which a sphere is seen from a point outside it.
-struct SphereCone {
-    /// Frame whose z points at the centre.
-    frame: Frame,
-    /// cos θmax, with sin θmax = r/d.
-    cos_theta_max: f32,
-}
-
-impl SphereCone {
-    /// `None` when `p` is inside the sphere (or so close that the cone is the hemisphere).
-    fn new(p: Vec3, c: Vec3, r: f32) -> Option<SphereCone> {
-        let d2 = (c - p).length_squared();
-        let r2 = r * r;
-        if d2 <= r2 * 1.0001 {
-            return None;
-        }
-        let sin2 = r2 / d2;
-        // For tiny cones 1 − sin² loses every digit: use cos ≈ 1 − sin²/2.
-        let cos_theta_max = if sin2 < 1e-4 {
-            1.0 - 0.5 * sin2
-        } else {
-            (1.0 - sin2).sqrt()
-        };
-        Some(SphereCone {
-            frame: Frame::from_z((c - p) / d2.sqrt()),
-            cos_theta_max,
-        })
-    }
-
-    /// Where the direction `w` from `p` first meets the sphere: the nearer root of
-    /// t² − 2t(w·(c − p)) + |c − p|² − r² = 0 (grazing directions that round to a miss take
-    /// the point of closest approach).
-    fn hit(&self, p: Vec3, w: Vec3, c: Vec3, r: f32) -> Vec3 {
-        let oc = (c - p).as_dvec3();
-        let w = w.as_dvec3();
-        let b = w.dot(oc);
-        let disc = b * b - (oc.length_squared() - (r as f64) * (r as f64));
-        let t = b - disc.max(0.0).sqrt();
-        let q = p.as_dvec3() + t * w;
-        // Put the point exactly on the sphere.
-        let c = c.as_dvec3();
-        (c + (q - c).normalize() * r as f64).as_vec3a()
     }
 }

@@ -15,7 +15,7 @@ use super::tris::SceneTrisBuilder;
 use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
 use crate::light::{
-    GoniometricLight, ImageInfiniteLight, Light, LightDistribution, LightSampler,
+    Emitter, GoniometricLight, ImageInfiniteLight, Light, LightDistribution, LightSampler,
     PortalInfiniteLight, ProjectionLight,
 };
 use crate::material::Material;
@@ -57,7 +57,14 @@ impl Scene {
             bounds = Bounds3::from_point(Vec3::ZERO);
         }
         let (_, scene_radius) = bounds.bounding_sphere();
-        let lights = lights(desc, scene_radius, &shapes, &mut prims, &made.area_spectra)?;
+        let lights = lights(
+            desc,
+            scene_radius,
+            &shapes,
+            &meshes,
+            &mut prims,
+            &made.area_spectra,
+        )?;
         // The plain meshes' entries, then the instanced meshes', renumbered to follow the
         // shapes'.
         tris.offset_prims(prims.len() as u32);
@@ -492,6 +499,7 @@ fn lights(
     desc: &SceneDesc,
     scene_radius: f32,
     shapes: &[Shape],
+    meshes: &[TriangleMesh],
     prims: &mut [PrimInfo],
     area_spectra: &[Measured],
 ) -> Result<Lights, BuildError> {
@@ -517,7 +525,7 @@ fn lights(
             l: e.l,
             two_sided: e.two_sided,
             area,
-            sphere: whole_sphere(shape),
+            emitter: Emitter::new(shape, meshes, whole_sphere(shape)),
         });
         spectra.push(area_spectra.get(e.spectrum as usize).copied());
     }

@@ -310,7 +310,7 @@ fn sphere_light_gives_the_closed_form_irradiance() {
             matches!(
                 scene.lights[0],
                 Light::Area {
-                    sphere: Some(_),
+                    emitter: lancer::light::Emitter::Sphere { .. },
                     ..
                 }
             ),

@@ -1,0 +1,450 @@
+//! Diffuse area lights: the surface a light samples points on, prepared once at scene build
+//! ([`Emitter`]), and the sampling of incident light from it ([`sample_area_li`],
+//! [`area_pdf_li`]).
+//!
+//! A triangle of an emitting mesh keeps its three vertices and its oriented unit normal, so
+//! that a light sample reads one record: no lookup through the shape list or the mesh's index
+//! buffer, no cross product, no normalisation. The point is b₀p₀ + b₁p₁ + b₂p₂ and the normal
+//! the one [`Shape::sample_area`] would give, bit for bit.
+
+use super::sample::{LightLiSample, LightSampleContext};
+use crate::math::{Frame, PackedRgb, PackedVec3, Vec2, Vec3, cross};
+use crate::sampling::sample_uniform_triangle;
+use crate::shape::{Shape, ShapeSample, TriangleMesh};
+
+/// The surface of an area light, as its samples need it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Emitter {
+    /// A whole sphere (centre and world radius), sampled by the cone of directions it
+    /// subtends from points outside it; by area from inside.
+    Sphere {
+        /// Centre, world space.
+        centre: PackedVec3,
+        /// Radius, world space.
+        radius: f32,
+        /// Normals point inwards (ReverseOrientation).
+        flip: bool,
+    },
+    /// A triangle whose emitting side is the same all over it: sampled uniformly by area.
+    Triangle {
+        /// Vertices, world space.
+        p: [PackedVec3; 3],
+        /// Unit geometric normal, oriented as [`Shape::sample_area`] orients it.
+        n: PackedVec3,
+    },
+    /// Any other shape, sampled through [`Shape::sample_area`].
+    Shape,
+}
+
+/// The smallest |n·nᵢ|/|nᵢ| of a vertex normal nᵢ for which a triangle's side is taken to be
+/// the same all over it: the interpolated normal's dot with n is then a sum of terms of one
+/// sign, far larger than its rounding (a few 1e-7), so every sample orients n the same way.
+const ONE_SIDE_MIN_COS: f32 = 1e-3;
+
+impl Emitter {
+    /// The emitter for `shape` (a primitive of the scene, whose meshes are `meshes`);
+    /// `whole_sphere` is its centre and world radius when it is a whole sphere.
+    pub fn new(
+        shape: &Shape,
+        meshes: &[TriangleMesh],
+        whole_sphere: Option<(PackedVec3, f32)>,
+    ) -> Emitter {
+        if let Some((centre, radius)) = whole_sphere {
+            let flip = matches!(shape, Shape::Sphere(s) if s.placement.flip_normal);
+            return Emitter::Sphere {
+                centre,
+                radius,
+                flip,
+            };
+        }
+        let Shape::Triangle(t) = shape else {
+            return Emitter::Shape;
+        };
+        let Some(mesh) = meshes.get(t.mesh as usize) else {
+            return Emitter::Shape;
+        };
+        // Shape::sample_area's rule: n = (p₀ − p₂) × (p₁ − p₂) normalised, turned towards
+        // the interpolated shading normal when the mesh has normals, else flipped by
+        // ReverseOrientation.
+        let [p0, p1, p2] = t.vertices();
+        let mut n = cross(p0 - p2, p1 - p2).normalize_or_zero();
+        if !mesh.normals.is_empty() {
+            // cos of the angle between n and each vertex normal.
+            let cos = mesh.vertices(t.index).map(|v| {
+                let nv = mesh.normal(v);
+                n.dot(nv) / nv.length()
+            });
+            if cos.iter().all(|&c| c <= -ONE_SIDE_MIN_COS) {
+                n = -n;
+            } else if !cos.iter().all(|&c| c >= ONE_SIDE_MIN_COS) {
+                // Vertex normals on both sides of the face, nearly in it, or not numbers: the
+                // side depends on the point.
+                return Emitter::Shape;
+            }
+        } else if mesh.flip_normal {
+            n = -n;
+        }
+        Emitter::Triangle {
+            p: t.p,
+            n: n.into(),
+        }
+    }
+}
+
+/// Samples incident light at `ctx` from the area light on primitive `prim` (radiance `l`,
+/// emitting on both sides when `two_sided`, world area `area`, surface `emitter`).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn sample_area_li(
+    prim: u32,
+    l: PackedRgb,
+    two_sided: bool,
+    area: f32,
+    emitter: &Emitter,
+    ctx: &LightSampleContext,
+    u: Vec2,
+    shapes: &[Shape],
+    meshes: &[TriangleMesh],
+) -> Option<LightLiSample> {
+    let ss = match emitter {
+        Emitter::Triangle { p, n } => triangle_point(p, n, u),
+        &Emitter::Sphere {
+            centre,
+            radius,
+            flip,
+        } => {
+            let c = Vec3::from(centre);
+            if let Some(cone) = SphereCone::new(ctx.p, c, radius) {
+                return sample_sphere_cone(&cone, flip, l, two_sided, ctx, u, c, radius);
+            }
+            // From inside: by area.
+            shapes[prim as usize].sample_area(u, meshes)?
+        }
+        Emitter::Shape => shapes[prim as usize].sample_area(u, meshes)?,
+    };
+    li_from_point(&ss, l, two_sided, area, ctx)
+}
+
+/// [`sample_area_li`] for a triangle of vertices `p` and oriented normal `n` (small enough to
+/// be inlined where lights are sampled).
+#[inline(always)]
+pub(super) fn sample_triangle_li(
+    p: &[PackedVec3; 3],
+    n: &PackedVec3,
+    l: PackedRgb,
+    two_sided: bool,
+    area: f32,
+    ctx: &LightSampleContext,
+    u: Vec2,
+) -> Option<LightLiSample> {
+    li_from_point(&triangle_point(p, n, u), l, two_sided, area, ctx)
+}
+
+/// A point uniform on the triangle of vertices `p` (b₀p₀ + b₁p₁ + b₂p₂, as
+/// [`Shape::sample_area`] computes it) and its normal `n`. The vertices are read in place: a
+/// copy of the record to the stack, reloaded at other offsets, stalled on store forwarding.
+#[inline(always)]
+fn triangle_point(p: &[PackedVec3; 3], n: &PackedVec3, u: Vec2) -> ShapeSample {
+    let [b0, b1, b2] = sample_uniform_triangle(u);
+    let (p0, p1, p2) = (Vec3::from(p[0]), Vec3::from(p[1]), Vec3::from(p[2]));
+    ShapeSample {
+        p: b0 * p0 + b1 * p1 + b2 * p2,
+        n: Vec3::from(*n),
+    }
+}
+
+/// Light arriving at `ctx` from the point `ss` of an area light, sampled uniformly by area:
+/// its density per solid angle is p_ω = p_A · d² / |cos θ_light| with p_A = 1/A.
+#[inline(always)]
+fn li_from_point(
+    ss: &ShapeSample,
+    l: PackedRgb,
+    two_sided: bool,
+    area: f32,
+    ctx: &LightSampleContext,
+) -> Option<LightLiSample> {
+    let d = ss.p - ctx.p;
+    let d2 = d.length_squared();
+    if d2 == 0.0 {
+        return None;
+    }
+    let wi = d / d2.sqrt();
+    let cos_light = ss.n.dot(-wi);
+    if cos_light == 0.0 || (!two_sided && cos_light < 0.0) {
+        return None;
+    }
+    let pdf = d2 / (cos_light.abs() * area);
+    pdf.is_finite().then_some(LightLiSample {
+        l: l.into(),
+        factor: 1.0,
+        wi,
+        pdf,
+        p_light: ss.p,
+    })
+}
+
+/// Light from a whole sphere (centre `c`, radius `r`, normals inwards when `flip`) seen from
+/// outside: a direction uniform in the cone it fills (of half-angle θmax, sin θmax = r/d),
+/// then the point where it meets the sphere.
+#[allow(clippy::too_many_arguments)]
+fn sample_sphere_cone(
+    cone: &SphereCone,
+    flip: bool,
+    l: PackedRgb,
+    two_sided: bool,
+    ctx: &LightSampleContext,
+    u: Vec2,
+    c: Vec3,
+    r: f32,
+) -> Option<LightLiSample> {
+    let local = crate::sampling::sample_uniform_cone(u, cone.cos_theta_max);
+    let wi = cone.frame.from_local(local);
+    let p = cone.hit(ctx.p, wi, c, r);
+    let mut n = (p - c) / r;
+    if flip {
+        n = -n;
+    }
+    if !two_sided && n.dot(wi) >= 0.0 {
+        return None;
+    }
+    Some(LightLiSample {
+        l: l.into(),
+        factor: 1.0,
+        wi,
+        pdf: crate::sampling::uniform_cone_pdf(cone.cos_theta_max),
+        p_light: p,
+    })
+}
+
+/// Density with which [`sample_area_li`] picks direction `wi` at `ctx` from an area light of
+/// world area `area` and surface `emitter`; `hit` is where `wi` meets the light and the
+/// geometric normal there.
+#[inline]
+pub(super) fn area_pdf_li(
+    area: f32,
+    emitter: &Emitter,
+    ctx: &LightSampleContext,
+    wi: Vec3,
+    hit: Option<(Vec3, Vec3)>,
+) -> f32 {
+    if let Emitter::Sphere { centre, radius, .. } = *emitter
+        && let Some(cone) = SphereCone::new(ctx.p, centre.into(), radius)
+    {
+        return crate::sampling::uniform_cone_pdf(cone.cos_theta_max);
+    }
+    let Some((p, n)) = hit else { return 0.0 };
+    let d2 = (p - ctx.p).length_squared();
+    let cos_light = n.dot(wi).abs();
+    if cos_light == 0.0 {
+        0.0
+    } else {
+        d2 / (cos_light * area)
+    }
+}
+
+/// The cone of directions in which a sphere is seen from a point outside it.
+struct SphereCone {
+    /// Frame whose z points at the centre.
+    frame: Frame,
+    /// cos θmax, with sin θmax = r/d.
+    cos_theta_max: f32,
+}
+
+impl SphereCone {
+    /// `None` when `p` is inside the sphere (or so close that the cone is the hemisphere).
+    fn new(p: Vec3, c: Vec3, r: f32) -> Option<SphereCone> {
+        let d2 = (c - p).length_squared();
+        let r2 = r * r;
+        if d2 <= r2 * 1.0001 {
+            return None;
+        }
+        let sin2 = r2 / d2;
+        // For tiny cones 1 − sin² loses every digit: use cos ≈ 1 − sin²/2.
+        let cos_theta_max = if sin2 < 1e-4 {
+            1.0 - 0.5 * sin2
+        } else {
+            (1.0 - sin2).sqrt()
+        };
+        Some(SphereCone {
+            frame: Frame::from_z((c - p) / d2.sqrt()),
+            cos_theta_max,
+        })
+    }
+
+    /// Where the direction `w` from `p` first meets the sphere: the nearer root of
+    /// t² − 2t(w·(c − p)) + |c − p|² − r² = 0 (grazing directions that round to a miss take
+    /// the point of closest approach).
+    fn hit(&self, p: Vec3, w: Vec3, c: Vec3, r: f32) -> Vec3 {
+        let oc = (c - p).as_dvec3();
+        let w = w.as_dvec3();
+        let b = w.dot(oc);
+        let disc = b * b - (oc.length_squared() - (r as f64) * (r as f64));
+        let t = b - disc.max(0.0).sqrt();
+        let q = p.as_dvec3() + t * w;
+        // Put the point exactly on the sphere.
+        let c = c.as_dvec3();
+        (c + (q - c).normalize() * r as f64).as_vec3a()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shape::Triangle;
+    use std::f32::consts::PI;
+
+    /// The triangle (0, 0, 0), (2, 0, 0), (0, 2, 0) of a mesh with these vertex normals (none
+    /// when empty) and orientation; its geometric normal (p₀ − p₂) × (p₁ − p₂) is +z.
+    fn triangle(normals: &[[f32; 3]], flip: bool) -> (Shape, TriangleMesh) {
+        let p = [
+            PackedVec3::ZERO,
+            PackedVec3::new(2.0, 0.0, 0.0),
+            PackedVec3::new(0.0, 2.0, 0.0),
+        ];
+        let mesh = TriangleMesh {
+            positions: p.to_vec(),
+            normals: normals.iter().map(|&n| PackedVec3::from(n)).collect(),
+            indices: vec![0, 1, 2],
+            flip_normal: flip,
+            ..Default::default()
+        };
+        let tri = Shape::Triangle(Triangle {
+            p,
+            mesh: 0,
+            index: 0,
+        });
+        (tri, mesh)
+    }
+
+    /// Light samples of the emitter prepared for `shape` and of the generic path through
+    /// `Shape::sample_area`, from points on both sides, for a grid of u.
+    fn samples_of_both(shape: &Shape, mesh: &TriangleMesh, two_sided: bool) -> usize {
+        let meshes = std::slice::from_ref(mesh);
+        let shapes = std::slice::from_ref(shape);
+        let prepared = Emitter::new(shape, meshes, None);
+        let l = PackedRgb::new(1.0, 2.0, 3.0);
+        let mut some = 0;
+        for p in [Vec3::new(0.3, 0.4, 1.5), Vec3::new(0.5, -0.2, -2.0)] {
+            let ctx = LightSampleContext {
+                p,
+                n: Vec3::Z,
+                ns: Vec3::Z,
+            };
+            for i in 0..16 {
+                for j in 0..16 {
+                    let u = Vec2::new((i as f32 + 0.3) / 16.0, (j as f32 + 0.7) / 16.0);
+                    let sample = |e: &Emitter| {
+                        sample_area_li(0, l, two_sided, 2.0, e, &ctx, u, shapes, meshes)
+                            .map(|s| (s.l, s.wi, s.pdf.to_bits(), s.p_light))
+                    };
+                    let (got, want) = (sample(&prepared), sample(&Emitter::Shape));
+                    assert_eq!(got, want, "u {u:?} from {p:?}");
+                    some += usize::from(got.is_some());
+                }
+            }
+        }
+        some
+    }
+
+    #[test]
+    fn prepared_triangles_sample_the_bits_of_the_shape() {
+        // No vertex normals: +z, or −z when the mesh is reversed; the light is seen from the
+        // point above, or below.
+        for flip in [false, true] {
+            let (tri, mesh) = triangle(&[], flip);
+            let e = Emitter::new(&tri, std::slice::from_ref(&mesh), None);
+            let want = if flip { -PackedVec3::Z } else { PackedVec3::Z };
+            assert!(
+                matches!(e, Emitter::Triangle { n, .. } if n == want),
+                "{e:?}"
+            );
+            assert_eq!(samples_of_both(&tri, &mesh, false), 256);
+            assert_eq!(samples_of_both(&tri, &mesh, true), 512);
+        }
+        // Vertex normals all on the −z side turn the normal over; ReverseOrientation is then
+        // ignored, as Triangle::interaction ignores it.
+        let down = [[0.1, 0.0, -1.0], [0.0, 0.2, -1.0], [0.0, 0.0, -3.0]];
+        for flip in [false, true] {
+            let (tri, mesh) = triangle(&down, flip);
+            let e = Emitter::new(&tri, std::slice::from_ref(&mesh), None);
+            assert!(matches!(e, Emitter::Triangle { n, .. } if n == -PackedVec3::Z));
+            assert_eq!(samples_of_both(&tri, &mesh, false), 256);
+        }
+    }
+
+    #[test]
+    fn triangles_whose_side_varies_keep_the_generic_path() {
+        // One vertex normal below the face, two above: the side depends on the point, so the
+        // sample goes through the mesh (and lights from both sides, part of the triangle each).
+        let mixed = [[0.0, 0.0, 1.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]];
+        let (tri, mesh) = triangle(&mixed, false);
+        assert_eq!(
+            Emitter::new(&tri, std::slice::from_ref(&mesh), None),
+            Emitter::Shape
+        );
+        let lit = samples_of_both(&tri, &mesh, false);
+        assert!(lit > 256 - 64 && lit < 256 + 64, "{lit}");
+        // A vertex normal in the plane of the face: not trusted either.
+        let flat = [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+        let (tri, mesh) = triangle(&flat, false);
+        assert_eq!(
+            Emitter::new(&tri, std::slice::from_ref(&mesh), None),
+            Emitter::Shape
+        );
+    }
+
+    #[test]
+    fn a_reversed_sphere_lights_only_its_inside_unless_two_sided() {
+        use crate::math::Transform;
+        use crate::shape::{Placement, Sphere};
+        let c = Vec3::new(0.0, 0.0, 5.0);
+        let ctx = LightSampleContext {
+            p: Vec3::ZERO,
+            n: Vec3::Z,
+            ns: Vec3::Z,
+        };
+        for reverse in [false, true] {
+            let placement = Placement::new(Transform::translate(c), reverse);
+            let sphere = Shape::Sphere(Box::new(Sphere::new(placement, 1.0, -1.0, 1.0, 360.0)));
+            let e = Emitter::new(&sphere, &[], Some((c.into(), 1.0)));
+            assert!(matches!(e, Emitter::Sphere { flip, .. } if flip == reverse));
+            let shapes = std::slice::from_ref(&sphere);
+            let l = PackedRgb::ONE;
+            for two_sided in [false, true] {
+                let s = sample_area_li(
+                    0,
+                    l,
+                    two_sided,
+                    4.0 * PI,
+                    &e,
+                    &ctx,
+                    Vec2::new(0.3, 0.6),
+                    shapes,
+                    &[],
+                );
+                // Seen from outside, the cone of the sphere (sin θmax = 1/5) is sampled.
+                assert_eq!(s.is_some(), two_sided || !reverse, "{reverse} {two_sided}");
+                if let Some(s) = s {
+                    let cos_max = (1.0f32 - 1.0 / 25.0).sqrt();
+                    assert!((s.pdf - 1.0 / (2.0 * PI * (1.0 - cos_max))).abs() < 1e-3 * s.pdf);
+                    assert!(((Vec3::from(s.p_light) - c).length() - 1.0).abs() < 1e-5);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn whole_spheres_and_other_shapes() {
+        let (tri, mesh) = triangle(&[], false);
+        let c = PackedVec3::new(1.0, 2.0, 3.0);
+        assert_eq!(
+            Emitter::new(&tri, std::slice::from_ref(&mesh), Some((c, 0.5))),
+            Emitter::Sphere {
+                centre: c,
+                radius: 0.5,
+                flip: false
+            }
+        );
+        // A triangle whose mesh is missing is sampled through the shape.
+        assert_eq!(Emitter::new(&tri, &[], None), Emitter::Shape);
+    }
+}
