@@ -133,6 +133,8 @@ pub struct FilmDesc {
     pub color_space: crate::spectrum::ColorSpace,
     /// What the film writes besides colour (pbrt's `gbuffer` film).
     pub gbuffer: Option<crate::film::gsums::GbufferDesc>,
+    /// The wavelength buckets a `spectral` film writes besides colour.
+    pub spectral: Option<crate::film::spectral::SpectralDesc>,
 }
 
 impl FilmDesc {
@@ -177,6 +179,7 @@ impl Default for FilmDesc {
             white_balance: 0.0,
             color_space: crate::spectrum::ColorSpace::Srgb,
             gbuffer: None,
+            spectral: None,
         }
     }
 }
