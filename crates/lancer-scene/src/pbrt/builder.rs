@@ -2,6 +2,7 @@
 //! monde"), the graphics state saved and restored by `AttributeBegin`/`AttributeEnd`, named
 //! materials, textures, coordinate systems and objects, and the [`SceneDesc`] they build.
 
+use super::area_image::area_light_image;
 use super::cameras::{camera, frame_window};
 use super::convert::{Fallback, Reader, TextureNames};
 use super::light_spectra;
@@ -450,6 +451,10 @@ impl Builder {
                 self.with_params("AreaLightSource", &ty, params, loc, |b, p| {
                     let mut a = area_light(p, &ty, dir, loc)?;
                     a.spectrum = light_spectra::emission_spectrum(p, "L", dir)?;
+                    if let Some(t) = area_light_image(&b.reader(p, dir), &mut a, loc)? {
+                        a.image = Some(b.desc.spectrum_textures.len() as u32);
+                        b.desc.spectrum_textures.push(t);
+                    }
                     b.gs.area_light = Some(a);
                     Ok(())
                 })

@@ -190,7 +190,17 @@ pub(crate) fn emitted(
 ) -> SampledSpectrum {
     match scene.prims[hit.prim as usize].emission {
         Some(e) if e.two_sided || hit.si.n.dot(wo) > 0.0 => {
-            scene.light_radiance(e.light as usize, lambda, e.l.into(), 1.0)
+            // An image emitter's light holds the image (pbrt-v4's DiffuseAreaLight::L by uv).
+            let l = if e.spectrum == crate::scene::IMAGE_EMISSION
+                && let crate::light::Light::Area {
+                    image: Some(img), ..
+                } = &scene.lights[e.light as usize]
+            {
+                img.le(hit.si.uv)
+            } else {
+                e.l.into()
+            };
+            scene.light_radiance(e.light as usize, lambda, l, 1.0)
         }
         _ => SampledSpectrum::ZERO,
     }

@@ -3,6 +3,7 @@
 //! [`Light::sample_li`] answers, for a point being shaded, "from which direction does this
 //! light arrive, how much, and where must a shadow ray go to check that nothing is in the way".
 
+mod area_image;
 mod bounds;
 mod bvh;
 mod compact;
@@ -15,6 +16,7 @@ mod projection;
 mod sample;
 mod sampler;
 
+pub use area_image::{AreaImage, mean_texel};
 pub use bounds::{DirectionCone, LightBounds, LightExtent};
 pub use bvh::BvhLightSampler;
 pub use compact::CompactLightBounds;
@@ -75,6 +77,9 @@ pub enum Light {
         /// Centre and radius of a whole sphere, which is sampled by the cone of directions it
         /// subtends rather than by area.
         sphere: Option<(PackedVec3, f32)>,
+        /// The image the radiance comes from (pbrt-v4's `filename`; `l` is then its mean
+        /// times its scale).
+        image: Option<Box<AreaImage>>,
     },
     /// Constant-radiance environment ("sky").
     UniformInfinite {
@@ -132,7 +137,10 @@ impl Light {
                 two_sided,
                 area,
                 sphere,
+                image,
             } => {
+                let shape = &shapes[*prim as usize];
+                let l_at = |p| area_image::sampled_radiance(image, *l, shape, meshes, ctx.p, p);
                 if let Some((c, r)) = *sphere
                     && let Some(cone) = SphereCone::new(ctx.p, c.into(), r)
                 {
@@ -153,7 +161,7 @@ impl Light {
                         return None;
                     }
                     return Some(LightLiSample {
-                        l: (*l).into(),
+                        l: l_at(p),
                         factor: 1.0,
                         wi,
                         pdf: crate::sampling::uniform_cone_pdf(cone.cos_theta_max),
@@ -175,7 +183,7 @@ impl Light {
                 }
                 let pdf = d2 / (cos_light.abs() * area);
                 pdf.is_finite().then_some(LightLiSample {
-                    l: (*l).into(),
+                    l: l_at(ss.p),
                     factor: 1.0,
                     wi,
                     pdf,
@@ -329,7 +337,8 @@ impl Light {
         match self {
             Light::Point { intensity, .. } | Light::Spot { intensity, .. } => Some(*intensity),
             Light::Distant { l, .. } | Light::UniformInfinite { l, .. } => Some(*l),
-            Light::Area { l, .. } => Some((*l).into()),
+            Light::Area { l, image: None, .. } => Some((*l).into()),
+            Light::Area { .. } => None,
             Light::Goniometric(light) => Some(light.intensity()),
             Light::ImageInfinite(_) | Light::PortalInfinite(_) | Light::Projection(_) => None,
         }

@@ -524,6 +524,10 @@ pub struct AreaLightDesc {
     /// every triangle, as in pbrt-v4) then emits `l · Φ / (π · sides · area)`, sides 2 when
     /// two-sided, area the primitive's own (see [`crate::scene::power::emission_area`]).
     pub power: Option<f32>,
+    /// pbrt-v4's `filename`: the index of an image texture among
+    /// [`SceneDesc::spectrum_textures`] the radiance is read from by uv; `l` is then the
+    /// factor its texels are multiplied by (grey).
+    pub image: Option<u32>,
 }
 
 /// A shape placed in the world with its material and optional emission.
