@@ -182,6 +182,24 @@ pub(crate) fn bsdf_at(
 
 /// Radiance emitted by the surface at `hit` towards `wo` (area lights), at the wavelengths
 /// `lambda` in spectral mode.
+/// An image emitter's radiance at `hit` (its light holds the image: pbrt-v4's
+/// `DiffuseAreaLight::L` by uv); out of line, so that other emitters pay only the test.
+#[cold]
+#[inline(never)]
+fn image_emission(
+    scene: &Scene,
+    light: u32,
+    l: crate::math::PackedRgb,
+    hit: &SceneHit,
+) -> crate::math::Rgb {
+    match &scene.lights[light as usize] {
+        crate::light::Light::Area {
+            image: Some(img), ..
+        } => img.le(hit.si.uv),
+        _ => l.into(),
+    }
+}
+
 pub(crate) fn emitted(
     scene: &Scene,
     hit: &SceneHit,
@@ -191,12 +209,8 @@ pub(crate) fn emitted(
     match scene.prims[hit.prim as usize].emission {
         Some(e) if e.two_sided || hit.si.n.dot(wo) > 0.0 => {
             // An image emitter's light holds the image (pbrt-v4's DiffuseAreaLight::L by uv).
-            let l = if e.spectrum == crate::scene::IMAGE_EMISSION
-                && let crate::light::Light::Area {
-                    image: Some(img), ..
-                } = &scene.lights[e.light as usize]
-            {
-                img.le(hit.si.uv)
+            let l = if e.spectrum == crate::scene::IMAGE_EMISSION {
+                image_emission(scene, e.light, e.l, hit)
             } else {
                 e.l.into()
             };

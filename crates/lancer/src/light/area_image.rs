@@ -52,6 +52,8 @@ impl AreaImage {
     /// Radiance at `p`, a point sampled on `shape`, seen from `from`: its uv found by tracing
     /// the segment from `from` to just past `p` against the shape (the samplers give points
     /// without uv); the mean radiance when that ray misses (a grazing segment).
+    #[cold]
+    #[inline(never)]
     pub fn le_towards(&self, shape: &Shape, meshes: &[TriangleMesh], from: Vec3, p: Vec3) -> Rgb {
         // t ∈ (0, 1 + 10⁻³]: p is at t = 1; the margin absorbs its rounding.
         let ray = Ray {
@@ -76,19 +78,20 @@ pub fn mean_texel(image: &crate::image::Image) -> Rgb {
 }
 
 /// What an area light's sample carries: its constant radiance `l`, or with an image the
-/// radiance at the sampled point `p` seen from `from`.
-#[inline]
+/// radiance at the point `p` sampled on primitive `prim` of `shapes`, seen from `from`.
+#[inline(always)]
 pub fn sampled_radiance(
     image: &Option<Box<AreaImage>>,
     l: PackedRgb,
-    shape: &Shape,
+    shapes: &[Shape],
+    prim: u32,
     meshes: &[TriangleMesh],
     from: Vec3,
     p: Vec3,
 ) -> Rgb {
     match image {
         None => l.into(),
-        Some(img) => img.le_towards(shape, meshes, from, p),
+        Some(img) => img.le_towards(&shapes[prim as usize], meshes, from, p),
     }
 }
 
@@ -159,7 +162,8 @@ mod tests {
         );
         assert_eq!(l, Rgb::new(1.0, 0.0, 3.0));
         // Without an image, the constant.
-        let c = sampled_radiance(&None, Rgb::ONE.into(), &disk, &[], Vec3::Z, Vec3::ZERO);
+        let shapes = [disk];
+        let c = sampled_radiance(&None, Rgb::ONE.into(), &shapes, 0, &[], Vec3::Z, Vec3::ZERO);
         assert_eq!(c, Rgb::ONE);
     }
 }

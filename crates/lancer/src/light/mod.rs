@@ -139,8 +139,6 @@ impl Light {
                 sphere,
                 image,
             } => {
-                let shape = &shapes[*prim as usize];
-                let l_at = |p| area_image::sampled_radiance(image, *l, shape, meshes, ctx.p, p);
                 if let Some((c, r)) = *sphere
                     && let Some(cone) = SphereCone::new(ctx.p, c.into(), r)
                 {
@@ -161,7 +159,7 @@ impl Light {
                         return None;
                     }
                     return Some(LightLiSample {
-                        l: l_at(p),
+                        l: area_image::sampled_radiance(image, *l, shapes, *prim, meshes, ctx.p, p),
                         factor: 1.0,
                         wi,
                         pdf: crate::sampling::uniform_cone_pdf(cone.cos_theta_max),
@@ -183,7 +181,7 @@ impl Light {
                 }
                 let pdf = d2 / (cos_light.abs() * area);
                 pdf.is_finite().then_some(LightLiSample {
-                    l: l_at(ss.p),
+                    l: area_image::sampled_radiance(image, *l, shapes, *prim, meshes, ctx.p, ss.p),
                     factor: 1.0,
                     wi,
                     pdf,
