@@ -1,6 +1,8 @@
 //! The rendering options: `Film`, `Sampler`, `PixelFilter`, `Integrator` and `Option`, with
 //! pbrt-v4's defaults. Kinds lancer does not have fall back to its nearest one, with a warning.
 
+mod spectral_film;
+
 use super::convert::{Fallback, MAX_RESOLUTION};
 use super::params::ParamList;
 use crate::error::SceneError;
@@ -46,7 +48,7 @@ pub fn film(
             };
             film.gbuffer = Some(lancer::gbuffer::GbufferDesc { world_space });
         }
-        "spectral" => film.spectral = Some(spectral_buckets(params)?),
+        "spectral" => film.spectral = Some(spectral_film::buckets(params)?),
         _ => warnings.push(format!(
             "film \"{ty}\" is not supported yet; lancer uses an \"rgb\" film"
         )),
@@ -339,40 +341,6 @@ pub fn light_sampler(
     }
 }
 
-/// The buckets of a `spectral` film, as pbrt-v4's `SpectralFilm::Create`: `nbuckets` (16),
-/// `lambdamin` (360) and `lambdamax` (830), the range within 360–830 nm (pbrt-v4 refuses
-/// wider ones: its wavelength tables end there).
-fn spectral_buckets(
-    params: &ParamList,
-) -> Result<lancer::film::spectral::SpectralDesc, SceneError> {
-    let nbuckets = params.int_in("nbuckets", 16, 1..=4096)? as u32;
-    let lambda_min = params.float("lambdamin", 360.0)?;
-    let lambda_max = params.float("lambdamax", 830.0)?;
-    let (lo, hi) = (
-        lancer::spectrum::sampled::LAMBDA_MIN,
-        lancer::spectrum::sampled::LAMBDA_MAX,
-    );
-    if !(lambda_min >= lo && lambda_max <= hi && lambda_min < lambda_max) {
-        let at = if params.has("lambdamin") {
-            "lambdamin"
-        } else {
-            "lambdamax"
-        };
-        return Err(params.error_at(
-            at,
-            format!(
-                "the spectral film's wavelengths [{lambda_min}, {lambda_max}] nm must lie \
-                 within [{lo}, {hi}] nm, lambdamin below lambdamax (as in pbrt-v4)"
-            ),
-        ));
-    }
-    Ok(lancer::film::spectral::SpectralDesc {
-        nbuckets,
-        lambda_min,
-        lambda_max,
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -482,24 +450,6 @@ mod tests {
         );
         // pbrt-v4's gbuffer film writes half floats by default.
         assert!(f.film.save_fp16);
-        let f = clean(r#"Film "spectral""#, new_film);
-        assert_eq!(
-            f.film.spectral,
-            Some(lancer::film::spectral::SpectralDesc::default())
-        );
-        // pbrt-v4's spectral film writes half floats by default.
-        assert!(f.film.save_fp16);
-        let f = clean(
-            r#"Film "spectral" "integer nbuckets" 4 "float lambdamin" 400 "float lambdamax" 700"#,
-            new_film,
-        );
-        let d = f.film.spectral.unwrap();
-        assert_eq!((d.nbuckets, d.lambda_min, d.lambda_max), (4, 400.0, 700.0));
-        assert_eq!(
-            error("Film \"spectral\"\n  \"float lambdamin\" 300", new_film),
-            "t.pbrt:2:3: the spectral film's wavelengths [300, 830] nm must lie within \
-             [360, 830] nm, lambdamin below lambdamax (as in pbrt-v4)"
-        );
         assert_eq!(
             warnings(r#"Film "foo""#, new_film),
             ["film \"foo\" is not supported yet; lancer uses an \"rgb\" film"]
