@@ -10,6 +10,8 @@ use crate::progress::Progress;
 use crate::render_args::{RenderArgs, Resumed, apply_overrides, resume_args};
 use crate::split::{self, SAMPLES_PER_PASS, TILE_SIZE};
 use crate::{input, stats};
+use lancer::film::spectral::SpectralSums;
+use lancer::film::spectral_write::write_spectral_exr;
 use lancer::film::{Film, PixelBounds, PixelSum};
 use lancer::gbuffer::write::HALF_MAX;
 use lancer::gbuffer::{GbufferConfig, GbufferFilm, GbufferHeader, write_gbuffer_exr};
@@ -130,6 +132,8 @@ pub struct Plan {
     /// For a `gbuffer` film, the header attributes of its image (the render time is filled in
     /// once known).
     pub gbuffer: Option<GbufferHeader>,
+    /// For a `spectral` film, whether it is written in half floats (`savefp16`).
+    pub spectral_fp16: Option<bool>,
 }
 
 /// Step 2: checks the outputs and the options against the scene, before any long work, and
@@ -145,11 +149,13 @@ pub fn plan(
         .or_else(|| desc.film.filename.as_ref().map(PathBuf::from))
         // pbrt-v4 writes a gbuffer film only as EXR.
         .unwrap_or_else(|| {
-            PathBuf::from(if desc.film.gbuffer.is_some() {
-                "lancer.exr"
-            } else {
-                "lancer.png"
-            })
+            PathBuf::from(
+                if desc.film.gbuffer.is_some() || desc.film.spectral.is_some() {
+                    "lancer.exr"
+                } else {
+                    "lancer.png"
+                },
+            )
         });
     check_output(&output)?;
     check_preview(args)?;
@@ -179,7 +185,32 @@ pub fn plan(
         )));
     }
     if desc.film.gbuffer.is_some() {
-        check_gbuffer(args, &output, &pixels, resumed.is_some())?;
+        check_gbuffer(
+            args,
+            &output,
+            &pixels,
+            resumed.is_some(),
+            "gbuffer",
+            "g-buffer",
+        )?;
+    }
+    if desc.film.spectral.is_some() {
+        // The buckets hold radiance at the sampled wavelengths, which an RGB render has
+        // not: refuse rather than write a file whose spectral channels are all zero.
+        if !args.spectral_mode() {
+            return Err(CliError::input(
+                "Film \"spectral\" writes radiance per wavelength bucket, which needs the \
+                 spectral mode: drop --rgb (or use Film \"rgb\")",
+            ));
+        }
+        check_gbuffer(
+            args,
+            &output,
+            &pixels,
+            resumed.is_some(),
+            "spectral",
+            "spectral",
+        )?;
     }
     let bounds = pixels.bounds;
     check_film_memory(&bounds, args.max_film_gib)?;
@@ -226,6 +257,7 @@ pub fn plan(
             .gbuffer
             .is_some()
             .then(|| GbufferHeader::of(desc, None)),
+        spectral_fp16: desc.film.spectral.map(|_| desc.film.save_fp16),
     })
 }
 
@@ -236,21 +268,27 @@ fn new_film(desc: &SceneDesc, bounds: &PixelBounds) -> Film {
         let config = GbufferConfig::new(g, desc.camera.camera_from_world, desc.sampler.spp);
         film.gbuffer = Some(Box::new(GbufferFilm::new(config, bounds.area() as usize)));
     }
+    if let Some(s) = desc.film.spectral {
+        film.spectral = Some(Box::new(SpectralSums::new(s, bounds.area() as usize)));
+    }
     film
 }
 
-/// Refuses what a `gbuffer` film cannot do: an output other than EXR (pbrt-v4 writes it only
-/// as EXR), and the ways of rendering in pieces (split parts, sample ranges, checkpoints and
-/// resuming), whose files keep the colour sums only.
+/// Refuses what a `gbuffer` or `spectral` film (`kind`, its extra channels `extra`) cannot
+/// do: an output other than EXR (pbrt-v4 writes them only as EXR), and the ways of rendering
+/// in pieces (split parts, sample ranges, checkpoints and resuming), whose files keep the
+/// colour sums only.
 fn check_gbuffer(
     args: &RenderArgs,
     output: &Path,
     pixels: &split::Plan,
     resumed: bool,
+    kind: &str,
+    extra: &str,
 ) -> Result<(), CliError> {
     if ImageFormat::from_path(output) != Some(ImageFormat::Exr) {
         return Err(CliError::input(format!(
-            "{}: a gbuffer film is written only as OpenEXR (.exr), as in pbrt-v4; name the \
+            "{}: a {kind} film is written only as OpenEXR (.exr), as in pbrt-v4; name the \
              output .exr (or use Film \"rgb\" for a PNG)",
             output.display()
         )));
@@ -266,8 +304,8 @@ fn check_gbuffer(
     };
     match piece {
         Some(what) => Err(CliError::input(format!(
-            "a gbuffer film cannot be rendered as {what} yet: parts and checkpoints keep the \
-             colour sums only, not the g-buffer channels; render it in one go"
+            "a {kind} film cannot be rendered as {what} yet: parts and checkpoints keep the \
+             colour sums only, not the {extra} channels; render it in one go"
         ))),
         None => Ok(()),
     }
@@ -470,6 +508,7 @@ pub fn render(
                 state,
                 &plan.meta,
                 plan.gbuffer.as_ref(),
+                plan.spectral_fp16,
                 &plan.checkpoint,
             )
         })?;
@@ -496,13 +535,19 @@ fn save_checkpoint(
     state: &RenderState,
     meta: &PartMeta,
     gbuffer: Option<&GbufferHeader>,
+    spectral_fp16: Option<bool>,
     path: &Path,
 ) -> Result<(), CliError> {
     if let Some(output) = image {
         let b = state.film.bounds;
-        match gbuffer {
-            Some(h) => write_gbuffer_exr(output, &state.film, meta.scale, h).map(|_| ()),
-            None => write_image(output, b.width(), b.height(), &state.film.image(meta.scale)),
+        match (gbuffer, spectral_fp16) {
+            (Some(h), _) => write_gbuffer_exr(output, &state.film, meta.scale, h).map(|_| ()),
+            (None, Some(fp16)) => {
+                write_spectral_exr(output, &state.film, meta.scale, fp16).map(|_| ())
+            }
+            (None, None) => {
+                write_image(output, b.width(), b.height(), &state.film.image(meta.scale))
+            }
         }
         .map_err(|e| CliError::runtime(e.to_string()))?;
     }
@@ -552,6 +597,16 @@ pub fn write(args: &RenderArgs, plan: &Plan, live: LiveOutputs) -> Result<f64, C
         if let Some(h) = &plan.gbuffer {
             let clamped =
                 write_gbuffer_exr(path, film, plan.meta.scale, h).map_err(|e| e.to_string())?;
+            if clamped > 0 && !args.quiet {
+                eprintln!(
+                    "warning: {clamped} pixel values clamped to the largest half float, \
+                     {HALF_MAX} (as pbrt-v4 does with savefp16)"
+                );
+            }
+            Ok(())
+        } else if let Some(fp16) = plan.spectral_fp16 {
+            let clamped =
+                write_spectral_exr(path, film, plan.meta.scale, fp16).map_err(|e| e.to_string())?;
             if clamped > 0 && !args.quiet {
                 eprintln!(
                     "warning: {clamped} pixel values clamped to the largest half float, \

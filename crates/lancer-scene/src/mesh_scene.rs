@@ -276,6 +276,7 @@ fn scene_around(
                 two_sided: false,
                 spectrum: None,
                 power: None,
+                image: None,
             }),
             alpha: None,
         });

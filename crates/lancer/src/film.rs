@@ -5,6 +5,8 @@
 //! across threads or machines, and merged in any order gives bit-identical pixels.
 
 pub mod gsums;
+pub mod spectral;
+pub mod spectral_write;
 
 use crate::math::Rgb;
 
@@ -156,6 +158,8 @@ pub struct Film {
     pub pixels: Vec<PixelSum>,
     /// The auxiliary sums of a `gbuffer` film (none for an `rgb` film).
     pub gbuffer: Option<Box<gsums::GbufferFilm>>,
+    /// The wavelength-bucket sums of a `spectral` film (none for other films).
+    pub spectral: Option<Box<spectral::SpectralSums>>,
 }
 
 impl Film {
@@ -167,6 +171,14 @@ impl Film {
             bounds,
             pixels: vec![PixelSum::default(); bounds.area() as usize],
             gbuffer: None,
+            spectral: None,
+        }
+    }
+
+    /// Adds a tile's wavelength-bucket sums, if the film is a spectral one.
+    pub fn merge_spectral_tile(&mut self, tile: &PixelBounds, sums: &spectral::SpectralSums) {
+        if let Some(s) = &mut self.spectral {
+            s.merge_tile(&self.bounds, tile, sums);
         }
     }
 

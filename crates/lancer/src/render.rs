@@ -244,6 +244,57 @@ pub fn render_tile_gbuffer(
     (sums, gsums, stats)
 }
 
+/// [`render_tile_samples`] for a `spectral` film ([`crate::film::spectral`]): the
+/// wavelengths drawn uniformly over the film's range (as pbrt-v4's `SpectralFilm`), the
+/// colour sums as for any film, and each sample's radiance added to its wavelengths' buckets.
+/// In RGB mode the buckets stay empty (the CLI refuses that combination).
+pub fn render_tile_spectral(
+    scene: &Scene,
+    settings: &RenderSettings,
+    desc: &crate::film::spectral::SpectralDesc,
+    tile: &PixelBounds,
+    samples: std::ops::Range<u32>,
+) -> (
+    Vec<PixelSum>,
+    crate::film::spectral::SpectralSums,
+    RenderStats,
+) {
+    let rays0 = rays_traced();
+    let mut stats = RenderStats::default();
+    let mut sampler = Sampler::new(settings.sampler, settings.spp, settings.seed);
+    let mut sums = vec![PixelSum::default(); tile.area() as usize];
+    let mut buckets = crate::film::spectral::SpectralSums::new(*desc, sums.len());
+    let w = tile.width() as usize;
+    for y in tile.y0..tile.y1 {
+        for x in tile.x0..tile.x1 {
+            let i = (y - tile.y0) as usize * w + (x - tile.x0) as usize;
+            for s in samples.clone() {
+                let (ray, weight) = camera_ray(scene, settings, &mut sampler, x, y, s);
+                let lambda = (settings.spectral && settings.integrator.computes_radiance())
+                    .then(|| desc.sample_wavelengths(sampler.get_1d()));
+                let l = match ray {
+                    Some(r) => {
+                        settings
+                            .integrator
+                            .li(scene, &r.ray, &mut sampler, lambda.as_ref())
+                            * r.weight
+                    }
+                    None => crate::math::SampledSpectrum::ZERO,
+                };
+                let rgb = scene_film_rgb(scene, lambda.as_ref(), l);
+                let rgb = film_sample(settings, &mut stats, rgb, SampleId { y, x, sample: s });
+                sums[i].add(rgb, weight);
+                if let Some(lambda) = &lambda {
+                    buckets.add(i, l, lambda, weight, settings.max_component_value);
+                }
+            }
+        }
+    }
+    stats.samples = tile.area() * samples.len() as u64;
+    stats.rays = rays_traced() - rays0;
+    (sums, buckets, stats)
+}
+
 /// One camera sample of pixel (`x`, `y`): its radiance (linear sRGB) and filter weight. A pure
 /// function of (scene, settings, pixel, sample index).
 fn camera_sample(
@@ -468,6 +519,7 @@ pub fn render_units(
     stop: &(dyn Fn() -> bool + Sync),
 ) -> RenderStats {
     let gbuffer = film.gbuffer.as_ref().map(|g| g.config);
+    let spectral = film.spectral.as_ref().map(|s| s.desc);
     let state = Mutex::new((film, done));
     let totals = Mutex::new(RenderStats::default());
     let mut start = 0;
@@ -489,6 +541,13 @@ pub fn render_units(
             }
             let u = &units[i];
             let (sums, gsums, tile_stats) = match &gbuffer {
+                None if spectral.is_some() => {
+                    let d = spectral.as_ref().unwrap();
+                    let (sums, ssums, stats) =
+                        render_tile_spectral(scene, settings, d, &u.tile, u.samples.clone());
+                    state.lock().unwrap().0.merge_spectral_tile(&u.tile, &ssums);
+                    (sums, None, stats)
+                }
                 None => {
                     let (sums, stats) =
                         render_tile_samples(scene, settings, &u.tile, u.samples.clone());

@@ -18,4 +18,5 @@ mod path_tracing;
 mod pbrt_habits;
 mod preview;
 mod sdf_shapes;
+mod spectral_film;
 mod workflow;

@@ -301,6 +301,7 @@ impl GltfLoader<'_> {
                     two_sided: info.double_sided,
                     spectrum: None,
                     power: None,
+                    image: None,
                 }),
                 alpha: info.alpha,
             });

@@ -2,6 +2,7 @@
 //! monde"), the graphics state saved and restored by `AttributeBegin`/`AttributeEnd`, named
 //! materials, textures, coordinate systems and objects, and the [`SceneDesc`] they build.
 
+use super::area_image::area_light_image;
 use super::cameras::{camera, frame_window};
 use super::convert::{Fallback, Reader, TextureNames};
 use super::light_spectra;
@@ -14,7 +15,9 @@ use super::parser::{Directive, Located, Parser};
 use super::search_path::SearchPath;
 use super::shapes::{ShapeGeometry, shape};
 use super::singular::{flatten, is_singular, unplaced};
-use super::textures::{float_texture, spectrum_texture};
+use super::textures::{
+    float_texture, needs_unbounded_variant, spectrum_texture, spectrum_texture_as,
+};
 use crate::error::{Location, SceneError, Warning};
 use crate::image_read::ImageCache;
 use lancer::material::Material;
@@ -23,6 +26,7 @@ use lancer::scene::desc::{
     AreaLightDesc, InstanceDesc, MovingInstanceDesc, MovingShapeDesc, SceneDesc, ShapeDesc,
 };
 use lancer::spectrum::ColorSpace;
+use lancer::spectrum::SpectrumKind::Unbounded;
 use std::collections::{HashMap, HashSet};
 
 /// The material a shape gets: one already in the list, or a name resolved at the end (pbrt-v4
@@ -450,6 +454,10 @@ impl Builder {
                 self.with_params("AreaLightSource", &ty, params, loc, |b, p| {
                     let mut a = area_light(p, &ty, dir, loc)?;
                     a.spectrum = light_spectra::emission_spectrum(p, "L", dir)?;
+                    if let Some(t) = area_light_image(&b.reader(p, dir), &mut a, loc)? {
+                        a.image = Some(b.desc.spectrum_textures.len() as u32);
+                        b.desc.spectrum_textures.push(t);
+                    }
                     b.gs.area_light = Some(a);
                     Ok(())
                 })
@@ -534,6 +542,15 @@ impl Builder {
                 let t = self.accept(converted, loc);
                 self.desc.spectrum_textures.push(t);
                 let index = self.desc.spectrum_textures.len() as u32 - 1;
+                // Its unbounded variant, when that differs (its warnings are the ones above).
+                self.textures.unbounded.remove(&name);
+                if needs_unbounded_variant(params, &self.textures) {
+                    let reader = self.reader(params, dir);
+                    let u = spectrum_texture_as(&reader, class, &self.gs.ctm, loc, Unbounded)?;
+                    self.desc.spectrum_textures.push(u.value);
+                    let u_index = self.desc.spectrum_textures.len() as u32 - 1;
+                    self.textures.unbounded.insert(name.clone(), u_index);
+                }
                 self.textures.spectra.insert(name, index);
             }
             _ => {

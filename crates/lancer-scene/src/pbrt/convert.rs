@@ -83,6 +83,10 @@ pub struct TextureNames {
     pub floats: HashMap<String, u32>,
     /// Spectrum textures: name → index.
     pub spectra: HashMap<String, u32>,
+    /// The spectrum textures whose unbounded variant differs (they hold a spectrum-valued
+    /// parameter, or refer to such a texture): name → index of that variant. The others read
+    /// the same either way.
+    pub unbounded: HashMap<String, u32>,
 }
 
 impl TextureNames {
@@ -99,6 +103,20 @@ impl TextureNames {
         match self.spectra.get(name) {
             Some(&i) => Ok(SpectrumTex::Tex(i)),
             None => Err(Self::missing("spectrum", "float", &self.floats, name, loc)),
+        }
+    }
+
+    /// The spectrum texture `name` read as `kind`: its unbounded variant when it has one and
+    /// `kind` is unbounded (pbrt-v4's `SpectrumType::Unbounded` textures).
+    pub fn spectrum_as(
+        &self,
+        name: &str,
+        loc: &Location,
+        kind: SpectrumKind,
+    ) -> Result<SpectrumTex, SceneError> {
+        match self.unbounded.get(name) {
+            Some(&i) if kind == SpectrumKind::Unbounded => Ok(SpectrumTex::Tex(i)),
+            _ => self.spectrum(name, loc),
         }
     }
 
@@ -156,7 +174,7 @@ impl Reader<'_> {
             None => default,
             Some(ColorParam::Const(c)) => SpectrumTex::Const(c),
             Some(ColorParam::Measured(m)) => SpectrumTex::Measured(m),
-            Some(ColorParam::Texture(t, loc)) => self.textures.spectrum(&t, &loc)?,
+            Some(ColorParam::Texture(t, loc)) => self.textures.spectrum_as(&t, &loc, kind)?,
         })
     }
 

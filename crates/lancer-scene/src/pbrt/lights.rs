@@ -300,6 +300,7 @@ pub fn area_light(
         two_sided: params.bool("twosided", false)?,
         spectrum: None,
         power: (power > 0.0).then_some(power),
+        image: None,
     })
 }
 
@@ -708,6 +709,7 @@ mod tests {
                 two_sided: false,
                 spectrum: None,
                 power: None,
+                image: None,
             })
         );
         assert!(unused.is_empty());
@@ -721,6 +723,7 @@ mod tests {
                 two_sided: true,
                 spectrum: None,
                 power: None,
+                image: None,
             })
         );
         assert!(unused.is_empty());

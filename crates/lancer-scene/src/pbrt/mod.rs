@@ -10,6 +10,7 @@
 //! reading through [`convert`]'s shared [`convert::Reader`]. [`singular`] places shapes under a
 //! transformation with no inverse, as pbrt-v4 does.
 
+pub mod area_image;
 pub mod builder;
 pub mod cameras;
 pub mod convert;

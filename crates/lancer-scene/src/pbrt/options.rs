@@ -1,6 +1,8 @@
 //! The rendering options: `Film`, `Sampler`, `PixelFilter`, `Integrator` and `Option`, with
 //! pbrt-v4's defaults. Kinds lancer does not have fall back to its nearest one, with a warning.
 
+mod spectral_film;
+
 use super::convert::{Fallback, MAX_RESOLUTION};
 use super::params::ParamList;
 use crate::error::SceneError;
@@ -27,6 +29,7 @@ pub fn film(
 ) -> Result<Fallback<FilmOptions>, SceneError> {
     let mut warnings = Vec::new();
     film.gbuffer = None;
+    film.spectral = None;
     match ty {
         "rgb" => {}
         "gbuffer" => {
@@ -45,6 +48,7 @@ pub fn film(
             };
             film.gbuffer = Some(lancer::gbuffer::GbufferDesc { world_space });
         }
+        "spectral" => film.spectral = Some(spectral_film::buckets(params)?),
         _ => warnings.push(format!(
             "film \"{ty}\" is not supported yet; lancer uses an \"rgb\" film"
         )),
@@ -75,8 +79,11 @@ pub fn film(
     let iso = params.float_checked("iso", 100.0, "positive", |v| v > 0.0)?;
     film.max_component_value =
         params.float_checked("maxcomponentvalue", f32::INFINITY, "positive", |v| v > 0.0)?;
-    // pbrt-v4's gbuffer film writes half floats unless told otherwise.
-    film.save_fp16 = params.bool("savefp16", film.gbuffer.is_some())?;
+    // pbrt-v4's gbuffer and spectral films write half floats unless told otherwise.
+    film.save_fp16 = params.bool(
+        "savefp16",
+        film.gbuffer.is_some() || film.spectral.is_some(),
+    )?;
     // The sensor's diagonal in mm: the realistic camera's film size.
     film.diagonal = params.float_checked("diagonal", 35.0, "positive", |v| v > 0.0)?;
     if let Some(name) = params.string("sensor")? {
@@ -444,8 +451,8 @@ mod tests {
         // pbrt-v4's gbuffer film writes half floats by default.
         assert!(f.film.save_fp16);
         assert_eq!(
-            warnings(r#"Film "spectral""#, new_film),
-            ["film \"spectral\" is not supported yet; lancer uses an \"rgb\" film"]
+            warnings(r#"Film "foo""#, new_film),
+            ["film \"foo\" is not supported yet; lancer uses an \"rgb\" film"]
         );
         assert_eq!(
             error("Film \"rgb\"\n  \"string sensor\" \"leica\"", new_film)

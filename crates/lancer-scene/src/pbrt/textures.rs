@@ -3,8 +3,8 @@
 //! `bilerp`, `dots`, `imagemap`, `fbm`, `wrinkled`, `windy` and `marble`, with the 2D mappings
 //! `uv`, `spherical`, `cylindrical` and `planar`. Texture space is the CTM at the directive.
 
-use super::convert::{Fallback, Reader, locate};
-use super::params::ColorParam;
+use super::convert::{Fallback, Reader, TextureNames, locate};
+use super::params::{ColorParam, ParamList, ParamType, Values};
 use crate::error::{Location, SceneError};
 use lancer::math::{Rgb, Transform, Vec3};
 use lancer::spectrum::SpectrumKind;
@@ -32,7 +32,35 @@ pub fn spectrum_texture(
     ctm: &Transform,
     loc: &Location,
 ) -> Result<Fallback<SpectrumTexture>, SceneError> {
-    spectrum(r, class, ctm).map_err(|e| locate(e, loc))
+    spectrum_texture_as(r, class, ctm, loc, SpectrumKind::Albedo)
+}
+
+/// [`spectrum_texture`] with its spectrum-valued parameters (and the textures it refers to)
+/// read as `kind`: pbrt-v4 makes each spectrum texture once per spectrum type
+/// (`SpectrumType::Albedo`, clamped to [0, 1], and `Unbounded`), and a material reads the one
+/// its parameter's type asks for (a conductor's `eta` and `k`: unbounded).
+pub fn spectrum_texture_as(
+    r: &Reader,
+    class: &str,
+    ctm: &Transform,
+    loc: &Location,
+    kind: SpectrumKind,
+) -> Result<Fallback<SpectrumTexture>, SceneError> {
+    spectrum(r, class, ctm, kind).map_err(|e| locate(e, loc))
+}
+
+/// Whether a spectrum texture with `params` reads differently as an unbounded spectrum than
+/// as an albedo: it has a `spectrum` or `blackbody` parameter (an albedo clamps those to
+/// [0, 1]) or refers to a texture that does. RGB values and images are clamped only where a
+/// material reads them as albedos, so they need no variant.
+pub fn needs_unbounded_variant(params: &ParamList, names: &TextureNames) -> bool {
+    params.iter().any(|p| match (p.ty, &p.values) {
+        (ParamType::Spectrum | ParamType::Blackbody, _) => true,
+        (ParamType::Texture, Values::Strings(v)) => {
+            v.iter().any(|n| names.unbounded.contains_key(n))
+        }
+        _ => false,
+    })
 }
 
 /// pbrt-v4's 3D mapping: texture space is the CTM at the `Texture` directive.
@@ -159,37 +187,38 @@ fn spectrum(
     r: &Reader,
     class: &str,
     ctm: &Transform,
+    kind: SpectrumKind,
 ) -> Result<Fallback<SpectrumTexture>, SceneError> {
-    use SpectrumKind::Albedo;
+    // Every spectrum-valued parameter is read as `kind` (see `spectrum_texture_as`).
     let t = match class {
         // A value given as a spectrum stays one (spectral mode samples its table): lancer's
         // constant texture holds RGB, so it is the spectrum scaled by 1.
-        "constant" => match r.params.color_or_texture("value", Albedo, r.dir)? {
+        "constant" => match r.params.color_or_texture("value", kind, r.dir)? {
             Some(ColorParam::Measured(m)) => SpectrumTexture::Scale {
                 tex: SpectrumTex::Measured(m),
                 scale: FloatTex::Const(1.0),
             },
-            _ => SpectrumTexture::Constant(
-                r.params.color("value", Albedo, r.dir)?.unwrap_or(Rgb::ONE),
-            ),
+            _ => {
+                SpectrumTexture::Constant(r.params.color("value", kind, r.dir)?.unwrap_or(Rgb::ONE))
+            }
         },
         "scale" => SpectrumTexture::Scale {
-            tex: r.spectrum_tex("tex", Rgb::ONE, Albedo)?,
+            tex: r.spectrum_tex("tex", Rgb::ONE, kind)?,
             scale: r.float_tex("scale", 1.0)?,
         },
         "mix" => SpectrumTexture::Mix {
-            tex1: r.spectrum_tex("tex1", Rgb::ZERO, Albedo)?,
-            tex2: r.spectrum_tex("tex2", Rgb::ONE, Albedo)?,
+            tex1: r.spectrum_tex("tex1", Rgb::ZERO, kind)?,
+            tex2: r.spectrum_tex("tex2", Rgb::ONE, kind)?,
             amount: r.float_tex("amount", 0.5)?,
         },
         "directionmix" => SpectrumTexture::DirectionMix {
-            tex1: r.spectrum_tex("tex1", Rgb::ZERO, Albedo)?,
-            tex2: r.spectrum_tex("tex2", Rgb::ONE, Albedo)?,
+            tex1: r.spectrum_tex("tex1", Rgb::ZERO, kind)?,
+            tex2: r.spectrum_tex("tex2", Rgb::ONE, kind)?,
             dir: direction(r, ctm)?,
         },
         "checkerboard" => {
-            let tex1 = r.spectrum_tex("tex1", Rgb::ONE, Albedo)?;
-            let tex2 = r.spectrum_tex("tex2", Rgb::ZERO, Albedo)?;
+            let tex1 = r.spectrum_tex("tex1", Rgb::ONE, kind)?;
+            let tex2 = r.spectrum_tex("tex2", Rgb::ZERO, kind)?;
             if dimension(r)? == 3 {
                 SpectrumTexture::Checkerboard3D {
                     mapping: mapping_3d(ctm),
@@ -206,7 +235,7 @@ fn spectrum(
         }
         "bilerp" => {
             let c = |name, default| -> Result<Rgb, SceneError> {
-                Ok(r.params.color(name, Albedo, r.dir)?.unwrap_or(default))
+                Ok(r.params.color(name, kind, r.dir)?.unwrap_or(default))
             };
             SpectrumTexture::Bilerp {
                 mapping: mapping_2d(r, ctm)?,
@@ -221,8 +250,8 @@ fn spectrum(
         // pbrt-v4 swaps them (see the float `dots`).
         "dots" => SpectrumTexture::Dots {
             mapping: mapping_2d(r, ctm)?,
-            background: r.spectrum_tex("inside", Rgb::ONE, Albedo)?,
-            dot: r.spectrum_tex("outside", Rgb::ZERO, Albedo)?,
+            background: r.spectrum_tex("inside", Rgb::ONE, kind)?,
+            dot: r.spectrum_tex("outside", Rgb::ZERO, kind)?,
         },
         "marble" => {
             let (octaves, omega) = octaves_roughness(r)?;

@@ -4,6 +4,7 @@
 mod common;
 
 mod alpha;
+mod area_image;
 mod coverage_table;
 mod curves_bilinear;
 mod envmap;

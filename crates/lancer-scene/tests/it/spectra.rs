@@ -205,3 +205,56 @@ Shape "sphere" "float radius" 1
         }
     }
 }
+
+/// A spectrum texture feeding a conductor's `eta` is read as an unbounded spectrum (pbrt-v4's
+/// `SpectrumType::Unbounded` variant), while the same texture as a reflectance is clamped to
+/// [0, 1]; a texture built on it follows.
+#[test]
+fn spectrum_textures_for_conductor_indices_are_unbounded() {
+    let d = scene(
+        r#"WorldBegin
+Texture "etas" "spectrum" "checkerboard" "spectrum tex1" "metal-Au-eta" "spectrum tex2" "metal-Cu-eta"
+Texture "scaled" "spectrum" "scale" "texture tex" "etas" "float scale" 1
+Material "conductor" "texture eta" "scaled" "spectrum k" "metal-Au-k"
+Shape "sphere"
+Material "diffuse" "texture reflectance" "scaled"
+Shape "sphere"
+"#,
+    );
+    let leaf = |t: SpectrumTex| -> (Rgb, f32) {
+        // scale → checkerboard → its tex1, a measured leaf.
+        let SpectrumTex::Tex(i) = t else {
+            panic!("{t:?}")
+        };
+        let lancer::texture::SpectrumTexture::Scale {
+            tex: SpectrumTex::Tex(j),
+            ..
+        } = &d.spectrum_textures[i as usize]
+        else {
+            panic!()
+        };
+        let lancer::texture::SpectrumTexture::Checkerboard {
+            tex1: SpectrumTex::Measured(m),
+            ..
+        } = &d.spectrum_textures[*j as usize]
+        else {
+            panic!()
+        };
+        (m.rgb, m.spectrum.at(400.0))
+    };
+    let material = |k: usize| &d.materials[d.shapes[k].material as usize];
+    let &Material::Conductor { eta, .. } = material(0) else {
+        panic!("{:?}", material(0))
+    };
+    let &Material::Diffuse { reflectance } = material(1) else {
+        panic!("{:?}", material(1))
+    };
+    // Gold's η is about 1.66 at 400 nm (pbrt-v4's metal-Au-eta): kept as is for the index,
+    // clamped to 1 for a reflectance.
+    let (rgb_eta, at400_eta) = leaf(eta);
+    let (rgb_refl, at400_refl) = leaf(reflectance);
+    assert!(at400_eta > 1.5, "{at400_eta}");
+    assert_eq!(at400_refl, 1.0);
+    assert!(rgb_eta.max_element() > 1.0, "{rgb_eta:?}");
+    assert!(rgb_refl.max_element() <= 1.0, "{rgb_refl:?}");
+}

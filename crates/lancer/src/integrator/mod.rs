@@ -233,6 +233,39 @@ fn bsdf_at_general(
     None
 }
 
+/// An image emitter's radiance at `hit` (its light holds the image: pbrt-v4's
+/// `DiffuseAreaLight::L` by uv); out of line, so that other emitters pay only the test.
+#[cold]
+#[inline(never)]
+fn image_emission(
+    scene: &Scene,
+    light: u32,
+    l: crate::math::PackedRgb,
+    hit: &SceneHit,
+) -> crate::math::Rgb {
+    match &scene.lights[light as usize] {
+        crate::light::Light::Area {
+            image: Some(img), ..
+        } => img.le(hit.si.uv),
+        _ => l.into(),
+    }
+}
+
+/// The colour an emitting primitive gives off at `hit`: its constant `l`, or with an image
+/// the image at the hit's uv.
+#[inline(always)]
+pub(crate) fn emission_rgb(
+    scene: &Scene,
+    e: &crate::scene::AreaEmission,
+    hit: &SceneHit,
+) -> crate::math::Rgb {
+    if e.spectrum == crate::scene::IMAGE_EMISSION {
+        image_emission(scene, e.light, e.l, hit)
+    } else {
+        e.l.into()
+    }
+}
+
 /// Radiance emitted by the surface at `hit` towards `wo` (area lights), at the wavelengths
 /// `lambda` in spectral mode.
 pub(crate) fn emitted(
@@ -243,7 +276,7 @@ pub(crate) fn emitted(
 ) -> SampledSpectrum {
     match scene.prims[hit.prim as usize].emission {
         Some(e) if e.two_sided || hit.si.n.dot(wo) > 0.0 => {
-            scene.light_radiance(e.light as usize, lambda, e.l.into(), 1.0)
+            scene.light_radiance(e.light as usize, lambda, emission_rgb(scene, &e, hit), 1.0)
         }
         _ => SampledSpectrum::ZERO,
     }

@@ -1,7 +1,7 @@
 //! Unidirectional path tracing with next-event estimation and multiple importance sampling.
 
 use super::path_spectra::PathSpectra;
-use super::{PathVertex, bsdf_at_memo, subsurface};
+use super::{PathVertex, bsdf_at_memo, specular_differentials, subsurface};
 use crate::light::LightSampleContext;
 use crate::material::{Bsdf, TransportMode};
 use crate::math::{Rgb, SampledSpectrum, Vec3, normalize};
@@ -94,6 +94,25 @@ pub fn li_observed<O: PathObserver>(
     regularize: bool,
     obs: &mut O,
 ) -> SampledSpectrum {
+    // Ray differentials through specular bounces only where textures filter over footprints
+    // (a second copy of the loop, so that other scenes pay nothing for them).
+    if scene.footprints.is_some() {
+        li_path::<O, true>(scene, ray, sampler, lambda, max_depth, regularize, obs)
+    } else {
+        li_path::<O, false>(scene, ray, sampler, lambda, max_depth, regularize, obs)
+    }
+}
+
+/// [`li_observed`], carrying specular ray differentials when `DIFF`.
+fn li_path<O: PathObserver, const DIFF: bool>(
+    scene: &Scene,
+    ray: &Ray,
+    sampler: &mut Sampler,
+    lambda: Option<&SampledWavelengths>,
+    max_depth: u32,
+    regularize: bool,
+    obs: &mut O,
+) -> SampledSpectrum {
     // The path's own copy of its wavelengths, which a dispersive surface may terminate.
     let mut wavelengths = lambda.copied();
     let mut l = SampledSpectrum::ZERO;
@@ -108,11 +127,15 @@ pub fn li_observed<O: PathObserver>(
     let mut any_non_specular = false;
     // Constant spectra at the path's wavelengths, evaluated once (spectral mode).
     let mut memo = PathSpectra::new();
+    let mut diff = None; // the ray's differentials after specular bounces (filtered textures)
     loop {
         // Bound by reference, here and for the BSDF: moving the records out of the returned
         // Options copied them with wide loads right after the callee's narrower stores, which
         // stalled on store forwarding.
-        let found = scene.intersect(&ray);
+        let mut found = scene.intersect(&ray);
+        if DIFF && diff.is_some() {
+            specular_differentials::apply(&mut found, diff.as_ref());
+        }
         let Some(hit) = &found else {
             // Environment light: counted in full where no light sampling could have found it
             // (camera rays, specular bounces), otherwise weighted against light sampling.
@@ -266,6 +289,9 @@ pub fn li_observed<O: PathObserver>(
             eta_scale *= bs.eta * bs.eta;
         }
         prev_ctx = Some(ctx);
+        if DIFF {
+            diff = specular_differentials::spawn(scene, &ray, diff.as_ref(), hit, &bs);
+        }
         ray = si.spawn_ray(bs.wi);
         // Refracted into a subsurface material: a BSSRDF picks where the light leaves.
         if bs.is_transmission() {
@@ -278,6 +304,7 @@ pub fn li_observed<O: PathObserver>(
                     ctx: exit_ctx,
                 } => {
                     ray = exit_ray;
+                    diff = None;
                     p_b = BouncePdf::Known(exit_pdf);
                     prev_ctx = Some(exit_ctx);
                     specular_bounce = false;

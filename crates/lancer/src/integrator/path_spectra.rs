@@ -94,7 +94,8 @@ impl PathSpectra {
     ) -> SampledSpectrum {
         match scene.prims[hit.prim as usize].emission {
             Some(e) if e.two_sided || hit.si.n.dot(wo) > 0.0 => {
-                self.light_radiance(scene, e.light as usize, lambda, e.l.into(), 1.0)
+                let l = super::emission_rgb(scene, &e, hit);
+                self.light_radiance(scene, e.light as usize, lambda, l, 1.0)
             }
             _ => SampledSpectrum::ZERO,
         }

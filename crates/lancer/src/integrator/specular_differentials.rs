@@ -3,11 +3,91 @@
 //! offset rays one pixel over in x and y, followed through a mirror or a refraction so that a
 //! texture seen in a mirror or through glass is filtered over its own footprint.
 //!
-//! Not yet used by the path integrator: lancer's footprints come from the camera's minimum
-//! differentials at every hit (`camera/footprint.rs`); carrying these through specular
-//! bounces is issue 17's remaining step.
+//! The path integrator ([`super::path`]) carries them through chains of perfectly specular
+//! bounces when the scene's textures use footprints (elsewhere every hit's footprint comes
+//! from the camera's minimum differentials, `camera/footprint.rs`, as pbrt-v4 does after a
+//! non-specular bounce): [`spawn`] after a specular sample, [`apply`] at the next hit.
+//! The incoming offset rays are rebuilt from the hit's footprint (the offset ray in x runs
+//! from its origin to p + ∂p/∂x; a camera ray's offset rays start at its origin, exact for a
+//! pinhole), and ∂n/∂x, ∂n/∂y are taken as zero (lancer's hits do not carry ∂n/∂u, ∂n/∂v):
+//! exact for flat mirrors and glass, a footprint too small behind curved ones.
 
-use crate::math::Vec3;
+use crate::material::BsdfSample;
+use crate::math::{Vec3, normalize};
+use crate::ray::Ray;
+use crate::scene::{Scene, SceneHit};
+
+/// After a BSDF sample `bs` at `hit` of `ray` (whose own differentials are `incoming`, if it
+/// has any): the new ray's differentials when the sample is a perfect specular reflection or
+/// transmission and the scene's textures use footprints (pbrt-v4's `SpawnRay` with a BSDF),
+/// `None` otherwise.
+#[inline(always)]
+pub fn spawn(
+    scene: &Scene,
+    ray: &Ray,
+    incoming: Option<&Differentials>,
+    hit: &SceneHit,
+    bs: &BsdfSample,
+) -> Option<Differentials> {
+    if scene.footprints.is_none() || !bs.flags.is_specular() {
+        return None;
+    }
+    spawn_specular(ray, incoming, hit, bs)
+}
+
+#[cold]
+#[inline(never)]
+fn spawn_specular(
+    ray: &Ray,
+    incoming: Option<&Differentials>,
+    hit: &SceneHit,
+    bs: &BsdfSample,
+) -> Option<Differentials> {
+    let si = &hit.si;
+    let [dpdx, dpdy] = hit.footprint;
+    if dpdx == Vec3::ZERO && dpdy == Vec3::ZERO {
+        return None;
+    }
+    let (ox, oy) = incoming.map_or((ray.o, ray.o), |d| (d.rx_origin, d.ry_origin));
+    let h = SpecularHit {
+        p: si.p,
+        dpdx,
+        dpdy,
+        n: si.shading.n,
+        dndx: Vec3::ZERO,
+        dndy: Vec3::ZERO,
+    };
+    let (rx_in, ry_in) = (normalize(si.p + dpdx - ox), normalize(si.p + dpdy - oy));
+    let d = if bs.flags.is_reflection() {
+        reflected(&h, rx_in, ry_in, si.wo, bs.wi)
+    } else {
+        refracted(&h, rx_in, ry_in, si.wo, bs.wi, bs.eta)
+    };
+    // pbrt-v4 drops differentials that blew up.
+    let finite = [d.rx_origin, d.ry_origin, d.rx_dir, d.ry_dir]
+        .iter()
+        .all(|v| v.is_finite() && v.length_squared() < 1e16);
+    finite.then_some(d)
+}
+
+/// At the hit `found` of a ray whose differentials are `diff`: the hit's footprint from
+/// them, where the offset rays meet its tangent plane (pbrt-v4's `ComputeDifferentials`:
+/// t = (n·p − n·o)/(n·d)); kept from the camera's approximation when an offset ray runs
+/// along the plane.
+#[cold]
+#[inline(never)]
+pub fn apply(found: &mut Option<SceneHit>, diff: Option<&Differentials>) {
+    if let (Some(hit), Some(d)) = (found, diff) {
+        let (p, n) = (hit.si.p, hit.si.n);
+        let at = |o: Vec3, dir: Vec3| {
+            let t = (n.dot(p) - n.dot(o)) / n.dot(dir);
+            t.is_finite().then(|| o + dir * t - p)
+        };
+        if let (Some(dx), Some(dy)) = (at(d.rx_origin, d.rx_dir), at(d.ry_origin, d.ry_dir)) {
+            hit.footprint = [dx, dy];
+        }
+    }
+}
 
 /// The offset rays of a ray differential: origins and directions one pixel over in x and y.
 #[derive(Clone, Copy, Debug, PartialEq)]

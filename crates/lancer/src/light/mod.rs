@@ -4,6 +4,7 @@
 //! light arrive, how much, and where must a shadow ray go to check that nothing is in the way".
 
 mod area;
+mod area_image;
 mod bounds;
 mod bvh;
 mod bvh_build;
@@ -18,6 +19,7 @@ mod sample;
 mod sampler;
 
 pub use area::Emitter;
+pub use area_image::{AreaImage, mean_texel};
 pub use bounds::{DirectionCone, LightBounds, LightExtent};
 pub use bvh::BvhLightSampler;
 pub use compact::CompactLightBounds;
@@ -78,6 +80,9 @@ pub enum Light {
         /// Its surface, prepared for sampling (a whole sphere is sampled by the cone of
         /// directions it subtends rather than by area).
         emitter: Emitter,
+        /// The image the radiance comes from (pbrt-v4's `filename`; `l` is then its mean
+        /// times its scale).
+        image: Option<Box<AreaImage>>,
     },
     /// Constant-radiance environment ("sky").
     UniformInfinite {
@@ -137,6 +142,7 @@ impl Light {
             two_sided,
             area,
             emitter: Emitter::Triangle { p, n },
+            image: None,
             ..
         } = self
         {
@@ -161,9 +167,18 @@ impl Light {
                 two_sided,
                 area,
                 emitter,
-            } => area::sample_area_li(
-                *prim, *l, *two_sided, *area, emitter, ctx, u, shapes, meshes,
-            ),
+                image,
+            } => {
+                let mut s = area::sample_area_li(
+                    *prim, *l, *two_sided, *area, emitter, ctx, u, shapes, meshes,
+                )?;
+                if image.is_some() {
+                    s.l = area_image::sampled_radiance(
+                        image, *l, shapes, *prim, meshes, ctx.p, s.p_light,
+                    );
+                }
+                Some(s)
+            }
             Light::Point { p, intensity } => {
                 let d = *p - ctx.p;
                 let r2 = d.length_squared();
@@ -297,7 +312,8 @@ impl Light {
         match self {
             Light::Point { intensity, .. } | Light::Spot { intensity, .. } => Some(*intensity),
             Light::Distant { l, .. } | Light::UniformInfinite { l, .. } => Some(*l),
-            Light::Area { l, .. } => Some((*l).into()),
+            Light::Area { l, image: None, .. } => Some((*l).into()),
+            Light::Area { .. } => None,
             Light::Goniometric(light) => Some(light.intensity()),
             Light::ImageInfinite(_) | Light::PortalInfinite(_) | Light::Projection(_) => None,
         }

@@ -5,7 +5,7 @@
 use super::bssrdf::{SubsurfaceCoefficients, TabulatedBssrdf, subsurface_from_diffuse};
 use super::{COLOUR_SLOTS, Material, SpectralColours};
 use crate::math::{Rgb, SampledSpectrum, Vec3, rgb_lanes};
-use crate::spectrum::sampled::{ColourKind, RgbSpectrum};
+use crate::spectrum::sampled::ColourKind;
 use crate::texture::{SpectrumTex, TexCoord, TextureEval};
 
 impl SubsurfaceCoefficients {
@@ -48,7 +48,9 @@ impl Material {
         };
         let (coefficients, scale, eta, table) = (&m.coefficients, &m.scale, &m.eta, &m.table);
         // A slot's colour as [`Material::bxdf`] reads it: RGB lanes, or the prepared
-        // spectrum of a constant, or the uplift of a texel.
+        // spectrum of a constant, or a texture's value at the wavelengths (the uplift of its
+        // RGB value, or for a tree holding spectra its sampled values, as pbrt-v4 evaluates
+        // spectrum textures).
         let colour = |slot: usize, t: SpectrumTex, kind: ColourKind| match (spectral, t) {
             (None, _) => {
                 let c = tex.spectrum(t, tc);
@@ -60,9 +62,7 @@ impl Material {
             (Some(sc), SpectrumTex::Const(_) | SpectrumTex::Measured(_)) => {
                 sc.lambda.sample_prepared(&sc.consts[slot])
             }
-            (Some(sc), SpectrumTex::Tex(_)) => sc
-                .lambda
-                .sample(&RgbSpectrum::new(tex.spectrum(t, tc), kind)),
+            (Some(sc), SpectrumTex::Tex(_)) => tex.spectrum_at(t, tc, sc.lambda, kind),
         };
         let (sigma_a, sigma_s) = match *coefficients {
             SubsurfaceCoefficients::Coefficients { sigma_a, sigma_s } => (
@@ -79,5 +79,81 @@ impl Material {
         };
         let eta = if *eta == 0.0 { 1.0 } else { *eta };
         Some(TabulatedBssrdf::new(po, ns, eta, sigma_a, sigma_s, table))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::bssrdf::{BssrdfTable, SubsurfaceMaterial};
+    use crate::spectrum::dense::{Measured, PreparedSpectrum};
+    use crate::spectrum::sampled::SampledWavelengths;
+    use crate::spectrum::{Spectrum, SpectrumKind};
+    use crate::texture::{FloatTex, SpectrumTexture};
+
+    /// σa from a texture holding a spectrum (a ramp 0 at 300 nm to 2 at 800 nm, scaled by 1)
+    /// is that spectrum at the path's wavelengths, not the uplift of its RGB reduction.
+    #[test]
+    fn textured_coefficients_are_sampled_at_the_wavelengths() {
+        let ramp = Spectrum::PiecewiseLinear {
+            lambda: vec![300.0, 800.0],
+            values: vec![0.0, 2.0],
+        };
+        let spectra = vec![SpectrumTexture::Scale {
+            tex: SpectrumTex::Measured(Measured::new(
+                &ramp,
+                Rgb::splat(1.0),
+                SpectrumKind::Unbounded,
+            )),
+            scale: FloatTex::Const(1.0),
+        }];
+        let tex = TextureEval {
+            floats: &[],
+            spectra: &spectra,
+        };
+        let m = Material::Subsurface(SubsurfaceMaterial {
+            coefficients: SubsurfaceCoefficients::Coefficients {
+                sigma_a: SpectrumTex::Tex(0),
+                sigma_s: SpectrumTex::Const(Rgb::ONE),
+            },
+            scale: 3.0,
+            eta: 1.33,
+            uroughness: FloatTex::Const(0.0),
+            vroughness: FloatTex::Const(0.0),
+            remap_roughness: true,
+            table: BssrdfTable::shared(0.0, 1.33),
+        });
+        let lambda = SampledWavelengths::sample_visible(0.3);
+        // σs's constant slot: 1 everywhere.
+        let mut consts = [PreparedSpectrum::BLACK; COLOUR_SLOTS];
+        consts[1] = PreparedSpectrum::Rgb(crate::spectrum::sampled::RgbSpectrum::new(
+            Rgb::ONE,
+            ColourKind::Unbounded,
+        ));
+        let spectral = Some(SpectralColours {
+            lambda: &lambda,
+            consts: &consts,
+        });
+        let b = m
+            .bssrdf(&tex, &TexCoord::default(), spectral, Vec3::ZERO, Vec3::Z)
+            .unwrap();
+        // σt = 3·(ramp(λ) + 1), ramp(λ) = 2(λ − 300)/500.
+        let ramp_at = (lambda.lambda - glam::Vec4::splat(300.0)) * (2.0 / 500.0);
+        let want = 3.0 * (ramp_at + glam::Vec4::ONE);
+        assert!(
+            (b.sigma_t - want).abs().max_element() < 1e-2 * want.max_element(),
+            "{} vs {want}",
+            b.sigma_t
+        );
+        // Through RGB (the uplift of the ramp's reduction) it would be off by more.
+        let via_rgb = lambda.sample(&crate::spectrum::sampled::RgbSpectrum::new(
+            tex.spectrum(SpectrumTex::Tex(0), &TexCoord::default()),
+            ColourKind::Unbounded,
+        ));
+        let old = 3.0 * (via_rgb + glam::Vec4::ONE);
+        assert!(
+            (old - want).abs().max_element() > 1e-2 * want.max_element(),
+            "{old} vs {want}"
+        );
     }
 }

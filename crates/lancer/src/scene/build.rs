@@ -8,18 +8,18 @@ use super::desc::{AreaLightDesc, Geometry, LightDesc, SceneDesc, ShapeDesc, ZERO
 use super::instance::{Instance, Instances, ObjectAccel};
 use super::power::{emission_area, power_radiance};
 use super::prim::{
-    AreaEmission, BuildError, NO_SPECTRUM, PrimInfo, check_media, check_shape, mesh_triangles,
-    prim_media,
+    AreaEmission, BuildError, IMAGE_EMISSION, NO_SPECTRUM, PrimInfo, check_media, check_shape,
+    mesh_triangles, prim_media,
 };
 use super::tris::SceneTrisBuilder;
 use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
 use crate::light::{
-    Emitter, GoniometricLight, ImageInfiniteLight, Light, LightDistribution, LightSampler,
-    PortalInfiniteLight, ProjectionLight,
+    AreaImage, Emitter, GoniometricLight, ImageInfiniteLight, Light, LightDistribution,
+    LightSampler, PortalInfiniteLight, ProjectionLight,
 };
 use crate::material::Material;
-use crate::math::{Bounds3, PackedRgb, PackedVec3, Transform, Vec3};
+use crate::math::{Bounds3, PackedRgb, PackedVec3, Rgb, Transform, Vec3};
 use crate::shape::{
     BilinearMesh, Cone, Cuboid, Cylinder, Disk, Hyperboloid, Paraboloid, Placement, Plane, Sdf,
     Shape, Sphere, Triangle, TriangleMesh, Voxels,
@@ -258,13 +258,22 @@ fn primitives(list: &[Placed<'_>], n_materials: usize) -> Result<Primitives, Bui
         };
         let info = PrimInfo {
             material: sd.material,
-            emission: sd.area_light.map(|a| AreaEmission {
-                l: a.l.into(),
-                two_sided: a.two_sided,
-                spectrum: a
-                    .spectrum
-                    .map_or(NO_SPECTRUM, |m| spectrum_index(&mut out.area_spectra, m)),
-                light: 0,
+            emission: sd.area_light.map(|a| match a.image {
+                // Until phase 5 makes the light, `light` holds the image's texture index.
+                Some(tex) => AreaEmission {
+                    l: a.l.into(),
+                    two_sided: a.two_sided,
+                    spectrum: IMAGE_EMISSION,
+                    light: tex,
+                },
+                None => AreaEmission {
+                    l: a.l.into(),
+                    two_sided: a.two_sided,
+                    spectrum: a
+                        .spectrum
+                        .map_or(NO_SPECTRUM, |m| spectrum_index(&mut out.area_spectra, m)),
+                    light: 0,
+                },
             }),
             // A constant alpha of 1 (pbrt's default) cuts nothing: no test needed.
             alpha: sd.alpha.filter(|a| *a != FloatTex::Const(1.0)),
@@ -519,13 +528,21 @@ fn lights(
         if !(area > 0.0 && area.is_finite()) || e.l == PackedRgb::ZERO {
             continue;
         }
+        let image = (e.spectrum == IMAGE_EMISSION)
+            .then(|| area_image(desc, e.light, e.l.into()))
+            .flatten();
         e.light = lights.len() as u32;
         lights.push(Light::Area {
             prim: i as u32,
-            l: e.l,
+            // With an image: its mean times its factor, for the power and the light bounds
+            // (pbrt-v4's `Phi` and `Bounds`).
+            l: image
+                .as_ref()
+                .map_or(e.l, |im| (im.mean() * im.scale).into()),
             two_sided: e.two_sided,
             area,
             emitter: Emitter::new(shape, meshes, whole_sphere(shape)),
+            image,
         });
         spectra.push(area_spectra.get(e.spectrum as usize).copied());
     }
@@ -548,11 +565,23 @@ fn spectrum_index(list: &mut Vec<Measured>, m: Measured) -> u16 {
     let same = |o: &Measured| o.rgb == m.rgb && std::ptr::eq(o.spectrum, m.spectrum);
     match list.iter().position(same) {
         Some(i) => i as u16,
-        None if list.len() < NO_SPECTRUM as usize => {
+        None if list.len() < IMAGE_EMISSION as usize => {
             list.push(m);
             (list.len() - 1) as u16
         }
         None => NO_SPECTRUM,
+    }
+}
+
+/// The image of an area light whose radiance is texture `tex` of `desc` times `factor` (grey),
+/// `None` when that is not an image texture (the reader makes only those).
+fn area_image(desc: &SceneDesc, tex: u32, factor: Rgb) -> Option<Box<AreaImage>> {
+    match desc.spectrum_textures.get(tex as usize)? {
+        crate::texture::SpectrumTexture::Image(it) => Some(Box::new(AreaImage {
+            mipmap: it.mipmap.clone(),
+            scale: it.scale * factor.x,
+        })),
+        _ => None,
     }
 }
 

@@ -120,6 +120,7 @@ mod tests {
                 two_sided: false,
                 spectrum: None,
                 power: None,
+                image: None,
             }),
             alpha: None,
         }

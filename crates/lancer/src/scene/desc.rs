@@ -133,6 +133,8 @@ pub struct FilmDesc {
     pub color_space: crate::spectrum::ColorSpace,
     /// What the film writes besides colour (pbrt's `gbuffer` film).
     pub gbuffer: Option<crate::film::gsums::GbufferDesc>,
+    /// The wavelength buckets a `spectral` film writes besides colour.
+    pub spectral: Option<crate::film::spectral::SpectralDesc>,
 }
 
 impl FilmDesc {
@@ -177,6 +179,7 @@ impl Default for FilmDesc {
             white_balance: 0.0,
             color_space: crate::spectrum::ColorSpace::Srgb,
             gbuffer: None,
+            spectral: None,
         }
     }
 }
@@ -521,6 +524,10 @@ pub struct AreaLightDesc {
     /// every triangle, as in pbrt-v4) then emits `l · Φ / (π · sides · area)`, sides 2 when
     /// two-sided, area the primitive's own (see [`crate::scene::power::emission_area`]).
     pub power: Option<f32>,
+    /// pbrt-v4's `filename`: the index of an image texture among
+    /// [`SceneDesc::spectrum_textures`] the radiance is read from by uv; `l` is then the
+    /// factor its texels are multiplied by (grey).
+    pub image: Option<u32>,
 }
 
 /// A shape placed in the world with its material and optional emission.

@@ -12,7 +12,7 @@ mod spectra;
 mod tris;
 
 pub use counts::DescCounts;
-pub use prim::{AreaEmission, BuildError, PrimInfo};
+pub use prim::{AreaEmission, BuildError, IMAGE_EMISSION, PrimInfo};
 pub use spectra::SceneSpectra;
 pub use tris::SceneTris;
 

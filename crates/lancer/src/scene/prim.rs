@@ -37,6 +37,9 @@ pub struct AreaEmission {
 
 /// [`AreaEmission::spectrum`] of an emission given as an RGB colour.
 pub const NO_SPECTRUM: u16 = u16::MAX;
+/// [`AreaEmission::spectrum`] of an emission read from an image (its light,
+/// [`crate::light::Light::Area`], holds the image).
+pub const IMAGE_EMISSION: u16 = u16::MAX - 1;
 
 /// Why a scene description could not be built.
 #[derive(Debug, thiserror::Error, PartialEq)]

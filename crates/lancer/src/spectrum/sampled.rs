@@ -178,6 +178,33 @@ impl SampledWavelengths {
             SampledSpectrum::splat(LAMBDA_MAX),
         );
         let pdf = n.vis_pdf_scale * (SampledSpectrum::ONE - x * x);
+        Self::at(n, lambda, pdf)
+    }
+
+    /// Four wavelengths spread evenly over [lambda_min, lambda_max] from one uniform
+    /// number, as pbrt-v4's `SampleUniform` (the `spectral` film's wavelengths):
+    /// λ₀ = lerp(u, min, max), λᵢ = λᵢ₋₁ + (max − min)/4 wrapped back into the range, each of
+    /// density 1/(max − min).
+    pub fn sample_uniform(u: f32, lambda_min: f32, lambda_max: f32) -> SampledWavelengths {
+        let span = lambda_max - lambda_min;
+        let mut l = [0.0f32; N_SPECTRUM_SAMPLES];
+        l[0] = (1.0 - u) * lambda_min + u * lambda_max;
+        for i in 1..N_SPECTRUM_SAMPLES {
+            l[i] = l[i - 1] + span / N_SPECTRUM_SAMPLES as f32;
+            if l[i] > lambda_max {
+                l[i] = lambda_min + (l[i] - lambda_max);
+            }
+        }
+        Self::at(
+            norms(),
+            SampledSpectrum::from_array(l),
+            SampledSpectrum::splat(1.0 / span),
+        )
+    }
+
+    /// The wavelengths `lambda` (in [360, 830] nm) with densities `pdf`, and their table rows.
+    #[inline]
+    fn at(n: &Norms, lambda: SampledSpectrum, pdf: SampledSpectrum) -> SampledWavelengths {
         // One row (x̄, ȳ, z̄, k·D65) per wavelength from the f32 table, then transposed so that
         // each quantity has one lane per wavelength.
         let r = n.rows_at(lambda);

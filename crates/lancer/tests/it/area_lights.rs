@@ -23,6 +23,7 @@ fn emitter(geometry: Geometry, to_world: Transform, reverse: bool, l: f32) -> Sh
             two_sided: false,
             spectrum: None,
             power: None,
+            image: None,
         }),
         alpha: None,
     }

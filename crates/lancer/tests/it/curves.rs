@@ -348,6 +348,7 @@ fn an_emitting_curve_is_an_error() {
                 two_sided: false,
                 spectrum: None,
                 power: None,
+                image: None,
             }),
             alpha: None,
         }],

@@ -222,6 +222,7 @@ fn emitter(geometry: Geometry, to_world: Transform) -> ShapeDesc {
             two_sided: false,
             spectrum: None,
             power: None,
+            image: None,
         }),
         alpha: None,
     }

@@ -634,6 +634,7 @@ fn scenes_build_sdf_objects_and_refuse_them_as_emitters() {
         two_sided: false,
         spectrum: None,
         power: None,
+        image: None,
     };
     let e = Scene::build(&shape("sphere(1)", None, Some(light)))
         .err()

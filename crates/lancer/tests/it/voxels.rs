@@ -363,6 +363,7 @@ fn voxels_refuse_to_emit_and_empty_grids_vanish() {
                 two_sided: false,
                 spectrum: None,
                 power: None,
+                image: None,
             }),
             alpha: None,
         }],

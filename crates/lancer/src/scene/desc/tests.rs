@@ -109,6 +109,7 @@ fn emission_and_light_rules() {
             two_sided: false,
             spectrum: None,
             power: None,
+            image: None,
         }),
         alpha: None,
     };

@@ -16,6 +16,7 @@ fn glowing_desc(geometry: Geometry) -> lancer::scene::desc::ShapeDesc {
             two_sided: false,
             spectrum: None,
             power: None,
+            image: None,
         }),
         alpha: None,
     }
