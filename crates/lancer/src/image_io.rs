@@ -101,6 +101,18 @@ pub fn encode_png(width: u32, height: u32, pixels: &[Rgb]) -> Result<Vec<u8>, St
 
 /// Encodes pixels as an OpenEXR file with 32-bit float R, G, B channels.
 pub fn encode_exr(width: u32, height: u32, pixels: &[Rgb]) -> Result<Vec<u8>, String> {
+    let mut buf = std::io::Cursor::new(Vec::new());
+    encode_exr_into(&mut buf, width, height, pixels)?;
+    Ok(buf.into_inner())
+}
+
+/// [`encode_exr`] into a writer, so that a file can be written without holding its bytes.
+pub fn encode_exr_into<W: Write + std::io::Seek>(
+    out: &mut W,
+    width: u32,
+    height: u32,
+    pixels: &[Rgb],
+) -> Result<(), String> {
     use exr::prelude::*;
     let w = width as usize;
     let channels = SpecificChannels::rgb(|p: exr::math::Vec2<usize>| {
@@ -108,20 +120,28 @@ pub fn encode_exr(width: u32, height: u32, pixels: &[Rgb]) -> Result<Vec<u8>, St
         (c.x, c.y, c.z)
     });
     let image = Image::from_channels((width as usize, height as usize), channels);
-    let mut buf = std::io::Cursor::new(Vec::new());
     // Sequential: the parallel encoder writes chunks in the order they finish, so the bytes of
     // the file would depend on thread timing; a render must give the same file every time.
     image
         .write()
         .non_parallel()
-        .to_buffered(&mut buf)
-        .map_err(|e| e.to_string())?;
-    Ok(buf.into_inner())
+        .to_buffered(out)
+        .map_err(|e| e.to_string())
 }
 
 /// Writes `bytes` to `path` atomically: a temporary file in the same folder, synced, then
 /// renamed over `path`.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    write_atomic_with(path, |w| w.write_all(bytes))
+}
+
+/// Writes `path` atomically from `fill`, which writes the contents into a buffered temporary
+/// file in the same folder; the file is synced, then renamed over `path`. On any error the
+/// temporary file is removed and `path` is left as it was.
+pub fn write_atomic_with(
+    path: &Path,
+    fill: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> std::io::Result<()>,
+) -> std::io::Result<()> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),
@@ -132,8 +152,9 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
         .unwrap_or_default();
     let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
     let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
+        let mut w = std::io::BufWriter::new(std::fs::File::create(&tmp)?);
+        fill(&mut w)?;
+        let f = w.into_inner().map_err(|e| e.into_error())?;
         f.sync_all()?;
         drop(f);
         std::fs::rename(&tmp, path)
@@ -154,18 +175,35 @@ pub fn write_image(
     let format = ImageFormat::from_path(path).ok_or_else(|| ImageWriteError::UnknownFormat {
         path: path.to_path_buf(),
     })?;
-    let bytes = match format {
-        ImageFormat::Png => encode_png(width, height, pixels),
-        ImageFormat::Exr => encode_exr(width, height, pixels),
-    }
-    .map_err(|message| ImageWriteError::Encode {
+    let encode_error = |message| ImageWriteError::Encode {
         path: path.to_path_buf(),
         message,
-    })?;
-    write_atomic(path, &bytes).map_err(|source| ImageWriteError::Io {
+    };
+    let io_error = |source| ImageWriteError::Io {
         path: path.to_path_buf(),
         source,
-    })
+    };
+    match format {
+        ImageFormat::Png => {
+            let bytes = encode_png(width, height, pixels).map_err(encode_error)?;
+            write_atomic(path, &bytes).map_err(io_error)
+        }
+        // Streamed into the temporary file: holding the encoded bytes as well as the pixels
+        // raised the peak memory of a small render by a tenth.
+        ImageFormat::Exr => {
+            let mut failed = None;
+            let written = write_atomic_with(path, |w| {
+                encode_exr_into(w, width, height, pixels).map_err(|message| {
+                    failed = Some(message);
+                    std::io::Error::other("EXR encoding failed")
+                })
+            });
+            match failed {
+                Some(message) => Err(encode_error(message)),
+                None => written.map_err(io_error),
+            }
+        }
+    }
 }
 
 /// What a partial film (a "part" of a split render) says about itself: enough to check that
@@ -475,6 +513,27 @@ mod tests {
         for _ in 0..4 {
             assert_eq!(encode_exr(256, 256, &big).unwrap(), first);
         }
+    }
+
+    /// An EXR streamed into its file holds the bytes `encode_exr` gives, and leaves no
+    /// temporary file beside it.
+    #[test]
+    fn streamed_exr_file_equals_encoded_bytes() {
+        let dir = lancer_testing::ScratchDir::new("streamed-exr");
+        let px: Vec<Rgb> = (0..40 * 30)
+            .map(|i| Rgb::new(i as f32, 0.5, -1.0))
+            .collect();
+        let path = dir.join("a.exr");
+        write_image(&path, 40, 30, &px).unwrap();
+        assert_eq!(
+            std::fs::read(&path).unwrap(),
+            encode_exr(40, 30, &px).unwrap()
+        );
+        let names: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(names, vec![std::ffi::OsString::from("a.exr")]);
     }
 
     #[test]
