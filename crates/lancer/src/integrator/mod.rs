@@ -251,19 +251,24 @@ fn image_emission(
     }
 }
 
-/// The colour an emitting primitive gives off at `hit`: its constant `l`, or with an image
-/// the image at the hit's uv.
+/// If the surface at `hit` emits towards `wo`: its light's index and the colour it gives off
+/// there (its constant `l`, or with an image the image at the hit's uv).
 #[inline(always)]
-pub(crate) fn emission_rgb(
+pub(crate) fn emission_towards(
     scene: &Scene,
-    e: &crate::scene::AreaEmission,
     hit: &SceneHit,
-) -> crate::math::Rgb {
-    if e.spectrum == crate::scene::IMAGE_EMISSION {
+    wo: Vec3,
+) -> Option<(usize, crate::math::Rgb)> {
+    let e = scene.prims[hit.prim as usize].emission?;
+    if !(e.two_sided || hit.si.n.dot(wo) > 0.0) {
+        return None;
+    }
+    let l = if e.spectrum == crate::scene::IMAGE_EMISSION {
         image_emission(scene, e.light, e.l, hit)
     } else {
         e.l.into()
-    }
+    };
+    Some((e.light as usize, l))
 }
 
 /// Radiance emitted by the surface at `hit` towards `wo` (area lights), at the wavelengths
@@ -274,10 +279,7 @@ pub(crate) fn emitted(
     wo: Vec3,
     lambda: Option<&SampledWavelengths>,
 ) -> SampledSpectrum {
-    match scene.prims[hit.prim as usize].emission {
-        Some(e) if e.two_sided || hit.si.n.dot(wo) > 0.0 => {
-            scene.light_radiance(e.light as usize, lambda, emission_rgb(scene, &e, hit), 1.0)
-        }
-        _ => SampledSpectrum::ZERO,
-    }
+    emission_towards(scene, hit, wo).map_or(SampledSpectrum::ZERO, |(i, l)| {
+        scene.light_radiance(i, lambda, l, 1.0)
+    })
 }

@@ -92,13 +92,9 @@ impl PathSpectra {
         wo: Vec3,
         lambda: Option<&SampledWavelengths>,
     ) -> SampledSpectrum {
-        match scene.prims[hit.prim as usize].emission {
-            Some(e) if e.two_sided || hit.si.n.dot(wo) > 0.0 => {
-                let l = super::emission_rgb(scene, &e, hit);
-                self.light_radiance(scene, e.light as usize, lambda, l, 1.0)
-            }
-            _ => SampledSpectrum::ZERO,
-        }
+        super::emission_towards(scene, hit, wo).map_or(SampledSpectrum::ZERO, |(i, l)| {
+            self.light_radiance(scene, i, lambda, l, 1.0)
+        })
     }
 }
 
