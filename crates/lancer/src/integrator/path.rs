@@ -94,25 +94,6 @@ pub fn li_observed<O: PathObserver>(
     regularize: bool,
     obs: &mut O,
 ) -> SampledSpectrum {
-    // Ray differentials through specular bounces only where textures filter over footprints
-    // (a second copy of the loop, so that other scenes pay nothing for them).
-    if scene.footprints.is_some() {
-        li_path::<O, true>(scene, ray, sampler, lambda, max_depth, regularize, obs)
-    } else {
-        li_path::<O, false>(scene, ray, sampler, lambda, max_depth, regularize, obs)
-    }
-}
-
-/// [`li_observed`], carrying specular ray differentials when `DIFF`.
-fn li_path<O: PathObserver, const DIFF: bool>(
-    scene: &Scene,
-    ray: &Ray,
-    sampler: &mut Sampler,
-    lambda: Option<&SampledWavelengths>,
-    max_depth: u32,
-    regularize: bool,
-    obs: &mut O,
-) -> SampledSpectrum {
     // The path's own copy of its wavelengths, which a dispersive surface may terminate.
     let mut wavelengths = lambda.copied();
     let mut l = SampledSpectrum::ZERO;
@@ -133,7 +114,7 @@ fn li_path<O: PathObserver, const DIFF: bool>(
         // Options copied them with wide loads right after the callee's narrower stores, which
         // stalled on store forwarding.
         let mut found = scene.intersect(&ray);
-        if DIFF && diff.is_some() {
+        if diff.is_some() {
             specular_differentials::apply(&mut found, diff.as_ref());
         }
         let Some(hit) = &found else {
@@ -289,9 +270,10 @@ fn li_path<O: PathObserver, const DIFF: bool>(
             eta_scale *= bs.eta * bs.eta;
         }
         prev_ctx = Some(ctx);
-        if DIFF {
-            diff = specular_differentials::spawn(scene, &ray, diff.as_ref(), hit, &bs);
-        }
+        // Ray differentials through specular bounces, only where textures filter over
+        // footprints (`spawn` tests that first; one loop for every scene: a copy of the loop
+        // per case doubled its code and pushed the BSDF sample out of line, a stall per bounce).
+        diff = specular_differentials::spawn(scene, &ray, diff.as_ref(), hit, &bs);
         ray = si.spawn_ray(bs.wi);
         // Refracted into a subsurface material: a BSSRDF picks where the light leaves.
         if bs.is_transmission() {

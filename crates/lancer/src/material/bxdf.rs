@@ -185,7 +185,8 @@ impl Bsdf {
     }
 
     /// [`Bsdf::sample_f`] with `wo` in the local frame (the sample's `wi` is in the world).
-    #[inline]
+    /// Always inlined: out of line, its sample comes back through memory (a stall per bounce).
+    #[inline(always)]
     pub fn sample_f_lo(
         &self,
         wo_l: Vec3,
