@@ -92,7 +92,7 @@ impl PathSpectra {
         wo: Vec3,
         lambda: Option<&SampledWavelengths>,
     ) -> SampledSpectrum {
-        super::emission_towards(scene, hit, wo).map_or(SampledSpectrum::ZERO, |(i, l)| {
+        super::emission::emission_towards(scene, hit, wo).map_or(SampledSpectrum::ZERO, |(i, l)| {
             self.light_radiance(scene, i, lambda, l, 1.0)
         })
     }

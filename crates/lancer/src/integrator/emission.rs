@@ -1,0 +1,48 @@
+//! Light given off by the surface a path hits (area lights): its colour there, the radiance
+//! towards the path.
+
+use crate::math::{Rgb, SampledSpectrum, Vec3};
+use crate::scene::{Scene, SceneHit};
+use crate::spectrum::sampled::SampledWavelengths;
+
+/// An image emitter's radiance at `hit` (its light holds the image: pbrt-v4's
+/// `DiffuseAreaLight::L` by uv); out of line, so that other emitters pay only the test.
+#[cold]
+#[inline(never)]
+fn image_emission(scene: &Scene, light: u32, l: crate::math::PackedRgb, hit: &SceneHit) -> Rgb {
+    match &scene.lights[light as usize] {
+        crate::light::Light::Area {
+            image: Some(img), ..
+        } => img.le(hit.si.uv),
+        _ => l.into(),
+    }
+}
+
+/// If the surface at `hit` emits towards `wo`: its light's index and the colour it gives off
+/// there (its constant `l`, or with an image the image at the hit's uv).
+#[inline(always)]
+pub(crate) fn emission_towards(scene: &Scene, hit: &SceneHit, wo: Vec3) -> Option<(usize, Rgb)> {
+    let e = scene.prims[hit.prim as usize].emission?;
+    if !(e.two_sided || hit.si.n.dot(wo) > 0.0) {
+        return None;
+    }
+    let l = if e.spectrum == crate::scene::IMAGE_EMISSION {
+        image_emission(scene, e.light, e.l, hit)
+    } else {
+        e.l.into()
+    };
+    Some((e.light as usize, l))
+}
+
+/// Radiance emitted by the surface at `hit` towards `wo` (area lights), at the wavelengths
+/// `lambda` in spectral mode.
+pub(crate) fn emitted(
+    scene: &Scene,
+    hit: &SceneHit,
+    wo: Vec3,
+    lambda: Option<&SampledWavelengths>,
+) -> SampledSpectrum {
+    emission_towards(scene, hit, wo).map_or(SampledSpectrum::ZERO, |(i, l)| {
+        scene.light_radiance(i, lambda, l, 1.0)
+    })
+}
