@@ -116,13 +116,7 @@ impl IndexedTris {
         (p, first)
     }
 
-    /// The nearest hit with 0 < t ≤ `ray.t_max`: (slot of the triangle, hit).
-    #[inline]
-    pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<(u32, ShapeHit)> {
-        self.intersect_to(ray, ray.t_max, pre)
-    }
-
-    /// [`IndexedTris::intersect`] with the ray ending at `t_max` instead of `ray.t_max`.
+    /// The nearest hit with 0 < t ≤ `t_max`: (slot of the triangle, hit).
     #[inline]
     pub fn intersect_to(
         &self,
@@ -210,7 +204,7 @@ mod tests {
                     }
                 }
                 let pre = TriangleRay::new(&ray);
-                let got = accel.intersect(&ray, &pre).map(|(slot, h)| {
+                let got = accel.intersect_to(&ray, ray.t_max, &pre).map(|(slot, h)| {
                     let i = order[slot as usize];
                     (i, h.t.to_bits(), h.u.to_bits(), h.v.to_bits())
                 });

@@ -61,18 +61,12 @@ impl Tri4 {
         not_max_bits(&self.ids)
     }
 
-    /// The nearest hit with 0 < t ≤ `ray.t_max` among the four: (lane, hit). As in the
-    /// scalar test and pbrt-v4's `IntersectTriangle`, a hit at exactly `t_max` is accepted, so
-    /// among equal t the highest lane wins, exactly as when the lanes are tested one after
-    /// another, each against the ray shortened to the hit before. (Coplanar surfaces, such as
-    /// a prism standing on a floor, then resolve as in pbrt-v4: the triangle tested last.)
-    #[inline]
-    pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<(usize, ShapeHit)> {
-        self.intersect_to(ray, ray.t_max, pre)
-    }
-
-    /// [`Tri4::intersect`] with the ray ending at `t_max` instead of `ray.t_max`. Inlined into
-    /// the traversal loops: the ray and its set-up stay in registers across the leaves.
+    /// The nearest hit with 0 < t ≤ `t_max` among the four: (lane, hit). As in the scalar
+    /// test and pbrt-v4's `IntersectTriangle`, a hit at exactly `t_max` is accepted, so among
+    /// equal t the highest lane wins, exactly as when the lanes are tested one after another,
+    /// each against the ray shortened to the hit before. (Coplanar surfaces, such as a prism
+    /// standing on a floor, then resolve as in pbrt-v4: the triangle tested last.) Inlined
+    /// into the traversal loops: the ray and its set-up stay in registers across the leaves.
     #[inline(always)]
     pub fn intersect_to(
         &self,
@@ -437,7 +431,9 @@ mod tests {
         let ray = Ray::new(Vec3::new(0.1, 0.2, 1.0), Vec3::new(0.0, 0.0, -1.0));
         let pre = TriangleRay::new(&ray);
         let p = Tri4::new(&[(a, 7), (b, 9)]);
-        let (lane, h) = p.intersect(&ray, &pre).expect("both triangles are hit");
+        let (lane, h) = p
+            .intersect_to(&ray, ray.t_max, &pre)
+            .expect("both triangles are hit");
         assert_eq!(h.t, 1.0);
         assert_eq!((lane, p.ids[lane]), (1, 9));
         // The scalar sequence: b is tested against the ray shortened to a's hit, and kept.
@@ -451,6 +447,6 @@ mod tests {
         );
         // And a hit beyond t_max is still refused.
         let shorter = Ray { t_max: 0.99, ..ray };
-        assert!(p.intersect(&shorter, &pre).is_none());
+        assert!(p.intersect_to(&shorter, shorter.t_max, &pre).is_none());
     }
 }

@@ -188,7 +188,7 @@ impl SampledWavelengths {
     pub fn sample_uniform(u: f32, lambda_min: f32, lambda_max: f32) -> SampledWavelengths {
         let span = lambda_max - lambda_min;
         let mut l = [0.0f32; N_SPECTRUM_SAMPLES];
-        l[0] = (1.0 - u) * lambda_min + u * lambda_max;
+        l[0] = crate::math::lerp(u, lambda_min, lambda_max);
         for i in 1..N_SPECTRUM_SAMPLES {
             l[i] = l[i - 1] + span / N_SPECTRUM_SAMPLES as f32;
             if l[i] > lambda_max {
