@@ -51,10 +51,18 @@ impl AreaImage {
 
     /// Radiance at `p`, a point sampled on `shape`, seen from `from`: its uv found by tracing
     /// the segment from `from` to just past `p` against the shape (the samplers give points
-    /// without uv); the mean radiance when that ray misses (a grazing segment).
+    /// without uv); `mean`, the light's mean radiance (kept by the light, so that no sample
+    /// sums the image), when that ray misses (a grazing segment).
     #[cold]
     #[inline(never)]
-    pub fn le_towards(&self, shape: &Shape, meshes: &[TriangleMesh], from: Vec3, p: Vec3) -> Rgb {
+    pub fn le_towards(
+        &self,
+        shape: &Shape,
+        meshes: &[TriangleMesh],
+        from: Vec3,
+        p: Vec3,
+        mean: Rgb,
+    ) -> Rgb {
         // t ∈ (0, 1 + 10⁻³]: p is at t = 1; the margin absorbs its rounding.
         let ray = Ray {
             t_max: 1.0 + 1e-3,
@@ -62,7 +70,7 @@ impl AreaImage {
         };
         match shape.intersect(&ray) {
             Some(h) => self.le(shape.interaction(&ray, &h, meshes).uv),
-            None => self.mean() * self.scale,
+            None => mean,
         }
     }
 }
@@ -78,7 +86,8 @@ pub fn mean_texel(image: &crate::image::Image) -> Rgb {
 }
 
 /// What an area light's sample carries: its constant radiance `l`, or with an image the
-/// radiance at the point `p` sampled on primitive `prim` of `shapes`, seen from `from`.
+/// radiance at the point `p` sampled on primitive `prim` of `shapes`, seen from `from` (`l`
+/// is then the image's mean radiance, used where the uv cannot be found).
 #[inline(always)]
 pub fn sampled_radiance(
     image: &Option<Box<AreaImage>>,
@@ -91,7 +100,7 @@ pub fn sampled_radiance(
 ) -> Rgb {
     match image {
         None => l.into(),
-        Some(img) => img.le_towards(&shapes[prim as usize], meshes, from, p),
+        Some(img) => img.le_towards(&shapes[prim as usize], meshes, from, p, l.into()),
     }
 }
 
@@ -148,17 +157,33 @@ mod tests {
             &[],
             Vec3::new(0.0, 0.5, 2.0),
             Vec3::new(0.0, 0.5, 0.0),
+            Rgb::splat(-1.0),
         );
         assert!(
             (l - Rgb::new(2.0, 0.0, 0.0)).abs().max_element() < 1e-4,
             "{l:?}"
         );
-        // A segment that misses gives the mean radiance.
+        // A segment that misses gives the mean radiance it is handed.
+        let mean = a.mean() * a.scale;
         let l = a.le_towards(
             &disk,
             &[],
             Vec3::new(5.0, 0.0, 2.0),
             Vec3::new(5.0, 0.0, 0.0),
+            mean,
+        );
+        assert_eq!(l, Rgb::new(1.0, 0.0, 3.0));
+        // Through the light's sample, whose constant is that mean.
+        let shapes = [disk.clone()];
+        let p = Vec3::new(5.0, 0.0, 0.0);
+        let l = sampled_radiance(
+            &Some(Box::new(a)),
+            mean.into(),
+            &shapes,
+            0,
+            &[],
+            p + Vec3::Z,
+            p,
         );
         assert_eq!(l, Rgb::new(1.0, 0.0, 3.0));
         // Without an image, the constant.
