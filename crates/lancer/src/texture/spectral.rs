@@ -55,8 +55,21 @@ impl TextureEval<'_> {
         if self.has_measured(t) {
             self.spectrum_sampled(t, tc, lambda, kind)
         } else {
-            lambda.sample(&RgbSpectrum::new(self.spectrum(t, tc), kind))
+            self.uplifted(t, tc, lambda, kind)
         }
+    }
+
+    /// The RGB value of `t` at `tc` uplifted as `kind` and taken at `lambda` (the uplift is
+    /// in [0, 1] for an albedo and non-negative for an unbounded colour).
+    #[inline]
+    fn uplifted(
+        &self,
+        t: SpectrumTex,
+        tc: &TexCoord,
+        lambda: &SampledWavelengths,
+        kind: ColourKind,
+    ) -> SampledSpectrum {
+        lambda.sample(&RgbSpectrum::new(self.spectrum(t, tc), kind))
     }
 
     /// The value of `t` at `tc` and the wavelengths `lambda`, its RGB values uplifted as
@@ -83,7 +96,7 @@ impl TextureEval<'_> {
         lambda: &SampledWavelengths,
         kind: ColourKind,
     ) -> SampledSpectrum {
-        let uplift = |t: SpectrumTex| lambda.sample(&RgbSpectrum::new(self.spectrum(t, tc), kind));
+        let uplift = |t: SpectrumTex| self.uplifted(t, tc, lambda, kind);
         let i = match t {
             SpectrumTex::Measured(m) => return m.spectrum.sample(lambda),
             SpectrumTex::Const(_) => return uplift(t),
