@@ -152,7 +152,14 @@ pub fn write_atomic_with(
         .unwrap_or_default();
     let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
     let result = (|| {
-        let mut w = std::io::BufWriter::new(std::fs::File::create(&tmp)?);
+        // Readable too, so that a writer may read back what it wrote (see `sort_exr_header`).
+        let file = std::fs::OpenOptions::new()
+            .read(true)
+            .write(true)
+            .create(true)
+            .truncate(true)
+            .open(&tmp)?;
+        let mut w = std::io::BufWriter::new(file);
         fill(&mut w)?;
         let f = w.into_inner().map_err(|e| e.into_error())?;
         f.sync_all()?;
@@ -190,19 +197,99 @@ pub fn write_image(
         }
         // Streamed into the temporary file: holding the encoded bytes as well as the pixels
         // raised the peak memory of a small render by a tenth.
-        ImageFormat::Exr => {
-            let mut failed = None;
-            let written = write_atomic_with(path, |w| {
-                encode_exr_into(w, width, height, pixels).map_err(|message| {
-                    failed = Some(message);
-                    std::io::Error::other("EXR encoding failed")
-                })
-            });
-            match failed {
-                Some(message) => Err(encode_error(message)),
-                None => written.map_err(io_error),
+        ImageFormat::Exr => write_exr_streamed(path, |w| encode_exr_into(w, width, height, pixels)),
+    }
+}
+
+/// Writes an OpenEXR file to `path` atomically, `encode` streaming it into the temporary
+/// file: an encoding error is [`ImageWriteError::Encode`], a file system one
+/// [`ImageWriteError::Io`], both naming `path`.
+fn write_exr_streamed(
+    path: &Path,
+    encode: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> Result<(), String>,
+) -> Result<(), ImageWriteError> {
+    let mut failed = None;
+    let written = write_atomic_with(path, |w| {
+        encode(w).map_err(|message| {
+            failed = Some(message);
+            std::io::Error::other("EXR encoding failed")
+        })
+    });
+    match (failed, written) {
+        (Some(message), _) => Err(ImageWriteError::Encode {
+            path: path.to_path_buf(),
+            message,
+        }),
+        (None, written) => written.map_err(|source| ImageWriteError::Io {
+            path: path.to_path_buf(),
+            source,
+        }),
+    }
+}
+
+/// Writes one layer of a film's channels (see [`write_film_layer`]) to `path` atomically,
+/// streamed into the temporary file. `film_kind` names the film in the error when `path` is
+/// not an `.exr`: pbrt-v4 writes its spectral and g-buffer films only as OpenEXR.
+pub(crate) fn write_film_exr(
+    path: &Path,
+    film_kind: &str,
+    film: &Film,
+    attributes: exr::prelude::LayerAttributes,
+    channels: ExrChannels,
+) -> Result<(), ImageWriteError> {
+    if ImageFormat::from_path(path) != Some(ImageFormat::Exr) {
+        return Err(ImageWriteError::Encode {
+            path: path.to_path_buf(),
+            message: format!("a {film_kind} film is written only as OpenEXR (.exr), as in pbrt-v4"),
+        });
+    }
+    write_exr_streamed(path, |w| {
+        write_film_layer(w, film, attributes, channels)?;
+        w.flush().map_err(|e| e.to_string())?;
+        sort_exr_header(w.get_mut()).map_err(|e| e.to_string())
+    })
+}
+
+/// The channels of one EXR layer.
+pub(crate) type ExrChannels =
+    exr::prelude::SmallVec<[exr::prelude::AnyChannel<exr::prelude::FlatSamples>; 4]>;
+
+/// The channel planes of an EXR layer filled pixel by pixel, each in half or 32-bit floats
+/// from the start (a half-float image never has a 32-bit copy beside it).
+pub(crate) struct Planes(Vec<exr::prelude::FlatSamples>);
+
+impl Planes {
+    /// `channels` empty planes with room for `pixels` values each.
+    pub(crate) fn new(channels: usize, pixels: usize, fp16: bool) -> Planes {
+        use exr::prelude::FlatSamples;
+        let plane = || {
+            if fp16 {
+                FlatSamples::F16(Vec::with_capacity(pixels))
+            } else {
+                FlatSamples::F32(Vec::with_capacity(pixels))
             }
+        };
+        Planes((0..channels).map(|_| plane()).collect())
+    }
+
+    /// Appends `v` to channel `c`, rounded to the plane's type.
+    #[inline]
+    pub(crate) fn push(&mut self, c: usize, v: f32) {
+        use exr::prelude::FlatSamples;
+        match &mut self.0[c] {
+            FlatSamples::F16(p) => p.push(exr::prelude::f16::from_f32(v)),
+            FlatSamples::F32(p) => p.push(v),
+            FlatSamples::U32(p) => p.push(v as u32),
         }
+    }
+
+    /// The planes as channels named `names`, in order.
+    pub(crate) fn named<S: AsRef<str>>(self, names: &[S]) -> ExrChannels {
+        names
+            .iter()
+            .zip(self.0)
+            .map(|(n, s)| exr::prelude::AnyChannel::new(n.as_ref(), s))
+            .collect()
     }
 }
 
@@ -326,14 +413,83 @@ pub fn encode_part(film: &Film, meta: &PartMeta) -> Result<Vec<u8>, String> {
     encode_film_layer(film, layer_attrs, list)
 }
 
-/// Encodes one EXR layer of `channels` covering `film`'s bounds (its data window), inside the
-/// full image as display window, losslessly compressed; the layer's attributes are the
-/// caller's. OpenEXR keeps a file's channels sorted by name, so they are sorted here.
+/// Encodes one EXR layer of `channels` covering `film`'s bounds in memory (see
+/// [`write_film_layer`]).
 pub(crate) fn encode_film_layer(
     film: &Film,
     attributes: exr::prelude::LayerAttributes,
-    channels: exr::prelude::SmallVec<[exr::prelude::AnyChannel<exr::prelude::FlatSamples>; 4]>,
+    channels: ExrChannels,
 ) -> Result<Vec<u8>, String> {
+    let mut buf = std::io::Cursor::new(Vec::new());
+    write_film_layer(&mut buf, film, attributes, channels)?;
+    sort_exr_header(&mut buf).map_err(|e| e.to_string())?;
+    Ok(buf.into_inner())
+}
+
+/// Puts the attributes of a single-part OpenEXR file's header in name order, in place. The
+/// exr crate writes custom attributes in the order of a hash map, which changes from one
+/// process to the next: the same render gave files of different bytes. The header keeps its
+/// length, so the chunk offsets after it stay right. Anything but a single-part header it
+/// can read whole in its first 64 KiB is left as it is.
+fn sort_exr_header<F: std::io::Read + Write + std::io::Seek>(f: &mut F) -> std::io::Result<()> {
+    use std::io::{Read, SeekFrom};
+    f.seek(SeekFrom::Start(0))?;
+    let mut head = Vec::new();
+    Read::by_ref(f).take(1 << 16).read_to_end(&mut head)?;
+    // Magic number, then the version field; bit 12 marks a multi-part file.
+    if head.len() < 8 || head[..4] != [0x76, 0x2f, 0x31, 0x01] || head[5] & 0x10 != 0 {
+        return Ok(());
+    }
+    // Each attribute: name\0 type\0, a 4-byte little-endian size, the value; a lone \0 ends
+    // the header.
+    let zero_after = |i: usize| head[i..].iter().position(|&b| b == 0).map(|k| i + k);
+    let mut attrs = Vec::new();
+    let mut i = 8;
+    loop {
+        let Some(name_end) = zero_after(i) else {
+            return Ok(());
+        };
+        if name_end == i {
+            break;
+        }
+        let Some(type_end) = zero_after(name_end + 1) else {
+            return Ok(());
+        };
+        let Some(size) = head.get(type_end + 1..type_end + 5) else {
+            return Ok(());
+        };
+        let size = u32::from_le_bytes([size[0], size[1], size[2], size[3]]) as usize;
+        let end = type_end + 5 + size;
+        if end >= head.len() {
+            return Ok(());
+        }
+        attrs.push((i, name_end, end));
+        i = end;
+    }
+    let mut sorted = attrs.clone();
+    sorted.sort_by(|a, b| head[a.0..a.1].cmp(&head[b.0..b.1]));
+    if sorted == attrs {
+        return Ok(());
+    }
+    let bytes: Vec<u8> = sorted
+        .iter()
+        .flat_map(|&(start, _, end)| head[start..end].iter().copied())
+        .collect();
+    f.seek(SeekFrom::Start(8))?;
+    f.write_all(&bytes)?;
+    f.seek(SeekFrom::End(0))?;
+    Ok(())
+}
+
+/// Writes one EXR layer of `channels` covering `film`'s bounds (its data window), inside the
+/// full image as display window, losslessly compressed, into `out`; the layer's attributes
+/// are the caller's. OpenEXR keeps a file's channels sorted by name, so they are sorted here.
+pub(crate) fn write_film_layer<W: Write + std::io::Seek>(
+    out: &mut W,
+    film: &Film,
+    attributes: exr::prelude::LayerAttributes,
+    channels: ExrChannels,
+) -> Result<(), String> {
     use exr::prelude::*;
     let (w, h) = (film.bounds.width() as usize, film.bounds.height() as usize);
     let layer = Layer::new(
@@ -345,13 +501,11 @@ pub(crate) fn encode_film_layer(
     let mut image = Image::from_layer(layer);
     image.attributes.display_window =
         IntegerBounds::from_dimensions((film.full_width as usize, film.full_height as usize));
-    let mut buf = std::io::Cursor::new(Vec::new());
     image
         .write()
         .non_parallel()
-        .to_buffered(&mut buf)
-        .map_err(|e| e.to_string())?;
-    Ok(buf.into_inner())
+        .to_buffered(out)
+        .map_err(|e| e.to_string())
 }
 
 /// Writes a partial film as an EXR part (see [`encode_part`]), atomically.
@@ -489,6 +643,46 @@ pub fn read_part(path: &Path) -> Result<(Film, PartMeta), PartError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// One header attribute's bytes: name\0 type\0 size value.
+    fn attribute(name: &str, kind: &str, value: &[u8]) -> Vec<u8> {
+        let mut b = Vec::new();
+        for s in [name, kind] {
+            b.extend_from_slice(s.as_bytes());
+            b.push(0);
+        }
+        b.extend_from_slice(&(value.len() as u32).to_le_bytes());
+        b.extend_from_slice(value);
+        b
+    }
+
+    #[test]
+    fn exr_header_attributes_are_put_in_name_order_in_place() {
+        let file = |flags: u8, attrs: &[Vec<u8>]| {
+            let mut b = vec![0x76, 0x2f, 0x31, 0x01, 2, flags, 0, 0];
+            attrs.iter().for_each(|a| b.extend_from_slice(a));
+            // End of header, then an offset table and data that must not move.
+            b.extend_from_slice(&[0, 9, 8, 7, 6]);
+            b
+        };
+        let z = attribute("zeta", "int", &7i32.to_le_bytes());
+        let a = attribute("alpha", "string", b"x\0y");
+        let m = attribute("mid", "float", &1.5f32.to_le_bytes());
+        let mut c = std::io::Cursor::new(file(0, &[z.clone(), a.clone(), m.clone()]));
+        sort_exr_header(&mut c).unwrap();
+        assert_eq!(c.into_inner(), file(0, &[a.clone(), m.clone(), z.clone()]));
+        // A multi-part file (version bit 12) is left alone.
+        let multi = file(0x10, &[z.clone(), a.clone()]);
+        let mut c = std::io::Cursor::new(multi.clone());
+        sort_exr_header(&mut c).unwrap();
+        assert_eq!(c.into_inner(), multi);
+        // So is a header cut short (its end not within the bytes).
+        let mut cut = file(0, &[z, a]);
+        cut.truncate(20);
+        let mut c = std::io::Cursor::new(cut.clone());
+        sort_exr_header(&mut c).unwrap();
+        assert_eq!(c.into_inner(), cut);
+    }
 
     #[test]
     fn srgb_round_trips() {

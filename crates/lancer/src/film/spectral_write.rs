@@ -6,7 +6,8 @@
 
 use super::Film;
 use super::spectral::SpectralDesc;
-use crate::image_io::{ImageFormat, ImageWriteError, write_atomic};
+use crate::image_io::{ExrChannels, ImageWriteError, Planes, encode_film_layer, write_film_exr};
+use exr::prelude::{AttributeValue, LayerAttributes, Text, Vec2};
 use std::path::Path;
 
 /// Largest finite half float.
@@ -19,11 +20,14 @@ pub fn channel_names(desc: &SpectralDesc) -> Vec<String> {
     names
 }
 
-/// Encodes a spectral film as OpenEXR: colour Σw·L/Σw × `scale` and the bucket values
-/// (see [`super::spectral`]), placed at the film's bounds within the full image. Returns the
-/// bytes and the number of values clamped to 65504 (half floats only).
-pub fn encode_spectral_exr(film: &Film, scale: f32, fp16: bool) -> Result<(Vec<u8>, u64), String> {
-    use exr::prelude::*;
+/// The layer of a spectral film: colour Σw·L/Σw × `scale` and the bucket values (see
+/// [`super::spectral`]), placed at the film's bounds within the full image, with pbrt-v4's
+/// attributes; and the number of values clamped to 65504 (half floats only).
+fn spectral_layer(
+    film: &Film,
+    scale: f32,
+    fp16: bool,
+) -> Result<(LayerAttributes, ExrChannels, u64), String> {
     let s = film
         .spectral
         .as_ref()
@@ -33,16 +37,16 @@ pub fn encode_spectral_exr(film: &Film, scale: f32, fp16: bool) -> Result<(Vec<u
         return Err("the image holds no pixel".into());
     }
     let names = channel_names(&s.desc);
-    let mut planes = vec![Vec::with_capacity(n); names.len()];
+    let mut planes = Planes::new(names.len(), n, fp16);
     let mut clamped = 0u64;
-    let mut put = |c: usize, v: f32, planes: &mut Vec<Vec<f32>>| {
+    let mut put = |c: usize, v: f32, planes: &mut Planes| {
         let v = if fp16 && v > HALF_MAX {
             clamped += 1;
             HALF_MAX
         } else {
             v
         };
-        planes[c].push(v);
+        planes.push(c, v);
     };
     for (i, p) in film.pixels.iter().enumerate() {
         let rgb = p.value() * scale;
@@ -53,18 +57,6 @@ pub fn encode_spectral_exr(film: &Film, scale: f32, fp16: bool) -> Result<(Vec<u
             put(3 + b, v, &mut planes);
         }
     }
-    let list: SmallVec<[AnyChannel<FlatSamples>; 4]> = names
-        .iter()
-        .zip(planes)
-        .map(|(name, v)| {
-            let samples = if fp16 {
-                FlatSamples::F16(v.into_iter().map(f16::from_f32).collect())
-            } else {
-                FlatSamples::F32(v)
-            };
-            AnyChannel::new(name.as_str(), samples)
-        })
-        .collect();
     let mut attrs = LayerAttributes {
         layer_position: Vec2(film.bounds.x0, film.bounds.y0),
         ..LayerAttributes::default()
@@ -77,34 +69,31 @@ pub fn encode_spectral_exr(film: &Film, scale: f32, fp16: bool) -> Result<(Vec<u
             .other
             .insert(Text::from(k), AttributeValue::Text(Text::from(v)));
     }
-    Ok((
-        crate::image_io::encode_film_layer(film, attrs, list)?,
-        clamped,
-    ))
+    Ok((attrs, planes.named(&names), clamped))
 }
 
-/// Writes a spectral film to `path` atomically (see [`encode_spectral_exr`]); only `.exr`,
-/// as pbrt-v4. Returns the number of clamped values.
+/// Encodes a spectral film as OpenEXR in memory (see [`write_spectral_exr`]): the bytes and
+/// the number of values clamped to 65504.
+pub fn encode_spectral_exr(film: &Film, scale: f32, fp16: bool) -> Result<(Vec<u8>, u64), String> {
+    let (attrs, channels, clamped) = spectral_layer(film, scale, fp16)?;
+    Ok((encode_film_layer(film, attrs, channels)?, clamped))
+}
+
+/// Writes a spectral film to `path` atomically, streamed into the temporary file: colour
+/// Σw·L/Σw × `scale` and one channel per wavelength bucket; only `.exr`, as pbrt-v4. Returns
+/// the number of values clamped to 65504 (half floats only).
 pub fn write_spectral_exr(
     path: &Path,
     film: &Film,
     scale: f32,
     fp16: bool,
 ) -> Result<u64, ImageWriteError> {
-    let encode_error = |message: String| ImageWriteError::Encode {
-        path: path.to_path_buf(),
-        message,
-    };
-    if ImageFormat::from_path(path) != Some(ImageFormat::Exr) {
-        return Err(encode_error(
-            "a spectral film is written only as OpenEXR (.exr), as in pbrt-v4".into(),
-        ));
-    }
-    let (bytes, clamped) = encode_spectral_exr(film, scale, fp16).map_err(encode_error)?;
-    write_atomic(path, &bytes).map_err(|source| ImageWriteError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let (attrs, channels, clamped) =
+        spectral_layer(film, scale, fp16).map_err(|message| ImageWriteError::Encode {
+            path: path.to_path_buf(),
+            message,
+        })?;
+    write_film_exr(path, "spectral", film, attrs, channels)?;
     Ok(clamped)
 }
 
@@ -149,7 +138,7 @@ mod tests {
             .all_channels()
             .first_valid_layer()
             .all_attributes()
-            .from_buffered(std::io::Cursor::new(bytes))
+            .from_buffered(std::io::Cursor::new(bytes.clone()))
             .unwrap();
         let layer = &img.layer_data;
         let value = |name: &str, i: usize| {
@@ -171,6 +160,16 @@ mod tests {
             other.get(&exr::prelude::Text::from("spectralLayoutVersion")),
             Some(&exr::prelude::AttributeValue::Text("1.0".into()))
         );
+        // The same bytes every time (the header's attributes in name order, not in a hash
+        // map's), and the same streamed into a file.
+        for _ in 0..8 {
+            assert_eq!(encode_spectral_exr(&film, 2.0, false).unwrap().0, bytes);
+        }
+        let dir = lancer_testing::ScratchDir::new("spectral-film");
+        let path = dir.join("s.exr");
+        assert_eq!(write_spectral_exr(&path, &film, 2.0, false).unwrap(), 0);
+        assert_eq!(std::fs::read(&path).unwrap(), bytes);
+        assert!(write_spectral_exr(&dir.join("s.png"), &film, 2.0, false).is_err());
         // Half floats clamp at 65504.
         film.pixels[0].add(Rgb::splat(1e6), 1.0);
         assert_eq!(encode_spectral_exr(&film, 1.0, true).unwrap().1, 3);

@@ -5,9 +5,10 @@
 
 use crate::film::Film;
 use crate::film::gsums::CHANNELS;
-use crate::image_io::{ImageFormat, ImageWriteError, write_atomic};
+use crate::image_io::{ExrChannels, ImageWriteError, Planes, encode_film_layer, write_film_exr};
 use crate::math::Transform;
 use crate::scene::desc::{Projection, SceneDesc};
+use exr::prelude::{AttributeValue, LayerAttributes, Text, Vec2};
 use std::path::Path;
 
 /// Largest finite half float: pbrt-v4 clamps colours to it before writing half floats.
@@ -62,14 +63,13 @@ impl GbufferHeader {
 
 /// Encodes a g-buffer film as OpenEXR: colour Σw·L/Σw × `scale` (clamped to [`HALF_MAX`] in
 /// half floats, as pbrt-v4 does), the auxiliary channels of [`crate::film::gsums::GPixel::channels`],
-/// placed at the film's bounds within the full image. Returns the bytes and the number of
-/// pixels whose colour was clamped.
-pub fn encode_gbuffer_exr(
+/// placed at the film's bounds within the full image, with pbrt-v4's attributes; and the
+/// number of pixels whose colour was clamped.
+fn gbuffer_layer(
     film: &Film,
     scale: f32,
     header: &GbufferHeader,
-) -> Result<(Vec<u8>, u64), String> {
-    use exr::prelude::*;
+) -> Result<(LayerAttributes, ExrChannels, u64), String> {
     let g = film
         .gbuffer
         .as_ref()
@@ -78,7 +78,7 @@ pub fn encode_gbuffer_exr(
     if w == 0 || h == 0 {
         return Err("the image holds no pixel".into());
     }
-    let mut planes = vec![Vec::with_capacity(w * h); CHANNELS.len()];
+    let mut planes = Planes::new(CHANNELS.len(), w * h, header.fp16);
     let mut clamped = 0u64;
     for (p, gp) in film.pixels.iter().zip(&g.pixels) {
         let mut rgb = p.value() * scale;
@@ -87,24 +87,12 @@ pub fn encode_gbuffer_exr(
             clamped += 1;
         }
         for c in 0..3 {
-            planes[c].push(rgb[c]);
+            planes.push(c, rgb[c]);
         }
         for (c, v) in gp.channels().into_iter().enumerate() {
-            planes[3 + c].push(v);
+            planes.push(3 + c, v);
         }
     }
-    let list: SmallVec<[AnyChannel<FlatSamples>; 4]> = CHANNELS
-        .iter()
-        .zip(planes)
-        .map(|(name, v)| {
-            let samples = if header.fp16 {
-                FlatSamples::F16(v.into_iter().map(f16::from_f32).collect())
-            } else {
-                FlatSamples::F32(v)
-            };
-            AnyChannel::new(*name, samples)
-        })
-        .collect();
     let mut attrs = LayerAttributes {
         layer_position: Vec2(film.bounds.x0, film.bounds.y0),
         ..LayerAttributes::default()
@@ -123,34 +111,34 @@ pub fn encode_gbuffer_exr(
     // and `worldToNDC`.
     attrs.world_to_camera = Some(header.world_to_camera);
     attrs.world_to_normalized_device = header.world_to_ndc;
-    Ok((
-        crate::image_io::encode_film_layer(film, attrs, list)?,
-        clamped,
-    ))
+    Ok((attrs, planes.named(&CHANNELS), clamped))
 }
 
-/// Writes a g-buffer film to `path` atomically (see [`encode_gbuffer_exr`]); only `.exr`, as
-/// pbrt-v4. Returns the number of clamped pixels.
+/// Encodes a g-buffer film as OpenEXR in memory (see [`write_gbuffer_exr`]): the bytes and
+/// the number of pixels whose colour was clamped.
+pub fn encode_gbuffer_exr(
+    film: &Film,
+    scale: f32,
+    header: &GbufferHeader,
+) -> Result<(Vec<u8>, u64), String> {
+    let (attrs, channels, clamped) = gbuffer_layer(film, scale, header)?;
+    Ok((encode_film_layer(film, attrs, channels)?, clamped))
+}
+
+/// Writes a g-buffer film to `path` atomically, streamed into the temporary file: colour
+/// and the channels of [`CHANNELS`]; only `.exr`, as pbrt-v4. Returns the number of clamped
+/// pixels.
 pub fn write_gbuffer_exr(
     path: &Path,
     film: &Film,
     scale: f32,
     header: &GbufferHeader,
 ) -> Result<u64, ImageWriteError> {
-    if ImageFormat::from_path(path) != Some(ImageFormat::Exr) {
-        return Err(ImageWriteError::Encode {
-            path: path.to_path_buf(),
-            message: "a gbuffer film is written only as OpenEXR (.exr), as in pbrt-v4".into(),
-        });
-    }
-    let (bytes, clamped) =
-        encode_gbuffer_exr(film, scale, header).map_err(|message| ImageWriteError::Encode {
+    let (attrs, channels, clamped) =
+        gbuffer_layer(film, scale, header).map_err(|message| ImageWriteError::Encode {
             path: path.to_path_buf(),
             message,
         })?;
-    write_atomic(path, &bytes).map_err(|source| ImageWriteError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    write_film_exr(path, "gbuffer", film, attrs, channels)?;
     Ok(clamped)
 }
