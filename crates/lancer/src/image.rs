@@ -19,6 +19,17 @@ pub enum WrapMode {
     OctahedralSphere,
 }
 
+impl WrapMode {
+    /// Every mode.
+    pub const ALL: [WrapMode; 5] = [
+        WrapMode::Repeat,
+        WrapMode::Clamp,
+        WrapMode::Black,
+        WrapMode::Mirror,
+        WrapMode::OctahedralSphere,
+    ];
+}
+
 /// A linear RGB image, row 0 at the top, stored row-major as `width × height` texels.
 #[derive(Clone, PartialEq)]
 pub struct Image {
@@ -249,13 +260,7 @@ mod tests {
         // The lookup wraps a column pair and a row pair once; the result must be the bilinear
         // blend of the four texels `texel` returns, in every mode, inside and far outside.
         let im = grid();
-        for wrap in [
-            WrapMode::Repeat,
-            WrapMode::Clamp,
-            WrapMode::Black,
-            WrapMode::Mirror,
-            WrapMode::OctahedralSphere,
-        ] {
+        for wrap in WrapMode::ALL {
             for (s, t) in [
                 (0.5, 0.5),
                 (0.9, 0.05),

@@ -170,8 +170,27 @@ mod tests {
         assert_eq!(write_spectral_exr(&path, &film, 2.0, false).unwrap(), 0);
         assert_eq!(std::fs::read(&path).unwrap(), bytes);
         assert!(write_spectral_exr(&dir.join("s.png"), &film, 2.0, false).is_err());
-        // Half floats clamp at 65504.
+        // Half floats clamp at 65504: the three colour channels of pixel 0 (its buckets are
+        // empty), read back as that value.
         film.pixels[0].add(Rgb::splat(1e6), 1.0);
-        assert_eq!(encode_spectral_exr(&film, 1.0, true).unwrap().1, 3);
+        let (half, clamped) = encode_spectral_exr(&film, 1.0, true).unwrap();
+        assert_eq!(clamped, 3);
+        let img = exr::prelude::read()
+            .no_deep_data()
+            .largest_resolution_level()
+            .all_channels()
+            .first_valid_layer()
+            .all_attributes()
+            .from_buffered(std::io::Cursor::new(half))
+            .unwrap();
+        for c in &img.layer_data.channel_data.list {
+            let v = c.sample_data.value_by_flat_index(0).to_f32();
+            let want = if ["R", "G", "B"].contains(&c.name.to_string().as_str()) {
+                HALF_MAX
+            } else {
+                0.0
+            };
+            assert_eq!(v, want, "channel {}", c.name);
+        }
     }
 }

@@ -39,7 +39,7 @@ mod tests {
     use crate::shape::{Disk, Placement, Sphere};
 
     #[test]
-    fn a_unit_disk_of_power_pi_has_radiance_one() {
+    fn a_unit_disk_of_power_pi_has_radiance_one_over_pi() {
         // A = π·1²: Φ = π gives L = π / (π·π) = 1/π per unit L.
         let d = Shape::Disk(Box::new(Disk::new(
             Placement::new(Transform::IDENTITY, false),

@@ -217,5 +217,21 @@ mod tests {
         assert!((at(1, 0.5) - 0.75 * want).abs().max_element() < 2e-3);
         assert!(ev.has_measured(SpectrumTex::Tex(0)) && ev.has_measured(SpectrumTex::Tex(1)));
         assert!(!ev.has_measured(SpectrumTex::Tex(2)));
+        // What a material reads (`spectrum_at`) is the ramp, not the uplift of the tree's RGB
+        // value (the ramp's RGB is grey 0.5: a flat 0.5 across the wavelengths).
+        let read = ev.spectrum_at(SpectrumTex::Tex(0), &tc(0.5), &lambda, ColourKind::Albedo);
+        assert_eq!(read, at(0, 0.5));
+        let through_rgb = ev.uplifted(SpectrumTex::Tex(0), &tc(0.5), &lambda, ColourKind::Albedo);
+        assert!((through_rgb - glam::Vec4::splat(0.5)).abs().max_element() < 2e-3);
+        assert!(
+            (read - through_rgb).abs().max_element() > 0.1,
+            "{read} {through_rgb}"
+        );
+        // A tree of constants only reads as its uplift.
+        let plain = ev.spectrum_at(SpectrumTex::Tex(2), &tc(0.5), &lambda, ColourKind::Albedo);
+        assert_eq!(
+            plain,
+            ev.uplifted(SpectrumTex::Tex(2), &tc(0.5), &lambda, ColourKind::Albedo)
+        );
     }
 }

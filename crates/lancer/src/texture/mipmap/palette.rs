@@ -100,13 +100,7 @@ mod tests {
         let p = PaletteLevel::from_image(&img).expect("three colours");
         assert_eq!(p.palette.len(), 3);
         assert_eq!(p.memory_bytes(), 35 + 3 * 12);
-        for wrap in [
-            WrapMode::Repeat,
-            WrapMode::Clamp,
-            WrapMode::Black,
-            WrapMode::Mirror,
-            WrapMode::OctahedralSphere,
-        ] {
+        for wrap in WrapMode::ALL {
             for (x, y) in [(0, 0), (6, 4), (-1, 2), (8, -3), (3, 9)] {
                 let (a, b) = (p.texel(x, y, wrap), img.texel(x, y, wrap));
                 assert_eq!(
