@@ -99,3 +99,41 @@ fn image_area_lights_refuse_l_and_bad_images() {
     let e = scene(&dir, r#""string filename" "missing.exr""#).unwrap_err();
     assert!(e.contains("missing.exr"), "{e}");
 }
+
+#[test]
+fn area_lights_given_by_power_scale_l_by_power_over_pi_sides_area() {
+    // pbrt-v4's DiffuseAreaLight with "power" and an RGB L: scale = Φ / (π · sides · A),
+    // divided by the photometric value of L's illuminant only (not of its RGB), so the built
+    // radiance is L · Φ / (π · sides · A) and the light emits Φ · Y(L) per primitive: Φ
+    // exactly for an L of unit luminance.
+    let dir = ScratchDir::new("area-power");
+    for (params, rgb, sides) in [
+        (r#""rgb L" [1 1 1] "float power" 10"#, Rgb::ONE, 1.0),
+        (
+            r#""rgb L" [4 2 1] "float power" 10"#,
+            Rgb::new(4.0, 2.0, 1.0),
+            1.0,
+        ),
+        (
+            r#""rgb L" [1 1 1] "float power" 10 "bool twosided" true"#,
+            Rgb::ONE,
+            2.0,
+        ),
+    ] {
+        let loaded = scene(&dir, params).unwrap();
+        let scene = Scene::build(&loaded.desc).unwrap();
+        let Light::Area { l, area, .. } = &scene.lights[0] else {
+            panic!("{:?}", scene.lights[0])
+        };
+        assert!((area - 1.0).abs() < 1e-6, "{area}");
+        let want = rgb * (10.0 / (PI * sides * area));
+        let l = Rgb::from(*l);
+        assert!(
+            (l - want).abs().max_element() < 1e-4 * want.max_element(),
+            "{params}: {l:?} vs {want:?}"
+        );
+        let phi = PI * sides * area * lancer::math::luminance(l);
+        let y = lancer::math::luminance(rgb);
+        assert!((phi - 10.0 * y).abs() < 1e-3 * y, "{params}: {phi}");
+    }
+}
