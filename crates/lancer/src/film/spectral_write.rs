@@ -104,6 +104,23 @@ mod tests {
     use crate::film::spectral::SpectralSums;
     use crate::math::{Rgb, SampledSpectrum};
 
+    /// The first layer of an EXR file's bytes, every channel and attribute.
+    fn read(
+        bytes: Vec<u8>,
+    ) -> exr::prelude::Image<
+        exr::prelude::Layer<exr::prelude::AnyChannels<exr::prelude::FlatSamples>>,
+    > {
+        use exr::prelude::{ReadChannels, ReadLayers};
+        exr::prelude::read()
+            .no_deep_data()
+            .largest_resolution_level()
+            .all_channels()
+            .first_valid_layer()
+            .all_attributes()
+            .from_buffered(std::io::Cursor::new(bytes))
+            .unwrap()
+    }
+
     #[test]
     fn writes_rgb_and_bucket_channels_with_pbrt_v4_names() {
         let bounds = PixelBounds {
@@ -131,15 +148,7 @@ mod tests {
         film.pixels[1].add(Rgb::new(0.5, 0.25, 1.0), 1.0);
         let (bytes, clamped) = encode_spectral_exr(&film, 2.0, false).unwrap();
         assert_eq!(clamped, 0);
-        use exr::prelude::{ReadChannels, ReadLayers};
-        let img = exr::prelude::read()
-            .no_deep_data()
-            .largest_resolution_level()
-            .all_channels()
-            .first_valid_layer()
-            .all_attributes()
-            .from_buffered(std::io::Cursor::new(bytes.clone()))
-            .unwrap();
+        let img = read(bytes.clone());
         let layer = &img.layer_data;
         let value = |name: &str, i: usize| {
             let c = layer
@@ -175,14 +184,7 @@ mod tests {
         film.pixels[0].add(Rgb::splat(1e6), 1.0);
         let (half, clamped) = encode_spectral_exr(&film, 1.0, true).unwrap();
         assert_eq!(clamped, 3);
-        let img = exr::prelude::read()
-            .no_deep_data()
-            .largest_resolution_level()
-            .all_channels()
-            .first_valid_layer()
-            .all_attributes()
-            .from_buffered(std::io::Cursor::new(half))
-            .unwrap();
+        let img = read(half);
         for c in &img.layer_data.channel_data.list {
             let v = c.sample_data.value_by_flat_index(0).to_f32();
             let want = if ["R", "G", "B"].contains(&c.name.to_string().as_str()) {
