@@ -17,13 +17,13 @@ mod subsurface;
 mod volpath;
 mod whitted;
 
-use crate::material::{Bsdf, BxDF, Material, SpectralColours};
+use crate::material::{Bsdf, BxDF, Material, SpectralColours, rgb_colour};
 use crate::math::{Rgb, SampledSpectrum, Vec3, rgb_lanes};
 use crate::ray::Ray;
 use crate::sampling::Sampler;
 pub use crate::scene::desc::Integrator;
 use crate::scene::{Scene, SceneHit};
-use crate::spectrum::sampled::{SampledWavelengths, albedo_at};
+use crate::spectrum::sampled::{ColourKind, SampledWavelengths, albedo_at};
 use crate::texture::SpectrumTex;
 pub(crate) use emission::emitted;
 use path_spectra::PathSpectra;
@@ -180,16 +180,20 @@ pub(crate) fn bsdf_at_memo(
         _ => None,
     };
     if let Some(c) = constant_diffuse {
-        // Spectral: the reflectance prepared at build (slot 0); RGB: clamp(ρ, 0, 1) as lanes.
+        // The reflectance as `Material::bxdf`'s diffuse arm reads it (slot 0, an albedo;
+        // [`crate::material::slot_colour`] for a constant), without the texture look-up.
         let rho = match lambda {
             Some(lambda) => {
-                let eval = || lambda.sample_prepared(&scene.spectra().materials[m as usize][0]);
+                let eval = || {
+                    let consts = &scene.spectra().materials[m as usize];
+                    SpectralColours { lambda, consts }.constant(0)
+                };
                 match memo {
                     Some(memo) => memo.material(m, eval),
                     None => eval(),
                 }
             }
-            None => rgb_lanes(c.clamp(Rgb::ZERO, Rgb::ONE)),
+            None => rgb_colour(c, ColourKind::Albedo),
         };
         let bsdf = Bsdf::new(BxDF::diffuse(rho), hit.si.shading.n, hit.si.shading.dpdu);
         return Some((bsdf, false));

@@ -204,6 +204,45 @@ pub struct SpectralColours<'a> {
     pub consts: &'a [PreparedSpectrum; COLOUR_SLOTS],
 }
 
+impl SpectralColours<'_> {
+    /// The constant colour of slot `slot` at the path's wavelengths.
+    #[inline(always)]
+    pub fn constant(&self, slot: usize) -> SampledSpectrum {
+        self.lambda.sample_prepared(&self.consts[slot])
+    }
+}
+
+/// RGB mode's value of a colour `c` as transport uses it, as lanes (r, g, b, b): an albedo
+/// clamped to [0, 1], an unbounded colour as it is.
+#[inline(always)]
+pub(crate) fn rgb_colour(c: Rgb, kind: ColourKind) -> SampledSpectrum {
+    rgb_lanes(match kind {
+        ColourKind::Albedo => c.clamp(Rgb::ZERO, Rgb::ONE),
+        ColourKind::Unbounded => c,
+    })
+}
+
+/// A material's colour `t` (slot `slot` of its constant colours) at a hit, as every material
+/// reads its colours. RGB mode: [`rgb_colour`] of the texture's value. Spectral mode: the
+/// prepared spectrum of a constant ([`SpectralColours::constant`]), or a texture's value at the
+/// wavelengths (the uplift of its RGB value, which clamps an albedo the same way first, or for
+/// a tree holding spectra its sampled values, as pbrt-v4 evaluates spectrum textures).
+#[inline(always)]
+pub(crate) fn slot_colour(
+    tex: &TextureEval,
+    tc: &TexCoord,
+    spectral: Option<SpectralColours>,
+    slot: usize,
+    t: SpectrumTex,
+    kind: ColourKind,
+) -> SampledSpectrum {
+    match (spectral, t) {
+        (None, _) => rgb_colour(tex.spectrum(t, tc), kind),
+        (Some(sc), SpectrumTex::Const(_) | SpectrumTex::Measured(_)) => sc.constant(slot),
+        (Some(sc), SpectrumTex::Tex(_)) => tex.spectrum_at(t, tc, sc.lambda, kind),
+    }
+}
+
 /// The conductor index pbrt-v4 uses: `eta`/`k` as given (slots 0 and 1), or, when an artist's
 /// `reflectance` r is given instead (slot 2), η = 1 and k = 2√r / √(1 − r) (r clamped to
 /// [0, 0.9999]), which makes the normal-incidence Fresnel reflectance
@@ -348,23 +387,9 @@ impl Material {
         tc: &TexCoord,
         spectral: Option<SpectralColours>,
     ) -> Option<BxDF> {
-        // The colour in slot `slot`. RGB mode: an albedo is clamp(t, 0, 1), an unbounded
-        // colour is t. Spectral mode: the prepared spectrum of a constant, the uplift of a
-        // texel (which clamps an albedo the same way first).
+        // The colour in slot `slot` ([`slot_colour`]).
         let colour = |slot: usize, t: SpectrumTex, kind: ColourKind| -> SampledSpectrum {
-            match (spectral, t) {
-                (None, _) => {
-                    let c = tex.spectrum(t, tc);
-                    rgb_lanes(match kind {
-                        ColourKind::Albedo => c.clamp(Rgb::ZERO, Rgb::ONE),
-                        ColourKind::Unbounded => c,
-                    })
-                }
-                (Some(sc), SpectrumTex::Const(_) | SpectrumTex::Measured(_)) => {
-                    sc.lambda.sample_prepared(&sc.consts[slot])
-                }
-                (Some(sc), SpectrumTex::Tex(_)) => tex.spectrum_at(t, tc, sc.lambda, kind),
-            }
+            slot_colour(tex, tc, spectral, slot, t, kind)
         };
         let albedo = |slot: usize, t: SpectrumTex| colour(slot, t, ColourKind::Albedo);
         // A dielectric's index: RGB mode's single value, or the value at the hero wavelength

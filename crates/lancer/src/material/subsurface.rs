@@ -4,7 +4,7 @@
 
 use super::bssrdf::{SubsurfaceCoefficients, TabulatedBssrdf, subsurface_from_diffuse};
 use super::{COLOUR_SLOTS, Material, SpectralColours};
-use crate::math::{Rgb, SampledSpectrum, Vec3, rgb_lanes};
+use crate::math::{SampledSpectrum, Vec3};
 use crate::spectrum::sampled::ColourKind;
 use crate::texture::{SpectrumTex, TexCoord, TextureEval};
 
@@ -47,22 +47,9 @@ impl Material {
             return None;
         };
         let (coefficients, scale, eta, table) = (&m.coefficients, &m.scale, &m.eta, &m.table);
-        // A slot's colour as [`Material::bxdf`] reads it: RGB lanes, or the prepared
-        // spectrum of a constant, or a texture's value at the wavelengths (the uplift of its
-        // RGB value, or for a tree holding spectra its sampled values, as pbrt-v4 evaluates
-        // spectrum textures).
-        let colour = |slot: usize, t: SpectrumTex, kind: ColourKind| match (spectral, t) {
-            (None, _) => {
-                let c = tex.spectrum(t, tc);
-                rgb_lanes(match kind {
-                    ColourKind::Albedo => c.clamp(Rgb::ZERO, Rgb::ONE),
-                    ColourKind::Unbounded => c,
-                })
-            }
-            (Some(sc), SpectrumTex::Const(_) | SpectrumTex::Measured(_)) => {
-                sc.lambda.sample_prepared(&sc.consts[slot])
-            }
-            (Some(sc), SpectrumTex::Tex(_)) => tex.spectrum_at(t, tc, sc.lambda, kind),
+        // A slot's colour as [`Material::bxdf`] reads it ([`super::slot_colour`]).
+        let colour = |slot: usize, t: SpectrumTex, kind: ColourKind| {
+            super::slot_colour(tex, tc, spectral, slot, t, kind)
         };
         let (sigma_a, sigma_s) = match *coefficients {
             SubsurfaceCoefficients::Coefficients { sigma_a, sigma_s } => (
@@ -86,6 +73,7 @@ impl Material {
 mod tests {
     use super::*;
     use crate::material::bssrdf::{BssrdfTable, SubsurfaceMaterial};
+    use crate::math::Rgb;
     use crate::spectrum::dense::{Measured, PreparedSpectrum};
     use crate::spectrum::sampled::SampledWavelengths;
     use crate::spectrum::{Spectrum, SpectrumKind};

@@ -360,3 +360,42 @@ fn prepared_constant_colours_give_what_an_uplift_per_hit_gives() {
         assert_ne!(a, constant.bxdf(&tex, &TexCoord::default(), None));
     }
 }
+
+/// Every material reads a colour slot the same way ([`slot_colour`]): in RGB mode the texture's
+/// value as lanes (r, g, b, b), an albedo clamped to [0, 1] and an unbounded colour as it is;
+/// in spectral mode a constant's prepared spectrum of its own slot, not the RGB value.
+#[test]
+fn slot_colour_clamps_albedos_in_rgb_and_reads_its_slot_in_spectral_mode() {
+    let tex = TextureEval {
+        floats: &[],
+        spectra: &[],
+    };
+    let tc = TexCoord::default();
+    let t = SpectrumTex::Const(Rgb::new(1.5, 0.5, -0.25));
+    let albedo = slot_colour(&tex, &tc, None, 1, t, ColourKind::Albedo);
+    assert_eq!(albedo, SampledSpectrum::new(1.0, 0.5, 0.0, 0.0));
+    let unbounded = slot_colour(&tex, &tc, None, 1, t, ColourKind::Unbounded);
+    assert_eq!(unbounded, SampledSpectrum::new(1.5, 0.5, -0.25, -0.25));
+    assert_eq!(
+        rgb_colour(Rgb::new(1.5, 0.5, -0.25), ColourKind::Albedo),
+        albedo
+    );
+
+    // Slot 1 holds a flat spectrum of 1 (the uplift of white as an unbounded colour); the
+    // others are black, so reading the wrong slot gives 0.
+    let mut consts = [PreparedSpectrum::BLACK; COLOUR_SLOTS];
+    consts[1] = PreparedSpectrum::Rgb(RgbSpectrum::new(Rgb::ONE, ColourKind::Unbounded));
+    let lambda = SampledWavelengths::sample_visible(0.3);
+    let sc = SpectralColours {
+        lambda: &lambda,
+        consts: &consts,
+    };
+    for kind in [ColourKind::Albedo, ColourKind::Unbounded] {
+        let v = slot_colour(&tex, &tc, Some(sc), 1, t, kind);
+        assert_eq!(v, sc.constant(1));
+        for k in 0..4 {
+            assert!((v[k] - 1.0).abs() < 1e-4, "lane {k}: {}", v[k]);
+        }
+    }
+    assert_eq!(sc.constant(0), SampledSpectrum::ZERO);
+}
