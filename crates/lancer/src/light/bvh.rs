@@ -18,7 +18,7 @@ use super::bounds::LightExtent;
 use super::bvh_build::{BinaryNode, LEAF, build_tree};
 use super::compact::{CompactLightBounds, CompactLightBounds4};
 use super::sample::LightSampleContext;
-use glam::Vec4;
+use glam::{Vec4, Vec4Swizzles};
 
 /// The largest float below 1.
 const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
@@ -80,7 +80,11 @@ fn choose(i0: f32, i1: f32, u: &mut f32, pmf: &mut f32) -> Option<usize> {
     }
     let us = *u * sum;
     let second = us >= i0 && i1 > 0.0;
-    let (ic, below) = if second { (i1, i0) } else { (i0, 0.0) };
+    // i_c and the part below the chosen one as products with s = [second], exact for finite
+    // importances (a select of floats the compiler may turn back into a branch).
+    let s = f32::from(u8::from(second));
+    let ic = i1 * s + i0 * (1.0 - s);
+    let below = i0 * s;
     *pmf *= ic / sum;
     *u = ((us - below) / ic).min(ONE_MINUS_EPSILON);
     Some(usize::from(second))
@@ -96,10 +100,12 @@ fn child_pmf(i0: f32, i1: f32, bit: usize) -> Option<f32> {
     Some(if bit == 0 { i0 } else { i1 } / (i0 + i1))
 }
 
-/// Lanes 2k and 2k + 1 of `v`.
+/// Lanes 2k and 2k + 1 of `v` (k is the previous level's choice, a coin toss as often as
+/// not: a blend, not a branch).
 #[inline(always)]
 fn lane_pair(v: Vec4, k: usize) -> (f32, f32) {
-    if k == 0 { (v.x, v.y) } else { (v.z, v.w) }
+    let v = Vec4::select(glam::BVec4A::splat(k != 0), v.zwzw(), v);
+    (v.x, v.y)
 }
 
 /// Lays out the binary tree `nodes` (root first) as quads: the quad of node `node`, then
