@@ -79,10 +79,12 @@ fn choose(i0: f32, i1: f32, u: &mut f32, pmf: &mut f32) -> Option<usize> {
         return None;
     }
     let us = *u * sum;
-    let second = us >= i0 && i1 > 0.0;
-    // i_c and the part below the chosen one as products with s = [second], exact for finite
-    // importances (a select of floats the compiler may turn back into a branch).
-    let s = f32::from(u8::from(second));
+    // The test and s = [second] as vector lanes (a compare mask and-ed with 1.0, no trip
+    // through an integer register); i_c and the part below the chosen one as products with s,
+    // exact for finite importances (a select of floats the compiler may turn into a branch).
+    let m = Vec4::splat(us).cmpge(Vec4::splat(i0)) & Vec4::splat(i1).cmpgt(Vec4::ZERO);
+    let second = m.bitmask() & 1 != 0;
+    let s = Vec4::select(m, Vec4::ONE, Vec4::ZERO).x;
     let ic = i1 * s + i0 * (1.0 - s);
     let below = i0 * s;
     *pmf *= ic / sum;
