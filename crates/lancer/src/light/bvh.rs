@@ -18,7 +18,7 @@ use super::bounds::LightExtent;
 use super::bvh_build::{BinaryNode, LEAF, build_tree};
 use super::compact::{CompactLightBounds, CompactLightBounds4};
 use super::sample::LightSampleContext;
-use glam::Vec4;
+use glam::{Vec4, Vec4Swizzles};
 
 /// The largest float below 1.
 const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
@@ -63,39 +63,51 @@ pub struct BvhLightSampler {
 
 /// Child 0 with probability p₀ = i₀/(i₀ + i₁), else child 1, by `u`, which is rescaled to the
 /// part it fell in (so that one number makes every choice); `pmf` is multiplied by the
-/// choice's probability. `None` when neither child has importance.
+/// choice's probability ([`child_pmf`]). `None` when neither child has importance.
+///
+/// The test u < p₀ is made as u·(i₀ + i₁) < i₀, with no division before it, and the child is
+/// picked by selects rather than a branch: for a point lit by two lights alike (a quad's
+/// two triangles) the choice is a coin toss, which a branch would mispredict half the time.
+/// u′ = u·(i₀ + i₁)/i₀ for child 0, (u·(i₀ + i₁) − i₀)/i₁ for child 1: pbrt-v4's u/p₀ and
+/// (u − p₀)/(1 − p₀) up to rounding. A chosen child's importance is never 0 (child 0 needs
+/// i₀ > u·(i₀ + i₁) ≥ 0; child 1 is refused when i₁ = 0, where u·i₀ rounds to i₀ only for a
+/// subnormal i₀), so the division is safe.
 #[inline(always)]
 fn choose(i0: f32, i1: f32, u: &mut f32, pmf: &mut f32) -> Option<usize> {
+    let sum = i0 + i1;
     if i0 == 0.0 && i1 == 0.0 {
         return None;
     }
-    let p0 = i0 / (i0 + i1);
-    if *u < p0 {
-        *pmf *= p0;
-        *u = (*u / p0).min(ONE_MINUS_EPSILON);
-        Some(0)
-    } else {
-        *pmf *= 1.0 - p0;
-        *u = ((*u - p0) / (1.0 - p0)).min(ONE_MINUS_EPSILON);
-        Some(1)
-    }
+    let us = *u * sum;
+    // The test and s = [second] as vector lanes (a compare mask and-ed with 1.0, no trip
+    // through an integer register); i_c and the part below the chosen one as products with s,
+    // exact for finite importances (a select of floats the compiler may turn into a branch).
+    let m = Vec4::splat(us).cmpge(Vec4::splat(i0)) & Vec4::splat(i1).cmpgt(Vec4::ZERO);
+    let second = m.bitmask() & 1 != 0;
+    let s = Vec4::select(m, Vec4::ONE, Vec4::ZERO).x;
+    let ic = i1 * s + i0 * (1.0 - s);
+    let below = i0 * s;
+    *pmf *= ic / sum;
+    *u = ((us - below) / ic).min(ONE_MINUS_EPSILON);
+    Some(usize::from(second))
 }
 
-/// The probability of child `bit` (0 or 1) at a node whose children have importances i₀, i₁;
-/// `None` when neither has any.
+/// The probability of child `bit` (0 or 1) at a node whose children have importances i₀, i₁,
+/// i_bit/(i₀ + i₁) (as [`choose`] computes it, bit for bit); `None` when neither has any.
 #[inline(always)]
 fn child_pmf(i0: f32, i1: f32, bit: usize) -> Option<f32> {
     if i0 == 0.0 && i1 == 0.0 {
         return None;
     }
-    let p0 = i0 / (i0 + i1);
-    Some(if bit == 0 { p0 } else { 1.0 - p0 })
+    Some(if bit == 0 { i0 } else { i1 } / (i0 + i1))
 }
 
-/// Lanes 2k and 2k + 1 of `v`.
+/// Lanes 2k and 2k + 1 of `v` (k is the previous level's choice, a coin toss as often as
+/// not: a blend, not a branch).
 #[inline(always)]
 fn lane_pair(v: Vec4, k: usize) -> (f32, f32) {
-    if k == 0 { (v.x, v.y) } else { (v.z, v.w) }
+    let v = Vec4::select(glam::BVec4A::splat(k != 0), v.zwzw(), v);
+    (v.x, v.y)
 }
 
 /// Lays out the binary tree `nodes` (root first) as quads: the quad of node `node`, then

@@ -1,11 +1,20 @@
 //! What the light BVH's importance needs of a node, computed once at build (pbrt-v4's
-//! `CompactLightBounds`, unquantised): the box's centre, its half diagonal, the squared radius
-//! of its bounding sphere, and the cos/sin of the normal cone's half-angle θ_o, so that choosing
-//! a light does no square root or trigonometry that depends on the node alone.
+//! `CompactLightBounds`, unquantised): the box's centre, its half diagonal (and its
+//! reciprocal), the radius of its bounding sphere and its square, and the cos/sin of the normal
+//! cone's half-angle θ_o, so that choosing a light does no trigonometry that depends on the
+//! node alone.
 //!
-//! [`CompactLightBounds::importance`] performs exactly the floating-point operations of
-//! [`super::LightBounds::importance`] on these stored values, so both give the same bits (the light
-//! BVH's choices and probabilities do not change by being made cheaper).
+//! The importance is pbrt-v4's formula, evaluated on the unnormalised vector v = p − centre
+//! rather than on the unit direction v/|v|: every cosine and sine it needs is a length divided
+//! by |v| (cos θ_w = w·v/|v|, sin θ_w = √(|v|² − (w·v)²)/|v|, cos θ_b = √(|v|² − r²)/|v|,
+//! sin θ_b = r/|v|, and likewise for θᵢ), so the products cos θ′ = cos θ_x cos θ_b + sin θ_x
+//! sin θ_b and cos θ′ᵢ are sums of such lengths divided by |v|² once. The square roots then
+//! all start from |v|² side by side, and the one division, 1/|v|², too, where pbrt-v4's form
+//! is a chain (√, then 1/x, then the dot products, then √(1 − cos²), then …, then /d²) that
+//! the lighting of every shading point waits on. The two differ only by rounding.
+//!
+//! [`CompactLightBounds::importance`] and [`CompactLightBounds4::importance`] perform the same
+//! floating-point operations in the same order, so both give the same bits.
 
 use crate::math::Vec3;
 use glam::{BVec4A, Vec4};
@@ -21,7 +30,11 @@ pub struct CompactLightBounds {
     pub phi: f32,
     /// |diagonal|/2: the least squared distance the importance divides by.
     pub min_d2: f32,
-    /// r² of the box's bounding sphere, r = |max − centre|.
+    /// 1/min_d2 (infinite for a point).
+    pub inv_min_d2: f32,
+    /// Radius r = |max − centre| of the box's bounding sphere.
+    pub r: f32,
+    /// r².
     pub r2: f32,
     /// cos θ_o of the cone of normals.
     pub cos_theta_o: f32,
@@ -39,70 +52,57 @@ pub(super) fn safe_sqrt(x: f32) -> f32 {
     x.max(0.0).sqrt()
 }
 
-/// cos(θ_a − θ_b), 1 when θ_a < θ_b, from sines and cosines.
-#[inline(always)]
-fn cos_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> f32 {
-    if cos_a > cos_b {
-        1.0
-    } else {
-        cos_a * cos_b + sin_a * sin_b
-    }
-}
-
-/// sin(θ_a − θ_b), 0 when θ_a < θ_b.
-#[inline(always)]
-fn sin_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> f32 {
-    if cos_a > cos_b {
-        0.0
-    } else {
-        sin_a * cos_b - cos_a * sin_b
-    }
-}
-
 impl CompactLightBounds {
     /// A conservative estimate of how much the group lights point `p` with surface normal `n`
-    /// (zero for a point in a medium); the formula is on [`super::LightBounds::importance`]:
-    /// I = φ · cos θ′ / max(d², |diag|/2) · cos θ′ᵢ with θ′ = max(0, θ_w − θ_o − θ_b),
-    /// θ′ᵢ = max(0, θᵢ − θ_b), cos θ_b = √(1 − r²/d²) (−1 inside the sphere).
+    /// (zero for a point in a medium), pbrt-v4's (the formula is on
+    /// [`super::LightBounds::importance`]): I = φ · cos θ′ / max(d², |diag|/2) · cos θ′ᵢ with
+    /// θ′ = max(0, θ_w − θ_o − θ_b), θ′ᵢ = max(0, θᵢ − θ_b), sin θ_b = r/d (θ_b = π inside
+    /// the sphere). Every cosine and sine below is kept multiplied by |v| = d (module doc).
     #[inline]
     pub fn importance(&self, p: Vec3, n: Vec3) -> f32 {
         let v = p - self.centre;
         let len2 = v.length_squared();
-        let d2 = len2.max(self.min_d2);
-        // The direction from the light towards p: v/|v| rounded as glam's `normalize_or_zero`
-        // (v · (1/√|v|²)), reusing |v|².
-        let rcp = 1.0 / len2.sqrt();
-        let wi = if rcp.is_finite() && rcp > 0.0 {
-            v * rcp
-        } else {
-            Vec3::ZERO
-        };
-        let mut cos_theta_w = self.w.dot(wi);
+        // All from |v|², side by side: |v|, 1/|v|², |v| sin θ_w, |v| cos θ_b.
+        let len = len2.sqrt();
+        let inv_len2 = 1.0 / len2;
+        let mut wv = self.w.dot(v);
         if self.two_sided {
-            cos_theta_w = cos_theta_w.abs();
+            wv = wv.abs();
         }
-        let sin_theta_w = safe_sqrt(1.0 - cos_theta_w * cos_theta_w);
-        // The half-angle of the cone from p holding the bounding sphere.
-        let cos_theta_b = if len2 < self.r2 {
-            -1.0
+        let sin_w = safe_sqrt(len2 - wv * wv);
+        let cos_b = safe_sqrt(len2 - self.r2);
+        // 1/max(d², |diag|/2).
+        let inv_d2 = if len2 < self.min_d2 {
+            self.inv_min_d2
         } else {
-            safe_sqrt(1.0 - self.r2 / len2)
+            inv_len2
         };
-        let sin_theta_b = safe_sqrt(1.0 - cos_theta_b * cos_theta_b);
-        // θ_x = max(0, θ_w − θ_o), then θ′ = max(0, θ_x − θ_b).
+        // Inside the sphere (or at its centre) θ_b = π: every clamped angle is 0.
+        let inside = len2 < self.r2 || len2 == 0.0;
+        // θ_x = max(0, θ_w − θ_o) (0 when cos θ_w > cos θ_o, and then θ′ = 0 too), then
+        // θ′ = max(0, θ_x − θ_b): cos θ′ = 1 when cos θ_x > cos θ_b, else
+        // cos θ_x cos θ_b + sin θ_x sin θ_b.
         let (cos_o, sin_o) = (self.cos_theta_o, self.sin_theta_o);
-        let cos_theta_x = cos_sub_clamped(sin_theta_w, cos_theta_w, sin_o, cos_o);
-        let sin_theta_x = sin_sub_clamped(sin_theta_w, cos_theta_w, sin_o, cos_o);
-        let cos_theta_p = cos_sub_clamped(sin_theta_x, cos_theta_x, sin_theta_b, cos_theta_b);
-        if cos_theta_p <= self.cos_theta_e {
+        let cos_x = wv * cos_o + sin_w * sin_o;
+        let sin_x = sin_w * cos_o - wv * sin_o;
+        let cos_p = if wv > cos_o * len || inside || cos_x > cos_b {
+            1.0
+        } else {
+            (cos_x * cos_b + sin_x * self.r) * inv_len2
+        };
+        if cos_p <= self.cos_theta_e {
             return 0.0;
         }
-        let mut importance = self.phi * cos_theta_p / d2;
+        let mut importance = self.phi * cos_p * inv_d2;
         // The surface at p sees the box at best at angle max(0, θᵢ − θ_b).
         if n != Vec3::ZERO {
-            let cos_theta_i = wi.dot(n).abs();
-            let sin_theta_i = safe_sqrt(1.0 - cos_theta_i * cos_theta_i);
-            importance *= cos_sub_clamped(sin_theta_i, cos_theta_i, sin_theta_b, cos_theta_b);
+            let cos_i = n.dot(v).abs();
+            let sin_i = safe_sqrt(len2 - cos_i * cos_i);
+            importance *= if inside || cos_i > cos_b {
+                1.0
+            } else {
+                (cos_i * cos_b + sin_i * self.r) * inv_len2
+            };
         }
         importance.max(0.0)
     }
@@ -121,17 +121,13 @@ pub struct CompactLightBounds4 {
     wz: Vec4,
     phi: Vec4,
     min_d2: Vec4,
+    inv_min_d2: Vec4,
+    r: Vec4,
     r2: Vec4,
     cos_theta_o: Vec4,
     sin_theta_o: Vec4,
     cos_theta_e: Vec4,
     two_sided: BVec4A,
-}
-
-/// cos(θ_a − θ_b) per lane, 1 where θ_a < θ_b.
-#[inline(always)]
-fn cos_sub_clamped4(sin_a: Vec4, cos_a: Vec4, sin_b: Vec4, cos_b: Vec4) -> Vec4 {
-    Vec4::select(cos_a.cmpgt(cos_b), Vec4::ONE, cos_a * cos_b + sin_a * sin_b)
 }
 
 /// √max(0, x) per lane.
@@ -153,6 +149,8 @@ impl CompactLightBounds4 {
             wz: lanes(|b| b.w.z),
             phi: lanes(|b| b.phi),
             min_d2: lanes(|b| b.min_d2),
+            inv_min_d2: lanes(|b| b.inv_min_d2),
+            r: lanes(|b| b.r),
             r2: lanes(|b| b.r2),
             cos_theta_o: lanes(|b| b.cos_theta_o),
             sin_theta_o: lanes(|b| b.sin_theta_o),
@@ -172,33 +170,32 @@ impl CompactLightBounds4 {
             Vec4::splat(p.z) - self.cz,
         );
         let len2 = vx * vx + vy * vy + vz * vz;
-        let d2 = len2.max(self.min_d2);
-        // wi = v/|v|, zero where 1/|v| is not a finite positive number.
-        let rcp = Vec4::ONE / len2.sqrt();
-        let ok = rcp.cmpgt(Vec4::ZERO) & rcp.cmplt(Vec4::INFINITY);
-        let wix = Vec4::select(ok, vx * rcp, Vec4::ZERO);
-        let wiy = Vec4::select(ok, vy * rcp, Vec4::ZERO);
-        let wiz = Vec4::select(ok, vz * rcp, Vec4::ZERO);
-        let cos_w = self.wx * wix + self.wy * wiy + self.wz * wiz;
-        let cos_w = Vec4::select(self.two_sided, cos_w.abs(), cos_w);
-        let sin_w = safe_sqrt4(Vec4::ONE - cos_w * cos_w);
-        let cos_b = Vec4::select(
-            len2.cmplt(self.r2),
-            Vec4::NEG_ONE,
-            safe_sqrt4(Vec4::ONE - self.r2 / len2),
-        );
-        let sin_b = safe_sqrt4(Vec4::ONE - cos_b * cos_b);
-        // θ_x = max(0, θ_w − θ_o), then θ′ = max(0, θ_x − θ_b).
+        let len = len2.sqrt();
+        let inv_len2 = Vec4::ONE / len2;
+        let wv = self.wx * vx + self.wy * vy + self.wz * vz;
+        let wv = Vec4::select(self.two_sided, wv.abs(), wv);
+        let sin_w = safe_sqrt4(len2 - wv * wv);
+        let cos_b = safe_sqrt4(len2 - self.r2);
+        let inv_d2 = Vec4::select(len2.cmplt(self.min_d2), self.inv_min_d2, inv_len2);
+        let inside = len2.cmplt(self.r2) | len2.cmpeq(Vec4::ZERO);
         let (cos_o, sin_o) = (self.cos_theta_o, self.sin_theta_o);
-        let behind = cos_w.cmpgt(cos_o);
-        let cos_x = Vec4::select(behind, Vec4::ONE, cos_w * cos_o + sin_w * sin_o);
-        let sin_x = Vec4::select(behind, Vec4::ZERO, sin_w * cos_o - cos_w * sin_o);
-        let cos_p = cos_sub_clamped4(sin_x, cos_x, sin_b, cos_b);
-        let mut importance = self.phi * cos_p / d2;
+        let cos_x = wv * cos_o + sin_w * sin_o;
+        let sin_x = sin_w * cos_o - wv * sin_o;
+        let one_p = wv.cmpgt(cos_o * len) | inside | cos_x.cmpgt(cos_b);
+        let cos_p = Vec4::select(
+            one_p,
+            Vec4::ONE,
+            (cos_x * cos_b + sin_x * self.r) * inv_len2,
+        );
+        let mut importance = self.phi * cos_p * inv_d2;
         if n != Vec3::ZERO {
-            let cos_i = (wix * n.x + wiy * n.y + wiz * n.z).abs();
-            let sin_i = safe_sqrt4(Vec4::ONE - cos_i * cos_i);
-            importance *= cos_sub_clamped4(sin_i, cos_i, sin_b, cos_b);
+            let cos_i = (vx * n.x + vy * n.y + vz * n.z).abs();
+            let sin_i = safe_sqrt4(len2 - cos_i * cos_i);
+            importance *= Vec4::select(
+                inside | cos_i.cmpgt(cos_b),
+                Vec4::ONE,
+                (cos_i * cos_b + sin_i * self.r) * inv_len2,
+            );
         }
         Vec4::select(
             cos_p.cmple(self.cos_theta_e),
