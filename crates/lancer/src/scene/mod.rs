@@ -212,6 +212,22 @@ impl Scene {
         }
         let (h, prim) = best?;
         let shape = &self.shapes[prim as usize];
+        if let Shape::Triangle(t) = shape
+            && !self.finishes(prim)
+        {
+            // Built where it is returned: a record built aside and then copied was read back
+            // right after being written piece by piece, which stalled every hit.
+            return Some(SceneHit::new(
+                t.interaction_framed(
+                    ray,
+                    &h,
+                    &self.meshes[t.mesh as usize],
+                    &self.frames[prim as usize],
+                ),
+                prim,
+                None,
+            ));
+        }
         let hit = match shape {
             // The common case first, without the dispatch over every shape.
             Shape::Triangle(t) => SceneHit::new(
@@ -231,6 +247,18 @@ impl Scene {
             ),
         };
         Some(self.finish_hit(ray, hit))
+    }
+
+    /// Whether a hit on primitive `prim` needs [`Scene::finish_hit`]: the scene's textures
+    /// use footprints, or its material is a `mix` or carries a bump or normal map (what
+    /// [`crate::material::mix::apply_bump`] acts on).
+    #[inline(always)]
+    fn finishes(&self, prim: u32) -> bool {
+        self.footprints.is_some()
+            || matches!(
+                self.materials[self.prims[prim as usize].material as usize],
+                Material::Mix { .. } | Material::Bumped { .. }
+            )
     }
 
     /// Completes `hit` in place: its footprint, and its shading frame changed by its
