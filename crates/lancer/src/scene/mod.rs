@@ -16,7 +16,7 @@ pub use prim::{AreaEmission, BuildError, IMAGE_EMISSION, PrimInfo};
 pub use spectra::SceneSpectra;
 pub use tris::SceneTris;
 
-use crate::accel::{Bvh, Tri4};
+use crate::accel::{Bvh, Packet, Tri4};
 use crate::camera::Camera;
 use crate::light::{Light, LightDistribution, LightSampler};
 use crate::material::Material;
