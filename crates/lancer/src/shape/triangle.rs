@@ -497,6 +497,75 @@ mod tests {
         assert_eq!((si.n, si.shading.n), (-Vec3::Z, -Vec3::Z));
     }
 
+    /// A record made with the triangle's frame made beforehand is the plain one, bit for bit,
+    /// with and without vertex normals, flipped or not, and for (u, v) meshes (which fall back).
+    #[test]
+    fn framed_interaction_is_the_plain_one_bit_for_bit() {
+        use crate::sampling::{hash_u64, u32_to_unit_f32};
+        let rnd = |i: u64| u32_to_unit_f32(hash_u64(&[i]) as u32) * 4.0 - 2.0;
+        for k in 0..200u64 {
+            let positions: Vec<PackedVec3> = (0..3)
+                .map(|v| {
+                    PackedVec3::new(
+                        rnd(9 * k + 3 * v),
+                        rnd(9 * k + 3 * v + 1),
+                        rnd(9 * k + 3 * v + 2),
+                    )
+                })
+                .collect();
+            let normals = if k % 3 == 0 {
+                positions
+                    .iter()
+                    .map(|p| PackedVec3::from(normalize(Vec3::from(*p))))
+                    .collect()
+            } else {
+                vec![]
+            };
+            let uvs = if k % 5 == 0 {
+                vec![
+                    Vec2::new(0.1, 0.2),
+                    Vec2::new(0.9, 0.3),
+                    Vec2::new(0.4, 0.8),
+                ]
+            } else {
+                vec![]
+            };
+            let tri = Triangle {
+                p: [positions[0], positions[1], positions[2]],
+                mesh: 0,
+                index: 0,
+            };
+            let mesh = TriangleMesh {
+                positions,
+                normals,
+                uvs,
+                indices: vec![0, 1, 2],
+                flip_normal: k % 2 == 1,
+            };
+            let frame = TriangleFrame::new(tri.vertices());
+            let h = ShapeHit {
+                t: 1.5,
+                u: 0.25,
+                v: 0.375,
+            };
+            let ray = Ray::new(
+                Vec3::new(rnd(5000 + k), 3.0, 0.5),
+                Vec3::new(0.1, -1.0, 0.2),
+            );
+            let want = tri.interaction(&ray, &h, &mesh);
+            let got = tri.interaction_framed(&ray, &h, &mesh, &frame);
+            let bits = |si: &SurfaceInteraction| {
+                [si.p, si.p_error, si.n, si.dpdu, si.dpdv, si.shading.n]
+                    .into_iter()
+                    .chain([si.shading.dpdu, si.shading.dpdv, si.wo])
+                    .flat_map(|v| v.to_array().map(f32::to_bits))
+                    .chain([si.uv.x, si.uv.y, si.t].map(f32::to_bits))
+                    .collect::<Vec<u32>>()
+            };
+            assert_eq!(bits(&got), bits(&want), "triangle {k}");
+        }
+    }
+
     #[test]
     fn vertex_normals_orient_the_geometric_normal() {
         // Vertex normals all −z tilted differently: the shading normal is their normalised
