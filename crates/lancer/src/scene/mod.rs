@@ -168,8 +168,7 @@ impl Scene {
                 best = Some((h, p.ids[lane]));
                 return Some(h.t);
             }
-            let r = Ray { t_max, ..*ray };
-            self.bvh.leaf_nearest(leaf, &r, &mut |i, r| {
+            self.bvh.leaf_nearest(leaf, ray, t_max, &mut |i, r| {
                 let h = self.hit(i, r, &pre)?;
                 best = Some((h, i));
                 Some(h.t)
