@@ -5,7 +5,7 @@
 //! every hit it finds is the packet's, bit for bit.
 
 use super::Bvh;
-use super::tri4::IndexedTri4;
+use super::tri4::{IndexedTri4, Packet};
 use crate::math::{Bounds3, PackedVec3, Vec3};
 use crate::ray::Ray;
 use crate::shape::{ShapeHit, TriangleRay};

@@ -1,7 +1,7 @@
 //! A BVH over the triangles of one mesh, its leaves stored as 4-triangle packets: the
 //! accelerator of `lancer bench rays` and of instanced objects.
 
-use super::{Bvh, Tri4};
+use super::{Bvh, Packet, Tri4};
 use crate::math::{Bounds3, PackedVec3, Vec3};
 use crate::ray::Ray;
 use crate::shape::{ShapeHit, TriangleRay, is_degenerate};

@@ -10,4 +10,4 @@ mod tri4;
 pub use bvh::{Bvh, MAX_LEAF};
 pub use indexed::IndexedTris;
 pub use mesh::MeshBvh;
-pub use tri4::Tri4;
+pub use tri4::{Packet, Tri4};

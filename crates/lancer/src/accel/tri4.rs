@@ -54,39 +54,19 @@ impl Tri4 {
     pub fn vertices(&self, lane: usize) -> [Vec3; 3] {
         [0, 1, 2].map(|k| Vec3::new(self.p[k][0][lane], self.p[k][1][lane], self.p[k][2][lane]))
     }
+}
 
-    /// Lanes holding triangles, as a mask (bit k for lane k).
+impl Packet for Tri4 {
     #[inline(always)]
     fn used(&self) -> u32 {
         not_max_bits(&self.ids)
     }
 
-    /// The nearest hit with 0 < t ≤ `t_max` among the four: (lane, hit). As in the scalar
-    /// test and pbrt-v4's `IntersectTriangle`, a hit at exactly `t_max` is accepted, so among
-    /// equal t the highest lane wins, exactly as when the lanes are tested one after another,
-    /// each against the ray shortened to the hit before. (Coplanar surfaces, such as a prism
-    /// standing on a floor, then resolve as in pbrt-v4: the triangle tested last.) Inlined
-    /// into the traversal loops: the ray and its set-up stay in registers across the leaves.
     #[inline(always)]
-    pub fn intersect_to(
-        &self,
-        ray: &Ray,
-        t_max: f32,
-        pre: &TriangleRay,
-    ) -> Option<(usize, ShapeHit)> {
-        let found = test(ray, t_max, pre, self.permuted(pre), self.used());
-        nearest(ray, t_max, pre, found, |lane| self.vertices(lane))
+    fn lane_vertices(&self, lane: usize) -> [Vec3; 3] {
+        self.vertices(lane)
     }
 
-    /// True if any of the four is hit with 0 < t ≤ `ray.t_max`.
-    #[inline]
-    pub fn intersect_any(&self, ray: &Ray, pre: &TriangleRay) -> bool {
-        let found = test(ray, ray.t_max, pre, self.permuted(pre), self.used());
-        any(ray, pre, found, |lane| self.vertices(lane))
-    }
-
-    /// The vertices' coordinates in the ray's axis order (kx, ky, kz), as lanes:
-    /// `[vertex][axis]`.
     #[inline(always)]
     fn permuted(&self, pre: &TriangleRay) -> [[F4; 3]; 3] {
         let kz = pre.kz();
@@ -112,35 +92,14 @@ pub struct IndexedTri4<'a> {
     pub tris: &'a [[u32; 3]],
 }
 
-impl IndexedTri4<'_> {
-    /// The nearest hit with 0 < t ≤ `t_max` among the triangles: (index in `tris`, hit).
-    #[inline]
-    pub fn intersect_to(
-        &self,
-        ray: &Ray,
-        t_max: f32,
-        pre: &TriangleRay,
-    ) -> Option<(usize, ShapeHit)> {
-        let found = test(ray, t_max, pre, self.permuted(pre), self.used());
-        nearest(ray, t_max, pre, found, |lane| self.vertices(lane))
-    }
-
-    /// True if any of the triangles is hit with 0 < t ≤ `ray.t_max`.
-    #[inline]
-    pub fn intersect_any(&self, ray: &Ray, pre: &TriangleRay) -> bool {
-        let found = test(ray, ray.t_max, pre, self.permuted(pre), self.used());
-        any(ray, pre, found, |lane| self.vertices(lane))
-    }
-
-    /// Lanes holding triangles, as a mask.
+impl Packet for IndexedTri4<'_> {
     #[inline(always)]
     fn used(&self) -> u32 {
         (1u32 << self.tris.len().min(4)) - 1
     }
 
-    /// Lane `lane`'s vertices.
     #[inline]
-    fn vertices(&self, lane: usize) -> [Vec3; 3] {
+    fn lane_vertices(&self, lane: usize) -> [Vec3; 3] {
         self.tris[lane].map(|i| Vec3::from(self.positions[i as usize]))
     }
 
@@ -164,8 +123,10 @@ impl IndexedTri4<'_> {
         };
         [0, 1, 2].map(|k| [kx, ky, kz].map(|a| F4::load(&std::array::from_fn(|l| at(l, k, a)))))
     }
+}
 
-    /// [`IndexedTri4::permuted`] by AVX2 gathers: per vertex of the four triangles, one gather
+impl IndexedTri4<'_> {
+    /// [`Packet::permuted`] by AVX2 gathers: per vertex of the four triangles, one gather
     /// of its indices and one per axis of its coordinates.
     #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
     #[inline(always)]
@@ -184,6 +145,40 @@ impl IndexedTri4<'_> {
                 axes.map(|a| F4::from_m128(_mm_i32gather_ps::<4>(pp.add(a), off)))
             })
         }
+    }
+}
+
+/// Up to four triangles tested side by side: [`Tri4`] (vertices copied into the packet) and
+/// [`IndexedTri4`] (vertices gathered through their indices) give their lanes, the test is
+/// theirs in common.
+pub trait Packet {
+    /// Lanes holding triangles, as a mask (bit k for lane k).
+    fn used(&self) -> u32;
+
+    /// Lane `lane`'s vertices.
+    fn lane_vertices(&self, lane: usize) -> [Vec3; 3];
+
+    /// The vertices' coordinates in the ray's axis order (kx, ky, kz), as lanes:
+    /// `[vertex][axis]` (unused lanes hold any finite values).
+    fn permuted(&self, pre: &TriangleRay) -> [[F4; 3]; 3];
+
+    /// The nearest hit with 0 < t ≤ `t_max` among the lanes: (lane, hit). As in the scalar
+    /// test and pbrt-v4's `IntersectTriangle`, a hit at exactly `t_max` is accepted, so among
+    /// equal t the highest lane wins, exactly as when the lanes are tested one after another,
+    /// each against the ray shortened to the hit before. (Coplanar surfaces, such as a prism
+    /// standing on a floor, then resolve as in pbrt-v4: the triangle tested last.) Inlined
+    /// into the traversal loops: the ray and its set-up stay in registers across the leaves.
+    #[inline(always)]
+    fn intersect_to(&self, ray: &Ray, t_max: f32, pre: &TriangleRay) -> Option<(usize, ShapeHit)> {
+        let found = test(ray, t_max, pre, self.permuted(pre), self.used());
+        nearest(ray, t_max, pre, found, |lane| self.lane_vertices(lane))
+    }
+
+    /// True if any lane's triangle is hit with 0 < t ≤ `ray.t_max`.
+    #[inline(always)]
+    fn intersect_any(&self, ray: &Ray, pre: &TriangleRay) -> bool {
+        let found = test(ray, ray.t_max, pre, self.permuted(pre), self.used());
+        any(ray, pre, found, |lane| self.lane_vertices(lane))
     }
 }
 

@@ -42,6 +42,7 @@ impl Scene {
         let mut tris = made.tris.build();
         let (shapes, mut prims, bvh, unbounded) = bvh_order(made.shapes, made.prims);
         let packets = packets(&bvh, &shapes, &prims);
+        let frames = super::triangle_frames(&shapes);
         let mut instances = flat.instances;
         let mut moving_prims = Vec::new();
         let mut motion =
@@ -113,6 +114,7 @@ impl Scene {
             camera_medium: desc.camera_medium,
             bvh,
             packets,
+            frames,
             instances,
             motion: motion.map(Box::new),
             unbounded,

@@ -100,6 +100,7 @@ impl Scene {
         let primitives = vec_bytes::<Shape>(self.shapes.capacity())
             + boxed
             + vec_bytes::<PrimInfo>(self.prims.capacity())
+            + vec_bytes::<crate::shape::TriangleFrame>(self.frames.capacity())
             + vec_bytes::<u32>(self.unbounded.capacity());
         // Texture and environment images, each shared image once.
         let mut images = 0;

@@ -16,13 +16,13 @@ pub use prim::{AreaEmission, BuildError, IMAGE_EMISSION, PrimInfo};
 pub use spectra::SceneSpectra;
 pub use tris::SceneTris;
 
-use crate::accel::{Bvh, Tri4};
+use crate::accel::{Bvh, Packet, Tri4};
 use crate::camera::Camera;
 use crate::light::{Light, LightDistribution, LightSampler};
 use crate::material::Material;
 use crate::math::{Bounds3, Rgb, SampledSpectrum, Vec3, rgb_lanes};
 use crate::ray::Ray;
-use crate::shape::{Shape, SurfaceInteraction, TriangleMesh, TriangleRay};
+use crate::shape::{Shape, SurfaceInteraction, TriangleFrame, TriangleMesh, TriangleRay};
 use crate::spectrum::sampled::SampledWavelengths;
 use crate::texture::{FloatTex, FloatTexture, SpectrumTexture, TexCoord, TextureEval};
 
@@ -39,6 +39,19 @@ pub struct SceneHit {
     /// The hit's footprint ∂p/∂x, ∂p/∂y (zero when the scene's textures need none; see
     /// [`Scene::tex_coord_with_footprint`]).
     pub footprint: [Vec3; 2],
+}
+
+impl SceneHit {
+    /// A hit on primitive `prim` at `si`, its footprint zero.
+    #[inline(always)]
+    fn new(si: SurfaceInteraction, prim: u32, albedo: Option<Rgb>) -> SceneHit {
+        SceneHit {
+            si,
+            prim,
+            albedo,
+            footprint: [Vec3::ZERO; 2],
+        }
+    }
 }
 
 /// A scene ready to render: primitives in a BVH, lights, materials, textures, camera.
@@ -78,6 +91,9 @@ pub struct Scene {
     /// Per leaf of `bvh`: its triangles as a packet, or an empty packet when the leaf holds
     /// other shapes or alpha-tested triangles (those go through [`Shape::intersect_with`]).
     packets: Vec<Tri4>,
+    /// Per primitive: its [`TriangleFrame`] if it is a triangle (a zero one otherwise), made
+    /// at build so that a hit's record costs no square root or division of its own.
+    frames: Vec<TriangleFrame>,
     /// Instanced objects and their placements (the two-level part of the scene).
     pub instances: instance::Instances,
     /// What moves during the shutter (motion blur); `None` for a still scene.
@@ -152,8 +168,7 @@ impl Scene {
                 best = Some((h, p.ids[lane]));
                 return Some(h.t);
             }
-            let r = Ray { t_max, ..*ray };
-            self.bvh.leaf_nearest(leaf, &r, &mut |i, r| {
+            self.bvh.leaf_nearest(leaf, ray, t_max, &mut |i, r| {
                 let h = self.hit(i, r, &pre)?;
                 best = Some((h, i));
                 Some(h.t)
@@ -184,50 +199,83 @@ impl Scene {
         {
             let (si, prim) = self.instances.interaction(ray, &ih);
             // Instanced objects are triangle meshes, which carry no colour of their own.
-            return Some(self.finish_hit(ray, si, prim, None));
+            return Some(self.finish_hit(ray, SceneHit::new(si, prim, None)));
         }
         if let (Some(m), Some(mh)) = (&self.motion, moving) {
             let (si, prim, albedo) = m.interaction(ray, &mh);
-            return Some(self.finish_hit(ray, si, prim, albedo));
+            return Some(self.finish_hit(ray, SceneHit::new(si, prim, albedo)));
         }
         if let Some((slot, h)) = best_tri {
             let (si, prim) = self.tris.interaction(ray, slot, &h);
-            return Some(self.finish_hit(ray, si, prim, None));
+            return Some(self.finish_hit(ray, SceneHit::new(si, prim, None)));
         }
         let (h, prim) = best?;
         let shape = &self.shapes[prim as usize];
-        let (si, albedo) = match shape {
+        if let Shape::Triangle(t) = shape
+            && !self.finishes(prim)
+        {
+            // Built where it is returned: a record built aside and then copied was read back
+            // right after being written piece by piece, which stalled every hit.
+            return Some(SceneHit::new(
+                t.interaction_framed(
+                    ray,
+                    &h,
+                    &self.meshes[t.mesh as usize],
+                    &self.frames[prim as usize],
+                ),
+                prim,
+                None,
+            ));
+        }
+        let hit = match shape {
             // The common case first, without the dispatch over every shape.
-            Shape::Triangle(t) => (t.interaction(ray, &h, &self.meshes[t.mesh as usize]), None),
-            _ => (
+            Shape::Triangle(t) => SceneHit::new(
+                t.interaction_framed(
+                    ray,
+                    &h,
+                    &self.meshes[t.mesh as usize],
+                    &self.frames[prim as usize],
+                ),
+                prim,
+                None,
+            ),
+            _ => SceneHit::new(
                 shape.interaction(ray, &h, &self.meshes),
+                prim,
                 shape.hit_albedo(&h),
             ),
         };
-        Some(self.finish_hit(ray, si, prim, albedo))
+        Some(self.finish_hit(ray, hit))
     }
 
-    /// The hit of primitive `prim` at `si`: its footprint, and its shading frame changed by
-    /// its material's bump or normal map (for a `mix`, the picked material's).
-    #[inline]
-    fn finish_hit(
-        &self,
-        ray: &Ray,
-        mut si: SurfaceInteraction,
-        prim: u32,
-        albedo: Option<Rgb>,
-    ) -> SceneHit {
-        let footprint = self.footprint(ray, &si);
-        let m = self.prims[prim as usize].material;
-        crate::material::mix::apply_bump(&self.materials, &self.textures(), m, &mut si, |si| {
+    /// Whether a hit on primitive `prim` needs [`Scene::finish_hit`]: the scene's textures
+    /// use footprints, or its material is a `mix` or carries a bump or normal map (what
+    /// [`crate::material::mix::apply_bump`] acts on).
+    #[inline(always)]
+    fn finishes(&self, prim: u32) -> bool {
+        self.footprints.is_some()
+            || matches!(
+                self.materials[self.prims[prim as usize].material as usize],
+                Material::Mix { .. } | Material::Bumped { .. }
+            )
+    }
+
+    /// Completes `hit` in place: its footprint, and its shading frame changed by its
+    /// primitive's material's bump or normal map (for a `mix`, the picked material's). The
+    /// interaction is not copied on the way: a copy read back the record its shape had just
+    /// written piece by piece, and stalled every hit (store forwarding).
+    #[inline(always)]
+    fn finish_hit(&self, ray: &Ray, mut hit: SceneHit) -> SceneHit {
+        if let Some(f) = &self.footprints {
+            let (dpdx, dpdy) = f.at_hit(ray.o, hit.si.p, hit.si.n);
+            hit.footprint = [dpdx, dpdy];
+        }
+        let footprint = hit.footprint;
+        let m = self.prims[hit.prim as usize].material;
+        crate::material::mix::apply_bump(&self.materials, &self.textures(), m, &mut hit.si, |si| {
             Scene::tex_coord_from(si, footprint)
         });
-        SceneHit {
-            si,
-            prim,
-            albedo,
-            footprint,
-        }
+        hit
     }
 
     /// Primitive `i`'s hit by `ray`, unless its alpha cuts the surface away there.
@@ -304,19 +352,6 @@ impl Scene {
         TexCoord::at(si)
     }
 
-    /// The footprint of `ray`'s hit `si` when the scene's textures use footprints
-    /// ([`crate::camera::footprint`]), zero otherwise.
-    #[inline]
-    fn footprint(&self, ray: &Ray, si: &SurfaceInteraction) -> [Vec3; 2] {
-        match &self.footprints {
-            None => [Vec3::ZERO; 2],
-            Some(f) => {
-                let (dpdx, dpdy) = f.at_hit(ray.o, si.p, si.n);
-                [dpdx, dpdy]
-            }
-        }
-    }
-
     /// Where textures are looked up for `si` with footprint ∂p/∂x, ∂p/∂y, and the (u, v)
     /// derivatives that gives ([`TexCoord::with_footprint`]).
     #[inline]
@@ -333,6 +368,22 @@ impl Scene {
     pub fn tex_coord_with_footprint(hit: &SceneHit) -> TexCoord {
         Scene::tex_coord_from(&hit.si, hit.footprint)
     }
+}
+
+/// Per shape: its [`TriangleFrame`] if it is a triangle, a zero one otherwise (see
+/// [`Scene`]'s `frames`).
+fn triangle_frames(shapes: &[Shape]) -> Vec<TriangleFrame> {
+    let zero = TriangleFrame {
+        n: crate::math::PackedVec3::ZERO,
+        s: crate::math::PackedVec3::ZERO,
+    };
+    shapes
+        .iter()
+        .map(|s| match s {
+            Shape::Triangle(t) => TriangleFrame::new(t.vertices()),
+            _ => zero,
+        })
+        .collect()
 }
 
 impl Scene {

@@ -48,8 +48,8 @@ pub use plane::Plane;
 pub use sdf::{Sdf, SdfFunction};
 pub use sphere::Sphere;
 pub use triangle::{
-    Triangle, TriangleMesh, TriangleRay, intersect_triangle, intersect_triangle_with,
-    is_degenerate, triangle_interaction,
+    Triangle, TriangleFrame, TriangleMesh, TriangleRay, intersect_triangle,
+    intersect_triangle_with, is_degenerate, triangle_interaction,
 };
 pub use voxels::{BRICK, VoxelGrid, Voxels, srgb8_to_linear};
 

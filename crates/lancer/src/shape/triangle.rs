@@ -70,6 +70,67 @@ impl Triangle {
         };
         triangle_interaction(ray, hit, self.vertices(), normals, uvs, mesh.flip_normal)
     }
+
+    /// [`Triangle::interaction`] with the triangle's [`TriangleFrame`] made beforehand (by
+    /// [`TriangleFrame::new`] on its vertices): the same record, bit for bit, without the two
+    /// square roots and divisions that stood in the path of every hit.
+    #[inline]
+    pub fn interaction_framed(
+        &self,
+        ray: &Ray,
+        hit: &ShapeHit,
+        mesh: &TriangleMesh,
+        frame: &TriangleFrame,
+    ) -> SurfaceInteraction {
+        if !mesh.uvs.is_empty() {
+            // ∂p/∂u then comes from the (u, v), not from the vertices alone.
+            return self.interaction(ray, hit, mesh);
+        }
+        let normals =
+            (!mesh.normals.is_empty()).then(|| mesh.vertices(self.index).map(|i| mesh.normal(i)));
+        let (n, s) = (Vec3::from(frame.n), Vec3::from(frame.s));
+        interaction_with(
+            ray,
+            hit,
+            self.vertices(),
+            n,
+            Some(s),
+            normals,
+            None,
+            mesh.flip_normal,
+        )
+    }
+}
+
+/// What a triangle's hit record takes from its vertices alone, made once per triangle rather
+/// than once per hit: its unit geometric normal n = normalize((p₀ − p₂) × (p₁ − p₂)) (before
+/// any flip) and the unit ∂p/∂u of the default (u, v), normalize(p₁ − p₀). Each is computed
+/// by the very operations [`triangle_interaction`] performs, so that a record made with it
+/// ([`Triangle::interaction_framed`]) is that function's, bit for bit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TriangleFrame {
+    /// The unit geometric normal (zero for a degenerate triangle).
+    pub n: PackedVec3,
+    /// The unit ∂p/∂u of the default parameterisation (for a degenerate triangle, of the
+    /// frame around n that replaces it).
+    pub s: PackedVec3,
+}
+
+impl TriangleFrame {
+    /// The frame of the triangle with vertices `p`.
+    pub fn new(p: [Vec3; 3]) -> TriangleFrame {
+        let [p0, p1, p2] = p;
+        let n = cross(p0 - p2, p1 - p2).normalize_or_zero();
+        let dpdu = if n == Vec3::ZERO {
+            Frame::from_z(n).x
+        } else {
+            p1 - p0
+        };
+        TriangleFrame {
+            n: n.into(),
+            s: dpdu.normalize_or_zero().into(),
+        }
+    }
 }
 
 /// Full interaction of a triangle with vertices `p`, per-vertex shading `normals` and `uvs`
@@ -77,7 +138,10 @@ impl Triangle {
 /// p = b₀p₀ + b₁p₁ + b₂p₂ with error ≤ γ₇ Σ|bᵢpᵢ|; ∂p/∂u, ∂p/∂v from the (u, v) of the
 /// vertices; geometric normal (p₀ − p₂) × (p₁ − p₂), turned to agree with the interpolated
 /// vertex normal when there is one (pbrt's rule).
-#[inline]
+///
+/// Inlined into each caller: its vertices then come in registers, where passed through
+/// memory they were read back right after their caller had written them (a stall per hit).
+#[inline(always)]
 pub fn triangle_interaction(
     ray: &Ray,
     hit: &ShapeHit,
@@ -87,10 +151,29 @@ pub fn triangle_interaction(
     flip: bool,
 ) -> SurfaceInteraction {
     let [p0, p1, p2] = p;
+    let n = cross(p0 - p2, p1 - p2).normalize_or_zero();
+    interaction_with(ray, hit, p, n, None, normals, uvs, flip)
+}
+
+/// [`triangle_interaction`] given the unit geometric normal `n` and, when the caller has it,
+/// the unit ∂p/∂u `unit_dpdu` of a mesh without (u, v) (see [`TriangleFrame`]).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn interaction_with(
+    ray: &Ray,
+    hit: &ShapeHit,
+    p: [Vec3; 3],
+    n: Vec3,
+    unit_dpdu: Option<Vec3>,
+    normals: Option<[Vec3; 3]>,
+    uvs: Option<[Vec2; 3]>,
+    flip: bool,
+) -> SurfaceInteraction {
+    let [p0, p1, p2] = p;
     let (b1, b2) = (hit.u, hit.v);
     let b0 = 1.0 - b1 - b2;
     let (dp02, dp12) = (p0 - p2, p1 - p2);
-    let mut n = cross(dp02, dp12).normalize_or_zero();
+    let mut n = n;
     let (mut dpdu, mut dpdv, uv_hit, degenerate);
     match uvs {
         None => {
@@ -135,7 +218,10 @@ pub fn triangle_interaction(
         ns = n;
     }
     // Shading tangents: ∂p/∂u made perpendicular to the shading normal.
-    let mut ss = dpdu.normalize_or_zero();
+    let mut ss = match unit_dpdu {
+        Some(s) if uvs.is_none() => s,
+        _ => dpdu.normalize_or_zero(),
+    };
     let mut ts = cross(ns, ss);
     if ts.length_squared() > 0.0 {
         ss = cross(ts, ns);
@@ -216,7 +302,9 @@ impl TriangleRay {
             shear: Vec3::ZERO,
         };
         let d = pre.permute(ray.d);
-        pre.shear = Vec3::new(-d.x / d.z, -d.y / d.z, 1.0 / d.z);
+        // One vector division for the three: each lane is rounded as its scalar quotient
+        // would be, and the three scalar divisions stood in a row on every ray.
+        pre.shear = Vec3::new(-d.x, -d.y, 1.0) / Vec3::splat(d.z);
         pre
     }
 
@@ -407,6 +495,75 @@ mod tests {
         let (mesh, tri) = one_triangle(vec![], true);
         let si = tri.interaction(&ray, &h, &mesh);
         assert_eq!((si.n, si.shading.n), (-Vec3::Z, -Vec3::Z));
+    }
+
+    /// A record made with the triangle's frame made beforehand is the plain one, bit for bit,
+    /// with and without vertex normals, flipped or not, and for (u, v) meshes (which fall back).
+    #[test]
+    fn framed_interaction_is_the_plain_one_bit_for_bit() {
+        use crate::sampling::{hash_u64, u32_to_unit_f32};
+        let rnd = |i: u64| u32_to_unit_f32(hash_u64(&[i]) as u32) * 4.0 - 2.0;
+        for k in 0..200u64 {
+            let positions: Vec<PackedVec3> = (0..3)
+                .map(|v| {
+                    PackedVec3::new(
+                        rnd(9 * k + 3 * v),
+                        rnd(9 * k + 3 * v + 1),
+                        rnd(9 * k + 3 * v + 2),
+                    )
+                })
+                .collect();
+            let normals = if k % 3 == 0 {
+                positions
+                    .iter()
+                    .map(|p| PackedVec3::from(normalize(Vec3::from(*p))))
+                    .collect()
+            } else {
+                vec![]
+            };
+            let uvs = if k % 5 == 0 {
+                vec![
+                    Vec2::new(0.1, 0.2),
+                    Vec2::new(0.9, 0.3),
+                    Vec2::new(0.4, 0.8),
+                ]
+            } else {
+                vec![]
+            };
+            let tri = Triangle {
+                p: [positions[0], positions[1], positions[2]],
+                mesh: 0,
+                index: 0,
+            };
+            let mesh = TriangleMesh {
+                positions,
+                normals,
+                uvs,
+                indices: vec![0, 1, 2],
+                flip_normal: k % 2 == 1,
+            };
+            let frame = TriangleFrame::new(tri.vertices());
+            let h = ShapeHit {
+                t: 1.5,
+                u: 0.25,
+                v: 0.375,
+            };
+            let ray = Ray::new(
+                Vec3::new(rnd(5000 + k), 3.0, 0.5),
+                Vec3::new(0.1, -1.0, 0.2),
+            );
+            let want = tri.interaction(&ray, &h, &mesh);
+            let got = tri.interaction_framed(&ray, &h, &mesh, &frame);
+            let bits = |si: &SurfaceInteraction| {
+                [si.p, si.p_error, si.n, si.dpdu, si.dpdv, si.shading.n]
+                    .into_iter()
+                    .chain([si.shading.dpdu, si.shading.dpdv, si.wo])
+                    .flat_map(|v| v.to_array().map(f32::to_bits))
+                    .chain([si.uv.x, si.uv.y, si.t].map(f32::to_bits))
+                    .collect::<Vec<u32>>()
+            };
+            assert_eq!(bits(&got), bits(&want), "triangle {k}");
+        }
     }
 
     #[test]

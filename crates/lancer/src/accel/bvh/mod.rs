@@ -86,7 +86,7 @@ impl Bvh {
     }
 
     /// Frees the leaf table and the index array, for callers that keep their own data per
-    /// leaf (packets): afterwards only the leaf-level queries ([`Bvh::intersect_leaves`],
+    /// leaf (packets): afterwards only the leaf-level queries ([`Bvh::traverse`],
     /// [`Bvh::intersect_any_leaves`]) may be used.
     pub fn drop_leaf_table(&mut self) {
         self.leaves = Vec::new();
@@ -126,23 +126,12 @@ impl Bvh {
         }
     }
 
-    /// Visits the leaves whose boxes the ray crosses, nearest first. `leaf(id, ray)` tests a
-    /// leaf's primitives and returns the new `t_max` if it found a closer hit; farther
+    /// Visits the leaves whose boxes the ray crosses, nearest first, the ray ending at
+    /// `t_max` (its own end is not read). `leaf(id, t_max)` tests a leaf's primitives against
+    /// the ray ending at `t_max` and returns the new end if it found a closer hit; farther
     /// subtrees are then culled (a returned −∞ ends the traversal at once: the any-hit query).
-    /// Returns true if some leaf reported a hit.
-    #[inline]
-    pub fn intersect_leaves<F: FnMut(u32, &Ray) -> Option<f32>>(
-        &self,
-        ray: &Ray,
-        mut leaf: F,
-    ) -> bool {
-        self.traverse(ray, ray.t_max, |id, t_max| leaf(id, &Ray { t_max, ..*ray }))
-    }
-
-    /// [`Bvh::intersect_leaves`] for callers that read the ray themselves: `leaf(id, t_max)`
-    /// gets the current end of the ray (`ray` itself is never copied, so a ray its caller
-    /// has just written field by field is read once, by the slab set-up), and the search
-    /// starts with `t_max` rather than `ray.t_max`.
+    /// `ray` itself is never copied, so a ray its caller has just written field by field is
+    /// read once, by the slab set-up. Returns true if some leaf reported a hit.
     #[inline(always)]
     pub fn traverse<F: FnMut(u32, f32) -> Option<f32>>(
         &self,
@@ -256,7 +245,9 @@ impl Bvh {
     /// tests primitive `i` and returns the new `t_max` if it found a closer hit.
     #[inline]
     pub fn intersect<F: FnMut(u32, &Ray) -> Option<f32>>(&self, ray: &Ray, mut hit: F) -> bool {
-        self.intersect_leaves(ray, |leaf, r| self.leaf_nearest(leaf, r, &mut hit))
+        self.traverse(ray, ray.t_max, |leaf, t_max| {
+            self.leaf_nearest(leaf, ray, t_max, &mut hit)
+        })
     }
 
     /// True as soon as `hit(i, ray)` reports a hit (shadow rays).
@@ -265,16 +256,17 @@ impl Bvh {
         self.intersect_any_leaves(ray, |leaf, r| self.leaf_any(leaf, r, &mut hit))
     }
 
-    /// Tests leaf `leaf`'s primitives one after another, each against the ray shortened to the
-    /// nearest hit so far: the new `t_max` if one was hit.
+    /// Tests leaf `leaf`'s primitives one after another, each against `ray` ending at `t_max`
+    /// and then shortened to the nearest hit so far: the new end if one was hit.
     #[inline(always)]
     pub fn leaf_nearest<F: FnMut(u32, &Ray) -> Option<f32>>(
         &self,
         leaf: u32,
         ray: &Ray,
+        t_max: f32,
         hit: &mut F,
     ) -> Option<f32> {
-        let mut r = *ray;
+        let mut r = Ray { t_max, ..*ray };
         let mut found = None;
         for k in self.leaf_range(leaf) {
             if let Some(t) = hit(self.indices[k], &r) {
