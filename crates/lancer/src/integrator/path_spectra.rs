@@ -25,7 +25,8 @@ pub(crate) struct PathSpectra {
     material_keys: [u32; MATERIAL_SLOTS],
     /// Those reflectances at the path's wavelengths.
     materials: [SampledSpectrum; MATERIAL_SLOTS],
-    /// Light whose prepared spectrum `light` holds.
+    /// Key ([`crate::scene::SceneSpectra::light_keys`]) of the lights whose prepared
+    /// spectrum `light` holds.
     light_key: u32,
     /// Its emission at the path's wavelengths, before the sample's factor.
     light: SampledSpectrum,
@@ -62,7 +63,8 @@ impl PathSpectra {
     /// [`Scene::light_radiance`], remembering the last light's prepared spectrum: with one, the
     /// radiance is that spectrum times `factor` whatever `l` is (`l` is its colour times
     /// `factor`), so the spectrum is evaluated once per path (as `light_radiance` with factor 1,
-    /// an exact product).
+    /// an exact product). Lights that share their prepared spectrum (the triangles of one
+    /// emitting mesh) share one key, so a path alternating between them evaluates it once.
     #[inline]
     pub(crate) fn light_radiance(
         &mut self,
@@ -72,13 +74,15 @@ impl PathSpectra {
         l: Rgb,
         factor: f32,
     ) -> SampledSpectrum {
-        let prepared = lambda.is_some() && scene.spectra().lights[i].is_some();
+        let spectra = scene.spectra();
+        let prepared = lambda.is_some() && spectra.lights[i].is_some();
         if !prepared {
             return scene.light_radiance(i, lambda, l, factor);
         }
-        if self.light_key != i as u32 {
+        let key = spectra.light_keys[i];
+        if self.light_key != key {
             self.light = scene.light_radiance(i, lambda, l, 1.0);
-            self.light_key = i as u32;
+            self.light_key = key;
         }
         self.light * factor
     }
