@@ -9,7 +9,7 @@
 //! meets the same few materials and lights again and again, so it evaluates each once and
 //! reuses the value: the same numbers, bit for bit, as evaluating it each time.
 
-use crate::math::{Rgb, SampledSpectrum, Vec3};
+use crate::math::{Rgb, SampledSpectrum, Vec3, rgb_lanes};
 use crate::scene::{Scene, SceneHit};
 use crate::spectrum::sampled::SampledWavelengths;
 
@@ -65,7 +65,7 @@ impl PathSpectra {
     /// `factor`), so the spectrum is evaluated once per path (as `light_radiance` with factor 1,
     /// an exact product). Lights that share their prepared spectrum (the triangles of one
     /// emitting mesh) share one key, so a path alternating between them evaluates it once.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn light_radiance(
         &mut self,
         scene: &Scene,
@@ -74,9 +74,13 @@ impl PathSpectra {
         l: Rgb,
         factor: f32,
     ) -> SampledSpectrum {
+        // RGB mode: the colour's lanes, as `Scene::light_radiance` gives them (without
+        // preparing the scene's spectra, which RGB mode never does).
+        if lambda.is_none() {
+            return rgb_lanes(l);
+        }
         let spectra = scene.spectra();
-        let prepared = lambda.is_some() && spectra.lights[i].is_some();
-        if !prepared {
+        if spectra.lights[i].is_none() {
             return scene.light_radiance(i, lambda, l, factor);
         }
         let key = spectra.light_keys[i];
@@ -88,7 +92,7 @@ impl PathSpectra {
     }
 
     /// [`super::emitted`], through [`PathSpectra::light_radiance`].
-    #[inline]
+    #[inline(always)]
     pub(crate) fn emitted(
         &mut self,
         scene: &Scene,
@@ -96,9 +100,10 @@ impl PathSpectra {
         wo: Vec3,
         lambda: Option<&SampledWavelengths>,
     ) -> SampledSpectrum {
-        super::emission::emission_towards(scene, hit, wo).map_or(SampledSpectrum::ZERO, |(i, l)| {
-            self.light_radiance(scene, i, lambda, l, 1.0)
-        })
+        match super::emission::emission_towards(scene, hit, wo) {
+            Some((i, l)) => self.light_radiance(scene, i, lambda, l, 1.0),
+            None => SampledSpectrum::ZERO,
+        }
     }
 }
 
