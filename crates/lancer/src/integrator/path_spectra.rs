@@ -9,7 +9,7 @@
 //! meets the same few materials and lights again and again, so it evaluates each once and
 //! reuses the value: the same numbers, bit for bit, as evaluating it each time.
 
-use crate::math::{Rgb, SampledSpectrum, Vec3};
+use crate::math::{Rgb, SampledSpectrum, Vec3, rgb_lanes};
 use crate::scene::{Scene, SceneHit};
 use crate::spectrum::sampled::SampledWavelengths;
 
@@ -25,7 +25,8 @@ pub(crate) struct PathSpectra {
     material_keys: [u32; MATERIAL_SLOTS],
     /// Those reflectances at the path's wavelengths.
     materials: [SampledSpectrum; MATERIAL_SLOTS],
-    /// Light whose prepared spectrum `light` holds.
+    /// Key ([`crate::scene::SceneSpectra::light_keys`]) of the lights whose prepared
+    /// spectrum `light` holds.
     light_key: u32,
     /// Its emission at the path's wavelengths, before the sample's factor.
     light: SampledSpectrum,
@@ -62,8 +63,9 @@ impl PathSpectra {
     /// [`Scene::light_radiance`], remembering the last light's prepared spectrum: with one, the
     /// radiance is that spectrum times `factor` whatever `l` is (`l` is its colour times
     /// `factor`), so the spectrum is evaluated once per path (as `light_radiance` with factor 1,
-    /// an exact product).
-    #[inline]
+    /// an exact product). Lights that share their prepared spectrum (the triangles of one
+    /// emitting mesh) share one key, so a path alternating between them evaluates it once.
+    #[inline(always)]
     pub(crate) fn light_radiance(
         &mut self,
         scene: &Scene,
@@ -72,19 +74,25 @@ impl PathSpectra {
         l: Rgb,
         factor: f32,
     ) -> SampledSpectrum {
-        let prepared = lambda.is_some() && scene.spectra().lights[i].is_some();
-        if !prepared {
+        // RGB mode: the colour's lanes, as `Scene::light_radiance` gives them (without
+        // preparing the scene's spectra, which RGB mode never does).
+        if lambda.is_none() {
+            return rgb_lanes(l);
+        }
+        let spectra = scene.spectra();
+        if spectra.lights[i].is_none() {
             return scene.light_radiance(i, lambda, l, factor);
         }
-        if self.light_key != i as u32 {
+        let key = spectra.light_keys[i];
+        if self.light_key != key {
             self.light = scene.light_radiance(i, lambda, l, 1.0);
-            self.light_key = i as u32;
+            self.light_key = key;
         }
         self.light * factor
     }
 
     /// [`super::emitted`], through [`PathSpectra::light_radiance`].
-    #[inline]
+    #[inline(always)]
     pub(crate) fn emitted(
         &mut self,
         scene: &Scene,
@@ -92,9 +100,10 @@ impl PathSpectra {
         wo: Vec3,
         lambda: Option<&SampledWavelengths>,
     ) -> SampledSpectrum {
-        super::emission::emission_towards(scene, hit, wo).map_or(SampledSpectrum::ZERO, |(i, l)| {
-            self.light_radiance(scene, i, lambda, l, 1.0)
-        })
+        match super::emission::emission_towards(scene, hit, wo) {
+            Some((i, l)) => self.light_radiance(scene, i, lambda, l, 1.0),
+            None => SampledSpectrum::ZERO,
+        }
     }
 }
 

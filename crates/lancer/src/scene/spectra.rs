@@ -18,6 +18,9 @@ pub struct SceneSpectra {
     /// ([`Light::constant_colour`]) as an unbounded spectrum, or the spectrum the scene gave
     /// scaled to that colour's luminance; `None` for image environments.
     pub lights: Vec<Option<PreparedSpectrum>>,
+    /// Per light, the first light of its run of consecutive lights sharing one preparation
+    /// (its own index when it shares none): lights with the same key have the same spectrum.
+    pub light_keys: Vec<u32>,
     /// Per material (the indices of [`super::Scene::materials`]): its constant colours by slot
     /// ([`Material::colour_slots`]); slots without a constant hold black.
     pub materials: Vec<[PreparedSpectrum; COLOUR_SLOTS]>,
@@ -32,21 +35,30 @@ impl SceneSpectra {
         light_spectra: &[Option<Measured>],
         materials: &[Material],
     ) -> SceneSpectra {
-        let mut last: Option<(Rgb, Option<Measured>, PreparedSpectrum)> = None;
+        let mut last: Option<(Rgb, Option<Measured>, PreparedSpectrum, u32)> = None;
+        let mut light_keys = Vec::with_capacity(lights.len());
         let lights = lights
             .iter()
             .enumerate()
             .map(|(i, l)| {
-                let c = l.constant_colour()?;
+                let Some(c) = l.constant_colour() else {
+                    light_keys.push(i as u32);
+                    last = None;
+                    return None;
+                };
                 let m = light_spectra.get(i).copied().flatten();
-                let sp = match last {
-                    Some((lc, lm, sp)) if lc == c && lm == m => sp,
+                let (sp, key) = match last {
+                    Some((lc, lm, sp, key)) if lc == c && lm == m => (sp, key),
                     _ => match &m {
-                        Some(m) => PreparedSpectrum::light(c, m),
-                        None => PreparedSpectrum::Rgb(RgbSpectrum::new(c, ColourKind::Unbounded)),
+                        Some(m) => (PreparedSpectrum::light(c, m), i as u32),
+                        None => (
+                            PreparedSpectrum::Rgb(RgbSpectrum::new(c, ColourKind::Unbounded)),
+                            i as u32,
+                        ),
                     },
                 };
-                last = Some((c, m, sp));
+                last = Some((c, m, sp, key));
+                light_keys.push(key);
                 Some(sp)
             })
             .collect();
@@ -65,6 +77,36 @@ impl SceneSpectra {
                 })
             })
             .collect();
-        SceneSpectra { lights, materials }
+        SceneSpectra {
+            lights,
+            light_keys,
+            materials,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Vec3;
+
+    /// A run of lights of one colour shares its first light's key and preparation; a light of
+    /// another colour, and one of the first colour after it, start runs of their own.
+    #[test]
+    fn consecutive_lights_of_one_colour_share_a_key() {
+        let point = |c: Rgb| Light::Point {
+            p: Vec3::ZERO,
+            intensity: c,
+        };
+        let (a, b) = (Rgb::new(1.0, 0.5, 0.25), Rgb::new(0.2, 0.4, 3.0));
+        let s = SceneSpectra::new(
+            &[point(a), point(a), point(a), point(b), point(a)],
+            &[],
+            &[],
+        );
+        assert_eq!(s.light_keys, vec![0, 0, 0, 3, 4]);
+        assert_eq!(s.lights[0], s.lights[2]);
+        assert_eq!(s.lights[0], s.lights[4]);
+        assert_ne!(s.lights[0], s.lights[3]);
     }
 }

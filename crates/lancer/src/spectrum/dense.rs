@@ -63,8 +63,9 @@ impl DenseSpectrum {
         self.values[i] * (1.0 - t) + self.values[i + 1] * t
     }
 
-    /// The values at the four wavelengths of `lambda`, lane-wise.
-    #[inline]
+    /// The values at the four wavelengths of `lambda`, lane-wise. Out of line: callers that
+    /// also evaluate uplifted colours (the commoner kind) keep that path short.
+    #[inline(never)]
     pub fn sample(&self, lambda: &SampledWavelengths) -> SampledSpectrum {
         let l = lambda.lambda;
         SampledSpectrum::new(self.at(l.x), self.at(l.y), self.at(l.z), self.at(l.w))

@@ -21,9 +21,12 @@
 use super::cie::{self, INTEGRATION_RANGE};
 use super::reduce::weights;
 use super::uplift::{SigmoidSpectrum, albedo_spectrum, unbounded_spectrum};
-use super::xyz_to_srgb;
 use crate::math::{Rgb, SampledSpectrum, lanes_rgb, rgb_lanes};
 use std::sync::OnceLock;
+
+/// Where the sigmoid's argument is clamped in [`SampledWavelengths::eval`]: s(±10¹⁸) is 1 or 0
+/// in f32, as s(±∞).
+const SIGMOID_X_MAX: f32 = 1e18;
 
 /// Shortest wavelength sampled (nm).
 pub const LAMBDA_MIN: f32 = 360.0;
@@ -40,7 +43,7 @@ const VIS_C: f64 = 538.0;
 pub fn sample_visible_wavelength(u: f32) -> f32 {
     // The density's CDF is (tanh(A(λ − C)) − t₀)/(t₁ − t₀), tᵢ = tanh at the range's ends.
     let n = norms();
-    let (t0, t1) = (n.vis_t0 as f32, n.vis_t1 as f32);
+    let (t0, t1) = (n.vis_t0, n.vis_t1);
     let x = (t0 + u.clamp(0.0, 1.0) * (t1 - t0)).clamp(t0, t1);
     (VIS_C as f32 + x.atanh() * (1.0 / VIS_A as f32)).clamp(LAMBDA_MIN, LAMBDA_MAX)
 }
@@ -56,38 +59,55 @@ pub fn visible_wavelength_pdf(lambda: f32) -> f32 {
     n.vis_pdf_scale / (c * c)
 }
 
+/// Slots of [`Norms::nodes`]: a power of two above the tables' 94 intervals, so that an index
+/// masked to 7 bits is always in bounds (the slots past the last interval are never used).
+const NODE_SLOTS: usize = 128;
+
+/// 1.5·2²³: adding it to a float v ∈ [−2²², 2²²] rounds v to an integer n, held in the low
+/// mantissa bits of the sum (which is exactly 1.5·2²³ + n).
+const ROUND_MAGIC: f32 = 12_582_912.0;
+
 /// Normalising constants of the conversions, computed once.
 struct Norms {
-    /// 1 / Σ ȳ (1 nm steps): the film's XYZ scale.
-    inv_y_integral: f64,
     /// tanh(A(360 − C)) and tanh(A(830 − C)).
-    vis_t0: f64,
-    vis_t1: f64,
+    vis_t0: f32,
+    vis_t1: f32,
     /// A / (T_MAX − T_MIN), the visible density's numerator.
     vis_pdf_scale: f32,
-    /// Per 5 nm node of the CIE tables: (x̄, ȳ, z̄, D65 · Σȳ / Σ D65·ȳ) in f32, so that a camera
-    /// sample looks each wavelength up once, as one 4-lane linear interpolation.
-    rows: [SampledSpectrum; cie::SAMPLES],
+    /// Per 5 nm interval i of the CIE tables (x = (λ − 360)/5 ∈ [i, i + 1]): the row at its
+    /// start and the step to the next row, in f32. A row is (r̄, ḡ, b̄, k·D65): the sRGB matching
+    /// functions (r̄, ḡ, b̄) = M_XYZ→sRGB · (x̄, ȳ, z̄) / (4 Σȳ) (the film's whole conversion,
+    /// so that it is one weighted sum of rows) and k·D65 = D65 · Σȳ / Σ D65·ȳ (the illuminant
+    /// of RGB white). A camera sample looks each wavelength up once, as one 4-lane linear
+    /// interpolation.
+    nodes: [[SampledSpectrum; 2]; NODE_SLOTS],
 }
 
 impl Norms {
-    /// The row of `rows` at x = max((λ − 360)/5, 0), λ ∈ [360, 830] nm, interpolated linearly:
-    /// i = ⌊x⌋ (at most the last interval), row = rᵢ + (x − i)·(rᵢ₊₁ − rᵢ).
-    /// The index goes through i32, which holds every x of the tables' range exactly: a
-    /// conversion to usize saturates through 64-bit checks, a dozen instructions per wavelength.
-    #[inline]
-    fn row_at_x(&self, x: f32) -> SampledSpectrum {
-        let i = (x as i32).clamp(0, cie::SAMPLES as i32 - 2) as usize;
-        let (a, b) = (self.rows[i], self.rows[i + 1]);
-        a + (x - i as f32) * (b - a)
-    }
-
-    /// The rows at four wavelengths ([`Norms::row_at_x`]), x computed in one 4-lane operation.
+    /// The rows at four wavelengths λ ∈ [360, 830] nm, interpolated linearly between the
+    /// tables' nodes: x = (λ − 360)/5 ∈ [0, 94], i an integer in [0, 93] with
+    /// f = x − i ∈ [0, 1], row = rᵢ + f·(rᵢ₊₁ − rᵢ).
+    ///
+    /// i = round(min(x − ½, 92.75)) (within ½ of x − ½, so f ∈ [0, 1]; at most 93), rounded and
+    /// read out of the float's bits by [`ROUND_MAGIC`]: four lanes at once, with neither a
+    /// float-to-integer conversion nor a bounds check per wavelength.
     #[inline]
     fn rows_at(&self, lambda: SampledSpectrum) -> [SampledSpectrum; 4] {
         let x = ((lambda - SampledSpectrum::splat(LAMBDA_MIN)) * (1.0 / cie::LAMBDA_STEP as f32))
-            .max(SampledSpectrum::ZERO);
-        x.to_array().map(|x| self.row_at_x(x))
+            .clamp(
+                SampledSpectrum::ZERO,
+                SampledSpectrum::splat((cie::SAMPLES - 1) as f32),
+            );
+        let magic = SampledSpectrum::splat(ROUND_MAGIC);
+        let y = (x - 0.5).min(SampledSpectrum::splat(cie::SAMPLES as f32 - 2.25)) + magic;
+        let f = x - (y - magic);
+        let i = y
+            .to_array()
+            .map(|v| (v.to_bits() & (NODE_SLOTS as u32 - 1)) as usize);
+        std::array::from_fn(|k| {
+            let [a, d] = self.nodes[i[k]];
+            a + f[k] * d
+        })
     }
 }
 
@@ -99,16 +119,20 @@ fn norms() -> &'static Norms {
         debug_assert_eq!(w.cmf.len(), INTEGRATION_RANGE.count());
         let vis_t0 = (VIS_A * (LAMBDA_MIN as f64 - VIS_C)).tanh();
         let vis_t1 = (VIS_A * (LAMBDA_MAX as f64 - VIS_C)).tanh();
+        let rows: [SampledSpectrum; cie::SAMPLES] = std::array::from_fn(|i| {
+            let s = 1.0 / (N_SPECTRUM_SAMPLES as f64 * y_integral);
+            let [r, g, b] = cie::xyz_to_srgb(cie::CMF_1931[i].map(|c| c * s));
+            // Σ ȳ / Σ D65·ȳ scales D65 so that an illuminant RGB (1, 1, 1) has luminance 1.
+            let d = cie::D65[i] * (y_integral / w.d65_y);
+            SampledSpectrum::new(r as f32, g as f32, b as f32, d as f32)
+        });
         Norms {
-            inv_y_integral: 1.0 / y_integral,
-            vis_t0,
-            vis_t1,
+            vis_t0: vis_t0 as f32,
+            vis_t1: vis_t1 as f32,
             vis_pdf_scale: (VIS_A / (vis_t1 - vis_t0)) as f32,
-            rows: std::array::from_fn(|i| {
-                let [x, y, z] = cie::CMF_1931[i];
-                // Σ ȳ / Σ D65·ȳ scales D65 so that an illuminant RGB (1, 1, 1) has luminance 1.
-                let d = cie::D65[i] * (y_integral / w.d65_y);
-                SampledSpectrum::new(x as f32, y as f32, z as f32, d as f32)
+            nodes: std::array::from_fn(|i| {
+                let i = i.min(cie::SAMPLES - 2);
+                [rows[i], rows[i + 1] - rows[i]]
             }),
         }
     })
@@ -128,9 +152,10 @@ pub struct SampledWavelengths {
     /// D65(λᵢ) · Σȳ / Σ D65·ȳ, the illuminant of RGB white at each wavelength (looked up once
     /// per camera sample rather than at each light sample).
     d65: SampledSpectrum,
-    /// The CIE matching functions x̄, ȳ, z̄ at each wavelength, looked up once per camera sample
-    /// so that [`SampledWavelengths::to_film_rgb`] is three lane-wise dot products.
-    cmf: [SampledSpectrum; 3],
+    /// Per wavelength λᵢ, (r̄, ḡ, b̄)(λᵢ) / (4 Σȳ) (the sRGB matching functions, see
+    /// [`Norms::nodes`]) and k·D65(λᵢ), looked up once per camera sample so that
+    /// [`SampledWavelengths::to_film_rgb`] is one weighted sum of four rows.
+    film: [SampledSpectrum; N_SPECTRUM_SAMPLES],
 }
 
 /// atanh of four lanes at once, each in (−1, 1): atanh(x) = ½ ln((1 + x)/(1 − x)), the
@@ -168,7 +193,7 @@ impl SampledWavelengths {
     /// p(λ) = A·(1 − x²)/(T_MAX − T_MIN).
     pub fn sample_visible(u: f32) -> SampledWavelengths {
         let n = norms();
-        let (t0, t1) = (n.vis_t0 as f32, n.vis_t1 as f32);
+        let (t0, t1) = (n.vis_t0, n.vis_t1);
         let mut ui = SampledSpectrum::splat(u) + SampledSpectrum::new(0.0, 0.25, 0.5, 0.75);
         ui = SampledSpectrum::select(ui.cmpge(SampledSpectrum::ONE), ui - 1.0, ui);
         let x = (t0 + ui.clamp(SampledSpectrum::ZERO, SampledSpectrum::ONE) * (t1 - t0))
@@ -205,21 +230,20 @@ impl SampledWavelengths {
     /// The wavelengths `lambda` (in [360, 830] nm) with densities `pdf`, and their table rows.
     #[inline]
     fn at(n: &Norms, lambda: SampledSpectrum, pdf: SampledSpectrum) -> SampledWavelengths {
-        // One row (x̄, ȳ, z̄, k·D65) per wavelength from the f32 table, then transposed so that
-        // each quantity has one lane per wavelength.
-        let r = n.rows_at(lambda);
-        let [x, y, z, d65] =
-            [0, 1, 2, 3].map(|j| SampledSpectrum::new(r[0][j], r[1][j], r[2][j], r[3][j]));
+        // One row (r̄, ḡ, b̄, k·D65) per wavelength from the f32 table; the illuminant's lane of
+        // each gathered into one value per wavelength.
+        let film = n.rows_at(lambda);
         SampledWavelengths {
             lambda,
             pdf,
-            d65,
-            cmf: [x, y, z],
+            d65: SampledSpectrum::new(film[0].w, film[1].w, film[2].w, film[3].w),
+            film,
         }
     }
 
     /// The sigmoid spectrum at the four wavelengths, lane-wise:
-    /// t = (λ − 360)/470, x = (c₀t + c₁)t + c₂, s = ½ + x / (2√(1 + x²)) (1 or 0 where x = ±∞).
+    /// t = (λ − 360)/470, x = (c₀t + c₁)t + c₂, s = ½ + x / (2√(1 + x²)) (1 or 0 where x = ±∞,
+    /// and where |x| ≥ 10¹⁸).
     #[inline]
     pub fn eval(&self, s: &SigmoidSpectrum) -> SampledSpectrum {
         match *s {
@@ -227,19 +251,15 @@ impl SampledWavelengths {
             SigmoidSpectrum::Poly([c0, c1, c2]) => {
                 let t = (self.lambda - SampledSpectrum::splat(LAMBDA_MIN))
                     * (1.0 / (LAMBDA_MAX - LAMBDA_MIN));
-                let x = (c0 * t + SampledSpectrum::splat(c1)) * t + SampledSpectrum::splat(c2);
-                let v = SampledSpectrum::splat(0.5)
-                    + x / (2.0 * (SampledSpectrum::ONE + x * x).map(f32::sqrt));
-                let inf = x.abs().cmpeq(SampledSpectrum::INFINITY);
-                SampledSpectrum::select(
-                    inf,
-                    SampledSpectrum::select(
-                        x.cmpgt(SampledSpectrum::ZERO),
-                        SampledSpectrum::ONE,
-                        SampledSpectrum::ZERO,
-                    ),
-                    v,
-                )
+                // x clamped to ±10¹⁸: x² stays finite (below 3.4·10³⁸), and there
+                // x/(2√(1 + x²)) is ±½ exactly, so s is 1 or 0 as at x = ±∞.
+                let x = ((c0 * t + SampledSpectrum::splat(c1)) * t + SampledSpectrum::splat(c2))
+                    .clamp(
+                        SampledSpectrum::splat(-SIGMOID_X_MAX),
+                        SampledSpectrum::splat(SIGMOID_X_MAX),
+                    );
+                SampledSpectrum::splat(0.5)
+                    + x / (2.0 * (SampledSpectrum::ONE + x * x).map(f32::sqrt))
             }
         }
     }
@@ -274,14 +294,17 @@ impl SampledWavelengths {
     }
 
     /// The film colour of radiance `l` (its lanes the values at the four wavelengths):
-    /// the Monte Carlo estimate XYZ = (1/4) Σᵢ (x̄, ȳ, z̄)(λᵢ) · L(λᵢ)/p(λᵢ) / ∫ȳ, then linear
-    /// sRGB. Wavelengths of zero density contribute nothing.
+    /// the Monte Carlo estimate XYZ = (1/4) Σᵢ (x̄, ȳ, z̄)(λᵢ) · L(λᵢ)/p(λᵢ) / ∫ȳ, in linear
+    /// sRGB, M_XYZ→sRGB · XYZ = Σᵢ (r̄, ḡ, b̄)(λᵢ)/(4∫ȳ) · L(λᵢ)/p(λᵢ) with the rows looked up
+    /// at sampling. Wavelengths of zero density contribute nothing.
+    #[inline]
     pub fn to_film_rgb(&self, l: SampledSpectrum) -> Rgb {
-        // wᵢ = L(λᵢ)/p(λᵢ), zero where the density is (or the radiance is exactly zero).
-        let live = self.pdf.cmpgt(SampledSpectrum::ZERO) & l.cmpne(SampledSpectrum::ZERO);
+        // wᵢ = L(λᵢ)/p(λᵢ), zero where the density is.
+        let live = self.pdf.cmpgt(SampledSpectrum::ZERO);
         let w = SampledSpectrum::select(live, l / self.pdf, SampledSpectrum::ZERO);
-        let s = (norms().inv_y_integral / N_SPECTRUM_SAMPLES as f64) as f32;
-        xyz_to_srgb(self.cmf.map(|c| c.dot(w) * s))
+        let [r0, r1, r2, r3] = self.film;
+        // Lane 3 sums k·D65 and is dropped.
+        Rgb::from_vec4((r0 * w.x + r1 * w.y) + (r2 * w.z + r3 * w.w))
     }
 }
 
@@ -448,29 +471,55 @@ mod tests {
 
     #[test]
     fn f32_rows_interpolate_the_cie_tables() {
-        // Ends, a node (560 nm: ȳ = 0.995, D65 = 100) and between nodes, against the f64 tables.
+        // Every node, every midpoint, both ends and points just off the nodes, against the f64
+        // tables: (r̄, ḡ, b̄) = M_XYZ→sRGB · (x̄, ȳ, z̄) / (4 Σȳ) and D65 · Σȳ / Σ D65·ȳ.
         let n = norms();
-        let k = (1.0 / n.inv_y_integral / weights().d65_y) as f32;
-        for l in [360.0f32, 362.5, 557.3, 560.0, 701.9, 829.99, 830.0] {
-            let r = n.rows_at(SampledSpectrum::splat(l))[0];
-            let (c, d) = (cie_xyz(l), cie_d65(l) * k);
+        let y_integral: f64 = weights().cmf.iter().map(|c| c[1]).sum();
+        let k = (y_integral / weights().d65_y) as f32;
+        let mut lambdas: Vec<f32> = (0..cie::SAMPLES)
+            .flat_map(|i| {
+                let l = 360.0 + 5.0 * i as f32;
+                [l, l + 2.5, l + 0.001, l - 0.001]
+            })
+            .filter(|l| (360.0..=830.0).contains(l))
+            .collect();
+        lambdas.extend([362.5, 557.3, 701.9, 829.99]);
+        for l in lambdas {
+            // Four wavelengths at once, each in its own lane.
+            let r = n.rows_at(SampledSpectrum::new(l, 560.0, l, 360.0));
+            assert_eq!(r[0], r[2]);
+            let c = cie_xyz(l).map(|v| v as f64 / (4.0 * y_integral));
+            let want = cie::xyz_to_srgb(c);
             for j in 0..3 {
                 assert!(
-                    (r[j] - c[j]).abs() < 1e-6 * (1.0 + c[j]),
-                    "{l} nm [{j}]: {r} vs {c:?}"
+                    (r[0][j] as f64 - want[j]).abs() < 1e-8,
+                    "{l} nm [{j}]: {} vs {want:?}",
+                    r[0]
                 );
             }
-            assert!((r[3] - d).abs() < 1e-5 * d, "{l} nm: D65 {} vs {d}", r[3]);
+            let d = cie_d65(l) * k;
+            assert!(
+                (r[0][3] - d).abs() < 1e-5 * d,
+                "{l} nm: D65 {} vs {d}",
+                r[0][3]
+            );
         }
-        assert!((n.rows_at(SampledSpectrum::splat(560.0))[2][1] - 0.995).abs() < 1e-6);
+        // A node: 560 nm, (x̄, ȳ, z̄) = (0.5945, 0.995, 0.0039), D65 = 100.
+        let want = cie::xyz_to_srgb([0.5945, 0.995, 0.0039].map(|v| v / (4.0 * y_integral)));
+        let r = n.rows_at(SampledSpectrum::splat(560.0))[1];
+        for j in 0..3 {
+            assert!((r[j] as f64 - want[j]).abs() < 1e-9, "{r} vs {want:?}");
+        }
+        assert!((r[3] - 100.0 * k).abs() < 1e-5 * r[3]);
     }
 
     #[test]
     fn film_rgb_is_the_f64_monte_carlo_estimate() {
-        // XYZ = (1/4) Σ cmf(λᵢ) L/p / Σȳ, computed here in f64, lane 2 of zero density.
+        // XYZ = (1/4) Σ cmf(λᵢ) L/p / Σȳ, then sRGB, computed here in f64, lane 2 of zero
+        // density (and infinite radiance, which it must ignore).
         let mut w = SampledWavelengths::sample_visible(0.61);
         w.pdf[2] = 0.0;
-        let l = SampledSpectrum::new(0.7, 2.0, 5.0, 0.0);
+        let l = SampledSpectrum::new(0.7, 2.0, f32::INFINITY, 0.0);
         let mut xyz = [0.0f64; 3];
         for i in [0, 1] {
             let c = cie_xyz(w.lambda[i]);
@@ -478,13 +527,36 @@ mod tests {
                 xyz[k] += c[k] as f64 * l[i] as f64 / w.pdf[i] as f64;
             }
         }
-        let s = norms().inv_y_integral / 4.0;
-        let want = xyz_to_srgb(xyz.map(|v| (v * s) as f32));
+        let y_integral: f64 = weights().cmf.iter().map(|c| c[1]).sum();
+        let want = cie::xyz_to_srgb(xyz.map(|v| v / (4.0 * y_integral)));
+        let want = Rgb::new(want[0] as f32, want[1] as f32, want[2] as f32);
         let got = w.to_film_rgb(l);
         assert!(
             (got - want).abs().max_element() < 1e-5 * want.abs().max_element(),
             "{got} vs {want}"
         );
+    }
+
+    #[test]
+    fn lane_wise_sigmoid_is_the_scalar_one_and_saturates() {
+        let w = SampledWavelengths::sample_visible(0.37);
+        for c in [[-3.2f32, 4.1, -1.7], [10.5, -12.0, 2.0], [0.0, 0.0, 0.3]] {
+            let s = SigmoidSpectrum::Poly(c);
+            let got = w.eval(&s);
+            for i in 0..4 {
+                assert_eq!(got[i], s.eval(w.lambda[i]), "{c:?} at {} nm", w.lambda[i]);
+            }
+        }
+        // Beyond ±10¹⁸ and at ±∞ the sigmoid is 1 or 0 exactly.
+        for (c2, want) in [
+            (1e19f32, 1.0f32),
+            (-3e30, 0.0),
+            (f32::INFINITY, 1.0),
+            (f32::NEG_INFINITY, 0.0),
+        ] {
+            let got = w.eval(&SigmoidSpectrum::Poly([0.0, 0.0, c2]));
+            assert_eq!(got, SampledSpectrum::splat(want), "c₂ = {c2}");
+        }
     }
 
     #[test]
