@@ -215,7 +215,9 @@ impl Scene {
             && !self.finishes(prim)
         {
             // Built where it is returned: a record built aside and then copied was read back
-            // right after being written piece by piece, which stalled every hit.
+            // right after being written piece by piece, which stalled every hit. (Written out
+            // again in the match below on purpose: one closure for both made the whole path
+            // 1.5 % more instructions on the Cornell box.)
             return Some(SceneHit::new(
                 t.interaction_framed(
                     ray,
