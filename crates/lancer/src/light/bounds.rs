@@ -131,8 +131,8 @@ impl LightBounds {
     }
 
     /// What [`LightBounds::importance`] needs, precomputed: the box's centre and half
-    /// diagonal (and its reciprocal), its bounding sphere's r and r², cos θ_o and sin θ_o = √(1 − cos² θ_o). (A light's
-    /// box is never empty: a point light's is one point.)
+    /// diagonal (and its reciprocal), its bounding sphere's r and r², cos θ_o and
+    /// sin θ_o = √(1 − cos² θ_o). (A light's box is never empty: a point light's is one point.)
     pub fn compact(&self) -> CompactLightBounds {
         let (centre, r) = self.bounds.bounding_sphere();
         let cos_theta_o = self.normals.cos_theta;
@@ -255,6 +255,7 @@ mod tests {
         // The cases are not all trivial zeros.
         assert!(nonzero > 1000, "{nonzero}");
     }
+
     /// pbrt-v4's `LightBounds::Importance` as it is written there, in f64: the unit direction
     /// to `p`, then the sines and cosines of θ_w, θ_b, θ_x, θ′ and θᵢ one after the other.
     /// Also returns cos θ′, to tell cases on the edge of the emission cut.

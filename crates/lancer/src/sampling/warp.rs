@@ -202,6 +202,7 @@ pub fn equal_area_sphere_to_square(d: Vec3) -> Vec2 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::normalize;
 
     /// The series agree with libm's cos and sin over [−π/4, π/4] to within 2 ulp, and the
     /// concentric map with the polar formula it replaces.
@@ -233,7 +234,6 @@ mod tests {
             }
         }
     }
-    use crate::math::normalize;
 
     #[test]
     fn equal_area_map_matches_pbrt_corners_and_centre() {

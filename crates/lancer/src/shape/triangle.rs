@@ -156,7 +156,8 @@ pub fn triangle_interaction(
 }
 
 /// [`triangle_interaction`] given the unit geometric normal `n` and, when the caller has it,
-/// the unit ∂p/∂u `unit_dpdu` of a mesh without (u, v) (see [`TriangleFrame`]).
+/// the unit ∂p/∂u `unit_dpdu` (only for a mesh without (u, v), whose ∂p/∂u depends on the
+/// vertices alone: see [`TriangleFrame`]).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn interaction_with(
@@ -218,10 +219,7 @@ fn interaction_with(
         ns = n;
     }
     // Shading tangents: ∂p/∂u made perpendicular to the shading normal.
-    let mut ss = match unit_dpdu {
-        Some(s) if uvs.is_none() => s,
-        _ => dpdu.normalize_or_zero(),
-    };
+    let mut ss = unit_dpdu.unwrap_or_else(|| dpdu.normalize_or_zero());
     let mut ts = cross(ns, ss);
     if ts.length_squared() > 0.0 {
         ss = cross(ts, ns);
