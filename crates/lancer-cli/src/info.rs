@@ -102,7 +102,7 @@ pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
     }
     // Media by pbrt-v4's kind, with the bytes each kind holds (grids, majorants).
     let mut media: BTreeMap<&str, (u64, u64)> = BTreeMap::new();
-    for m in &scene.media {
+    for m in scene.media() {
         let e = media.entry(m.kind()).or_default();
         e.0 += 1;
         e.1 += (size_of_val(m) + m.heap_bytes()) as u64;
@@ -159,7 +159,7 @@ pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
         "lights": lights,
         "materials": { "count": desc.materials.len(), "by_kind": materials },
         "textures": desc.float_textures.len() + desc.spectrum_textures.len(),
-        "media": { "count": scene.media.len(), "by_kind": media_json },
+        "media": { "count": scene.media().len(), "by_kind": media_json },
         "world_bounds": bounds,
         "warnings": loaded.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>(),
         "memory": mem.to_json(),

@@ -50,7 +50,7 @@ impl SceneMemory {
             media_bytes: m.media as u64,
             other_bytes: (m.lights + m.materials + m.textures + m.instances) as u64,
             triangles: scene.triangle_count() as u64,
-            primitives: (scene.shapes.len() + scene.tris.len()) as u64,
+            primitives: scene.primitive_count() as u64,
             bvh_nodes: scene.bvh_node_count() as u64,
         }
     }

@@ -88,7 +88,7 @@ impl RayDifferentials {
         scale: f32,
     ) -> Option<RayDifferentials> {
         let shifted = |dp: Vec2| {
-            let r = scene.camera.generate_ray(p_film + dp, p_lens)?.ray;
+            let r = scene.camera().generate_ray(p_film + dp, p_lens)?.ray;
             Some(Ray::new(
                 ray.o + (r.o - ray.o) * scale,
                 ray.d + (r.d - ray.d) * scale,

@@ -329,7 +329,7 @@ fn scene_film_rgb(
     lambda: Option<&crate::spectrum::sampled::SampledWavelengths>,
     l: crate::math::SampledSpectrum,
 ) -> crate::math::Rgb {
-    match &scene.film_response {
+    match scene.film_response() {
         None => film_rgb(lambda, l),
         Some(r) => r.film_rgb(lambda, l),
     }
@@ -380,7 +380,7 @@ fn camera_ray_at(
     // With motion blur, the sample's time comes next (as in pbrt-v4's GetCameraSample), and
     // every ray of its path shares it; a still scene draws no time, so its dimensions stay
     // as they were.
-    let time = scene.motion.as_ref().map(|m| {
+    let time = scene.motion().map(|m| {
         let time = m.sample_time(sampler.get_1d());
         crate::scene::motion::set_path_time(time);
         time
@@ -388,8 +388,8 @@ fn camera_ray_at(
     let p_lens = sampler.get_2d();
     (
         match time {
-            None => scene.camera.generate_ray(p_film, p_lens),
-            Some(t) => scene.camera.generate_ray_at(p_film, p_lens, t),
+            None => scene.camera().generate_ray(p_film, p_lens),
+            Some(t) => scene.camera().generate_ray_at(p_film, p_lens, t),
         },
         weight,
         p_film,

@@ -49,7 +49,7 @@ fn degenerate_scene_gives_only_finite_samples() {
                     let p_film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
                     let p_lens = sampler.get_2d();
                     let ray = scene
-                        .camera
+                        .camera()
                         .generate_ray(p_film, p_lens)
                         .expect("a ray")
                         .ray;

@@ -46,8 +46,8 @@ fn image_area_lights_read_their_image_and_scale() {
     assert_eq!(a.l, Rgb::splat(2.0));
     assert_eq!(a.image, Some(0));
     let scene = Scene::build(&loaded.desc).unwrap();
-    let Light::Area { l, image, area, .. } = &scene.lights[0] else {
-        panic!("{:?}", scene.lights[0])
+    let Light::Area { l, image, area, .. } = &scene.lights()[0] else {
+        panic!("{:?}", scene.lights()[0])
     };
     let image = image.as_ref().expect("an image");
     // Radiance 2·texel by uv: u = ¼ is the left texel's centre.
@@ -55,9 +55,9 @@ fn image_area_lights_read_their_image_and_scale() {
     assert_eq!(image.le(Vec2::new(0.75, 0.5)), Rgb::new(0.0, 0.0, 6.0));
     // The light's colour for power and bounds: 2 · mean texel = (1, 0, 3); Φ = π·A·mean.
     assert_eq!(Rgb::from(*l), Rgb::new(1.0, 0.0, 3.0));
-    assert!((scene.lights[0].power() - PI * area * 4.0 / 3.0).abs() < 1e-5);
+    assert!((scene.lights()[0].power() - PI * area * 4.0 / 3.0).abs() < 1e-5);
     // An image light has no constant colour: spectral mode uplifts each lookup.
-    assert_eq!(scene.lights[0].constant_colour(), None);
+    assert_eq!(scene.lights()[0].constant_colour(), None);
 }
 
 #[test]
@@ -75,7 +75,7 @@ fn image_area_lights_given_by_power_divide_by_the_mean_luminance() {
         1.0 / k
     );
     let scene = Scene::build(&loaded.desc).unwrap();
-    let Light::Area { image, .. } = &scene.lights[0] else {
+    let Light::Area { image, .. } = &scene.lights()[0] else {
         panic!()
     };
     // The emitted luminance, averaged over the image, times π·A is Φ.
@@ -122,8 +122,8 @@ fn area_lights_given_by_power_scale_l_by_power_over_pi_sides_area() {
     ] {
         let loaded = scene(&dir, params).unwrap();
         let scene = Scene::build(&loaded.desc).unwrap();
-        let Light::Area { l, area, .. } = &scene.lights[0] else {
-            panic!("{:?}", scene.lights[0])
+        let Light::Area { l, area, .. } = &scene.lights()[0] else {
+            panic!("{:?}", scene.lights()[0])
         };
         assert!((area - 1.0).abs() < 1e-6, "{area}");
         let want = rgb * (10.0 / (PI * sides * area));

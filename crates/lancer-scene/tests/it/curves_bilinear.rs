@@ -56,7 +56,7 @@ fn curves_take_pbrts_parameters_and_defaults() {
     // Built: 2 segments × 2³ pieces, 2 × 2², 1 × 2³; widths per segment as pbrt's lerp.
     let scene = Scene::build(&loaded.desc).unwrap();
     let pieces: Vec<_> = scene
-        .shapes
+        .shapes()
         .iter()
         .filter_map(|s| match s {
             Shape::Curve(c) => Some(c),
@@ -153,8 +153,13 @@ fn bilinear_meshes_take_pbrts_parameters() {
     assert_eq!((m.patch_count(), m.uvs.len(), m.normals.len()), (2, 6, 6));
     // The emitting mesh: one area light per patch, each of area 1.
     let scene = Scene::build(&loaded.desc).unwrap();
-    assert_eq!(scene.lights.len(), 2);
-    for (s, info) in scene.shapes.iter().zip(&scene.prims) {
+    assert_eq!(scene.lights().len(), 2);
+    for (s, info) in scene
+        .shapes()
+        .iter()
+        .enumerate()
+        .map(|(i, s)| (s, scene.prim(i as u32)))
+    {
         if info.emission.is_some() {
             assert!((s.area() - 1.0).abs() < 1e-5);
         }

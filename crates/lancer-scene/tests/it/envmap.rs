@@ -46,18 +46,18 @@ fn infinite_lights_read_their_image() {
 
     // Built: an importance-sampled image light that escaping rays see.
     let scene = Scene::build(&loaded.desc).unwrap();
-    let Light::ImageInfinite(light) = &scene.lights[0] else {
-        panic!("{:?}", scene.lights[0])
+    let Light::ImageInfinite(light) = &scene.lights()[0] else {
+        panic!("{:?}", scene.lights()[0])
     };
     assert_eq!(light.mapping(), EnvMapping::EqualArea);
-    assert_eq!(scene.infinite_lights, vec![0]);
+    assert_eq!(scene.infinite_lights(), [0]);
     // Every corner of the equal-area square is −z; with x, y = +0 it is the corner (1, 1),
     // the bright texel (7, 7): Le there is 2·(14, 7, 3.5). Straight up is the centre.
     assert_eq!(
-        scene.lights[0].le(Vec3::new(0.0, 0.0, -1.0)),
+        scene.lights()[0].le(Vec3::new(0.0, 0.0, -1.0)),
         Vec3::new(28.0, 14.0, 7.0)
     );
-    assert_eq!(scene.lights[0].le(Vec3::Z), Vec3::new(16.0, 8.0, 4.0));
+    assert_eq!(scene.lights()[0].le(Vec3::Z), Vec3::new(16.0, 8.0, 4.0));
 }
 
 #[test]

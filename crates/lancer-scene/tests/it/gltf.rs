@@ -536,7 +536,7 @@ fn texture_lookups_follow_gltf_uv_orientation() {
                 .intersect(&lancer::ray::Ray::new(o, -Vec3::Z))
                 .expect("the square is there");
             let Material::CoatedDiffuse { reflectance, .. } =
-                scene.materials[scene.prims[hit.prim as usize].material as usize]
+                *scene.material(scene.prim(hit.prim).material)
             else {
                 panic!("coated diffuse expected")
             };
@@ -629,7 +629,7 @@ fn embedded_images_are_decoded_and_placed_by_texcoords() {
             .intersect(&lancer::ray::Ray::new(Vec3::new(x, y, 1.0), -Vec3::Z))
             .expect("the quad is there");
         let Material::CoatedDiffuse { reflectance, .. } =
-            scene.materials[scene.prims[hit.prim as usize].material as usize]
+            *scene.material(scene.prim(hit.prim).material)
         else {
             panic!("coated diffuse expected")
         };

@@ -281,7 +281,7 @@ fn the_shipped_voxel_scene_loads() {
     let scene = lancer::Scene::build(&loaded.desc).unwrap();
     assert!(
         scene
-            .shapes
+            .shapes()
             .iter()
             .any(|s| matches!(s, lancer::shape::Shape::Voxels(_)))
     );

@@ -10,7 +10,7 @@ use crate::spectrum::sampled::SampledWavelengths;
 #[cold]
 #[inline(never)]
 fn image_emission(scene: &Scene, light: u32, l: crate::math::PackedRgb, hit: &SceneHit) -> Rgb {
-    match &scene.lights[light as usize] {
+    match &scene.lights()[light as usize] {
         crate::light::Light::Area {
             image: Some(img), ..
         } => img.le(hit.si.uv),
@@ -22,7 +22,7 @@ fn image_emission(scene: &Scene, light: u32, l: crate::math::PackedRgb, hit: &Sc
 /// there (its constant `l`, or with an image the image at the hit's uv).
 #[inline(always)]
 pub(crate) fn emission_towards(scene: &Scene, hit: &SceneHit, wo: Vec3) -> Option<(usize, Rgb)> {
-    let e = scene.prims[hit.prim as usize].emission?;
+    let e = scene.prim(hit.prim).emission?;
     if !(e.two_sided || hit.si.n.dot(wo) > 0.0) {
         return None;
     }

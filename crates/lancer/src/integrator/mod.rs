@@ -79,7 +79,7 @@ impl Integrator {
             Integrator::VolPath {
                 max_depth,
                 regularize,
-            } if scene.media.is_empty() => {
+            } if scene.media().is_empty() => {
                 path::li_observed(scene, ray, sampler, lambda, max_depth, regularize, path)
             }
             _ => self.li(scene, ray, sampler, lambda),
@@ -179,8 +179,8 @@ pub(crate) fn bsdf_at_memo(
     lambda: Option<&SampledWavelengths>,
     memo: Option<&mut PathSpectra>,
 ) -> Option<(Bsdf, bool)> {
-    let m = scene.prims[hit.prim as usize].material;
-    let constant_diffuse = match (&scene.materials[m as usize], hit.albedo) {
+    let m = scene.prim(hit.prim).material;
+    let constant_diffuse = match (scene.material(m), hit.albedo) {
         (Material::Diffuse { reflectance }, None) => match reflectance {
             SpectrumTex::Const(c) => Some(*c),
             SpectrumTex::Measured(s) => Some(s.rgb),
@@ -217,11 +217,11 @@ fn bsdf_at_general(
     hit: &SceneHit,
     lambda: Option<&SampledWavelengths>,
 ) -> Option<(Bsdf, bool)> {
-    let mut m = scene.prims[hit.prim as usize].material;
+    let mut m = scene.prim(hit.prim).material;
     let tex = scene.textures();
     let tc = Scene::tex_coord_with_footprint(hit);
     for _ in 0..16 {
-        match &scene.materials[m as usize] {
+        match scene.material(m) {
             Material::Mix { materials, amount } => {
                 m = crate::material::mix::mix_pick(*materials, tex.float(*amount, &tc), hit.si.p);
             }

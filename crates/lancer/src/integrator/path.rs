@@ -121,8 +121,8 @@ pub fn li_observed<O: PathObserver>(
             // Environment light: counted in full where no light sampling could have found it
             // (camera rays, specular bounces), otherwise weighted against light sampling.
             let mut p_b_value = None;
-            for &i in &scene.infinite_lights {
-                let (i, light) = (i as usize, &scene.lights[i as usize]);
+            for &i in scene.infinite_lights() {
+                let (i, light) = (i as usize, &scene.lights()[i as usize]);
                 let le = light.le(ray.d);
                 let le = if le == Rgb::ZERO {
                     SampledSpectrum::ZERO
@@ -134,7 +134,7 @@ pub fn li_observed<O: PathObserver>(
                 }
                 match (depth == 0 || specular_bounce, prev_ctx) {
                     (false, Some(ctx)) => {
-                        let p_l = scene.light_sampler.pmf(&ctx, i)
+                        let p_l = scene.light_sampler().pmf(&ctx, i)
                             * light.pdf_li(&ctx, normalize(ray.d), None);
                         let p_b = *p_b_value.get_or_insert_with(|| p_b.value(&deferred_bsdf));
                         l += beta * power_heuristic(p_b, p_l) * le;
@@ -153,11 +153,11 @@ pub fn li_observed<O: PathObserver>(
             match (
                 depth == 0 || specular_bounce,
                 prev_ctx,
-                scene.prims[hit.prim as usize].emission,
+                scene.prim(hit.prim).emission,
             ) {
                 (false, Some(ctx), Some(e)) => {
-                    let light = &scene.lights[e.light as usize];
-                    let p_l = scene.light_sampler.pmf(&ctx, e.light as usize)
+                    let light = &scene.lights()[e.light as usize];
+                    let p_l = scene.light_sampler().pmf(&ctx, e.light as usize)
                         * light.pdf_li(&ctx, normalize(ray.d), Some((si.p, si.n)));
                     l += beta * power_heuristic(p_b.value(&deferred_bsdf), p_l) * le;
                 }
@@ -196,16 +196,13 @@ pub fn li_observed<O: PathObserver>(
         let flags = bsdf.flags();
         // wo in the shading frame, once for f, pdf and the sample.
         let wo_l = bsdf.frame.to_local(wo);
-        if flags.is_non_specular() && !scene.lights.is_empty() {
+        if flags.is_non_specular() && !scene.lights().is_empty() {
             // Next-event estimation: one light chosen by the scene's light sampler, one point on it.
             let ul = sampler.get_1d();
             let u = sampler.get_2d();
-            if let Some((i, pmf)) = scene.light_sampler.sample(&ctx, ul) {
-                let light = &scene.lights[i];
-                if let Some(ls) = light
-                    .sample_li(&ctx, u, &scene.shapes, &scene.meshes)
-                    .filter(|ls| ls.pdf > 0.0)
-                {
+            if let Some((i, pmf)) = scene.light_sampler().sample(&ctx, ul) {
+                let light = &scene.lights()[i];
+                if let Some(ls) = scene.sample_li(light, &ctx, u).filter(|ls| ls.pdf > 0.0) {
                     let unoccluded = || !scene.intersect_p(&si.spawn_ray_to(ls.p_light));
                     // A layered BSDF's f is a random walk, dearer than the shadow ray: the ray
                     // goes first for it, after f for the others (f is often zero for them).

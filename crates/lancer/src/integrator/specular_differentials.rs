@@ -29,7 +29,7 @@ pub fn spawn(
     hit: &SceneHit,
     bs: &BsdfSample,
 ) -> Option<Differentials> {
-    if scene.footprints.is_none() || !bs.flags.is_specular() {
+    if scene.footprints().is_none() || !bs.flags.is_specular() {
         return None;
     }
     spawn_specular(ray, incoming, hit, bs)

@@ -50,8 +50,8 @@ pub(super) fn exit(
     beta: &mut SampledSpectrum,
     l: &mut SampledSpectrum,
 ) -> Exit {
-    let m = scene.prims[hit.prim as usize].material;
-    let material = &scene.materials[m as usize];
+    let m = scene.prim(hit.prim).material;
+    let material = scene.material(m);
     let tex = scene.textures();
     let tc = Scene::tex_coord_with_footprint(hit);
     let spectral = lambda.map(|lambda| SpectralColours {
@@ -81,7 +81,7 @@ pub(super) fn exit(
         let Some(h) = scene.intersect(&ray) else {
             break;
         };
-        if scene.prims[h.prim as usize].material == m {
+        if scene.prim(h.prim).material == m {
             count += 1;
             let u = u32_to_unit_f32(hash_u64(&[seed, count as u64]) as u32);
             if u * count as f32 <= 1.0 {
@@ -140,15 +140,15 @@ fn direct_light(
 ) -> SampledSpectrum {
     let ul = sampler.get_1d();
     let u = sampler.get_2d();
-    if scene.lights.is_empty() {
+    if scene.lights().is_empty() {
         return SampledSpectrum::ZERO;
     }
     let si = &hit.si;
-    let Some((i, pmf)) = scene.light_sampler.sample(ctx, ul) else {
+    let Some((i, pmf)) = scene.light_sampler().sample(ctx, ul) else {
         return SampledSpectrum::ZERO;
     };
-    let light = &scene.lights[i];
-    let Some(ls) = light.sample_li(ctx, u, &scene.shapes, &scene.meshes) else {
+    let light = &scene.lights()[i];
+    let Some(ls) = scene.sample_li(light, ctx, u) else {
         return SampledSpectrum::ZERO;
     };
     let f = bsdf.f(wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(si.shading.n).abs();

@@ -46,7 +46,7 @@ fn nonzero(s: SampledSpectrum) -> bool {
 /// boundary, else the medium it was already in.
 #[inline]
 fn medium_after(scene: &Scene, hit: &SceneHit, d: Vec3, current: Option<u32>) -> Option<u32> {
-    match scene.prims[hit.prim as usize].media {
+    match scene.prim(hit.prim).media {
         Some(mi) => mi.towards(hit.si.n, d),
         None => current,
     }
@@ -85,7 +85,7 @@ pub fn li(
     max_depth: u32,
     regularize: bool,
 ) -> SampledSpectrum {
-    if scene.media.is_empty() {
+    if scene.media().is_empty() {
         return path::li(scene, ray, sampler, lambda, max_depth, regularize);
     }
     Walk {
@@ -151,7 +151,7 @@ impl Walk<'_> {
             eta_scale: 1.0,
             prev_ctx: None,
             ray,
-            medium: scene.camera_medium,
+            medium: scene.camera_medium(),
         };
         loop {
             let hit = scene.intersect(&s.ray);
@@ -173,10 +173,10 @@ impl Walk<'_> {
             if nonzero(le) {
                 match (s.depth == 0 || s.specular_bounce, s.prev_ctx) {
                     (false, Some(ctx)) => {
-                        let e = scene.prims[hit.prim as usize].emission;
+                        let e = scene.prim(hit.prim).emission;
                         let p_l = e.map_or(0.0, |e| {
-                            scene.light_sampler.pmf(&ctx, e.light as usize)
-                                * scene.lights[e.light as usize].pdf_li(
+                            scene.light_sampler().pmf(&ctx, e.light as usize)
+                                * scene.lights()[e.light as usize].pdf_li(
                                     &ctx,
                                     normalize(s.ray.d),
                                     Some((si.p, si.n)),
@@ -269,8 +269,8 @@ impl Walk<'_> {
     /// Environment lights seen by a ray leaving the scene.
     fn escaped(&self, s: &mut State) {
         let scene = self.scene;
-        for &i in &scene.infinite_lights {
-            let (i, light) = (i as usize, &scene.lights[i as usize]);
+        for &i in scene.infinite_lights() {
+            let (i, light) = (i as usize, &scene.lights()[i as usize]);
             let le = light.le(s.ray.d);
             if le == crate::math::Rgb::ZERO {
                 continue;
@@ -278,7 +278,7 @@ impl Walk<'_> {
             let le = scene.light_radiance(i, self.lambda(), le, 1.0);
             match (s.depth == 0 || s.specular_bounce, s.prev_ctx) {
                 (false, Some(ctx)) => {
-                    let p_l = scene.light_sampler.pmf(&ctx, i)
+                    let p_l = scene.light_sampler().pmf(&ctx, i)
                         * light.pdf_li(&ctx, normalize(s.ray.d), None);
                     s.l += s.beta * le / avg(s.r_u + s.r_l * p_l);
                 }
@@ -298,7 +298,7 @@ impl Walk<'_> {
     ) -> MediumEvent {
         let scene = self.scene;
         let h = self.hero;
-        let medium = &scene.media[s.medium.expect("in a medium") as usize];
+        let medium = scene.medium(s.medium.expect("in a medium"));
         let t_max = t_hit.unwrap_or(f32::INFINITY);
         let mut rng = seeded_rng(sampler.get_1d(), sampler.get_1d());
         let u = sampler.get_1d();
@@ -433,11 +433,11 @@ impl Walk<'_> {
         r_p: SampledSpectrum,
     ) -> SampledSpectrum {
         let scene = self.scene;
-        let Some((i, pmf)) = scene.light_sampler.sample(ctx, ul) else {
+        let Some((i, pmf)) = scene.light_sampler().sample(ctx, ul) else {
             return SampledSpectrum::ZERO;
         };
-        let light = &scene.lights[i];
-        let Some(ls) = light.sample_li(ctx, u, &scene.shapes, &scene.meshes) else {
+        let light = &scene.lights()[i];
+        let Some(ls) = scene.sample_li(light, ctx, u) else {
             return SampledSpectrum::ZERO;
         };
         if ls.pdf <= 0.0 {
@@ -503,7 +503,9 @@ impl Walk<'_> {
             }
             let t_max = hit.as_ref().map_or(ray.t_max, |h| h.si.t);
             let uniform = medium.and_then(|m| {
-                scene.media[m as usize].uniform_transmittance(ray.d, t_max, self.lambda())
+                scene
+                    .medium(m)
+                    .uniform_transmittance(ray.d, t_max, self.lambda())
             });
             if let Some(tr) = uniform {
                 // A homogeneous stretch: its transmittance in closed form (ratio tracking's
@@ -512,7 +514,7 @@ impl Walk<'_> {
             } else if let Some(m) = medium {
                 let u = rng.uniform();
                 let t_maj = sample_t_maj(
-                    &scene.media[m as usize],
+                    scene.medium(m),
                     ray.o,
                     ray.d,
                     t_max,
@@ -564,7 +566,7 @@ impl Walk<'_> {
 fn invisible(scene: &Scene, light: &crate::light::Light) -> bool {
     match *light {
         crate::light::Light::Area { prim, .. } => {
-            scene.prims[prim as usize].alpha == Some(crate::texture::FloatTex::Const(0.0))
+            scene.prim(prim).alpha == Some(crate::texture::FloatTex::Const(0.0))
         }
         _ => false,
     }
@@ -572,8 +574,8 @@ fn invisible(scene: &Scene, light: &crate::light::Light) -> bool {
 
 /// True when the surface hit has no BSDF (an `interface` material): shadow rays pass it.
 fn is_interface(scene: &Scene, hit: &SceneHit) -> bool {
-    let m = scene.prims[hit.prim as usize].material;
-    matches!(scene.materials[m as usize], Material::Interface)
+    let m = scene.prim(hit.prim).material;
+    matches!(scene.material(m), Material::Interface)
 }
 
 /// Picks 0, 1 or 2 with probabilities proportional to `w` (pbrt-v4's `SampleDiscrete`):

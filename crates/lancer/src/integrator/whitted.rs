@@ -26,11 +26,11 @@ pub fn li(
 ) -> SampledSpectrum {
     let Some(hit) = scene.intersect(ray) else {
         return scene
-            .infinite_lights
+            .infinite_lights()
             .iter()
             .map(|&i| {
                 let i = i as usize;
-                scene.light_radiance(i, lambda, scene.lights[i].le(ray.d), 1.0)
+                scene.light_radiance(i, lambda, scene.lights()[i].le(ray.d), 1.0)
             })
             .sum();
     };
@@ -61,9 +61,9 @@ pub fn li(
         ns: si.shading.n,
     };
     if bsdf.flags().is_non_specular() {
-        for (i, light) in scene.lights.iter().enumerate() {
+        for (i, light) in scene.lights().iter().enumerate() {
             let u = sampler.get_2d();
-            let Some(ls) = light.sample_li(&ctx, u, &scene.shapes, &scene.meshes) else {
+            let Some(ls) = scene.sample_li(light, &ctx, u) else {
                 continue;
             };
             if ls.pdf == 0.0 || ls.l == Rgb::ZERO {

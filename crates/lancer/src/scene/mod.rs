@@ -58,35 +58,35 @@ impl SceneHit {
 #[derive(Debug)]
 pub struct Scene {
     /// Every primitive's shape.
-    pub shapes: Vec<Shape>,
+    shapes: Vec<Shape>,
     /// Every primitive's material and emission, same indices as `shapes`.
-    pub prims: Vec<PrimInfo>,
+    prims: Vec<PrimInfo>,
     /// Triangle meshes whose triangles are primitives of their own (emitting or alpha-tested
     /// ones), world space.
-    pub meshes: Vec<TriangleMesh>,
+    meshes: Vec<TriangleMesh>,
     /// The other triangle meshes, with one record per mesh rather than per triangle.
-    pub tris: SceneTris,
+    tris: SceneTris,
     /// Lights, area lights included.
-    pub lights: Vec<Light>,
+    lights: Vec<Light>,
     /// The lights in proportion to power (pbrt's `power` light sampler).
-    pub light_distribution: LightDistribution,
+    light_distribution: LightDistribution,
     /// How next-event estimation picks a light (the integrator's `lightsampler`).
-    pub light_sampler: LightSampler,
+    light_sampler: LightSampler,
     /// Indices of the lights that rays escaping the scene see (environment lights).
-    pub infinite_lights: Vec<u32>,
+    infinite_lights: Vec<u32>,
     /// Materials.
-    pub materials: Vec<Material>,
+    materials: Vec<Material>,
     /// Float textures.
-    pub float_textures: Vec<FloatTexture>,
+    float_textures: Vec<FloatTexture>,
     /// Colour textures.
-    pub spectrum_textures: Vec<SpectrumTexture>,
+    spectrum_textures: Vec<SpectrumTexture>,
     /// The camera.
-    pub camera: Camera,
+    camera: Camera,
     /// Participating media ([`crate::medium`]); primitives and the camera refer to them by
     /// index.
-    pub media: Vec<crate::medium::Medium>,
+    media: Vec<crate::medium::Medium>,
     /// The medium the camera sits in (`None`: vacuum).
-    pub camera_medium: Option<u32>,
+    camera_medium: Option<u32>,
     bvh: Bvh,
     /// Per leaf of `bvh`: its triangles as a packet, or an empty packet when the leaf holds
     /// other shapes or alpha-tested triangles (those go through [`Shape::intersect_with`]).
@@ -95,9 +95,9 @@ pub struct Scene {
     /// at build so that a hit's record costs no square root or division of its own.
     frames: Vec<TriangleFrame>,
     /// Instanced objects and their placements (the two-level part of the scene).
-    pub instances: instance::Instances,
+    instances: instance::Instances,
     /// What moves during the shutter (motion blur); `None` for a still scene.
-    pub motion: Option<Box<motion::Motion>>,
+    motion: Option<Box<motion::Motion>>,
     /// Primitives without finite bounds (infinite planes), tested on every ray.
     unbounded: Vec<u32>,
     bounds: Bounds3,
@@ -109,13 +109,138 @@ pub struct Scene {
     spectra: std::sync::OnceLock<spectra::SceneSpectra>,
     /// What gives texture lookups their footprints, when a texture filters over them (an
     /// image texture with a MIP pyramid) or a bump map steps by them; `None` otherwise.
-    pub footprints: Option<crate::camera::footprint::Footprints>,
+    footprints: Option<crate::camera::footprint::Footprints>,
     /// The film's sensor, white balance and output space, unless it is the plain CIE 1931
     /// observer into sRGB.
-    pub film_response: Option<crate::spectrum::FilmResponse>,
+    film_response: Option<crate::spectrum::FilmResponse>,
 }
 
 impl Scene {
+    /// The camera.
+    #[inline]
+    pub fn camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    /// The medium the camera sits in (`None`: vacuum).
+    #[inline]
+    pub fn camera_medium(&self) -> Option<u32> {
+        self.camera_medium
+    }
+
+    /// Lights, area lights included; a light's index here is its id everywhere else
+    /// ([`AreaEmission::light`], [`Scene::infinite_lights`], [`Scene::light_sampler`]).
+    #[inline]
+    pub fn lights(&self) -> &[Light] {
+        &self.lights
+    }
+
+    /// How next-event estimation picks a light (the integrator's `lightsampler`).
+    #[inline]
+    pub fn light_sampler(&self) -> &LightSampler {
+        &self.light_sampler
+    }
+
+    /// The lights in proportion to power (pbrt's `power` light sampler).
+    #[inline]
+    pub fn light_distribution(&self) -> &LightDistribution {
+        &self.light_distribution
+    }
+
+    /// Indices of the lights that rays escaping the scene see (environment lights).
+    #[inline]
+    pub fn infinite_lights(&self) -> &[u32] {
+        &self.infinite_lights
+    }
+
+    /// The incident radiance at `ctx` from `light`, one of [`Scene::lights`], for sample `u`
+    /// (an area light samples its shape among this scene's).
+    #[inline]
+    pub fn sample_li(
+        &self,
+        light: &Light,
+        ctx: &crate::light::LightSampleContext,
+        u: crate::math::Vec2,
+    ) -> Option<crate::light::LightLiSample> {
+        light.sample_li(ctx, u, &self.shapes, &self.meshes)
+    }
+
+    /// What primitive `prim` (a [`SceneHit::prim`]) is made of: material, emission, alpha,
+    /// media.
+    #[inline]
+    pub fn prim(&self, prim: u32) -> &PrimInfo {
+        &self.prims[prim as usize]
+    }
+
+    /// Every primitive's shape, same indices as [`Scene::prim`].
+    #[inline]
+    pub fn shapes(&self) -> &[Shape] {
+        &self.shapes
+    }
+
+    /// Triangle meshes whose triangles are primitives of their own (emitting or
+    /// alpha-tested ones), world space.
+    #[inline]
+    pub fn meshes(&self) -> &[TriangleMesh] {
+        &self.meshes
+    }
+
+    /// The other triangle meshes, with one record per mesh rather than per triangle.
+    #[inline]
+    pub fn tris(&self) -> &SceneTris {
+        &self.tris
+    }
+
+    /// Instanced objects and their placements (the two-level part of the scene).
+    #[inline]
+    pub fn instances(&self) -> &instance::Instances {
+        &self.instances
+    }
+
+    /// Material `id` (a [`PrimInfo::material`]).
+    #[inline]
+    pub fn material(&self, id: u32) -> &Material {
+        &self.materials[id as usize]
+    }
+
+    /// Every material, indexed by id.
+    #[inline]
+    pub fn materials(&self) -> &[Material] {
+        &self.materials
+    }
+
+    /// Participating medium `id` (a [`crate::medium::MediumInterface`] side, the camera's).
+    #[inline]
+    pub fn medium(&self, id: u32) -> &crate::medium::Medium {
+        &self.media[id as usize]
+    }
+
+    /// Every participating medium, indexed by id (empty: a scene without media).
+    #[inline]
+    pub fn media(&self) -> &[crate::medium::Medium] {
+        &self.media
+    }
+
+    /// What moves during the shutter (motion blur); `None` for a still scene.
+    #[inline]
+    pub fn motion(&self) -> Option<&motion::Motion> {
+        self.motion.as_deref()
+    }
+
+    /// What gives texture lookups their footprints, when a texture filters over them or a
+    /// bump map steps by them; `None` otherwise.
+    #[inline]
+    pub fn footprints(&self) -> Option<&crate::camera::footprint::Footprints> {
+        self.footprints.as_ref()
+    }
+
+    /// The film's sensor, white balance and output space, unless it is the plain CIE 1931
+    /// observer into sRGB (`None`).
+    #[inline]
+    pub fn film_response(&self) -> Option<&crate::spectrum::FilmResponse> {
+        self.film_response.as_ref()
+    }
+
     /// Bounds of the bounded geometry.
     pub fn bounds(&self) -> Bounds3 {
         self.bounds
@@ -135,6 +260,12 @@ impl Scene {
                 .iter()
                 .filter(|s| matches!(s, Shape::Triangle(_)))
                 .count()
+    }
+
+    /// Primitives the scene holds: those of the primitives' tree and one per triangle of the
+    /// plain meshes.
+    pub fn primitive_count(&self) -> usize {
+        self.shapes.len() + self.tris.len()
     }
 
     /// Nodes of the acceleration structures (the primitives' tree and the plain meshes').

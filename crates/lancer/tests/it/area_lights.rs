@@ -126,10 +126,10 @@ fn sampled_points_carry_the_intersection_normal() {
     for (k, sd) in all_shapes().into_iter().enumerate() {
         let scene = scene_of(vec![sd]);
         let (mut checked, mut tried) = (0, 0);
-        for prim in 0..scene.shapes.len() {
-            let shape = &scene.shapes[prim];
+        for prim in 0..scene.shapes().len() {
+            let shape = &scene.shapes()[prim];
             for u in points(64) {
-                let s = shape.sample_area(u, &scene.meshes).expect("samples");
+                let s = shape.sample_area(u, &scene.meshes()).expect("samples");
                 // Aim at the sampled point from a little way off the surface along the normal,
                 // from outside whichever side faces the ray.
                 for side in [1.0f32, -1.0] {
@@ -198,7 +198,7 @@ fn areas_match_closed_forms() {
             1.0,
         ),
     ]);
-    let a: Vec<f32> = scene.shapes.iter().map(|s| s.area()).collect();
+    let a: Vec<f32> = scene.shapes().iter().map(|s| s.area()).collect();
     // Half annulus × 9: π(4 − 1)/2 · 9; unit sphere 4π; quarter cylinder 2π·0.5·2/4.
     let want = [PI * 1.5 * 9.0, 4.0 * PI, 0.5 * PI];
     for (got, want) in a.iter().zip(want) {
@@ -210,12 +210,12 @@ fn areas_match_closed_forms() {
 /// largest disagreement between each sample's pdf and `pdf_li` for the same direction.
 fn irradiance(scene: &Scene, light: usize, p: Vec3, n: Vec3, count: u32) -> (f32, f32) {
     let ctx = LightSampleContext { p, n, ns: n };
-    let l = &scene.lights[light];
+    let l = &scene.lights()[light];
     let mut sum = 0.0f64;
     let mut worst = 0.0f32;
     let mut misses = 0;
     for u in points(count) {
-        let Some(ls) = l.sample_li(&ctx, u, &scene.shapes, &scene.meshes) else {
+        let Some(ls) = l.sample_li(&ctx, u, &scene.shapes(), &scene.meshes()) else {
             continue;
         };
         let cos = ls.wi.dot(n).max(0.0);
@@ -284,8 +284,8 @@ fn disk_light_gives_the_closed_form_irradiance() {
         ns: Vec3::Z,
     };
     assert!(points(256).all(|u| {
-        scene.lights[0]
-            .sample_li(&ctx, u, &scene.shapes, &scene.meshes)
+        scene.lights()[0]
+            .sample_li(&ctx, u, &scene.shapes(), &scene.meshes())
             .is_none()
     }));
 }
@@ -309,7 +309,7 @@ fn sphere_light_gives_the_closed_form_irradiance() {
         )]);
         assert_eq!(
             matches!(
-                scene.lights[0],
+                scene.lights()[0],
                 Light::Area {
                     emitter: lancer::light::Emitter::Sphere { .. },
                     ..
@@ -353,6 +353,6 @@ fn lights_are_chosen_by_power() {
             3.0,
         ),
     ]);
-    let d = &scene.light_distribution;
+    let d = &scene.light_distribution();
     assert!((d.pmf(0) - 0.25).abs() < 1e-6 && (d.pmf(1) - 0.75).abs() < 1e-6);
 }

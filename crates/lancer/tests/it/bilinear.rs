@@ -320,7 +320,7 @@ fn area_sampling_is_uniform_by_area() {
     let tests = list.len();
     for (name, p) in list {
         let scene = scene_of(mesh(p, vec![]), Transform::IDENTITY, false);
-        let shape = &scene.shapes[0];
+        let shape = &scene.shapes()[0];
         let area = shape.area() as f64;
         let exact = integrate_j(&p, (0.0, 1.0), (0.0, 1.0), 400);
         assert!(
@@ -344,7 +344,7 @@ fn area_sampling_is_uniform_by_area() {
         for k in 0..SAMPLES {
             let u = Vec2::new(rng.uniform(), rng.uniform());
             obs_uniform[bin(u.x as f64, u.y as f64)] += 1.0;
-            let s = shape.sample_area(u, &scene.meshes).expect("a sample");
+            let s = shape.sample_area(u, &scene.meshes()).expect("a sample");
             let (su, sv, res) = invert(&p, s.p);
             assert!(res < 1e-5, "{name}: sample {} is {res} off the patch", s.p);
             obs[bin(su.clamp(0.0, 1.0), sv.clamp(0.0, 1.0))] += 1.0;

@@ -220,18 +220,18 @@ fn scene_of_mixed_shapes_equals_brute_force() {
             let ray = random_ray(&mut rng);
             let mut r = ray;
             let mut want = None;
-            for (i, s) in scene.shapes.iter().enumerate() {
+            for (i, s) in scene.shapes().iter().enumerate() {
                 if let Some(h) = s.intersect(&r) {
                     r.t_max = h.t;
                     want = Some((i as u32, h.t));
                 }
             }
             // The plain meshes' triangles, which share their mesh's record.
-            for slot in 0..scene.tris.len() as u32 {
-                let [a, b, c] = scene.tris.vertices(slot);
+            for slot in 0..scene.tris().len() as u32 {
+                let [a, b, c] = scene.tris().vertices(slot);
                 if let Some(h) = lancer::shape::intersect_triangle(&r, a, b, c) {
                     r.t_max = h.t;
-                    want = Some((scene.tris.prim(slot), h.t));
+                    want = Some((scene.tris().prim(slot), h.t));
                 }
             }
             let got = scene.intersect(&ray).map(|h| (h.prim, h.si.t));

@@ -213,7 +213,7 @@ fn hits_match_a_brute_force_root_finder() {
     for (gi, g) in geometries().into_iter().enumerate() {
         for (pi, (xf, rev)) in placements().into_iter().enumerate() {
             let scene = scene_of(g.clone(), xf, rev);
-            let shape = &scene.shapes[0];
+            let shape = &scene.shapes()[0];
             let pl = placement(shape);
             let (mut hits, mut disagree) = (0, 0);
             let n = 1500;
@@ -250,7 +250,7 @@ fn hit_points_and_normals_follow_the_implicit_surface() {
     for (gi, g) in geometries().into_iter().enumerate() {
         for (pi, (xf, rev)) in placements().into_iter().enumerate() {
             let scene = scene_of(g.clone(), xf, rev);
-            let shape = &scene.shapes[0];
+            let shape = &scene.shapes()[0];
             let pl = placement(shape);
             let mut checked = 0;
             for ray in random_rays(shape, &mut rng, 1000) {
@@ -302,7 +302,7 @@ fn spawned_rays_never_find_their_own_surface_again() {
     for (gi, g) in geometries().into_iter().enumerate() {
         for (pi, (xf, rev)) in placements().into_iter().enumerate() {
             let scene = scene_of(g.clone(), xf, rev);
-            let shape = &scene.shapes[0];
+            let shape = &scene.shapes()[0];
             let mut spawned = 0;
             // Rays from nearby, and from 10³ away, where o + t·d cancels most of its digits.
             let mut rays = random_rays(shape, &mut rng, 800);
@@ -395,7 +395,7 @@ fn areas_agree_with_crofton() {
     for (gi, g) in geometries().into_iter().enumerate() {
         let xf = area_exact_placement(&g);
         let scene = scene_of(g, xf, false);
-        let shape = &scene.shapes[0];
+        let shape = &scene.shapes()[0];
         let (want, _) = crofton(shape, &mut rng, 200_000);
         let got = shape.area() as f64;
         // 200 000 lines: a relative standard error well under 1%.
@@ -411,13 +411,13 @@ fn sampled_points_lie_on_the_surface_with_the_intersection_normal() {
     for (gi, g) in geometries().into_iter().enumerate() {
         for (pi, (xf, rev)) in placements().into_iter().enumerate() {
             let scene = scene_of(g.clone(), xf, rev);
-            let shape = &scene.shapes[0];
+            let shape = &scene.shapes()[0];
             let pl = placement(shape);
             let mut rng = Pcg32::new(19, 0);
             let mut compared = 0;
             for _ in 0..400 {
                 let u = Vec2::new(rng.uniform(), rng.uniform());
-                let s = shape.sample_area(u, &scene.meshes).expect("samples");
+                let s = shape.sample_area(u, &scene.meshes()).expect("samples");
                 let what = format!("shape {gi} placement {pi} sample {}", s.p);
                 let p = pl.to_object.transform_point3(s.p.as_dvec3());
                 let (f, grad, ok, _) = implicit(&g, p);
@@ -454,7 +454,7 @@ fn samples_are_uniform_by_area() {
     let mut rng = Pcg32::new(23, 0);
     for (gi, g) in geometries().into_iter().enumerate() {
         let scene = scene_of(g.clone(), area_exact_placement(&g), false);
-        let shape = &scene.shapes[0];
+        let shape = &scene.shapes()[0];
         let pl = placement(shape);
         let (_, crossings) = crofton(shape, &mut rng, 100_000);
         let samples: Vec<Vec3> = (0..crossings.len())

@@ -236,7 +236,7 @@ fn chi2_light(name: &str, desc: SceneDesc) {
         n: Vec3::Z,
         ns: Vec3::Z,
     };
-    let light = &scene.lights[0];
+    let light = &scene.lights()[0];
     // Lights at infinity: each sample's density must be pdf_li's for its direction (but for
     // rounding at texel borders).
     let mismatched = std::cell::Cell::new(0usize);
@@ -246,7 +246,7 @@ fn chi2_light(name: &str, desc: SceneDesc) {
         200_000,
         32,
         |u| {
-            let s = light.sample_li(&ctx, u, &scene.shapes, &scene.meshes)?;
+            let s = light.sample_li(&ctx, u, &scene.shapes(), &scene.meshes())?;
             if desc.shapes.is_empty() {
                 let p = light.pdf_li(&ctx, s.wi, None);
                 if (p - s.pdf).abs() > 1e-3 * s.pdf {

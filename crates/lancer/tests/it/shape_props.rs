@@ -265,7 +265,7 @@ fn hits_and_normals_match_the_implicit_surface() {
         for trial in 0..6 {
             let (xf, rev) = random_placement(&mut rng, false);
             let scene = scene_of(g.clone(), xf, rev);
-            let shape = &scene.shapes[0];
+            let shape = &scene.shapes()[0];
             let pl = placement(shape);
             let b = shape.bounds();
             let (centre, size) = (0.5 * (b.min + b.max), (b.max - b.min).length());
@@ -312,7 +312,7 @@ fn hits_and_normals_match_the_implicit_surface() {
                             continue;
                         }
                         hits += 1;
-                        let si = shape.interaction(&ray, &h, &scene.meshes);
+                        let si = shape.interaction(&ray, &h, &scene.meshes());
                         let p = pl.to_object.transform_point3(si.p.as_dvec3());
                         let (f, grad, ok, sign) = implicit(&g, p, 1e-5);
                         assert!(ok, "{what}: hit point {p} outside the cuts");
@@ -563,7 +563,7 @@ fn samples_lie_on_the_surface_and_are_uniform_by_area() {
     for g in shapes {
         let (xf, rev) = random_placement(&mut rng, true);
         let scene = scene_of(g.clone(), xf, rev);
-        let shape = &scene.shapes[0];
+        let shape = &scene.shapes()[0];
         let pl = placement(shape);
         let bins = 6;
         let areas = bin_areas(&g, &xf, bins);
@@ -579,7 +579,7 @@ fn samples_lie_on_the_surface_and_are_uniform_by_area() {
         let mut obs = vec![0.0; areas.len()];
         for _ in 0..n {
             let u = Vec2::new(rng.uniform(), rng.uniform());
-            let s = shape.sample_area(u, &scene.meshes).unwrap();
+            let s = shape.sample_area(u, &scene.meshes()).unwrap();
             let p = pl.to_object.transform_point3(s.p.as_dvec3());
             let (f, grad, ok, sign) = implicit(&g, p, 1e-4);
             let what = format!("{}: sample {p}", name(&g));

@@ -27,7 +27,7 @@ fn scene_of(grid: Arc<VoxelGrid>, to_world: Transform, reverse: bool) -> Scene {
 }
 
 fn voxels(scene: &Scene) -> &Voxels {
-    match &scene.shapes[0] {
+    match &scene.shapes()[0] {
         Shape::Voxels(v) => v,
         other => panic!("expected voxels, got {other:?}"),
     }
@@ -197,7 +197,7 @@ fn dda_matches_brute_force_on_random_grids() {
             let (o, d) = vox.placement.object_ray(&ray);
             let o = o + offset.as_dvec3();
             let expected = brute_force(&grid, o, d, ray.t_max as f64);
-            let found = scene.shapes[0].intersect(&ray);
+            let found = scene.shapes()[0].intersect(&ray);
             // Did the ray start inside a filled cell? Then only t is compared (the exit face
             // it finds ties with the entry face of a filled neighbour).
             let start = o.floor();
@@ -221,7 +221,7 @@ fn dda_matches_brute_force_on_random_grids() {
                         continue;
                     }
                     assert_eq!(vox.hit_cell(&h), cell, "grid {gi} ray {ri}: cell");
-                    let si = scene.shapes[0].interaction(&ray, &h, &scene.meshes);
+                    let si = scene.shapes()[0].interaction(&ray, &h, &scene.meshes());
                     let k = face % 3;
                     let n_obj = if face >= 3 {
                         Vec3::AXES[k]
@@ -262,10 +262,10 @@ fn rays_respect_t_max() {
     let grid = Arc::new(VoxelGrid::new([3, 3, 3], cells, palette()).unwrap());
     let scene = scene_of(grid, Transform::IDENTITY, false);
     let mut ray = Ray::new(Vec3::new(0.0, 0.0, 10.0), Vec3::new(0.0, 0.0, -1.0));
-    let h = scene.shapes[0].intersect(&ray).unwrap();
+    let h = scene.shapes()[0].intersect(&ray).unwrap();
     assert!((h.t - 8.0).abs() < 1e-6, "{}", h.t);
     ray.t_max = 7.99;
-    assert!(scene.shapes[0].intersect(&ray).is_none());
+    assert!(scene.shapes()[0].intersect(&ray).is_none());
     // Spawned from the top face going up: nothing; going down through the cell from just
     // inside: the bottom face from inside.
     let si = scene.intersect(&Ray::new(Vec3::new(0.1, 0.2, 10.0), -Vec3::Z));
@@ -293,14 +293,14 @@ fn hits_carry_the_voxel_colour() {
         false,
     );
     let vox = voxels(&scene);
-    let b = scene.shapes[0].bounds();
+    let b = scene.shapes()[0].bounds();
     let mut checked = 0;
     for _ in 0..500 {
         let o = 0.5 * (b.min + b.max) + random_unit(&mut rng) * 10.0;
         let target = b.min + (b.max - b.min) * Vec3::new(rng.uniform(), rng.uniform(), 0.5);
         let ray = Ray::new(o, target - o);
         if let Some(hit) = scene.intersect(&ray) {
-            let h = scene.shapes[0].intersect(&ray).unwrap();
+            let h = scene.shapes()[0].intersect(&ray).unwrap();
             let [x, y, z] = vox.hit_cell(&h);
             let index = grid.get(x, y, z);
             assert_ne!(index, 0);
@@ -330,8 +330,8 @@ fn a_256_cubed_grid_costs_a_byte_per_voxel() {
     }
     let grid = Arc::new(VoxelGrid::new([n; 3], cells, palette()).unwrap());
     let scene = scene_of(grid, Transform::IDENTITY, false);
-    assert_eq!(scene.shapes.len(), 1);
-    assert!(scene.meshes.is_empty());
+    assert_eq!(scene.shapes().len(), 1);
+    assert!(scene.meshes().is_empty());
     let bytes = voxels(&scene).heap_bytes() as f64;
     let per_voxel = bytes / (n as f64).powi(3);
     println!("256³ grid: {bytes} bytes, {per_voxel:.4} per voxel");
@@ -374,7 +374,7 @@ fn voxels_refuse_to_emit_and_empty_grids_vanish() {
     let empty = Arc::new(VoxelGrid::new([4, 4, 4], vec![0; 64], palette()).unwrap());
     assert!(
         scene_of(empty, Transform::IDENTITY, false)
-            .shapes
+            .shapes()
             .is_empty()
     );
     assert!(VoxelGrid::new([2, 2, 2], vec![1; 7], palette()).is_err());
@@ -389,7 +389,7 @@ fn spawned_rays_never_find_their_own_face_again() {
         let grid = Arc::new(random_grid(&mut rng));
         let (to_world, reverse) = random_placement(&mut rng, gi + 1);
         let scene = scene_of(grid, to_world, reverse);
-        let b = scene.shapes[0].bounds();
+        let b = scene.shapes()[0].bounds();
         let (centre, size) = (0.5 * (b.min + b.max), (b.max - b.min).length());
         for _ in 0..400 {
             let o = centre + random_unit(&mut rng) * size;

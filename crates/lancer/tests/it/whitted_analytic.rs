@@ -88,7 +88,7 @@ fn render_centres(desc: &SceneDesc) -> (Scene, Vec<Rgb>) {
 
 fn camera_ray(scene: &Scene, x: u32, y: u32) -> Ray {
     scene
-        .camera
+        .camera()
         .generate_ray(Vec2::new(x as f32 + 0.5, y as f32 + 0.5), Vec2::ZERO)
         .expect("a pinhole camera always gives a ray")
         .ray
