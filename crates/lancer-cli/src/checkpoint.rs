@@ -11,13 +11,16 @@
 //! hash=<scene hash, 16 hex digits>
 //! film=x0,x1,y0,y1,width,height
 //! units=<count>
+//! splats=x0,x1,y0,y1,channels      (only for a film with splats)
 //! end
 //! <count bytes: 1 when that unit of work is done, else 0>
 //! <per pixel, row-major: Σw·R, Σw·G, Σw·B, Σw as i64, samples as u32, little-endian>
+//! <with splats: per pixel of their bounds, row-major, `channels` sums as i64>
 //! ```
 
+use lancer::film::part::PartError;
+use lancer::film::splat::SplatPlane;
 use lancer::film::{Film, PixelBounds, PixelSum};
-use lancer::image_io::PartError;
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -53,7 +56,7 @@ impl Checkpoint {
             head.push_str(&format!("arg={}\n", a.replace('\n', " ")));
         }
         head.push_str(&format!(
-            "hash={:016x}\nfilm={},{},{},{},{},{}\nunits={}\nend\n",
+            "hash={:016x}\nfilm={},{},{},{},{},{}\nunits={}\n",
             self.scene_hash,
             b.x0,
             b.x1,
@@ -63,6 +66,14 @@ impl Checkpoint {
             self.film.full_height,
             self.done.len()
         ));
+        if let Some(sp) = &self.film.splats {
+            let b = &sp.bounds;
+            head.push_str(&format!(
+                "splats={},{},{},{},{}\n",
+                b.x0, b.x1, b.y0, b.y1, sp.channels
+            ));
+        }
+        head.push_str("end\n");
         let mut out = head.into_bytes();
         out.extend(self.done.iter().map(|&d| d as u8));
         out.reserve(self.film.pixels.len() * PIXEL_BYTES);
@@ -71,6 +82,11 @@ impl Checkpoint {
                 out.extend_from_slice(&v.to_le_bytes());
             }
             out.extend_from_slice(&p.samples.to_le_bytes());
+        }
+        if let Some(sp) = &self.film.splats {
+            for v in &sp.sums {
+                out.extend_from_slice(&v.to_le_bytes());
+            }
         }
         out
     }
@@ -115,6 +131,7 @@ impl Checkpoint {
             lines.push(line.to_string());
         }
         let (mut cwd, mut args, mut hash, mut film, mut units) = (None, vec![], None, None, None);
+        let mut splats = None;
         for (n, line) in lines.iter().enumerate().skip(1) {
             let bad = |what: &str| format!("line {}: bad {what} '{line}'", n + 1);
             let (k, v) = line.split_once('=').ok_or_else(|| bad("line"))?;
@@ -151,6 +168,30 @@ impl Checkpoint {
                         _ => return Err(bad("film")),
                     }
                 }
+                "splats" => {
+                    let f: Vec<i64> = v
+                        .split(',')
+                        .map(|x| x.parse())
+                        .collect::<Result<_, _>>()
+                        .map_err(|_| bad("splats"))?;
+                    match f[..] {
+                        [x0, x1, y0, y1, c]
+                            if x0 <= x1
+                                && y0 <= y1
+                                && [x0, x1, y0, y1].iter().all(|v| (0..=1 << 20).contains(v))
+                                && (1..=1024).contains(&c) =>
+                        {
+                            let b = PixelBounds {
+                                x0: x0 as i32,
+                                x1: x1 as i32,
+                                y0: y0 as i32,
+                                y1: y1 as i32,
+                            };
+                            splats = Some(SplatPlane::new(b, c as usize));
+                        }
+                        _ => return Err(bad("splats")),
+                    }
+                }
                 _ => return Err(format!("line {}: unknown key '{k}'", n + 1)),
             }
         }
@@ -158,10 +199,13 @@ impl Checkpoint {
         let (bounds, w, h) = film.ok_or_else(|| missing("film"))?;
         let units = units.ok_or_else(|| missing("units"))?;
         let npix = bounds.area() as usize;
-        let expected = units.saturating_add(npix.saturating_mul(PIXEL_BYTES));
+        let splat_bytes = splats.as_ref().map_or(0, |s: &SplatPlane| s.sums.len() * 8);
+        let expected = units
+            .saturating_add(npix.saturating_mul(PIXEL_BYTES))
+            .saturating_add(splat_bytes);
         if bytes.len() - pos != expected {
             return Err(format!(
-                "{} bytes of data where {units} units and {npix} pixels need {expected}: \
+                "{} bytes of data where {units} units, {npix} pixels and {splat_bytes} bytes of splats need {expected}: \
                  the file is truncated or damaged",
                 bytes.len() - pos
             ));
@@ -177,6 +221,13 @@ impl Checkpoint {
                 samples: u32::from_le_bytes(bytes[pos + 32..pos + 36].try_into().unwrap()),
             };
             pos += PIXEL_BYTES;
+        }
+        if let Some(mut sp) = splats {
+            for v in sp.sums.iter_mut() {
+                *v = i64_at(pos);
+                pos += 8;
+            }
+            film.splats = Some(Box::new(sp));
         }
         Ok(Checkpoint {
             cwd: cwd.ok_or_else(|| missing("cwd"))?,
@@ -286,5 +337,24 @@ mod tests {
         assert!(e.contains("truncated"), "{e}");
         let e = Checkpoint::decode(b"\x76\x2f\x31\x01 an EXR").unwrap_err();
         assert!(e.contains("not a lancer checkpoint"), "{e}");
+
+        // A film with splats keeps them (over bounds of their own), bit for bit.
+        let mut c2 = c.clone();
+        let sb = PixelBounds {
+            x0: 0,
+            x1: 5,
+            y0: 0,
+            y1: 3,
+        };
+        let mut plane = SplatPlane::new(sb, 4);
+        for (i, v) in plane.sums.iter_mut().enumerate() {
+            *v = (i as i64 - 20) << 37 | 5;
+        }
+        c2.film.splats = Some(Box::new(plane));
+        let bytes2 = c2.encode();
+        assert_eq!(Checkpoint::decode(&bytes2).unwrap(), c2);
+        assert!(Checkpoint::decode(&bytes2[..bytes2.len() - 8]).is_err());
+        // Without splats, the file is the one written before splats existed.
+        assert!(!String::from_utf8_lossy(&bytes).contains("splats="));
     }
 }

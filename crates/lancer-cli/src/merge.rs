@@ -4,8 +4,9 @@
 use crate::cli_error::CliError;
 use crate::output::check_output;
 use clap::Args;
+use lancer::film::part::{PartError, PartMeta, read_part};
 use lancer::film::{Film, PixelBounds};
-use lancer::image_io::{PartError, PartMeta, read_part, write_image};
+use lancer::image_io::write_image;
 use std::path::{Path, PathBuf};
 
 /// Options of `lancer merge`.

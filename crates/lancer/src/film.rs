@@ -5,8 +5,11 @@
 //! across threads or machines, and merged in any order gives bit-identical pixels.
 
 pub mod gsums;
+pub mod part;
 pub mod spectral;
 pub mod spectral_write;
+pub mod splat;
+pub mod tile;
 
 use crate::math::Rgb;
 
@@ -160,6 +163,9 @@ pub struct Film {
     pub gbuffer: Option<Box<gsums::GbufferFilm>>,
     /// The wavelength-bucket sums of a `spectral` film (none for other films).
     pub spectral: Option<Box<spectral::SpectralSums>>,
+    /// The splat sums ([`splat`]), over the whole render's pixels; none until an integrator
+    /// that splats has rendered into the film.
+    pub splats: Option<Box<splat::SplatPlane>>,
 }
 
 impl Film {
@@ -172,7 +178,60 @@ impl Film {
             pixels: vec![PixelSum::default(); bounds.area() as usize],
             gbuffer: None,
             spectral: None,
+            splats: None,
         }
+    }
+
+    /// The EXR layer window of its pixels: its bounds' size inside the full image.
+    pub fn layer_size(&self) -> crate::image_io::LayerSize {
+        crate::image_io::LayerSize {
+            size: (self.bounds.width() as usize, self.bounds.height() as usize),
+            full: (self.full_width, self.full_height),
+        }
+    }
+
+    /// The film's kind: what its tiles accumulate ([`tile::FilmTile`]).
+    pub fn kind(&self) -> tile::FilmKind {
+        match (&self.gbuffer, &self.spectral) {
+            (Some(g), _) => tile::FilmKind::Gbuffer(g.config),
+            (None, Some(s)) => tile::FilmKind::Spectral(s.desc),
+            (None, None) => tile::FilmKind::Rgb,
+        }
+    }
+
+    /// Adds splat sums into the film's (exact; the film takes a copy if it has none).
+    pub fn merge_splats(&mut self, o: &splat::SplatPlane) {
+        match &mut self.splats {
+            Some(s) => s.merge(o),
+            None => self.splats = Some(Box::new(o.clone())),
+        }
+    }
+
+    /// What the splat sums are divided by: the film's camera samples per pixel n (the most
+    /// any of its pixels has taken; every pixel of a finished render has the same), as
+    /// pbrt-v4's `splatScale` = 1/spp. `None` without splats or samples.
+    pub fn splat_divisor(&self) -> Option<f64> {
+        self.splats.as_ref()?;
+        let n = self.pixels.iter().map(|p| p.samples).max().unwrap_or(0);
+        (n > 0).then_some(n as f64)
+    }
+
+    /// The colour of the film's pixel `i` (row-major over `bounds`), before the film's scale:
+    /// Σw·L/Σw, plus S/n with the pixel's splat sum S ([`splat`]) when the film has splats
+    /// (`divisor` = [`Film::splat_divisor`]).
+    #[inline]
+    pub fn pixel_rgb(&self, i: usize, divisor: Option<f64>) -> Rgb {
+        let v = self.pixels[i].value();
+        let (Some(s), Some(n)) = (&self.splats, divisor) else {
+            return v;
+        };
+        let w = self.bounds.width().max(1) as usize;
+        let (x, y) = (
+            self.bounds.x0 + (i % w) as i32,
+            self.bounds.y0 + (i / w) as i32,
+        );
+        let splat = |c: usize| (v[c] as f64 + s.value(x, y, c) / n) as f32;
+        Rgb::new(splat(0), splat(1), splat(2))
     }
 
     /// Adds a tile's wavelength-bucket sums, if the film is a spectral one.
@@ -221,14 +280,23 @@ impl Film {
     }
 
     /// Adds every pixel of `other` that this film also holds (exact integer sums), as
-    /// `merge_tile` does for one tile.
+    /// `merge_tile` does for one tile, and its splat sums.
     pub fn merge_film(&mut self, other: &Film) {
         self.merge_tile(&other.bounds, &other.pixels);
+        if let Some(s) = &other.splats {
+            self.merge_splats(s);
+        }
     }
 
-    /// The image: each pixel's Σ w·L / Σ w times `scale`, row-major over `bounds`.
+    /// The image: each pixel's colour ([`Film::pixel_rgb`]: Σ w·L / Σ w, and its splats) times
+    /// `scale`, row-major over `bounds`.
     pub fn image(&self, scale: f32) -> Vec<Rgb> {
-        self.pixels.iter().map(|p| p.value() * scale).collect()
+        let Some(n) = self.splat_divisor() else {
+            return self.pixels.iter().map(|p| p.value() * scale).collect();
+        };
+        (0..self.pixels.len())
+            .map(|i| self.pixel_rgb(i, Some(n)) * scale)
+            .collect()
     }
 }
 

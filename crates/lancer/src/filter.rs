@@ -25,6 +25,8 @@ struct Table1D {
     cdf: Vec<f32>,
     /// ∫|f| over [−r, r].
     integral: f32,
+    /// ∫f over [−r, r] (midpoint rule over the bins; differs from `integral` only where f < 0).
+    signed_integral: f32,
 }
 
 impl Table1D {
@@ -40,6 +42,7 @@ impl Table1D {
             cdf.push(acc as f32);
         }
         let integral = acc as f32;
+        let signed_integral = (vals.iter().map(|&v| v as f64).sum::<f64>() * dx as f64) as f32;
         if integral > 0.0 {
             for c in &mut cdf {
                 *c /= integral;
@@ -54,6 +57,7 @@ impl Table1D {
             f: vals,
             cdf,
             integral,
+            signed_integral,
         }
     }
 
@@ -156,6 +160,50 @@ impl Filter {
                 )
             }
             _ => (Vec2::ZERO, 1.0),
+        }
+    }
+
+    /// The filter's half-widths (pbrt-v4's `Filter::Radius`).
+    pub fn radius(&self) -> Vec2 {
+        let r = match self.desc {
+            FilterDesc::Box { radius }
+            | FilterDesc::Triangle { radius }
+            | FilterDesc::Gaussian { radius, .. }
+            | FilterDesc::Mitchell { radius, .. }
+            | FilterDesc::Lanczos { radius, .. } => radius,
+        };
+        Vec2::new(r[0], r[1])
+    }
+
+    /// The filter's value at offset `p` from a pixel centre (pbrt-v4's `Filter::Evaluate`):
+    /// the product f(x)·f(y) of its 1D profiles, zero outside the radius.
+    pub fn evaluate(&self, p: Vec2) -> f32 {
+        let r = self.radius();
+        if p.x.abs() > r.x || p.y.abs() > r.y {
+            return 0.0;
+        }
+        let f = |x: f32, r: f32| match self.desc {
+            FilterDesc::Box { .. } => 1.0,
+            FilterDesc::Triangle { .. } => (r - x.abs()).max(0.0),
+            FilterDesc::Gaussian { sigma, .. } => {
+                (gaussian(x, sigma) - gaussian(r, sigma)).max(0.0)
+            }
+            FilterDesc::Mitchell { b, c, .. } => mitchell_1d(2.0 * x / r, b, c),
+            FilterDesc::Lanczos { tau, .. } => sinc(x) * sinc(x / tau),
+        };
+        f(p.x, r.x) * f(p.y, r.y)
+    }
+
+    /// ∫∫ f(x, y) dx dy over the filter's support (pbrt-v4's `Filter::Integral`, which splats
+    /// are divided by): 4·rx·ry for the box, else the product of the 1D profiles' integrals
+    /// (midpoint rule over the sampling tables' bins).
+    pub fn integral(&self) -> f32 {
+        match &self.tables {
+            Some([tx, ty]) => tx.signed_integral * ty.signed_integral,
+            None => {
+                let r = self.radius();
+                4.0 * r.x * r.y
+            }
         }
     }
 }

@@ -18,6 +18,7 @@
 
 pub use crate::film::gsums::{
     CHANNELS, GPixel, GbufferConfig, GbufferDesc, GbufferFilm, Variance, VisibleSurface,
+    differential_scale,
 };
 use crate::integrator::bsdf_at;
 use crate::material::TransportMode;
@@ -99,11 +100,6 @@ impl RayDifferentials {
             ry: shifted(Vec2::new(0.0, 1.0))?,
         })
     }
-}
-
-/// pbrt-v4's scale of camera ray differentials: max(1/8, 1/√spp).
-pub fn differential_scale(spp: u32) -> f32 {
-    (1.0 / (spp.max(1) as f32).sqrt()).max(0.125)
 }
 
 /// Where a ray meets the plane through `p` with normal `n`, minus `p` (pbrt-v4's

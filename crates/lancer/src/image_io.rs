@@ -5,7 +5,6 @@
 //! flushed to disk and renamed over it: a reader (or a crash) sees either the old file or the
 //! new one, never a truncated mix.
 
-use crate::film::{Film, PixelBounds, PixelSum};
 use crate::math::Rgb;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -227,13 +226,24 @@ fn write_exr_streamed(
     }
 }
 
+/// Where an EXR layer's pixels lie: a data window of `size` (width, height) pixels inside a
+/// display window of `full` (width, height) pixels; the window's position is the layer
+/// attributes' `layer_position`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LayerSize {
+    /// Width and height of the data window.
+    pub size: (usize, usize),
+    /// Width and height of the full image.
+    pub full: (u32, u32),
+}
+
 /// Writes one layer of a film's channels (see [`write_film_layer`]) to `path` atomically,
 /// streamed into the temporary file. `film_kind` names the film in the error when `path` is
 /// not an `.exr`: pbrt-v4 writes its spectral and g-buffer films only as OpenEXR.
-pub(crate) fn write_film_exr(
+pub fn write_film_exr(
     path: &Path,
     film_kind: &str,
-    film: &Film,
+    film: LayerSize,
     attributes: exr::prelude::LayerAttributes,
     channels: ExrChannels,
 ) -> Result<(), ImageWriteError> {
@@ -251,16 +261,16 @@ pub(crate) fn write_film_exr(
 }
 
 /// The channels of one EXR layer.
-pub(crate) type ExrChannels =
+pub type ExrChannels =
     exr::prelude::SmallVec<[exr::prelude::AnyChannel<exr::prelude::FlatSamples>; 4]>;
 
 /// The channel planes of an EXR layer filled pixel by pixel, each in half or 32-bit floats
 /// from the start (a half-float image never has a 32-bit copy beside it).
-pub(crate) struct Planes(Vec<exr::prelude::FlatSamples>);
+pub struct Planes(Vec<exr::prelude::FlatSamples>);
 
 impl Planes {
     /// `channels` empty planes with room for `pixels` values each.
-    pub(crate) fn new(channels: usize, pixels: usize, fp16: bool) -> Planes {
+    pub fn new(channels: usize, pixels: usize, fp16: bool) -> Planes {
         use exr::prelude::FlatSamples;
         let plane = || {
             if fp16 {
@@ -274,7 +284,7 @@ impl Planes {
 
     /// Appends `v` to channel `c`, rounded to the plane's type.
     #[inline]
-    pub(crate) fn push(&mut self, c: usize, v: f32) {
+    pub fn push(&mut self, c: usize, v: f32) {
         use exr::prelude::FlatSamples;
         match &mut self.0[c] {
             FlatSamples::F16(p) => p.push(exr::prelude::f16::from_f32(v)),
@@ -284,7 +294,7 @@ impl Planes {
     }
 
     /// The planes as channels named `names`, in order.
-    pub(crate) fn named<S: AsRef<str>>(self, names: &[S]) -> ExrChannels {
+    pub fn named<S: AsRef<str>>(self, names: &[S]) -> ExrChannels {
         names
             .iter()
             .zip(self.0)
@@ -293,130 +303,10 @@ impl Planes {
     }
 }
 
-/// What a partial film (a "part" of a split render) says about itself: enough to check that
-/// parts belong together and to rebuild the image they make up.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PartMeta {
-    /// Hash of the scene description and of the options that change pixels.
-    pub scene_hash: u64,
-    /// Sampler seed.
-    pub seed: u64,
-    /// Samples per pixel of the whole render.
-    pub spp: u32,
-    /// Sample indices `[start, end)` this part took in each of its pixels.
-    pub samples: std::ops::Range<u32>,
-    /// The pixels of the whole render (the crop window), of which the part holds some.
-    pub render_bounds: PixelBounds,
-    /// The film's scale factor (pbrt's `iso`/`exposure`/`scale`), applied to the final image.
-    pub scale: f32,
-}
-
-/// Why a partial film (a split part, or `lancer render`'s checkpoint) could not be read or
-/// written.
-#[derive(Debug, thiserror::Error)]
-pub enum PartError {
-    /// The file system refused.
-    #[error("{path}: {source}")]
-    Io {
-        /// The path.
-        path: PathBuf,
-        /// The error.
-        source: std::io::Error,
-    },
-    /// The file is not a lancer part, or is damaged.
-    #[error("{path}: {message}")]
-    Format {
-        /// The path.
-        path: PathBuf,
-        /// What is wrong.
-        message: String,
-    },
-}
-
-/// Prefix of lancer's header attributes and accumulator channels in a part EXR.
-const PART_PREFIX: &str = "lancer.";
-
-/// Names of the accumulator channels: each 64-bit fixed-point sum is split in two 32-bit
-/// unsigned channels, `hi = bits >> 32` and `lo = bits & 0xffff_ffff`, so it is stored exactly.
-const PART_SUMS: [&str; 4] = ["R", "G", "B", "W"];
-
-/// Encodes a partial film as an OpenEXR file: viewable R, G, B channels (Σw·L/Σw × scale),
-/// the exact accumulators as UINT channels `lancer.{R,G,B,W}.{hi,lo}` and `lancer.N` (sample
-/// count), placed at the film's bounds within the full image (data window inside the display
-/// window), and the metadata as `lancer.*` text attributes.
-pub fn encode_part(film: &Film, meta: &PartMeta) -> Result<Vec<u8>, String> {
-    use exr::prelude::*;
-    let (w, h) = (film.bounds.width() as usize, film.bounds.height() as usize);
-    if w == 0 || h == 0 {
-        return Err("the part holds no pixel".into());
-    }
-    let mut list: SmallVec<[AnyChannel<FlatSamples>; 4]> = SmallVec::new();
-    let image = film.image(meta.scale);
-    for (c, name) in ["R", "G", "B"].iter().enumerate() {
-        let v = image.iter().map(|p| p[c]).collect();
-        list.push(AnyChannel::new(*name, FlatSamples::F32(v)));
-    }
-    for (c, name) in PART_SUMS.iter().enumerate() {
-        let sum = |p: &PixelSum| if c < 3 { p.rgb[c] } else { p.weight } as u64;
-        let hi = film.pixels.iter().map(|p| (sum(p) >> 32) as u32).collect();
-        let lo = film.pixels.iter().map(|p| sum(p) as u32).collect();
-        list.push(AnyChannel::new(
-            format!("{PART_PREFIX}{name}.hi").as_str(),
-            FlatSamples::U32(hi),
-        ));
-        list.push(AnyChannel::new(
-            format!("{PART_PREFIX}{name}.lo").as_str(),
-            FlatSamples::U32(lo),
-        ));
-    }
-    let n = film.pixels.iter().map(|p| p.samples).collect();
-    list.push(AnyChannel::new(
-        format!("{PART_PREFIX}N").as_str(),
-        FlatSamples::U32(n),
-    ));
-
-    let b = &meta.render_bounds;
-    let attrs = [
-        ("sceneHash", format!("{:016x}", meta.scene_hash)),
-        ("seed", meta.seed.to_string()),
-        ("spp", meta.spp.to_string()),
-        (
-            "samples",
-            format!("{}..{}", meta.samples.start, meta.samples.end),
-        ),
-        (
-            "pixelBounds",
-            format!(
-                "{},{},{},{}",
-                film.bounds.x0, film.bounds.x1, film.bounds.y0, film.bounds.y1
-            ),
-        ),
-        (
-            "renderBounds",
-            format!("{},{},{},{}", b.x0, b.x1, b.y0, b.y1),
-        ),
-        (
-            "resolution",
-            format!("{}x{}", film.full_width, film.full_height),
-        ),
-        // Rust prints the shortest decimal that parses back to the same f32.
-        ("scale", meta.scale.to_string()),
-    ];
-    let mut layer_attrs = LayerAttributes::named("lancer part");
-    layer_attrs.layer_position = Vec2(film.bounds.x0, film.bounds.y0);
-    for (k, v) in attrs {
-        layer_attrs.other.insert(
-            Text::from(format!("{PART_PREFIX}{k}").as_str()),
-            AttributeValue::Text(Text::from(v.as_str())),
-        );
-    }
-    encode_film_layer(film, layer_attrs, list)
-}
-
-/// Encodes one EXR layer of `channels` covering `film`'s bounds in memory (see
+/// Encodes one EXR layer of `channels` over the window `film` in memory (see
 /// [`write_film_layer`]).
-pub(crate) fn encode_film_layer(
-    film: &Film,
+pub fn encode_film_layer(
+    film: LayerSize,
     attributes: exr::prelude::LayerAttributes,
     channels: ExrChannels,
 ) -> Result<Vec<u8>, String> {
@@ -481,17 +371,17 @@ fn sort_exr_header<F: std::io::Read + Write + std::io::Seek>(f: &mut F) -> std::
     Ok(())
 }
 
-/// Writes one EXR layer of `channels` covering `film`'s bounds (its data window), inside the
+/// Writes one EXR layer of `channels` over the window `film` (its data window), inside the
 /// full image as display window, losslessly compressed, into `out`; the layer's attributes
 /// are the caller's. OpenEXR keeps a file's channels sorted by name, so they are sorted here.
-pub(crate) fn write_film_layer<W: Write + std::io::Seek>(
+pub fn write_film_layer<W: Write + std::io::Seek>(
     out: &mut W,
-    film: &Film,
+    film: LayerSize,
     attributes: exr::prelude::LayerAttributes,
     channels: ExrChannels,
 ) -> Result<(), String> {
     use exr::prelude::*;
-    let (w, h) = (film.bounds.width() as usize, film.bounds.height() as usize);
+    let (w, h) = film.size;
     let layer = Layer::new(
         (w, h),
         attributes,
@@ -500,144 +390,12 @@ pub(crate) fn write_film_layer<W: Write + std::io::Seek>(
     );
     let mut image = Image::from_layer(layer);
     image.attributes.display_window =
-        IntegerBounds::from_dimensions((film.full_width as usize, film.full_height as usize));
+        IntegerBounds::from_dimensions((film.full.0 as usize, film.full.1 as usize));
     image
         .write()
         .non_parallel()
         .to_buffered(out)
         .map_err(|e| e.to_string())
-}
-
-/// Writes a partial film as an EXR part (see [`encode_part`]), atomically.
-pub fn write_part(path: &Path, film: &Film, meta: &PartMeta) -> Result<(), PartError> {
-    let bytes = encode_part(film, meta).map_err(|message| PartError::Format {
-        path: path.to_path_buf(),
-        message: format!("cannot encode part: {message}"),
-    })?;
-    write_atomic(path, &bytes).map_err(|source| PartError::Io {
-        path: path.to_path_buf(),
-        source,
-    })
-}
-
-/// Reads a part written by [`write_part`]: the film with its exact accumulators, and its
-/// metadata. Any other file (or a damaged one) is an error naming the file and what is wrong.
-pub fn read_part(path: &Path) -> Result<(Film, PartMeta), PartError> {
-    use exr::prelude::{AttributeValue, FlatSamples, ReadChannels, ReadLayers, Text, read};
-    let err = |message: String| PartError::Format {
-        path: path.to_path_buf(),
-        message,
-    };
-    let bytes = std::fs::read(path).map_err(|source| PartError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .first_valid_layer()
-        .all_attributes()
-        .from_buffered(std::io::Cursor::new(bytes))
-        .map_err(|e| err(format!("not a readable EXR file: {e}")))?;
-    let layer = &image.layer_data;
-    let attr = |k: &str| -> Result<String, PartError> {
-        match layer
-            .attributes
-            .other
-            .get(&Text::from(format!("{PART_PREFIX}{k}").as_str()))
-        {
-            Some(AttributeValue::Text(t)) => Ok(t.to_string()),
-            _ => Err(err(format!(
-                "not a lancer part: no '{PART_PREFIX}{k}' attribute (render it with --split)"
-            ))),
-        }
-    };
-    let bad = |k: &str, v: &str| err(format!("bad '{PART_PREFIX}{k}' attribute '{v}'"));
-    let num = |k: &str| -> Result<u64, PartError> {
-        let v = attr(k)?;
-        v.parse().map_err(|_| bad(k, &v))
-    };
-    let rect = |k: &str| -> Result<PixelBounds, PartError> {
-        let v = attr(k)?;
-        let n: Vec<i32> = v
-            .split(',')
-            .map(|x| x.trim().parse())
-            .collect::<Result<_, _>>()
-            .map_err(|_| bad(k, &v))?;
-        match n[..] {
-            [x0, x1, y0, y1] if x0 <= x1 && y0 <= y1 => Ok(PixelBounds { x0, x1, y0, y1 }),
-            _ => Err(bad(k, &v)),
-        }
-    };
-    let hash_text = attr("sceneHash")?;
-    let scene_hash =
-        u64::from_str_radix(&hash_text, 16).map_err(|_| bad("sceneHash", &hash_text))?;
-    let spp =
-        u32::try_from(num("spp")?).map_err(|_| bad("spp", &attr("spp").unwrap_or_default()))?;
-    let samples_text = attr("samples")?;
-    let samples = samples_text
-        .split_once("..")
-        .and_then(|(a, b)| Some(a.parse::<u32>().ok()?..b.parse::<u32>().ok()?))
-        .filter(|r| r.start < r.end)
-        .ok_or_else(|| bad("samples", &samples_text))?;
-    let res_text = attr("resolution")?;
-    let (full_width, full_height) = res_text
-        .split_once('x')
-        .and_then(|(a, b)| Some((a.parse::<u32>().ok()?, b.parse::<u32>().ok()?)))
-        .ok_or_else(|| bad("resolution", &res_text))?;
-    let scale_text = attr("scale")?;
-    let scale: f32 = scale_text.parse().map_err(|_| bad("scale", &scale_text))?;
-    let bounds = rect("pixelBounds")?;
-    let meta = PartMeta {
-        scene_hash,
-        seed: num("seed")?,
-        spp,
-        samples,
-        render_bounds: rect("renderBounds")?,
-        scale,
-    };
-    let size = layer.size;
-    if size.width() != bounds.width() as usize || size.height() != bounds.height() as usize {
-        return Err(err(format!(
-            "the image is {}x{} pixels but its pixel bounds say {}x{}",
-            size.width(),
-            size.height(),
-            bounds.width(),
-            bounds.height()
-        )));
-    }
-    let n = size.area();
-    let channel = |name: &str| -> Result<&Vec<u32>, PartError> {
-        let full = format!("{PART_PREFIX}{name}");
-        let c = layer
-            .channel_data
-            .list
-            .iter()
-            .find(|c| c.name.eq(full.as_str()))
-            .ok_or_else(|| err(format!("not a lancer part: no channel '{full}'")))?;
-        match &c.sample_data {
-            FlatSamples::U32(v) if v.len() == n => Ok(v),
-            _ => Err(err(format!("channel '{full}' is not {n} UINT samples"))),
-        }
-    };
-    let mut film = Film::new(full_width, full_height, bounds);
-    for (c, name) in PART_SUMS.iter().enumerate() {
-        let hi = channel(&format!("{name}.hi"))?;
-        let lo = channel(&format!("{name}.lo"))?;
-        for (i, p) in film.pixels.iter_mut().enumerate() {
-            let v = ((hi[i] as u64) << 32 | lo[i] as u64) as i64;
-            if c < 3 {
-                p.rgb[c] = v;
-            } else {
-                p.weight = v;
-            }
-        }
-    }
-    for (p, &s) in film.pixels.iter_mut().zip(channel("N")?) {
-        p.samples = s;
-    }
-    Ok((film, meta))
 }
 
 #[cfg(test)]
@@ -728,50 +486,5 @@ mod tests {
             .map(|e| e.unwrap().file_name())
             .collect();
         assert_eq!(names, vec![std::ffi::OsString::from("a.exr")]);
-    }
-
-    #[test]
-    fn parts_round_trip_exactly() {
-        let bounds = PixelBounds {
-            x0: 3,
-            x1: 8,
-            y0: 2,
-            y1: 5,
-        };
-        let mut film = Film::new(10, 6, bounds);
-        for (i, p) in film.pixels.iter_mut().enumerate() {
-            let i = i as i64;
-            // Values that use both halves and the sign bit of the 64-bit sums.
-            p.rgb = [i * 0x1_0000_0007, -i * 12345, (1 << 40) + i];
-            p.weight = i << 33 | 0xffff_ffff;
-            p.samples = i as u32 * 3 + 1;
-        }
-        let meta = PartMeta {
-            scene_hash: 0xdead_beef_0123_4567,
-            seed: u64::MAX - 2,
-            spp: 64,
-            samples: 16..48,
-            render_bounds: PixelBounds {
-                x0: 0,
-                x1: 10,
-                y0: 1,
-                y1: 6,
-            },
-            scale: 0.1,
-        };
-        let dir = lancer_testing::ScratchDir::new("part");
-        let path = dir.join("p.exr");
-        write_part(&path, &film, &meta).unwrap();
-        let (f2, m2) = read_part(&path).unwrap();
-        assert_eq!(f2, film);
-        assert_eq!(m2, meta);
-        // An ordinary image is refused with a message naming the file.
-        let plain = dir.join("plain.exr");
-        write_image(&plain, 2, 2, &[Rgb::splat(1.0); 4]).unwrap();
-        let e = read_part(&plain).unwrap_err().to_string();
-        assert!(
-            e.contains("plain.exr") && e.contains("not a lancer part"),
-            "{e}"
-        );
     }
 }

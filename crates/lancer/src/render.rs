@@ -1,13 +1,19 @@
 //! Rendering: tiles of pixels, each pixel's samples taken in order, on all cores.
 
+use crate::film::splat::AtomicSplats;
+use crate::film::tile::{
+    FilmKind, FilmSample, FilmSplats, FilmTile, GbufferTile, RgbTile, SpectralTile,
+};
 use crate::film::{Film, PixelBounds, PixelSum};
 use crate::filter::Filter;
-use crate::gbuffer::{GPixel, GbufferConfig, RayDifferentials, visible_surface};
+use crate::gbuffer::{RayDifferentials, visible_surface};
 use crate::integrator::Integrator;
-use crate::math::Vec2;
+use crate::math::{SampledSpectrum, Vec2};
+use crate::ray::Ray;
 use crate::sampling::{Sampler, SamplerKind};
 use crate::scene::Scene;
 use crate::scene::desc::SceneDesc;
+use crate::spectrum::sampled::SampledWavelengths;
 use crate::spectrum::sampled::film_rgb;
 use rayon::prelude::*;
 use std::sync::Mutex;
@@ -20,6 +26,9 @@ pub use crate::counters::{count_ray, rays_traced};
 pub struct RenderSettings {
     /// Pixels to render (full-image coordinates).
     pub bounds: PixelBounds,
+    /// The pixels splats may land on: the whole render's (a part of a split render renders
+    /// some of its pixels, but its light paths reach any of them).
+    pub splat_bounds: PixelBounds,
     /// Sample indices to take in each pixel: `[start, end)`.
     pub samples: std::ops::Range<u32>,
     /// Samples per pixel of the whole render (the sampler's point set depends on it).
@@ -59,6 +68,7 @@ impl RenderSettings {
     pub fn from_desc(desc: &SceneDesc) -> RenderSettings {
         RenderSettings {
             bounds: desc.film.render_bounds(),
+            splat_bounds: desc.film.render_bounds(),
             samples: 0..desc.sampler.spp,
             spp: desc.sampler.spp,
             seed: desc.sampler.seed,
@@ -138,34 +148,179 @@ pub fn tiles(bounds: &PixelBounds, size: u32) -> Vec<PixelBounds> {
     out
 }
 
-/// Renders sample indices `samples` of every pixel of `tile`, in order. Returns the tile's
-/// sums and its totals (samples, rays, non-finite samples). Each sample depends only on (seed, pixel, index), and
-/// the sums are fixed-point integers, so any partition of the samples into ranges adds up to
-/// the same sums bit for bit.
+/// Light transport as the tile loop drives it: the radiance a camera ray brings back, and
+/// any light the integrator puts on other pixels of the film through `splats`.
+pub trait SampleIntegrator: Sync {
+    /// True when [`SampleIntegrator::li`] may splat: the film then gets a splat plane
+    /// ([`crate::film::splat`]); false for an integrator that never does, whose render then
+    /// has none.
+    fn splats(&self) -> bool {
+        false
+    }
+
+    /// True when the integrator computes radiance, whose camera samples then carry
+    /// wavelengths in spectral mode.
+    fn computes_radiance(&self) -> bool;
+
+    /// The radiance arriving along the camera ray `ray` (at `lambda` in spectral mode, else
+    /// RGB in the first three values), drawing from `sampler` after the camera's dimensions.
+    fn li(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        sampler: &mut Sampler,
+        lambda: Option<&SampledWavelengths>,
+        splats: &Splats<'_>,
+    ) -> SampledSpectrum;
+}
+
+impl SampleIntegrator for Integrator {
+    #[inline(always)]
+    fn computes_radiance(&self) -> bool {
+        Integrator::computes_radiance(self)
+    }
+
+    #[inline(always)]
+    fn li(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        sampler: &mut Sampler,
+        lambda: Option<&SampledWavelengths>,
+        _splats: &Splats<'_>,
+    ) -> SampledSpectrum {
+        Integrator::li(self, scene, ray, sampler, lambda)
+    }
+}
+
+/// Where an integrator puts light on any pixel of the film (pbrt-v4's `Film::AddSplat`):
+/// the film's shared splat plane, or nowhere for an integrator that does not splat.
+pub struct Splats<'a> {
+    scene: &'a Scene,
+    max_component_value: f32,
+    film: Option<FilmSplats<'a>>,
+}
+
+impl<'a> Splats<'a> {
+    /// Splats that go nowhere (for an integrator that never splats, or a replay).
+    pub fn none(scene: &'a Scene, settings: &RenderSettings) -> Splats<'a> {
+        Splats {
+            scene,
+            max_component_value: settings.max_component_value,
+            film: None,
+        }
+    }
+
+    /// Adds radiance `l` (at `lambda` in spectral mode) arriving at film point `p_film`
+    /// (pixel units, full image) to the pixels around it, as pbrt-v4's `AddSplat`: turned
+    /// into the film's colour as a camera sample is, scaled down to `maxcomponentvalue`, and
+    /// spread by the pixel filter ([`FilmSplats::add_splat`]). A non-finite `l` is dropped.
+    /// The pixel's final value adds the splat sum over the samples per pixel
+    /// ([`crate::film::Film::pixel_rgb`]).
+    pub fn add_splat(&self, p_film: Vec2, l: SampledSpectrum, lambda: Option<&SampledWavelengths>) {
+        let Some(film) = &self.film else { return };
+        if !l.is_finite() {
+            return;
+        }
+        let max = self.max_component_value;
+        let rgb = scene_film_rgb(self.scene, lambda, l);
+        let m = rgb.max_element();
+        let rgb = if m > max { rgb * (max / m) } else { rgb };
+        let spectrum = lambda.map(|lambda| {
+            let m = l.max_element();
+            (if m > max { l * (max / m) } else { l }, lambda)
+        });
+        film.add_splat(p_film, rgb, spectrum);
+    }
+}
+
+/// Renders sample indices `samples` of every pixel of `tile`, in order, into `film` (a
+/// tile's sums of the film's kind), with `integrator`, splatting into `splats`. Returns the
+/// tile's totals (samples, rays, non-finite samples). Each sample depends only on (seed,
+/// pixel, index), and the sums are fixed-point integers, so any partition of the samples into
+/// ranges adds up to the same sums bit for bit. The one tile loop of every film kind: generic
+/// over the tile, so each kind's per-sample addition is inlined.
+#[allow(clippy::too_many_arguments)] // the loop's inputs, each of its own kind
+pub fn render_tile<T: FilmTile, I: SampleIntegrator + ?Sized>(
+    scene: &Scene,
+    settings: &RenderSettings,
+    integrator: &I,
+    film: &mut T,
+    splats: &Splats<'_>,
+    tile: &PixelBounds,
+    samples: std::ops::Range<u32>,
+) -> RenderStats {
+    let rays0 = rays_traced();
+    let mut stats = RenderStats::default();
+    let mut sampler = Sampler::new(settings.sampler, settings.spp, settings.seed);
+    let w = tile.width() as usize;
+    // In spectral mode (radiance integrators only), the sample's wavelengths are drawn from
+    // the sampler's next dimension, right after the camera's (so they are, like everything
+    // else, a pure function of seed, pixel and sample index), by the film's density. In RGB
+    // mode nothing: the dimension layout is the same as before spectral mode existed.
+    let spectral = settings.spectral && integrator.computes_radiance();
+    for y in tile.y0..tile.y1 {
+        for x in tile.x0..tile.x1 {
+            let i = (y - tile.y0) as usize * w + (x - tile.x0) as usize;
+            for s in samples.clone() {
+                let (ray, weight, p_film, p_lens) =
+                    camera_ray_at(scene, settings, &mut sampler, x, y, s);
+                let lambda = spectral.then(|| film.sample_wavelengths(sampler.get_1d()));
+                // A ray the camera's lens blocks brings nothing back, but the sample still
+                // counts (as pbrt-v4 adds it to the film with its filter weight).
+                let l = match &ray {
+                    Some(r) => {
+                        integrator.li(scene, &r.ray, &mut sampler, lambda.as_ref(), splats)
+                            * r.weight
+                    }
+                    None => SampledSpectrum::ZERO,
+                };
+                let rgb = scene_film_rgb(scene, lambda.as_ref(), l);
+                let rgb = film_sample(settings, &mut stats, rgb, SampleId { y, x, sample: s });
+                let surface = if T::NEEDS_SURFACE {
+                    ray.and_then(|r| {
+                        let scale = film.differential_scale();
+                        let diff = RayDifferentials::of(scene, &r.ray, p_film, p_lens, scale);
+                        visible_surface(scene, &r.ray, diff.as_ref())
+                    })
+                } else {
+                    None
+                };
+                let sample = FilmSample {
+                    rgb,
+                    l,
+                    lambda: lambda.as_ref(),
+                    surface: surface.as_ref(),
+                };
+                film.add_sample(i, &sample, weight);
+            }
+        }
+    }
+    stats.samples = tile.area() * samples.len() as u64;
+    stats.rays = rays_traced() - rays0;
+    stats
+}
+
+/// [`render_tile`] for an `rgb` film with the settings' integrator: the tile's colour sums
+/// (row-major) and totals.
 pub fn render_tile_samples(
     scene: &Scene,
     settings: &RenderSettings,
     tile: &PixelBounds,
     samples: std::ops::Range<u32>,
 ) -> (Vec<PixelSum>, RenderStats) {
-    let rays0 = rays_traced();
-    let mut stats = RenderStats::default();
-    let mut sampler = Sampler::new(settings.sampler, settings.spp, settings.seed);
-    let mut sums = vec![PixelSum::default(); tile.area() as usize];
-    let w = tile.width() as usize;
-    for y in tile.y0..tile.y1 {
-        for x in tile.x0..tile.x1 {
-            let sum = &mut sums[(y - tile.y0) as usize * w + (x - tile.x0) as usize];
-            for s in samples.clone() {
-                let (l, weight) = camera_sample(scene, settings, &mut sampler, x, y, s);
-                let l = film_sample(settings, &mut stats, l, SampleId { y, x, sample: s });
-                sum.add(l, weight);
-            }
-        }
-    }
-    stats.samples = tile.area() * samples.len() as u64;
-    stats.rays = rays_traced() - rays0;
-    (sums, stats)
+    let mut sums = RgbTile::new(tile);
+    let splats = Splats::none(scene, settings);
+    let stats = render_tile(
+        scene,
+        settings,
+        &settings.integrator,
+        &mut sums,
+        &splats,
+        tile,
+        samples,
+    );
+    (sums.colour().to_vec(), stats)
 }
 
 /// What a camera sample's colour adds to the film: black for a non-finite sample (a bug
@@ -193,132 +348,6 @@ fn film_sample(
     } else {
         l
     }
-}
-
-/// [`render_tile_samples`] for a g-buffer film: the same colour sums, bit for bit, and the
-/// g-buffer sums of each pixel of `tile` (row-major), from each camera ray's first surface
-/// ([`crate::gbuffer::visible_surface`]). Only a `gbuffer` film takes this path.
-pub fn render_tile_gbuffer(
-    scene: &Scene,
-    settings: &RenderSettings,
-    config: &GbufferConfig,
-    tile: &PixelBounds,
-    samples: std::ops::Range<u32>,
-) -> (Vec<PixelSum>, Vec<GPixel>, RenderStats) {
-    let rays0 = rays_traced();
-    let mut stats = RenderStats::default();
-    let mut sampler = Sampler::new(settings.sampler, settings.spp, settings.seed);
-    let mut sums = vec![PixelSum::default(); tile.area() as usize];
-    let mut gsums = vec![GPixel::default(); tile.area() as usize];
-    let w = tile.width() as usize;
-    let diff_scale = crate::gbuffer::differential_scale(config.spp);
-    for y in tile.y0..tile.y1 {
-        for x in tile.x0..tile.x1 {
-            let i = (y - tile.y0) as usize * w + (x - tile.x0) as usize;
-            for s in samples.clone() {
-                let (ray, weight, p_film, p_lens) =
-                    camera_ray_at(scene, settings, &mut sampler, x, y, s);
-                let lambda = sample_wavelengths(settings, &mut sampler);
-                let l = match &ray {
-                    Some(r) => {
-                        settings
-                            .integrator
-                            .li(scene, &r.ray, &mut sampler, lambda.as_ref())
-                            * r.weight
-                    }
-                    None => crate::math::SampledSpectrum::ZERO,
-                };
-                let l = scene_film_rgb(scene, lambda.as_ref(), l);
-                let l = film_sample(settings, &mut stats, l, SampleId { y, x, sample: s });
-                sums[i].add(l, weight);
-                let vs = ray.and_then(|r| {
-                    let diff = RayDifferentials::of(scene, &r.ray, p_film, p_lens, diff_scale);
-                    visible_surface(scene, &r.ray, diff.as_ref())
-                });
-                gsums[i].add(l, weight, vs.map(|v| config.to_output(&v)).as_ref());
-            }
-        }
-    }
-    stats.samples = tile.area() * samples.len() as u64;
-    stats.rays = rays_traced() - rays0;
-    (sums, gsums, stats)
-}
-
-/// [`render_tile_samples`] for a `spectral` film ([`crate::film::spectral`]): the
-/// wavelengths drawn uniformly over the film's range (as pbrt-v4's `SpectralFilm`), the
-/// colour sums as for any film, and each sample's radiance added to its wavelengths' buckets.
-/// In RGB mode the buckets stay empty (the CLI refuses that combination).
-pub fn render_tile_spectral(
-    scene: &Scene,
-    settings: &RenderSettings,
-    desc: &crate::film::spectral::SpectralDesc,
-    tile: &PixelBounds,
-    samples: std::ops::Range<u32>,
-) -> (
-    Vec<PixelSum>,
-    crate::film::spectral::SpectralSums,
-    RenderStats,
-) {
-    let rays0 = rays_traced();
-    let mut stats = RenderStats::default();
-    let mut sampler = Sampler::new(settings.sampler, settings.spp, settings.seed);
-    let mut sums = vec![PixelSum::default(); tile.area() as usize];
-    let mut buckets = crate::film::spectral::SpectralSums::new(*desc, sums.len());
-    let w = tile.width() as usize;
-    for y in tile.y0..tile.y1 {
-        for x in tile.x0..tile.x1 {
-            let i = (y - tile.y0) as usize * w + (x - tile.x0) as usize;
-            for s in samples.clone() {
-                let (ray, weight) = camera_ray(scene, settings, &mut sampler, x, y, s);
-                let lambda = (settings.spectral && settings.integrator.computes_radiance())
-                    .then(|| desc.sample_wavelengths(sampler.get_1d()));
-                let l = match ray {
-                    Some(r) => {
-                        settings
-                            .integrator
-                            .li(scene, &r.ray, &mut sampler, lambda.as_ref())
-                            * r.weight
-                    }
-                    None => crate::math::SampledSpectrum::ZERO,
-                };
-                let rgb = scene_film_rgb(scene, lambda.as_ref(), l);
-                let rgb = film_sample(settings, &mut stats, rgb, SampleId { y, x, sample: s });
-                sums[i].add(rgb, weight);
-                if let Some(lambda) = &lambda {
-                    buckets.add(i, l, lambda, weight, settings.max_component_value);
-                }
-            }
-        }
-    }
-    stats.samples = tile.area() * samples.len() as u64;
-    stats.rays = rays_traced() - rays0;
-    (sums, buckets, stats)
-}
-
-/// One camera sample of pixel (`x`, `y`): its radiance (linear sRGB) and filter weight. A pure
-/// function of (scene, settings, pixel, sample index).
-fn camera_sample(
-    scene: &Scene,
-    settings: &RenderSettings,
-    sampler: &mut Sampler,
-    x: i32,
-    y: i32,
-    s: u32,
-) -> (crate::math::Rgb, f32) {
-    let (ray, weight) = camera_ray(scene, settings, sampler, x, y, s);
-    let lambda = sample_wavelengths(settings, sampler);
-    // A ray the camera's lens blocks brings nothing back, but the sample still counts (as
-    // pbrt-v4 adds it to the film with its filter weight).
-    let l = match ray {
-        Some(r) => {
-            settings
-                .integrator
-                .li(scene, &r.ray, sampler, lambda.as_ref())
-                * r.weight
-        }
-        None => crate::math::SampledSpectrum::ZERO,
-    };
-    (scene_film_rgb(scene, lambda.as_ref(), l), weight)
 }
 
 /// The film colour of a camera sample's radiance: the scene's film response (sensor, white
@@ -518,9 +547,52 @@ pub fn render_units(
     on_unit: UnitHook<'_>,
     stop: &(dyn Fn() -> bool + Sync),
 ) -> RenderStats {
-    let gbuffer = film.gbuffer.as_ref().map(|g| g.config);
-    let spectral = film.spectral.as_ref().map(|s| s.desc);
-    let state = Mutex::new((film, done));
+    render_units_with(
+        scene,
+        settings,
+        &settings.integrator,
+        film,
+        units,
+        done,
+        on_unit,
+        stop,
+    )
+}
+
+/// [`render_units`] with another integrator than the settings' (one that splats, say). The
+/// splats of the units rendered are added into `film`'s splat plane before it returns.
+#[allow(clippy::too_many_arguments)] // render_units' inputs and the integrator
+pub fn render_units_with<I: SampleIntegrator + ?Sized>(
+    scene: &Scene,
+    settings: &RenderSettings,
+    integrator: &I,
+    film: &mut Film,
+    units: &[WorkUnit],
+    done: &mut [bool],
+    on_unit: UnitHook<'_>,
+    stop: &(dyn Fn() -> bool + Sync),
+) -> RenderStats {
+    let kind = film.kind();
+    // One plane shared by the threads, only for an integrator that splats.
+    let plane = integrator
+        .splats()
+        .then(|| AtomicSplats::new(settings.splat_bounds, kind.splat_channels(), None));
+    let splats = Splats {
+        scene,
+        max_component_value: settings.max_component_value,
+        film: plane
+            .as_ref()
+            .map(|p| FilmSplats::new(p, &settings.filter, kind)),
+    };
+    let state = Mutex::new((&mut *film, done));
+    let ctx = UnitContext {
+        scene,
+        settings,
+        integrator,
+        splats: &splats,
+        state: &state,
+        on_unit,
+    };
     let totals = Mutex::new(RenderStats::default());
     let mut start = 0;
     while start < units.len() {
@@ -540,42 +612,59 @@ pub fn render_units(
                 return;
             }
             let u = &units[i];
-            let (sums, gsums, tile_stats) = match &gbuffer {
-                None if spectral.is_some() => {
-                    let d = spectral.as_ref().unwrap();
-                    let (sums, ssums, stats) =
-                        render_tile_spectral(scene, settings, d, &u.tile, u.samples.clone());
-                    state.lock().unwrap().0.merge_spectral_tile(&u.tile, &ssums);
-                    (sums, None, stats)
-                }
-                None => {
-                    let (sums, stats) =
-                        render_tile_samples(scene, settings, &u.tile, u.samples.clone());
-                    (sums, None, stats)
-                }
-                Some(config) => {
-                    let (sums, gsums, stats) =
-                        render_tile_gbuffer(scene, settings, config, &u.tile, u.samples.clone());
-                    (sums, Some(gsums), stats)
-                }
-            };
-            let merged = {
-                let mut st = state.lock().unwrap();
-                st.0.merge_tile(&u.tile, &sums);
-                if let Some(g) = &gsums {
-                    st.0.merge_gbuffer_tile(&u.tile, g);
-                }
-                st.1[i] = true;
-                tile_sums(st.0, &u.tile)
+            let tile_stats = match kind {
+                FilmKind::Rgb => ctx.run(i, u, RgbTile::new(&u.tile)),
+                FilmKind::Gbuffer(c) => ctx.run(i, u, GbufferTile::new(c, &u.tile)),
+                FilmKind::Spectral(d) => ctx.run(
+                    i,
+                    u,
+                    SpectralTile::new(d, &u.tile, settings.max_component_value),
+                ),
             };
             totals.lock().unwrap().add(&tile_stats);
-            on_unit(u, &merged);
         });
         if totals.lock().unwrap().cancelled {
             break;
         }
     }
+    if let Some(p) = plane {
+        film.merge_splats(&p.into_plane());
+    }
     totals.into_inner().unwrap()
+}
+
+/// What every unit of a [`render_units_with`] call shares.
+struct UnitContext<'a, I: ?Sized> {
+    scene: &'a Scene,
+    settings: &'a RenderSettings,
+    integrator: &'a I,
+    splats: &'a Splats<'a>,
+    state: &'a Mutex<(&'a mut Film, &'a mut [bool])>,
+    on_unit: UnitHook<'a>,
+}
+
+impl<I: SampleIntegrator + ?Sized> UnitContext<'_, I> {
+    /// Renders unit `i` (`u`) into `sums`, a fresh tile of the film's kind, adds it into the
+    /// film and marks it done; returns its totals.
+    fn run<T: FilmTile>(&self, i: usize, u: &WorkUnit, mut sums: T) -> RenderStats {
+        let stats = render_tile(
+            self.scene,
+            self.settings,
+            self.integrator,
+            &mut sums,
+            self.splats,
+            &u.tile,
+            u.samples.clone(),
+        );
+        let merged = {
+            let mut st = self.state.lock().unwrap();
+            sums.merge_into(st.0, &u.tile);
+            st.1[i] = true;
+            tile_sums(st.0, &u.tile)
+        };
+        (self.on_unit)(u, &merged);
+        stats
+    }
 }
 
 #[cfg(test)]

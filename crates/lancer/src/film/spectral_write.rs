@@ -48,13 +48,28 @@ fn spectral_layer(
         };
         planes.push(c, v);
     };
-    for (i, p) in film.pixels.iter().enumerate() {
-        let rgb = p.value() * scale;
+    let divisor = film.splat_divisor();
+    let w = film.bounds.width() as usize;
+    for i in 0..n {
+        let rgb = film.pixel_rgb(i, divisor) * scale;
         for c in 0..3 {
             put(c, rgb[c], &mut planes);
         }
+        // A bucket's splats add S/n as the colour's do ([`super::splat`]).
+        let (x, y) = (
+            film.bounds.x0 + (i % w) as i32,
+            film.bounds.y0 + (i / w) as i32,
+        );
+        let splat = |b: usize| match (&film.splats, divisor) {
+            (Some(sp), Some(d)) => (sp.value(x, y, 3 + b) / d) as f32,
+            _ => 0.0,
+        };
         for (b, v) in s.values(i).into_iter().enumerate() {
-            put(3 + b, v, &mut planes);
+            put(
+                3 + b,
+                if divisor.is_some() { v + splat(b) } else { v },
+                &mut planes,
+            );
         }
     }
     let mut attrs = LayerAttributes {
@@ -76,7 +91,10 @@ fn spectral_layer(
 /// the number of values clamped to 65504.
 pub fn encode_spectral_exr(film: &Film, scale: f32, fp16: bool) -> Result<(Vec<u8>, u64), String> {
     let (attrs, channels, clamped) = spectral_layer(film, scale, fp16)?;
-    Ok((encode_film_layer(film, attrs, channels)?, clamped))
+    Ok((
+        encode_film_layer(film.layer_size(), attrs, channels)?,
+        clamped,
+    ))
 }
 
 /// Writes a spectral film to `path` atomically, streamed into the temporary file: colour
@@ -93,7 +111,7 @@ pub fn write_spectral_exr(
             path: path.to_path_buf(),
             message,
         })?;
-    write_film_exr(path, "spectral", film, attrs, channels)?;
+    write_film_exr(path, "spectral", film.layer_size(), attrs, channels)?;
     Ok(clamped)
 }
 

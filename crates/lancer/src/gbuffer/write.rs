@@ -80,8 +80,9 @@ fn gbuffer_layer(
     }
     let mut planes = Planes::new(CHANNELS.len(), w * h, header.fp16);
     let mut clamped = 0u64;
-    for (p, gp) in film.pixels.iter().zip(&g.pixels) {
-        let mut rgb = p.value() * scale;
+    let divisor = film.splat_divisor();
+    for (i, gp) in g.pixels.iter().enumerate() {
+        let mut rgb = film.pixel_rgb(i, divisor) * scale;
         if header.fp16 && rgb.max_element() > HALF_MAX {
             rgb = rgb.min(crate::math::Rgb::splat(HALF_MAX));
             clamped += 1;
@@ -122,7 +123,10 @@ pub fn encode_gbuffer_exr(
     header: &GbufferHeader,
 ) -> Result<(Vec<u8>, u64), String> {
     let (attrs, channels, clamped) = gbuffer_layer(film, scale, header)?;
-    Ok((encode_film_layer(film, attrs, channels)?, clamped))
+    Ok((
+        encode_film_layer(film.layer_size(), attrs, channels)?,
+        clamped,
+    ))
 }
 
 /// Writes a g-buffer film to `path` atomically, streamed into the temporary file: colour
@@ -139,6 +143,6 @@ pub fn write_gbuffer_exr(
             path: path.to_path_buf(),
             message,
         })?;
-    write_film_exr(path, "gbuffer", film, attrs, channels)?;
+    write_film_exr(path, "gbuffer", film.layer_size(), attrs, channels)?;
     Ok(clamped)
 }

@@ -14,6 +14,7 @@ mod quadrics;
 mod sampling_stats;
 mod sdf;
 mod shape_props;
+mod splats;
 mod volpath;
 mod voxels;
 mod whitted_analytic;
