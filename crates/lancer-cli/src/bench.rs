@@ -193,7 +193,10 @@ fn incoherent_rays(b: &Bounds3, n: usize, seed: u64, t_max: f32) -> Vec<Ray> {
             let u = Vec3::new(rng.uniform(), rng.uniform(), rng.uniform());
             let o = lo + u * 1.5 * ext;
             let d = sample_uniform_sphere(Vec2::new(rng.uniform(), rng.uniform()));
-            Ray { o, d, t_max }
+            Ray {
+                t_max,
+                ..Ray::new(o, d)
+            }
         })
         .collect()
 }

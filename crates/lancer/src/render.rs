@@ -406,14 +406,10 @@ fn camera_ray_at(
     sampler.start_pixel_sample(x, y, s as u64);
     let (offset, weight) = settings.filter.sample(sampler.get_pixel_2d());
     let p_film = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
-    // With motion blur, the sample's time comes next (as in pbrt-v4's GetCameraSample), and
-    // every ray of its path shares it; a still scene draws no time, so its dimensions stay
-    // as they were.
-    let time = scene.motion().map(|m| {
-        let time = m.sample_time(sampler.get_1d());
-        crate::scene::motion::set_path_time(time);
-        time
-    });
+    // With motion blur, the sample's time comes next (as in pbrt-v4's GetCameraSample): the
+    // camera ray carries it and every ray of its path inherits it; a still scene draws no
+    // time, so its dimensions stay as they were.
+    let time = scene.motion().map(|m| m.sample_time(sampler.get_1d()));
     let p_lens = sampler.get_2d();
     (
         match time {

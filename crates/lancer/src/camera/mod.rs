@@ -109,14 +109,17 @@ impl Camera {
         self.motion.is_some()
     }
 
-    /// [`Camera::generate_ray`] at `time`: a moving camera's ray leaves its pose at that
-    /// time (pbrt-v4's `CameraTransform` interpolated at the ray's time).
+    /// [`Camera::generate_ray`] at `time`: the ray carries the time (and the rays of its path
+    /// inherit it), and a moving camera's ray leaves its pose at that time (pbrt-v4's
+    /// `CameraTransform` interpolated at the ray's time).
     #[inline]
     pub fn generate_ray_at(&self, p_film: Vec2, p_lens: Vec2, time: f32) -> Option<CameraRay> {
-        match &self.motion {
+        let mut r = match &self.motion {
             None => self.generate_ray(p_film, p_lens),
             Some(m) => self.ray_from(p_film, p_lens, &m.interpolate(time)),
-        }
+        }?;
+        r.ray.time = time;
+        Some(r)
     }
 
     fn projective(desc: &CameraDesc, xres: u32, yres: u32) -> Option<Kind> {

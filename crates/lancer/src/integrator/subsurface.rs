@@ -73,7 +73,8 @@ pub(super) fn exit(
     let seed = u_reservoir.to_bits() as u64;
     let mut count = 0u32;
     let mut chosen: Option<SceneHit> = None;
-    let mut ray = Ray::spawn_to(seg.p0, Vec3::ZERO, Vec3::ZERO, seg.p1);
+    // The probe, like every ray of the path, at the path's time.
+    let mut ray = Ray::spawn_to(seg.p0, Vec3::ZERO, Vec3::ZERO, seg.p1).at_time(hit.si.time);
     for _ in 0..MAX_PROBE_HITS {
         if ray.d == Vec3::ZERO {
             break;

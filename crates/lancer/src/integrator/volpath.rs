@@ -360,8 +360,11 @@ impl Walk<'_> {
                                 let f = phase.p(wo, wi);
                                 (SampledSpectrum::splat(f), f)
                             };
-                            let origin =
-                                |target: Vec3| Ray::spawn_to(p, Vec3::ZERO, Vec3::ZERO, target);
+                            // Rays leaving a medium point keep the path's time.
+                            let time = s.ray.time;
+                            let origin = |target: Vec3| {
+                                Ray::spawn_to(p, Vec3::ZERO, Vec3::ZERO, target).at_time(time)
+                            };
                             s.l += self
                                 .sample_ld(&ctx, ul, u, scatter, origin, s.medium, s.beta, s.r_u);
                             match phase.sample(wo, sampler.get_2d()) {
@@ -369,7 +372,7 @@ impl Walk<'_> {
                                     s.beta *= f / pdf;
                                     s.r_l = s.r_u / pdf;
                                     s.prev_ctx = Some(ctx);
-                                    s.ray = Ray::new(p, wi);
+                                    s.ray = Ray::new(p, wi).at_time(time);
                                     s.specular_bounce = false;
                                     s.any_non_specular = true;
                                     scattered = true;

@@ -110,6 +110,7 @@ pub(crate) mod tests {
             },
             wo: Vec3::Z,
             t: 1.0,
+            time: 0.0,
         }
     }
 

@@ -180,6 +180,7 @@ impl Transform {
             o: self.point(r.o),
             d: self.vector(r.d),
             t_max: r.t_max,
+            time: r.time,
         }
     }
 

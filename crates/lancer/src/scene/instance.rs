@@ -210,6 +210,7 @@ impl Instances {
             o: inv.transform_point3a(ray.o),
             d: inv.transform_vector3a(ray.d),
             t_max: ray.t_max,
+            time: ray.time,
         }
     }
 
@@ -292,6 +293,7 @@ pub(super) fn to_world(
         },
         wo: -normalize(ray.d),
         t: si.t,
+        time: si.time,
     }
 }
 

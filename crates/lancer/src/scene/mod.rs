@@ -274,8 +274,18 @@ impl Scene {
     }
 
     /// The course's "keep the nearest valid hit": the smallest t with 0 < t < t_max over all
-    /// primitives, found through the BVH.
+    /// primitives, found through the BVH. The interaction takes the ray's time, which the rays
+    /// spawned from it inherit.
+    #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<SceneHit> {
+        let mut hit = self.nearest_hit(ray)?;
+        hit.si.time = ray.time;
+        Some(hit)
+    }
+
+    /// [`Scene::intersect`] but for the interaction's time.
+    #[inline(always)]
+    fn nearest_hit(&self, ray: &Ray) -> Option<SceneHit> {
         crate::counters::count_ray();
         let mut best: Option<(crate::shape::ShapeHit, u32)> = None;
         // The ray is read in place and its end kept apart: a copy of a ray its caller has
@@ -320,7 +330,7 @@ impl Scene {
         }
         let mut moving = None;
         if let Some(m) = &self.motion {
-            moving = m.intersect(&Ray { t_max, ..*ray }, motion::path_time());
+            moving = m.intersect(&Ray { t_max, ..*ray }, ray.time);
             if let Some(mh) = &moving {
                 t_max = mh.hit.t;
             }
@@ -469,7 +479,7 @@ impl Scene {
             || self
                 .motion
                 .as_ref()
-                .is_some_and(|m| m.intersect_any(ray, motion::path_time()))
+                .is_some_and(|m| m.intersect_any(ray, ray.time))
     }
 
     /// Texture evaluation against this scene's textures.

@@ -8,9 +8,8 @@
 //! the shapes themselves otherwise), and the hit is moved back, as for instances. Still
 //! geometry pays nothing: the main BVH and its triangle packets know nothing of time.
 //!
-//! Every ray of a path shares its camera ray's time (pbrt-v4's spawned rays inherit it), so
-//! the time is set once per camera sample ([`set_path_time`]) in a thread-local that the moving
-//! primitives read; rays, interactions and integrators stay as they are.
+//! Every ray of a path shares its camera ray's time (pbrt-v4's spawned rays inherit it): the
+//! ray carries it ([`Ray::time`]), and the moving primitives are posed at it.
 
 use super::desc::{Geometry, ObjectDesc, SceneDesc, ShapeDesc};
 use super::instance::{ObjectAccel, to_world};
@@ -19,25 +18,7 @@ use crate::accel::Bvh;
 use crate::math::{AnimatedTransform, Bounds3, Rgb, Transform};
 use crate::ray::Ray;
 use crate::shape::{Shape, ShapeHit, SurfaceInteraction, TriangleMesh, TriangleRay};
-use std::cell::Cell;
 use std::ops::Range;
-
-thread_local! {
-    /// The time of the path this thread traces (see the module's documentation).
-    static PATH_TIME: Cell<f32> = const { Cell::new(0.0) };
-}
-
-/// Sets the time of the rays this thread traces next (each camera sample sets its own).
-#[inline]
-pub fn set_path_time(time: f32) {
-    PATH_TIME.with(|t| t.set(time));
-}
-
-/// The time of the rays this thread traces.
-#[inline]
-pub fn path_time() -> f32 {
-    PATH_TIME.with(Cell::get)
-}
 
 /// The moving parts of a scene and its shutter interval.
 #[derive(Debug)]

@@ -233,6 +233,7 @@ impl BilinearPatch {
             },
             wo: -normalize(ray.d),
             t: hit.t,
+            time: 0.0,
         }
     }
 

@@ -602,6 +602,7 @@ impl Curve {
             shading: Shading { n, dpdu, dpdv },
             wo: -dir,
             t: hit.t,
+            time: 0.0,
         }
     }
 }

@@ -54,19 +54,23 @@ pub struct SurfaceInteraction {
     pub wo: Vec3,
     /// Parametric distance along the ray.
     pub t: f32,
+    /// The time of the ray that met the surface (set by [`crate::scene::Scene::intersect`];
+    /// rays spawned here inherit it).
+    pub time: f32,
 }
 
 impl SurfaceInteraction {
-    /// A ray leaving this point in direction `d`.
+    /// A ray leaving this point in direction `d`, at the interaction's time.
     #[inline]
     pub fn spawn_ray(&self, d: Vec3) -> Ray {
-        Ray::spawn(self.p, self.p_error, self.n, d)
+        Ray::spawn(self.p, self.p_error, self.n, d).at_time(self.time)
     }
 
-    /// A shadow ray from this point to `target` (stopping just short of it).
+    /// A shadow ray from this point to `target` (stopping just short of it), at the
+    /// interaction's time.
     #[inline]
     pub fn spawn_ray_to(&self, target: Vec3) -> Ray {
-        Ray::spawn_to(self.p, self.p_error, self.n, target)
+        Ray::spawn_to(self.p, self.p_error, self.n, target).at_time(self.time)
     }
 
     /// Builds an interaction from object-space differential geometry, applying the pbrt rules:
@@ -101,6 +105,7 @@ impl SurfaceInteraction {
             shading: Shading { n, dpdu, dpdv },
             wo,
             t,
+            time: 0.0,
         }
     }
 }

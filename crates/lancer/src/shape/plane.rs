@@ -68,6 +68,7 @@ impl Plane {
             },
             wo: -normalize(ray.d),
             t: hit.t,
+            time: 0.0,
         }
     }
 }

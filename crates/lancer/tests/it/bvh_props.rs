@@ -65,7 +65,10 @@ fn random_ray(rng: &mut Pcg32) -> Ray {
     } else {
         f32::INFINITY
     };
-    Ray { o, d, t_max }
+    Ray {
+        t_max,
+        ..Ray::new(o, d)
+    }
 }
 
 /// Brute force: every triangle in turn with the scalar test, the ray shortened by each hit.

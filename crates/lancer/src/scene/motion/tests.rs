@@ -55,8 +55,7 @@ fn scene_with(motion: MotionDesc, desc: SceneDesc) -> Scene {
 
 /// The hit of a ray from `o` along `d` at `time`: (t, p, n, record's material).
 fn hit_at(scene: &Scene, o: Vec3, d: Vec3, time: f32) -> Option<(f32, Vec3, Vec3, u32)> {
-    set_path_time(time);
-    let r = Ray::new(o, d);
+    let r = Ray::new(o, d).at_time(time);
     let any = scene.intersect_p(&r);
     let h = scene.intersect(&r);
     assert_eq!(any, h.is_some(), "intersect_p agrees with intersect");
