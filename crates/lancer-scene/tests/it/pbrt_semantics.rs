@@ -179,7 +179,12 @@ fn defaults_are_pbrt_v4_defaults() {
 
 /// Degrees between the camera's axis and the ray through raster point (x, y).
 fn edge_angle(d: &SceneDesc, x: f32, y: f32) -> f32 {
-    let camera = lancer::camera::Camera::from_desc(&d.camera, &d.film).expect("camera");
+    let camera = lancer::camera::Camera::from_desc(
+        &d.camera,
+        (d.film.xresolution, d.film.yresolution),
+        d.film.diagonal,
+    )
+    .expect("camera");
     let dir = camera.world_from_camera.inverse().vector(
         camera
             .generate_ray(glam::Vec2::new(x, y), glam::Vec2::splat(0.5))

@@ -10,10 +10,7 @@
 //! with more samples per pixel each sample's footprint shrinks.
 
 use super::Camera;
-use crate::material::Material;
 use crate::math::{Frame, Transform, Vec2, Vec3, normalize};
-use crate::scene::desc::SceneDesc;
-use crate::texture::{FloatTexture, ImageTexture, SpectrumTexture};
 
 /// The camera's minimum differentials and what turns them into a footprint at a hit.
 #[derive(Clone, Debug, PartialEq)]
@@ -71,35 +68,6 @@ fn rotate_from_to(from: Vec3, to: Vec3) -> [Vec3; 3] {
 }
 
 impl Footprints {
-    /// The footprints for the scene `desc` seen by `camera`, if anything in it uses them: an
-    /// image texture with a MIP pyramid, or a material's bump map (its finite-difference step
-    /// is half the footprint in (u, v)). Scenes without either skip the work at every hit.
-    pub fn for_scene(desc: &SceneDesc, camera: &Camera) -> Option<Footprints> {
-        let filtered = |it: &ImageTexture| it.mipmap.levels() > 1;
-        let wanted = desc.float_textures.iter().any(|t| match t {
-            FloatTexture::Image(it) => filtered(it),
-            _ => false,
-        }) || desc.spectrum_textures.iter().any(|t| match t {
-            SpectrumTexture::Image(it) => filtered(it),
-            _ => false,
-        }) || desc.materials.iter().any(|m| {
-            matches!(
-                m,
-                Material::Bumped {
-                    displacement: Some(_),
-                    ..
-                }
-            )
-        });
-        wanted.then(|| {
-            Footprints::new(
-                camera,
-                (desc.film.xresolution, desc.film.yresolution),
-                desc.sampler.spp,
-            )
-        })
-    }
-
     /// The footprints of `camera` rendering a `resolution` film at `spp` samples per pixel.
     ///
     /// Each camera ray's differentials are its neighbours one pixel over, as pbrt-v4's

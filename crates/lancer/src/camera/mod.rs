@@ -7,6 +7,7 @@
 //! ([`realistic`], a lens system traced ray by ray).
 
 mod aperture;
+pub mod desc;
 pub mod footprint;
 pub mod lens;
 pub mod realistic;
@@ -15,7 +16,7 @@ pub mod spherical;
 use crate::math::{AnimatedTransform, Transform, Vec2, Vec3, normalize};
 use crate::ray::Ray;
 use crate::sampling::sample_uniform_disk_concentric;
-use crate::scene::desc::{CameraDesc, FilmDesc, Projection};
+pub use desc::{CameraDesc, DEFAULT_DIAGONAL, Projection};
 use lens::SphericalMapping;
 use realistic::{PUPIL_SAMPLES, RealisticCamera};
 
@@ -65,14 +66,18 @@ pub struct Camera {
 }
 
 impl Camera {
-    /// The camera `desc` describes for `film` (its full resolution, and its diagonal for a
-    /// realistic camera), or why there is none.
+    /// The camera `desc` describes for a film of `resolution` (full width and height in
+    /// pixels) and, for a realistic camera, sensor `diagonal` (mm), or why there is none.
     ///
     /// pbrt's projective cameras: the screen window defaults to [−a, a] × [−1, 1] for a wide
     /// image of aspect a (and [−1, 1] × [−1/a, 1/a] for a tall one), so `fov` spans the shorter
     /// axis. Raster y grows downwards, screen y upwards.
-    pub fn from_desc(desc: &CameraDesc, film: &FilmDesc) -> Result<Camera, String> {
-        let (xres, yres) = (film.xresolution, film.yresolution);
+    pub fn from_desc(
+        desc: &CameraDesc,
+        resolution: (u32, u32),
+        diagonal: f32,
+    ) -> Result<Camera, String> {
+        let (xres, yres) = resolution;
         let kind = match &desc.projection {
             Projection::Perspective { .. } | Projection::Orthographic => {
                 Self::projective(desc, xres, yres)
@@ -84,7 +89,7 @@ impl Camera {
             },
             Projection::Realistic(lens) => Kind::Realistic(Box::new(RealisticCamera::new(
                 lens,
-                film.diagonal,
+                diagonal,
                 xres,
                 yres,
                 PUPIL_SAMPLES,
@@ -157,12 +162,7 @@ impl Camera {
             camera_from_world: Transform::scale(Vec3::new(1.0, 1.0, -1.0)).expect("non-zero scale"),
             ..CameraDesc::default()
         };
-        let film = FilmDesc {
-            xresolution: width,
-            yresolution: height,
-            ..FilmDesc::default()
-        };
-        Camera::from_desc(&desc, &film).expect("valid course camera")
+        Camera::from_desc(&desc, (width, height), DEFAULT_DIAGONAL).expect("valid course camera")
     }
 
     /// The ray through raster point `p_film` (pixels from the top-left corner), with `p_lens`
@@ -268,12 +268,7 @@ mod tests {
             camera_from_world: m,
             ..CameraDesc::default()
         };
-        let film = FilmDesc {
-            xresolution: 64,
-            yresolution: 48,
-            ..FilmDesc::default()
-        };
-        let a = Camera::from_desc(&desc, &film).unwrap();
+        let a = Camera::from_desc(&desc, (64, 48), DEFAULT_DIAGONAL).unwrap();
         let b = Camera::course(64, 48);
         for p in [
             Vec2::new(0.0, 0.0),

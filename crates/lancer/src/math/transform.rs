@@ -1,7 +1,6 @@
 //! Affine and projective transforms that carry their inverse: the course's "repère du monde".
 
 use super::{Bounds3, Vec3, cross, gamma};
-use crate::ray::Ray;
 use glam::{Mat4, Vec4};
 
 /// A 4×4 transformation and its inverse, so that points, vectors and normals can be moved both
@@ -170,18 +169,6 @@ impl Transform {
     #[inline]
     pub fn normal(&self, n: Vec3) -> Vec3 {
         self.m_inv.transpose().transform_vector3a(n)
-    }
-
-    /// Transforms a ray: origin as a point, direction as a vector; `t_max` is kept, so that
-    /// `p(t)` is the same point in both spaces.
-    #[inline]
-    pub fn ray(&self, r: &Ray) -> Ray {
-        Ray {
-            o: self.point(r.o),
-            d: self.vector(r.d),
-            t_max: r.t_max,
-            time: r.time,
-        }
     }
 
     /// The bounds of a transformed box (the box of its eight transformed corners).

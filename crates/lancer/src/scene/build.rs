@@ -14,6 +14,7 @@ use super::prim::{
 use super::tris::SceneTrisBuilder;
 use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
+use crate::camera::footprint::Footprints;
 use crate::light::{
     AreaImage, Emitter, GoniometricLight, ImageInfiniteLight, Light, LightDistribution,
     LightSampler, PortalInfiniteLight, ProjectionLight,
@@ -25,7 +26,7 @@ use crate::shape::{
     Shape, Sphere, Triangle, TriangleMesh, Voxels,
 };
 use crate::spectrum::dense::Measured;
-use crate::texture::FloatTex;
+use crate::texture::{FloatTex, FloatTexture, ImageTexture, SpectrumTexture};
 use std::sync::Arc;
 
 impl Scene {
@@ -80,8 +81,12 @@ impl Scene {
             m.offset_prims(prims.len() as u32);
             prims.extend(moving_prims);
         }
-        let mut camera =
-            Camera::from_desc(&desc.camera, &desc.film).map_err(BuildError::BadCamera)?;
+        let mut camera = Camera::from_desc(
+            &desc.camera,
+            (desc.film.xresolution, desc.film.yresolution),
+            desc.film.diagonal,
+        )
+        .map_err(BuildError::BadCamera)?;
         camera.set_motion(desc.motion.camera);
         let extents: Vec<_> = lights
             .lights
@@ -90,7 +95,7 @@ impl Scene {
             .collect();
         let light_sampler =
             LightSampler::new(desc.sampler.light_sampler, &extents, &lights.distribution);
-        let footprints = crate::camera::footprint::Footprints::for_scene(desc, &camera);
+        let footprints = footprints_for(desc, &camera);
         Ok(Scene {
             footprints,
             light_sampler,
@@ -127,6 +132,35 @@ impl Scene {
             ),
         })
     }
+}
+
+/// The footprints for the scene `desc` seen by `camera`, if anything in it uses them: an
+/// image texture with a MIP pyramid, or a material's bump map (its finite-difference step
+/// is half the footprint in (u, v)). Scenes without either skip the work at every hit.
+fn footprints_for(desc: &SceneDesc, camera: &Camera) -> Option<Footprints> {
+    let filtered = |it: &ImageTexture| it.mipmap.levels() > 1;
+    let wanted = desc.float_textures.iter().any(|t| match t {
+        FloatTexture::Image(it) => filtered(it),
+        _ => false,
+    }) || desc.spectrum_textures.iter().any(|t| match t {
+        SpectrumTexture::Image(it) => filtered(it),
+        _ => false,
+    }) || desc.materials.iter().any(|m| {
+        matches!(
+            m,
+            Material::Bumped {
+                displacement: Some(_),
+                ..
+            }
+        )
+    });
+    wanted.then(|| {
+        Footprints::new(
+            camera,
+            (desc.film.xresolution, desc.film.yresolution),
+            desc.sampler.spp,
+        )
+    })
 }
 
 /// The description's materials, or one default material when it has none.

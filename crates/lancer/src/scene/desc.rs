@@ -5,6 +5,7 @@
 //! is built from it. Colours are already linear RGB (spectra are converted by the readers, with
 //! pbrt's light normalisation applied); meshes are in object space with their transforms.
 
+pub use crate::camera::desc::{CameraDesc, Projection};
 use crate::film::PixelBounds;
 use crate::material::Material;
 use crate::math::{AnimatedTransform, Rgb, Transform, Vec3};
@@ -48,58 +49,6 @@ pub struct SceneDesc {
     pub camera_medium: Option<u32>,
     /// What moves during the shutter interval (motion blur).
     pub motion: MotionDesc,
-}
-
-/// Camera projection.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Projection {
-    /// pbrt's `perspective`.
-    Perspective {
-        /// Full field of view of the shorter image axis, degrees.
-        fov: f32,
-    },
-    /// pbrt's `orthographic`.
-    Orthographic,
-    /// pbrt's `spherical`: the whole sphere of directions from one point.
-    Spherical {
-        /// How the image covers the sphere.
-        mapping: crate::camera::lens::SphericalMapping,
-    },
-    /// pbrt's `realistic`: a lens system traced ray by ray.
-    Realistic(Arc<crate::camera::lens::LensDesc>),
-}
-
-/// The camera.
-#[derive(Clone, Debug, PartialEq)]
-pub struct CameraDesc {
-    /// Projection and its parameters.
-    pub projection: Projection,
-    /// World space → camera space (pbrt's CTM at `Camera`). Camera space is pbrt's: looking
-    /// down +z, +y up, left-handed.
-    pub camera_from_world: Transform,
-    /// Screen window (x_min, x_max, y_min, y_max); `None` for pbrt's default from the aspect
-    /// ratio.
-    pub screen_window: Option<[f32; 4]>,
-    /// Thin-lens aperture radius (0: pinhole).
-    pub lens_radius: f32,
-    /// Distance to the plane in focus.
-    pub focal_distance: f32,
-    /// Shutter open and close times (`shutteropen`, `shutterclose`).
-    pub shutter: [f32; 2],
-}
-
-impl Default for CameraDesc {
-    /// pbrt's default: perspective, fov 90, at the origin looking down +z.
-    fn default() -> Self {
-        CameraDesc {
-            projection: Projection::Perspective { fov: 90.0 },
-            camera_from_world: Transform::IDENTITY,
-            screen_window: None,
-            lens_radius: 0.0,
-            focal_distance: 1e6,
-            shutter: [0.0, 1.0],
-        }
-    }
 }
 
 /// The film: the image's size, the part of it rendered, its exposure and where it goes.
@@ -174,7 +123,7 @@ impl Default for FilmDesc {
             scale: 1.0,
             max_component_value: f32::INFINITY,
             save_fp16: false,
-            diagonal: 35.0,
+            diagonal: crate::camera::desc::DEFAULT_DIAGONAL,
             sensor: crate::spectrum::Sensor::Cie1931,
             white_balance: 0.0,
             color_space: crate::spectrum::ColorSpace::Srgb,

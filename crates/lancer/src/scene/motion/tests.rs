@@ -5,7 +5,7 @@ use crate::Scene;
 use crate::camera::Camera;
 use crate::math::{Vec2, Vec3};
 use crate::scene::desc::{
-    CameraDesc, FilmDesc, InstanceDesc, MotionDesc, MovingInstanceDesc, MovingShapeDesc,
+    CameraDesc, InstanceDesc, MotionDesc, MovingInstanceDesc, MovingShapeDesc,
 };
 use std::sync::Arc;
 
@@ -169,12 +169,12 @@ fn a_rotating_mesh_and_a_moving_instance_turn_and_move() {
 
 #[test]
 fn a_moving_camera_looks_from_its_pose_at_the_ray_time() {
-    let film = FilmDesc {
-        xresolution: 8,
-        yresolution: 8,
-        ..FilmDesc::default()
-    };
-    let mut camera = Camera::from_desc(&CameraDesc::default(), &film).unwrap();
+    let mut camera = Camera::from_desc(
+        &CameraDesc::default(),
+        (8, 8),
+        crate::camera::DEFAULT_DIAGONAL,
+    )
+    .unwrap();
     camera.set_motion(Some(moving(
         Transform::IDENTITY,
         Transform::translate(Vec3::new(0.0, 2.0, 0.0)),
