@@ -6,13 +6,12 @@
 //! `whitted` integrator (visible point, lights, shadows). Its image equals step 7's.
 
 use lancer::film::{Film, PixelBounds};
+use lancer::integrator::Integrator;
 use lancer::material::Material;
 use lancer::math::{Rgb, Transform, Vec3};
 use lancer::render::{RenderSettings, render};
 use lancer::sampling::SamplerKind;
-use lancer::scene::desc::{
-    CameraDesc, FilterDesc, Geometry, Integrator, LightDesc, SceneDesc, ShapeDesc,
-};
+use lancer::scene::desc::{CameraDesc, FilterDesc, Geometry, LightDesc, SceneDesc, ShapeDesc};
 use lancer::texture::SpectrumTex;
 use lancer_examples::{Canvas, save_or_exit};
 

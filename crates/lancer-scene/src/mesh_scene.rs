@@ -13,11 +13,11 @@ use crate::error::{Location, SceneError, Warning};
 use crate::image_read::{Encoding, ImageCache};
 use crate::obj::{ObjError, read_mtl, read_obj};
 use crate::ply::read_ply;
+use lancer::integrator::Integrator;
 use lancer::material::Material;
 use lancer::math::{Rgb, Transform, Vec3, normalize};
 use lancer::scene::desc::{
-    AreaLightDesc, CameraDesc, FilmDesc, Geometry, Integrator, LightDesc, Projection, SceneDesc,
-    ShapeDesc,
+    AreaLightDesc, CameraDesc, FilmDesc, Geometry, LightDesc, Projection, SceneDesc, ShapeDesc,
 };
 use lancer::shape::TriangleMesh;
 use lancer::texture::{

@@ -53,10 +53,10 @@ use crate::error::SceneError;
 use crate::mesh_scene::{default_lights, defaults, framing_camera};
 use ::gltf::Document;
 use ::gltf::mesh::{Mode, Semantic};
+use lancer::integrator::Integrator;
 use lancer::math::{Mat4, PackedVec3, Rgb, Transform, Vec2, Vec3, Vec4};
 use lancer::scene::desc::{
-    AreaLightDesc, CameraDesc, FilmDesc, Geometry, Integrator, LightDesc, Projection, SceneDesc,
-    ShapeDesc,
+    AreaLightDesc, CameraDesc, FilmDesc, Geometry, LightDesc, Projection, SceneDesc, ShapeDesc,
 };
 use lancer::shape::TriangleMesh;
 use loader::GltfLoader;

@@ -6,9 +6,10 @@ mod spectral_film;
 use super::convert::{Fallback, MAX_RESOLUTION};
 use super::params::ParamList;
 use crate::error::SceneError;
+use lancer::integrator::Integrator;
 use lancer::light::LightSamplerKind;
 use lancer::sampling::{Randomization, SamplerKind};
-use lancer::scene::desc::{FilmDesc, FilterDesc, Integrator};
+use lancer::scene::desc::{FilmDesc, FilterDesc};
 use lancer::spectrum::Sensor;
 
 /// What `Film` sets: the film, and the sensor's ISO (the imaging ratio is exposure time ×

@@ -3,10 +3,11 @@
 //! normalisation, named materials, instancing, film exposure and relative file names.
 
 use crate::common::ScratchDir;
+use lancer::integrator::Integrator;
 use lancer::material::Material;
 use lancer::math::{Vec3, normalize};
 use lancer::sampling::SamplerKind;
-use lancer::scene::desc::{Geometry, Integrator, LightDesc, Projection, SceneDesc};
+use lancer::scene::desc::{Geometry, LightDesc, Projection, SceneDesc};
 use lancer::texture::SpectrumTex;
 use lancer_scene::{load, load_pbrt_str};
 use std::path::Path;

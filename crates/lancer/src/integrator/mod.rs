@@ -18,6 +18,7 @@
 pub const RR_AFTER_DEPTH: u32 = 2;
 
 mod debug;
+mod desc;
 mod emission;
 mod path;
 mod path_spectra;
@@ -30,36 +31,14 @@ use crate::material::{Bsdf, BxDF, Material, SpectralColours, rgb_colour};
 use crate::math::{Rgb, SampledSpectrum, Vec3, rgb_lanes};
 use crate::ray::Ray;
 use crate::sampling::Sampler;
-pub use crate::scene::desc::Integrator;
 use crate::scene::{Scene, SceneHit};
 use crate::spectrum::sampled::{ColourKind, SampledWavelengths, albedo_at};
 use crate::texture::SpectrumTex;
+pub use desc::Integrator;
 pub(crate) use emission::emitted;
 use path_spectra::PathSpectra;
 
 impl Integrator {
-    /// The pbrt-v4 name of this integrator (`Integrator "…"`): `path`, `volpath`, `whitted`,
-    /// `ambientocclusion`, and lancer's debug views `normals` and `depth`.
-    pub fn pbrt_name(&self) -> &'static str {
-        match self {
-            Integrator::Whitted { .. } => "whitted",
-            Integrator::Path { .. } => "path",
-            Integrator::VolPath { .. } => "volpath",
-            Integrator::AmbientOcclusion { .. } => "ambientocclusion",
-            Integrator::Normals => "normals",
-            Integrator::Depth => "depth",
-        }
-    }
-
-    /// True for the integrators that compute radiance (path tracing, Whitted), which spectral
-    /// mode applies to; the debug views output other quantities and always work in RGB.
-    pub fn computes_radiance(&self) -> bool {
-        matches!(
-            self,
-            Integrator::Whitted { .. } | Integrator::Path { .. } | Integrator::VolPath { .. }
-        )
-    }
-
     /// [`Integrator::li`], recording the path's vertices in `path` (path tracing only; the
     /// other integrators record nothing).
     pub fn li_traced(

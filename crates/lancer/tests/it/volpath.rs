@@ -5,12 +5,13 @@
 //! MIS over the lanes) and in spectral mode.
 
 use lancer::Scene;
+use lancer::integrator::Integrator;
 use lancer::material::Material;
 use lancer::math::{Rgb, SampledSpectrum, Transform, Vec3, normalize, rgb_lanes};
 use lancer::medium::{MediumDesc, MediumInterface};
 use lancer::ray::Ray;
 use lancer::sampling::{Sampler, SamplerKind};
-use lancer::scene::desc::{Geometry, Integrator, LightDesc, SceneDesc, ShapeDesc};
+use lancer::scene::desc::{Geometry, LightDesc, SceneDesc, ShapeDesc};
 use lancer::spectrum::sampled::SampledWavelengths;
 
 /// A unit sphere of `medium` (index-matched: `interface` material) under a uniform white sky.

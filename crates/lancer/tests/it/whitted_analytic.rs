@@ -3,13 +3,12 @@
 //! Lambert's law, the Fresnel reflectance of a mirror, exact shadow tests).
 
 use lancer::film::{Film, PixelBounds};
+use lancer::integrator::Integrator;
 use lancer::material::{Material, fresnel_complex};
 use lancer::math::{INV_PI, Rgb, SampledSpectrum, Transform, Vec2, Vec3, lanes_rgb, normalize};
 use lancer::render::{RenderSettings, render};
 use lancer::sampling::SamplerKind;
-use lancer::scene::desc::{
-    CameraDesc, FilterDesc, Geometry, Integrator, LightDesc, SceneDesc, ShapeDesc,
-};
+use lancer::scene::desc::{CameraDesc, FilterDesc, Geometry, LightDesc, SceneDesc, ShapeDesc};
 use lancer::texture::SpectrumTex;
 use lancer::{Scene, ray::Ray};
 

@@ -139,7 +139,7 @@ fn volpath_is_the_default_integrator() {
     let l = load("WorldBegin\nShape \"sphere\"\n").unwrap();
     assert_eq!(
         l.desc.integrator,
-        lancer::scene::desc::Integrator::VolPath {
+        lancer::integrator::Integrator::VolPath {
             max_depth: 5,
             regularize: false
         }
