@@ -7,7 +7,8 @@
 
 use lancer::film::{Film, PixelBounds};
 use lancer::integrator::Integrator;
-use lancer::material::Material;
+use lancer::material::DiffuseMaterial;
+use lancer::material::MaterialDesc;
 use lancer::math::{Rgb, Transform, Vec3};
 use lancer::render::{RenderSettings, render};
 use lancer::sampling::SamplerKind;
@@ -34,8 +35,10 @@ pub fn scene_desc(width: u32, height: u32) -> SceneDesc {
     };
     desc.film.xresolution = width;
     desc.film.yresolution = height;
-    let diffuse = |c: Rgb| Material::Diffuse {
-        reflectance: SpectrumTex::Const(c),
+    let diffuse = |c: Rgb| {
+        MaterialDesc::Diffuse(DiffuseMaterial {
+            reflectance: SpectrumTex::Const(c),
+        })
     };
     let place = |geometry, at: Vec3, material| ShapeDesc {
         medium_interface: None,

@@ -14,7 +14,8 @@ use crate::image_read::{Encoding, ImageCache};
 use crate::obj::{ObjError, read_mtl, read_obj};
 use crate::ply::read_ply;
 use lancer::integrator::Integrator;
-use lancer::material::Material;
+use lancer::material::DiffuseMaterial;
+use lancer::material::MaterialDesc;
 use lancer::math::{Rgb, Transform, Vec3, normalize};
 use lancer::scene::desc::{
     AreaLightDesc, CameraDesc, FilmDesc, Geometry, LightDesc, Projection, SceneDesc, ShapeDesc,
@@ -69,9 +70,9 @@ pub fn load_ply_scene(path: &Path) -> Result<LoadedScene, SceneError> {
             ),
         ));
     }
-    let material = Material::Diffuse {
+    let material = MaterialDesc::Diffuse(DiffuseMaterial {
         reflectance: SpectrumTex::Const(Rgb::splat(defaults::ALBEDO)),
-    };
+    });
     let parts = vec![Part {
         mesh: ply.mesh,
         material: 0,
@@ -137,9 +138,9 @@ pub fn load_obj_scene(path: &Path) -> Result<LoadedScene, SceneError> {
         library.extend(read_mtl(&lib_path).map_err(general)?);
     }
 
-    let grey = Material::Diffuse {
+    let grey = MaterialDesc::Diffuse(DiffuseMaterial {
         reflectance: SpectrumTex::Const(Rgb::splat(defaults::ALBEDO)),
-    };
+    });
     let mut materials = vec![grey];
     let mut parts = Vec::new();
     let mut textures = Vec::new();
@@ -188,7 +189,7 @@ pub fn load_obj_scene(path: &Path) -> Result<LoadedScene, SceneError> {
                             )),
                         }
                     }
-                    materials.push(Material::Diffuse { reflectance });
+                    materials.push(MaterialDesc::Diffuse(DiffuseMaterial { reflectance }));
                     part.material = (materials.len() - 1) as u32;
                     part.emission = m.ke.filter(|ke| ke.max_element() > 0.0);
                 }
@@ -243,7 +244,7 @@ fn warning(file: &str, line: u32, message: String) -> Warning {
 fn scene_around(
     name: &str,
     parts: Vec<Part>,
-    materials: Vec<Material>,
+    materials: Vec<MaterialDesc>,
 ) -> Result<SceneDesc, SceneError> {
     let mut lo = Vec3::splat(f32::INFINITY);
     let mut hi = Vec3::splat(f32::NEG_INFINITY);

@@ -4,7 +4,7 @@
 use crate::error::{Location, Warning};
 use crate::image_read::DecodedImage;
 use ::gltf::Document;
-use lancer::material::Material;
+use lancer::material::MaterialDesc;
 use lancer::math::{Rgb, Vec3};
 use lancer::scene::desc::{CameraDesc, FilmDesc, LightDesc, ShapeDesc};
 use lancer::shape::TriangleMesh;
@@ -35,7 +35,7 @@ pub(crate) struct GltfLoader<'a> {
     /// Decoded images by (image index, sRGB?).
     pub(super) images: HashMap<(usize, bool), Arc<DecodedImage>>,
     pub(super) material_cache: HashMap<Option<usize>, MaterialInfo>,
-    pub(super) materials: Vec<Material>,
+    pub(super) materials: Vec<MaterialDesc>,
     pub(super) float_textures: Vec<FloatTexture>,
     pub(super) spectrum_textures: Vec<SpectrumTexture>,
     pub(super) warnings: Vec<Warning>,

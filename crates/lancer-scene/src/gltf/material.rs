@@ -20,7 +20,8 @@ use crate::image_read::{DecodedImage, Encoding, decode_image};
 use ::gltf::material::AlphaMode;
 use ::gltf::texture::{MagFilter, WrappingMode};
 use lancer::image::Image;
-use lancer::material::Material;
+use lancer::material::MaterialDesc;
+use lancer::material::{CoatedDiffuseMaterial, ConductorMaterial, DiffuseMaterial, MixMaterial};
 use lancer::math::Rgb;
 use lancer::texture::{
     FloatTex, FloatTexture, ImageFilter, ImageTexture, MipMap, SpectrumTex, SpectrumTexture,
@@ -197,9 +198,9 @@ impl GltfLoader<'_> {
     }
 
     fn grey_material(&mut self) -> u32 {
-        self.materials.push(Material::Diffuse {
+        self.materials.push(MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: SpectrumTex::Const(Rgb::splat(crate::mesh_scene::defaults::ALBEDO)),
-        });
+        }));
         (self.materials.len() - 1) as u32
     }
 
@@ -286,7 +287,7 @@ impl GltfLoader<'_> {
             ));
         }
 
-        let dielectric = Material::CoatedDiffuse {
+        let dielectric = MaterialDesc::CoatedDiffuse(CoatedDiffuseMaterial {
             reflectance: base,
             uroughness: alpha_r,
             vroughness: alpha_r,
@@ -297,15 +298,15 @@ impl GltfLoader<'_> {
             max_depth: 10,
             n_samples: 1,
             remap_roughness: false,
-        };
-        let metal = Material::Conductor {
+        });
+        let metal = MaterialDesc::Conductor(ConductorMaterial {
             eta: SpectrumTex::Const(Rgb::ONE),
             k: SpectrumTex::Const(Rgb::ZERO),
             reflectance: Some(base),
             uroughness: alpha_r,
             vroughness: alpha_r,
             remap_roughness: false,
-        };
+        });
         let material = if metal_range.1 <= 0.0 {
             self.materials.push(dielectric);
             self.materials.len() - 1
@@ -317,10 +318,10 @@ impl GltfLoader<'_> {
             self.materials.push(metal);
             let n = self.materials.len() as u32;
             // Mix: the second material with probability `amount` = metallic.
-            self.materials.push(Material::Mix {
+            self.materials.push(MaterialDesc::Mix(MixMaterial {
                 materials: [n - 2, n - 1],
                 amount: metallic,
-            });
+            }));
             self.materials.len() - 1
         } as u32;
 

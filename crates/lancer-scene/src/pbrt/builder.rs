@@ -20,7 +20,8 @@ use super::textures::{
 };
 use crate::error::{Location, SceneError, Warning};
 use crate::image_read::ImageCache;
-use lancer::material::Material;
+use lancer::material::MaterialDesc;
+use lancer::material::MixMaterial;
 use lancer::math::{AnimatedTransform, Transform};
 use lancer::scene::desc::{
     AreaLightDesc, InstanceDesc, MovingInstanceDesc, MovingShapeDesc, SceneDesc, ShapeDesc,
@@ -138,7 +139,7 @@ pub struct Builder {
 impl Builder {
     fn new() -> Builder {
         let desc = SceneDesc {
-            materials: vec![Material::default()],
+            materials: vec![MaterialDesc::default()],
             ..SceneDesc::default()
         };
         Builder {
@@ -679,7 +680,9 @@ impl Builder {
                 Slot::ObjectMovingShape(i) => self.object_moving[i].1.shape.material = index,
                 Slot::ObjectShape(o, i) => self.desc.objects[o as usize].shapes[i].material = index,
                 Slot::Mix(m, k) => {
-                    if let Material::Mix { materials, .. } = &mut self.desc.materials[m as usize] {
+                    if let MaterialDesc::Mix(MixMaterial { materials, .. }) =
+                        &mut self.desc.materials[m as usize]
+                    {
                         materials[k] = index;
                     }
                 }

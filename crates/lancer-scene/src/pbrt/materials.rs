@@ -8,7 +8,12 @@ mod subsurface;
 use super::convert::{Fallback, Reader, locate};
 use crate::error::{Location, SceneError};
 use crate::image_read::Encoding;
-use lancer::material::Material;
+use lancer::material::MaterialDesc;
+use lancer::material::{
+    BumpedMaterial, CoatedConductorMaterial, CoatedDiffuseMaterial, ConductorMaterial,
+    DielectricMaterial, DiffuseMaterial, DiffuseTransmissionMaterial, InterfaceMaterial,
+    MixMaterial, ThinDielectricMaterial,
+};
 use lancer::math::Rgb;
 use lancer::scene::desc::SceneDesc;
 use lancer::spectrum::{SpectrumKind, named_spectrum, spectrum_to_rgb};
@@ -20,15 +25,15 @@ use lancer::texture::{
 #[derive(Clone, Debug)]
 pub struct MaterialWithNames {
     /// The material (a `mix` holds placeholder indices until its names are resolved).
-    pub material: Material,
+    pub material: MaterialDesc,
     /// The names of a `mix`, and where they are given.
     pub mix: Option<(Vec<String>, Location)>,
-    /// Its bump or normal map, which the builder wraps around it ([`Material::Bumped`]).
+    /// Its bump or normal map, which the builder wraps around it ([`MaterialDesc::Bumped`]).
     pub bump: Option<BumpMaps>,
 }
 
-impl From<Material> for MaterialWithNames {
-    fn from(material: Material) -> MaterialWithNames {
+impl From<MaterialDesc> for MaterialWithNames {
+    fn from(material: MaterialDesc) -> MaterialWithNames {
         MaterialWithNames {
             material,
             mix: None,
@@ -50,17 +55,17 @@ pub struct BumpMaps {
 
 impl BumpMaps {
     /// Adds these maps around material `base` of `desc`: the normal map as a spectrum texture,
-    /// then a [`Material::Bumped`] referring to both; returns the latter's index.
+    /// then a [`MaterialDesc::Bumped`] referring to both; returns the latter's index.
     pub fn push_around(self, base: u32, desc: &mut SceneDesc) -> u32 {
         let normal_map = self.normal_map.map(|t| {
             desc.spectrum_textures.push(SpectrumTexture::Image(t));
             desc.spectrum_textures.len() as u32 - 1
         });
-        desc.materials.push(Material::Bumped {
+        desc.materials.push(MaterialDesc::Bumped(BumpedMaterial {
             base,
             displacement: self.displacement,
             normal_map,
-        });
+        }));
         desc.materials.len() as u32 - 1
     }
 }
@@ -148,7 +153,10 @@ pub fn material(
     loc: &Location,
 ) -> Result<Fallback<MaterialWithNames>, SceneError> {
     let with_bump = |mut m: Fallback<MaterialWithNames>| -> Result<_, SceneError> {
-        if !matches!(m.value.material, Material::Mix { .. } | Material::Interface) {
+        if !matches!(
+            m.value.material,
+            MaterialDesc::Mix(_) | MaterialDesc::Interface(_)
+        ) {
             m.value.bump = bump_maps(r)?;
         }
         Ok(m)
@@ -162,41 +170,41 @@ fn convert(r: &Reader, ty: &str) -> Result<Fallback<MaterialWithNames>, SceneErr
     use SpectrumKind::{Albedo, Unbounded};
     let p = r.params;
     let remap = || p.bool("remaproughness", true);
-    let diffuse = |default: f32| -> Result<Material, SceneError> {
-        Ok(Material::Diffuse {
+    let diffuse = |default: f32| -> Result<MaterialDesc, SceneError> {
+        Ok(MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: r.spectrum_tex("reflectance", Rgb::splat(default), Albedo)?,
-        })
+        }))
     };
     let m = match ty {
         "diffuse" => diffuse(0.5)?,
         "conductor" => {
             let (uroughness, vroughness) = roughness(r, "")?;
-            Material::Conductor {
+            MaterialDesc::Conductor(ConductorMaterial {
                 eta: r.spectrum_tex_or("eta", named_metal("metal-Cu-eta"), Unbounded)?,
                 k: r.spectrum_tex_or("k", named_metal("metal-Cu-k"), Unbounded)?,
                 reflectance: r.opt_spectrum_tex("reflectance", Albedo)?,
                 uroughness,
                 vroughness,
                 remap_roughness: remap()?,
-            }
+            })
         }
         "dielectric" => {
             let (uroughness, vroughness) = roughness(r, "")?;
-            Material::Dielectric {
+            MaterialDesc::Dielectric(DielectricMaterial {
                 eta: p.dielectric_ior("eta", 1.5, r.dir)?,
                 uroughness,
                 vroughness,
                 remap_roughness: remap()?,
-            }
+            })
         }
-        "thindielectric" => Material::ThinDielectric {
+        "thindielectric" => MaterialDesc::ThinDielectric(ThinDielectricMaterial {
             eta: p.dielectric_ior("eta", 1.5, r.dir)?,
-        },
-        "diffusetransmission" => Material::DiffuseTransmission {
+        }),
+        "diffusetransmission" => MaterialDesc::DiffuseTransmission(DiffuseTransmissionMaterial {
             reflectance: r.spectrum_tex("reflectance", Rgb::splat(0.25), Albedo)?,
             transmittance: r.spectrum_tex("transmittance", Rgb::splat(0.25), Albedo)?,
             scale: p.float("scale", 1.0)?,
-        },
+        }),
         "coateddiffuse" => {
             let (uroughness, vroughness) = roughness(r, "")?;
             let reflectance = r.spectrum_tex("reflectance", Rgb::splat(0.5), Albedo)?;
@@ -205,7 +213,7 @@ fn convert(r: &Reader, ty: &str) -> Result<Fallback<MaterialWithNames>, SceneErr
             let albedo = r.spectrum_tex("albedo", Rgb::ZERO, Albedo)?;
             let g = r.float_tex("g", 0.0)?;
             let (max_depth, n_samples) = walk(r)?;
-            Material::CoatedDiffuse {
+            MaterialDesc::CoatedDiffuse(CoatedDiffuseMaterial {
                 reflectance,
                 uroughness,
                 vroughness,
@@ -216,7 +224,7 @@ fn convert(r: &Reader, ty: &str) -> Result<Fallback<MaterialWithNames>, SceneErr
                 max_depth,
                 n_samples,
                 remap_roughness: remap()?,
-            }
+            })
         }
         "coatedconductor" => {
             let (interface_uroughness, interface_vroughness) = roughness(r, "interface.")?;
@@ -230,7 +238,7 @@ fn convert(r: &Reader, ty: &str) -> Result<Fallback<MaterialWithNames>, SceneErr
             let albedo = r.spectrum_tex("albedo", Rgb::ZERO, Albedo)?;
             let g = r.float_tex("g", 0.0)?;
             let (max_depth, n_samples) = walk(r)?;
-            Material::CoatedConductor {
+            MaterialDesc::CoatedConductor(CoatedConductorMaterial {
                 interface_uroughness,
                 interface_vroughness,
                 interface_eta,
@@ -245,7 +253,7 @@ fn convert(r: &Reader, ty: &str) -> Result<Fallback<MaterialWithNames>, SceneErr
                 max_depth,
                 n_samples,
                 remap_roughness: remap()?,
-            }
+            })
         }
         "mix" => {
             let Some((names, loc)) = p.strings("materials")? else {
@@ -262,23 +270,23 @@ fn convert(r: &Reader, ty: &str) -> Result<Fallback<MaterialWithNames>, SceneErr
                     ),
                 ));
             }
-            let material = Material::Mix {
+            let material = MaterialDesc::Mix(MixMaterial {
                 materials: [0, 0],
                 amount: r.float_tex("amount", 0.5)?,
-            };
+            });
             return Ok(Fallback::done(MaterialWithNames {
                 material,
                 mix: Some((names, loc)),
                 bump: None,
             }));
         }
-        "interface" | "" | "none" => Material::Interface,
+        "interface" | "" | "none" => MaterialDesc::Interface(InterfaceMaterial),
         "hair" => return hair(r),
         "subsurface" => return subsurface::subsurface(r),
         "measured" => return measured::measured(r),
         _ => {
             return Ok(Fallback::instead(
-                Material::default().into(),
+                MaterialDesc::default().into(),
                 format!("unknown material \"{ty}\"; lancer renders it as \"diffuse\""),
             ));
         }
@@ -329,7 +337,7 @@ fn hair(r: &Reader) -> Result<Fallback<MaterialWithNames>, SceneError> {
             pheomelanin: FloatTex::Const(0.0),
         },
     };
-    let m = Material::Hair(HairMaterial {
+    let m = MaterialDesc::Hair(HairMaterial {
         absorption,
         eta: r.float_tex("eta", 1.55)?,
         beta_m: r.float_tex("beta_m", 0.3)?,
@@ -363,7 +371,7 @@ mod tests {
 
     /// A material that converts without warnings and reads every parameter.
     #[track_caller]
-    fn converted(text: &str) -> Material {
+    fn converted(text: &str) -> MaterialDesc {
         let (out, unused) = convert_with(text, &TextureNames::default());
         let f = out.unwrap_or_else(|e| panic!("{e}"));
         assert!(f.warnings.is_empty(), "{:?}", f.warnings);
@@ -391,48 +399,48 @@ mod tests {
     fn defaults_are_pbrt_v4s() {
         assert_eq!(
             converted(r#"Material "diffuse""#),
-            Material::Diffuse {
+            MaterialDesc::Diffuse(DiffuseMaterial {
                 reflectance: grey(0.5)
-            }
+            })
         );
         let copper = (named_metal("metal-Cu-eta"), named_metal("metal-Cu-k"));
         assert_eq!(
             converted(r#"Material "conductor""#),
-            Material::Conductor {
+            MaterialDesc::Conductor(ConductorMaterial {
                 eta: copper.0,
                 k: copper.1,
                 reflectance: None,
                 uroughness: ZERO,
                 vroughness: ZERO,
                 remap_roughness: true,
-            }
+            })
         );
         assert_eq!(
             converted(r#"Material "dielectric""#),
-            Material::Dielectric {
+            MaterialDesc::Dielectric(DielectricMaterial {
                 eta: Ior::Constant(1.5),
                 uroughness: ZERO,
                 vroughness: ZERO,
                 remap_roughness: true,
-            }
+            })
         );
         assert_eq!(
             converted(r#"Material "thindielectric""#),
-            Material::ThinDielectric {
+            MaterialDesc::ThinDielectric(ThinDielectricMaterial {
                 eta: Ior::Constant(1.5)
-            }
+            })
         );
         assert_eq!(
             converted(r#"Material "diffusetransmission""#),
-            Material::DiffuseTransmission {
+            MaterialDesc::DiffuseTransmission(DiffuseTransmissionMaterial {
                 reflectance: grey(0.25),
                 transmittance: grey(0.25),
                 scale: 1.0,
-            }
+            })
         );
         assert_eq!(
             converted(r#"Material "coateddiffuse""#),
-            Material::CoatedDiffuse {
+            MaterialDesc::CoatedDiffuse(CoatedDiffuseMaterial {
                 reflectance: grey(0.5),
                 uroughness: ZERO,
                 vroughness: ZERO,
@@ -443,11 +451,11 @@ mod tests {
                 max_depth: 10,
                 n_samples: 1,
                 remap_roughness: true,
-            }
+            })
         );
         assert_eq!(
             converted(r#"Material "coatedconductor""#),
-            Material::CoatedConductor {
+            MaterialDesc::CoatedConductor(CoatedConductorMaterial {
                 interface_uroughness: ZERO,
                 interface_vroughness: ZERO,
                 interface_eta: lancer::spectrum::Ior::Constant(1.5),
@@ -462,12 +470,12 @@ mod tests {
                 max_depth: 10,
                 n_samples: 1,
                 remap_roughness: true,
-            }
+            })
         );
         for ty in ["interface", "none", ""] {
             assert_eq!(
                 converted(&format!("Material \"{ty}\"")),
-                Material::Interface
+                MaterialDesc::Interface(InterfaceMaterial)
             );
         }
     }
@@ -476,9 +484,9 @@ mod tests {
     fn every_parameter_is_read() {
         assert_eq!(
             converted(r#"Material "diffuse" "rgb reflectance" [0.1 0.2 0.3]"#),
-            Material::Diffuse {
+            MaterialDesc::Diffuse(DiffuseMaterial {
                 reflectance: rgb(0.1, 0.2, 0.3)
-            }
+            })
         );
         assert_eq!(
             converted(
@@ -486,43 +494,43 @@ mod tests {
                    "rgb reflectance" [0.9 0.8 0.7] "float uroughness" 0.1
                    "float vroughness" 0.2 "bool remaproughness" false"#
             ),
-            Material::Conductor {
+            MaterialDesc::Conductor(ConductorMaterial {
                 eta: rgb(0.2, 0.3, 0.4),
                 k: rgb(3.0, 2.0, 1.0),
                 reflectance: Some(rgb(0.9, 0.8, 0.7)),
                 uroughness: FloatTex::Const(0.1),
                 vroughness: FloatTex::Const(0.2),
                 remap_roughness: false,
-            }
+            })
         );
         // `roughness` gives both directions unless one is named.
         assert_eq!(
             converted(
                 r#"Material "dielectric" "float eta" 1.33 "float roughness" 0.3 "float vroughness" 0.4"#
             ),
-            Material::Dielectric {
+            MaterialDesc::Dielectric(DielectricMaterial {
                 eta: Ior::Constant(1.33),
                 uroughness: FloatTex::Const(0.3),
                 vroughness: FloatTex::Const(0.4),
                 remap_roughness: true,
-            }
+            })
         );
         assert_eq!(
             converted(r#"Material "thindielectric" "float eta" 1.2"#),
-            Material::ThinDielectric {
+            MaterialDesc::ThinDielectric(ThinDielectricMaterial {
                 eta: Ior::Constant(1.2)
-            }
+            })
         );
         assert_eq!(
             converted(
                 r#"Material "diffusetransmission" "rgb reflectance" [0.1 0.1 0.1]
                    "rgb transmittance" [0.7 0.7 0.7] "float scale" 2"#
             ),
-            Material::DiffuseTransmission {
+            MaterialDesc::DiffuseTransmission(DiffuseTransmissionMaterial {
                 reflectance: grey(0.1),
                 transmittance: grey(0.7),
                 scale: 2.0,
-            }
+            })
         );
         assert_eq!(
             converted(
@@ -530,7 +538,7 @@ mod tests {
                    "float thickness" 0.2 "float eta" 1.4 "rgb albedo" [0.5 0.5 0.5] "float g" 0.3
                    "integer maxdepth" 4 "integer nsamples" 2 "bool remaproughness" false"#
             ),
-            Material::CoatedDiffuse {
+            MaterialDesc::CoatedDiffuse(CoatedDiffuseMaterial {
                 reflectance: grey(0.2),
                 uroughness: FloatTex::Const(0.1),
                 vroughness: FloatTex::Const(0.1),
@@ -541,7 +549,7 @@ mod tests {
                 max_depth: 4,
                 n_samples: 2,
                 remap_roughness: false,
-            }
+            })
         );
         assert_eq!(
             converted(
@@ -553,7 +561,7 @@ mod tests {
                    "rgb albedo" [0.1 0.1 0.1] "float g" -0.2 "integer maxdepth" 3
                    "integer nsamples" 5 "bool remaproughness" false"#
             ),
-            Material::CoatedConductor {
+            MaterialDesc::CoatedConductor(CoatedConductorMaterial {
                 interface_uroughness: FloatTex::Const(0.1),
                 interface_vroughness: FloatTex::Const(0.15),
                 interface_eta: lancer::spectrum::Ior::Constant(1.3),
@@ -568,7 +576,7 @@ mod tests {
                 max_depth: 3,
                 n_samples: 5,
                 remap_roughness: false,
-            }
+            })
         );
     }
 
@@ -581,12 +589,12 @@ mod tests {
             r#"Material "conductor" "texture reflectance" "wood" "texture roughness" "bumps""#,
             &textures,
         );
-        let Material::Conductor {
+        let MaterialDesc::Conductor(ConductorMaterial {
             reflectance,
             uroughness,
             vroughness,
             ..
-        } = out.unwrap().value.material
+        }) = out.unwrap().value.material
         else {
             panic!("a conductor")
         };
@@ -615,10 +623,10 @@ mod tests {
         let f = out.unwrap();
         assert_eq!(
             f.value.material,
-            Material::Mix {
+            MaterialDesc::Mix(MixMaterial {
                 materials: [0, 0],
                 amount: FloatTex::Const(0.25),
-            }
+            })
         );
         let (names, loc) = f.value.mix.expect("names");
         assert_eq!(names, ["a", "b"]);
@@ -632,7 +640,7 @@ mod tests {
             &TextureNames::default(),
         );
         let f = out.unwrap();
-        assert_eq!(f.value.material, Material::default());
+        assert_eq!(f.value.material, MaterialDesc::default());
         assert_eq!(
             f.warnings,
             ["unknown material \"plastic\"; lancer renders it as \"diffuse\""]
@@ -646,7 +654,7 @@ mod tests {
         use lancer::material::{HairAbsorption, HairMaterial};
         let c = FloatTex::Const;
         let hair = |absorption| {
-            Material::Hair(HairMaterial {
+            MaterialDesc::Hair(HairMaterial {
                 absorption,
                 eta: c(1.55),
                 beta_m: c(0.3),
@@ -678,7 +686,7 @@ mod tests {
         );
         assert_eq!(
             m,
-            Material::Hair(HairMaterial {
+            MaterialDesc::Hair(HairMaterial {
                 absorption: HairAbsorption::SigmaA(rgb(0.4, 0.75, 1.6)),
                 eta: c(1.5),
                 beta_m: c(0.25),
@@ -695,7 +703,7 @@ mod tests {
         assert!(unused.is_empty(), "{unused:?}");
         assert!(matches!(
             f.value.material,
-            Material::Hair(HairMaterial {
+            MaterialDesc::Hair(HairMaterial {
                 absorption: HairAbsorption::SigmaA(_),
                 ..
             })

@@ -5,7 +5,8 @@
 use crate::common::ScratchDir;
 use lancer::Scene;
 use lancer::film::{Film, PixelBounds};
-use lancer::material::Material;
+use lancer::material::MaterialDesc;
+use lancer::material::{CoatedDiffuseMaterial, ConductorMaterial, MixMaterial};
 use lancer::math::{PackedVec3, Vec3, cross, normalize};
 use lancer::render::{RenderSettings, render};
 use lancer::scene::desc::{CameraDesc, Geometry, LightDesc, Projection, SceneDesc};
@@ -274,23 +275,23 @@ fn metallic_roughness_materials_map_to_lancer_materials() {
     let mat = |i: usize| &d.materials[d.shapes[i].material as usize];
 
     // Half metallic: a mix of coated diffuse and conductor, α = 0.5² = 0.25.
-    let Material::Mix {
+    let MaterialDesc::Mix(MixMaterial {
         materials: [a, b],
         amount,
-    } = *mat(0)
+    }) = *mat(0)
     else {
         panic!("{:?}", mat(0))
     };
     assert_eq!(amount, FloatTex::Const(0.5));
     let base = SpectrumTex::Const(Vec3::new(0.2, 0.4, 0.6));
     match &d.materials[a as usize] {
-        Material::CoatedDiffuse {
+        MaterialDesc::CoatedDiffuse(CoatedDiffuseMaterial {
             reflectance,
             uroughness,
             eta,
             remap_roughness,
             ..
-        } => {
+        }) => {
             assert_eq!(*reflectance, base);
             assert_eq!(*uroughness, FloatTex::Const(0.25));
             assert_eq!(*eta, lancer::spectrum::Ior::Constant(1.5));
@@ -299,11 +300,11 @@ fn metallic_roughness_materials_map_to_lancer_materials() {
         m => panic!("{m:?}"),
     }
     match &d.materials[b as usize] {
-        Material::Conductor {
+        MaterialDesc::Conductor(ConductorMaterial {
             reflectance,
             uroughness,
             ..
-        } => {
+        }) => {
             assert_eq!(*reflectance, Some(base));
             assert_eq!(*uroughness, FloatTex::Const(0.25));
         }
@@ -311,11 +312,11 @@ fn metallic_roughness_materials_map_to_lancer_materials() {
     }
     // Fully metallic: a conductor alone, α = 0.04.
     match mat(1) {
-        Material::Conductor {
+        MaterialDesc::Conductor(ConductorMaterial {
             reflectance,
             uroughness,
             ..
-        } => {
+        }) => {
             assert_eq!(
                 *reflectance,
                 Some(SpectrumTex::Const(Vec3::new(0.9, 0.6, 0.2)))
@@ -332,7 +333,7 @@ fn metallic_roughness_materials_map_to_lancer_materials() {
     assert_eq!(l.l, Vec3::new(4.0, 2.0, 1.0));
     assert!(!l.two_sided);
     assert_eq!(d.shapes[2].alpha, Some(FloatTex::Const(1.0)));
-    assert!(matches!(mat(2), Material::CoatedDiffuse { .. }));
+    assert!(matches!(mat(2), MaterialDesc::CoatedDiffuse(_)));
     // BLEND: the factor's alpha as stochastic alpha.
     assert_eq!(d.shapes[3].alpha, Some(FloatTex::Const(0.3)));
     assert_eq!(d.shapes[0].alpha, None);
@@ -535,8 +536,10 @@ fn texture_lookups_follow_gltf_uv_orientation() {
             let hit = scene
                 .intersect(&lancer::ray::Ray::new(o, -Vec3::Z))
                 .expect("the square is there");
-            let Material::CoatedDiffuse { reflectance, .. } =
-                *scene.material(scene.prim(hit.prim).material)
+            let lancer::material::Material::CoatedDiffuse(CoatedDiffuseMaterial {
+                reflectance,
+                ..
+            }) = *scene.material(scene.prim(hit.prim).material)
             else {
                 panic!("coated diffuse expected")
             };
@@ -628,8 +631,9 @@ fn embedded_images_are_decoded_and_placed_by_texcoords() {
         let hit = scene
             .intersect(&lancer::ray::Ray::new(Vec3::new(x, y, 1.0), -Vec3::Z))
             .expect("the quad is there");
-        let Material::CoatedDiffuse { reflectance, .. } =
-            *scene.material(scene.prim(hit.prim).material)
+        let lancer::material::Material::CoatedDiffuse(CoatedDiffuseMaterial {
+            reflectance, ..
+        }) = *scene.material(scene.prim(hit.prim).material)
         else {
             panic!("coated diffuse expected")
         };

@@ -3,6 +3,7 @@
 //! real meshes.
 
 use crate::common::ScratchDir;
+use lancer::material::DiffuseMaterial;
 use lancer::math::Vec3;
 use lancer::scene::desc::{CameraDesc, Geometry, LightDesc, Projection, SceneDesc};
 use lancer_scene::load;
@@ -146,9 +147,9 @@ fn mtl_materials_split_the_mesh_and_emit() {
     let red = &d.materials[d.shapes[0].material as usize];
     assert_eq!(
         *red,
-        lancer::material::Material::Diffuse {
+        lancer::material::MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: lancer::texture::SpectrumTex::Const(Vec3::new(0.8, 0.1, 0.1))
-        }
+        })
     );
     assert!(d.shapes[0].area_light.is_none());
     assert_eq!(d.shapes[1].area_light.map(|a| a.l), Some(Vec3::splat(5.0)));
@@ -214,9 +215,9 @@ fn the_shared_mcguire_cornell_box_loads_with_its_materials() {
     let lights = d.shapes.iter().filter(|s| s.area_light.is_some()).count();
     assert_eq!(lights, 1, "the ceiling light");
     let red = d.materials.iter().any(|m| {
-        *m == lancer::material::Material::Diffuse {
+        *m == lancer::material::MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: lancer::texture::SpectrumTex::Const(Vec3::new(0.63, 0.065, 0.05)),
-        }
+        })
     });
     assert!(red, "the red wall's Kd");
     check_framing(d);
@@ -254,16 +255,16 @@ fn map_kd_images_become_textures_when_the_faces_have_uvs() {
     assert_eq!((t.mipmap.level(0).width, t.mipmap.level(0).height), (2, 1));
     assert_eq!(
         d.materials[d.shapes[0].material as usize],
-        lancer::material::Material::Diffuse {
+        lancer::material::MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: lancer::texture::SpectrumTex::Tex(0)
-        }
+        })
     );
     // The missing image falls back to Kd (the default grey here) with a warning on its line.
     assert_eq!(
         d.materials[d.shapes[1].material as usize],
-        lancer::material::Material::Diffuse {
+        lancer::material::MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: lancer::texture::SpectrumTex::Const(Vec3::splat(0.6))
-        }
+        })
     );
     let w: Vec<String> = loaded.warnings.iter().map(|w| w.to_string()).collect();
     assert_eq!(w.len(), 1, "{w:?}");
@@ -287,9 +288,9 @@ fn several_material_libraries_on_one_mtllib_line() {
     assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
     let d = &loaded.desc;
     let kd = |i: usize| match &d.materials[d.shapes[i].material as usize] {
-        lancer::material::Material::Diffuse {
+        lancer::material::MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: lancer::texture::SpectrumTex::Const(c),
-        } => *c,
+        }) => *c,
         m => panic!("{m:?}"),
     };
     assert_eq!((kd(0), kd(1)), (Vec3::Y, Vec3::X));

@@ -3,7 +3,8 @@
 //! twice, singular transformations and inconsistent `trianglemesh` arrays.
 
 use crate::common::ScratchDir;
-use lancer::material::Material;
+use lancer::material::DiffuseMaterial;
+use lancer::material::MaterialDesc;
 use lancer::math::Vec3;
 use lancer::scene::desc::{Geometry, SceneDesc};
 use lancer::texture::SpectrumTex;
@@ -31,9 +32,9 @@ fn gzip(text: &str) -> Vec<u8> {
 
 fn diffuse_red(d: &SceneDesc, material: u32) -> f32 {
     match &d.materials[material as usize] {
-        Material::Diffuse {
+        MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: SpectrumTex::Const(c),
-        } => c.x,
+        }) => c.x,
         other => panic!("not diffuse: {other:?}"),
     }
 }
@@ -86,7 +87,7 @@ fn an_import_starts_from_the_graphics_state_and_does_not_change_it() {
     // Named materials are the scene's: defined in the import, usable after it.
     assert!(matches!(
         d.materials[d.shapes[2].material as usize],
-        Material::Conductor { .. }
+        MaterialDesc::Conductor(_)
     ));
 }
 

@@ -4,7 +4,8 @@
 
 use crate::common::ScratchDir;
 use lancer::integrator::Integrator;
-use lancer::material::Material;
+use lancer::material::MaterialDesc;
+use lancer::material::{DielectricMaterial, DiffuseMaterial, MixMaterial};
 use lancer::math::{Vec3, normalize};
 use lancer::sampling::SamplerKind;
 use lancer::scene::desc::{Geometry, LightDesc, Projection, SceneDesc};
@@ -86,12 +87,12 @@ fn blocks_restore_the_ctm_and_the_material() {
     assert_close(origins(&d)[1], Vec3::ZERO);
     let m0 = &d.materials[d.shapes[0].material as usize];
     let m1 = &d.materials[d.shapes[1].material as usize];
-    assert!(matches!(m0, Material::Conductor { .. }), "{m0:?}");
+    assert!(matches!(m0, MaterialDesc::Conductor(_)), "{m0:?}");
     assert_eq!(
         *m1,
-        Material::Diffuse {
+        MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: SpectrumTex::Const(Vec3::new(0.1, 0.2, 0.3))
-        }
+        })
     );
 }
 
@@ -164,7 +165,7 @@ fn defaults_are_pbrt_v4_defaults() {
     assert!((edge_angle(&d, 640.0, 0.0) - 45.0).abs() < 1e-3);
     assert_eq!(
         d.materials[d.shapes[0].material as usize],
-        Material::default()
+        MaterialDesc::default()
     );
     assert_eq!(
         d.shapes[0].geometry,
@@ -333,14 +334,14 @@ fn named_materials_resolve_whenever_they_are_defined() {
     let mat = |i: usize| d.materials[d.shapes[i].material as usize].clone();
     assert_eq!(
         mat(0),
-        Material::Diffuse {
+        MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: SpectrumTex::Const(Vec3::new(0.8, 0.0, 0.0))
-        }
+        })
     );
     assert!(
-        matches!(mat(1), Material::Dielectric { eta, .. } if eta == lancer::spectrum::Ior::Constant(1.33))
+        matches!(mat(1), MaterialDesc::Dielectric(DielectricMaterial { eta, .. }) if eta == lancer::spectrum::Ior::Constant(1.33))
     );
-    let Material::Mix { materials, .. } = mat(2) else {
+    let MaterialDesc::Mix(MixMaterial { materials, .. }) = mat(2) else {
         panic!("{:?}", mat(2))
     };
     assert_eq!(d.materials[materials[0] as usize], mat(0));

@@ -2,7 +2,8 @@
 //! and rendered in spectral mode (issue 16).
 
 use lancer::film::Film;
-use lancer::material::Material;
+use lancer::material::MaterialDesc;
+use lancer::material::{ConductorMaterial, DielectricMaterial, DiffuseMaterial};
 use lancer::math::Rgb;
 use lancer::render::{RenderSettings, render};
 use lancer::scene::Scene;
@@ -51,14 +52,14 @@ Shape "sphere" "float radius" 1
 fn spectral_gold_is_less_blue_than_its_uplifted_rgb() {
     let desc = scene(GOLD);
     let i = desc.shapes[0].material as usize;
-    let Material::Conductor { eta, k, .. } = desc.materials[i] else {
+    let MaterialDesc::Conductor(ConductorMaterial { eta, k, .. }) = desc.materials[i] else {
         panic!("{:?}", desc.materials[i])
     };
     let (SpectrumTex::Measured(me), SpectrumTex::Measured(mk)) = (eta, k) else {
         panic!("named spectra stay spectra: {eta:?} {k:?}");
     };
     let mut uplifted = desc.clone();
-    if let Material::Conductor { eta, k, .. } = &mut uplifted.materials[i] {
+    if let MaterialDesc::Conductor(ConductorMaterial { eta, k, .. }) = &mut uplifted.materials[i] {
         *eta = SpectrumTex::Const(me.rgb);
         *k = SpectrumTex::Const(mk.rgb);
     }
@@ -83,7 +84,7 @@ fn rgb_eta_on_a_dielectric() {
             "WorldBegin\nMaterial \"dielectric\" \"rgb eta\" [{rgb}]\nShape \"sphere\""
         ));
         match d.materials[d.shapes[0].material as usize] {
-            Material::Dielectric { eta, .. } => eta,
+            MaterialDesc::Dielectric(DielectricMaterial { eta, .. }) => eta,
             ref m => panic!("{m:?}"),
         }
     };
@@ -109,7 +110,7 @@ fn spectrum_eta_pairs_disperse_when_they_vary() {
             "WorldBegin\nMaterial \"dielectric\" \"spectrum eta\" [{pairs}]\nShape \"sphere\""
         ));
         match d.materials[d.shapes[0].material as usize] {
-            Material::Dielectric { eta, .. } => eta,
+            MaterialDesc::Dielectric(DielectricMaterial { eta, .. }) => eta,
             ref m => panic!("{m:?}"),
         }
     };
@@ -243,10 +244,10 @@ Shape "sphere"
         (m.rgb, m.spectrum.at(400.0))
     };
     let material = |k: usize| &d.materials[d.shapes[k].material as usize];
-    let &Material::Conductor { eta, .. } = material(0) else {
+    let &MaterialDesc::Conductor(ConductorMaterial { eta, .. }) = material(0) else {
         panic!("{:?}", material(0))
     };
-    let &Material::Diffuse { reflectance } = material(1) else {
+    let &MaterialDesc::Diffuse(DiffuseMaterial { reflectance }) = material(1) else {
         panic!("{:?}", material(1))
     };
     // Gold's η is about 1.66 at 400 nm (pbrt-v4's metal-Au-eta): kept as is for the index,

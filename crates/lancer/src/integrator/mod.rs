@@ -27,7 +27,9 @@ mod subsurface;
 mod volpath;
 mod whitted;
 
-use crate::material::{Bsdf, BxDF, Material, SpectralColours, rgb_colour};
+use crate::material::{
+    Bsdf, BumpedMaterial, BxDF, DiffuseMaterial, Material, MixMaterial, SpectralColours, rgb_colour,
+};
 use crate::math::{Rgb, SampledSpectrum, Vec3, rgb_lanes};
 use crate::ray::Ray;
 use crate::sampling::Sampler;
@@ -160,7 +162,7 @@ pub(crate) fn bsdf_at_memo(
 ) -> Option<(Bsdf, bool)> {
     let m = scene.prim(hit.prim).material;
     let constant_diffuse = match (scene.material(m), hit.albedo) {
-        (Material::Diffuse { reflectance }, None) => match reflectance {
+        (Material::Diffuse(DiffuseMaterial { reflectance }), None) => match reflectance {
             SpectrumTex::Const(c) => Some(*c),
             SpectrumTex::Measured(s) => Some(s.rgb),
             SpectrumTex::Tex(_) => None,
@@ -168,13 +170,13 @@ pub(crate) fn bsdf_at_memo(
         _ => None,
     };
     if let Some(c) = constant_diffuse {
-        // The reflectance as `Material::bxdf`'s diffuse arm reads it (slot 0, an albedo;
-        // [`crate::material::slot_colour`] for a constant), without the texture look-up.
+        // The reflectance as the diffuse material's BxDF reads it (an albedo, prepared once
+        // per scene for a constant), without the texture look-up.
         let rho = match lambda {
             Some(lambda) => {
                 let eval = || {
                     let consts = &scene.spectra().materials[m as usize];
-                    SpectralColours { lambda, consts }.constant(0)
+                    DiffuseMaterial::prepared_reflectance(SpectralColours { lambda, consts })
                 };
                 match memo {
                     Some(memo) => memo.material(m, eval),
@@ -201,11 +203,11 @@ fn bsdf_at_general(
     let tc = Scene::tex_coord_with_footprint(hit);
     for _ in 0..16 {
         match scene.material(m) {
-            Material::Mix { materials, amount } => {
+            Material::Mix(MixMaterial { materials, amount }) => {
                 m = crate::material::mix::mix_pick(*materials, tex.float(*amount, &tc), hit.si.p);
             }
             // The bump map was applied at the hit (`crate::material::mix::apply_bump`).
-            Material::Bumped { base, .. } => m = *base,
+            Material::Bumped(BumpedMaterial { base, .. }) => m = *base,
             mat => {
                 let spectral = lambda.map(|lambda| SpectralColours {
                     lambda,
@@ -213,7 +215,7 @@ fn bsdf_at_general(
                 });
                 let mut bxdf = mat.bxdf(&tex, &tc, spectral)?;
                 // A shape's own colour (voxels) replaces a diffuse material's reflectance.
-                if let (Some(c), Material::Diffuse { .. }) = (hit.albedo, mat) {
+                if let (Some(c), Material::Diffuse(_)) = (hit.albedo, mat) {
                     bxdf = crate::material::BxDF::diffuse(albedo_at(
                         lambda,
                         c.clamp(Rgb::ZERO, Rgb::ONE),

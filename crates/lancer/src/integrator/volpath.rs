@@ -578,7 +578,7 @@ fn invisible(scene: &Scene, light: &crate::light::Light) -> bool {
 /// True when the surface hit has no BSDF (an `interface` material): shadow rays pass it.
 fn is_interface(scene: &Scene, hit: &SceneHit) -> bool {
     let m = scene.prim(hit.prim).material;
-    matches!(scene.material(m), Material::Interface)
+    matches!(scene.material(m), Material::Interface(_))
 }
 
 /// Picks 0, 1 or 2 with probabilities proportional to `w` (pbrt-v4's `SampleDiscrete`):

@@ -18,63 +18,8 @@
 
 use super::fresnel::fresnel_dielectric;
 use super::scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode};
-use crate::math::rgb_lanes;
 use crate::math::{Rgb, SampledSpectrum, Vec2, Vec3};
-use crate::spectrum::sampled::{ColourKind, RgbSpectrum, SampledWavelengths};
-use crate::texture::{FloatTex, SpectrumTex, TexCoord, TextureEval};
 use std::f32::consts::{PI, TAU};
-
-/// pbrt-v4's `hair` material, plain data ([`super::Material::Hair`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct HairMaterial {
-    /// σₐ, the colour it gives, or melanin concentrations.
-    pub absorption: HairAbsorption,
-    /// Index of refraction of the fibre.
-    pub eta: FloatTex,
-    /// Longitudinal roughness, clamped to [0.01, 1].
-    pub beta_m: FloatTex,
-    /// Azimuthal roughness, clamped to [0.01, 1].
-    pub beta_n: FloatTex,
-    /// Tilt of the cuticle scales, degrees.
-    pub alpha: FloatTex,
-}
-
-/// Where a `hair` material's absorption comes from (pbrt-v4 takes the first given of
-/// `sigma_a`, `reflectance`/`color`, `eumelanin`/`pheomelanin`; with none, eumelanin 1.3).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum HairAbsorption {
-    /// σₐ itself (an unbounded colour).
-    SigmaA(SpectrumTex),
-    /// The colour the hair should have; σₐ follows from it and βn
-    /// ([`hair_sigma_a_from_reflectance`]).
-    Reflectance(SpectrumTex),
-    /// Melanin concentrations ([`hair_sigma_a_from_concentration`]).
-    Melanin {
-        /// Eumelanin (brown-black).
-        eumelanin: FloatTex,
-        /// Pheomelanin (red-yellow).
-        pheomelanin: FloatTex,
-    },
-}
-
-impl HairAbsorption {
-    /// The colour this absorption prepares in spectral mode (the material's slot 0), when it
-    /// has one: σₐ or the reflectance as given, or the σₐ of constant melanin concentrations.
-    pub fn colour_slot(&self) -> Option<(SpectrumTex, ColourKind)> {
-        match *self {
-            HairAbsorption::SigmaA(s) => Some((s, ColourKind::Unbounded)),
-            HairAbsorption::Reflectance(c) => Some((c, ColourKind::Albedo)),
-            HairAbsorption::Melanin {
-                eumelanin: FloatTex::Const(ce),
-                pheomelanin: FloatTex::Const(cp),
-            } => Some((
-                SpectrumTex::Const(hair_sigma_a_from_concentration(ce.max(0.0), cp.max(0.0))),
-                ColourKind::Unbounded,
-            )),
-            HairAbsorption::Melanin { .. } => None,
-        }
-    }
-}
 
 /// Number of explicit scattering terms before the lumped remainder (pbrt's `pMax`).
 const P_MAX: usize = 3;
@@ -96,47 +41,6 @@ pub struct HairBxdf {
     sin_2k_alpha: [f32; P_MAX],
     /// cos(2ᵏα).
     cos_2k_alpha: [f32; P_MAX],
-}
-
-/// The `hair` material's BxDF at a hit, as pbrt-v4's `HairMaterial::GetBxDF` makes it: βm, βn
-/// clamped to [0.01, 1], σₐ from the absorption (`colour` reads the material's colour slot 0
-/// as [`super::Material::bxdf`] does; textured melanin is uplifted here at `lambda`), and the
-/// offset h = −1 + 2v.
-pub(super) fn hair_at(
-    m: &HairMaterial,
-    tex: &TextureEval,
-    tc: &TexCoord,
-    lambda: Option<&SampledWavelengths>,
-    colour: &dyn Fn(usize, SpectrumTex, ColourKind) -> SampledSpectrum,
-) -> HairBxdf {
-    let [eta, beta_m, beta_n, alpha] =
-        [m.eta, m.beta_m, m.beta_n, m.alpha].map(|p| tex.float(p, tc));
-    let absorption = m.absorption;
-    let (bm, bn) = (beta_m.clamp(0.01, 1.0), beta_n.clamp(0.01, 1.0));
-    let sigma_a = match (absorption, absorption.colour_slot()) {
-        (HairAbsorption::Reflectance(_), Some((c, kind))) => {
-            hair_sigma_a_from_reflectance(colour(0, c, kind), bn)
-        }
-        (_, Some((s, kind))) => colour(0, s, kind),
-        (
-            HairAbsorption::Melanin {
-                eumelanin,
-                pheomelanin,
-            },
-            None,
-        ) => {
-            let rgb = hair_sigma_a_from_concentration(
-                tex.float(eumelanin, tc).max(0.0),
-                tex.float(pheomelanin, tc).max(0.0),
-            );
-            match lambda {
-                None => rgb_lanes(rgb),
-                Some(l) => l.sample(&RgbSpectrum::new(rgb, ColourKind::Unbounded)),
-            }
-        }
-        (_, None) => SampledSpectrum::ZERO,
-    };
-    HairBxdf::new(-1.0 + 2.0 * tc.uv.y, eta, sigma_a, bm, bn, alpha)
 }
 
 /// Absorption of eumelanin and pheomelanin per unit concentration (pbrt-v4, linear sRGB).

@@ -3,7 +3,7 @@
 //! material — and the material a mix picks has its own bump or normal map applied, as pbrt-v4
 //! applies the chosen material's displacement after `MixMaterial::ChooseMaterial`.
 
-use super::{Material, bump_shading, normal_map_shading};
+use super::{BumpedMaterial, Material, MixMaterial, bump_shading, normal_map_shading};
 use crate::math::Vec3;
 use crate::texture::{TexCoord, TextureEval};
 
@@ -40,10 +40,10 @@ pub fn mix_pick(materials: [u32; 2], amount: f32, p: Vec3) -> u32 {
 pub fn resolve_mix(materials: &[Material], tex: &TextureEval, tc: &TexCoord, mut m: u32) -> u32 {
     for _ in 0..16 {
         match materials[m as usize] {
-            Material::Mix {
+            Material::Mix(MixMaterial {
                 materials: pair,
                 amount,
-            } => m = mix_pick(pair, tex.float(amount, tc), tc.p),
+            }) => m = mix_pick(pair, tex.float(amount, tc), tc.p),
             _ => return m,
         }
     }
@@ -63,14 +63,14 @@ pub fn apply_bump(
     si: &mut crate::shape::SurfaceInteraction,
     tex_coord: impl Fn(&crate::shape::SurfaceInteraction) -> TexCoord,
 ) {
-    if let Material::Mix { .. } = materials[m as usize] {
+    if let Material::Mix(_) = materials[m as usize] {
         m = resolve_mix(materials, tex, &tex_coord(si), m);
     }
-    if let Material::Bumped {
+    if let Material::Bumped(BumpedMaterial {
         displacement,
         normal_map,
         ..
-    } = materials[m as usize]
+    }) = materials[m as usize]
     {
         let shading = match (normal_map, displacement) {
             (Some(nm), _) => normal_map_shading(tex, nm, si),
@@ -86,6 +86,7 @@ pub fn apply_bump(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::material::DiffuseMaterial;
     use crate::material::bump::tests::flat;
     use crate::math::{Rgb, normalize};
     use crate::texture::{FloatTex, FloatTexture, Mapping2D, SpectrumTex};
@@ -94,22 +95,22 @@ mod tests {
     /// ∝ (−0.1, −0.2, 1)), 2 a mix of 0 and 1 with `amount`, 3 a mix of 2 and 2.
     fn scene(amount: f32) -> Vec<Material> {
         vec![
-            Material::Diffuse {
+            Material::Diffuse(DiffuseMaterial {
                 reflectance: SpectrumTex::Const(Rgb::splat(0.5)),
-            },
-            Material::Bumped {
+            }),
+            Material::Bumped(BumpedMaterial {
                 base: 0,
                 displacement: Some(FloatTex::Tex(0)),
                 normal_map: None,
-            },
-            Material::Mix {
+            }),
+            Material::Mix(MixMaterial {
                 materials: [0, 1],
                 amount: FloatTex::Const(amount),
-            },
-            Material::Mix {
+            }),
+            Material::Mix(MixMaterial {
                 materials: [2, 2],
                 amount: FloatTex::Const(0.5),
-            },
+            }),
         ]
     }
 

@@ -1,8 +1,12 @@
 //! Unit tests of the material set-up: BSDFs built from materials at a hit.
 
+use super::at_hit::slot_colour;
 use super::*;
-use crate::spectrum::sampled::RgbSpectrum;
-use crate::texture::SpectrumTexture;
+use crate::math::{Rgb, SampledSpectrum, rgb_lanes};
+use crate::spectrum::Ior;
+use crate::spectrum::dense::PreparedSpectrum;
+use crate::spectrum::sampled::{ColourKind, RgbSpectrum, SampledWavelengths};
+use crate::texture::{FloatTex, SpectrumTex, SpectrumTexture, TexCoord, TextureEval};
 
 fn eval(m: &Material) -> BxDF {
     let tex = TextureEval {
@@ -22,17 +26,17 @@ fn c(v: f32) -> FloatTex {
 /// fringes); RGB mode keeps the 550 nm index; a constant index does not disperse.
 #[test]
 fn named_glass_refracts_blue_more_than_red() {
-    let glass = Material::Dielectric {
+    let glass = Material::Dielectric(DielectricMaterial {
         eta: Ior::named_glass("glass-F11").unwrap(),
         uroughness: c(0.0),
         vroughness: c(0.0),
         remap_roughness: false,
-    };
+    });
     assert!(glass.disperses());
     assert!(
-        !Material::ThinDielectric {
+        !Material::ThinDielectric(ThinDielectricMaterial {
             eta: Ior::Constant(1.5)
-        }
+        })
         .disperses()
     );
     let tex = TextureEval {
@@ -76,7 +80,7 @@ fn named_glass_refracts_blue_more_than_red() {
 #[test]
 fn a_coating_of_named_glass_takes_its_index_at_the_hero_wavelength() {
     let f11 = Ior::named_glass("glass-F11").unwrap();
-    let coated = Material::CoatedDiffuse {
+    let coated = Material::CoatedDiffuse(CoatedDiffuseMaterial {
         reflectance: rgb(0.5),
         uroughness: c(0.0),
         vroughness: c(0.0),
@@ -87,8 +91,8 @@ fn a_coating_of_named_glass_takes_its_index_at_the_hero_wavelength() {
         max_depth: 10,
         n_samples: 1,
         remap_roughness: false,
-    };
-    let metal = Material::CoatedConductor {
+    });
+    let metal = Material::CoatedConductor(CoatedConductorMaterial {
         interface_uroughness: c(0.0),
         interface_vroughness: c(0.0),
         interface_eta: f11,
@@ -103,10 +107,10 @@ fn a_coating_of_named_glass_takes_its_index_at_the_hero_wavelength() {
         max_depth: 10,
         n_samples: 1,
         remap_roughness: false,
-    };
+    });
     assert!(coated.disperses() && metal.disperses());
     let mut plain = coated.clone();
-    if let Material::CoatedDiffuse { eta, .. } = &mut plain {
+    if let Material::CoatedDiffuse(CoatedDiffuseMaterial { eta, .. }) = &mut plain {
         *eta = Ior::Constant(1.5);
     }
     assert!(!plain.disperses());
@@ -143,14 +147,14 @@ fn rgb(v: f32) -> SpectrumTex {
 
 #[test]
 fn conductors_remap_roughness_and_honour_an_artists_reflectance() {
-    let m = Material::Conductor {
+    let m = Material::Conductor(ConductorMaterial {
         eta: rgb(0.2),
         k: rgb(3.0),
         reflectance: Some(SpectrumTex::Const(Rgb::new(0.9, 0.5, 0.1))),
         uroughness: c(0.25),
         vroughness: c(0.04),
         remap_roughness: true,
-    };
+    });
     let BxDF::Conductor(b) = eval(&m) else {
         panic!("not a conductor")
     };
@@ -166,14 +170,14 @@ fn conductors_remap_roughness_and_honour_an_artists_reflectance() {
         "{f0}"
     );
     // Without remapping the roughness is α itself; zero makes a mirror.
-    let m = Material::Conductor {
+    let m = Material::Conductor(ConductorMaterial {
         eta: rgb(0.2),
         k: rgb(3.0),
         reflectance: None,
         uroughness: c(0.0),
         vroughness: c(0.0),
         remap_roughness: false,
-    };
+    });
     let BxDF::Conductor(b) = eval(&m) else {
         panic!("not a conductor")
     };
@@ -186,30 +190,32 @@ fn conductors_remap_roughness_and_honour_an_artists_reflectance() {
 
 #[test]
 fn every_material_becomes_its_own_bxdf() {
-    let d = eval(&Material::Dielectric {
+    let d = eval(&Material::Dielectric(DielectricMaterial {
         eta: Ior::Constant(0.0),
         uroughness: c(0.09),
         vroughness: c(0.09),
         remap_roughness: true,
-    });
+    }));
     // An index of 0 means 1, as in pbrt.
     assert!(
         matches!(d, BxDF::Dielectric(b) if b.eta == 1.0 && (b.distrib.alpha_x() - 0.3).abs() < 1e-6)
     );
-    let t = eval(&Material::ThinDielectric {
+    let t = eval(&Material::ThinDielectric(ThinDielectricMaterial {
         eta: Ior::Constant(1.33),
-    });
+    }));
     assert!(matches!(t, BxDF::ThinDielectric(b) if b.eta == 1.33));
     // Diffuse transmission: both albedos scaled, then clamped to one.
-    let dt = eval(&Material::DiffuseTransmission {
-        reflectance: rgb(0.3),
-        transmittance: rgb(0.6),
-        scale: 2.0,
-    });
+    let dt = eval(&Material::DiffuseTransmission(
+        DiffuseTransmissionMaterial {
+            reflectance: rgb(0.3),
+            transmittance: rgb(0.6),
+            scale: 2.0,
+        },
+    ));
     assert!(
         matches!(dt, BxDF::DiffuseTransmission(b) if b.r == SampledSpectrum::splat(0.6) && b.t == SampledSpectrum::ONE)
     );
-    let cd = eval(&Material::CoatedDiffuse {
+    let cd = eval(&Material::CoatedDiffuse(CoatedDiffuseMaterial {
         reflectance: rgb(1.5),
         uroughness: c(0.0),
         vroughness: c(0.0),
@@ -220,7 +226,7 @@ fn every_material_becomes_its_own_bxdf() {
         max_depth: 10,
         n_samples: 2,
         remap_roughness: true,
-    });
+    }));
     let BxDF::CoatedDiffuse(l) = cd else {
         panic!("not a coated diffuse")
     };
@@ -231,7 +237,7 @@ fn every_material_becomes_its_own_bxdf() {
         (SampledSpectrum::splat(0.2), 10, 2)
     );
     // Under its coating the conductor's index is relative to the coating's.
-    let cc = eval(&Material::CoatedConductor {
+    let cc = eval(&Material::CoatedConductor(CoatedConductorMaterial {
         interface_uroughness: c(0.0),
         interface_vroughness: c(0.0),
         interface_eta: Ior::Constant(1.5),
@@ -246,7 +252,7 @@ fn every_material_becomes_its_own_bxdf() {
         max_depth: 10,
         n_samples: 1,
         remap_roughness: true,
-    });
+    }));
     let BxDF::CoatedConductor(l) = cc else {
         panic!("not a coated conductor")
     };
@@ -268,7 +274,7 @@ fn every_material_becomes_its_own_bxdf() {
         spectra: &[],
     };
     assert!(
-        Material::Interface
+        Material::Interface(InterfaceMaterial)
             .bxdf(&none, &TexCoord::default(), None)
             .is_none()
     );
@@ -293,40 +299,42 @@ fn prepared_constant_colours_give_what_an_uplift_per_hit_gives() {
         spectra: &textures,
     };
     let (k, t) = (SpectrumTex::Const, SpectrumTex::Tex);
-    let coated_conductor = |eta, kk, r, a| Material::CoatedConductor {
-        interface_uroughness: c(0.1),
-        interface_vroughness: c(0.1),
-        interface_eta: Ior::Constant(1.5),
-        conductor_eta: eta,
-        k: kk,
-        reflectance: r,
-        conductor_uroughness: c(0.2),
-        conductor_vroughness: c(0.2),
-        thickness: c(0.01),
-        albedo: a,
-        g: c(0.0),
-        max_depth: 10,
-        n_samples: 1,
-        remap_roughness: false,
+    let coated_conductor = |eta, kk, r, a| {
+        Material::CoatedConductor(CoatedConductorMaterial {
+            interface_uroughness: c(0.1),
+            interface_vroughness: c(0.1),
+            interface_eta: Ior::Constant(1.5),
+            conductor_eta: eta,
+            k: kk,
+            reflectance: r,
+            conductor_uroughness: c(0.2),
+            conductor_vroughness: c(0.2),
+            thickness: c(0.01),
+            albedo: a,
+            g: c(0.0),
+            max_depth: 10,
+            n_samples: 1,
+            remap_roughness: false,
+        })
     };
     let pairs = [
         (
-            Material::Diffuse {
+            Material::Diffuse(DiffuseMaterial {
                 reflectance: k(colours[0]),
-            },
-            Material::Diffuse { reflectance: t(0) },
+            }),
+            Material::Diffuse(DiffuseMaterial { reflectance: t(0) }),
         ),
         (
-            Material::DiffuseTransmission {
+            Material::DiffuseTransmission(DiffuseTransmissionMaterial {
                 reflectance: k(colours[0]),
                 transmittance: k(colours[3]),
                 scale: 0.7,
-            },
-            Material::DiffuseTransmission {
+            }),
+            Material::DiffuseTransmission(DiffuseTransmissionMaterial {
                 reflectance: t(0),
                 transmittance: t(3),
                 scale: 0.7,
-            },
+            }),
         ),
         (
             coated_conductor(k(colours[1]), k(colours[2]), None, k(colours[3])),

@@ -19,7 +19,7 @@ use crate::light::{
     AreaImage, Emitter, GoniometricLight, ImageInfiniteLight, Light, LightDistribution,
     LightSampler, PortalInfiniteLight, ProjectionLight,
 };
-use crate::material::Material;
+use crate::material::{Material, MaterialDesc};
 use crate::math::{Bounds3, PackedRgb, PackedVec3, Rgb, Transform, Vec3};
 use crate::shape::{
     BilinearMesh, Cone, Cuboid, Cylinder, Disk, Hyperboloid, Paraboloid, Placement, Plane, Sdf,
@@ -145,15 +145,10 @@ fn footprints_for(desc: &SceneDesc, camera: &Camera) -> Option<Footprints> {
     }) || desc.spectrum_textures.iter().any(|t| match t {
         SpectrumTexture::Image(it) => filtered(it),
         _ => false,
-    }) || desc.materials.iter().any(|m| {
-        matches!(
-            m,
-            Material::Bumped {
-                displacement: Some(_),
-                ..
-            }
-        )
-    });
+    }) || desc
+        .materials
+        .iter()
+        .any(|m| matches!(m, MaterialDesc::Bumped(b) if b.displacement.is_some()));
     wanted.then(|| {
         Footprints::new(
             camera,
@@ -165,9 +160,9 @@ fn footprints_for(desc: &SceneDesc, camera: &Camera) -> Option<Footprints> {
 
 /// The description's materials, or one default material when it has none.
 fn materials(desc: &SceneDesc) -> Vec<Material> {
-    let mut materials = desc.materials.clone();
+    let mut materials: Vec<Material> = desc.materials.iter().map(MaterialDesc::build).collect();
     if materials.is_empty() {
-        materials.push(Material::default());
+        materials.push(MaterialDesc::default().build());
     }
     materials
 }

@@ -8,7 +8,7 @@
 pub use crate::camera::desc::{CameraDesc, Projection};
 use crate::film::PixelBounds;
 use crate::integrator::Integrator;
-use crate::material::Material;
+use crate::material::MaterialDesc;
 use crate::math::{AnimatedTransform, Rgb, Transform, Vec3};
 use crate::shape::{RuleError, TriangleMesh};
 use crate::texture::{FloatTex, FloatTexture, SpectrumTexture};
@@ -28,7 +28,7 @@ pub struct SceneDesc {
     /// How light transport is computed.
     pub integrator: Integrator,
     /// Materials; shapes refer to them by index.
-    pub materials: Vec<Material>,
+    pub materials: Vec<MaterialDesc>,
     /// Float textures; material parameters refer to them by index.
     pub float_textures: Vec<FloatTexture>,
     /// Colour textures; material parameters refer to them by index.

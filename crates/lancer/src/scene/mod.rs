@@ -399,7 +399,7 @@ impl Scene {
         self.footprints.is_some()
             || matches!(
                 self.materials[self.prims[prim as usize].material as usize],
-                Material::Mix { .. } | Material::Bumped { .. }
+                Material::Mix(_) | Material::Bumped(_)
             )
     }
 

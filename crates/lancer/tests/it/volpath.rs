@@ -6,7 +6,8 @@
 
 use lancer::Scene;
 use lancer::integrator::Integrator;
-use lancer::material::Material;
+use lancer::material::InterfaceMaterial;
+use lancer::material::MaterialDesc;
 use lancer::math::{Rgb, SampledSpectrum, Transform, Vec3, normalize, rgb_lanes};
 use lancer::medium::{MediumDesc, MediumInterface};
 use lancer::ray::Ray;
@@ -17,7 +18,7 @@ use lancer::spectrum::sampled::SampledWavelengths;
 /// A unit sphere of `medium` (index-matched: `interface` material) under a uniform white sky.
 fn furnace(medium: MediumDesc) -> Scene {
     let desc = SceneDesc {
-        materials: vec![Material::Interface],
+        materials: vec![MaterialDesc::Interface(InterfaceMaterial)],
         shapes: vec![ShapeDesc {
             medium_interface: Some(MediumInterface {
                 inside: Some(0),

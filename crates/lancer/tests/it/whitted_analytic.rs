@@ -4,7 +4,8 @@
 
 use lancer::film::{Film, PixelBounds};
 use lancer::integrator::Integrator;
-use lancer::material::{Material, fresnel_complex};
+use lancer::material::{ConductorMaterial, DiffuseMaterial};
+use lancer::material::{MaterialDesc, fresnel_complex};
 use lancer::math::{INV_PI, Rgb, SampledSpectrum, Transform, Vec2, Vec3, lanes_rgb, normalize};
 use lancer::render::{RenderSettings, render};
 use lancer::sampling::SamplerKind;
@@ -51,10 +52,10 @@ fn sphere(r: f32) -> Geometry {
     }
 }
 
-fn diffuse(c: Rgb) -> Material {
-    Material::Diffuse {
+fn diffuse(c: Rgb) -> MaterialDesc {
+    MaterialDesc::Diffuse(DiffuseMaterial {
         reflectance: SpectrumTex::Const(c),
-    }
+    })
 }
 
 /// Renders with one sample at each pixel centre; returns the scene (for camera rays) and the
@@ -178,14 +179,14 @@ fn mirror_reflects_the_scene_with_its_fresnel_reflectance() {
     let mut d = course_desc();
     d.materials = vec![
         diffuse(rho),
-        Material::Conductor {
+        MaterialDesc::Conductor(ConductorMaterial {
             eta: SpectrumTex::Const(Rgb::ONE),
             k: SpectrumTex::Const(Rgb::ONE),
             reflectance: Some(SpectrumTex::Const(Rgb::splat(reflectance))),
             uroughness: lancer::texture::FloatTex::Const(0.0),
             vroughness: lancer::texture::FloatTex::Const(0.0),
             remap_roughness: true,
-        },
+        }),
     ];
     let mirror_z = -3.0;
     d.shapes = vec![

@@ -6,7 +6,7 @@
 use super::MaterialWithNames;
 use crate::error::SceneError;
 use crate::pbrt::convert::{Fallback, Reader};
-use lancer::material::{Material, MeasuredData};
+use lancer::material::{MaterialDesc, MeasuredData};
 
 /// The largest `.bsdf` file read (RGL's are a few MB; the largest anisotropic ones ~100 MB).
 pub const MAX_FILE_BYTES: u64 = 1 << 30;
@@ -33,7 +33,7 @@ pub(super) fn measured(r: &Reader) -> Result<Fallback<MaterialWithNames>, SceneE
     let bytes = std::fs::read(&path).map_err(|e| fail(format!("cannot read the file: {e}")))?;
     let data = MeasuredData::shared(&bytes, &path.display().to_string())
         .map_err(|e| fail(format!("not a valid .bsdf file: {e}")))?;
-    Ok(Fallback::done(Material::Measured(data).into()))
+    Ok(Fallback::done(MaterialDesc::Measured(data).into()))
 }
 
 #[cfg(test)]
@@ -81,7 +81,7 @@ mod tests {
         std::fs::write(&*dir.join("tiny.bsdf"), tiny("")).unwrap();
         let f = read(&dir, r#"Material "measured" "string filename" "tiny.bsdf""#).unwrap();
         assert!(f.warnings.is_empty(), "{:?}", f.warnings);
-        let Material::Measured(d) = f.value.material else {
+        let MaterialDesc::Measured(d) = f.value.material else {
             panic!("{:?}", f.value.material)
         };
         assert!(d.isotropic && d.description == "tiny");

@@ -6,7 +6,7 @@
 use super::{MaterialWithNames, roughness};
 use crate::error::SceneError;
 use crate::pbrt::convert::{Fallback, Reader};
-use lancer::material::{BssrdfTable, Material, SubsurfaceCoefficients, SubsurfaceMaterial};
+use lancer::material::{MaterialDesc, SubsurfaceCoefficients, SubsurfaceMaterial};
 use lancer::math::Rgb;
 use lancer::spectrum::{SpectrumKind, scattering_preset, scattering_preset_names};
 use lancer::texture::SpectrumTex;
@@ -77,14 +77,14 @@ pub(super) fn subsurface(r: &Reader) -> Result<Fallback<MaterialWithNames>, Scen
     }
     let g = g.clamp(-0.99, 0.99);
     let (uroughness, vroughness) = roughness(r, "")?;
-    let m = Material::Subsurface(SubsurfaceMaterial {
+    let m = MaterialDesc::Subsurface(SubsurfaceMaterial {
         coefficients,
         scale,
         eta,
         uroughness,
         vroughness,
         remap_roughness: p.bool("remaproughness", true)?,
-        table: BssrdfTable::shared(g, eta),
+        g,
     });
     Ok(Fallback::noted(m.into(), notes))
 }
@@ -94,13 +94,13 @@ mod tests {
     use crate::pbrt::convert::TextureNames;
     use crate::pbrt::convert::testing::{err, typed, unused, with_textures};
     use crate::pbrt::materials::material;
-    use lancer::material::{Material, SubsurfaceCoefficients, SubsurfaceMaterial};
+    use lancer::material::{MaterialDesc, SubsurfaceCoefficients, SubsurfaceMaterial};
     use lancer::math::Rgb;
     use lancer::texture::{FloatTex, SpectrumTex};
     use std::path::Path;
 
     /// The material of `text`, its warnings, and the parameters it left unread.
-    fn convert(text: &str) -> Result<(Material, Vec<String>, Vec<String>), String> {
+    fn convert(text: &str) -> Result<(MaterialDesc, Vec<String>, Vec<String>), String> {
         let (ty, params, loc) = typed(text);
         let out = with_textures(&params, Path::new("."), &TextureNames::default(), |r| {
             material(r, &ty, &loc)
@@ -116,13 +116,13 @@ mod tests {
     fn every_way_of_giving_the_medium() {
         let (m, w, u) = convert(r#"Material "subsurface""#).unwrap();
         assert!(w.is_empty() && u.is_empty());
-        let Material::Subsurface(SubsurfaceMaterial {
+        let MaterialDesc::Subsurface(SubsurfaceMaterial {
             coefficients,
             scale,
             eta,
             uroughness,
             remap_roughness,
-            table,
+            g,
             ..
         }) = m
         else {
@@ -139,7 +139,7 @@ mod tests {
             (scale, eta, uroughness, remap_roughness),
             (1.0, 1.33, FloatTex::Const(0.0), true)
         );
-        assert_eq!((table.g, table.eta), (0.0, 1.33));
+        assert_eq!(g, 0.0);
 
         // A preset forces g = 0, with pbrt-v4's note.
         let (m, w, _) = convert(
@@ -150,10 +150,10 @@ mod tests {
             w,
             ["non-zero \"g\" ignored with named scattering coefficients (as pbrt-v4 does)"]
         );
-        let Material::Subsurface(SubsurfaceMaterial {
+        let MaterialDesc::Subsurface(SubsurfaceMaterial {
             coefficients,
             scale,
-            table,
+            g,
             ..
         }) = m
         else {
@@ -166,17 +166,18 @@ mod tests {
                 sigma_s: SpectrumTex::Const(Rgb::new(0.74, 0.88, 1.01)),
             }
         );
-        assert_eq!((scale, table.g), (20.0, 0.0));
+        assert_eq!((scale, g), (20.0, 0.0));
 
         let (m, _, u) = convert(
             r#"Material "subsurface" "rgb reflectance" [0.8 0.6 0.3] "float eta" 1.5 "float g" 0.3 "float roughness" 0.1"#,
         )
         .unwrap();
         assert!(u.is_empty());
-        let Material::Subsurface(SubsurfaceMaterial {
+        let MaterialDesc::Subsurface(SubsurfaceMaterial {
             coefficients,
             vroughness,
-            table,
+            g,
+            eta,
             ..
         }) = m
         else {
@@ -189,10 +190,7 @@ mod tests {
                 mfp: SpectrumTex::Const(Rgb::ONE),
             }
         );
-        assert_eq!(
-            (vroughness, table.g, table.eta),
-            (FloatTex::Const(0.1), 0.3, 1.5)
-        );
+        assert_eq!((vroughness, g, eta), (FloatTex::Const(0.1), 0.3, 1.5));
     }
 
     #[test]

@@ -17,48 +17,8 @@ use super::fresnel::fresnel_dielectric;
 use super::scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode, same_hemisphere};
 use crate::math::{Frame, INV_PI, SampledSpectrum, Vec2, Vec3};
 use crate::sampling::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
-use crate::texture::{FloatTex, SpectrumTex};
 use spline::{catmull_rom_weights, invert_catmull_rom, sample_catmull_rom_2d};
 use std::f32::consts::PI;
-
-/// pbrt-v4's `subsurface` material, plain data ([`super::Material::Subsurface`]).
-#[derive(Clone, Debug, PartialEq)]
-pub struct SubsurfaceMaterial {
-    /// σa and σs, or a colour and mean free path.
-    pub coefficients: SubsurfaceCoefficients,
-    /// Multiplies σa and σs (or the mean free path).
-    pub scale: f32,
-    /// Index of refraction of the boundary and the medium.
-    pub eta: f32,
-    /// Boundary roughness along u.
-    pub uroughness: FloatTex,
-    /// Boundary roughness along v.
-    pub vroughness: FloatTex,
-    /// Map roughness to α as pbrt does.
-    pub remap_roughness: bool,
-    /// The profile table for the medium's g and η ([`BssrdfTable::shared`]).
-    pub table: std::sync::Arc<BssrdfTable>,
-}
-
-/// How a subsurface material gives its medium (pbrt-v4's `subsurface` parameters).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum SubsurfaceCoefficients {
-    /// σa and σs (per unit length, times `scale`), given or from a named preset.
-    Coefficients {
-        /// Absorption.
-        sigma_a: SpectrumTex,
-        /// Scattering.
-        sigma_s: SpectrumTex,
-    },
-    /// The diffuse colour the surface should have, and the mean free path (times `scale`):
-    /// σa and σs follow by inverting the table's effective albedo.
-    Reflectance {
-        /// The colour.
-        reflectance: SpectrumTex,
-        /// Mean free path 1/σt.
-        mfp: SpectrumTex,
-    },
-}
 
 /// σa and σs of the medium whose effective albedo is `rho_eff` and mean free path `mfp`, per
 /// lane: ρ = ρ_eff⁻¹(rho_eff) (inverting the table's spline), σs = ρ/mfp, σa = (1 − ρ)/mfp.
