@@ -11,7 +11,7 @@ use super::params::ParamList;
 use super::search_path::SearchPath;
 use crate::error::{Location, SceneError, Warning};
 use lancer::math::{Rgb, Transform};
-use lancer::medium::{MediumDesc, MediumInterface};
+use lancer::medium::{HomogeneousDesc, MediumDesc, MediumInterface};
 use lancer::scene::desc::SceneDesc;
 use lancer::spectrum::SpectrumKind;
 use lancer::spectrum::scattering_presets::{scattering_preset, scattering_preset_names};
@@ -198,14 +198,14 @@ fn homogeneous(
     if !(g > -1.0 && g < 1.0) {
         return Err(params.error_at("g", format!("\"g\" must lie in (-1, 1), not {g}")));
     }
-    Ok(MediumDesc::Homogeneous {
+    Ok(MediumDesc::Homogeneous(HomogeneousDesc {
         sigma_a,
         sigma_s,
         scale: params.float("scale", 1.0)?,
         le,
         le_scale: params.float("Lescale", 1.0)?,
         g,
-    })
+    }))
 }
 
 #[cfg(test)]

@@ -33,6 +33,36 @@ impl Coefficient {
     }
 }
 
+/// pbrt-v4's `homogeneous` medium as a scene describes it, plain data.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HomogeneousDesc {
+    /// Absorption coefficient σ_a (per unit length, before `scale`).
+    pub sigma_a: Rgb,
+    /// Scattering coefficient σ_s (before `scale`).
+    pub sigma_s: Rgb,
+    /// Multiplies σ_a and σ_s.
+    pub scale: f32,
+    /// Emitted radiance (RGB illuminant, already normalised as pbrt-v4 does), before
+    /// `le_scale`.
+    pub le: Rgb,
+    /// Multiplies `le`.
+    pub le_scale: f32,
+    /// Henyey–Greenstein asymmetry g ∈ (−1, 1).
+    pub g: f32,
+}
+
+impl HomogeneousDesc {
+    /// The medium ready to render: σ_a·scale, σ_s·scale, Le·le_scale, g.
+    pub fn build(&self) -> HomogeneousMedium {
+        HomogeneousMedium::new(
+            self.sigma_a * self.scale,
+            self.sigma_s * self.scale,
+            self.le * self.le_scale,
+            self.g,
+        )
+    }
+}
+
 /// The same coefficients everywhere.
 #[derive(Clone, Copy, Debug)]
 pub struct HomogeneousMedium {

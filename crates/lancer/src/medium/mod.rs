@@ -43,14 +43,14 @@ pub mod rgb_grid;
 pub mod uniform_grid;
 pub mod vdb;
 
-pub use homogeneous::HomogeneousMedium;
+pub use homogeneous::{HomogeneousDesc, HomogeneousMedium};
 pub use majorant::MajorantSegment;
 pub use phase::{HgPhaseFunction, PhaseSample, henyey_greenstein};
 pub use properties::MediumProperties;
 
 use grids::{GridMajorants, GridMedium, GridMediumDesc};
 
-use crate::math::{Rgb, SampledSpectrum, Vec3};
+use crate::math::{SampledSpectrum, Vec3};
 use crate::ray::Ray;
 use crate::sampling::Pcg32;
 use crate::spectrum::sampled::SampledWavelengths;
@@ -88,21 +88,7 @@ impl MediumInterface {
 #[derive(Clone, Debug, PartialEq)]
 pub enum MediumDesc {
     /// pbrt-v4's `homogeneous`: the same coefficients everywhere.
-    Homogeneous {
-        /// Absorption coefficient σ_a (per unit length, before `scale`).
-        sigma_a: Rgb,
-        /// Scattering coefficient σ_s (before `scale`).
-        sigma_s: Rgb,
-        /// Multiplies σ_a and σ_s.
-        scale: f32,
-        /// Emitted radiance (RGB illuminant, already normalised as pbrt-v4 does), before
-        /// `le_scale`.
-        le: Rgb,
-        /// Multiplies `le`.
-        le_scale: f32,
-        /// Henyey–Greenstein asymmetry g ∈ (−1, 1).
-        g: f32,
-    },
+    Homogeneous(HomogeneousDesc),
     /// pbrt-v4's `uniformgrid`, `rgbgrid`, `cloud` and `nanovdb`: coefficients that vary in
     /// space, with a majorant grid (or box) for delta tracking.
     Grid(Box<GridMediumDesc>),
@@ -143,19 +129,7 @@ impl Medium {
     pub fn from_desc(desc: &MediumDesc) -> Medium {
         match *desc {
             MediumDesc::Grid(ref d) => Medium::Grid(Box::new(GridMedium::new((**d).clone()))),
-            MediumDesc::Homogeneous {
-                sigma_a,
-                sigma_s,
-                scale,
-                le,
-                le_scale,
-                g,
-            } => Medium::Homogeneous(HomogeneousMedium::new(
-                sigma_a * scale,
-                sigma_s * scale,
-                le * le_scale,
-                g,
-            )),
+            MediumDesc::Homogeneous(ref d) => Medium::Homogeneous(d.build()),
         }
     }
 

@@ -3,7 +3,7 @@
 //! homogeneous slab transmits exp(−σ_t·d) under delta tracking.
 
 use super::*;
-use crate::math::{Vec2, normalize};
+use crate::math::{Rgb, Vec2, normalize};
 use crate::sampling::Pcg32;
 use std::f32::consts::PI;
 
@@ -150,14 +150,14 @@ fn ratio_tracked(
 fn homogeneous_slab_transmits_exp_minus_sigma_t_d() {
     let sigma_a = Rgb::new(0.2, 0.5, 1.0);
     let sigma_s = Rgb::new(0.3, 0.1, 0.5);
-    let medium = Medium::from_desc(&MediumDesc::Homogeneous {
+    let medium = Medium::from_desc(&MediumDesc::Homogeneous(HomogeneousDesc {
         sigma_a,
         sigma_s,
         scale: 2.0,
         le: Rgb::ZERO,
         le_scale: 1.0,
         g: 0.0,
-    });
+    }));
     let d = 1.5;
     let sigma_t = crate::math::rgb_lanes((sigma_a + sigma_s) * 2.0);
     let expected = majorant_transmittance(sigma_t, d);

@@ -9,7 +9,7 @@ use lancer::integrator::Integrator;
 use lancer::material::InterfaceMaterial;
 use lancer::material::MaterialDesc;
 use lancer::math::{Rgb, SampledSpectrum, Transform, Vec3, normalize, rgb_lanes};
-use lancer::medium::{MediumDesc, MediumInterface};
+use lancer::medium::{HomogeneousDesc, MediumDesc, MediumInterface};
 use lancer::ray::Ray;
 use lancer::sampling::{Sampler, SamplerKind};
 use lancer::scene::desc::{Geometry, LightDesc, SceneDesc, ShapeDesc};
@@ -48,14 +48,14 @@ fn furnace(medium: MediumDesc) -> Scene {
 }
 
 fn homogeneous(sigma_a: Rgb, sigma_s: Rgb, g: f32) -> MediumDesc {
-    MediumDesc::Homogeneous {
+    MediumDesc::Homogeneous(HomogeneousDesc {
         sigma_a,
         sigma_s,
         scale: 1.0,
         le: Rgb::ZERO,
         le_scale: 1.0,
         g,
-    }
+    })
 }
 
 /// The mean over `n` samples of the radiance along rays from (0, 0, −4) through points near

@@ -3,7 +3,7 @@
 
 use crate::load_pbrt_str;
 use lancer::math::Rgb;
-use lancer::medium::{MediumDesc, MediumInterface};
+use lancer::medium::{HomogeneousDesc, MediumDesc, MediumInterface};
 use std::path::Path;
 
 fn load(text: &str) -> Result<crate::LoadedScene, String> {
@@ -36,22 +36,22 @@ fn named_media_bind_shapes_and_the_camera() {
     let d = &l.desc;
     assert_eq!(
         d.media[0],
-        MediumDesc::Homogeneous {
+        MediumDesc::Homogeneous(HomogeneousDesc {
             sigma_a: Rgb::new(1.0, 2.0, 3.0),
             sigma_s: Rgb::ONE,
             scale: 0.5,
             le: Rgb::ZERO,
             le_scale: 1.0,
             g: 0.3,
-        }
+        })
     );
-    let MediumDesc::Homogeneous {
+    let MediumDesc::Homogeneous(HomogeneousDesc {
         sigma_a,
         sigma_s,
         le,
         le_scale,
         ..
-    } = d.media[1]
+    }) = d.media[1]
     else {
         panic!("media[1] is not homogeneous: {:?}", d.media[1]);
     };
