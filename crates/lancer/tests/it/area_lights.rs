@@ -129,7 +129,7 @@ fn sampled_points_carry_the_intersection_normal() {
         for prim in 0..scene.shapes().len() {
             let shape = &scene.shapes()[prim];
             for u in points(64) {
-                let s = shape.sample_area(u, &scene.meshes()).expect("samples");
+                let s = shape.sample_area(u, scene.meshes()).expect("samples");
                 // Aim at the sampled point from a little way off the surface along the normal,
                 // from outside whichever side faces the ray.
                 for side in [1.0f32, -1.0] {
@@ -215,7 +215,7 @@ fn irradiance(scene: &Scene, light: usize, p: Vec3, n: Vec3, count: u32) -> (f32
     let mut worst = 0.0f32;
     let mut misses = 0;
     for u in points(count) {
-        let Some(ls) = l.sample_li(&ctx, u, &scene.shapes(), &scene.meshes()) else {
+        let Some(ls) = l.sample_li(&ctx, u, scene.shapes(), scene.meshes()) else {
             continue;
         };
         let cos = ls.wi.dot(n).max(0.0);
@@ -285,7 +285,7 @@ fn disk_light_gives_the_closed_form_irradiance() {
     };
     assert!(points(256).all(|u| {
         scene.lights()[0]
-            .sample_li(&ctx, u, &scene.shapes(), &scene.meshes())
+            .sample_li(&ctx, u, scene.shapes(), scene.meshes())
             .is_none()
     }));
 }

@@ -344,7 +344,7 @@ fn area_sampling_is_uniform_by_area() {
         for k in 0..SAMPLES {
             let u = Vec2::new(rng.uniform(), rng.uniform());
             obs_uniform[bin(u.x as f64, u.y as f64)] += 1.0;
-            let s = shape.sample_area(u, &scene.meshes()).expect("a sample");
+            let s = shape.sample_area(u, scene.meshes()).expect("a sample");
             let (su, sv, res) = invert(&p, s.p);
             assert!(res < 1e-5, "{name}: sample {} is {res} off the patch", s.p);
             obs[bin(su.clamp(0.0, 1.0), sv.clamp(0.0, 1.0))] += 1.0;

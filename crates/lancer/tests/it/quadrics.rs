@@ -417,7 +417,7 @@ fn sampled_points_lie_on_the_surface_with_the_intersection_normal() {
             let mut compared = 0;
             for _ in 0..400 {
                 let u = Vec2::new(rng.uniform(), rng.uniform());
-                let s = shape.sample_area(u, &scene.meshes()).expect("samples");
+                let s = shape.sample_area(u, scene.meshes()).expect("samples");
                 let what = format!("shape {gi} placement {pi} sample {}", s.p);
                 let p = pl.to_object.transform_point3(s.p.as_dvec3());
                 let (f, grad, ok, _) = implicit(&g, p);

@@ -246,7 +246,7 @@ fn chi2_light(name: &str, desc: SceneDesc) {
         200_000,
         32,
         |u| {
-            let s = light.sample_li(&ctx, u, &scene.shapes(), &scene.meshes())?;
+            let s = light.sample_li(&ctx, u, scene.shapes(), scene.meshes())?;
             if desc.shapes.is_empty() {
                 let p = light.pdf_li(&ctx, s.wi, None);
                 if (p - s.pdf).abs() > 1e-3 * s.pdf {

@@ -312,7 +312,7 @@ fn hits_and_normals_match_the_implicit_surface() {
                             continue;
                         }
                         hits += 1;
-                        let si = shape.interaction(&ray, &h, &scene.meshes());
+                        let si = shape.interaction(&ray, &h, scene.meshes());
                         let p = pl.to_object.transform_point3(si.p.as_dvec3());
                         let (f, grad, ok, sign) = implicit(&g, p, 1e-5);
                         assert!(ok, "{what}: hit point {p} outside the cuts");
@@ -579,7 +579,7 @@ fn samples_lie_on_the_surface_and_are_uniform_by_area() {
         let mut obs = vec![0.0; areas.len()];
         for _ in 0..n {
             let u = Vec2::new(rng.uniform(), rng.uniform());
-            let s = shape.sample_area(u, &scene.meshes()).unwrap();
+            let s = shape.sample_area(u, scene.meshes()).unwrap();
             let p = pl.to_object.transform_point3(s.p.as_dvec3());
             let (f, grad, ok, sign) = implicit(&g, p, 1e-4);
             let what = format!("{}: sample {p}", name(&g));

@@ -221,7 +221,7 @@ fn dda_matches_brute_force_on_random_grids() {
                         continue;
                     }
                     assert_eq!(vox.hit_cell(&h), cell, "grid {gi} ray {ri}: cell");
-                    let si = scene.shapes()[0].interaction(&ray, &h, &scene.meshes());
+                    let si = scene.shapes()[0].interaction(&ray, &h, scene.meshes());
                     let k = face % 3;
                     let n_obj = if face >= 3 {
                         Vec3::AXES[k]
