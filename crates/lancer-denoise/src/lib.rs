@@ -27,6 +27,9 @@ static RT_HDR_ALB: &[u8] = include_bytes!("../weights/rt_hdr_alb.tza");
 /// OIDN's `rt_hdr_alb_nrm` weights (colour + albedo + normal).
 static RT_HDR_ALB_NRM: &[u8] = include_bytes!("../weights/rt_hdr_alb_nrm.tza");
 
+/// The Open Image Denoise release the weights were taken from.
+pub const OIDN_VERSION: &str = "2.5.1";
+
 /// Spatial alignment of a tile (four 2× poolings) and of its position.
 const TILE_ALIGN: usize = 16;
 /// Pixels of context a tile takes from each neighbour: OIDN's receptive field 174 / 2,
