@@ -7,18 +7,23 @@
 use crate::cli_error::CliError;
 use crate::img::denoise::denoise_rgb;
 use crate::progress::ProgressMode;
-use crate::render::Plan;
 use crate::render_args::RenderArgs;
 use lancer::SceneDesc;
+use lancer::film::Film;
 use lancer::gbuffer::{GbufferConfig, GbufferFilm};
 use lancer::image_io::write_image;
 use lancer::math::Rgb;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// Refuses what `--denoise` cannot do yet, before the render starts, and gives the film its
-/// auxiliary sums.
-pub fn prepare(args: &RenderArgs, desc: &SceneDesc, plan: &mut Plan) -> Result<(), CliError> {
+/// Refuses what `--denoise` cannot do yet, before the render starts (`is_part`: the render
+/// is a part of a split one), and gives the film its auxiliary sums.
+pub fn prepare(
+    args: &RenderArgs,
+    desc: &SceneDesc,
+    film: &mut Film,
+    is_part: bool,
+) -> Result<(), CliError> {
     if !args.denoise {
         return Ok(());
     }
@@ -28,7 +33,7 @@ pub fn prepare(args: &RenderArgs, desc: &SceneDesc, plan: &mut Plan) -> Result<(
              normal) are not kept in parts or checkpoints; render in one go"
         )))
     };
-    if plan.pixels.is_part {
+    if is_part {
         return refuse("a part of a split render (--split, --samples)");
     }
     if args.resume.is_some() {
@@ -44,7 +49,6 @@ pub fn prepare(args: &RenderArgs, desc: &SceneDesc, plan: &mut Plan) -> Result<(
         ));
     }
     let config = GbufferConfig::denoiser(desc.camera.camera_from_world, desc.sampler.spp);
-    let film = &mut plan.state.film;
     film.gbuffer = Some(Box::new(GbufferFilm::new(
         config,
         film.bounds.area() as usize,
@@ -65,15 +69,19 @@ pub struct Denoised {
     pub seconds: f64,
 }
 
-/// Denoises the finished film (and writes its inputs with `--denoise-inputs`); `None`
-/// without `--denoise`.
-pub fn run(args: &RenderArgs, plan: &Plan) -> Result<Option<Denoised>, CliError> {
+/// Denoises the finished film, its image scaled by `scale` (and writes its inputs beside
+/// `output` with `--denoise-inputs`); `None` without `--denoise`.
+pub fn run(
+    args: &RenderArgs,
+    film: &Film,
+    scale: f32,
+    output: &Path,
+) -> Result<Option<Denoised>, CliError> {
     if !args.denoise {
         return Ok(None);
     }
-    let film = &plan.state.film;
     let b = film.bounds;
-    let noisy = film.image(plan.meta.scale);
+    let noisy = film.image(scale);
     let (albedo, normal) = film
         .gbuffer
         .as_ref()
@@ -81,7 +89,7 @@ pub fn run(args: &RenderArgs, plan: &Plan) -> Result<Option<Denoised>, CliError>
         .denoiser_images();
     if args.denoise_inputs {
         for (kind, img) in [("noisy", &noisy), ("albedo", &albedo), ("normal", &normal)] {
-            let path = input_path(&plan.output, kind);
+            let path = input_path(output, kind);
             write_image(&path, b.width(), b.height(), img)
                 .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))?;
         }

@@ -32,7 +32,8 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     } = load(args)?;
     let parse_s = t0.elapsed().as_secs_f64();
     let mut plan = plan(&args, &desc, resumed)?;
-    crate::denoise::prepare(&args, &desc, &mut plan)?;
+    let is_part = plan.pixels.is_part;
+    crate::denoise::prepare(&args, &desc, &mut plan.state.film, is_part)?;
     let t_build = Instant::now();
     let scene = build(&desc)?;
     let build_s = t_build.elapsed().as_secs_f64();
@@ -50,7 +51,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     if let Some(h) = &mut plan.gbuffer {
         h.render_time_seconds = Some(rendered.seconds as f32);
     }
-    let denoised = crate::denoise::run(&args, &plan)?;
+    let denoised = crate::denoise::run(&args, &plan.state.film, plan.meta.scale, &plan.output)?;
     let image = denoised.as_ref().map(|d| d.pixels.as_slice());
     let write_s = write(&args, &plan, rendered.live, image)?;
     let finished = Finished {

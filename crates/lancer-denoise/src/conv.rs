@@ -101,7 +101,7 @@ impl Conv {
     pub fn new(cout: usize, cin: usize, weight: &[f32], bias: &[f32]) -> Self {
         assert_eq!(weight.len(), cout * cin * 9);
         assert_eq!(bias.len(), cout);
-        let ocb = if cout % 4 == 0 { 4 } else { 3 };
+        let ocb = if cout.is_multiple_of(4) { 4 } else { 3 };
         let blocks = cout.div_ceil(ocb);
         let mut packed = vec![0.0; blocks * cin * 9 * ocb];
         for o in 0..cout {

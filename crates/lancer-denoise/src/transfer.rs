@@ -9,7 +9,9 @@
 
 use rayon::prelude::*;
 
-/// PU's fitted constants (OIDN's `TransferFunction::PU`).
+/// PU's fitted constants (OIDN's `TransferFunction::PU`), written as OIDN writes them (each
+/// rounds to the f32 OIDN uses).
+#[allow(clippy::excessive_precision)]
 mod pu {
     pub const A: f32 = 1.412_837_65e+03;
     pub const B: f32 = 1.645_931_72e+00;

@@ -152,6 +152,6 @@ fn bad_inputs_are_refused() {
     assert!(denoise(&img[..5], None, None, 4, 4).is_err());
     assert!(denoise(&[], None, None, 0, 0).is_err());
     // tiny and odd sizes work (the tile is padded to 16)
-    let out = denoise(&vec![0.5; 3 * 5 * 3], None, None, 3, 5).unwrap();
+    let out = denoise(&[0.5; 3 * 5 * 3], None, None, 3, 5).unwrap();
     assert_eq!(out.len(), 3 * 5 * 3);
 }
