@@ -136,8 +136,8 @@ fn denoise_refuses_what_it_cannot_do_yet() {
             "p.exr",
             "--quiet",
             "--denoise",
-            "--split",
-            "0/2",
+            "--samples",
+            "0..2",
         ],
     );
     assert_eq!(o.status.code(), Some(2));
