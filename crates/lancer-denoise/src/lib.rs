@@ -154,7 +154,11 @@ fn spans(size: usize, tile: usize, count: usize) -> Vec<Span> {
     (0..count)
         .map(|i| {
             // (a single tile may be narrower than two overlaps)
-            let src = if i == 0 { 0 } else { i * (tile - 2 * TILE_OVERLAP) };
+            let src = if i == 0 {
+                0
+            } else {
+                i * (tile - 2 * TILE_OVERLAP)
+            };
             let begin = if i > 0 { TILE_OVERLAP } else { 0 };
             let end = if i + 1 < count { TILE_OVERLAP } else { 0 };
             let len = (size - src).min(tile);
