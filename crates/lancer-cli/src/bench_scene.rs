@@ -110,7 +110,7 @@ fn bench(a: &SceneArgs, output: &std::path::Path) -> Result<Value, CliError> {
         Outcome::Interrupted(message) => return Err(CliError::runtime(message)),
     };
     let render_s = rendered.seconds;
-    render::write(&args, &plan, rendered.live)?;
+    render::write(&args, &plan, rendered.live, None)?;
     let per_s = |n: u64| {
         if render_s > 0.0 {
             n as f64 / render_s

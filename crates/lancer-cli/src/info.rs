@@ -165,6 +165,12 @@ pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
         "memory": mem.to_json(),
         "bvh": { "nodes": mem.bvh_nodes, "bytes": mem.bvh_bytes },
         "time_s": { "parse": parse_s, "build": build_s },
+        // What `lancer render --denoise` would run on this scene.
+        "denoiser": {
+            "available": desc.film.gbuffer.is_none() && desc.film.spectral.is_none(),
+            "network": format!("Open Image Denoise {} rt_hdr_alb_nrm", lancer_denoise::OIDN_VERSION),
+            "inputs": ["color", "albedo", "normal"],
+        },
     });
     if args.files {
         v["files"] = json!(
@@ -338,6 +344,18 @@ pub fn text(v: &Value) -> String {
             format!("{bpt:.1} bytes (mesh + primitive records + BVH)"),
         );
     }
+    let dn = &v["denoiser"];
+    line(
+        "denoiser",
+        if dn["available"].as_bool().unwrap_or(false) {
+            format!(
+                "--denoise runs {} (colour + albedo + normal, lancer's CPU inference)",
+                dn["network"].as_str().unwrap_or("")
+            )
+        } else {
+            "--denoise: not with this film (gbuffer or spectral); use Film \"rgb\"".to_string()
+        },
+    );
     let warnings = v["warnings"].as_array().cloned().unwrap_or_default();
     line("warnings", warnings.len().to_string());
     for w in &warnings {

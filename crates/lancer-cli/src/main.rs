@@ -10,6 +10,7 @@ mod bench_scene;
 mod checkpoint;
 mod cli_error;
 mod completions;
+mod denoise;
 mod img;
 mod info;
 mod input;

@@ -32,6 +32,8 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     } = load(args)?;
     let parse_s = t0.elapsed().as_secs_f64();
     let mut plan = plan(&args, &desc, resumed)?;
+    let is_part = plan.pixels.is_part;
+    crate::denoise::prepare(&args, &desc, &mut plan.state.film, is_part)?;
     let t_build = Instant::now();
     let scene = build(&desc)?;
     let build_s = t_build.elapsed().as_secs_f64();
@@ -49,7 +51,9 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     if let Some(h) = &mut plan.gbuffer {
         h.render_time_seconds = Some(rendered.seconds as f32);
     }
-    let write_s = write(&args, &plan, rendered.live)?;
+    let denoised = crate::denoise::run(&args, &plan.state.film, plan.meta.scale, &plan.output)?;
+    let image = denoised.as_ref().map(|d| d.pixels.as_slice());
+    let write_s = write(&args, &plan, rendered.live, image)?;
     let finished = Finished {
         stats: rendered.stats,
         threads: rendered.threads,
@@ -58,6 +62,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
             parse: parse_s,
             build: build_s,
             render: rendered.seconds,
+            denoise: denoised.map(|d| d.seconds),
             write: write_s,
             total: t0.elapsed().as_secs_f64(),
         },
@@ -584,12 +589,18 @@ fn interrupted_message(plan: &Plan) -> String {
 
 /// Step 5: writes the image (or the part) atomically, to the rescue folder if the output
 /// fails; hands the final image to the live outputs; removes the checkpoint once the result
-/// is safe. Returns the seconds spent encoding and writing.
-pub fn write(args: &RenderArgs, plan: &Plan, live: LiveOutputs) -> Result<f64, CliError> {
+/// is safe. `image`, when given, is written instead of the film's (the denoised image).
+/// Returns the seconds spent encoding and writing.
+pub fn write(
+    args: &RenderArgs,
+    plan: &Plan,
+    live: LiveOutputs,
+    image: Option<&[lancer::math::Rgb]>,
+) -> Result<f64, CliError> {
     let t_write = Instant::now();
     let film = &plan.state.film;
     let bounds = plan.pixels.bounds;
-    let pixels = film.image(plan.meta.scale);
+    let pixels = image.map_or_else(|| film.image(plan.meta.scale), <[_]>::to_vec);
     let fallback_dir = args
         .on_write_error
         .clone()

@@ -115,6 +115,16 @@ pub struct RenderArgs {
     /// images, or to reproduce a render made in RGB (its parts and checkpoints).
     #[arg(long, conflicts_with_all = ["resume", "spectral"])]
     pub rgb: bool,
+    /// Denoise the image with Open Image Denoise's network (lancer's own CPU inference), from
+    /// the colour, albedo and shading normal rendered in the same pass: for previews and low
+    /// sample counts, not for reference images.
+    #[arg(long)]
+    pub denoise: bool,
+    /// With --denoise: also write the denoiser's inputs beside the output, as OUT.noisy.exr,
+    /// OUT.albedo.exr and OUT.normal.exr (RGB float), for `lancer img denoise` or another
+    /// denoiser.
+    #[arg(long, requires = "denoise")]
+    pub denoise_inputs: bool,
 }
 
 impl RenderArgs {

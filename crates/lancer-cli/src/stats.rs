@@ -97,6 +97,8 @@ pub struct Phases {
     pub build: f64,
     /// Rendering.
     pub render: f64,
+    /// Denoising (`--denoise`), if asked for.
+    pub denoise: Option<f64>,
     /// Encoding and writing the image.
     pub write: f64,
     /// Wall-clock time of the whole command.
@@ -148,6 +150,7 @@ pub fn render_json(r: &RenderSummary, t: &Phases, mem: &SceneMemory) -> Value {
             "parse": t.parse,
             "build": t.build,
             "render": t.render,
+            "denoise": t.denoise,
             "write": t.write,
         },
         "samples": r.samples,
@@ -188,8 +191,14 @@ pub fn render_text(r: &RenderSummary, t: &Phases, mem: &SceneMemory) -> String {
         (
             "time",
             format!(
-                "{:.3} s in all: parse {:.3} s, build {:.3} s, render {:.3} s, write {:.3} s",
-                t.total, t.parse, t.build, t.render, t.write
+                "{:.3} s in all: parse {:.3} s, build {:.3} s, render {:.3} s, {}write {:.3} s",
+                t.total,
+                t.parse,
+                t.build,
+                t.render,
+                t.denoise
+                    .map_or(String::new(), |d| format!("denoise {d:.3} s, ")),
+                t.write
             ),
         ),
         (

@@ -8,6 +8,7 @@
 //! `lancer.SceneError` (a `ValueError`) carrying `file:line:column` as the command line prints
 //! them.
 
+mod denoise;
 mod images;
 mod metrics;
 mod render;
@@ -55,6 +56,7 @@ fn _lancer(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene::load_file, m)?)?;
     m.add_function(wrap_pyfunction!(scene::load_string, m)?)?;
     m.add_function(wrap_pyfunction!(render::render, m)?)?;
+    m.add_function(wrap_pyfunction!(denoise::denoise, m)?)?;
     m.add_function(wrap_pyfunction!(images::write_image, m)?)?;
     m.add_function(wrap_pyfunction!(images::read_image, m)?)?;
     m.add_function(wrap_pyfunction!(metrics::mean_rel_error, m)?)?;

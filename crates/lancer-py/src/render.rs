@@ -5,6 +5,7 @@ use crate::SceneError;
 use crate::scene::PyScene;
 use lancer::SceneDesc;
 use lancer::film::Film;
+use lancer::gbuffer::{GbufferConfig, GbufferFilm};
 use lancer::render::{RenderSettings, RenderStats, render_units, work_units};
 use numpy::PyArray3;
 use numpy::ndarray::Array3;
@@ -116,8 +117,12 @@ fn with_overrides(
 /// The GIL is released while rendering; Ctrl-C (or any signal whose Python handler raises)
 /// stops the render between units of work (a tile × 16 samples) and raises here
 /// (KeyboardInterrupt for Ctrl-C).
+///
+/// `denoise=True` also renders the albedo and shading normal of the first non-specular
+/// surface in the same pass and returns the image denoised by Open Image Denoise's network
+/// (as `lancer render --denoise`).
 #[pyfunction]
-#[pyo3(signature = (scene, spp = None, resolution = None, seed = 0, threads = None, spectral = true, crop = None))]
+#[pyo3(signature = (scene, spp = None, resolution = None, seed = 0, threads = None, spectral = true, crop = None, denoise = false))]
 #[allow(clippy::too_many_arguments)] // the Python signature the issue asks for
 pub fn render<'py>(
     py: Python<'py>,
@@ -128,6 +133,7 @@ pub fn render<'py>(
     threads: Option<usize>,
     spectral: bool,
     crop: Option<Vec<f32>>,
+    denoise: bool,
 ) -> PyResult<Bound<'py, PyArray3<f32>>> {
     let this = scene.get();
     let desc = with_overrides(&this.desc, spp, resolution, seed, crop)?;
@@ -157,6 +163,10 @@ pub fn render<'py>(
         .map_err(SceneError::new_err)?;
 
     let mut film = Film::new(desc.film.xresolution, desc.film.yresolution, bounds);
+    if denoise {
+        let config = GbufferConfig::denoiser(desc.camera.camera_from_world, desc.sampler.spp);
+        film.gbuffer = Some(Box::new(GbufferFilm::new(config, bounds.area() as usize)));
+    }
     let cancel = AtomicBool::new(false);
     let (done_tx, done_rx) = mpsc::channel::<RenderStats>();
     // Behind a lock so that the waits below, run without the GIL, may borrow it.
@@ -222,7 +232,17 @@ pub fn render<'py>(
     }
 
     let pixels = film.image(desc.film.scale);
-    let flat: Vec<f32> = pixels.iter().flat_map(|p| [p.x, p.y, p.z]).collect();
+    let rgb =
+        |v: &[lancer::math::Rgb]| v.iter().flat_map(|p| [p.x, p.y, p.z]).collect::<Vec<f32>>();
+    let mut flat = rgb(&pixels);
+    if let Some(g) = &film.gbuffer {
+        let (albedo, normal) = g.denoiser_images();
+        let (w, h) = (bounds.width() as usize, bounds.height() as usize);
+        let (a, n) = (rgb(&albedo), rgb(&normal));
+        flat = py
+            .detach(|| pool.install(|| lancer_denoise::denoise(&flat, Some(&a), Some(&n), w, h)))
+            .map_err(|e| PyRuntimeError::new_err(format!("denoiser: {e}")))?;
+    }
     let shape = (bounds.height() as usize, bounds.width() as usize, 3);
     let array = Array3::from_shape_vec(shape, flat)
         .map_err(|e| PyRuntimeError::new_err(format!("image shape: {e}")))?;

@@ -116,14 +116,26 @@ fn plane_offset(p: Vec3, n: Vec3, r: &Ray) -> Vec3 {
     r.o + r.d * t - p
 }
 
+/// Perfectly specular bounces the denoiser's visible surface follows before it gives up.
+const MAX_SPECULAR_BOUNCES: usize = 16;
+
 /// The first surface `ray` meets that has a BSDF (pbrt-v4 skips `interface` surfaces), with
 /// its footprint from `diff` and its albedo, or `None` if the ray escapes.
+///
+/// With `follow_specular` (the denoiser's auxiliary images, as Open Image Denoise's
+/// documentation asks), a perfectly specular surface (mirror, smooth glass or metal) is
+/// passed through along its sampled direction (transmission preferred: u = 0.999), and the
+/// surface found after it is returned, its albedo times the specular bounces' throughput
+/// f·|cos θ|/pdf (each clamped to [0, 1]).
 pub fn visible_surface(
     scene: &Scene,
     ray: &Ray,
     diff: Option<&RayDifferentials>,
+    follow_specular: bool,
 ) -> Option<VisibleSurface> {
     let mut r = *ray;
+    let mut throughput = SampledSpectrum::ONE;
+    let mut specular = 0;
     // A bounded number of pass-through surfaces, as a guard against a ray stuck in place.
     for _ in 0..256 {
         let hit = scene.intersect(&r)?;
@@ -132,6 +144,17 @@ pub fn visible_surface(
             r = si.spawn_ray(r.d);
             continue;
         };
+        if follow_specular && !bsdf.flags().is_non_specular() && specular < MAX_SPECULAR_BOUNCES {
+            let s = bsdf.sample_f(si.wo, 0.999, Vec2::new(0.5, 0.5), TransportMode::Radiance)?;
+            if s.pdf <= 0.0 {
+                return None;
+            }
+            let t = s.f * (s.wi.dot(si.shading.n).abs() / s.pdf);
+            throughput *= t.clamp(SampledSpectrum::ZERO, SampledSpectrum::ONE);
+            r = si.spawn_ray(s.wi);
+            specular += 1;
+            continue;
+        }
         // albedo ≈ (1/16) Σ f(wo, wᵢ)·|cos θᵢ| / pdf(wᵢ) over pbrt-v4's fixed samples.
         let mut rho = SampledSpectrum::ZERO;
         for (uc, u) in RHO_UC.iter().zip(RHO_U) {
@@ -157,7 +180,7 @@ pub fn visible_surface(
             uv: si.uv,
             dpdx,
             dpdy,
-            albedo: lanes_rgb(rho * (1.0 / RHO_UC.len() as f32)),
+            albedo: lanes_rgb(rho * throughput * (1.0 / RHO_UC.len() as f32)),
         });
     }
     None

@@ -279,9 +279,13 @@ pub fn render_tile<T: FilmTile, I: SampleIntegrator + ?Sized>(
                 let rgb = film_sample(settings, &mut stats, rgb, SampleId { y, x, sample: s });
                 let surface = if T::NEEDS_SURFACE {
                     ray.and_then(|r| {
+                        // The denoiser's surface (through specular surfaces) needs no footprint.
+                        let follow = film.follows_specular();
                         let scale = film.differential_scale();
-                        let diff = RayDifferentials::of(scene, &r.ray, p_film, p_lens, scale);
-                        visible_surface(scene, &r.ray, diff.as_ref())
+                        let diff = (!follow)
+                            .then(|| RayDifferentials::of(scene, &r.ray, p_film, p_lens, scale))
+                            .flatten();
+                        visible_surface(scene, &r.ray, diff.as_ref(), follow)
                     })
                 } else {
                     None

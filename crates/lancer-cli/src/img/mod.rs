@@ -5,12 +5,14 @@
 //!   `--threshold X` turns one of them into an exit status; `-o` writes `|A − B|`.
 //! - `img convert IN OUT` crops, resizes (box filter), exposes and tone-maps, EXR ↔ PNG.
 //! - `img info IMG` prints size, channels and per-channel mean, min, max, NaN and ∞ counts.
+//! - `img denoise COLOR [--albedo A [--normal N]] -o OUT` runs the denoiser ([`denoise`]).
 //!
 //! Images are read as lancer reads textures (PNG decoded from sRGB to linear, EXR as stored,
 //! JPEG too) and written as lancer writes renders (PNG 8-bit sRGB clamped to [0, 1], EXR
 //! 32-bit float), atomically. Exit status: 0, 1 when `diff --threshold` is exceeded, 2 for any
 //! error (unreadable or unwritable file, bad option, images of different sizes).
 
+pub mod denoise;
 pub mod metrics;
 pub mod ops;
 
@@ -33,6 +35,9 @@ pub enum ImgCommand {
     Convert(ConvertArgs),
     /// Size, channels and per-channel mean, min, max, NaN and infinity counts of an image.
     Info(ImgInfoArgs),
+    /// Denoise an HDR render with Open Image Denoise's network (optionally with its albedo and
+    /// normal images).
+    Denoise(denoise::DenoiseArgs),
 }
 
 /// The metric `diff --threshold` compares.
@@ -195,7 +200,7 @@ pub(crate) fn read_picture(path: &Path) -> Result<Picture, CliError> {
 }
 
 /// Refuses an output whose extension names no format lancer writes, before any work.
-fn check_output_format(path: &Path) -> Result<(), CliError> {
+pub(crate) fn check_output_format(path: &Path) -> Result<(), CliError> {
     match ImageFormat::from_path(path) {
         Some(_) => Ok(()),
         None => Err(CliError::input(format!(
@@ -206,7 +211,7 @@ fn check_output_format(path: &Path) -> Result<(), CliError> {
 }
 
 /// Writes `picture` (atomically, as renders are written); errors say `cannot write FILE: why`.
-fn write(path: &Path, picture: &Picture) -> Result<(), CliError> {
+pub(crate) fn write(path: &Path, picture: &Picture) -> Result<(), CliError> {
     write_image(path, picture.width, picture.height, &picture.pixels).map_err(|e| {
         let why = match e {
             ImageWriteError::UnknownFormat { .. } => {
@@ -225,6 +230,7 @@ pub fn run(cmd: ImgCommand) -> Result<(), CliError> {
         ImgCommand::Diff(args) => diff(args),
         ImgCommand::Convert(args) => convert(args),
         ImgCommand::Info(args) => info(args),
+        ImgCommand::Denoise(args) => denoise::denoise(args),
     }
 }
 

@@ -5,6 +5,7 @@ mod common;
 
 mod bench_scene;
 mod course_scenes;
+mod denoise;
 mod gbuffer;
 mod gltf;
 mod hostile;

@@ -36,6 +36,7 @@ __all__ = [
     "load_file",
     "load_string",
     "render",
+    "denoise",
     "write_image",
     "read_image",
     "mean_rel_error",
@@ -68,6 +69,21 @@ def write_image(path, array):
     sRGB-encodes and rounds to 8 bits. The file is written atomically.
     """
     _lancer.write_image(_os.fspath(path), _image(array, _np.float32))
+
+
+def denoise(color, albedo=None, normal=None):
+    """Denoises an HDR render with Open Image Denoise's network (lancer's own inference).
+
+    `color`, `albedo` and `normal` are (height, width, 3) arrays (converted to float32):
+    the noisy linear RGB, the albedo and the shading normal (components in [-1, 1]) of the
+    first non-specular surface. Give none, `albedo`, or both: each combination has its own
+    network. Returns a float32 array: OIDN 2.x's result (quality "high", hdr) up to float
+    rounding.
+    """
+    c = _image(color, _np.float32, "color")
+    a = None if albedo is None else _image(albedo, _np.float32, "albedo")
+    n = None if normal is None else _image(normal, _np.float32, "normal")
+    return _lancer.denoise(c, a, n)
 
 
 def mean_rel_error(image, reference):

@@ -227,6 +227,10 @@ pub struct GbufferConfig {
     pub output_from_world: Transform,
     /// Samples per pixel of the whole render (the ray differentials' scale depends on it).
     pub spp: u32,
+    /// Filled for the denoiser rather than for a `gbuffer` film: the visible surface is the
+    /// first one that is not perfectly specular (mirrors and glass are followed, as Open Image
+    /// Denoise asks), and no ray differentials are traced.
+    pub for_denoiser: bool,
 }
 
 impl GbufferConfig {
@@ -239,6 +243,17 @@ impl GbufferConfig {
                 camera_from_world
             },
             spp,
+            for_denoiser: false,
+        }
+    }
+
+    /// The configuration of the denoiser's auxiliary images: albedo, and shading normals in
+    /// camera space, of the first surface that is not perfectly specular.
+    pub fn denoiser(camera_from_world: Transform, spp: u32) -> GbufferConfig {
+        GbufferConfig {
+            output_from_world: camera_from_world,
+            spp,
+            for_denoiser: true,
         }
     }
 
@@ -272,5 +287,18 @@ impl GbufferFilm {
             config,
             pixels: vec![GPixel::default(); pixels],
         }
+    }
+
+    /// The denoiser's auxiliary images, row-major over the film's bounds: the albedo
+    /// Σw·a / Σw (over every sample, with the film's filter weights w) and the shading normal
+    /// Σw·n normalised (0 where no sample saw a surface).
+    pub fn denoiser_images(&self) -> (Vec<Rgb>, Vec<Rgb>) {
+        self.pixels
+            .iter()
+            .map(|p| {
+                let c = p.channels();
+                (Rgb::new(c[0], c[1], c[2]), Rgb::new(c[11], c[12], c[13]))
+            })
+            .unzip()
     }
 }

@@ -49,6 +49,13 @@ pub trait FilmTile: Send {
         1.0
     }
 
+    /// True when the visible surface is the denoiser's: the first one that is not perfectly
+    /// specular ([`crate::gbuffer::visible_surface`]'s `follow_specular`).
+    #[inline]
+    fn follows_specular(&self) -> bool {
+        false
+    }
+
     /// A camera sample's wavelengths from one uniform number: by default pbrt-v4's density
     /// over the visible range.
     #[inline]
@@ -124,6 +131,11 @@ impl FilmTile for GbufferTile {
 
     fn differential_scale(&self) -> f32 {
         super::gsums::differential_scale(self.config.spp)
+    }
+
+    #[inline]
+    fn follows_specular(&self) -> bool {
+        self.config.for_denoiser
     }
 
     fn add_sample(&mut self, pixel: usize, sample: &FilmSample<'_>, weight: f32) {

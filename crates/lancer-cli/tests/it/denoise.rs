@@ -1,0 +1,150 @@
+//! `lancer render --denoise [--denoise-inputs]` and `lancer img denoise`: the auxiliary
+//! images on a hand-checkable scene (through a mirror too), the same image from both
+//! commands, and what `--denoise` refuses.
+
+use crate::common::{ScratchDir, read_exr, run_in};
+
+/// A diffuse plane (reflectance 0.25, 0.5, 0.75) at z = 3 facing a camera at the origin
+/// looking down +z, and a grey one (0.9) at z = −1 behind the camera; with `mirror`, a
+/// perfect silver mirror at z = 2 fills the left half of the view and shows the grey plane.
+fn scene(mirror: bool) -> String {
+    let m = if mirror {
+        r#"AttributeBegin
+Material "conductor" "float roughness" [0] "spectrum eta" "metal-Ag-eta" "spectrum k" "metal-Ag-k"
+Shape "trianglemesh" "point3 P" [-10 -10 2  0 -10 2  0 10 2  -10 10 2]
+  "integer indices" [0 1 2 0 2 3]
+AttributeEnd
+"#
+    } else {
+        ""
+    };
+    format!(
+        r#"Camera "perspective" "float fov" [90]
+Film "rgb" "integer xresolution" [16] "integer yresolution" [16]
+Sampler "stratified" "integer xsamples" [2] "integer ysamples" [2]
+WorldBegin
+LightSource "infinite" "rgb L" [1 1 1]
+{m}Material "diffuse" "rgb reflectance" [0.25 0.5 0.75]
+Shape "trianglemesh" "point3 P" [-10 -10 3  10 -10 3  10 10 3  -10 10 3]
+  "integer indices" [0 1 2 0 2 3]
+Material "diffuse" "rgb reflectance" [0.9 0.9 0.9]
+Shape "trianglemesh" "point3 P" [-10 -10 -1  10 -10 -1  10 10 -1  -10 10 -1]
+  "integer indices" [0 1 2 0 2 3]
+"#
+    )
+}
+
+#[test]
+fn render_denoise_writes_its_inputs_and_img_denoise_gives_the_same_image() {
+    let dir = ScratchDir::new("denoise-render");
+    std::fs::write(dir.join("s.pbrt"), scene(false)).unwrap();
+    let o = run_in(
+        &dir,
+        &[
+            "render",
+            "s.pbrt",
+            "-o",
+            "out.exr",
+            "--quiet",
+            "--denoise",
+            "--denoise-inputs",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let albedo = read_exr(&dir.join("out.albedo.exr"));
+    let normal = read_exr(&dir.join("out.normal.exr"));
+    for (a, n) in albedo.rgb.iter().zip(&normal.rgb) {
+        // a diffuse surface's albedo is its reflectance; its normal faces the camera (−z
+        // in camera space)
+        for (c, want) in [0.25, 0.5, 0.75].iter().enumerate() {
+            assert!((a[c] - want).abs() < 2e-3, "albedo {a:?}");
+        }
+        assert!(
+            (n[2] + 1.0).abs() < 1e-4 && n[0].abs() < 1e-4,
+            "normal {n:?}"
+        );
+    }
+    let o = run_in(
+        &dir,
+        &[
+            "img",
+            "denoise",
+            "out.noisy.exr",
+            "--albedo",
+            "out.albedo.exr",
+            "--normal",
+            "out.normal.exr",
+            "-o",
+            "img.exr",
+            "--quiet",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (a, b) = (
+        read_exr(&dir.join("out.exr")),
+        read_exr(&dir.join("img.exr")),
+    );
+    assert_eq!(a, b, "img denoise differs from render --denoise");
+    // the denoised image is the noisy one's brightness
+    let (m, n) = (a.means(), read_exr(&dir.join("out.noisy.exr")).means());
+    for c in 0..3 {
+        assert!((m[c] / n[c] - 1.0).abs() < 0.05, "means {m:?} vs {n:?}");
+    }
+}
+
+#[test]
+fn the_albedo_is_the_one_seen_through_a_mirror() {
+    let dir = ScratchDir::new("denoise-mirror");
+    std::fs::write(dir.join("s.pbrt"), scene(true)).unwrap();
+    let o = run_in(
+        &dir,
+        &[
+            "render",
+            "s.pbrt",
+            "-o",
+            "out.exr",
+            "--quiet",
+            "--denoise",
+            "--denoise-inputs",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let albedo = read_exr(&dir.join("out.albedo.exr"));
+    // left column: the mirror shows the grey plane behind the camera (0.9 times silver's
+    // reflectance, above 0.8); right column: the coloured plane itself
+    let (left, right) = (albedo.rgb[8 * 16], albedo.rgb[8 * 16 + 15]);
+    assert!(
+        left.iter().all(|&v| v > 0.75 && v < 0.9),
+        "through the mirror {left:?}"
+    );
+    assert!(
+        (right[0] - 0.25).abs() < 2e-3 && (right[2] - 0.75).abs() < 2e-3,
+        "{right:?}"
+    );
+}
+
+#[test]
+fn denoise_refuses_what_it_cannot_do_yet() {
+    let dir = ScratchDir::new("denoise-refuse");
+    std::fs::write(dir.join("s.pbrt"), scene(false)).unwrap();
+    let o = run_in(
+        &dir,
+        &[
+            "render",
+            "s.pbrt",
+            "-o",
+            "p.exr",
+            "--quiet",
+            "--denoise",
+            "--samples",
+            "0..2",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--denoise cannot be used with a part"));
+    let o = run_in(
+        &dir,
+        &["render", "s.pbrt", "-o", "p.exr", "--denoise-inputs"],
+    );
+    assert_eq!(o.status.code(), Some(2), "--denoise-inputs needs --denoise");
+}

@@ -1,0 +1,173 @@
+//! OIDN's U-Net (`UNetFilter::addUNet`, the "base" model that quality "high" uses for the
+//! `rt` filter's HDR networks), run on one tile.
+//!
+//! Levels 0..4 halve the resolution; `conv` is a 3×3 convolution + ReLU, `pool` 2×2 max
+//! pooling, `up` nearest 2× upsampling, `[a | b]` channel concatenation (a's channels first):
+//!
+//! ```text
+//! enc_conv0(input)            enc_conv1 → pool1      enc_conv2 → pool2
+//! enc_conv3 → pool3           enc_conv4 → pool4      enc_conv5a, enc_conv5b → up
+//! dec_conv4a([up | pool3]), dec_conv4b → up          dec_conv3a([up | pool2]), dec_conv3b → up
+//! dec_conv2a([up | pool1]), dec_conv2b → up          dec_conv1a([up | input]), dec_conv1b
+//! dec_conv0 (3 channels, ReLU)
+//! ```
+//!
+//! Each concatenation is one tensor whose second half is written when the skip is made.
+
+use crate::conv::Conv;
+use crate::tensor::{Tensor, pool_into, upsample_into};
+use crate::tza;
+
+/// The trained layers of one network.
+#[derive(Clone, Debug)]
+pub struct UNet {
+    /// Channels of the input (3 colour, + 3 albedo, + 3 normal).
+    pub input_channels: usize,
+    enc0: Conv,
+    enc1: Conv,
+    enc2: Conv,
+    enc3: Conv,
+    enc4: Conv,
+    enc5a: Conv,
+    enc5b: Conv,
+    dec4a: Conv,
+    dec4b: Conv,
+    dec3a: Conv,
+    dec3b: Conv,
+    dec2a: Conv,
+    dec2b: Conv,
+    dec1a: Conv,
+    dec1b: Conv,
+    dec0: Conv,
+}
+
+/// Why a network could not be built from a blob.
+#[derive(Debug, thiserror::Error)]
+pub enum NetError {
+    /// The blob is not a readable TZA file.
+    #[error(transparent)]
+    Tza(#[from] tza::TzaError),
+    /// A layer is missing or has the wrong shape.
+    #[error("weights blob: layer {0}: {1}")]
+    Layer(String, String),
+}
+
+impl UNet {
+    /// The network stored in a TZA blob.
+    pub fn from_tza(blob: &[u8]) -> Result<Self, NetError> {
+        let t = tza::parse(blob)?;
+        let layer = |name: &str, cin: Option<usize>| -> Result<Conv, NetError> {
+            let err = |m: &str| NetError::Layer(name.to_string(), m.to_string());
+            let w = t
+                .get(&format!("{name}.weight"))
+                .ok_or_else(|| err("no weight"))?;
+            let b = t
+                .get(&format!("{name}.bias"))
+                .ok_or_else(|| err("no bias"))?;
+            let [o, i, 3, 3] = w.dims[..] else {
+                return Err(err("weight not o×i×3×3"));
+            };
+            if b.dims != [o] || cin.is_some_and(|c| c != i) {
+                return Err(err(&format!("shape {:?} / bias {:?}", w.dims, b.dims)));
+            }
+            Ok(Conv::new(o, i, &w.data, &b.data))
+        };
+        let enc0 = layer("enc_conv0", None)?;
+        let input_channels = enc0.cin;
+        let enc1 = layer("enc_conv1", Some(enc0.cout))?;
+        let enc2 = layer("enc_conv2", Some(enc1.cout))?;
+        let enc3 = layer("enc_conv3", Some(enc2.cout))?;
+        let enc4 = layer("enc_conv4", Some(enc3.cout))?;
+        let enc5a = layer("enc_conv5a", Some(enc4.cout))?;
+        let enc5b = layer("enc_conv5b", Some(enc5a.cout))?;
+        let dec4a = layer("dec_conv4a", Some(enc5b.cout + enc3.cout))?;
+        let dec4b = layer("dec_conv4b", Some(dec4a.cout))?;
+        let dec3a = layer("dec_conv3a", Some(dec4b.cout + enc2.cout))?;
+        let dec3b = layer("dec_conv3b", Some(dec3a.cout))?;
+        let dec2a = layer("dec_conv2a", Some(dec3b.cout + enc1.cout))?;
+        let dec2b = layer("dec_conv2b", Some(dec2a.cout))?;
+        let dec1a = layer("dec_conv1a", Some(dec2b.cout + input_channels))?;
+        let dec1b = layer("dec_conv1b", Some(dec1a.cout))?;
+        let dec0 = layer("dec_conv0", Some(dec1b.cout))?;
+        if dec0.cout != 3 {
+            return Err(NetError::Layer(
+                "dec_conv0".into(),
+                "not 3 output channels".into(),
+            ));
+        }
+        Ok(Self {
+            input_channels,
+            enc0,
+            enc1,
+            enc2,
+            enc3,
+            enc4,
+            enc5a,
+            enc5b,
+            dec4a,
+            dec4b,
+            dec3a,
+            dec3b,
+            dec2a,
+            dec2b,
+            dec1a,
+            dec1b,
+            dec0,
+        })
+    }
+
+    /// The channels before the input's in the level-0 concatenation: the input tensor handed
+    /// to [`UNet::run`] has `skip0_offset() + input_channels` channels, the input in the last
+    /// ones (the first ones are filled by the decoder).
+    pub fn skip0_offset(&self) -> usize {
+        self.dec2b.cout
+    }
+
+    /// Runs the network on `x0` (H and W multiples of 16; the input in channels
+    /// `skip0_offset()..`); returns the 3 output channels.
+    pub fn run(&self, mut x0: Tensor) -> Tensor {
+        let (h, w) = (x0.h, x0.w);
+        assert!(
+            h % 16 == 0 && w % 16 == 0,
+            "tile {w}x{h} not a multiple of 16"
+        );
+        let off0 = self.skip0_offset();
+        assert_eq!(x0.c, off0 + self.input_channels);
+        // The concatenations of levels 1..3: [upsampled decoder | pooled encoder].
+        let mut x1 = Tensor::zeros(self.dec3b.cout + self.enc1.cout, h / 2, w / 2);
+        let mut x2 = Tensor::zeros(self.dec4b.cout + self.enc2.cout, h / 4, w / 4);
+        let mut x3 = Tensor::zeros(self.enc5b.cout + self.enc3.cout, h / 8, w / 8);
+        let mut p4 = Tensor::zeros(self.enc4.cout, h / 16, w / 16);
+
+        let t = self.enc0.run(&x0, off0, true);
+        let t = self.enc1.run(&t, 0, true);
+        pool_into(&t, &mut x1, self.dec3b.cout);
+        drop(t);
+        let t = self.enc2.run(&x1, self.dec3b.cout, true);
+        pool_into(&t, &mut x2, self.dec4b.cout);
+        let t = self.enc3.run(&x2, self.dec4b.cout, true);
+        pool_into(&t, &mut x3, self.enc5b.cout);
+        let t = self.enc4.run(&x3, self.enc5b.cout, true);
+        pool_into(&t, &mut p4, 0);
+
+        let t = self.enc5a.run(&p4, 0, true);
+        let t = self.enc5b.run(&t, 0, true);
+        upsample_into(&t, &mut x3);
+        let t = self.dec4a.run(&x3, 0, true);
+        drop(x3);
+        let t = self.dec4b.run(&t, 0, true);
+        upsample_into(&t, &mut x2);
+        let t = self.dec3a.run(&x2, 0, true);
+        drop(x2);
+        let t = self.dec3b.run(&t, 0, true);
+        upsample_into(&t, &mut x1);
+        let t = self.dec2a.run(&x1, 0, true);
+        drop(x1);
+        let t = self.dec2b.run(&t, 0, true);
+        upsample_into(&t, &mut x0);
+        let t = self.dec1a.run(&x0, 0, true);
+        drop(x0);
+        let t = self.dec1b.run(&t, 0, true);
+        self.dec0.run(&t, 0, true)
+    }
+}
