@@ -17,6 +17,7 @@ mod portal;
 mod projection;
 mod sample;
 mod sampler;
+pub mod sunsky;
 
 pub use area::Emitter;
 pub use area_image::{AreaImage, mean_texel};
@@ -30,6 +31,7 @@ pub use portal::{PortalInfiniteLight, portal_frame};
 pub use projection::{ProjectionLight, projected_sum};
 pub use sample::{LightLiSample, LightSampleContext};
 pub use sampler::{LightSampler, LightSamplerKind};
+pub use sunsky::{SunskyLight, SunskyParams};
 
 use crate::math::{Frame, INV_PI, PackedRgb, Rgb, Vec2, Vec3, smooth_step};
 use crate::shape::{Shape, TriangleMesh};
