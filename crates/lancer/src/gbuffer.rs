@@ -9,7 +9,8 @@
 //! As pbrt-v4's `GBufferFilm::AddSample`: each camera sample whose ray meets a surface (the
 //! first one with a BSDF: `interface` surfaces are passed through) adds, with its filter
 //! weight w, w·P, w·N, w·Ns, w·uv, w·∂z/∂x, w·∂z/∂y and w·albedo to its pixel, and its colour
-//! to a per-channel running variance (Welford, unweighted). When written, P, uv and the depth
+//! in the sensor's RGB ([`variance_rgb`]: XYZ for the default CIE 1931 sensor, not the output
+//! RGB) to a per-channel running variance (Welford, unweighted). When written, P, uv and the depth
 //! slopes are divided by the weight of those samples, the albedo by the weight of every
 //! sample (as pbrt-v4 does), the normals are normalised, and the slopes are written as
 //! absolute values. The surface data is gathered by tracing the camera ray once more, apart
@@ -22,7 +23,7 @@ pub use crate::film::gsums::{
 };
 use crate::integrator::bsdf_at;
 use crate::material::TransportMode;
-use crate::math::{SampledSpectrum, Vec2, Vec3, lanes_rgb};
+use crate::math::{Rgb, SampledSpectrum, Vec2, Vec3, lanes_rgb};
 use crate::ray::Ray;
 use crate::scene::Scene;
 
@@ -99,6 +100,34 @@ impl RayDifferentials {
             rx: shifted(Vec2::new(1.0, 0.0))?,
             ry: shifted(Vec2::new(0.0, 1.0))?,
         })
+    }
+}
+
+/// The colour whose variance pbrt-v4's `GBufferFilm` keeps: a sample's sensor RGB
+/// (`PixelSensor::ToSensorRGB`; XYZ for the default CIE 1931 sensor), not its output RGB, with
+/// `maxcomponentvalue` applied there (the colour scaled so that its largest component is at
+/// most `max_component_value`). `output` is the sample's output colour before lancer's own
+/// clamp, which it takes back to the sensor's space by the inverse of pbrt-v4's
+/// `outputRGBFromSensorRGB`; a colour that is not finite counts as black (as in the sums).
+pub fn variance_rgb(scene: &Scene, output: Rgb, max_component_value: f32) -> Rgb {
+    if !output.is_finite() {
+        return Rgb::ZERO;
+    }
+    let sensor = match scene.film_response() {
+        Some(r) => r.sensor_rgb(output),
+        None => {
+            // The plain CIE 1931 film into sRGB: the sensor's RGB is XYZ.
+            static XYZ_FROM_SRGB: std::sync::OnceLock<glam::Mat3> = std::sync::OnceLock::new();
+            let m = XYZ_FROM_SRGB
+                .get_or_init(|| crate::spectrum::ColorSpace::Srgb.rgb_to_xyz().as_mat3());
+            (*m * glam::Vec3::from(output)).into()
+        }
+    };
+    let m = sensor.max_element();
+    if m > max_component_value {
+        sensor * (max_component_value / m)
+    } else {
+        sensor
     }
 }
 
@@ -212,6 +241,24 @@ mod tests {
         let mut one = Variance::default();
         one.add(5.0);
         assert_eq!((one.variance(), Variance::default().relative()), (0.0, 0.0));
+    }
+
+    /// pbrt-v4's variance is of the sensor's RGB, for the plain film XYZ: sRGB red is
+    /// XYZ (0.4125, 0.2127, 0.0193), `maxcomponentvalue` scales it there, and a colour that
+    /// is not finite is black.
+    #[test]
+    fn variance_is_of_the_sensors_rgb() {
+        let scene = Scene::build(&crate::scene::desc::SceneDesc::default()).expect("a scene");
+        assert!(scene.film_response().is_none());
+        let xyz = variance_rgb(&scene, Rgb::X, f32::INFINITY);
+        let want = Rgb::new(0.412_456_4, 0.212_672_9, 0.019_333_9);
+        assert!((xyz - want).abs().max_element() < 1e-5, "{xyz}");
+        let clamped = variance_rgb(&scene, Rgb::X, 0.2);
+        assert!((clamped - want * (0.2 / want.x)).abs().max_element() < 1e-6);
+        assert_eq!(
+            variance_rgb(&scene, Rgb::new(f32::NAN, 0.0, 1.0), 1.0),
+            Rgb::ZERO
+        );
     }
 
     #[test]

@@ -8,7 +8,7 @@ use crate::film::{Film, PixelBounds, PixelSum};
 use crate::filter::Filter;
 use crate::gbuffer::{RayDifferentials, visible_surface};
 use crate::integrator::Integrator;
-use crate::math::{SampledSpectrum, Vec2};
+use crate::math::{Rgb, SampledSpectrum, Vec2};
 use crate::ray::Ray;
 use crate::sampling::{Sampler, SamplerKind};
 use crate::scene::Scene;
@@ -276,6 +276,11 @@ pub fn render_tile<T: FilmTile, I: SampleIntegrator + ?Sized>(
                     None => SampledSpectrum::ZERO,
                 };
                 let rgb = scene_film_rgb(scene, lambda.as_ref(), l);
+                let sensor_rgb = if T::NEEDS_SENSOR_RGB {
+                    crate::gbuffer::variance_rgb(scene, rgb, settings.max_component_value)
+                } else {
+                    Rgb::ZERO
+                };
                 let rgb = film_sample(settings, &mut stats, rgb, SampleId { y, x, sample: s });
                 let surface = if T::NEEDS_SURFACE {
                     ray.and_then(|r| {
@@ -292,6 +297,7 @@ pub fn render_tile<T: FilmTile, I: SampleIntegrator + ?Sized>(
                 };
                 let sample = FilmSample {
                     rgb,
+                    sensor_rgb,
                     l,
                     lambda: lambda.as_ref(),
                     surface: surface.as_ref(),

@@ -24,10 +24,12 @@ use lancer::material::MaterialDesc;
 use lancer::material::MixMaterial;
 use lancer::math::{AnimatedTransform, Transform};
 use lancer::scene::desc::{
-    AreaLightDesc, InstanceDesc, MovingInstanceDesc, MovingShapeDesc, SceneDesc, ShapeDesc,
+    AreaLightDesc, Geometry, InstanceDesc, MovingInstanceDesc, MovingShapeDesc, SceneDesc,
+    ShapeDesc,
 };
 use lancer::spectrum::ColorSpace;
 use lancer::spectrum::SpectrumKind::Unbounded;
+use lancer::texture::FloatTex;
 use std::collections::{HashMap, HashSet};
 
 /// The material a shape gets: one already in the list, or a name resolved at the end (pbrt-v4
@@ -575,11 +577,33 @@ impl Builder {
     ) -> Result<(), SceneError> {
         let emits = self.gs.area_light.is_some();
         let converted = shape(&self.reader(params, dir), ty, emits, loc)?;
-        let Some(ShapeGeometry { geometry, alpha }) = self.accept(converted, loc) else {
+        let Some(ShapeGeometry {
+            geometry,
+            also,
+            alpha,
+        }) = self.accept(converted, loc)
+        else {
             // Skipped whole: its warning says so; its parameters need no warnings of their own.
             params.mark_all_used();
             return Ok(());
         };
+        for geometry in std::iter::once(geometry).chain(also) {
+            self.place_shape(geometry, alpha.clone(), ty, emits, loc)?;
+        }
+        Ok(())
+    }
+
+    /// One geometry of a `Shape` directive, under the current attributes: moving, flattened
+    /// by a singular transformation, or placed by the CTM, in the world or the object being
+    /// defined.
+    fn place_shape(
+        &mut self,
+        geometry: Geometry,
+        alpha: Option<FloatTex>,
+        ty: &str,
+        emits: bool,
+        loc: &Location,
+    ) -> Result<(), SceneError> {
         let moving = self.moving_shape(emits, alpha.is_some(), loc)?;
         let (geometry, object_to_world) = if moving.is_some() {
             (geometry, Transform::IDENTITY)

@@ -34,7 +34,7 @@ pub fn light_spectrum(
         LightDesc::Point { .. } | LightDesc::Spot { .. } | LightDesc::Goniometric { .. } => "I",
         LightDesc::Distant { .. } | LightDesc::Infinite { image: None, .. } => "L",
         LightDesc::Infinite { .. } | LightDesc::PortalInfinite { .. } => return Ok(None),
-        LightDesc::Projection { .. } => return Ok(None),
+        LightDesc::Projection { .. } | LightDesc::Sunsky { .. } => return Ok(None),
     };
     emission_spectrum(params, name, dir)
 }

@@ -21,6 +21,9 @@ use std::sync::Arc;
 pub struct ShapeGeometry {
     /// Object-space geometry.
     pub geometry: Geometry,
+    /// A second geometry the same directive makes, under the same attributes: the quads of a
+    /// `plymesh` that also has triangles, as bilinear patches (pbrt-v4 makes both).
+    pub also: Option<Geometry>,
     /// The alpha cut-out, when not 1.
     pub alpha: Option<FloatTex>,
 }
@@ -33,8 +36,12 @@ pub fn shape(
     emits: bool,
     loc: &Location,
 ) -> Result<Fallback<Option<ShapeGeometry>>, SceneError> {
-    let converted = geometry(r, ty).map_err(|e| locate(e, loc))?;
-    let Some(geometry) = converted.value else {
+    let converted = match ty {
+        "plymesh" => ply_mesh(r),
+        _ => geometry(r, ty).map(|g| g.map(|g| g.map(|g| (g, None)))),
+    }
+    .map_err(|e| locate(e, loc))?;
+    let Some((geometry, also)) = converted.value else {
         return Ok(Fallback {
             value: None,
             warnings: converted.warnings,
@@ -46,12 +53,17 @@ pub fn shape(
         Some(FloatParam::Texture(t, tloc)) => Some(r.textures.float(&t, &tloc)?),
     };
     if emits {
-        geometry
-            .validate_emitter()
-            .map_err(|e| SceneError::at(loc.clone(), e.message))?;
+        for g in std::iter::once(&geometry).chain(&also) {
+            g.validate_emitter()
+                .map_err(|e| SceneError::at(loc.clone(), e.message))?;
+        }
     }
     Ok(Fallback {
-        value: Some(ShapeGeometry { geometry, alpha }),
+        value: Some(ShapeGeometry {
+            geometry,
+            also,
+            alpha,
+        }),
         warnings: converted.warnings,
     })
 }
@@ -153,13 +165,8 @@ fn geometry(r: &Reader, ty: &str) -> Result<Fallback<Option<Geometry>>, SceneErr
             control.check().map_err(|e| rule_error(p, e))?;
             Geometry::TriangleMesh(Arc::new(lancer::shape::loop_subdivide(&control, levels)))
         }
-        "plymesh" | "objmesh" => {
-            let read = if ty == "plymesh" {
-                ply_mesh(r)?
-            } else {
-                obj_mesh(r)?
-            };
-            return Ok(read.map(|m| m.map(|m| Geometry::TriangleMesh(Arc::new(m)))));
+        "objmesh" => {
+            return Ok(obj_mesh(r)?.map(|m| m.map(|m| Geometry::TriangleMesh(Arc::new(m)))));
         }
         // lancer extension: a voxel grid, from a MagicaVoxel file or inline.
         "voxels" => {
@@ -371,16 +378,22 @@ fn obj_mesh(r: &Reader) -> Result<Fallback<Option<TriangleMesh>>, SceneError> {
     Ok(Fallback::noted(mesh, notes))
 }
 
-/// pbrt's `plymesh`: the triangles of the PLY file `filename` (gzipped when it ends in `.gz`).
-/// Displacement is not supported: the mesh is used as it is, with a warning.
-fn ply_mesh(r: &Reader) -> Result<Fallback<Option<TriangleMesh>>, SceneError> {
+/// A `plymesh`'s geometries: its triangles, its quads as bilinear patches, or both.
+type PlyGeometries = Option<(Geometry, Option<Geometry>)>;
+
+/// pbrt's `plymesh`: the faces of the PLY file `filename` (gzipped when it ends in `.gz`) as
+/// pbrt-v4 makes them: triangles, and each quad a bilinear patch (its `BilinearPatchMesh`).
+/// Displacement is not supported: the mesh is used as it is (its quads as triangles, as
+/// pbrt-v4 displaces them), with a warning.
+fn ply_mesh(r: &Reader) -> Result<Fallback<PlyGeometries>, SceneError> {
     let p = r.params;
     let path = r.file("a \"plymesh\" needs the name of its PLY file")?;
     let ply = read_ply(&path).map_err(|e| SceneError::general(e.to_string()))?;
+    let quads = ply.quads;
     let (mesh, mut notes) = file_mesh(ply.mesh, ply.skipped_faces, &path);
-    if mesh.is_none() {
+    let Some(mesh) = mesh else {
         return Ok(Fallback::noted(None, notes));
-    }
+    };
     // Read (so that they are not also reported as unused) but not applied.
     let displaced = p.float_or_texture("displacement")?.is_some();
     let edge_length = p.has("edgelength");
@@ -396,7 +409,25 @@ fn ply_mesh(r: &Reader) -> Result<Fallback<Option<TriangleMesh>>, SceneError> {
                 .into(),
         );
     }
-    Ok(Fallback::noted(mesh, notes))
+    // pbrt-v4 displaces triangles (its `Displace` splits quads as the mesh holds them), so a
+    // mesh with displacement keeps its quads' triangles.
+    let quads = if displaced { 0 } else { quads };
+    let (tris, patches) = crate::ply::PlyMesh {
+        mesh,
+        quads,
+        skipped_faces: 0,
+    }
+    .split_quads();
+    let patches = patches.map(|m| Geometry::BilinearMesh(Arc::new(m)));
+    if let Some(g) = &patches {
+        g.validate().map_err(|e| rule_error(p, e))?;
+    }
+    let geometries = match (tris, patches) {
+        (Some(t), patches) => Some((Geometry::TriangleMesh(Arc::new(t)), patches)),
+        (None, Some(patches)) => Some((patches, None)),
+        (None, None) => None,
+    };
+    Ok(Fallback::noted(geometries, notes))
 }
 
 /// lancer's `voxels`: the first model of the MagicaVoxel file `filename`, or the inline grid

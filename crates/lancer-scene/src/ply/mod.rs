@@ -5,16 +5,20 @@
 //! version 1.0), with every PLY scalar type. From the `vertex` element come `x y z`, the
 //! normal `nx ny nz` and texture coordinates (`u v`, `s t`, `texture_u texture_v` or
 //! `texture_s texture_t`); from `face` the `vertex_indices` (or `vertex_index`) lists:
-//! triangles as they are, larger polygons as fans (a quad gives two triangles). A
-//! `tristrips` element (triangle strips, `-1` restarting a strip) is read too. Other elements
-//! and properties are skipped. A file whose name ends in `.gz` is gunzipped first.
+//! triangles as they are, larger polygons as fans. A quad (v₀, v₁, v₂, v₃) gives the two
+//! triangles (v₀, v₁, v₂), (v₀, v₂, v₃), kept after all the other faces' triangles, so that
+//! pbrt-v4's reading — a bilinear patch (p₀₀, p₁₀, p₀₁, p₁₁) = (v₀, v₁, v₃, v₂) per quad, its
+//! `BilinearPatchMesh` — can be taken back from them ([`PlyMesh::split_quads`]), while readers
+//! that want triangles (and pbrt-v4's displacement, which splits quads so) use the mesh as
+//! it is. A `tristrips` element (triangle strips, `-1` restarting a strip) is read too. Other
+//! elements and properties are skipped. A file whose name ends in `.gz` is gunzipped first.
 //!
 //! The whole file is read into memory and parsed from the slice. Nothing is allocated on the
 //! header's word alone: before any element is read, the header's counts are checked against
 //! the bytes that follow it.
 
 use lancer::math::{PackedVec3, Vec2};
-use lancer::shape::TriangleMesh;
+use lancer::shape::{BilinearMesh, TriangleMesh};
 use std::fmt;
 use std::io::Read;
 use std::path::Path;
@@ -47,10 +51,37 @@ impl std::error::Error for PlyError {}
 /// A mesh read from a PLY file, and what the reader left out.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PlyMesh {
-    /// The triangles, in the file's coordinates.
+    /// The triangles, in the file's coordinates: those of the faces that are not quads, then
+    /// two per quad ((v₀, v₁, v₂), (v₀, v₂, v₃)), in the file's order.
     pub mesh: TriangleMesh,
+    /// How many faces are quads: their triangles are the last 2·`quads` of `mesh`.
+    pub quads: usize,
     /// Faces with fewer than three vertices, which make no triangle and are skipped.
     pub skipped_faces: u64,
+}
+
+impl PlyMesh {
+    /// The mesh as pbrt-v4 reads it: the triangles of the faces that are not quads, and the
+    /// quads as bilinear patches (p₀₀, p₁₀, p₀₁, p₁₁) = (v₀, v₁, v₃, v₂), both on the file's
+    /// vertices; `None` for a part without faces.
+    pub fn split_quads(self) -> (Option<TriangleMesh>, Option<BilinearMesh>) {
+        let mut tris = self.mesh;
+        let plain = tris.indices.len() - 6 * self.quads;
+        let patches: Vec<u32> = tris.indices[plain..]
+            .chunks_exact(6)
+            .flat_map(|t| [t[0], t[1], t[5], t[2]])
+            .collect();
+        tris.indices.truncate(plain);
+        let quads = (!patches.is_empty()).then(|| BilinearMesh {
+            positions: tris.positions.clone(),
+            normals: tris.normals.clone(),
+            uvs: tris.uvs.clone(),
+            indices: patches,
+            flip_normal: tris.flip_normal,
+        });
+        let tris = (!tris.indices.is_empty()).then_some(tris);
+        (tris, quads)
+    }
 }
 
 /// Reads a PLY file (gunzipping it first when its name ends in `.gz`).
@@ -214,7 +245,8 @@ enum Polygons {
 }
 
 /// Reads an element of index lists (the property at `list`), appending triangles to
-/// `indices`; returns how many faces had fewer than three vertices.
+/// `indices` and the vertices of quads to `quads`; returns how many faces had fewer than three
+/// vertices.
 fn read_polygons<B: Body>(
     body: &mut B,
     el: &Element,
@@ -222,6 +254,7 @@ fn read_polygons<B: Body>(
     polygons: Polygons,
     vertex_count: usize,
     indices: &mut Vec<u32>,
+    quads: &mut Vec<u32>,
 ) -> Result<u64, String> {
     let Kind::List { count, item } = el.props[list].kind else {
         return Err(format!(
@@ -258,6 +291,11 @@ fn read_polygons<B: Body>(
                 Polygons::Faces if n < 3 => {
                     body.skip(item, n).map_err(describe)?;
                     skipped += 1;
+                }
+                Polygons::Faces if n == 4 => {
+                    for _ in 0..4 {
+                        quads.push(vertex(body.int(item).map_err(describe)?)?);
+                    }
                 }
                 Polygons::Faces => {
                     let first = vertex(body.int(item).map_err(describe)?)?;
@@ -314,6 +352,7 @@ fn read_body<B: Body>(body: &mut B, header: &Header) -> Result<PlyMesh, String> 
         })?;
     let layout = VertexLayout::new(vertex_el)?;
     let mut out = PlyMesh::default();
+    let mut quads = Vec::new();
     for el in &header.elements {
         let polygons = match el.name.as_str() {
             "vertex" => {
@@ -343,7 +382,16 @@ fn read_body<B: Body>(body: &mut B, header: &Header) -> Result<PlyMesh, String> 
             polygons,
             vertex_count,
             &mut out.mesh.indices,
+            &mut quads,
         )?;
+    }
+    // The quads' triangles last: (v₀, v₁, v₂), (v₀, v₂, v₃).
+    out.quads = quads.len() / 4;
+    out.mesh.indices.reserve_exact(6 * out.quads);
+    for q in quads.chunks_exact(4) {
+        out.mesh
+            .indices
+            .extend_from_slice(&[q[0], q[1], q[2], q[0], q[2], q[3]]);
     }
     out.mesh.validate()?;
     Ok(out)

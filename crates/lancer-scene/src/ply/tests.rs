@@ -57,6 +57,40 @@ fn ascii_quad_becomes_two_triangles() {
     assert!(!m.flip_normal);
 }
 
+/// A triangle, a quad and a pentagon: the quad's two triangles come last, and pbrt-v4's split
+/// gives the other faces' triangles and one bilinear patch (v₀, v₁, v₃, v₂).
+#[test]
+fn quads_become_bilinear_patches_in_pbrts_order() {
+    let text = "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\n\
+                property float z\nproperty float u\nproperty float v\nelement face 3\n\
+                property list uchar int vertex_indices\nend_header\n\
+                0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n2 0 0 2 0\n2 1 0 2 1\n\
+                3 1 4 5\n4 0 1 2 3\n5 0 1 4 5 2\n";
+    let ply = parse_str(text).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(ply.quads, 1);
+    assert_eq!(
+        ply.mesh.indices,
+        vec![1, 4, 5, 0, 1, 4, 0, 4, 5, 0, 5, 2, 0, 1, 2, 0, 2, 3]
+    );
+    let (tris, patches) = ply.clone().split_quads();
+    let (tris, patches) = (tris.expect("triangles"), patches.expect("patches"));
+    assert_eq!(tris.indices, vec![1, 4, 5, 0, 1, 4, 0, 4, 5, 0, 5, 2]);
+    assert_eq!(patches.indices, vec![0, 1, 3, 2]);
+    assert_eq!(patches.positions, ply.mesh.positions);
+    assert_eq!(patches.uvs, ply.mesh.uvs);
+    // Quads only: no triangle mesh.
+    let (tris, patches) = parse_str(SQUARE).unwrap().split_quads();
+    assert!(tris.is_none());
+    assert_eq!(patches.expect("patches").indices, vec![0, 1, 3, 2]);
+    // No quads: no patches.
+    let tri = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+               property float z\nelement face 1\nproperty list uchar int vertex_indices\n\
+               end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    let (tris, patches) = parse_str(tri).unwrap().split_quads();
+    assert_eq!(tris.expect("a triangle").indices, vec![0, 1, 2]);
+    assert!(patches.is_none());
+}
+
 #[test]
 fn crlf_header_and_polygons_as_fans() {
     let text = "ply\r\nformat ascii 1.0\r\nelement vertex 5\r\nproperty double x\r\n\

@@ -69,13 +69,46 @@ fn plymesh_reads_the_file_beside_the_scene() {
         s.object_to_world.point(lancer::math::Vec3::ZERO),
         lancer::math::Vec3::Z * 5.0
     );
-    let Geometry::TriangleMesh(m) = &s.geometry else {
-        panic!("not a triangle mesh: {:?}", s.geometry)
+    // Quads are bilinear patches, as pbrt-v4's: face (v₀, v₁, v₂, v₃) is (p₀₀, p₁₀, p₀₁, p₁₁)
+    // = (v₀, v₁, v₃, v₂).
+    let Geometry::BilinearMesh(m) = &s.geometry else {
+        panic!("not a bilinear mesh: {:?}", s.geometry)
     };
-    assert_eq!(m.triangle_count(), 6);
+    assert_eq!(m.patch_count(), 3);
     assert_eq!(m.positions.len(), 8);
-    assert_eq!(&m.indices[..6], &[0, 2, 3, 0, 3, 1]);
+    assert_eq!(&m.indices[..8], &[0, 2, 1, 3, 2, 4, 3, 5]);
     assert!(!m.flip_normal);
+}
+
+/// A PLY of triangles and quads makes two shapes under the same attributes, as pbrt-v4 makes
+/// a triangle mesh and a bilinear patch mesh.
+#[test]
+fn plymesh_of_triangles_and_quads_makes_both() {
+    let dir = ScratchDir::new("mixed");
+    let ply = "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n\
+               property float z\nelement face 2\nproperty list uchar int vertex_indices\n\
+               end_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 0 0\n4 0 1 2 3\n3 1 4 2\n";
+    std::fs::write(dir.join("mixed.ply"), ply).unwrap();
+    std::fs::write(
+        dir.join("scene.pbrt"),
+        "WorldBegin\nMaterial \"conductor\"\nTranslate 0 0 5\n\
+         Shape \"plymesh\" \"string filename\" \"mixed.ply\"\n",
+    )
+    .unwrap();
+    let loaded = load(&dir.join("scene.pbrt")).unwrap_or_else(|e| panic!("{e}"));
+    assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
+    let d = &loaded.desc;
+    assert_eq!(d.shapes.len(), 2);
+    let Geometry::TriangleMesh(t) = &d.shapes[0].geometry else {
+        panic!("first the triangles: {:?}", d.shapes[0].geometry)
+    };
+    assert_eq!(t.indices, vec![1, 4, 2]);
+    let Geometry::BilinearMesh(b) = &d.shapes[1].geometry else {
+        panic!("then the patches: {:?}", d.shapes[1].geometry)
+    };
+    assert_eq!(b.indices, vec![0, 1, 3, 2]);
+    assert_eq!(d.shapes[0].material, d.shapes[1].material);
+    assert_eq!(d.shapes[0].object_to_world, d.shapes[1].object_to_world);
 }
 
 #[test]
@@ -136,7 +169,13 @@ fn displacement_is_warned_about_and_the_mesh_kept() {
     )
     .unwrap();
     let loaded = load(&dir.join("scene.pbrt")).unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(meshes(&loaded.desc).len(), 2);
+    // The displaced mesh keeps its quads' triangles (as pbrt-v4 displaces them), the other
+    // makes patches.
+    assert_eq!(meshes(&loaded.desc).len(), 1);
+    assert!(matches!(
+        loaded.desc.shapes[1].geometry,
+        Geometry::BilinearMesh(_)
+    ));
     let w: Vec<_> = loaded.warnings.iter().map(|w| w.message.as_str()).collect();
     assert_eq!(w.len(), 2, "{w:?}");
     assert!(w[0].contains("displacement of a \"plymesh\" is not supported yet"));

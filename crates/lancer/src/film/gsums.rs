@@ -136,8 +136,9 @@ pub struct GPixel {
 }
 
 impl GPixel {
-    /// Adds a sample of film colour `rgb` (after the NaN and `maxcomponentvalue` rules), filter
-    /// weight `w`, and its visible surface, already in output space.
+    /// Adds a sample of colour `rgb` (the sensor's, whose variance pbrt-v4 keeps, after the NaN
+    /// and `maxcomponentvalue` rules: [`crate::gbuffer::variance_rgb`]), filter weight `w`,
+    /// and its visible surface, already in output space.
     pub fn add(&mut self, rgb: Rgb, w: f32, vs: Option<&VisibleSurface>) {
         let w = w as f64;
         self.weight += w;

@@ -27,6 +27,10 @@ pub struct FilmSample<'a> {
     /// Its colour (the scene's film response of its radiance), after the rules for NaN
     /// (black) and `maxcomponentvalue` (scaled down to it).
     pub rgb: Rgb,
+    /// Its colour in the sensor's RGB, with those rules applied there
+    /// ([`crate::gbuffer::variance_rgb`]); only for a tile whose
+    /// [`FilmTile::NEEDS_SENSOR_RGB`] is true (black otherwise).
+    pub sensor_rgb: Rgb,
     /// Its radiance at its wavelengths, as the integrator returned it (spectral mode).
     pub l: SampledSpectrum,
     /// Its wavelengths (none in RGB mode, or for an integrator that computes no radiance).
@@ -41,6 +45,9 @@ pub trait FilmTile: Send {
     /// True when [`FilmTile::add_sample`] reads [`FilmSample::surface`]; the loop traces the
     /// camera ray's first surface only then.
     const NEEDS_SURFACE: bool = false;
+
+    /// True when [`FilmTile::add_sample`] reads [`FilmSample::sensor_rgb`].
+    const NEEDS_SENSOR_RGB: bool = false;
 
     /// The scale of the camera ray differentials the visible surface is found with (only
     /// read when `NEEDS_SURFACE`).
@@ -128,6 +135,8 @@ impl GbufferTile {
 
 impl FilmTile for GbufferTile {
     const NEEDS_SURFACE: bool = true;
+    // pbrt-v4's variance is of the sensor's RGB.
+    const NEEDS_SENSOR_RGB: bool = true;
 
     fn differential_scale(&self) -> f32 {
         super::gsums::differential_scale(self.config.spp)
@@ -141,7 +150,7 @@ impl FilmTile for GbufferTile {
     fn add_sample(&mut self, pixel: usize, sample: &FilmSample<'_>, weight: f32) {
         self.sums[pixel].add(sample.rgb, weight);
         let vs = sample.surface.map(|v| self.config.to_output(v));
-        self.aux[pixel].add(sample.rgb, weight, vs.as_ref());
+        self.aux[pixel].add(sample.sensor_rgb, weight, vs.as_ref());
     }
 
     fn colour(&self) -> &[PixelSum] {

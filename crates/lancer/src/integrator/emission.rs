@@ -43,6 +43,6 @@ pub(crate) fn emitted(
     lambda: Option<&SampledWavelengths>,
 ) -> SampledSpectrum {
     emission_towards(scene, hit, wo).map_or(SampledSpectrum::ZERO, |(i, l)| {
-        scene.light_radiance(i, lambda, l, 1.0)
+        scene.light_radiance(i, lambda, l, 1.0, -wo)
     })
 }

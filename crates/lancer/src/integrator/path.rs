@@ -127,7 +127,7 @@ pub fn li_observed<O: PathObserver>(
                 let le = if le == Rgb::ZERO {
                     SampledSpectrum::ZERO
                 } else {
-                    scene.light_radiance(i, wavelengths.as_ref(), le, 1.0)
+                    scene.light_radiance(i, wavelengths.as_ref(), le, 1.0, ray.d)
                 };
                 if le == SampledSpectrum::ZERO {
                     continue;
@@ -223,7 +223,14 @@ pub fn li_observed<O: PathObserver>(
                         };
                         l += beta
                             * f
-                            * memo.light_radiance(scene, i, wavelengths.as_ref(), ls.l, ls.factor)
+                            * memo.light_radiance(
+                                scene,
+                                i,
+                                wavelengths.as_ref(),
+                                ls.l,
+                                ls.factor,
+                                ls.wi,
+                            )
                             * (w / p_l);
                     }
                 }

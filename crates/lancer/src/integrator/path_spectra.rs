@@ -73,6 +73,7 @@ impl PathSpectra {
         lambda: Option<&SampledWavelengths>,
         l: Rgb,
         factor: f32,
+        wi: Vec3,
     ) -> SampledSpectrum {
         // RGB mode: the colour's lanes, as `Scene::light_radiance` gives them (without
         // preparing the scene's spectra, which RGB mode never does).
@@ -81,11 +82,11 @@ impl PathSpectra {
         }
         let spectra = scene.spectra();
         if spectra.lights[i].is_none() {
-            return scene.light_radiance(i, lambda, l, factor);
+            return scene.light_radiance(i, lambda, l, factor, wi);
         }
         let key = spectra.light_keys[i];
         if self.light_key != key {
-            self.light = scene.light_radiance(i, lambda, l, 1.0);
+            self.light = scene.light_radiance(i, lambda, l, 1.0, wi);
             self.light_key = key;
         }
         self.light * factor
@@ -101,7 +102,7 @@ impl PathSpectra {
         lambda: Option<&SampledWavelengths>,
     ) -> SampledSpectrum {
         match super::emission::emission_towards(scene, hit, wo) {
-            Some((i, l)) => self.light_radiance(scene, i, lambda, l, 1.0),
+            Some((i, l)) => self.light_radiance(scene, i, lambda, l, 1.0, -wo),
             None => SampledSpectrum::ZERO,
         }
     }

@@ -166,5 +166,5 @@ fn direct_light(
     } else {
         power_heuristic(p_l, bsdf.pdf(wo, ls.wi, TransportMode::Radiance))
     };
-    f * scene.light_radiance(i, lambda, ls.l, ls.factor) * (w / p_l)
+    f * scene.light_radiance(i, lambda, ls.l, ls.factor, ls.wi) * (w / p_l)
 }

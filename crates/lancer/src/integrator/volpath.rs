@@ -275,7 +275,7 @@ impl Walk<'_> {
             if le == crate::math::Rgb::ZERO {
                 continue;
             }
-            let le = scene.light_radiance(i, self.lambda(), le, 1.0);
+            let le = scene.light_radiance(i, self.lambda(), le, 1.0, s.ray.d);
             match (s.depth == 0 || s.specular_bounce, s.prev_ctx) {
                 (false, Some(ctx)) => {
                     let p_l = scene.light_sampler().pmf(&ctx, i)
@@ -455,7 +455,7 @@ impl Walk<'_> {
         else {
             return SampledSpectrum::ZERO;
         };
-        let l = scene.light_radiance(i, self.lambda(), ls.l, ls.factor);
+        let l = scene.light_radiance(i, self.lambda(), ls.l, ls.factor, ls.wi);
         let p_l = pmf * ls.pdf;
         r_l *= r_p * p_l;
         r_u *= r_p * scatter_pdf;

@@ -30,7 +30,7 @@ pub fn li(
             .iter()
             .map(|&i| {
                 let i = i as usize;
-                scene.light_radiance(i, lambda, scene.lights()[i].le(ray.d), 1.0)
+                scene.light_radiance(i, lambda, scene.lights()[i].le(ray.d), 1.0, ray.d)
             })
             .sum();
     };
@@ -75,7 +75,7 @@ pub fn li(
             }
             // The shadow ray: is the segment from the point to the light free?
             if !scene.intersect_p(&si.spawn_ray_to(ls.p_light)) {
-                l += f * scene.light_radiance(i, lambda, ls.l, ls.factor) / ls.pdf;
+                l += f * scene.light_radiance(i, lambda, ls.l, ls.factor, ls.wi) / ls.pdf;
             }
         }
     }

@@ -98,7 +98,8 @@ impl Light {
             Light::Distant { .. }
             | Light::UniformInfinite { .. }
             | Light::ImageInfinite(_)
-            | Light::PortalInfinite(_) => {
+            | Light::PortalInfinite(_)
+            | Light::Sunsky(_) => {
                 return LightExtent::Unbounded;
             }
         };

@@ -17,6 +17,7 @@ mod portal;
 mod projection;
 mod sample;
 mod sampler;
+pub mod sunsky;
 
 pub use area::Emitter;
 pub use area_image::{AreaImage, mean_texel};
@@ -30,6 +31,7 @@ pub use portal::{PortalInfiniteLight, portal_frame};
 pub use projection::{ProjectionLight, projected_sum};
 pub use sample::{LightLiSample, LightSampleContext};
 pub use sampler::{LightSampler, LightSamplerKind};
+pub use sunsky::{SunskyLight, SunskyParams};
 
 use crate::math::{Frame, INV_PI, PackedRgb, Rgb, Vec2, Vec3, smooth_step};
 use crate::shape::{Shape, TriangleMesh};
@@ -101,6 +103,8 @@ pub enum Light {
     Goniometric(Box<GoniometricLight>),
     /// pbrt-v4's `projection`: a point light projecting an image.
     Projection(Box<ProjectionLight>),
+    /// lancer's `sunsky`: the Hosek–Wilkie sky and sun (boxed: its sampling table).
+    Sunsky(Box<SunskyLight>),
 }
 
 impl Light {
@@ -108,7 +112,10 @@ impl Light {
     pub fn is_infinite(&self) -> bool {
         matches!(
             self,
-            Light::UniformInfinite { .. } | Light::ImageInfinite(_) | Light::PortalInfinite(_)
+            Light::UniformInfinite { .. }
+                | Light::ImageInfinite(_)
+                | Light::PortalInfinite(_)
+                | Light::Sunsky(_)
         )
     }
 
@@ -247,6 +254,7 @@ impl Light {
             }
             Light::ImageInfinite(light) => light.sample_li(ctx, u),
             Light::PortalInfinite(light) => light.sample_li(ctx, u),
+            Light::Sunsky(light) => light.sample_li(ctx, u),
             Light::Goniometric(light) => light.sample_li(ctx),
             Light::Projection(light) => light.sample_li(ctx),
         }
@@ -267,6 +275,7 @@ impl Light {
             }
             Light::ImageInfinite(light) => light.pdf_li(wi),
             Light::PortalInfinite(light) => light.pdf_li(ctx.p, wi),
+            Light::Sunsky(light) => light.pdf_li(wi),
             _ => 0.0,
         }
     }
@@ -300,6 +309,7 @@ impl Light {
             // Φ = π·r²·∫L dω.
             Light::ImageInfinite(light) => light.power(),
             Light::PortalInfinite(light) => light.power(),
+            Light::Sunsky(light) => light.power(),
             Light::Goniometric(light) => light.power(),
             Light::Projection(light) => light.power(),
         }
@@ -315,7 +325,10 @@ impl Light {
             Light::Area { l, image: None, .. } => Some((*l).into()),
             Light::Area { .. } => None,
             Light::Goniometric(light) => Some(light.intensity()),
-            Light::ImageInfinite(_) | Light::PortalInfinite(_) | Light::Projection(_) => None,
+            Light::ImageInfinite(_)
+            | Light::PortalInfinite(_)
+            | Light::Projection(_)
+            | Light::Sunsky(_) => None,
         }
     }
 
@@ -326,6 +339,7 @@ impl Light {
             Light::UniformInfinite { l, .. } => *l,
             Light::ImageInfinite(light) => light.le(d),
             Light::PortalInfinite(light) => light.le(d),
+            Light::Sunsky(light) => light.le(d),
             _ => Rgb::ZERO,
         }
     }

@@ -17,7 +17,7 @@ use crate::camera::Camera;
 use crate::camera::footprint::Footprints;
 use crate::light::{
     AreaImage, Emitter, GoniometricLight, ImageInfiniteLight, Light, LightDistribution,
-    LightSampler, PortalInfiniteLight, ProjectionLight,
+    LightSampler, PortalInfiniteLight, ProjectionLight, SunskyLight,
 };
 use crate::material::{Material, MaterialDesc};
 use crate::math::{Bounds3, PackedRgb, PackedVec3, Rgb, Transform, Vec3};
@@ -675,6 +675,14 @@ fn light_of(l: &LightDesc, scene_radius: f32) -> Result<Light, BuildError> {
             ImageInfiniteLight::new(*light_to_world, image.clone(), *l, scene_radius)
                 .map_err(BuildError::Invalid)?,
         )),
+        LightDesc::Sunsky {
+            light_to_world,
+            params,
+        } => Light::Sunsky(Box::new(SunskyLight::new(
+            *light_to_world,
+            params,
+            scene_radius,
+        ))),
         LightDesc::PortalInfinite {
             light_to_world,
             l,

@@ -33,7 +33,9 @@ impl LightDesc {
             LightDesc::Point { .. } => "point",
             LightDesc::Spot { .. } => "spot",
             LightDesc::Distant { .. } => "distant",
-            LightDesc::Infinite { .. } | LightDesc::PortalInfinite { .. } => "infinite",
+            LightDesc::Infinite { .. }
+            | LightDesc::PortalInfinite { .. }
+            | LightDesc::Sunsky { .. } => "infinite",
             LightDesc::Goniometric { .. } => "goniometric",
             LightDesc::Projection { .. } => "projection",
         }

@@ -512,6 +512,13 @@ pub enum LightDesc {
         /// Square equal-area image; its channel average modulates the intensity.
         image: Arc<crate::image::Image>,
     },
+    /// lancer's `sunsky` light: the Hosek–Wilkie sky and sun ([`crate::light::SunskyLight`]).
+    Sunsky {
+        /// Light space (zenith +z) → world space.
+        light_to_world: Transform,
+        /// The sun's direction, turbidity, albedo and scales.
+        params: crate::light::SunskyParams,
+    },
     /// pbrt-v4's `projection` light: a slide projector.
     Projection {
         /// Light space → world space (the CTM).
@@ -560,6 +567,7 @@ impl LightDesc {
             }
             // The goniometric and projection lights check their images as they are made.
             LightDesc::Goniometric { .. } | LightDesc::Projection { .. } => Ok(()),
+            LightDesc::Sunsky { params, .. } => params.check().map_or(Ok(()), Err),
         }
     }
 }

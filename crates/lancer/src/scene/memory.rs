@@ -150,6 +150,7 @@ impl Scene {
                 .map(|l| match l {
                     Light::ImageInfinite(e) => size_of_val(&**e) + e.table_bytes(),
                     Light::PortalInfinite(e) => size_of_val(&**e) + e.table_bytes(),
+                    Light::Sunsky(e) => size_of_val(&**e) + e.table_bytes(),
                     _ => 0,
                 })
                 .sum::<usize>()

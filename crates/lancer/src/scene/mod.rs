@@ -538,9 +538,11 @@ impl Scene {
     }
 
     /// Emission `l` of light `i`, which is its constant colour times `factor` (see
-    /// [`crate::light::LightLiSample::factor`]), as transport lanes: in spectral mode the
-    /// light's prepared spectrum as an illuminant, times `factor` (lights without a constant
-    /// colour uplift `l` itself); in RGB mode `l`'s lanes (r, g, b, b).
+    /// [`crate::light::LightLiSample::factor`]), arriving along direction `wi` (towards the
+    /// light), as transport lanes: in spectral mode the light's prepared spectrum as an
+    /// illuminant, times `factor` (lights without a constant colour uplift `l` itself, but the
+    /// sun and sky, spectral by nature, give their spectrum along `wi`); in RGB mode `l`'s
+    /// lanes (r, g, b, b).
     #[inline]
     pub fn light_radiance(
         &self,
@@ -548,12 +550,16 @@ impl Scene {
         lambda: Option<&SampledWavelengths>,
         l: Rgb,
         factor: f32,
+        wi: Vec3,
     ) -> SampledSpectrum {
         match lambda {
             None => rgb_lanes(l),
             Some(w) => match &self.spectra().lights[i] {
                 Some(sp) => w.sample_prepared_illuminant(sp) * factor,
-                None => w.illuminant(l),
+                None => match &self.lights[i] {
+                    Light::Sunsky(sky) => sky.le_spectral(wi, w),
+                    _ => w.illuminant(l),
+                },
             },
         }
     }

@@ -175,6 +175,9 @@ pub struct FilmResponse {
     spectral: Mat3,
     /// RGB mode: the output RGB from the sample's linear sRGB.
     rgb: Mat3,
+    /// The sensor's RGB from the output RGB: the inverse of pbrt-v4's
+    /// `outputRGBFromSensorRGB` (for the CIE 1931 sensor, whose RGB is XYZ, XYZ from output).
+    sensor_from_output: Mat3,
 }
 
 impl FilmResponse {
@@ -214,7 +217,14 @@ impl FilmResponse {
             rows,
             spectral: spectral.as_mat3(),
             rgb: rgb.as_mat3(),
+            sensor_from_output: out.inverse().as_mat3(),
         })
+    }
+
+    /// The sensor's RGB of a sample whose output RGB is `output` (pbrt-v4's `ToSensorRGB`,
+    /// before `outputRGBFromSensorRGB`).
+    pub fn sensor_rgb(&self, output: Rgb) -> Rgb {
+        (self.sensor_from_output * Vec3::from(output)).into()
     }
 
     /// The output colour of a camera sample's radiance `l`: in spectral mode (`lambda`) the
@@ -292,6 +302,25 @@ mod tests {
         let src = integrate(|l| DVec3::from(cie::cmf(l)) * daylight(3000.0, l));
         let rgb = ColorSpace::Srgb.xyz_to_rgb() * m * (src / src.y);
         assert!((rgb - DVec3::ONE).abs().max_element() < 2e-3, "{rgb}");
+    }
+
+    /// The sensor's RGB taken back from the output: with a camera's curves, its own RGB
+    /// (the output is `out` times it); with white balance on the CIE 1931 sensor, XYZ before
+    /// the balance.
+    #[test]
+    fn sensor_rgb_inverts_the_output_matrix() {
+        let s = Sensor::from_name("canon_eos_5d_mkiv").unwrap();
+        let r = FilmResponse::new(s, 5000.0, ColorSpace::Srgb).unwrap();
+        let out = ColorSpace::Srgb.xyz_to_rgb() * xyz_from_sensor(s, 5000.0, ColorSpace::Srgb);
+        let cam = DVec3::new(0.3, 0.5, 0.2);
+        let back = r.sensor_rgb((out * cam).as_vec3().into());
+        assert!((back.as_dvec3() - cam).abs().max_element() < 1e-6, "{back}");
+        let r = FilmResponse::new(Sensor::Cie1931, 3000.0, ColorSpace::Srgb).unwrap();
+        let m = xyz_from_sensor(Sensor::Cie1931, 3000.0, ColorSpace::Srgb);
+        let xyz = DVec3::new(0.4, 0.35, 0.1);
+        let output = ColorSpace::Srgb.xyz_to_rgb() * m * xyz;
+        let back = r.sensor_rgb(output.as_vec3().into());
+        assert!((back.as_dvec3() - xyz).abs().max_element() < 1e-6, "{back}");
     }
 
     #[test]
