@@ -88,6 +88,14 @@ impl Scene {
         )
         .map_err(BuildError::BadCamera)?;
         camera.set_motion(desc.motion.camera);
+        // Light paths reach the raster points the film reconstructs (its bounds grown by
+        // the filter's radius).
+        let b = desc.film.render_bounds();
+        camera.set_film_extent(
+            [b.x0, b.x1, b.y0, b.y1],
+            desc.film.xresolution as f32 * desc.film.yresolution as f32,
+            desc.filter.radius(),
+        );
         let extents: Vec<_> = lights
             .lights
             .iter()
