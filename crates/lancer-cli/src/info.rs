@@ -55,6 +55,18 @@ fn integrator_json(i: &Integrator) -> Value {
             v["cossample"] = json!(cos_sample);
             v["maxdistance"] = json!(max_distance);
         }
+        Integrator::LightPath { max_depth } => v["maxdepth"] = json!(max_depth),
+        Integrator::Bdpt {
+            max_depth,
+            regularize,
+            visualize_strategies,
+            visualize_weights,
+        } => {
+            v["maxdepth"] = json!(max_depth);
+            v["regularize"] = json!(regularize);
+            v["visualizestrategies"] = json!(visualize_strategies);
+            v["visualizeweights"] = json!(visualize_weights);
+        }
         Integrator::Normals | Integrator::Depth => {}
     }
     v
@@ -384,5 +396,18 @@ mod tests {
             integrator_text(&integrator_json(&Integrator::Normals)),
             "normals"
         );
+        let v = integrator_json(&Integrator::Bdpt {
+            max_depth: 8,
+            regularize: false,
+            visualize_strategies: true,
+            visualize_weights: false,
+        });
+        assert_eq!(
+            v,
+            json!({ "name": "bdpt", "maxdepth": 8, "regularize": false,
+                    "visualizestrategies": true, "visualizeweights": false })
+        );
+        let v = integrator_json(&Integrator::LightPath { max_depth: 5 });
+        assert_eq!(integrator_text(&v), "lightpath (maxdepth 5)");
     }
 }

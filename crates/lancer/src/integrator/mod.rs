@@ -17,8 +17,11 @@
 /// noise bar, and the mean relmse favours 2 on both scenes.
 pub const RR_AFTER_DEPTH: u32 = 2;
 
+pub mod bdpt;
 mod debug;
 mod emission;
+mod light_emit;
+pub mod lightpath;
 mod path;
 mod path_spectra;
 pub mod specular_differentials;
@@ -37,6 +40,11 @@ use crate::texture::SpectrumTex;
 pub(crate) use emission::emitted;
 use path_spectra::PathSpectra;
 
+/// Where light paths put what they bring to the camera: a film point (raster space) and the
+/// radiance arriving there, in the lanes the integrator works in (spectral or RGB). The film
+/// adds it, filtered, to the pixels around that point.
+pub type Splat<'a> = &'a mut dyn FnMut(crate::math::Vec2, SampledSpectrum);
+
 impl Integrator {
     /// The pbrt-v4 name of this integrator (`Integrator "…"`): `path`, `volpath`, `whitted`,
     /// `ambientocclusion`, and lancer's debug views `normals` and `depth`.
@@ -46,6 +54,8 @@ impl Integrator {
             Integrator::Path { .. } => "path",
             Integrator::VolPath { .. } => "volpath",
             Integrator::AmbientOcclusion { .. } => "ambientocclusion",
+            Integrator::LightPath { .. } => "lightpath",
+            Integrator::Bdpt { .. } => "bdpt",
             Integrator::Normals => "normals",
             Integrator::Depth => "depth",
         }
@@ -56,8 +66,54 @@ impl Integrator {
     pub fn computes_radiance(&self) -> bool {
         matches!(
             self,
-            Integrator::Whitted { .. } | Integrator::Path { .. } | Integrator::VolPath { .. }
+            Integrator::Whitted { .. }
+                | Integrator::Path { .. }
+                | Integrator::VolPath { .. }
+                | Integrator::LightPath { .. }
+                | Integrator::Bdpt { .. }
         )
+    }
+
+    /// True for the integrators that trace light paths and splat what they carry anywhere on
+    /// the film ([`Integrator::li_splatting`]): `lightpath` and `bdpt`. They need a
+    /// perspective camera ([`crate::camera::Camera::light_path_support`]).
+    pub fn splats(&self) -> bool {
+        matches!(self, Integrator::LightPath { .. } | Integrator::Bdpt { .. })
+    }
+
+    /// [`Integrator::li`], with what light paths bring to other points of the film given to
+    /// `splat` (film point in raster space, radiance in the same lanes as the result). For
+    /// the integrators that do not splat, the same as `li`.
+    pub fn li_splatting(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        sampler: &mut Sampler,
+        lambda: Option<&SampledWavelengths>,
+        splat: Splat<'_>,
+    ) -> SampledSpectrum {
+        match *self {
+            Integrator::LightPath { max_depth } => {
+                lightpath::li(scene, sampler, lambda, max_depth, splat)
+            }
+            Integrator::Bdpt {
+                max_depth,
+                regularize,
+                ..
+            } => bdpt::li(
+                scene,
+                ray,
+                sampler,
+                lambda,
+                bdpt::BdptOptions {
+                    max_depth,
+                    regularize,
+                },
+                splat,
+                None,
+            ),
+            _ => self.li(scene, ray, sampler, lambda),
+        }
     }
 
     /// [`Integrator::li`], recording the path's vertices in `path` (path tracing only; the
@@ -108,6 +164,12 @@ impl Integrator {
                 max_depth,
                 regularize,
             } => volpath::li(scene, ray, sampler, lambda, max_depth, regularize),
+            // Without a film to splat into, the light-path integrators give only what reaches
+            // the camera ray's own pixel (bdpt's t ≥ 2 strategies, nothing for lightpath): a
+            // film renders them through `li_splatting`.
+            Integrator::LightPath { .. } | Integrator::Bdpt { .. } => {
+                self.li_splatting(scene, ray, sampler, lambda, &mut |_, _| {})
+            }
             // The debug views are RGB quantities, as lanes (r, g, b, b).
             Integrator::Normals => rgb_lanes(debug::normals(scene, ray)),
             Integrator::Depth => rgb_lanes(debug::depth(scene, ray)),

@@ -256,6 +256,24 @@ pub enum Integrator {
         /// As for [`Integrator::Path`].
         regularize: bool,
     },
+    /// Light tracing (pbrt-v4's `lightpath`): paths from the lights, each vertex connected
+    /// to the camera and splatted onto the film.
+    LightPath {
+        /// Maximum number of bounces.
+        max_depth: u32,
+    },
+    /// Bidirectional path tracing (pbrt-v4's `bdpt`): every way of joining a light subpath
+    /// to a camera subpath, weighted by multiple importance sampling.
+    Bdpt {
+        /// Maximum number of bounces.
+        max_depth: u32,
+        /// As for [`Integrator::Path`].
+        regularize: bool,
+        /// pbrt-v4's `visualizestrategies`: one image per strategy (s, t), unweighted.
+        visualize_strategies: bool,
+        /// pbrt-v4's `visualizeweights`: one image per strategy, weighted.
+        visualize_weights: bool,
+    },
     /// Debug view: shading normals mapped to colours, (n + 1)/2.
     Normals,
     /// Debug view: distance to the first hit.
