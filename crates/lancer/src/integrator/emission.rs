@@ -57,11 +57,11 @@ pub(crate) fn emission_at(
     uv: crate::math::Vec2,
     w: Vec3,
 ) -> Option<(usize, Rgb)> {
-    let e = scene.prims[prim as usize].emission?;
+    let e = scene.prim(prim).emission?;
     if !(e.two_sided || n.dot(w) > 0.0) {
         return None;
     }
-    let l = match &scene.lights[e.light as usize] {
+    let l = match &scene.lights()[e.light as usize] {
         crate::light::Light::Area {
             image: Some(img), ..
         } if e.spectrum == crate::scene::IMAGE_EMISSION => img.le(uv),

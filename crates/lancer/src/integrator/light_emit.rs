@@ -69,7 +69,7 @@ pub(crate) fn sample_le(scene: &Scene, i: usize, u1: Vec2, u2: Vec2) -> Option<L
         pdf_pos: 1.0,
         pdf_dir,
     };
-    let s = match &scene.lights[i] {
+    let s = match &scene.lights()[i] {
         // A uniform direction: p_dir = 1/4π.
         Light::Point { p, intensity } => point(
             *p,
@@ -161,7 +161,7 @@ pub(crate) fn sample_le(scene: &Scene, i: usize, u1: Vec2, u2: Vec2) -> Option<L
         } => {
             // A point uniform by area, a cosine-weighted direction about its normal (either
             // side, by halves of u2.x, when two-sided).
-            let ss = scene.shapes[*prim as usize].sample_area(u1, &scene.meshes)?;
+            let ss = scene.shapes()[*prim as usize].sample_area(u1, scene.meshes())?;
             let (local, pdf_dir) = if *two_sided {
                 let (ux, flip) = if u2.x < 0.5 {
                     (u2.x * 2.0, false)
@@ -204,7 +204,7 @@ pub(crate) fn sample_le(scene: &Scene, i: usize, u1: Vec2, u2: Vec2) -> Option<L
 /// Densities (p_pos, p_dir) with which [`sample_le`] leaves light `i` from `p` (on the light,
 /// with normal `n` for area lights) in unit direction `w`.
 pub(crate) fn pdf_le(scene: &Scene, i: usize, n: Option<Vec3>, w: Vec3) -> (f32, f32) {
-    match &scene.lights[i] {
+    match &scene.lights()[i] {
         Light::Point { .. } => (0.0, uniform_sphere_pdf()),
         Light::Spot {
             axis,

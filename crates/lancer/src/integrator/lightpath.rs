@@ -27,10 +27,10 @@ pub fn li(
     max_depth: u32,
     splat: Splat<'_>,
 ) -> SampledSpectrum {
-    let camera = &scene.camera;
+    let camera = &scene.camera();
     let scale = camera.splat_scale();
     let mut wavelengths = lambda.copied();
-    let Some((light, p_l)) = scene.light_distribution.sample(sampler.get_1d()) else {
+    let Some((light, p_l)) = scene.light_distribution().sample(sampler.get_1d()) else {
         return SampledSpectrum::ZERO;
     };
     let (u1, u2) = (sampler.get_2d(), sampler.get_2d());
@@ -45,7 +45,7 @@ pub fn li(
     {
         let cos = n.dot(cs.wi);
         let two_sided = matches!(
-            scene.lights[light],
+            scene.lights()[light],
             crate::light::Light::Area {
                 two_sided: true,
                 ..

@@ -58,7 +58,7 @@ fn g(scene: &Scene, a: &Vertex, b: &Vertex) -> f32 {
 /// The normal of area light `i` at `p`, a point its `sample_li` chose (zero for the other
 /// lights). Triangles and spheres know it; other shapes are asked by a ray from `from`.
 fn light_normal(scene: &Scene, i: usize, p: Vec3, from: &Vertex) -> Vec3 {
-    match &scene.lights[i] {
+    match &scene.lights()[i] {
         Light::Area { emitter, prim, .. } => match emitter {
             Emitter::Triangle { n, .. } => Vec3::from(*n),
             Emitter::Sphere {
@@ -116,7 +116,7 @@ pub(super) fn connect(
     } else if t == 1 {
         let qs = &light[s - 1];
         if qs.is_connectible(scene)
-            && let Some(cs) = scene.camera.sample_wi(qs.p, sampler.get_2d())
+            && let Some(cs) = scene.camera().sample_wi(qs.p, sampler.get_2d())
         {
             p_raster = Some(cs.p_raster);
             let v = Vertex::endpoint(
@@ -134,7 +134,7 @@ pub(super) fn connect(
                 if visible(scene, qs, &v) {
                     // Light paths are traced per rendered pixel but land on the whole
                     // image (pbrt-v4 #347).
-                    l *= scene.camera.splat_scale();
+                    l *= scene.camera().splat_scale();
                 } else {
                     l = SampledSpectrum::ZERO;
                 }
@@ -144,7 +144,7 @@ pub(super) fn connect(
     } else if s == 1 {
         let pt = &camera[t - 1];
         if pt.is_connectible(scene)
-            && let Some((i, p_choice)) = scene.light_distribution.sample(sampler.get_1d())
+            && let Some((i, p_choice)) = scene.light_distribution().sample(sampler.get_1d())
         {
             let ctx = LightSampleContext {
                 p: pt.p,
@@ -152,8 +152,8 @@ pub(super) fn connect(
                 ns: pt.ns,
             };
             let u = sampler.get_2d();
-            let ls = scene.lights[i]
-                .sample_li(&ctx, u, &scene.shapes, &scene.meshes)
+            let ls = scene.lights()[i]
+                .sample_li(&ctx, u, scene.shapes(), scene.meshes())
                 .filter(|ls| ls.pdf > 0.0);
             if let Some(ls) = ls {
                 let le = scene.light_radiance(i, lambda, ls.l, ls.factor);
@@ -262,7 +262,7 @@ pub(super) fn mis_weight(
             light[s - 2].pdf_rev = qs.pdf(scene, Some(&pt), qsm);
         }
     }
-    let splat_scale = scene.camera.splat_scale();
+    let splat_scale = scene.camera().splat_scale();
     let pow = |r: f32| r.powi(MIS_EXPONENT);
     let mut sum = 0.0f32;
     // Strategies with fewer camera vertices.

@@ -177,7 +177,7 @@ fn render(
                 let u = sampler.get_pixel_2d();
                 let p_film = Vec2::new(x as f32 + u.x, y as f32 + u.y);
                 let ray = scene
-                    .camera
+                    .camera()
                     .generate_ray(p_film, sampler.get_2d())
                     .unwrap()
                     .ray;
@@ -394,7 +394,7 @@ fn mis_weights_of_all_strategies_of_a_path_sum_to_one() {
     for area in [true, false] {
         let scene = room(area, bdpt(5));
         let c = Vec3::new(0.0, 1.0, 0.0);
-        let eye = scene.camera.world_from_camera.point(Vec3::ZERO);
+        let eye = scene.camera().world_from_camera.point(Vec3::ZERO);
         let bounces = [
             surface_vertex(&scene, c, Vec3::new(0.3, 0.0, 0.2)),
             surface_vertex(&scene, c, Vec3::new(-0.5, 0.6, -1.0)),
@@ -404,7 +404,7 @@ fn mis_weights_of_all_strategies_of_a_path_sum_to_one() {
         // vertex for the light side), or the point light.
         let (on_light, light_vertex) = if area {
             let v = surface_vertex(&scene, c, Vec3::new(0.1, 2.0, 0.05));
-            let i = scene.prims[v.prim as usize].emission.unwrap().light;
+            let i = scene.prim(v.prim).emission.unwrap().light;
             (
                 v,
                 Vertex::endpoint(Kind::Light(i), v.p, v.p_error, v.ng, SampledSpectrum::ONE),
@@ -444,7 +444,7 @@ fn mis_weights_of_all_strategies_of_a_path_sum_to_one() {
                     Some(light[0])
                 } else if t == 1 {
                     let mut v = camera[0];
-                    v.ng = normalize(scene.camera.world_from_camera.vector(Vec3::Z));
+                    v.ng = normalize(scene.camera().world_from_camera.vector(Vec3::Z));
                     v.ns = v.ng;
                     Some(v)
                 } else {

@@ -84,7 +84,7 @@ impl Vertex {
     fn light(&self, scene: &Scene) -> Option<u32> {
         match self.kind {
             Kind::Light(i) => Some(i),
-            Kind::Surface => scene.prims[self.prim as usize].emission.map(|e| e.light),
+            Kind::Surface => scene.prim(self.prim).emission.map(|e| e.light),
             _ => None,
         }
     }
@@ -100,7 +100,7 @@ impl Vertex {
 
     /// A light vertex of a point or directional light (no area to hit).
     pub fn is_delta_light(&self, scene: &Scene) -> bool {
-        matches!(self.kind, Kind::Light(i) if scene.lights[i as usize].is_delta())
+        matches!(self.kind, Kind::Light(i) if scene.lights()[i as usize].is_delta())
     }
 
     /// The environment, an environment light's vertex or a distant light's: lights at
@@ -109,7 +109,7 @@ impl Vertex {
         match self.kind {
             Kind::Escaped => true,
             Kind::Light(i) => {
-                let l = &scene.lights[i as usize];
+                let l = &scene.lights()[i as usize];
                 l.is_infinite() || matches!(l, Light::Distant { .. })
             }
             _ => false,
@@ -121,7 +121,7 @@ impl Vertex {
     pub fn is_connectible(&self, scene: &Scene) -> bool {
         match self.kind {
             Kind::Camera | Kind::Escaped => true,
-            Kind::Light(i) => !matches!(scene.lights[i as usize], Light::Distant { .. }),
+            Kind::Light(i) => !matches!(scene.lights()[i as usize], Light::Distant { .. }),
             Kind::Surface => self.bsdf.is_some_and(|b| b.flags().is_non_specular()),
         }
     }
@@ -152,8 +152,8 @@ impl Vertex {
         if self.is_infinite_light(scene) {
             // The environment along −w (the direction the camera subpath left in).
             let mut le = SampledSpectrum::ZERO;
-            for &i in &scene.infinite_lights {
-                let c = scene.lights[i as usize].le(-w);
+            for &i in scene.infinite_lights() {
+                let c = scene.lights()[i as usize].le(-w);
                 if c != crate::math::Rgb::ZERO {
                     le += scene.light_radiance(i as usize, lambda, c, 1.0);
                 }
@@ -197,7 +197,7 @@ impl Vertex {
         }
         let wn = normalize(wn);
         let pdf = match (self.kind, &self.bsdf, prev) {
-            (Kind::Camera, _, _) => scene.camera.pdf_we(self.p, wn).1,
+            (Kind::Camera, _, _) => scene.camera().pdf_we(self.p, wn).1,
             (Kind::Surface, Some(bsdf), Some(prev)) => {
                 let wp = prev.p - self.p;
                 if wp.length_squared() == 0.0 {
@@ -253,7 +253,7 @@ impl Vertex {
             return 0.0;
         };
         let n = self.is_on_surface().then_some(self.ng);
-        scene.light_distribution.pmf(i as usize) * pdf_le(scene, i as usize, n, w).0
+        scene.light_distribution().pmf(i as usize) * pdf_le(scene, i as usize, n, w).0
     }
 
     /// The ray leaving this vertex towards `target` for a visibility test.
@@ -271,11 +271,11 @@ pub(super) fn infinite_light_density(scene: &Scene, w: Vec3) -> f32 {
         ns: Vec3::ZERO,
     };
     scene
-        .infinite_lights
+        .infinite_lights()
         .iter()
         .map(|&i| {
-            scene.light_distribution.pmf(i as usize)
-                * scene.lights[i as usize].pdf_li(&ctx, -w, None)
+            scene.light_distribution().pmf(i as usize)
+                * scene.lights()[i as usize].pdf_li(&ctx, -w, None)
         })
         .sum()
 }

@@ -49,7 +49,7 @@ impl Walk<'_> {
             Vec3::ZERO,
             beta,
         ));
-        let (_, pdf_dir) = self.scene.camera.pdf_we(ray.o, ray.d);
+        let (_, pdf_dir) = self.scene.camera().pdf_we(ray.o, ray.d);
         self.random_walk(
             *ray,
             sampler,
@@ -74,7 +74,7 @@ impl Walk<'_> {
             return;
         }
         let scene = self.scene;
-        let Some((light, p_choice)) = scene.light_distribution.sample(sampler.get_1d()) else {
+        let Some((light, p_choice)) = scene.light_distribution().sample(sampler.get_1d()) else {
             return;
         };
         let (u1, u2) = (sampler.get_2d(), sampler.get_2d());
