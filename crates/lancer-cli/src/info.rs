@@ -55,7 +55,18 @@ fn integrator_json(i: &Integrator) -> Value {
             v["cossample"] = json!(cos_sample);
             v["maxdistance"] = json!(max_distance);
         }
-        Integrator::LightPath { max_depth } => v["maxdepth"] = json!(max_depth),
+        Integrator::LightPath { max_depth } | Integrator::RandomWalk { max_depth } => {
+            v["maxdepth"] = json!(max_depth)
+        }
+        Integrator::SimplePath {
+            max_depth,
+            sample_lights,
+            sample_bsdf,
+        } => {
+            v["maxdepth"] = json!(max_depth);
+            v["samplelights"] = json!(sample_lights);
+            v["samplebsdf"] = json!(sample_bsdf);
+        }
         Integrator::Bdpt {
             max_depth,
             regularize,

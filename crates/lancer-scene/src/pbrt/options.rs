@@ -323,7 +323,13 @@ pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, 
             }
             i
         }
-        "mlt" | "sppm" | "randomwalk" | "simplepath" | "simplevolpath" | "aov" => {
+        "simplepath" => Integrator::SimplePath {
+            max_depth,
+            sample_lights: p.bool("samplelights", true)?,
+            sample_bsdf: p.bool("samplebsdf", true)?,
+        },
+        "randomwalk" => Integrator::RandomWalk { max_depth },
+        "mlt" | "sppm" | "simplevolpath" | "aov" => {
             return Ok(Fallback::instead(
                 path()?,
                 format!(
@@ -810,6 +816,21 @@ mod tests {
                 visualize_strategies: false,
                 visualize_weights: false
             }
+        );
+        assert_eq!(
+            clean(
+                r#"Integrator "simplepath" "bool samplebsdf" false"#,
+                integrator
+            ),
+            Integrator::SimplePath {
+                max_depth: 5,
+                sample_lights: true,
+                sample_bsdf: false
+            }
+        );
+        assert_eq!(
+            clean(r#"Integrator "randomwalk""#, integrator),
+            Integrator::RandomWalk { max_depth: 5 }
         );
         assert_eq!(
             clean(r#"Integrator "lightpath" "integer maxdepth" 3"#, integrator),

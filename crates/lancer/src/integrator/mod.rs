@@ -24,6 +24,7 @@ mod light_emit;
 pub mod lightpath;
 mod path;
 mod path_spectra;
+mod simple;
 pub mod specular_differentials;
 mod subsurface;
 mod volpath;
@@ -56,6 +57,8 @@ impl Integrator {
             Integrator::AmbientOcclusion { .. } => "ambientocclusion",
             Integrator::LightPath { .. } => "lightpath",
             Integrator::Bdpt { .. } => "bdpt",
+            Integrator::SimplePath { .. } => "simplepath",
+            Integrator::RandomWalk { .. } => "randomwalk",
             Integrator::Normals => "normals",
             Integrator::Depth => "depth",
         }
@@ -71,6 +74,8 @@ impl Integrator {
                 | Integrator::VolPath { .. }
                 | Integrator::LightPath { .. }
                 | Integrator::Bdpt { .. }
+                | Integrator::SimplePath { .. }
+                | Integrator::RandomWalk { .. }
         )
     }
 
@@ -164,6 +169,22 @@ impl Integrator {
                 max_depth,
                 regularize,
             } => volpath::li(scene, ray, sampler, lambda, max_depth, regularize),
+            Integrator::SimplePath {
+                max_depth,
+                sample_lights,
+                sample_bsdf,
+            } => simple::simple_path(
+                scene,
+                ray,
+                sampler,
+                lambda,
+                max_depth,
+                sample_lights,
+                sample_bsdf,
+            ),
+            Integrator::RandomWalk { max_depth } => {
+                simple::random_walk(scene, ray, sampler, lambda, max_depth)
+            }
             // Without a film to splat into, the light-path integrators give only what reaches
             // the camera ray's own pixel (bdpt's t ≥ 2 strategies, nothing for lightpath): a
             // film renders them through `li_splatting`.

@@ -274,6 +274,21 @@ pub enum Integrator {
         /// pbrt-v4's `visualizeweights`: one image per strategy, weighted.
         visualize_weights: bool,
     },
+    /// pbrt-v4's `simplepath`: path tracing without MIS, light sampling and BSDF sampling
+    /// each optional.
+    SimplePath {
+        /// Maximum number of bounces.
+        max_depth: u32,
+        /// Sample a light at each surface (`samplelights`).
+        sample_lights: bool,
+        /// Continue by BSDF sampling (`samplebsdf`), else uniformly.
+        sample_bsdf: bool,
+    },
+    /// pbrt-v4's `randomwalk`: directions uniform over the sphere, no light sampling.
+    RandomWalk {
+        /// Maximum number of bounces.
+        max_depth: u32,
+    },
     /// Debug view: shading normals mapped to colours, (n + 1)/2.
     Normals,
     /// Debug view: distance to the first hit.

@@ -519,3 +519,38 @@ fn white_furnace() {
         assert!((corner[c] - 1.0).abs() < 0.02, "sky {corner}");
     }
 }
+
+#[test]
+fn the_simple_integrators_agree_with_path_tracing() {
+    let scene = room(true, path(3));
+    let reference = render(&scene, path(3), 256, 1, None);
+    for (integrator, spp, bound) in [
+        (
+            Integrator::SimplePath {
+                max_depth: 3,
+                sample_lights: true,
+                sample_bsdf: true,
+            },
+            128,
+            0.08,
+        ),
+        (
+            Integrator::SimplePath {
+                max_depth: 3,
+                sample_lights: true,
+                sample_bsdf: false,
+            },
+            128,
+            0.1,
+        ),
+        // Hitting the small light by chance: much noisier.
+        (Integrator::RandomWalk { max_depth: 3 }, 512, 0.35),
+    ] {
+        let img = render(&scene, integrator, spp, 7, None);
+        let (worst, ratio) = compare(&img, &reference);
+        assert!(
+            worst < bound && (ratio - 1.0).abs() < bound / 4.0,
+            "{integrator:?}: worst block {worst}, mean ratio {ratio}"
+        );
+    }
+}
