@@ -55,6 +55,29 @@ fn integrator_json(i: &Integrator) -> Value {
             v["cossample"] = json!(cos_sample);
             v["maxdistance"] = json!(max_distance);
         }
+        Integrator::LightPath { max_depth } | Integrator::RandomWalk { max_depth } => {
+            v["maxdepth"] = json!(max_depth)
+        }
+        Integrator::SimplePath {
+            max_depth,
+            sample_lights,
+            sample_bsdf,
+        } => {
+            v["maxdepth"] = json!(max_depth);
+            v["samplelights"] = json!(sample_lights);
+            v["samplebsdf"] = json!(sample_bsdf);
+        }
+        Integrator::Bdpt {
+            max_depth,
+            regularize,
+            visualize_strategies,
+            visualize_weights,
+        } => {
+            v["maxdepth"] = json!(max_depth);
+            v["regularize"] = json!(regularize);
+            v["visualizestrategies"] = json!(visualize_strategies);
+            v["visualizeweights"] = json!(visualize_weights);
+        }
         Integrator::Normals | Integrator::Depth => {}
     }
     v
@@ -402,5 +425,18 @@ mod tests {
             integrator_text(&integrator_json(&Integrator::Normals)),
             "normals"
         );
+        let v = integrator_json(&Integrator::Bdpt {
+            max_depth: 8,
+            regularize: false,
+            visualize_strategies: true,
+            visualize_weights: false,
+        });
+        assert_eq!(
+            v,
+            json!({ "name": "bdpt", "maxdepth": 8, "regularize": false,
+                    "visualizestrategies": true, "visualizeweights": false })
+        );
+        let v = integrator_json(&Integrator::LightPath { max_depth: 5 });
+        assert_eq!(integrator_text(&v), "lightpath (maxdepth 5)");
     }
 }

@@ -176,6 +176,11 @@ pub trait SampleIntegrator: Sync {
 
 impl SampleIntegrator for Integrator {
     #[inline(always)]
+    fn splats(&self) -> bool {
+        Integrator::splats(self)
+    }
+
+    #[inline(always)]
     fn computes_radiance(&self) -> bool {
         Integrator::computes_radiance(self)
     }
@@ -187,9 +192,16 @@ impl SampleIntegrator for Integrator {
         ray: &Ray,
         sampler: &mut Sampler,
         lambda: Option<&SampledWavelengths>,
-        _splats: &Splats<'_>,
+        splats: &Splats<'_>,
     ) -> SampledSpectrum {
-        Integrator::li(self, scene, ray, sampler, lambda)
+        if Integrator::splats(self) {
+            // Light paths (lightpath, bdpt) land anywhere on the film.
+            self.li_splatting(scene, ray, sampler, lambda, &mut |p, l| {
+                splats.add_splat(p, l, lambda)
+            })
+        } else {
+            Integrator::li(self, scene, ray, sampler, lambda)
+        }
     }
 }
 

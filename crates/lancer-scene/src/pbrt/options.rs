@@ -263,8 +263,8 @@ pub fn filter(params: &ParamList, ty: &str) -> Result<Fallback<FilterDesc>, Scen
     Ok(Fallback::done(f))
 }
 
-/// The integrator `ty`, with pbrt-v4's defaults (`maxdepth` 5); the others fall back to
-/// `path`.
+/// The integrator `ty`, with pbrt-v4's defaults (`maxdepth` 5, `regularize`,
+/// `visualizestrategies` and `visualizeweights` false); the others fall back to `path`.
 pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, SceneError> {
     let p = params;
     let max_depth = p.int_in("maxdepth", 5, 0..=100_000)? as u32;
@@ -298,8 +298,39 @@ pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, 
         },
         "normals" => Integrator::Normals,
         "depth" => Integrator::Depth,
-        "bdpt" | "mlt" | "sppm" | "lightpath" | "randomwalk" | "simplepath" | "simplevolpath"
-        | "aov" => {
+        "lightpath" => Integrator::LightPath { max_depth },
+        "bdpt" => {
+            let i = Integrator::Bdpt {
+                max_depth,
+                regularize: p.bool("regularize", false)?,
+                visualize_strategies: p.bool("visualizestrategies", false)?,
+                visualize_weights: p.bool("visualizeweights", false)?,
+            };
+            if let Integrator::Bdpt {
+                visualize_strategies: true,
+                ..
+            }
+            | Integrator::Bdpt {
+                visualize_weights: true,
+                ..
+            } = i
+            {
+                // The strategies are computed (`lancer::integrator::bdpt::StrategyObserver`),
+                // but no film writes their images yet.
+                return Ok(Fallback::instead(
+                    i,
+                    "integrator \"bdpt\": the per-strategy images of \"visualizestrategies\" and \"visualizeweights\" are not written yet; lancer renders the plain image".to_string(),
+                ));
+            }
+            i
+        }
+        "simplepath" => Integrator::SimplePath {
+            max_depth,
+            sample_lights: p.bool("samplelights", true)?,
+            sample_bsdf: p.bool("samplebsdf", true)?,
+        },
+        "randomwalk" => Integrator::RandomWalk { max_depth },
+        "mlt" | "sppm" | "simplevolpath" | "aov" => {
             return Ok(Fallback::instead(
                 path()?,
                 format!(
@@ -769,12 +800,66 @@ mod tests {
             clean(r#"Integrator "depth""#, integrator),
             Integrator::Depth
         );
-        let (out, _) = convert(r#"Integrator "bdpt" "integer maxdepth" 7"#, integrator);
+        assert_eq!(
+            clean(r#"Integrator "bdpt" "integer maxdepth" 7"#, integrator),
+            Integrator::Bdpt {
+                max_depth: 7,
+                regularize: false,
+                visualize_strategies: false,
+                visualize_weights: false
+            }
+        );
+        assert_eq!(
+            clean(r#"Integrator "bdpt" "bool regularize" true"#, integrator),
+            Integrator::Bdpt {
+                max_depth: 5,
+                regularize: true,
+                visualize_strategies: false,
+                visualize_weights: false
+            }
+        );
+        assert_eq!(
+            clean(
+                r#"Integrator "simplepath" "bool samplebsdf" false"#,
+                integrator
+            ),
+            Integrator::SimplePath {
+                max_depth: 5,
+                sample_lights: true,
+                sample_bsdf: false
+            }
+        );
+        assert_eq!(
+            clean(r#"Integrator "randomwalk""#, integrator),
+            Integrator::RandomWalk { max_depth: 5 }
+        );
+        assert_eq!(
+            clean(r#"Integrator "lightpath" "integer maxdepth" 3"#, integrator),
+            Integrator::LightPath { max_depth: 3 }
+        );
+        let (out, _) = convert(
+            r#"Integrator "bdpt" "bool visualizestrategies" true"#,
+            integrator,
+        );
+        let f = out.unwrap();
+        assert!(matches!(
+            f.value,
+            Integrator::Bdpt {
+                visualize_strategies: true,
+                ..
+            }
+        ));
+        assert!(
+            f.warnings[0].contains("not written yet"),
+            "{:?}",
+            f.warnings
+        );
+        let (out, _) = convert(r#"Integrator "sppm" "integer maxdepth" 7"#, integrator);
         let f = out.unwrap();
         assert_eq!(f.value, path(7, false));
         assert_eq!(
             f.warnings,
-            ["integrator \"bdpt\" is not supported yet; lancer uses \"path\" with maxdepth 7"]
+            ["integrator \"sppm\" is not supported yet; lancer uses \"path\" with maxdepth 7"]
         );
         assert_eq!(
             warnings(r#"Integrator "photonmap""#, integrator),

@@ -9,6 +9,7 @@
 mod aperture;
 pub mod desc;
 pub mod footprint;
+pub mod importance;
 pub mod lens;
 pub mod realistic;
 pub mod spherical;
@@ -17,6 +18,8 @@ use crate::math::{AnimatedTransform, Transform, Vec2, Vec3, normalize};
 use crate::ray::Ray;
 use crate::sampling::sample_uniform_disk_concentric;
 pub use desc::{CameraDesc, DEFAULT_DIAGONAL, Projection};
+pub use importance::CameraWiSample;
+use importance::Importance;
 use lens::SphericalMapping;
 use realistic::{PUPIL_SAMPLES, RealisticCamera};
 
@@ -63,6 +66,9 @@ pub struct Camera {
     /// Camera space → world space over time, when the camera moves (motion blur).
     motion: Option<Box<AnimatedTransform>>,
     kind: Kind,
+    /// What light paths need to reach the camera (perspective cameras only; boxed, as the
+    /// other cameras have none).
+    importance: Option<Box<Importance>>,
 }
 
 impl Camera {
@@ -95,10 +101,30 @@ impl Camera {
                 PUPIL_SAMPLES,
             )?)),
         };
+        let importance = match (&kind, &desc.projection) {
+            (
+                Kind::Projective {
+                    camera_from_raster,
+                    lens_radius,
+                    focal_distance,
+                    ..
+                },
+                Projection::Perspective { .. },
+            ) => Importance::new(
+                camera_from_raster,
+                xres,
+                yres,
+                *lens_radius,
+                *focal_distance,
+            )
+            .map(Box::new),
+            _ => None,
+        };
         Ok(Camera {
             world_from_camera: desc.camera_from_world.inverse(),
             motion: None,
             kind,
+            importance,
         })
     }
 

@@ -34,6 +34,39 @@ pub enum Integrator {
         /// As for [`Integrator::Path`].
         regularize: bool,
     },
+    /// Light tracing (pbrt-v4's `lightpath`): paths from the lights, each vertex connected
+    /// to the camera and splatted onto the film.
+    LightPath {
+        /// Maximum number of bounces.
+        max_depth: u32,
+    },
+    /// Bidirectional path tracing (pbrt-v4's `bdpt`): every way of joining a light subpath
+    /// to a camera subpath, weighted by multiple importance sampling.
+    Bdpt {
+        /// Maximum number of bounces.
+        max_depth: u32,
+        /// As for [`Integrator::Path`].
+        regularize: bool,
+        /// pbrt-v4's `visualizestrategies`: one image per strategy (s, t), unweighted.
+        visualize_strategies: bool,
+        /// pbrt-v4's `visualizeweights`: one image per strategy, weighted.
+        visualize_weights: bool,
+    },
+    /// pbrt-v4's `simplepath`: path tracing without MIS, light sampling and BSDF sampling
+    /// each optional.
+    SimplePath {
+        /// Maximum number of bounces.
+        max_depth: u32,
+        /// Sample a light at each surface (`samplelights`).
+        sample_lights: bool,
+        /// Continue by BSDF sampling (`samplebsdf`), else uniformly.
+        sample_bsdf: bool,
+    },
+    /// pbrt-v4's `randomwalk`: directions uniform over the sphere, no light sampling.
+    RandomWalk {
+        /// Maximum number of bounces.
+        max_depth: u32,
+    },
     /// Debug view: shading normals mapped to colours, (n + 1)/2.
     Normals,
     /// Debug view: distance to the first hit.
@@ -52,13 +85,18 @@ impl Default for Integrator {
 
 impl Integrator {
     /// The pbrt-v4 name of this integrator (`Integrator "…"`): `path`, `volpath`, `whitted`,
-    /// `ambientocclusion`, and lancer's debug views `normals` and `depth`.
+    /// `ambientocclusion`, `lightpath`, `bdpt`, `simplepath`, `randomwalk`, and lancer's debug
+    /// views `normals` and `depth`.
     pub fn pbrt_name(&self) -> &'static str {
         match self {
             Integrator::Whitted { .. } => "whitted",
             Integrator::Path { .. } => "path",
             Integrator::VolPath { .. } => "volpath",
             Integrator::AmbientOcclusion { .. } => "ambientocclusion",
+            Integrator::LightPath { .. } => "lightpath",
+            Integrator::Bdpt { .. } => "bdpt",
+            Integrator::SimplePath { .. } => "simplepath",
+            Integrator::RandomWalk { .. } => "randomwalk",
             Integrator::Normals => "normals",
             Integrator::Depth => "depth",
         }
@@ -69,7 +107,20 @@ impl Integrator {
     pub fn computes_radiance(&self) -> bool {
         matches!(
             self,
-            Integrator::Whitted { .. } | Integrator::Path { .. } | Integrator::VolPath { .. }
+            Integrator::Whitted { .. }
+                | Integrator::Path { .. }
+                | Integrator::VolPath { .. }
+                | Integrator::LightPath { .. }
+                | Integrator::Bdpt { .. }
+                | Integrator::SimplePath { .. }
+                | Integrator::RandomWalk { .. }
         )
+    }
+
+    /// True for the integrators that trace light paths and splat what they carry anywhere on
+    /// the film ([`Integrator::li_splatting`]): `lightpath` and `bdpt`. They need a
+    /// perspective camera ([`crate::camera::Camera::light_path_support`]).
+    pub fn splats(&self) -> bool {
+        matches!(self, Integrator::LightPath { .. } | Integrator::Bdpt { .. })
     }
 }

@@ -46,3 +46,26 @@ pub(crate) fn emitted(
         scene.light_radiance(i, lambda, l, 1.0, -wo)
     })
 }
+
+/// The light on primitive `prim` (geometric normal `n`, surface coordinates `uv` at the
+/// point) and the colour it gives off towards `w`, if it emits that way: for vertices of
+/// light paths, which keep no [`SceneHit`].
+pub(crate) fn emission_at(
+    scene: &Scene,
+    prim: u32,
+    n: Vec3,
+    uv: crate::math::Vec2,
+    w: Vec3,
+) -> Option<(usize, Rgb)> {
+    let e = scene.prim(prim).emission?;
+    if !(e.two_sided || n.dot(w) > 0.0) {
+        return None;
+    }
+    let l = match &scene.lights()[e.light as usize] {
+        crate::light::Light::Area {
+            image: Some(img), ..
+        } if e.spectrum == crate::scene::IMAGE_EMISSION => img.le(uv),
+        _ => e.l.into(),
+    };
+    Some((e.light as usize, l))
+}

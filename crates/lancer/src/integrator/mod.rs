@@ -17,11 +17,15 @@
 /// noise bar, and the mean relmse favours 2 on both scenes.
 pub const RR_AFTER_DEPTH: u32 = 2;
 
+pub mod bdpt;
 mod debug;
 mod desc;
 mod emission;
+mod light_emit;
+pub mod lightpath;
 mod path;
 mod path_spectra;
+mod simple;
 pub mod specular_differentials;
 mod subsurface;
 mod volpath;
@@ -40,7 +44,47 @@ pub use desc::Integrator;
 pub(crate) use emission::emitted;
 use path_spectra::PathSpectra;
 
+/// Where light paths put what they bring to the camera: a film point (raster space) and the
+/// radiance arriving there, in the lanes the integrator works in (spectral or RGB). The film
+/// adds it, filtered, to the pixels around that point.
+pub type Splat<'a> = &'a mut dyn FnMut(crate::math::Vec2, SampledSpectrum);
+
 impl Integrator {
+    /// [`Integrator::li`], with what light paths bring to other points of the film given to
+    /// `splat` (film point in raster space, radiance in the same lanes as the result). For
+    /// the integrators that do not splat, the same as `li`.
+    pub fn li_splatting(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        sampler: &mut Sampler,
+        lambda: Option<&SampledWavelengths>,
+        splat: Splat<'_>,
+    ) -> SampledSpectrum {
+        match *self {
+            Integrator::LightPath { max_depth } => {
+                lightpath::li(scene, sampler, lambda, max_depth, splat)
+            }
+            Integrator::Bdpt {
+                max_depth,
+                regularize,
+                ..
+            } => bdpt::li(
+                scene,
+                ray,
+                sampler,
+                lambda,
+                bdpt::BdptOptions {
+                    max_depth,
+                    regularize,
+                },
+                splat,
+                None,
+            ),
+            _ => self.li(scene, ray, sampler, lambda),
+        }
+    }
+
     /// [`Integrator::li`], recording the path's vertices in `path` (path tracing only; the
     /// other integrators record nothing).
     pub fn li_traced(
@@ -89,6 +133,28 @@ impl Integrator {
                 max_depth,
                 regularize,
             } => volpath::li(scene, ray, sampler, lambda, max_depth, regularize),
+            Integrator::SimplePath {
+                max_depth,
+                sample_lights,
+                sample_bsdf,
+            } => simple::simple_path(
+                scene,
+                ray,
+                sampler,
+                lambda,
+                max_depth,
+                sample_lights,
+                sample_bsdf,
+            ),
+            Integrator::RandomWalk { max_depth } => {
+                simple::random_walk(scene, ray, sampler, lambda, max_depth)
+            }
+            // Without a film to splat into, the light-path integrators give only what reaches
+            // the camera ray's own pixel (bdpt's t ≥ 2 strategies, nothing for lightpath): a
+            // film renders them through `li_splatting`.
+            Integrator::LightPath { .. } | Integrator::Bdpt { .. } => {
+                self.li_splatting(scene, ray, sampler, lambda, &mut |_, _| {})
+            }
             // The debug views are RGB quantities, as lanes (r, g, b, b).
             Integrator::Normals => rgb_lanes(debug::normals(scene, ray)),
             Integrator::Depth => rgb_lanes(debug::depth(scene, ray)),

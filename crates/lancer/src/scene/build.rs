@@ -88,6 +88,22 @@ impl Scene {
         )
         .map_err(BuildError::BadCamera)?;
         camera.set_motion(desc.motion.camera);
+        if desc.integrator.splats() {
+            camera.light_path_support().map_err(|e| {
+                BuildError::BadCamera(format!(
+                    "the \"{}\" integrator traces light paths: {e}",
+                    desc.integrator.pbrt_name()
+                ))
+            })?;
+        }
+        // Light paths reach the raster points the film reconstructs (its bounds grown by
+        // the filter's radius).
+        let b = desc.film.render_bounds();
+        camera.set_film_extent(
+            [b.x0, b.x1, b.y0, b.y1],
+            desc.film.xresolution as f32 * desc.film.yresolution as f32,
+            desc.filter.radius(),
+        );
         let extents: Vec<_> = lights
             .lights
             .iter()

@@ -200,6 +200,20 @@ pub enum FilterDesc {
     },
 }
 
+impl FilterDesc {
+    /// The filter's radius (x, y) in pixels: beyond it, its weight is zero.
+    pub fn radius(&self) -> crate::math::Vec2 {
+        let r = match self {
+            FilterDesc::Box { radius }
+            | FilterDesc::Gaussian { radius, .. }
+            | FilterDesc::Triangle { radius }
+            | FilterDesc::Mitchell { radius, .. }
+            | FilterDesc::Lanczos { radius, .. } => *radius,
+        };
+        crate::math::Vec2::new(r[0], r[1])
+    }
+}
+
 impl Default for FilterDesc {
     /// pbrt's default: Gaussian, radius 1.5, σ 0.5.
     fn default() -> Self {

@@ -9,6 +9,7 @@ mod bsdf_stats;
 mod bvh_props;
 mod curves;
 mod hair_stats;
+mod light_paths;
 mod measured;
 mod quadrics;
 mod sampling_stats;

@@ -1,0 +1,307 @@
+//! Joining a light subpath's first s vertices to a camera subpath's first t (pbrt-v4's
+//! `ConnectBDPT`), and the multiple-importance weight of that strategy among all the ones
+//! that could have made the same path (pbrt-v4's `MISWeight`).
+
+use super::vertex::{Kind, Vertex};
+use crate::light::{Emitter, Light, LightSampleContext};
+use crate::material::TransportMode;
+use crate::math::{SampledSpectrum, Vec2, Vec3};
+use crate::ray::Ray;
+use crate::sampling::Sampler;
+use crate::scene::Scene;
+use crate::spectrum::sampled::SampledWavelengths;
+
+/// The exponent of the MIS heuristic over the strategies' densities: 2, the power heuristic,
+/// as the issue asks (pbrt-v4's `MISWeight` sums the plain ratios: the balance heuristic, 1).
+/// Either is unbiased; the weights of a path's strategies sum to 1 for any exponent.
+pub(super) const MIS_EXPONENT: i32 = 2;
+
+/// One strategy's result: its weighted contribution, where it lands on the film when the
+/// strategy sampled the camera (t = 1), and its MIS weight.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Connection {
+    /// Weighted contribution.
+    pub l: SampledSpectrum,
+    /// Raster point of a t = 1 strategy.
+    pub p_raster: Option<Vec2>,
+    /// The MIS weight (0 when the contribution is zero).
+    pub weight: f32,
+}
+
+/// True when nothing blocks the segment between `a` and `b`.
+fn visible(scene: &Scene, a: &Vertex, b: &Vertex) -> bool {
+    !scene.intersect_p(&a.shadow_ray(b.p))
+}
+
+/// The geometry term between two vertices, 1/d² times the cosines at those on surfaces
+/// (shading normals), times the segment's visibility.
+fn g(scene: &Scene, a: &Vertex, b: &Vertex) -> f32 {
+    let d = a.p - b.p;
+    let d2 = d.length_squared();
+    if d2 == 0.0 {
+        return 0.0;
+    }
+    let mut g = 1.0 / d2;
+    let d = d * g.sqrt();
+    if a.is_on_surface() {
+        g *= a.ns.dot(d).abs();
+    }
+    if b.is_on_surface() {
+        g *= b.ns.dot(d).abs();
+    }
+    if g == 0.0 || !visible(scene, a, b) {
+        return 0.0;
+    }
+    g
+}
+
+/// The normal of area light `i` at `p`, a point its `sample_li` chose (zero for the other
+/// lights). Triangles and spheres know it; other shapes are asked by a ray from `from`.
+fn light_normal(scene: &Scene, i: usize, p: Vec3, from: &Vertex) -> Vec3 {
+    match &scene.lights()[i] {
+        Light::Area { emitter, prim, .. } => match emitter {
+            Emitter::Triangle { n, .. } => Vec3::from(*n),
+            Emitter::Sphere {
+                centre,
+                radius,
+                flip,
+                ..
+            } => {
+                let n = (p - Vec3::from(*centre)) / *radius;
+                if *flip { -n } else { n }
+            }
+            Emitter::Shape => {
+                let d = p - from.p;
+                let ray = Ray::spawn(from.p, from.p_error, from.ng, d * 1.001);
+                scene
+                    .intersect(&ray)
+                    .filter(|h| h.prim == *prim)
+                    .map_or(Vec3::ZERO, |h| h.si.n)
+            }
+        },
+        _ => Vec3::ZERO,
+    }
+}
+
+/// The (s, t) strategy over the subpaths `light` and `camera`: s vertices of the light
+/// subpath joined to t of the camera subpath (s = 0: the camera subpath alone, ending on a
+/// light; s = 1 or t = 1: a fresh point on a light or the lens sampled for the other side).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn connect(
+    scene: &Scene,
+    lambda: Option<&SampledWavelengths>,
+    light: &mut [Vertex],
+    camera: &mut [Vertex],
+    s: usize,
+    t: usize,
+    sampler: &mut Sampler,
+) -> Connection {
+    let none = Connection {
+        l: SampledSpectrum::ZERO,
+        p_raster: None,
+        weight: 0.0,
+    };
+    // The environment ends a camera subpath; only s = 0 can use it.
+    if t > 1 && s != 0 && camera[t - 1].kind == Kind::Escaped {
+        return none;
+    }
+    let mut sampled = None;
+    let mut p_raster = None;
+    let mut l = SampledSpectrum::ZERO;
+    if s == 0 {
+        let pt = &camera[t - 1];
+        if pt.is_light(scene) {
+            l = pt.le(scene, &camera[t - 2], lambda) * pt.beta;
+        }
+    } else if t == 1 {
+        let qs = &light[s - 1];
+        if qs.is_connectible(scene)
+            && let Some(cs) = scene.camera().sample_wi(qs.p, sampler.get_2d())
+        {
+            p_raster = Some(cs.p_raster);
+            let v = Vertex::endpoint(
+                Kind::Camera,
+                cs.p_lens,
+                Vec3::ZERO,
+                cs.n_lens,
+                SampledSpectrum::splat(cs.wi_importance / cs.pdf),
+            );
+            l = qs.beta * qs.f(&v, TransportMode::Importance) * v.beta;
+            if qs.is_on_surface() {
+                l *= cs.wi.dot(qs.ns).abs();
+            }
+            if l != SampledSpectrum::ZERO {
+                if visible(scene, qs, &v) {
+                    // Light paths are traced per rendered pixel but land on the whole
+                    // image (pbrt-v4 #347).
+                    l *= scene.camera().splat_scale();
+                } else {
+                    l = SampledSpectrum::ZERO;
+                }
+            }
+            sampled = Some(v);
+        }
+    } else if s == 1 {
+        let pt = &camera[t - 1];
+        if pt.is_connectible(scene)
+            && let Some((i, p_choice)) = scene.light_distribution().sample(sampler.get_1d())
+        {
+            let ctx = LightSampleContext {
+                p: pt.p,
+                n: pt.ng,
+                ns: pt.ns,
+            };
+            let u = sampler.get_2d();
+            let ls = scene.lights()[i]
+                .sample_li(&ctx, u, scene.shapes(), scene.meshes())
+                .filter(|ls| ls.pdf > 0.0);
+            if let Some(ls) = ls {
+                let le = scene.light_radiance(i, lambda, ls.l, ls.factor);
+                if le != SampledSpectrum::ZERO {
+                    let n = light_normal(scene, i, ls.p_light, pt);
+                    let mut v = Vertex::endpoint(
+                        Kind::Light(i as u32),
+                        ls.p_light,
+                        Vec3::ZERO,
+                        n,
+                        le / (ls.pdf * p_choice),
+                    );
+                    v.pdf_fwd = v.pdf_light_origin(scene, pt);
+                    l = pt.beta * pt.f(&v, TransportMode::Radiance) * v.beta;
+                    if pt.is_on_surface() {
+                        l *= ls.wi.dot(pt.ns).abs();
+                    }
+                    if l != SampledSpectrum::ZERO && !visible(scene, pt, &v) {
+                        l = SampledSpectrum::ZERO;
+                    }
+                    sampled = Some(v);
+                }
+            }
+        }
+    } else {
+        let (qs, pt) = (&light[s - 1], &camera[t - 1]);
+        if qs.is_connectible(scene) && pt.is_connectible(scene) {
+            l = qs.beta
+                * qs.f(pt, TransportMode::Importance)
+                * pt.f(qs, TransportMode::Radiance)
+                * pt.beta;
+            if l != SampledSpectrum::ZERO {
+                l *= g(scene, qs, pt);
+            }
+        }
+    }
+    if l == SampledSpectrum::ZERO || !l.is_finite() {
+        return Connection { p_raster, ..none };
+    }
+    let weight = mis_weight(scene, light, camera, sampled.as_ref(), s, t);
+    Connection {
+        l: l * weight,
+        p_raster,
+        weight,
+    }
+}
+
+/// Replaces 0 by 1: a delta density (stored as 0) cancels in the ratios of densities.
+fn remap0(f: f32) -> f32 {
+    if f != 0.0 { f } else { 1.0 }
+}
+
+/// The MIS weight of strategy (s, t) for the path it made, 1/(1 + Σ rᵢ^β) over the other
+/// strategies i that could have made it, rᵢ their density over this one's, from the ratios of
+/// reverse to forward densities walked outwards from the connection (pbrt-v4's
+/// `MISWeight`, β = [`MIS_EXPONENT`]). The connection's vertices (and, for s = 1 or t = 1,
+/// the vertex sampled for it, `sampled`) get their densities for this path for the
+/// computation, and are put back afterwards.
+pub(super) fn mis_weight(
+    scene: &Scene,
+    light: &mut [Vertex],
+    camera: &mut [Vertex],
+    sampled: Option<&Vertex>,
+    s: usize,
+    t: usize,
+) -> f32 {
+    if s + t == 2 {
+        return 1.0;
+    }
+    let saved_qs = (s > 0).then(|| light[s - 1]);
+    let saved_pt = camera[t - 1];
+    let saved_ptm = (t > 1).then(|| camera[t - 2].pdf_rev);
+    let saved_qsm = (s > 1).then(|| light[s - 2].pdf_rev);
+    if let Some(v) = sampled {
+        if s == 1 {
+            light[0] = *v;
+        } else if t == 1 {
+            camera[0] = *v;
+        }
+    }
+    camera[t - 1].delta = false;
+    if s > 0 {
+        light[s - 1].delta = false;
+    }
+    // The densities of the connection's vertices, and their predecessors', reached the other
+    // way along this path.
+    {
+        let pt = camera[t - 1];
+        let ptm = (t > 1).then(|| camera[t - 2]);
+        let qs = (s > 0).then(|| light[s - 1]);
+        let qsm = (s > 1).then(|| light[s - 2]);
+        camera[t - 1].pdf_rev = match &qs {
+            Some(qs) => qs.pdf(scene, qsm.as_ref(), &pt),
+            None => pt.pdf_light_origin(scene, ptm.as_ref().expect("s = 0 has t ≥ 2")),
+        };
+        if let Some(ptm) = &ptm {
+            camera[t - 2].pdf_rev = match &qs {
+                Some(qs) => pt.pdf(scene, Some(qs), ptm),
+                None => pt.pdf_light(scene, ptm),
+            };
+        }
+        if let Some(qs) = &qs {
+            light[s - 1].pdf_rev = pt.pdf(scene, ptm.as_ref(), qs);
+        }
+        if let (Some(qs), Some(qsm)) = (&qs, &qsm) {
+            light[s - 2].pdf_rev = qs.pdf(scene, Some(&pt), qsm);
+        }
+    }
+    let splat_scale = scene.camera().splat_scale();
+    let pow = |r: f32| r.powi(MIS_EXPONENT);
+    let mut sum = 0.0f32;
+    // Strategies with fewer camera vertices.
+    let mut ri = 1.0f32;
+    for i in (1..t).rev() {
+        ri *= remap0(camera[i].pdf_rev) / remap0(camera[i].pdf_fwd);
+        if i == 1 {
+            ri /= splat_scale;
+        }
+        if !camera[i].delta && !camera[i - 1].delta {
+            sum += pow(ri);
+        }
+    }
+    // Strategies with fewer light vertices.
+    ri = 1.0;
+    for i in (0..s).rev() {
+        ri *= remap0(light[i].pdf_rev) / remap0(light[i].pdf_fwd);
+        let delta_before = if i > 0 {
+            light[i - 1].delta
+        } else {
+            light[0].is_delta_light(scene)
+        };
+        if !light[i].delta && !delta_before {
+            sum += pow(ri);
+        }
+    }
+    if t == 1 {
+        sum /= pow(splat_scale);
+    }
+    // Put the vertices back.
+    if let Some(v) = saved_qs {
+        light[s - 1] = v;
+    }
+    camera[t - 1] = saved_pt;
+    if let Some(p) = saved_ptm {
+        camera[t - 2].pdf_rev = p;
+    }
+    if let Some(p) = saved_qsm {
+        light[s - 2].pdf_rev = p;
+    }
+    1.0 / (1.0 + sum)
+}

@@ -1,0 +1,102 @@
+//! Bidirectional path tracing (pbrt-v4's `bdpt`): per camera sample, a camera subpath and a
+//! light subpath, and every way of joining a prefix of one to a prefix of the other, each
+//! weighted by multiple importance sampling against the others that make the same path.
+//!
+//! A path of depth d (d bounces, d + 2 vertices) is made by d + 2 strategies (s, t): s
+//! vertices from the light subpath, t from the camera subpath, s + t = d + 2. The strategies
+//! with t ≥ 2 give the radiance of the camera ray; those with t = 1 join a light subpath
+//! vertex to a fresh point on the lens and land anywhere on the film, so they are splatted.
+//! Surfaces only: participating media are not sampled (the reader warns).
+
+mod connect;
+mod vertex;
+mod walk;
+
+#[cfg(test)]
+mod tests;
+
+use super::Splat;
+use crate::math::{SampledSpectrum, Vec2};
+use crate::ray::Ray;
+use crate::sampling::Sampler;
+use crate::scene::Scene;
+use crate::spectrum::sampled::SampledWavelengths;
+use connect::connect;
+use vertex::Vertex;
+use walk::Walk;
+
+/// What `visualizestrategies` and `visualizeweights` see of each strategy (pbrt-v4 writes
+/// one image per (s, t)): called with s, t, where the strategy lands on the film (`None`:
+/// the camera ray's own pixel), its contribution without its MIS weight, and the weight.
+pub type StrategyObserver<'a> = &'a mut dyn FnMut(usize, usize, Option<Vec2>, SampledSpectrum, f32);
+
+/// The bdpt settings of a render.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BdptOptions {
+    /// Longest path, in bounces.
+    pub max_depth: u32,
+    /// Roughen near-specular lobes after a non-specular bounce.
+    pub regularize: bool,
+}
+
+thread_local! {
+    /// The subpaths' vertices, kept from one sample to the next on each thread (no
+    /// allocation per sample once they have grown).
+    static PATHS: std::cell::RefCell<(Vec<Vertex>, Vec<Vertex>)> =
+        const { std::cell::RefCell::new((Vec::new(), Vec::new())) };
+}
+
+/// Radiance along the camera ray `ray` by every strategy with t ≥ 2; the t = 1 strategies'
+/// contributions go to `splat`, and every strategy's to `observe` when given.
+pub fn li(
+    scene: &Scene,
+    ray: &Ray,
+    sampler: &mut Sampler,
+    lambda: Option<&SampledWavelengths>,
+    options: BdptOptions,
+    splat: Splat<'_>,
+    mut observe: Option<StrategyObserver<'_>>,
+) -> SampledSpectrum {
+    PATHS.with(|paths| {
+        let (camera, light) = &mut *paths.borrow_mut();
+        let max_depth = options.max_depth as usize;
+        let mut walk = Walk {
+            scene,
+            lambda: lambda.copied(),
+            hero_only: false,
+            regularize: options.regularize,
+        };
+        walk.camera_subpath(ray, sampler, max_depth + 2, camera);
+        walk.light_subpath(sampler, max_depth + 1, light);
+        let weight = walk.spectral_weight();
+        let lambda = walk.lambda;
+        let mut l = SampledSpectrum::ZERO;
+        for t in 1..=camera.len() {
+            for s in 0..=light.len() {
+                let depth = (s + t) as isize - 2;
+                if (s == 1 && t == 1) || depth < 0 || depth > max_depth as isize {
+                    continue;
+                }
+                let c = connect(scene, lambda.as_ref(), light, camera, s, t, sampler);
+                if c.l == SampledSpectrum::ZERO {
+                    continue;
+                }
+                let contribution = c.l * weight;
+                if let Some(observe) = observe.as_mut() {
+                    let unweighted = if c.weight > 0.0 {
+                        contribution / c.weight
+                    } else {
+                        SampledSpectrum::ZERO
+                    };
+                    observe(s, t, c.p_raster, unweighted, c.weight);
+                }
+                if t != 1 {
+                    l += contribution;
+                } else if let Some(p) = c.p_raster {
+                    splat(p, contribution);
+                }
+            }
+        }
+        l
+    })
+}

@@ -1,0 +1,556 @@
+//! bdpt and light tracing against the path tracer on a small diffuse room, the MIS weights of
+//! every strategy of a path summing to 1, and a white furnace.
+
+use super::connect::mis_weight;
+use super::vertex::{Kind, Vertex};
+use super::*;
+use crate::integrator::{Integrator, bsdf_at};
+use crate::material::Material;
+use crate::math::{PackedVec3, Rgb, Transform, Vec3, normalize};
+use crate::sampling::SamplerKind;
+use crate::scene::desc::{
+    AreaLightDesc, CameraDesc, FilmDesc, FilterDesc, Geometry, LightDesc, Projection, SceneDesc,
+    ShapeDesc,
+};
+use crate::shape::TriangleMesh;
+use crate::texture::SpectrumTex;
+use std::sync::Arc;
+
+const W: u32 = 24;
+const H: u32 = 18;
+
+fn quad(p: [[f32; 3]; 4], material: u32, light: Option<f32>) -> ShapeDesc {
+    ShapeDesc {
+        medium_interface: None,
+        geometry: Geometry::TriangleMesh(Arc::new(TriangleMesh {
+            positions: p
+                .iter()
+                .map(|v| PackedVec3::new(v[0], v[1], v[2]))
+                .collect(),
+            normals: vec![],
+            uvs: vec![],
+            indices: vec![0, 1, 2, 0, 2, 3],
+            flip_normal: false,
+        })),
+        object_to_world: Transform::IDENTITY,
+        reverse_orientation: false,
+        material,
+        area_light: light.map(|l| AreaLightDesc {
+            l: Rgb::splat(l),
+            two_sided: false,
+            spectrum: None,
+            power: None,
+            image: None,
+        }),
+        alpha: None,
+    }
+}
+
+/// A room open towards the camera: grey floor, back wall and ceiling, a red left wall, a
+/// green right wall, lit by a small quad under the ceiling facing down (`area`) or a point
+/// light (`!area`), which the camera does not see directly.
+fn room(area: bool, integrator: Integrator) -> Scene {
+    let diffuse = |c: Rgb| Material::Diffuse {
+        reflectance: SpectrumTex::Const(c),
+    };
+    let mut shapes = vec![
+        quad(
+            [
+                [-1.0, 0.0, 1.0],
+                [1.0, 0.0, 1.0],
+                [1.0, 0.0, -1.0],
+                [-1.0, 0.0, -1.0],
+            ],
+            0,
+            None,
+        ),
+        quad(
+            [
+                [-1.0, 0.0, -1.0],
+                [1.0, 0.0, -1.0],
+                [1.0, 2.0, -1.0],
+                [-1.0, 2.0, -1.0],
+            ],
+            0,
+            None,
+        ),
+        quad(
+            [
+                [-1.0, 2.0, -1.0],
+                [1.0, 2.0, -1.0],
+                [1.0, 2.0, 1.0],
+                [-1.0, 2.0, 1.0],
+            ],
+            0,
+            None,
+        ),
+        quad(
+            [
+                [-1.0, 0.0, 1.0],
+                [-1.0, 0.0, -1.0],
+                [-1.0, 2.0, -1.0],
+                [-1.0, 2.0, 1.0],
+            ],
+            1,
+            None,
+        ),
+        quad(
+            [
+                [1.0, 0.0, -1.0],
+                [1.0, 0.0, 1.0],
+                [1.0, 2.0, 1.0],
+                [1.0, 2.0, -1.0],
+            ],
+            2,
+            None,
+        ),
+    ];
+    let mut lights = vec![];
+    if area {
+        let (a, h) = (0.3, 1.98);
+        shapes.push(quad(
+            [[-a, h, -a], [a, h, -a], [a, h, a], [-a, h, a]],
+            0,
+            Some(6.0),
+        ));
+    } else {
+        lights.push(LightDesc::Point {
+            from: Vec3::new(0.2, 1.7, 0.1),
+            intensity: Rgb::splat(2.0),
+        });
+    }
+    let desc = SceneDesc {
+        camera: CameraDesc {
+            camera_from_world: Transform::look_at(
+                Vec3::new(0.0, 1.0, 4.2),
+                Vec3::new(0.0, 0.8, 0.0),
+                Vec3::Y,
+            )
+            .unwrap(),
+            // The image's top edge at 14° − 2.7° above the horizontal, below the light.
+            projection: Projection::Perspective { fov: 28.0 },
+            ..CameraDesc::default()
+        },
+        film: FilmDesc {
+            xresolution: W,
+            yresolution: H,
+            ..FilmDesc::default()
+        },
+        filter: FilterDesc::Box { radius: [0.5, 0.5] },
+        integrator,
+        materials: vec![
+            diffuse(Rgb::splat(0.7)),
+            diffuse(Rgb::new(0.7, 0.15, 0.1)),
+            diffuse(Rgb::new(0.15, 0.6, 0.15)),
+        ],
+        shapes,
+        lights,
+        ..SceneDesc::default()
+    };
+    Scene::build(&desc).unwrap()
+}
+
+/// Renders `scene` with `integrator` at `spp` samples per pixel (box filter, RGB mode):
+/// camera samples and splats into the pixel they land in, over `spp`. `per_strategy` also
+/// gathers each (s, t) strategy's unweighted contributions into images of their own.
+fn render(
+    scene: &Scene,
+    integrator: Integrator,
+    spp: u32,
+    seed: u64,
+    mut per_strategy: Option<&mut std::collections::BTreeMap<(usize, usize), Vec<Rgb>>>,
+) -> Vec<Rgb> {
+    let n = (W * H) as usize;
+    let mut img = vec![Rgb::ZERO; n];
+    let mut sampler = Sampler::new(SamplerKind::Independent, spp, seed);
+    let pixel = |p: Vec2| {
+        let (x, y) = (p.x.floor() as i32, p.y.floor() as i32);
+        (x >= 0 && y >= 0 && x < W as i32 && y < H as i32)
+            .then(|| (y as u32 * W + x as u32) as usize)
+    };
+    let rgb = |l: SampledSpectrum| Rgb::new(l[0], l[1], l[2]);
+    for y in 0..H as i32 {
+        for x in 0..W as i32 {
+            let i = (y as u32 * W + x as u32) as usize;
+            for s in 0..spp {
+                sampler.start_pixel_sample(x, y, s as u64);
+                let u = sampler.get_pixel_2d();
+                let p_film = Vec2::new(x as f32 + u.x, y as f32 + u.y);
+                let ray = scene
+                    .camera()
+                    .generate_ray(p_film, sampler.get_2d())
+                    .unwrap()
+                    .ray;
+                let mut splats = Vec::new();
+                let l = match (integrator, per_strategy.as_deref_mut()) {
+                    (
+                        Integrator::Bdpt {
+                            max_depth,
+                            regularize,
+                            ..
+                        },
+                        Some(images),
+                    ) => {
+                        let mut observe = |s: usize, t: usize, p: Option<Vec2>, v, _w| {
+                            let img = images.entry((s, t)).or_insert_with(|| vec![Rgb::ZERO; n]);
+                            if let Some(j) = p.map_or(Some(i), pixel) {
+                                img[j] += rgb(v);
+                            }
+                        };
+                        super::li(
+                            scene,
+                            &ray,
+                            &mut sampler,
+                            None,
+                            BdptOptions {
+                                max_depth,
+                                regularize,
+                            },
+                            &mut |p, v| splats.push((p, v)),
+                            Some(&mut observe),
+                        )
+                    }
+                    _ => integrator.li_splatting(scene, &ray, &mut sampler, None, &mut |p, v| {
+                        splats.push((p, v))
+                    }),
+                };
+                img[i] += rgb(l);
+                for (p, v) in splats {
+                    if let Some(j) = pixel(p) {
+                        img[j] += rgb(v);
+                    }
+                }
+            }
+        }
+    }
+    for v in img.iter_mut() {
+        *v /= spp as f32;
+    }
+    if let Some(images) = per_strategy {
+        for img in images.values_mut() {
+            for v in img.iter_mut() {
+                *v /= spp as f32;
+            }
+        }
+    }
+    img
+}
+
+/// Means over 6 × 6-pixel blocks (4 × 3 of them), channel by channel.
+fn blocks(img: &[Rgb]) -> Vec<Rgb> {
+    let mut out = vec![Rgb::ZERO; 12];
+    for y in 0..H {
+        for x in 0..W {
+            out[((y / 6) * 4 + x / 6) as usize] += img[(y * W + x) as usize] / 36.0;
+        }
+    }
+    out
+}
+
+/// Relative difference of block means, |a − b| / max(b, m/4) with m the mean of `b` over the
+/// image (dim blocks are compared against a quarter of it), worst block and channel; and the
+/// ratio of the images' means.
+fn compare(a: &[Rgb], b: &[Rgb]) -> (f32, f32) {
+    let (ba, bb) = (blocks(a), blocks(b));
+    let mean = |v: &[Rgb]| v.iter().map(|c| c.x + c.y + c.z).sum::<f32>() / (3 * v.len()) as f32;
+    let m = mean(&bb);
+    let worst = ba
+        .iter()
+        .zip(&bb)
+        .flat_map(|(x, y)| (0..3).map(move |c| (x[c] - y[c]).abs() / y[c].max(m / 4.0)))
+        .fold(0.0f32, f32::max);
+    (worst, mean(&ba) / m)
+}
+
+fn bdpt(max_depth: u32) -> Integrator {
+    Integrator::Bdpt {
+        max_depth,
+        regularize: false,
+        visualize_strategies: false,
+        visualize_weights: false,
+    }
+}
+
+fn path(max_depth: u32) -> Integrator {
+    Integrator::Path {
+        max_depth,
+        regularize: false,
+    }
+}
+
+#[test]
+fn bdpt_and_light_tracing_agree_with_path_tracing() {
+    for area in [true, false] {
+        let scene = room(area, bdpt(3));
+        let reference = render(&scene, path(3), 256, 1, None);
+        let b = render(&scene, bdpt(3), 64, 2, None);
+        let (worst, ratio) = compare(&b, &reference);
+        assert!(
+            worst < 0.07 && (ratio - 1.0).abs() < 0.015,
+            "bdpt, area {area}: worst block {worst}, mean ratio {ratio}"
+        );
+        let lp = render(&scene, Integrator::LightPath { max_depth: 3 }, 64, 3, None);
+        let (worst, ratio) = compare(&lp, &reference);
+        assert!(
+            worst < 0.12 && (ratio - 1.0).abs() < 0.02,
+            "lightpath, area {area}: worst block {worst}, mean ratio {ratio}"
+        );
+        // An image 10 % too dark is caught by the mean, a wrong distribution by the blocks.
+        let dim: Vec<Rgb> = reference.iter().map(|c| *c * 0.9).collect();
+        assert!((compare(&dim, &reference).1 - 1.0).abs() > 0.05);
+    }
+}
+
+#[test]
+fn each_strategy_alone_gives_the_image_of_its_depth() {
+    // Paths of one bounce (depth 1: light → surface → camera) are made by the strategies
+    // (0, 3), (1, 2) and (2, 1); each alone (unweighted) converges to the path tracer's
+    // image at maxdepth 1 (the camera does not see the light, so that is depth 1 only).
+    let scene = room(true, bdpt(1));
+    let reference = render(&scene, path(1), 256, 4, None);
+    let mut images = std::collections::BTreeMap::new();
+    let full = render(&scene, bdpt(1), 128, 5, Some(&mut images));
+    assert_eq!(
+        images.keys().copied().collect::<Vec<_>>(),
+        [(0, 3), (1, 2), (2, 1)]
+    );
+    let (worst, ratio) = compare(&full, &reference);
+    assert!(
+        worst < 0.06 && (ratio - 1.0).abs() < 0.02,
+        "full: {worst} {ratio}"
+    );
+    for (st, img) in &images {
+        let (worst, ratio) = compare(img, &reference);
+        // (0, 3) hits the small light by chance only: noisier.
+        let (bound, mean_bound) = if *st == (0, 3) {
+            (0.3, 0.03)
+        } else {
+            (0.12, 0.015)
+        };
+        assert!(
+            worst < bound && (ratio - 1.0).abs() < mean_bound,
+            "strategy {st:?}: worst block {worst}, mean ratio {ratio}"
+        );
+    }
+}
+
+/// A surface vertex where the ray from `from` towards `to` first meets the room.
+fn surface_vertex(scene: &Scene, from: Vec3, to: Vec3) -> Vertex {
+    let hit = scene
+        .intersect(&Ray::new(from, normalize(to - from)))
+        .unwrap();
+    let (bsdf, _) = bsdf_at(scene, &hit, None).unwrap();
+    Vertex {
+        kind: Kind::Surface,
+        p: hit.si.p,
+        p_error: hit.si.p_error,
+        ng: hit.si.n,
+        ns: hit.si.shading.n,
+        wo: hit.si.wo,
+        uv: hit.si.uv,
+        prim: hit.prim,
+        bsdf: Some(bsdf),
+        beta: SampledSpectrum::ONE,
+        delta: false,
+        pdf_fwd: 0.0,
+        pdf_rev: 0.0,
+    }
+}
+
+/// The subpaths strategy s makes of the path `x` (light end first, camera last): the light
+/// subpath's first s vertices and the camera subpath's first t, with their densities as the
+/// random walks compute them.
+fn subpaths(
+    scene: &Scene,
+    x: &[Vertex],
+    light_vertex: Vertex,
+    s: usize,
+) -> (Vec<Vertex>, Vec<Vertex>) {
+    let n = x.len();
+    let mut light: Vec<Vertex> = x[..s].to_vec();
+    if s > 0 {
+        light[0] = light_vertex;
+    }
+    let mut camera: Vec<Vertex> = x[s..].iter().rev().copied().collect();
+    for path in [&mut light, &mut camera] {
+        for i in 1..path.len() {
+            let prev = (i >= 2).then(|| path[i - 2]);
+            path[i].pdf_fwd = path[i - 1].pdf(scene, prev.as_ref(), &path[i]);
+        }
+        for i in 0..path.len().saturating_sub(2) {
+            let next_next = path.get(i + 2).copied();
+            path[i].pdf_rev = path[i + 1].pdf(scene, next_next.as_ref(), &path[i]);
+        }
+    }
+    if s > 0 {
+        light[0].pdf_fwd = light[0].pdf_light_origin(scene, &x[1]);
+    }
+    assert_eq!(light.len() + camera.len(), n);
+    (light, camera)
+}
+
+#[test]
+fn mis_weights_of_all_strategies_of_a_path_sum_to_one() {
+    for area in [true, false] {
+        let scene = room(area, bdpt(5));
+        let c = Vec3::new(0.0, 1.0, 0.0);
+        let eye = scene.camera().world_from_camera.point(Vec3::ZERO);
+        let bounces = [
+            surface_vertex(&scene, c, Vec3::new(0.3, 0.0, 0.2)),
+            surface_vertex(&scene, c, Vec3::new(-0.5, 0.6, -1.0)),
+            surface_vertex(&scene, c, Vec3::new(-1.0, 1.2, 0.3)),
+        ];
+        // The light's end: a point on the quad (a surface vertex for the camera side, a light
+        // vertex for the light side), or the point light.
+        let (on_light, light_vertex) = if area {
+            let v = surface_vertex(&scene, c, Vec3::new(0.1, 2.0, 0.05));
+            let i = scene.prim(v.prim).emission.unwrap().light;
+            (
+                v,
+                Vertex::endpoint(Kind::Light(i), v.p, v.p_error, v.ng, SampledSpectrum::ONE),
+            )
+        } else {
+            let p = Vec3::new(0.2, 1.7, 0.1);
+            let v = Vertex::endpoint(
+                Kind::Light(0),
+                p,
+                Vec3::ZERO,
+                Vec3::ZERO,
+                SampledSpectrum::ONE,
+            );
+            (v, v)
+        };
+        let camera_vertex = Vertex::endpoint(
+            Kind::Camera,
+            eye,
+            Vec3::ZERO,
+            Vec3::ZERO,
+            SampledSpectrum::ONE,
+        );
+        for depth in 1..=3 {
+            let mut x = vec![on_light];
+            x.extend_from_slice(&bounces[..depth]);
+            x.push(camera_vertex);
+            let n = x.len();
+            let mut sum = 0.0;
+            let mut weights = vec![];
+            // A point light cannot be hit: no s = 0.
+            for s in usize::from(!area)..n {
+                let t = n - s;
+                let (mut light, mut camera) = subpaths(&scene, &x, light_vertex, s);
+                // s = 1 and t = 1 connect to a vertex sampled for the purpose: the light's or
+                // the lens' (with the lens' normal, as the camera samples it).
+                let sampled = if s == 1 {
+                    Some(light[0])
+                } else if t == 1 {
+                    let mut v = camera[0];
+                    v.ng = normalize(scene.camera().world_from_camera.vector(Vec3::Z));
+                    v.ns = v.ng;
+                    Some(v)
+                } else {
+                    None
+                };
+                let w = mis_weight(&scene, &mut light, &mut camera, sampled.as_ref(), s, t);
+                assert!(w > 0.0 && w <= 1.0, "area {area} depth {depth} s {s}: {w}");
+                weights.push(w);
+                sum += w;
+            }
+            assert!(
+                (sum - 1.0).abs() < 1e-4,
+                "area {area} depth {depth}: weights {weights:?} sum to {sum}"
+            );
+        }
+    }
+}
+
+#[test]
+fn white_furnace() {
+    // A diffuse sphere of albedo 0.8 under a uniform white sky: a convex object reflects the
+    // sky once, so the image is 0.8 on the sphere and 1 around it, whatever the strategies.
+    let desc = SceneDesc {
+        camera: CameraDesc {
+            camera_from_world: Transform::look_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, Vec3::Y)
+                .unwrap(),
+            projection: Projection::Perspective { fov: 40.0 },
+            ..CameraDesc::default()
+        },
+        film: FilmDesc {
+            xresolution: W,
+            yresolution: H,
+            ..FilmDesc::default()
+        },
+        filter: FilterDesc::Box { radius: [0.5, 0.5] },
+        integrator: bdpt(5),
+        materials: vec![Material::Diffuse {
+            reflectance: SpectrumTex::Const(Rgb::splat(0.8)),
+        }],
+        shapes: vec![ShapeDesc {
+            medium_interface: None,
+            geometry: Geometry::Sphere {
+                radius: 1.0,
+                z_min: -1.0,
+                z_max: 1.0,
+                phi_max: 360.0,
+            },
+            object_to_world: Transform::IDENTITY,
+            reverse_orientation: false,
+            material: 0,
+            area_light: None,
+            alpha: None,
+        }],
+        lights: vec![LightDesc::Infinite {
+            light_to_world: Transform::IDENTITY,
+            l: Rgb::ONE,
+            image: None,
+        }],
+        ..SceneDesc::default()
+    };
+    let scene = Scene::build(&desc).unwrap();
+    let img = render(&scene, bdpt(5), 64, 9, None);
+    // The centre block is all sphere, the corners all sky.
+    let centre: Rgb = [(11, 8), (12, 8), (11, 9), (12, 9)]
+        .iter()
+        .map(|&(x, y)| img[(y * W + x) as usize])
+        .fold(Rgb::ZERO, |a, b| a + b)
+        / 4.0;
+    let corner = img[0];
+    for c in 0..3 {
+        assert!((centre[c] - 0.8).abs() < 0.03, "sphere {centre}");
+        assert!((corner[c] - 1.0).abs() < 0.02, "sky {corner}");
+    }
+}
+
+#[test]
+fn the_simple_integrators_agree_with_path_tracing() {
+    let scene = room(true, path(3));
+    let reference = render(&scene, path(3), 256, 1, None);
+    for (integrator, spp, bound) in [
+        (
+            Integrator::SimplePath {
+                max_depth: 3,
+                sample_lights: true,
+                sample_bsdf: true,
+            },
+            128,
+            0.08,
+        ),
+        (
+            Integrator::SimplePath {
+                max_depth: 3,
+                sample_lights: true,
+                sample_bsdf: false,
+            },
+            128,
+            0.1,
+        ),
+        // Hitting the small light by chance: much noisier.
+        (Integrator::RandomWalk { max_depth: 3 }, 512, 0.35),
+    ] {
+        let img = render(&scene, integrator, spp, 7, None);
+        let (worst, ratio) = compare(&img, &reference);
+        assert!(
+            worst < bound && (ratio - 1.0).abs() < bound / 4.0,
+            "{integrator:?}: worst block {worst}, mean ratio {ratio}"
+        );
+    }
+}

@@ -1,0 +1,281 @@
+//! A vertex of a bidirectional subpath (pbrt-v4's BDPT `Vertex`): where it is, what it
+//! carries, and the densities with which either subpath would have reached it, per unit area
+//! (the measure in which the strategies' densities compare).
+
+use super::super::light_emit::{pdf_le, scene_sphere};
+use crate::light::{Light, LightSampleContext};
+use crate::material::{Bsdf, TransportMode};
+use crate::math::{PI, SampledSpectrum, Vec2, Vec3, normalize};
+use crate::ray::Ray;
+use crate::scene::Scene;
+use crate::spectrum::sampled::SampledWavelengths;
+
+/// What a vertex is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Kind {
+    /// The camera's lens.
+    Camera,
+    /// A point on light `0` (index into the scene's lights): the start of a light subpath, or
+    /// the light sampled for a camera subpath.
+    Light(u32),
+    /// The environment, seen by a camera subpath that left the scene.
+    Escaped,
+    /// A surface point with a BSDF (it may emit too).
+    Surface,
+}
+
+/// One vertex of a camera or light subpath.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Vertex {
+    /// What it is.
+    pub kind: Kind,
+    /// Position.
+    pub p: Vec3,
+    /// Bound on the rounding error of `p`.
+    pub p_error: Vec3,
+    /// Geometric normal; zero off surfaces (points, directions, a pinhole).
+    pub ng: Vec3,
+    /// Shading normal (the geometric one where there is no other).
+    pub ns: Vec3,
+    /// Direction back towards the vertex the subpath came from (surfaces).
+    pub wo: Vec3,
+    /// Surface coordinates (for image emitters).
+    pub uv: Vec2,
+    /// Primitive (surfaces).
+    pub prim: u32,
+    /// The BSDF (surfaces).
+    pub bsdf: Option<Bsdf>,
+    /// The subpath's throughput up to this vertex.
+    pub beta: SampledSpectrum,
+    /// Scattered by a specular lobe (no connection can reach it).
+    pub delta: bool,
+    /// Density of this vertex per unit area, sampled from its subpath's previous vertex.
+    pub pdf_fwd: f32,
+    /// Density of this vertex per unit area, were it sampled from the other direction.
+    pub pdf_rev: f32,
+}
+
+impl Vertex {
+    /// A vertex of `kind` at `p` with normal `n` (zero off surfaces) carrying `beta`.
+    pub fn endpoint(kind: Kind, p: Vec3, p_error: Vec3, n: Vec3, beta: SampledSpectrum) -> Self {
+        Vertex {
+            kind,
+            p,
+            p_error,
+            ng: n,
+            ns: n,
+            wo: Vec3::ZERO,
+            uv: Vec2::ZERO,
+            prim: 0,
+            bsdf: None,
+            beta,
+            delta: false,
+            pdf_fwd: 0.0,
+            pdf_rev: 0.0,
+        }
+    }
+
+    /// True on a surface (a normal defines the area measure there).
+    pub fn is_on_surface(&self) -> bool {
+        self.ng != Vec3::ZERO
+    }
+
+    /// The light this vertex is on, if any: a light vertex's own, or a surface's emission.
+    fn light(&self, scene: &Scene) -> Option<u32> {
+        match self.kind {
+            Kind::Light(i) => Some(i),
+            Kind::Surface => scene.prim(self.prim).emission.map(|e| e.light),
+            _ => None,
+        }
+    }
+
+    /// True where a path may end on a light: light vertices, the environment, emitters.
+    pub fn is_light(&self, scene: &Scene) -> bool {
+        match self.kind {
+            Kind::Light(_) | Kind::Escaped => true,
+            Kind::Surface => self.light(scene).is_some(),
+            Kind::Camera => false,
+        }
+    }
+
+    /// A light vertex of a point or directional light (no area to hit).
+    pub fn is_delta_light(&self, scene: &Scene) -> bool {
+        matches!(self.kind, Kind::Light(i) if scene.lights()[i as usize].is_delta())
+    }
+
+    /// The environment, an environment light's vertex or a distant light's: lights at
+    /// infinity, whose densities are per unit solid angle rather than area.
+    pub fn is_infinite_light(&self, scene: &Scene) -> bool {
+        match self.kind {
+            Kind::Escaped => true,
+            Kind::Light(i) => {
+                let l = &scene.lights()[i as usize];
+                l.is_infinite() || matches!(l, Light::Distant { .. })
+            }
+            _ => false,
+        }
+    }
+
+    /// True where a connection can join this vertex: not a specular surface, not a distant
+    /// light (whose single direction no other vertex can aim at).
+    pub fn is_connectible(&self, scene: &Scene) -> bool {
+        match self.kind {
+            Kind::Camera | Kind::Escaped => true,
+            Kind::Light(i) => !matches!(scene.lights()[i as usize], Light::Distant { .. }),
+            Kind::Surface => self.bsdf.is_some_and(|b| b.flags().is_non_specular()),
+        }
+    }
+
+    /// The BSDF's value from this vertex towards `next` (surfaces; zero elsewhere).
+    pub fn f(&self, next: &Vertex, mode: TransportMode) -> SampledSpectrum {
+        let w = next.p - self.p;
+        match (self.kind, &self.bsdf) {
+            (Kind::Surface, Some(bsdf)) if w.length_squared() > 0.0 => {
+                bsdf.f(self.wo, normalize(w), mode)
+            }
+            _ => SampledSpectrum::ZERO,
+        }
+    }
+
+    /// Radiance this light vertex (or emitting surface, or environment) sends towards `v`.
+    pub fn le(
+        &self,
+        scene: &Scene,
+        v: &Vertex,
+        lambda: Option<&SampledWavelengths>,
+    ) -> SampledSpectrum {
+        let w = v.p - self.p;
+        if w.length_squared() == 0.0 || !self.is_light(scene) {
+            return SampledSpectrum::ZERO;
+        }
+        let w = normalize(w);
+        if self.is_infinite_light(scene) {
+            // The environment along −w (the direction the camera subpath left in).
+            let mut le = SampledSpectrum::ZERO;
+            for &i in scene.infinite_lights() {
+                let c = scene.lights()[i as usize].le(-w);
+                if c != crate::math::Rgb::ZERO {
+                    le += scene.light_radiance(i as usize, lambda, c, 1.0);
+                }
+            }
+            return le;
+        }
+        match super::super::emission::emission_at(scene, self.prim, self.ng, self.uv, w) {
+            Some((i, c)) => scene.light_radiance(i, lambda, c, 1.0),
+            None => SampledSpectrum::ZERO,
+        }
+    }
+
+    /// Turns `pdf`, a density per unit solid angle at this vertex, into a density per unit
+    /// area at `next`: p·|cos θ_next|/d² (no change when `next` is at infinity).
+    pub fn convert_density(&self, pdf: f32, next: &Vertex, scene: &Scene) -> f32 {
+        if next.is_infinite_light(scene) {
+            return pdf;
+        }
+        let w = next.p - self.p;
+        let d2 = w.length_squared();
+        if d2 == 0.0 {
+            return 0.0;
+        }
+        let inv_d2 = 1.0 / d2;
+        let mut pdf = pdf;
+        if next.is_on_surface() {
+            pdf *= next.ng.dot(w * inv_d2.sqrt()).abs();
+        }
+        pdf * inv_d2
+    }
+
+    /// Density per unit area with which this vertex, reached from `prev`, samples `next`
+    /// (pbrt-v4's `Vertex::PDF`).
+    pub fn pdf(&self, scene: &Scene, prev: Option<&Vertex>, next: &Vertex) -> f32 {
+        if let Kind::Light(_) = self.kind {
+            return self.pdf_light(scene, next);
+        }
+        let wn = next.p - self.p;
+        if wn.length_squared() == 0.0 {
+            return 0.0;
+        }
+        let wn = normalize(wn);
+        let pdf = match (self.kind, &self.bsdf, prev) {
+            (Kind::Camera, _, _) => scene.camera().pdf_we(self.p, wn).1,
+            (Kind::Surface, Some(bsdf), Some(prev)) => {
+                let wp = prev.p - self.p;
+                if wp.length_squared() == 0.0 {
+                    return 0.0;
+                }
+                bsdf.pdf(normalize(wp), wn, TransportMode::Radiance)
+            }
+            _ => 0.0,
+        };
+        self.convert_density(pdf, next, scene)
+    }
+
+    /// Density per unit area with which this light vertex's light, emitting a ray, reaches
+    /// `v`: p_dir/d² (times |cos θ_v| on a surface); an infinite light's rays are spread over
+    /// the scene's disk: 1/(π r²).
+    pub fn pdf_light(&self, scene: &Scene, v: &Vertex) -> f32 {
+        let w = v.p - self.p;
+        let d2 = w.length_squared();
+        if d2 == 0.0 {
+            return 0.0;
+        }
+        let inv_d2 = 1.0 / d2;
+        let w = w * inv_d2.sqrt();
+        let mut pdf = if self.is_infinite_light(scene) {
+            let (_, r) = scene_sphere(scene);
+            1.0 / (PI * r * r)
+        } else {
+            let Some(i) = self.light(scene) else {
+                return 0.0;
+            };
+            let n = self.is_on_surface().then_some(self.ng);
+            pdf_le(scene, i as usize, n, w).1 * inv_d2
+        };
+        if v.is_on_surface() {
+            pdf *= v.ng.dot(w).abs();
+        }
+        pdf
+    }
+
+    /// Density with which a light subpath starts at this vertex, aimed at `v`: the light's
+    /// choice times its position's density (per unit area); for lights at infinity, the
+    /// density of the direction (see [`infinite_light_density`]).
+    pub fn pdf_light_origin(&self, scene: &Scene, v: &Vertex) -> f32 {
+        let w = v.p - self.p;
+        if w.length_squared() == 0.0 {
+            return 0.0;
+        }
+        let w = normalize(w);
+        if self.is_infinite_light(scene) {
+            return infinite_light_density(scene, w);
+        }
+        let Some(i) = self.light(scene) else {
+            return 0.0;
+        };
+        let n = self.is_on_surface().then_some(self.ng);
+        scene.light_distribution().pmf(i as usize) * pdf_le(scene, i as usize, n, w).0
+    }
+
+    /// The ray leaving this vertex towards `target` for a visibility test.
+    pub fn shadow_ray(&self, target: Vec3) -> Ray {
+        Ray::spawn_to(self.p, self.p_error, self.ng, target)
+    }
+}
+
+/// Density, per unit solid angle, with which the environment lights (chosen by power) emit
+/// light paths arriving along −`w`: Σ pmf(light)·pdf(light, −w).
+pub(super) fn infinite_light_density(scene: &Scene, w: Vec3) -> f32 {
+    let ctx = LightSampleContext {
+        p: Vec3::ZERO,
+        n: Vec3::ZERO,
+        ns: Vec3::ZERO,
+    };
+    scene
+        .infinite_lights()
+        .iter()
+        .map(|&i| {
+            scene.light_distribution().pmf(i as usize)
+                * scene.lights()[i as usize].pdf_li(&ctx, -w, None)
+        })
+        .sum()
+}

@@ -1,0 +1,101 @@
+//! Light tracing (pbrt-v4's `lightpath`): paths start at the lights and every vertex they
+//! reach is connected to the camera, its contribution splatted where it lands on the film.
+//! The camera's own ray brings nothing back.
+//!
+//! One light path per camera sample: a light chosen in proportion to its power (p_l), a ray
+//! leaving it (densities p_pos, p_dir), so that the path carries
+//! β = Le·|cos θ₀| / (p_l·p_pos·p_dir) and, after each bounce, β·f·|cos θ|/p. At a vertex x
+//! with the lens point sampled for it (density p_c per solid angle at x, importance We), the
+//! film receives β·f(x, towards the lens)·|cos θ_x|·We/p_c.
+
+use super::light_emit::sample_le;
+use super::{Splat, bsdf_at};
+use crate::material::TransportMode;
+use crate::math::SampledSpectrum;
+use crate::ray::Ray;
+use crate::sampling::Sampler;
+use crate::scene::Scene;
+use crate::spectrum::hero::HERO_ONLY;
+use crate::spectrum::sampled::SampledWavelengths;
+
+/// Traces one light path of at most `max_depth` bounces, splatting what each vertex sends to
+/// the camera into `splat`; returns the (zero) radiance of the camera ray.
+pub fn li(
+    scene: &Scene,
+    sampler: &mut Sampler,
+    lambda: Option<&SampledWavelengths>,
+    max_depth: u32,
+    splat: Splat<'_>,
+) -> SampledSpectrum {
+    let camera = &scene.camera();
+    let scale = camera.splat_scale();
+    let mut wavelengths = lambda.copied();
+    let Some((light, p_l)) = scene.light_distribution().sample(sampler.get_1d()) else {
+        return SampledSpectrum::ZERO;
+    };
+    let (u1, u2) = (sampler.get_2d(), sampler.get_2d());
+    let Some(les) = sample_le(scene, light, u1, u2) else {
+        return SampledSpectrum::ZERO;
+    };
+    let le = scene.light_radiance(light, wavelengths.as_ref(), les.l, les.factor);
+    // The light's own surface, seen directly: Le·We·|cos θ_light| / (p_l·p_pos·p_c), with
+    // p_pos = 1/A the density of the point on the light.
+    if let Some(n) = les.n
+        && let Some(cs) = camera.sample_wi(les.o, sampler.get_2d())
+    {
+        let cos = n.dot(cs.wi);
+        let two_sided = matches!(
+            scene.lights()[light],
+            crate::light::Light::Area {
+                two_sided: true,
+                ..
+            }
+        );
+        if (cos > 0.0 || two_sided)
+            && !scene.intersect_p(&Ray::spawn_to(les.o, les.o_error, n, cs.p_lens))
+        {
+            let l = le * (cs.wi_importance * cos.abs() / (p_l * les.pdf_pos * cs.pdf));
+            splat(cs.p_raster, l * scale);
+        }
+    }
+    let mut beta = le * (les.abs_cos() / (p_l * les.pdf_pos * les.pdf_dir));
+    let mut ray = Ray::spawn(les.o, les.o_error, les.n.unwrap_or(les.d), les.d);
+    let mut depth = 0;
+    while let Some(hit) = scene.intersect(&ray) {
+        let si = &hit.si;
+        let Some((bsdf, disperses)) = bsdf_at(scene, &hit, wavelengths.as_ref()) else {
+            // An interface between media: the ray goes on.
+            ray = si.spawn_ray(ray.d);
+            continue;
+        };
+        if let Some(w) = wavelengths
+            .as_mut()
+            .filter(|w| disperses && !w.secondary_terminated())
+        {
+            w.terminate_secondary();
+            beta *= HERO_ONLY;
+        }
+        if depth == max_depth {
+            break;
+        }
+        depth += 1;
+        // Connect to the camera.
+        if let Some(cs) = camera.sample_wi(si.p, sampler.get_2d()) {
+            let f = bsdf.f(si.wo, cs.wi, TransportMode::Importance);
+            let l = beta * f * (cs.wi.dot(si.shading.n).abs() * cs.wi_importance / cs.pdf);
+            if l != SampledSpectrum::ZERO && !scene.intersect_p(&si.spawn_ray_to(cs.p_lens)) {
+                splat(cs.p_raster, l * scale);
+            }
+        }
+        let uc = sampler.get_1d();
+        let Some(bs) = bsdf.sample_f(si.wo, uc, sampler.get_2d(), TransportMode::Importance) else {
+            break;
+        };
+        beta *= bs.f * (bs.wi.dot(si.shading.n).abs() / bs.pdf);
+        if !beta.is_finite() || beta == SampledSpectrum::ZERO {
+            break;
+        }
+        ray = si.spawn_ray(bs.wi);
+    }
+    SampledSpectrum::ZERO
+}

@@ -1,0 +1,177 @@
+//! pbrt-v4's teaching integrators: `randomwalk` (directions uniform over the sphere, no light
+//! sampling) and `simplepath` (a path tracer without MIS: light sampling or BSDF sampling,
+//! each optional). Both are unbiased and slow; they are here to check the others against.
+
+use super::{bsdf_at, emitted};
+use crate::light::LightSampleContext;
+use crate::material::TransportMode;
+use crate::math::{Rgb, SampledSpectrum, Vec3};
+use crate::ray::Ray;
+use crate::sampling::{
+    Sampler, sample_uniform_hemisphere, sample_uniform_sphere, uniform_hemisphere_pdf,
+    uniform_sphere_pdf,
+};
+use crate::scene::Scene;
+use crate::spectrum::hero::HERO_ONLY;
+use crate::spectrum::sampled::SampledWavelengths;
+
+/// The environment's radiance along a ray leaving the scene in direction `d`.
+fn environment(scene: &Scene, d: Vec3, lambda: Option<&SampledWavelengths>) -> SampledSpectrum {
+    let mut le = SampledSpectrum::ZERO;
+    for &i in scene.infinite_lights() {
+        let c = scene.lights()[i as usize].le(d);
+        if c != Rgb::ZERO {
+            le += scene.light_radiance(i as usize, lambda, c, 1.0);
+        }
+    }
+    le
+}
+
+/// pbrt-v4's `randomwalk`: at each surface a direction uniform over the sphere, weighted by
+/// f·|cos θ|·4π; emission is counted where the walk meets it. L = Le + f·|cos|·L_next / (1/4π).
+pub fn random_walk(
+    scene: &Scene,
+    ray: &Ray,
+    sampler: &mut Sampler,
+    lambda: Option<&SampledWavelengths>,
+    max_depth: u32,
+) -> SampledSpectrum {
+    let mut wavelengths = lambda.copied();
+    let (mut l, mut beta) = (SampledSpectrum::ZERO, SampledSpectrum::ONE);
+    let mut ray = *ray;
+    let mut depth = 0;
+    loop {
+        let Some(hit) = scene.intersect(&ray) else {
+            l += beta * environment(scene, ray.d, wavelengths.as_ref());
+            break;
+        };
+        let si = &hit.si;
+        l += beta * emitted(scene, &hit, si.wo, wavelengths.as_ref());
+        if depth == max_depth {
+            break;
+        }
+        let Some((bsdf, disperses)) = bsdf_at(scene, &hit, wavelengths.as_ref()) else {
+            break;
+        };
+        if let Some(w) = wavelengths
+            .as_mut()
+            .filter(|w| disperses && !w.secondary_terminated())
+        {
+            w.terminate_secondary();
+            l *= HERO_ONLY;
+            beta *= HERO_ONLY;
+        }
+        let wi = sample_uniform_sphere(sampler.get_2d());
+        let fcos = bsdf.f(si.wo, wi, TransportMode::Radiance) * wi.dot(si.shading.n).abs();
+        if fcos == SampledSpectrum::ZERO {
+            break;
+        }
+        beta *= fcos / uniform_sphere_pdf();
+        ray = si.spawn_ray(wi);
+        depth += 1;
+    }
+    l
+}
+
+/// pbrt-v4's `simplepath`: with `sample_lights`, one light chosen uniformly and sampled at
+/// each surface (emission met by the path then counts only after specular bounces); with
+/// `sample_bsdf` the path goes on by BSDF sampling, else by directions uniform over the
+/// hemisphere (the sphere for a BSDF that both reflects and transmits).
+pub fn simple_path(
+    scene: &Scene,
+    ray: &Ray,
+    sampler: &mut Sampler,
+    lambda: Option<&SampledWavelengths>,
+    max_depth: u32,
+    sample_lights: bool,
+    sample_bsdf: bool,
+) -> SampledSpectrum {
+    let mut wavelengths = lambda.copied();
+    let (mut l, mut beta) = (SampledSpectrum::ZERO, SampledSpectrum::ONE);
+    let mut ray = *ray;
+    let mut depth = 0;
+    let mut specular_bounce = true;
+    let n_lights = scene.lights().len();
+    loop {
+        let Some(hit) = scene.intersect(&ray) else {
+            if !sample_lights || specular_bounce {
+                l += beta * environment(scene, ray.d, wavelengths.as_ref());
+            }
+            break;
+        };
+        let si = &hit.si;
+        if !sample_lights || specular_bounce {
+            l += beta * emitted(scene, &hit, si.wo, wavelengths.as_ref());
+        }
+        if depth == max_depth {
+            break;
+        }
+        depth += 1;
+        let Some((bsdf, disperses)) = bsdf_at(scene, &hit, wavelengths.as_ref()) else {
+            specular_bounce = true;
+            ray = si.spawn_ray(ray.d);
+            continue;
+        };
+        if let Some(w) = wavelengths
+            .as_mut()
+            .filter(|w| disperses && !w.secondary_terminated())
+        {
+            w.terminate_secondary();
+            l *= HERO_ONLY;
+            beta *= HERO_ONLY;
+        }
+        let wo = si.wo;
+        if sample_lights && n_lights > 0 {
+            // A light chosen uniformly (p = 1/n), a point on it: L += β·f·|cos|·Li / (p·pdf).
+            let ul = sampler.get_1d();
+            let i = ((ul * n_lights as f32) as usize).min(n_lights - 1);
+            let ctx = LightSampleContext {
+                p: si.p,
+                n: si.n,
+                ns: si.shading.n,
+            };
+            let u = sampler.get_2d();
+            if let Some(ls) = scene.lights()[i]
+                .sample_li(&ctx, u, scene.shapes(), scene.meshes())
+                .filter(|ls| ls.pdf > 0.0)
+            {
+                let f = bsdf.f(wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(si.shading.n).abs();
+                if f != SampledSpectrum::ZERO && !scene.intersect_p(&si.spawn_ray_to(ls.p_light)) {
+                    let li = scene.light_radiance(i, wavelengths.as_ref(), ls.l, ls.factor);
+                    l += beta * f * li * (n_lights as f32 / ls.pdf);
+                }
+            }
+        }
+        if sample_bsdf {
+            let uc = sampler.get_1d();
+            let Some(bs) = bsdf.sample_f(wo, uc, sampler.get_2d(), TransportMode::Radiance) else {
+                break;
+            };
+            beta *= bs.f * (bs.wi.dot(si.shading.n).abs() / bs.pdf);
+            specular_bounce = bs.is_specular();
+            ray = si.spawn_ray(bs.wi);
+        } else {
+            let flags = bsdf.flags();
+            let u = sampler.get_2d();
+            let (wi, pdf) = if flags.is_reflection() && flags.is_transmission() {
+                (sample_uniform_sphere(u), uniform_sphere_pdf())
+            } else {
+                // The hemisphere on the side the BSDF scatters to.
+                let local = sample_uniform_hemisphere(u);
+                let mut wi = crate::math::Frame::from_z(si.n).from_local(local);
+                let same_side = wo.dot(si.n) * wi.dot(si.n) > 0.0;
+                if (flags.is_reflection() && !same_side) || (flags.is_transmission() && same_side) {
+                    wi = -wi;
+                }
+                (wi, uniform_hemisphere_pdf())
+            };
+            beta *= bsdf.f(wo, wi, TransportMode::Radiance) * (wi.dot(si.shading.n).abs() / pdf);
+            specular_bounce = false;
+            ray = si.spawn_ray(wi);
+        }
+        if !beta.is_finite() || beta == SampledSpectrum::ZERO {
+            break;
+        }
+    }
+    l
+}
