@@ -37,7 +37,7 @@ pub fn li(
     let Some(les) = sample_le(scene, light, u1, u2) else {
         return SampledSpectrum::ZERO;
     };
-    let le = scene.light_radiance(light, wavelengths.as_ref(), les.l, les.factor);
+    let le = scene.light_radiance(light, wavelengths.as_ref(), les.l, les.factor, -les.d);
     // The light's own surface, seen directly: Le·We·|cos θ_light| / (p_l·p_pos·p_c), with
     // p_pos = 1/A the density of the point on the light.
     if let Some(n) = les.n

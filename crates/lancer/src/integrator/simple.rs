@@ -21,7 +21,7 @@ fn environment(scene: &Scene, d: Vec3, lambda: Option<&SampledWavelengths>) -> S
     for &i in scene.infinite_lights() {
         let c = scene.lights()[i as usize].le(d);
         if c != Rgb::ZERO {
-            le += scene.light_radiance(i as usize, lambda, c, 1.0);
+            le += scene.light_radiance(i as usize, lambda, c, 1.0, d);
         }
     }
     le
@@ -137,7 +137,7 @@ pub fn simple_path(
             {
                 let f = bsdf.f(wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(si.shading.n).abs();
                 if f != SampledSpectrum::ZERO && !scene.intersect_p(&si.spawn_ray_to(ls.p_light)) {
-                    let li = scene.light_radiance(i, wavelengths.as_ref(), ls.l, ls.factor);
+                    let li = scene.light_radiance(i, wavelengths.as_ref(), ls.l, ls.factor, ls.wi);
                     l += beta * f * li * (n_lights as f32 / ls.pdf);
                 }
             }

@@ -4,10 +4,11 @@
 
 use lancer::Scene;
 use lancer::film::{Film, PixelBounds};
-use lancer::material::Material;
+use lancer::integrator::Integrator;
+use lancer::material::{DiffuseMaterial, MaterialDesc};
 use lancer::math::{PackedVec3, Rgb, Transform, Vec3};
 use lancer::render::{RenderSettings, render_units_with, work_units};
-use lancer::scene::desc::{FilterDesc, Geometry, Integrator, LightDesc, SceneDesc, ShapeDesc};
+use lancer::scene::desc::{FilterDesc, Geometry, LightDesc, SceneDesc, ShapeDesc};
 use lancer::shape::TriangleMesh;
 use lancer::texture::SpectrumTex;
 use std::sync::Arc;
@@ -24,9 +25,9 @@ fn desc(integrator: Integrator) -> SceneDesc {
             sigma: 0.5,
         },
         integrator,
-        materials: vec![Material::Diffuse {
+        materials: vec![MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: SpectrumTex::Const(Rgb::new(0.7, 0.5, 0.3)),
-        }],
+        })],
         shapes: vec![ShapeDesc {
             medium_interface: None,
             geometry: Geometry::TriangleMesh(Arc::new(TriangleMesh {

@@ -156,7 +156,7 @@ pub(super) fn connect(
                 .sample_li(&ctx, u, scene.shapes(), scene.meshes())
                 .filter(|ls| ls.pdf > 0.0);
             if let Some(ls) = ls {
-                let le = scene.light_radiance(i, lambda, ls.l, ls.factor);
+                let le = scene.light_radiance(i, lambda, ls.l, ls.factor, ls.wi);
                 if le != SampledSpectrum::ZERO {
                     let n = light_normal(scene, i, ls.p_light, pt);
                     let mut v = Vertex::endpoint(

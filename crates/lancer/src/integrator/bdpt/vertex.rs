@@ -155,13 +155,13 @@ impl Vertex {
             for &i in scene.infinite_lights() {
                 let c = scene.lights()[i as usize].le(-w);
                 if c != crate::math::Rgb::ZERO {
-                    le += scene.light_radiance(i as usize, lambda, c, 1.0);
+                    le += scene.light_radiance(i as usize, lambda, c, 1.0, -w);
                 }
             }
             return le;
         }
         match super::super::emission::emission_at(scene, self.prim, self.ng, self.uv, w) {
-            Some((i, c)) => scene.light_radiance(i, lambda, c, 1.0),
+            Some((i, c)) => scene.light_radiance(i, lambda, c, 1.0, -w),
             None => SampledSpectrum::ZERO,
         }
     }

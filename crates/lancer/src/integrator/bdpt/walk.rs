@@ -81,7 +81,7 @@ impl Walk<'_> {
         let Some(les) = sample_le(scene, light, u1, u2) else {
             return;
         };
-        let le = scene.light_radiance(light, self.lambda.as_ref(), les.l, les.factor);
+        let le = scene.light_radiance(light, self.lambda.as_ref(), les.l, les.factor, -les.d);
         if le == SampledSpectrum::ZERO {
             return;
         }
