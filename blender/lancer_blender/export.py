@@ -16,10 +16,14 @@ kernel/light/*.h), with radiance and intensity in lancer's RGB:
 - emission of a material (strength s, colour c): radiance c·s, from both sides (as Cycles);
 - world: a uniform sky of radiance colour × strength, or an equirectangular image.
 
-The Principled BSDF becomes what lancer's glTF reader builds for glTF's metallic-roughness
-material: a dielectric coat of index IOR over a diffuse base of the base colour, mixed by
-`metallic` with a conductor whose reflectance is the base colour, both with the GGX
-distribution of α = roughness²; `transmission` mixes in a dielectric of index IOR.
+The Principled BSDF (also Blender's default surface, for objects without a material) is built
+from lancer's pbrt materials, all with the GGX distribution of α = roughness²: its dielectric
+part is a mix of a diffuse base of the base colour and a specular GGX lobe taken with the
+probability F_avg(IOR) (Cycles' (1 − E_spec)·diffuse + specular, on average over directions;
+see `principled_material`); `transmission` mixes in a dielectric of index IOR, and `metallic`
+a conductor whose reflectance is the base colour. (lancer's `coateddiffuse`, which glTF's
+material maps to, darkens the base by the light trapped under its coat, which Cycles'
+Principled BSDF does not: 18 % darker on Blender's factory cube.)
 """
 
 import math
@@ -198,17 +202,17 @@ class Exporter:
             self.out.append(f'LightSource "infinite" "rgb L" {_rgb(c)}')
 
     def environment(self, node, strength):
-        """An equirectangular environment image. Blender looks up u = atan2(y, −x)/2π + ½,
-        v = atan2(z, √(x²+y²))/π + ½ (v up); lancer's latitude-longitude map has u = φ/2π with
-        φ = atan2(y, x), v = θ/π from +z downwards, so Blender's u is 1 − lancer's: the light's
-        frame is the world mirrored in y (Scale 1 −1 1)."""
+        """An equirectangular environment image. Cycles looks a direction up at
+        u = ½ − φ/2π, v = ½ + (π/2 − θ)/π (φ = atan2(y, x), θ from +z; v up), lancer's
+        latitude-longitude map at u = φ/2π, v = θ/π downwards: the same image when lancer's
+        azimuth is π − φ, that is in the world mirrored in x (Scale −1 1 1)."""
         if node.projection != "EQUIRECTANGULAR":
             self.warn("only equirectangular environment images are supported")
         path = self.image_file(node.image, linear=True)
         self.has_world = True
         self.out += [
             "AttributeBegin",
-            "  Scale 1 -1 1",
+            "  Scale -1 1 1",
             f'  LightSource "infinite" "string filename" {_quote(path)} "float scale" [{_fmt(strength)}]',
             "AttributeEnd",
         ]
@@ -381,17 +385,18 @@ class Exporter:
 
     def material_lines(self, mat, name):
         """The pbrt lines defining material `name` from a Blender material."""
-        default = [f'MakeNamedMaterial {_quote(name)} "string type" "diffuse" "rgb reflectance" [0.8 0.8 0.8]']
         if mat is None:
-            return default, None
+            # Blender's default surface: a Principled BSDF of its default inputs.
+            return self.principled_material(name, "rgb", _rgb([0.8] * 3), 0.0, 0.5, 1.5, 0.0, [0.0] * 3)
         tree = mat.node_tree
         out = None
         if tree is not None:
             out = next((n for n in tree.nodes if n.bl_idname == "ShaderNodeOutputMaterial"
                         and n.is_active_output), None)
         if out is None or not out.inputs["Surface"].is_linked:
-            c = list(mat.diffuse_color)[:3]
-            return [f'MakeNamedMaterial {_quote(name)} "string type" "diffuse" "rgb reflectance" {_rgb(c)}'], None
+            # A material without nodes: its viewport colour, metallic and roughness.
+            return self.principled_material(name, "rgb", _rgb(list(mat.diffuse_color)[:3]),
+                                            mat.metallic, mat.roughness, 1.5, 0.0, [0.0] * 3)
         node = out.inputs["Surface"].links[0].from_node
         kind = node.bl_idname
         if kind == "ShaderNodeBsdfPrincipled":
@@ -427,7 +432,6 @@ class Exporter:
         t, base = self.color_or_texture(inp["Base Color"], f"{label}: base colour")
         metallic = min(max(get("Metallic", 0.0), 0.0), 1.0)
         rough = min(max(get("Roughness", 0.5), 0.0), 1.0)
-        alpha = rough * rough
         ior = get("IOR", 1.5)
         transmission = min(max(get("Transmission Weight", get("Transmission", 0.0)), 0.0), 1.0)
         strength = get("Emission Strength", 1.0)
@@ -439,10 +443,29 @@ class Exporter:
             self.warn(f"{label}: subsurface scattering is not supported")
         if get("Alpha", 1.0) < 1.0:
             self.warn(f"{label}: alpha is not supported")
+        return self.principled_material(name, t, base, metallic, rough, ior, transmission, emission)
+
+    def principled_material(self, name, t, base, metallic, rough, ior, transmission, emission):
+        """The lines of a Principled BSDF of these inputs (`t` "rgb" or "texture", `base` its
+        value), and its emission or None."""
+        alpha = rough * rough
         r = f'"float roughness" [{_fmt(alpha)}] "bool remaproughness" false'
+        # The dielectric part, Cycles' f = (1 − E_spec(ω_o))·f_diffuse + F(θ)·f_GGX, on average
+        # over directions: a mix that takes the specular lobe with the probability F_avg, the
+        # dielectric's cosine-weighted mean Fresnel reflectance, F_avg ≈ (η − 1)/(4.08567 +
+        # 1.00071·η) for η ≥ 1 (Kulla and Conty's fit), and the diffuse base of the base colour
+        # otherwise (its energy is then (1 − F_avg)·base, as Cycles' on average). The lobe is
+        # a GGX conductor of reflectance F0/F_avg, F0 = ((η − 1)/(η + 1))², so that the lobe
+        # reflects F0 at normal incidence, as the dielectric does.
+        eta = max(float(ior), 1.0)
+        f_avg = (eta - 1.0) / (4.08567 + 1.00071 * eta)
+        f0 = ((eta - 1.0) / (eta + 1.0)) ** 2
+        spec = min(1.0, f0 / f_avg) if f_avg > 0 else 0.0
         lines = [
-            f'MakeNamedMaterial "{name}.d" "string type" "coateddiffuse" "{t} reflectance" {base} '
-            f'"float eta" [{_fmt(ior)}] {r}',
+            f'MakeNamedMaterial "{name}.b" "string type" "diffuse" "{t} reflectance" {base}',
+            f'MakeNamedMaterial "{name}.s" "string type" "conductor" "rgb reflectance" {_rgb([spec] * 3)} {r}',
+            f'MakeNamedMaterial "{name}.d" "string type" "mix" "string materials" '
+            f'["{name}.b" "{name}.s"] "float amount" [{_fmt(f_avg)}]',
         ]
         top = f"{name}.d"
         if transmission > 0:

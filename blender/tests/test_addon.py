@@ -203,8 +203,8 @@ def test_world_colour_and_hdri_agree_with_cycles(tmp_path):
     px = np.zeros((h, w, 4), np.float32)
     px[..., :3] = (0.05, 0.08, 0.15)
     px[..., 3] = 1
-    # Blender: u = atan2(y, -x)/2π + ½ = 1 for +x... so +x is at u = 0 and 1; +y at u = 0.75.
-    px[18:24, 44:52, :3] = (20.0, 12.0, 6.0)  # v ≈ 0.65 (above the horizon), u ≈ 0.75: +y
+    # Cycles: u = ½ − atan2(y, x)/2π, so −y is at u = 0.75 (+x at ½); v = ½ at the horizon.
+    px[18:24, 44:52, :3] = (20.0, 12.0, 6.0)  # v ≈ 0.65 (above the horizon), u ≈ 0.75: −y
     img = bpy.data.images.new("sky", w, h, float_buffer=True)
     img.pixels.foreach_set(px.ravel())
     env = scene.world.node_tree.nodes.new("ShaderNodeTexEnvironment")
@@ -216,20 +216,35 @@ def test_world_colour_and_hdri_agree_with_cycles(tmp_path):
     assert err < 0.25, f"block NRMSE {err}"
 
 
-def test_a_scene_without_camera_is_refused_with_a_report(tmp_path, capfd):
-    scene = fresh()
-    bpy.data.objects.remove(bpy.data.objects["Camera"])
+def refused(tmp_path, capfd):
+    """Renders the current scene with lancer, expecting a refusal: returns the report's text
+    (Blender raises an operator's error report as RuntimeError) after checking that no image
+    was written."""
+    scene = bpy.context.scene
     scene.render.engine = "LANCER"
-    scene.render.filepath = str(tmp_path / "none.exr")
-    try:
+    scene.render.filepath = str(tmp_path / "refused.exr")
+    with pytest.raises(RuntimeError) as e:
         bpy.ops.render.render(write_still=True)
-        message = ""
-    except RuntimeError as e:  # Blender turns an error report into the operator's exception
-        message = str(e)
-    out = capfd.readouterr()
-    text = message + out.out + out.err
-    assert "camera" in text.lower(), text
-    assert not (tmp_path / "none.exr").exists()
+    assert not (tmp_path / "refused.exr").exists()
+    capfd.readouterr()
+    return str(e.value)
+
+
+def test_scenes_lancer_cannot_render_are_refused_with_a_report(tmp_path, capfd):
+    scene = fresh()
+    scene.camera.data.type = "PANO"
+    text = refused(tmp_path, capfd)
+    assert "lancer: panoramic cameras are not supported" in text, text
+    # An image texture whose file is missing.
+    scene = fresh()
+    node = principled(bpy.data.objects["Cube"])
+    tex = node.id_data.nodes.new("ShaderNodeTexImage")
+    tex.image = bpy.data.images.new("gone", 4, 4)
+    tex.image.source = "FILE"
+    tex.image.filepath = str(tmp_path / "no-such-image.png")
+    node.id_data.links.new(tex.outputs["Color"], node.inputs["Base Color"])
+    text = refused(tmp_path, capfd)
+    assert "lancer: image 'gone' has no pixels" in text, text
 
 
 def test_bands_cover_the_rows_exactly():

@@ -13,7 +13,7 @@ import lancer
 from lancer import _lancer
 from conftest import lancer_binary
 
-OPTS = dict(spp=8, resolution=(40, 36), seed=3)
+OPTS = dict(spp=8, resolution=(40, 72), seed=3)  # 5 rows of 16-pixel tiles
 
 
 @pytest.mark.parametrize("split_by", ["tiles", "samples"])
