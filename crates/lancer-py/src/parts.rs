@@ -10,7 +10,7 @@
 
 use crate::render::{check_film, image_array, render_film, settings_from_desc, with_overrides};
 use crate::scene::PyScene;
-use lancer::image_io::{PartMeta, decode_part, encode_part};
+use lancer::film::part::{PartMeta, decode_part, encode_part};
 use lancer_cli::split::{self, Split, SplitBy};
 use numpy::PyArray3;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
