@@ -23,6 +23,7 @@ use lancer::film::splat::SplatPlane;
 use lancer::film::{Film, PixelBounds, PixelSum};
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 const MAGIC: &str = "lancer-checkpoint 1";
@@ -239,12 +240,25 @@ impl Checkpoint {
     }
 }
 
+/// The arguments of this process's command line after `lancer render`, as [`crate::run`] was
+/// given them (not `std::env::args_os`: under Python's `lancer` command those start with the
+/// interpreter).
+static RENDER_ARGS: OnceLock<Vec<String>> = OnceLock::new();
+
+/// Records the command line (program name first) whose `render` arguments a checkpoint keeps;
+/// the first call wins.
+pub fn set_render_args(args: &[OsString]) {
+    let _ = RENDER_ARGS.set(
+        args.iter()
+            .skip(2)
+            .map(|a| a.to_string_lossy().into_owned())
+            .collect(),
+    );
+}
+
 /// The arguments given after `lancer render` in this process (for a new checkpoint).
 pub fn render_args() -> Vec<String> {
-    std::env::args_os()
-        .skip(2)
-        .map(|a: OsString| a.to_string_lossy().into_owned())
-        .collect()
+    RENDER_ARGS.get().cloned().unwrap_or_default()
 }
 
 /// Set by the first SIGINT/SIGTERM.
@@ -259,8 +273,15 @@ pub fn interrupted() -> bool {
 /// handing out work (it then writes its image and checkpoint and exits with status 130); a
 /// second one exits at once with status 130 (files are only ever replaced by rename, so none
 /// is left half written). A SIGHUP ignored when lancer started (`nohup lancer render …`) stays
-/// ignored: the render goes on after a hang-up.
+/// ignored: the render goes on after a hang-up. Installed once per process (a second call, from
+/// a second run of [`crate::run`] in one process, keeps the first).
 pub fn install_handler() -> Result<(), String> {
+    static INSTALLED: OnceLock<Result<(), String>> = OnceLock::new();
+    INSTALLED.get_or_init(install_handler_once).clone()
+}
+
+/// [`install_handler`]'s work.
+fn install_handler_once() -> Result<(), String> {
     let hangup_ignored = hangup_ignored();
     ctrlc::set_handler(|| {
         if INTERRUPTED.swap(true, Ordering::SeqCst) {

@@ -139,13 +139,24 @@ pub fn run(args: MergeArgs) -> Result<(), CliError> {
         let (film, meta) = read_part(p).map_err(|e| CliError::input(part_error(p, e)))?;
         parts.push((p.clone(), film, meta));
     }
-    check_parts(&parts).map_err(|e| CliError::input(format!("cannot merge: {e}")))?;
+    let (film, scale) =
+        merge_parts(&parts).map_err(|e| CliError::input(format!("cannot merge: {e}")))?;
+    let b = film.bounds;
+    write_image(&args.output, b.width(), b.height(), &film.image(scale))
+        .map_err(|e| CliError::runtime(e.to_string()))
+}
+
+/// Checks the parts ([`check_parts`]) and adds up their exact sums into the whole render's
+/// film; returns it with the film scale its image is made with (`film.image(scale)`).
+pub fn merge_parts(parts: &[(PathBuf, Film, PartMeta)]) -> Result<(Film, f32), String> {
+    if parts.is_empty() {
+        return Err("no part to merge".into());
+    }
+    check_parts(parts)?;
     let (_, f0, m0) = &parts[0];
     let mut film = Film::new(f0.full_width, f0.full_height, m0.render_bounds);
-    for (_, f, _) in &parts {
+    for (_, f, _) in parts {
         film.merge_film(f);
     }
-    let b = film.bounds;
-    write_image(&args.output, b.width(), b.height(), &film.image(m0.scale))
-        .map_err(|e| CliError::runtime(e.to_string()))
+    Ok((film, m0.scale))
 }

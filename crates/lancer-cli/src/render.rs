@@ -7,7 +7,7 @@ use crate::cli_error::CliError;
 use crate::output::{check_output, default_checkpoint_path, write_with_fallback};
 use crate::preview::LiveOutputs;
 use crate::progress::Progress;
-use crate::render_args::{RenderArgs, Resumed, apply_overrides, resume_args};
+use crate::render_args::{RenderArgs, Resumed, apply_overrides, resumed_args};
 use crate::split::{self, SAMPLES_PER_PASS, TILE_SIZE};
 use crate::{input, stats};
 use lancer::film::part::{PartMeta, write_part};
@@ -80,16 +80,10 @@ pub struct Loaded {
     pub resumed: Option<Resumed>,
 }
 
-/// Step 1: reads the checkpoint (with `--resume`) and the scene (printing its warnings), and
+/// Step 1: reads the checkpoint (with `--resume`, or `--resume-if-exists` when it exists) and the scene (printing its warnings), and
 /// applies the overrides.
 pub fn load(args: RenderArgs) -> Result<Loaded, CliError> {
-    let (args, resumed) = match args.resume.clone() {
-        Some(path) => {
-            let (a, r) = resume_args(args, &path)?;
-            (a, Some(r))
-        }
-        None => (args, None),
-    };
+    let (args, resumed) = resumed_args(args)?;
     let mut desc = if args.strict {
         let loaded = input::read(args.scene.as_deref())?;
         input::refuse_warnings(&loaded)?;

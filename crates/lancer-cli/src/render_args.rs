@@ -63,6 +63,12 @@ pub struct RenderArgs {
     /// Continue the render saved in this checkpoint, with its scene and options.
     #[arg(long, value_name = "FILE")]
     pub resume: Option<PathBuf>,
+    /// Continue from the checkpoint (--checkpoint, default OUTPUT.ckpt) when it exists, with
+    /// the same checks as --resume and this command line's options, which must be the
+    /// checkpoint's; start afresh when it does not: one command line serves the first run and
+    /// every rerun (a requeued batch job).
+    #[arg(long, conflicts_with = "resume")]
+    pub resume_if_exists: bool,
     /// No progress bar, no progress lines, no summary.
     #[arg(short, long)]
     pub quiet: bool,
@@ -254,16 +260,98 @@ pub struct Resumed {
     pub ckpt: Checkpoint,
 }
 
-/// `lancer render --resume FILE`: the checkpoint's options, with this command line's scene
-/// (if given, e.g. after moving it), output, checkpoint settings, threads and quietness.
-pub fn resume_args(args: RenderArgs, path: &Path) -> Result<(RenderArgs, Resumed), CliError> {
+/// The options to render with and the checkpoint to continue, if any: `--resume FILE`'s
+/// ([`resume_args`]), `--resume-if-exists`'s ([`resume_if_exists`]), or none.
+pub fn resumed_args(args: RenderArgs) -> Result<(RenderArgs, Option<Resumed>), CliError> {
+    if let Some(path) = args.resume.clone() {
+        let (a, r) = resume_args(args, &path)?;
+        return Ok((a, Some(r)));
+    }
+    if args.resume_if_exists {
+        return resume_if_exists(args);
+    }
+    Ok((args, None))
+}
+
+/// The options that decide a render's pixels and samples, by name, as the command line gave
+/// them: a checkpoint continued by `--resume-if-exists` must have been started with the same.
+fn pixel_options(a: &RenderArgs) -> [(&'static str, String); 11] {
+    [
+        ("--spp", format!("{:?}", a.spp)),
+        ("--seed", format!("{:?}", a.seed)),
+        ("--resolution", format!("{:?}", a.resolution)),
+        ("--crop", format!("{:?}", a.crop)),
+        ("--cropwindow", format!("{:?}", a.cropwindow)),
+        ("--pixelbounds", format!("{:?}", a.pixelbounds)),
+        ("--samples", format!("{:?}", a.samples)),
+        ("--split", format!("{:?}", a.split)),
+        ("--split-by", format!("{:?}", a.split_by)),
+        ("--rgb", format!("{:?}", a.rgb)),
+        ("--strict", format!("{:?}", a.strict)),
+    ]
+}
+
+/// `lancer render … --resume-if-exists`: when the checkpoint exists, this command line's
+/// options with the checkpoint to continue, after checking that the checkpoint was started
+/// with the same options that decide pixels (the scene hash, film and units of work are
+/// checked as for `--resume` when the plan is made); when it does not, the options as they are.
+fn resume_if_exists(args: RenderArgs) -> Result<(RenderArgs, Option<Resumed>), CliError> {
+    let path = match (&args.checkpoint, &args.output) {
+        (Some(c), _) => c.clone(),
+        (None, Some(o)) => crate::output::default_checkpoint_path(o),
+        (None, None) => {
+            return Err(CliError::input(
+                "--resume-if-exists needs the output (-o) or --checkpoint, to know which \
+                 checkpoint to look for",
+            ));
+        }
+    };
+    if !path.exists() {
+        return Ok((args, None));
+    }
+    let ckpt = Checkpoint::read(&path).map_err(|e| CliError::input(e.to_string()))?;
+    let saved = parse_saved(&ckpt, &path)?;
+    let differ: Vec<&str> = pixel_options(&saved)
+        .into_iter()
+        .zip(pixel_options(&args))
+        .filter(|(a, b)| a.1 != b.1)
+        .map(|(a, _)| a.0)
+        .collect();
+    if !differ.is_empty() {
+        return Err(CliError::input(format!(
+            "{}: this checkpoint is of a render started with other {} ({}); remove it to \
+             start afresh, or continue it with --resume {}",
+            path.display(),
+            if differ.len() == 1 {
+                "option"
+            } else {
+                "options"
+            },
+            differ.join(", "),
+            path.display()
+        )));
+    }
+    if !args.quiet {
+        let done = ckpt.done.iter().filter(|&&d| d).count();
+        eprintln!(
+            "{}: continuing the render saved there ({done} of {} units of work done)",
+            path.display(),
+            ckpt.done.len()
+        );
+    }
+    let mut a = args;
+    a.checkpoint = Some(path.clone());
+    Ok((a, Some(Resumed { path, ckpt })))
+}
+
+/// The options saved in a checkpoint, parsed as the command line's.
+fn parse_saved(ckpt: &Checkpoint, path: &Path) -> Result<RenderArgs, CliError> {
     #[derive(clap::Parser)]
     #[command(no_binary_name = true)]
     struct Saved {
         #[command(flatten)]
         args: RenderArgs,
     }
-    let ckpt = Checkpoint::read(path).map_err(|e| CliError::input(e.to_string()))?;
     let saved_args = bare_stats_as_text(ckpt.args.iter().map(OsString::from).collect());
     let saved = <Saved as clap::Parser>::try_parse_from(saved_args).map_err(|e| {
         CliError::input(format!(
@@ -272,7 +360,14 @@ pub fn resume_args(args: RenderArgs, path: &Path) -> Result<(RenderArgs, Resumed
             e.to_string().lines().next().unwrap_or_default()
         ))
     })?;
-    let mut a = saved.args;
+    Ok(saved.args)
+}
+
+/// `lancer render --resume FILE`: the checkpoint's options, with this command line's scene
+/// (if given, e.g. after moving it), output, checkpoint settings, threads and quietness.
+pub fn resume_args(args: RenderArgs, path: &Path) -> Result<(RenderArgs, Resumed), CliError> {
+    let ckpt = Checkpoint::read(path).map_err(|e| CliError::input(e.to_string()))?;
+    let mut a = parse_saved(&ckpt, path)?;
     let in_cwd = |p: PathBuf| {
         if p == Path::new("-") {
             p
@@ -289,6 +384,7 @@ pub fn resume_args(args: RenderArgs, path: &Path) -> Result<(RenderArgs, Resumed
     a.progress = args.progress;
     a.log_every = args.log_every;
     a.resume = None;
+    a.resume_if_exists = false;
     let resumed = Resumed {
         path: path.to_path_buf(),
         ckpt,

@@ -4,13 +4,16 @@
 //! Scenes are loaded from files or text into a [`scene::PyScene`]; [`render::render`] renders
 //! one to a float32 numpy array (rows top to bottom) with the GIL released, stopping between
 //! tiles when Python has a pending signal (Ctrl-C); images are read and written as lancer does
-//! ([`images`]), and compared with the team's metrics ([`metrics`]). Scene errors are
+//! ([`images`]), and compared with the team's metrics ([`metrics`]). [`parts`] renders one part
+//! of a split render to its exact sums and merges parts (for `lancer.distributed`), and runs
+//! the command line itself (the wheel's `lancer` command). Scene errors are
 //! `lancer.SceneError` (a `ValueError`) carrying `file:line:column` as the command line prints
 //! them.
 
 mod denoise;
 mod images;
 mod metrics;
+mod parts;
 mod render;
 mod scene;
 
@@ -57,6 +60,9 @@ fn _lancer(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene::load_string, m)?)?;
     m.add_function(wrap_pyfunction!(render::render, m)?)?;
     m.add_function(wrap_pyfunction!(denoise::denoise, m)?)?;
+    m.add_function(wrap_pyfunction!(parts::render_part, m)?)?;
+    m.add_function(wrap_pyfunction!(parts::merge_parts, m)?)?;
+    m.add_function(wrap_pyfunction!(parts::cli_main, m)?)?;
     m.add_function(wrap_pyfunction!(images::write_image, m)?)?;
     m.add_function(wrap_pyfunction!(images::read_image, m)?)?;
     m.add_function(wrap_pyfunction!(metrics::mean_rel_error, m)?)?;

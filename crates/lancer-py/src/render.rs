@@ -4,7 +4,7 @@
 use crate::SceneError;
 use crate::scene::PyScene;
 use lancer::SceneDesc;
-use lancer::film::Film;
+use lancer::film::{Film, PixelBounds};
 use lancer::gbuffer::{GbufferConfig, GbufferFilm};
 use lancer::render::{RenderSettings, RenderStats, render_units, work_units};
 use numpy::PyArray3;
@@ -47,7 +47,7 @@ pub fn settings_from_desc(desc: &SceneDesc, spectral: bool) -> RenderSettings {
 
 /// The caller's overrides, checked, applied to a copy of the scene's description (as
 /// `lancer render --spp --resolution --seed --crop` do).
-fn with_overrides(
+pub fn with_overrides(
     desc: &SceneDesc,
     spp: Option<u32>,
     resolution: Option<Vec<u32>>,
@@ -138,7 +138,33 @@ pub fn render<'py>(
     let this = scene.get();
     let desc = with_overrides(&this.desc, spp, resolution, seed, crop)?;
     let settings = settings_from_desc(&desc, spectral);
-    let bounds = settings.bounds;
+    check_film(&settings.bounds)?;
+    let film = render_film(py, this, &desc, &settings, threads, denoise)?;
+    let Some(g) = &film.gbuffer else {
+        return image_array(py, &film, desc.film.scale);
+    };
+    let bounds = film.bounds;
+    let rgb =
+        |v: &[lancer::math::Rgb]| v.iter().flat_map(|p| [p.x, p.y, p.z]).collect::<Vec<f32>>();
+    let flat = rgb(&film.image(desc.film.scale));
+    let (albedo, normal) = g.denoiser_images();
+    let (w, h) = (bounds.width() as usize, bounds.height() as usize);
+    let (a, n) = (rgb(&albedo), rgb(&normal));
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .map_err(|e| PyRuntimeError::new_err(format!("cannot start worker threads: {e}")))?;
+    let flat = py
+        .detach(|| pool.install(|| lancer_denoise::denoise(&flat, Some(&a), Some(&n), w, h)))
+        .map_err(|e| PyRuntimeError::new_err(format!("denoiser: {e}")))?;
+    let shape = (bounds.height() as usize, bounds.width() as usize, 3);
+    let array = Array3::from_shape_vec(shape, flat)
+        .map_err(|e| PyRuntimeError::new_err(format!("image shape: {e}")))?;
+    Ok(PyArray3::from_owned_array(py, array))
+}
+
+/// Refuses a render of no pixel, or one whose film would not fit in [`MAX_FILM_BYTES`].
+pub fn check_film(bounds: &PixelBounds) -> PyResult<()> {
     if bounds.is_empty() {
         return Err(PyValueError::new_err("the crop window selects no pixel"));
     }
@@ -154,12 +180,28 @@ pub fn render<'py>(
             film_bytes as f64 / (1u64 << 30) as f64
         )));
     }
+    Ok(())
+}
+
+/// Renders the pixels and samples of `settings` of `desc` (a description of `scene` with a
+/// render's overrides) into a fresh film, with the GIL released and Ctrl-C honoured between
+/// units of work; warns (`RuntimeWarning`) when samples were not finite. With `denoise` the
+/// film also gathers the denoiser's albedo and normal images.
+pub fn render_film(
+    py: Python<'_>,
+    this: &PyScene,
+    desc: &SceneDesc,
+    settings: &RenderSettings,
+    threads: Option<usize>,
+    denoise: bool,
+) -> PyResult<Film> {
+    let bounds = settings.bounds;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads.unwrap_or(0))
         .build()
         .map_err(|e| PyRuntimeError::new_err(format!("cannot start worker threads: {e}")))?;
     let built = py
-        .detach(|| pool.install(|| this.built(&desc)))
+        .detach(|| pool.install(|| this.built(desc)))
         .map_err(SceneError::new_err)?;
 
     let mut film = Film::new(desc.film.xresolution, desc.film.yresolution, bounds);
@@ -180,7 +222,7 @@ pub fn render<'py>(
     };
     let stats = std::thread::scope(|s| -> PyResult<RenderStats> {
         let film = &mut film;
-        let (cancel, settings, built, pool) = (&cancel, &settings, &built, &pool);
+        let (cancel, built, pool) = (&cancel, &built, &pool);
         s.spawn(move || {
             let units = work_units(
                 &settings.bounds,
@@ -230,19 +272,19 @@ pub fn render<'py>(
         .unwrap_or_default();
         PyErr::warn(py, py.get_type::<PyRuntimeWarning>().as_any(), &message, 1)?;
     }
+    Ok(film)
+}
 
-    let pixels = film.image(desc.film.scale);
-    let rgb =
-        |v: &[lancer::math::Rgb]| v.iter().flat_map(|p| [p.x, p.y, p.z]).collect::<Vec<f32>>();
-    let mut flat = rgb(&pixels);
-    if let Some(g) = &film.gbuffer {
-        let (albedo, normal) = g.denoiser_images();
-        let (w, h) = (bounds.width() as usize, bounds.height() as usize);
-        let (a, n) = (rgb(&albedo), rgb(&normal));
-        flat = py
-            .detach(|| pool.install(|| lancer_denoise::denoise(&flat, Some(&a), Some(&n), w, h)))
-            .map_err(|e| PyRuntimeError::new_err(format!("denoiser: {e}")))?;
-    }
+/// The image of `film` (`film.image(scale)`) as a float32 array (height, width, 3), rows from
+/// the top down.
+pub fn image_array<'py>(
+    py: Python<'py>,
+    film: &Film,
+    scale: f32,
+) -> PyResult<Bound<'py, PyArray3<f32>>> {
+    let bounds = film.bounds;
+    let pixels = film.image(scale);
+    let flat: Vec<f32> = pixels.iter().flat_map(|p| [p.x, p.y, p.z]).collect();
     let shape = (bounds.height() as usize, bounds.width() as usize, 3);
     let array = Array3::from_shape_vec(shape, flat)
         .map_err(|e| PyRuntimeError::new_err(format!("image shape: {e}")))?;

@@ -1,6 +1,8 @@
 //! The long-render workflow: a render split into parts in separate processes and merged gives
 //! the single render's exact bytes; an interrupted render resumed from its checkpoint gives the
-//! uninterrupted render's exact bytes; `lancer merge` refuses parts that do not belong together.
+//! uninterrupted render's exact bytes, and so does one command line run again with
+//! `--resume-if-exists` (a requeued batch job); `lancer merge` refuses parts that do not belong
+//! together.
 
 use crate::common::{ScratchDir, data, read_exr, render_ok, run_in, signal_after_first_checkpoint};
 use std::path::{Path, PathBuf};
@@ -269,4 +271,112 @@ fn an_interrupted_render_resumes_to_the_uninterrupted_pixels() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && err.contains("changed"), "{err}");
     assert!(!dir.join("y.exr").exists());
+}
+
+#[test]
+fn resume_if_exists_starts_afresh_then_continues_its_own_checkpoint_only() {
+    let dir = ScratchDir::new("wf-resume-if-exists");
+    let scene = data("pt/cbox.pbrt");
+    // A part of a split render, as a job array's task renders it.
+    let opts = [
+        "--spp",
+        "1024",
+        "--seed",
+        "9",
+        "--resolution",
+        "48x48",
+        "--split",
+        "1/2",
+        "--split-by",
+        "samples",
+    ];
+    let reference = dir.join("ref.exr");
+    render_ok(&dir, &scene, &reference, &opts);
+
+    // No checkpoint: the same command line starts afresh (and says nothing about resuming).
+    let fresh = dir.join("fresh.exr");
+    render_ok(
+        &dir,
+        &scene,
+        &fresh,
+        &[&opts[..], &["--resume-if-exists"]].concat(),
+    );
+    assert!(bytes(&fresh) == bytes(&reference));
+
+    // The job script's command line, interrupted after its first checkpoint…
+    let job = |extra: &[&str]| {
+        let mut c = Command::new(env!("CARGO_BIN_EXE_lancer"));
+        c.current_dir(&dir)
+            .args(["render", s(&scene), "-o", "part.exr", "--resume-if-exists"])
+            .args(opts)
+            .args(["--checkpoint-every", "0.001"])
+            .args(extra)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped());
+        c
+    };
+    let ckpt = dir.join("part.exr.ckpt");
+    let o = signal_after_first_checkpoint(job(&["--quiet"]).spawn().unwrap(), &ckpt, "INT");
+    assert_eq!(
+        o.status.code(),
+        Some(130),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(ckpt.exists() && !dir.join("part.exr").exists());
+    let saved = std::fs::read(&ckpt).unwrap();
+
+    // …and run again unchanged (a requeued job): it continues, ends bit-exact, and removes
+    // its checkpoint.
+    let o = job(&[]).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("continuing the render saved there"), "{err}");
+    assert!(
+        bytes(&dir.join("part.exr")) == bytes(&reference),
+        "resumed part differs"
+    );
+    assert!(!ckpt.exists(), "the checkpoint was not removed");
+
+    // A checkpoint of another render at that path is refused, naming the option, and nothing
+    // is written: the seed differs here.
+    std::fs::write(&ckpt, &saved).unwrap();
+    let o = run_in(
+        &dir,
+        &[
+            "render",
+            s(&scene),
+            "-o",
+            "part.exr",
+            "--resume-if-exists",
+            "--spp",
+            "1024",
+            "--seed",
+            "10",
+            "--resolution",
+            "48x48",
+            "--split",
+            "1/2",
+            "--split-by",
+            "samples",
+            "--checkpoint-every",
+            "0.001",
+            "--quiet",
+        ],
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--seed") && err.contains("part.exr.ckpt"),
+        "{err}"
+    );
+    assert!(ckpt.exists(), "the refused checkpoint is kept");
+
+    // Without an output or a checkpoint path there is nothing to look for.
+    let o = run_in(
+        &dir,
+        &["render", s(&scene), "--resume-if-exists", "--quiet"],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--resume-if-exists"));
 }

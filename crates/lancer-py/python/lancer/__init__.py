@@ -5,6 +5,9 @@
     image = lancer.render(scene, spp=64)          # float32 array (height, width, 3), linear RGB
     lancer.write_image("image.exr", image)        # .exr (float) or .png (8-bit sRGB)
 
+lancer.distributed.render(path, parts, client, spp=...) spreads a render over a Dask cluster
+and returns the same bits. The wheel's `lancer` command is the command line itself.
+
 Scene errors raise lancer.SceneError (a ValueError) whose message starts with
 file:line:column; what lancer reads but does differently is a lancer.SceneWarning.
 """
@@ -28,6 +31,7 @@ from ._lancer import (  # noqa: E402
     render,
 )
 from . import _lancer  # noqa: E402
+from . import distributed  # noqa: E402
 
 __all__ = [
     "Scene",
@@ -37,6 +41,7 @@ __all__ = [
     "load_string",
     "render",
     "denoise",
+    "distributed",
     "write_image",
     "read_image",
     "mean_rel_error",

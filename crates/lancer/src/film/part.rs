@@ -212,15 +212,22 @@ pub fn write_part(path: &Path, film: &Film, meta: &PartMeta) -> Result<(), PartE
 /// Reads a part written by [`write_part`]: the film with its exact accumulators, and its
 /// metadata. Any other file (or a damaged one) is an error naming the file and what is wrong.
 pub fn read_part(path: &Path) -> Result<(Film, PartMeta), PartError> {
-    use exr::prelude::{AttributeValue, FlatSamples, ReadChannels, ReadLayers, Text, read};
-    let err = |message: String| PartError::Format {
-        path: path.to_path_buf(),
-        message,
-    };
     let bytes = std::fs::read(path).map_err(|source| PartError::Io {
         path: path.to_path_buf(),
         source,
     })?;
+    decode_part(path, bytes)
+}
+
+/// Decodes the bytes of a part ([`encode_part`]'s), as [`read_part`] reads a file; `name` is
+/// what errors call it (the file, or a label for a part that travelled in memory).
+pub fn decode_part(name: &Path, bytes: Vec<u8>) -> Result<(Film, PartMeta), PartError> {
+    use exr::prelude::{AttributeValue, FlatSamples, ReadChannels, ReadLayers, Text, read};
+    let path = name;
+    let err = |message: String| PartError::Format {
+        path: path.to_path_buf(),
+        message,
+    };
     let image = read()
         .no_deep_data()
         .largest_resolution_level()
