@@ -49,7 +49,7 @@ pub const SUN_HALF_APERTURE: f64 = std::f64::consts::PI * (0.5 * 0.5358) / 180.0
 
 /// Mitsuba's `MI_CIE_Y_NORMALIZATION`, 1/∫ȳ over its CIE table: its RGB sky is the table's
 /// value times it.
-const CIE_Y_NORMALIZATION: f64 = 1.0 / 106.750_259_399_414_062_5;
+const CIE_Y_NORMALIZATION: f64 = 1.0 / 106.750_259_399_414_06;
 /// Mitsuba's `SPEC_TO_RGB_SUN_CONV`, which turns the mean over its 11 wavelengths of the sun's
 /// sRGB-weighted irradiance into the RGB sun's.
 const SPEC_TO_RGB_SUN_CONV: f64 = 467.069_280_386;
