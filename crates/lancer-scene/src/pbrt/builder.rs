@@ -588,7 +588,7 @@ impl Builder {
             return Ok(());
         };
         for geometry in std::iter::once(geometry).chain(also) {
-            self.place_shape(geometry, alpha.clone(), ty, emits, loc)?;
+            self.place_shape(geometry, alpha, ty, emits, loc)?;
         }
         Ok(())
     }

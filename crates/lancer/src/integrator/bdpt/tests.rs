@@ -5,7 +5,7 @@ use super::connect::mis_weight;
 use super::vertex::{Kind, Vertex};
 use super::*;
 use crate::integrator::{Integrator, bsdf_at};
-use crate::material::Material;
+use crate::material::{DiffuseMaterial, MaterialDesc};
 use crate::math::{PackedVec3, Rgb, Transform, Vec3, normalize};
 use crate::sampling::SamplerKind;
 use crate::scene::desc::{
@@ -50,8 +50,10 @@ fn quad(p: [[f32; 3]; 4], material: u32, light: Option<f32>) -> ShapeDesc {
 /// green right wall, lit by a small quad under the ceiling facing down (`area`) or a point
 /// light (`!area`), which the camera does not see directly.
 fn room(area: bool, integrator: Integrator) -> Scene {
-    let diffuse = |c: Rgb| Material::Diffuse {
-        reflectance: SpectrumTex::Const(c),
+    let diffuse = |c: Rgb| {
+        MaterialDesc::Diffuse(DiffuseMaterial {
+            reflectance: SpectrumTex::Const(c),
+        })
     };
     let mut shapes = vec![
         quad(
@@ -481,9 +483,9 @@ fn white_furnace() {
         },
         filter: FilterDesc::Box { radius: [0.5, 0.5] },
         integrator: bdpt(5),
-        materials: vec![Material::Diffuse {
+        materials: vec![MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: SpectrumTex::Const(Rgb::splat(0.8)),
-        }],
+        })],
         shapes: vec![ShapeDesc {
             medium_interface: None,
             geometry: Geometry::Sphere {

@@ -29,7 +29,7 @@ fn ctx(n: Vec3) -> LightSampleContext {
 #[test]
 fn sun_and_horizon_are_where_the_transform_puts_them() {
     let l = reference();
-    let sun_world = Vec3::new(-0.45, 0.65, -0.6).normalize();
+    let sun_world = crate::math::normalize(Vec3::new(-0.45, 0.65, -0.6));
     assert!(l.le(sun_world).x > 10_000.0, "{}", l.le(sun_world));
     // 0.3° off the sun's centre (half-angle 0.268°): sky only.
     let off = Frame::from_z(sun_world).from_local(Vec3::new(0.3f32.to_radians().sin(), 0.0, 1.0));
@@ -80,7 +80,7 @@ fn spectral_radiance_interpolates_the_channels() {
             "{k}: {got} vs {want:?}"
         );
     }
-    let sun_world = Vec3::new(-0.45, 0.65, -0.6).normalize();
+    let sun_world = crate::math::normalize(Vec3::new(-0.45, 0.65, -0.6));
     let with_sun = l.le_spectral(sun_world, &lambda);
     let e = model::sun_irradiance(3.0, std::f32::consts::FRAC_PI_2 - l.sun.z.acos());
     let sun_600 = e[7] as f64 * 1.5 / l.sun_solid_angle;
