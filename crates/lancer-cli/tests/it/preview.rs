@@ -502,7 +502,7 @@ fn info_counts_triangles_and_lists_every_file_read() {
     let o = run_in(&dir, &["info", scene.to_str().unwrap(), "--files"]);
     assert!(o.status.success());
     let text = String::from_utf8_lossy(&o.stdout);
-    assert!(text.contains("5 in world shapes"), "{text}");
+    assert!(text.contains("3 in world shapes"), "{text}");
     assert!(
         text.contains(canon("geo/parts.ply").to_str().unwrap()),
         "{text}"
