@@ -11,6 +11,7 @@ pub mod desc;
 pub mod footprint;
 pub mod importance;
 pub mod lens;
+mod light_paths;
 pub mod realistic;
 pub mod spherical;
 
