@@ -778,7 +778,7 @@ mod tests {
         );
         assert_eq!(
             error(r#"LightSource "laser""#),
-            "t.pbrt:1:1: unknown light \"laser\" (expected point, spot, distant, infinite, goniometric or projection)"
+            "t.pbrt:1:1: unknown light \"laser\" (expected point, spot, distant, infinite, goniometric, projection or sunsky)"
         );
     }
 
