@@ -13,6 +13,7 @@ use lancer::math::{Rgb, Transform, Vec3};
 use lancer::render::{RenderSettings, render};
 use lancer::sampling::SamplerKind;
 use lancer::scene::desc::{CameraDesc, FilterDesc, Geometry, LightDesc, SceneDesc, ShapeDesc};
+use lancer::shape::{PlaneDesc, SphereDesc};
 use lancer::texture::SpectrumTex;
 use lancer_examples::{Canvas, save_or_exit};
 
@@ -53,10 +54,10 @@ pub fn scene_desc(width: u32, height: u32) -> SceneDesc {
     desc.materials = albedos.iter().map(|&a| diffuse(a)).collect();
     desc.shapes = vec![
         place(
-            Geometry::Plane {
+            Geometry::Plane(PlaneDesc {
                 p: Vec3::ZERO,
                 n: Vec3::Y,
-            },
+            }),
             Vec3::new(0.0, -1.0, 0.0),
             0,
         ),
@@ -74,12 +75,12 @@ pub fn scene_desc(width: u32, height: u32) -> SceneDesc {
 }
 
 fn sphere(radius: f32) -> Geometry {
-    Geometry::Sphere {
+    Geometry::Sphere(SphereDesc {
         radius,
         z_min: -radius,
         z_max: radius,
         phi_max: 360.0,
-    }
+    })
 }
 
 /// The image of this step, rendered by the library: one sample at each pixel's centre.

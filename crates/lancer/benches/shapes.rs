@@ -16,6 +16,9 @@ use lancer::scene::desc::{Geometry, SceneDesc, ShapeDesc};
 use lancer::shape::{
     BilinearMesh, CurveBasis, CurveDesc, CurveType, SdfFunction, TriangleMesh, VoxelGrid,
 };
+use lancer::shape::{
+    BoxDesc, ConeDesc, CylinderDesc, DiskDesc, HyperboloidDesc, ParaboloidDesc, SdfDesc, SphereDesc,
+};
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -39,71 +42,71 @@ fn kinds() -> Vec<(&'static str, Geometry)> {
 }
 
 fn sphere() -> Geometry {
-    Geometry::Sphere {
+    Geometry::Sphere(SphereDesc {
         radius: 0.5,
         z_min: -0.5,
         z_max: 0.5,
         phi_max: 360.0,
-    }
+    })
 }
 
 fn partial_sphere() -> Geometry {
-    Geometry::Sphere {
+    Geometry::Sphere(SphereDesc {
         radius: 0.5,
         z_min: -0.3,
         z_max: 0.4,
         phi_max: 270.0,
-    }
+    })
 }
 
 fn disk() -> Geometry {
-    Geometry::Disk {
+    Geometry::Disk(DiskDesc {
         height: 0.0,
         radius: 0.5,
         inner_radius: 0.1,
         phi_max: 360.0,
-    }
+    })
 }
 
 fn cylinder() -> Geometry {
-    Geometry::Cylinder {
+    Geometry::Cylinder(CylinderDesc {
         radius: 0.4,
         z_min: -0.5,
         z_max: 0.5,
         phi_max: 360.0,
-    }
+    })
 }
 
 fn cone() -> Geometry {
-    Geometry::Cone {
+    Geometry::Cone(ConeDesc {
         radius: 0.5,
         height: 1.0,
         phi_max: 360.0,
-    }
+    })
 }
 
 fn paraboloid() -> Geometry {
-    Geometry::Paraboloid {
+    Geometry::Paraboloid(ParaboloidDesc {
         radius: 0.5,
         z_min: 0.0,
         z_max: 1.0,
         phi_max: 360.0,
-    }
+    })
 }
 
 fn hyperboloid() -> Geometry {
-    Geometry::Hyperboloid {
+    Geometry::Hyperboloid(HyperboloidDesc {
         p1: Vec3::new(0.5, -0.3, -0.5),
         p2: Vec3::new(0.3, 0.4, 0.5),
         phi_max: 360.0,
-    }
+    })
 }
 
 fn cuboid() -> Geometry {
-    Geometry::Box {
+    Geometry::Box(BoxDesc {
         min: Vec3::splat(-0.4),
         max: Vec3::splat(0.4),
-    }
+    })
 }
 
 fn triangle() -> Geometry {
@@ -158,10 +161,10 @@ fn sdf() -> Geometry {
         "scale(0.4, smooth_union(sphere(0.6), translate([0, 0.5, 0], torus(0.7, 0.18)), 0.25))",
     )
     .expect("a valid expression");
-    Geometry::Sdf {
+    Geometry::Sdf(SdfDesc {
         function: Arc::new(function),
         bounds: None,
-    }
+    })
 }
 
 /// A ball of voxels `n` cells across, scaled to one unit by its placement's share (the grid

@@ -10,7 +10,7 @@ use super::params::{ParamList, ParamType};
 use crate::error::{Location, SceneError};
 use lancer::math::Vec3;
 use lancer::scene::desc::Geometry;
-use lancer::shape::SdfFunction;
+use lancer::shape::{SdfDesc, SdfFunction};
 use std::sync::Arc;
 
 /// The geometry of `Shape "sdf"` from its parameters.
@@ -53,8 +53,8 @@ pub fn sdf_geometry(p: &ParamList) -> Result<Geometry, SceneError> {
         }
     };
     // Whether the solid is bounded is lancer's rule, checked with the other shapes' rules.
-    Ok(Geometry::Sdf {
+    Ok(Geometry::Sdf(SdfDesc {
         function: Arc::new(function),
         bounds,
-    })
+    }))
 }

@@ -11,7 +11,8 @@ use crate::vox::{default_palette, linear_palette, read_vox};
 use lancer::math::{PackedVec3, Rgb, Vec3};
 use lancer::scene::desc::Geometry;
 use lancer::shape::{
-    BilinearMesh, CurveBasis, CurveDesc, CurveType, RuleError, TriangleMesh, VoxelGrid,
+    BilinearMesh, BoxDesc, ConeDesc, CurveBasis, CurveDesc, CurveType, CylinderDesc, DiskDesc,
+    HyperboloidDesc, ParaboloidDesc, PlaneDesc, RuleError, SphereDesc, TriangleMesh, VoxelGrid,
 };
 use lancer::texture::FloatTex;
 use std::sync::Arc;
@@ -102,50 +103,50 @@ fn geometry(r: &Reader, ty: &str) -> Result<Fallback<Option<Geometry>>, SceneErr
     let g = match ty {
         "sphere" => {
             let radius = radius()?;
-            Geometry::Sphere {
+            Geometry::Sphere(SphereDesc {
                 radius,
                 z_min: p.float("zmin", -radius)?,
                 z_max: p.float("zmax", radius)?,
                 phi_max: phi_max()?,
-            }
+            })
         }
-        "disk" => Geometry::Disk {
+        "disk" => Geometry::Disk(DiskDesc {
             height: p.float("height", 0.0)?,
             radius: radius()?,
             inner_radius: p.float("innerradius", 0.0)?,
             phi_max: phi_max()?,
-        },
-        "cylinder" => Geometry::Cylinder {
+        }),
+        "cylinder" => Geometry::Cylinder(CylinderDesc {
             radius: radius()?,
             z_min: p.float("zmin", -1.0)?,
             z_max: p.float("zmax", 1.0)?,
             phi_max: phi_max()?,
-        },
-        "cone" => Geometry::Cone {
+        }),
+        "cone" => Geometry::Cone(ConeDesc {
             radius: radius()?,
             height: p.float("height", 1.0)?,
             phi_max: phi_max()?,
-        },
-        "paraboloid" => Geometry::Paraboloid {
+        }),
+        "paraboloid" => Geometry::Paraboloid(ParaboloidDesc {
             radius: radius()?,
             z_min: p.float("zmin", 0.0)?,
             z_max: p.float("zmax", 1.0)?,
             phi_max: phi_max()?,
-        },
-        "hyperboloid" => Geometry::Hyperboloid {
+        }),
+        "hyperboloid" => Geometry::Hyperboloid(HyperboloidDesc {
             p1: p.point3("p1", Vec3::ZERO)?,
             p2: p.point3("p2", Vec3::ONE)?,
             phi_max: phi_max()?,
-        },
+        }),
         // lancer extension: an axis-aligned box in object space.
-        "box" => Geometry::Box {
+        "box" => Geometry::Box(BoxDesc {
             min: p.point3("min", Vec3::splat(-1.0))?,
             max: p.point3("max", Vec3::ONE)?,
-        },
-        "plane" => Geometry::Plane {
+        }),
+        "plane" => Geometry::Plane(PlaneDesc {
             p: p.point3("p", Vec3::ZERO)?,
             n: p.normal("n", Vec3::Z)?,
-        },
+        }),
         // lancer extension: a signed-distance object, sphere-traced.
         "sdf" => super::sdf::sdf_geometry(p)?,
         // Inconsistent arrays are trimmed or dropped as pbrt-v4 does, with a warning.
@@ -200,7 +201,7 @@ fn geometry(r: &Reader, ty: &str) -> Result<Fallback<Option<Geometry>>, SceneErr
     // pbrt's ranges for the hole of a disk and the bottom of a paraboloid, which lancer's shapes
     // do not need; checked once lancer's rules (a positive radius and top) hold.
     match g {
-        Geometry::Disk { radius, .. } => {
+        Geometry::Disk(DiskDesc { radius, .. }) => {
             p.float_checked(
                 "innerradius",
                 0.0,
@@ -208,7 +209,7 @@ fn geometry(r: &Reader, ty: &str) -> Result<Fallback<Option<Geometry>>, SceneErr
                 |v| (0.0..radius).contains(&v),
             )?;
         }
-        Geometry::Paraboloid { z_max, .. } => {
+        Geometry::Paraboloid(ParaboloidDesc { z_max, .. }) => {
             p.float_checked("zmin", 0.0, "at least 0 and less than zmax", |v| {
                 (0.0..z_max).contains(&v)
             })?;

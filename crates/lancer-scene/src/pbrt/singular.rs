@@ -91,6 +91,7 @@ pub fn flatten(geometry: Geometry, ty: &str, ctm: &Transform) -> Fallback<Option
 mod tests {
     use super::*;
     use lancer::math::Vec2;
+    use lancer::shape::SphereDesc;
     use lancer::shape::TriangleMesh;
 
     fn v3(x: f32, y: f32, z: f32) -> PackedVec3 {
@@ -132,12 +133,12 @@ mod tests {
     #[test]
     fn shapes_placed_through_the_inverse_are_skipped() {
         let t = singular(Mat4::from_scale(Vec3::new(0.0, 1.0, 1.0).into()));
-        let sphere = Geometry::Sphere {
+        let sphere = Geometry::Sphere(SphereDesc {
             radius: 1.0,
             z_min: -1.0,
             z_max: 1.0,
             phi_max: 360.0,
-        };
+        });
         let out = flatten(sphere, "sphere", &t);
         assert!(out.value.is_none());
         assert_eq!(

@@ -7,6 +7,7 @@ use lancer::material::DiffuseMaterial;
 use lancer::material::MaterialDesc;
 use lancer::math::Vec3;
 use lancer::scene::desc::{Geometry, SceneDesc};
+use lancer::shape::SphereDesc;
 use lancer::texture::SpectrumTex;
 use lancer_scene::{LoadedScene, load, load_pbrt_str};
 use std::io::Write;
@@ -51,7 +52,7 @@ fn a_gzip_compressed_scene_file_is_read() {
     let l = load(&path).unwrap();
     assert!(matches!(
         l.desc.shapes[0].geometry,
-        Geometry::Sphere { radius: 2.0, .. }
+        Geometry::Sphere(SphereDesc { radius: 2.0, .. })
     ));
     assert_eq!(l.files, [std::fs::canonicalize(&path).unwrap()]);
 }
@@ -134,11 +135,11 @@ fn the_last_of_duplicate_parameters_and_attributes_counts() {
     );
     assert!(matches!(
         l.desc.shapes[0].geometry,
-        Geometry::Sphere { radius: 4.0, .. }
+        Geometry::Sphere(SphereDesc { radius: 4.0, .. })
     ));
     assert!(matches!(
         l.desc.shapes[1].geometry,
-        Geometry::Sphere { radius: 0.5, .. }
+        Geometry::Sphere(SphereDesc { radius: 0.5, .. })
     ));
     assert_eq!(
         warnings(&l),
@@ -202,7 +203,7 @@ fn a_mesh_under_a_singular_transformation_collapses_onto_a_plane() {
          AttributeEnd\nShape \"sphere\"\n",
     );
     assert!(l.warnings.is_empty());
-    assert!(matches!(l.desc.shapes[1].geometry, Geometry::Sphere { .. }));
+    assert!(matches!(l.desc.shapes[1].geometry, Geometry::Sphere(_)));
     let e = load_pbrt_str(
         "Scale 0 1 1\nCamera \"perspective\"\nWorldBegin\n",
         "t.pbrt",

@@ -9,6 +9,7 @@ use lancer::material::{DielectricMaterial, DiffuseMaterial, MixMaterial};
 use lancer::math::{Vec3, normalize};
 use lancer::sampling::SamplerKind;
 use lancer::scene::desc::{Geometry, LightDesc, Projection, SceneDesc};
+use lancer::shape::{BoxDesc, ConeDesc, HyperboloidDesc, ParaboloidDesc, SphereDesc};
 use lancer::texture::SpectrumTex;
 use lancer_scene::{load, load_pbrt_str};
 use std::path::Path;
@@ -169,12 +170,12 @@ fn defaults_are_pbrt_v4_defaults() {
     );
     assert_eq!(
         d.shapes[0].geometry,
-        Geometry::Sphere {
+        Geometry::Sphere(SphereDesc {
             radius: 1.0,
             z_min: -1.0,
             z_max: 1.0,
             phi_max: 360.0
-        }
+        })
     );
     assert_eq!(d.film.scale, 1.0);
 }
@@ -406,7 +407,7 @@ fn attribute_sets_defaults_for_later_directives() {
         LightSource "point""#,
     );
     let radius = |i: usize| match d.shapes[i].geometry {
-        Geometry::Sphere { radius, .. } => radius,
+        Geometry::Sphere(SphereDesc { radius, .. }) => radius,
         ref g => panic!("{g:?}"),
     };
     assert_eq!((radius(0), radius(1)), (0.25, 2.0));
@@ -477,8 +478,8 @@ fn relative_names_resolve_against_the_scene_folder_then_the_including_file() {
     let d = load(&dir.join("main.pbrt"))
         .unwrap_or_else(|e| panic!("{e}"))
         .desc;
-    assert!(matches!(d.shapes[0].geometry, Geometry::Sphere { .. }));
-    assert!(matches!(d.shapes[1].geometry, Geometry::Disk { .. }));
+    assert!(matches!(d.shapes[0].geometry, Geometry::Sphere(_)));
+    assert!(matches!(d.shapes[1].geometry, Geometry::Disk(_)));
 }
 
 #[test]
@@ -523,46 +524,46 @@ fn quadrics_and_boxes_take_pbrts_defaults() {
     assert_eq!(
         g,
         [
-            &Geometry::Cone {
+            &Geometry::Cone(ConeDesc {
                 radius: 1.0,
                 height: 1.0,
                 phi_max: 360.0
-            },
-            &Geometry::Paraboloid {
+            }),
+            &Geometry::Paraboloid(ParaboloidDesc {
                 radius: 1.0,
                 z_min: 0.0,
                 z_max: 1.0,
                 phi_max: 360.0
-            },
-            &Geometry::Hyperboloid {
+            }),
+            &Geometry::Hyperboloid(HyperboloidDesc {
                 p1: Vec3::ZERO,
                 p2: Vec3::ONE,
                 phi_max: 360.0
-            },
-            &Geometry::Box {
+            }),
+            &Geometry::Box(BoxDesc {
                 min: Vec3::splat(-1.0),
                 max: Vec3::ONE
-            },
-            &Geometry::Cone {
+            }),
+            &Geometry::Cone(ConeDesc {
                 radius: 2.0,
                 height: 3.0,
                 phi_max: 90.0
-            },
-            &Geometry::Paraboloid {
+            }),
+            &Geometry::Paraboloid(ParaboloidDesc {
                 radius: 2.0,
                 z_min: 0.5,
                 z_max: 3.0,
                 phi_max: 180.0
-            },
-            &Geometry::Hyperboloid {
+            }),
+            &Geometry::Hyperboloid(HyperboloidDesc {
                 p1: Vec3::new(1.0, 0.0, -1.0),
                 p2: Vec3::new(0.0, 1.0, 1.0),
                 phi_max: 270.0
-            },
-            &Geometry::Box {
+            }),
+            &Geometry::Box(BoxDesc {
                 min: Vec3::new(-1.0, -2.0, -3.0),
                 max: Vec3::new(1.0, 2.0, 3.0)
-            },
+            }),
         ]
     );
 }

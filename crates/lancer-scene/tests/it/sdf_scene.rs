@@ -2,6 +2,7 @@
 //! its errors point at the line and column inside the string in the file.
 
 use lancer::scene::desc::Geometry;
+use lancer::shape::SdfDesc;
 use lancer_scene::load_pbrt_str;
 use std::path::Path;
 
@@ -18,7 +19,7 @@ fn sdf_shape_reaches_the_scene() {
     )
     .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(d.shapes.len(), 3);
-    let Geometry::Sdf { function, bounds } = &d.shapes[0].geometry else {
+    let Geometry::Sdf(SdfDesc { function, bounds }) = &d.shapes[0].geometry else {
         panic!("{:?}", d.shapes[0].geometry)
     };
     assert!(bounds.is_none());
@@ -27,7 +28,7 @@ fn sdf_shape_reaches_the_scene() {
     assert!((b.hi.x - (0.88 + 0.0625)).abs() < 1e-9 && (b.hi.y - (0.68 + 0.0625)).abs() < 1e-9);
     // At the centre the torus is 0.68 away, farther than k from the sphere's −0.6: no blend.
     assert!((function.eval(glam::DVec3::ZERO) + 0.6).abs() < 1e-12);
-    let Geometry::Sdf { bounds, .. } = &d.shapes[2].geometry else {
+    let Geometry::Sdf(SdfDesc { bounds, .. }) = &d.shapes[2].geometry else {
         panic!()
     };
     assert_eq!(

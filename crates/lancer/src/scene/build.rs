@@ -4,12 +4,12 @@
 //! made; the order of every list (and so every render) is the order these phases give.
 
 use super::Scene;
-use super::desc::{AreaLightDesc, Geometry, LightDesc, SceneDesc, ShapeDesc, ZERO_PLANE_NORMAL};
+use super::desc::{AreaLightDesc, Geometry, LightDesc, SceneDesc, ShapeDesc};
 use super::instance::{Instance, Instances, ObjectAccel};
-use super::power::{emission_area, power_radiance};
+use super::power::power_radiance;
 use super::prim::{
     AreaEmission, BuildError, IMAGE_EMISSION, NO_SPECTRUM, PrimInfo, check_media, check_shape,
-    mesh_triangles, prim_media,
+    prim_media,
 };
 use super::tris::SceneTrisBuilder;
 use crate::accel::{Bvh, Tri4};
@@ -20,14 +20,10 @@ use crate::light::{
     LightSampler, PortalInfiniteLight, ProjectionLight, SunskyLight,
 };
 use crate::material::{Material, MaterialDesc};
-use crate::math::{Bounds3, PackedRgb, PackedVec3, Rgb, Transform, Vec3};
-use crate::shape::{
-    BilinearMesh, Cone, Cuboid, Cylinder, Disk, Hyperboloid, Paraboloid, Placement, Plane, Sdf,
-    Shape, Sphere, Triangle, TriangleMesh, Voxels,
-};
+use crate::math::{Bounds3, PackedRgb, Rgb, Transform, Vec3};
+use crate::shape::{Placing, Shape, TriangleMesh};
 use crate::spectrum::dense::Measured;
 use crate::texture::{FloatTex, FloatTexture, ImageTexture, SpectrumTexture};
-use std::sync::Arc;
 
 impl Scene {
     /// Builds a scene: shapes moved to world space and put in a BVH, lights gathered, the
@@ -349,7 +345,7 @@ fn primitives(list: &[Placed<'_>], n_materials: usize) -> Result<Primitives, Bui
                 ),
                 Some(e),
             ) => out.prims.extend(out.shapes[first..].iter().map(|s| {
-                let l = power_radiance(a.l, phi, a.two_sided, emission_area(s));
+                let l = power_radiance(a.l, phi, a.two_sided, s.emission_area());
                 PrimInfo {
                     emission: Some(AreaEmission { l: l.into(), ..e }),
                     ..info
@@ -364,117 +360,22 @@ fn primitives(list: &[Placed<'_>], n_materials: usize) -> Result<Primitives, Bui
 }
 
 /// The world-space primitives of a shape already checked by [`check_shape`], appended to `out`
-/// (a triangle mesh's to `meshes` too). Errors left are those only the constructors find.
+/// (a triangle mesh's to `meshes` too): its kind's build ([`Geometry::build`]). Errors left are
+/// those only the constructors find.
 fn shapes_of(
     sd: &ShapeDesc,
     index: usize,
     meshes: &mut Vec<TriangleMesh>,
     out: &mut Vec<Shape>,
 ) -> Result<(), BuildError> {
-    let placement = Placement::new(sd.object_to_world, sd.reverse_orientation);
-    let invalid = |e: String| BuildError::Invalid(format!("shape {index}: {e}"));
-    match &sd.geometry {
-        &Geometry::Sphere {
-            radius,
-            z_min,
-            z_max,
-            phi_max,
-        } => out.push(Shape::Sphere(Box::new(Sphere::new(
-            placement, radius, z_min, z_max, phi_max,
-        )))),
-        &Geometry::Disk {
-            height,
-            radius,
-            inner_radius,
-            phi_max,
-        } => out.push(Shape::Disk(Box::new(Disk::new(
-            placement,
-            height,
-            radius,
-            inner_radius,
-            phi_max,
-        )))),
-        &Geometry::Cylinder {
-            radius,
-            z_min,
-            z_max,
-            phi_max,
-        } => out.push(Shape::Cylinder(Box::new(Cylinder::new(
-            placement, radius, z_min, z_max, phi_max,
-        )))),
-        &Geometry::Cone {
-            radius,
-            height,
-            phi_max,
-        } => out.push(Shape::Cone(Box::new(Cone::new(
-            placement, radius, height, phi_max,
-        )))),
-        &Geometry::Paraboloid {
-            radius,
-            z_min,
-            z_max,
-            phi_max,
-        } => out.push(Shape::Paraboloid(Box::new(Paraboloid::new(
-            placement,
-            radius,
-            z_min,
-            z_min.max(z_max),
-            phi_max,
-        )))),
-        &Geometry::Hyperboloid { p1, p2, phi_max } => {
-            let h = Hyperboloid::new(placement, p1, p2, phi_max)
-                .expect("validated: finite ends at different heights");
-            out.push(Shape::Hyperboloid(Box::new(h)));
-        }
-        &Geometry::Box { min, max } => {
-            out.push(Shape::Box(Box::new(Cuboid::new(placement, min, max))));
-        }
-        &Geometry::Plane { p, n } => {
-            let t = &sd.object_to_world;
-            let mut n = t.normal(n);
-            if sd.reverse_orientation {
-                n = -n;
-            }
-            // A degenerate transform can still crush a valid normal.
-            let plane =
-                Plane::new(t.point(p), n).ok_or_else(|| invalid(ZERO_PLANE_NORMAL.to_string()))?;
-            out.push(Shape::Plane(Box::new(plane)));
-        }
-        Geometry::Sdf { function, bounds } => {
-            let sdf = Sdf::new(placement, function.clone(), *bounds).map_err(invalid)?;
-            out.push(Shape::Sdf(Box::new(sdf)));
-        }
-        Geometry::Curve(c) => {
-            let curves = c
-                .curves(&sd.object_to_world, sd.reverse_orientation)
-                .map_err(invalid)?;
-            out.extend(curves.into_iter().map(Shape::Curve));
-        }
-        Geometry::BilinearMesh(m) => {
-            let world = Arc::new(m.transformed(&sd.object_to_world, sd.reverse_orientation));
-            out.extend(
-                BilinearMesh::patches(&world)
-                    .into_iter()
-                    .map(|p| Shape::Bilinear(Box::new(p))),
-            );
-        }
-        Geometry::TriangleMesh(m) => {
-            let world = m.transformed(&sd.object_to_world, sd.reverse_orientation);
-            let mesh = meshes.len() as u32;
-            out.extend(
-                mesh_triangles(&world)
-                    .map(|(p, index)| Shape::Triangle(Triangle { p, mesh, index })),
-            );
-            meshes.push(world);
-        }
-        Geometry::Voxels(grid) => {
-            // An empty grid has nothing to hit: no primitive.
-            if let Some(v) = Voxels::new(placement, grid.clone()) {
-                out.push(Shape::Voxels(Box::new(v)));
-            }
-        }
-    }
-    Ok(())
+    let mut at = Placing {
+        to_world: sd.object_to_world,
+        reverse_orientation: sd.reverse_orientation,
+        meshes,
+    };
+    sd.geometry
+        .build(&mut at, out)
+        .map_err(|e| BuildError::Invalid(format!("shape {index}: {e}")))
 }
 
 /// Phase 3. The BVH over the bounded primitives, and the primitives laid out in its leaf order
@@ -588,7 +489,7 @@ fn lights(
                 .map_or(e.l, |im| (im.mean() * im.scale).into()),
             two_sided: e.two_sided,
             area,
-            emitter: Emitter::new(shape, meshes, whole_sphere(shape)),
+            emitter: Emitter::new(shape, meshes, shape.whole_sphere()),
             image,
         });
         spectra.push(area_spectra.get(e.spectrum as usize).copied());
@@ -711,20 +612,13 @@ fn light_of(l: &LightDesc, scene_radius: f32) -> Result<Light, BuildError> {
     })
 }
 
-/// The world centre and radius of a shape that is a whole sphere (no cut, full sweep).
-fn whole_sphere(shape: &Shape) -> Option<(PackedVec3, f32)> {
-    let Shape::Sphere(s) = shape else { return None };
-    let whole =
-        s.z_min <= -s.radius && s.z_max >= s.radius && s.phi_max >= 2.0 * std::f32::consts::PI;
-    let t = &s.placement.to_world;
-    let scale = glam::Mat3::from_mat4(t.m).determinant().abs().cbrt();
-    whole.then(|| (t.point(Vec3::ZERO).into(), s.radius * scale))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::PackedVec3;
     use crate::scene::desc::{InstanceDesc, ObjectDesc};
+    use crate::shape::{PlaneDesc, SphereDesc};
+    use std::sync::Arc;
 
     fn shape(geometry: Geometry) -> ShapeDesc {
         ShapeDesc {
@@ -747,18 +641,18 @@ mod tests {
 
     #[test]
     fn build_reports_the_rule_broken_with_the_shape() {
-        let sphere = Geometry::Sphere {
+        let sphere = Geometry::Sphere(SphereDesc {
             radius: 0.0,
             z_min: -1.0,
             z_max: 1.0,
             phi_max: 360.0,
-        };
+        });
         let desc = SceneDesc {
             shapes: vec![
-                shape(Geometry::Plane {
+                shape(Geometry::Plane(PlaneDesc {
                     p: Vec3::ZERO,
                     n: Vec3::Z,
-                }),
+                })),
                 shape(sphere),
             ],
             ..SceneDesc::default()
@@ -803,25 +697,5 @@ mod tests {
             Scene::build(&desc).unwrap_err().to_string(),
             "distant light with \"from\" equal to \"to\""
         );
-    }
-
-    #[test]
-    fn mesh_triangles_leave_out_degenerate_ones() {
-        let mut m = TriangleMesh::default();
-        m.positions.extend(
-            [
-                [0.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [0.0, 1.0, 0.0],
-                [2.0, 0.0, 0.0],
-            ]
-            .map(PackedVec3::from),
-        );
-        // Triangle 1 is three points on the x axis: zero area.
-        m.indices.extend([0, 1, 2, 0, 1, 3, 2, 1, 0]);
-        let tris: Vec<u32> = mesh_triangles(&m).map(|(_, i)| i).collect();
-        assert_eq!(tris, [0, 2]);
-        let (p, _) = mesh_triangles(&m).nth(1).unwrap();
-        assert_eq!(p[0], PackedVec3::new(0.0, 1.0, 0.0));
     }
 }

@@ -4,28 +4,6 @@
 use super::desc::{Geometry, LightDesc, SceneDesc, ShapeDesc};
 use std::collections::BTreeMap;
 
-impl Geometry {
-    /// The pbrt-v4 name of this shape (`Shape "…"`); lancer's extensions by their own names
-    /// (`box`, `plane`, `voxels`, `sdf`).
-    pub fn pbrt_name(&self) -> &'static str {
-        match self {
-            Geometry::Sphere { .. } => "sphere",
-            Geometry::Disk { .. } => "disk",
-            Geometry::Cylinder { .. } => "cylinder",
-            Geometry::Cone { .. } => "cone",
-            Geometry::Paraboloid { .. } => "paraboloid",
-            Geometry::Hyperboloid { .. } => "hyperboloid",
-            Geometry::Box { .. } => "box",
-            Geometry::Plane { .. } => "plane",
-            Geometry::TriangleMesh(_) => "trianglemesh",
-            Geometry::Voxels(_) => "voxels",
-            Geometry::Sdf { .. } => "sdf",
-            Geometry::Curve(_) => "curve",
-            Geometry::BilinearMesh(_) => "bilinearmesh",
-        }
-    }
-}
-
 impl LightDesc {
     /// The pbrt-v4 name of this light (`LightSource "…"`).
     pub fn pbrt_name(&self) -> &'static str {
@@ -107,6 +85,7 @@ mod tests {
     use super::*;
     use crate::math::{PackedVec3, Rgb, Transform, Vec3};
     use crate::scene::desc::{AreaLightDesc, InstanceDesc, ObjectDesc};
+    use crate::shape::SphereDesc;
     use crate::shape::TriangleMesh;
     use std::sync::Arc;
 
@@ -140,12 +119,12 @@ mod tests {
 
     #[test]
     fn shapes_lights_and_triangles_are_counted_by_pbrt_kind() {
-        let sphere = Geometry::Sphere {
+        let sphere = Geometry::Sphere(SphereDesc {
             radius: 1.0,
             z_min: -1.0,
             z_max: 1.0,
             phi_max: 360.0,
-        };
+        });
         let point = LightDesc::Point {
             from: Vec3::ZERO,
             intensity: Rgb::ONE,

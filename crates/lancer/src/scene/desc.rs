@@ -10,7 +10,8 @@ use crate::film::PixelBounds;
 use crate::integrator::Integrator;
 use crate::material::MaterialDesc;
 use crate::math::{AnimatedTransform, Rgb, Transform, Vec3};
-use crate::shape::{RuleError, TriangleMesh};
+pub use crate::shape::Geometry;
+use crate::shape::RuleError;
 use crate::texture::{FloatTex, FloatTexture, SpectrumTexture};
 use std::sync::Arc;
 
@@ -224,208 +225,6 @@ impl Default for FilterDesc {
     }
 }
 
-/// A shape's geometry, in object space.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Geometry {
-    /// pbrt's `sphere`.
-    Sphere {
-        /// Radius.
-        radius: f32,
-        /// Lowest z kept.
-        z_min: f32,
-        /// Highest z kept.
-        z_max: f32,
-        /// Sweep, degrees.
-        phi_max: f32,
-    },
-    /// pbrt's `disk`.
-    Disk {
-        /// Height (z) of the disk.
-        height: f32,
-        /// Outer radius.
-        radius: f32,
-        /// Inner radius.
-        inner_radius: f32,
-        /// Sweep, degrees.
-        phi_max: f32,
-    },
-    /// pbrt's `cylinder`.
-    Cylinder {
-        /// Radius.
-        radius: f32,
-        /// Bottom.
-        z_min: f32,
-        /// Top.
-        z_max: f32,
-        /// Sweep, degrees.
-        phi_max: f32,
-    },
-    /// pbrt's `cone`: base radius at z = 0, apex at z = `height`.
-    Cone {
-        /// Radius of the base.
-        radius: f32,
-        /// Height of the apex.
-        height: f32,
-        /// Sweep, degrees.
-        phi_max: f32,
-    },
-    /// pbrt's `paraboloid`: z = zmax·(x² + y²)/radius², cut to [zmin, zmax].
-    Paraboloid {
-        /// Radius at `z_max`.
-        radius: f32,
-        /// Bottom.
-        z_min: f32,
-        /// Top (positive).
-        z_max: f32,
-        /// Sweep, degrees.
-        phi_max: f32,
-    },
-    /// pbrt's `hyperboloid`: the segment `p1`–`p2` swept about the z axis.
-    Hyperboloid {
-        /// Start of the segment.
-        p1: Vec3,
-        /// End of the segment (at a different height from `p1`).
-        p2: Vec3,
-        /// Sweep, degrees.
-        phi_max: f32,
-    },
-    /// lancer's `box`: the object-space box between `min` and `max`.
-    Box {
-        /// Low corner.
-        min: Vec3,
-        /// High corner (greater than `min` on every axis).
-        max: Vec3,
-    },
-    /// lancer's infinite `plane` through `p` with normal `n`.
-    Plane {
-        /// A point of the plane.
-        p: Vec3,
-        /// Its normal.
-        n: Vec3,
-    },
-    /// A triangle mesh (`trianglemesh`, `plymesh`, `objmesh`, glTF, …).
-    TriangleMesh(Arc<TriangleMesh>),
-    /// lancer's `voxels`: a voxel grid (shared, never copied per voxel).
-    Voxels(Arc<crate::shape::VoxelGrid>),
-    /// lancer's `sdf`: a signed-distance expression, optionally clipped to a box.
-    Sdf {
-        /// The parsed expression.
-        function: Arc<crate::shape::SdfFunction>,
-        /// Object-space box (`min`, `max`) clipping the solid; required when it is unbounded.
-        bounds: Option<(Vec3, Vec3)>,
-    },
-    /// pbrt's `curve`: a spline with a width, split into pieces when the scene is built.
-    Curve(Arc<crate::shape::CurveDesc>),
-    /// pbrt's `bilinearmesh`: bilinear patches, four vertex indices each.
-    BilinearMesh(Arc<crate::shape::BilinearMesh>),
-}
-
-/// The rule a plane breaks when its normal is zero (in its description, or once placed in the
-/// world by a degenerate transform).
-pub(crate) const ZERO_PLANE_NORMAL: &str = "the plane's normal \"n\" is zero";
-
-/// `Ok` when `v` is finite and positive, else the rule on `field` (named `what` in the message)
-/// broken.
-fn positive(v: f32, field: &'static [&'static str], what: &str) -> Result<(), RuleError> {
-    if v.is_finite() && v > 0.0 {
-        Ok(())
-    } else {
-        Err(RuleError::on(
-            field,
-            format!("{what} must be positive, got {v}"),
-        ))
-    }
-}
-
-impl Geometry {
-    /// Checks the rules without which the geometry means nothing, and returns the first one
-    /// broken (one message per rule, the same whoever asks: the scene readers and
-    /// [`crate::Scene::build`]), with the fields it is about: radii, a cone's height and a
-    /// paraboloid's top positive; a hyperboloid's ends finite and at different heights; a
-    /// box's `min` below its `max`; a plane's normal not zero; meshes' indices and arrays
-    /// consistent ([`crate::shape::IndexedMesh::check`]); an sdf's solid finite and not empty
-    /// ([`crate::shape::SdfFunction::solid_box`]); a curve's points, widths and normals
-    /// ([`crate::shape::CurveDesc::validate`]).
-    pub fn validate(&self) -> Result<(), RuleError> {
-        match self {
-            Geometry::Sphere { radius, .. }
-            | Geometry::Disk { radius, .. }
-            | Geometry::Cylinder { radius, .. } => positive(*radius, &["radius"], "radius"),
-            Geometry::Cone { radius, height, .. } => {
-                positive(*radius, &["radius"], "radius")?;
-                positive(*height, &["height"], "height")
-            }
-            Geometry::Paraboloid { radius, z_max, .. } => {
-                positive(*radius, &["radius"], "radius")?;
-                positive(*z_max, &["z_max"], "zmax")
-            }
-            Geometry::Hyperboloid { p1, p2, .. } => {
-                if p1.z != p2.z && p1.is_finite() && p2.is_finite() {
-                    Ok(())
-                } else {
-                    Err(RuleError::on(
-                        &["p1", "p2"],
-                        format!(
-                            "the hyperboloid's \"p1\" {p1} and \"p2\" {p2} must be finite and at \
-                             different heights (at one height the swept segment is a flat \
-                             annulus: use a disk)"
-                        ),
-                    ))
-                }
-            }
-            Geometry::Box { min, max } => {
-                if min.cmplt(*max).all() && min.is_finite() && max.is_finite() {
-                    Ok(())
-                } else {
-                    Err(RuleError::on(
-                        &["min", "max"],
-                        format!(
-                            "the box's \"min\" {min} must be finite and below its \"max\" {max} \
-                             on every axis"
-                        ),
-                    ))
-                }
-            }
-            Geometry::Plane { n, .. } => match n.try_normalize() {
-                Some(_) => Ok(()),
-                None => Err(RuleError::on(&["n"], ZERO_PLANE_NORMAL)),
-            },
-            Geometry::TriangleMesh(m) => m.check(),
-            Geometry::BilinearMesh(m) => m.check(),
-            Geometry::Sdf { function, bounds } => function.solid_box(*bounds).map(|_| ()),
-            Geometry::Curve(c) => c.validate(),
-            // Its constructor checks its size; an empty grid is valid and makes no primitive.
-            Geometry::Voxels(_) => Ok(()),
-        }
-    }
-
-    /// The rule on emission: an sdf shape, a curve or a voxel grid cannot be an area light
-    /// (none of them can be sampled by area). Checked by [`ShapeDesc::validate`] when the
-    /// shape emits, and by readers for the shapes that would.
-    pub fn validate_emitter(&self) -> Result<(), RuleError> {
-        let refusal = match self {
-            Geometry::Sdf { .. } => {
-                "an sdf shape cannot be an area light (its area has no closed form)"
-            }
-            Geometry::Curve(_) => {
-                "a curve cannot be an area light (pbrt-v4 cannot sample curves either)"
-            }
-            Geometry::Voxels(_) => {
-                "a \"voxels\" shape cannot be an area light (AttributeBegin/AttributeEnd around \
-                 the AreaLightSource keeps it from the voxels)"
-            }
-            _ => return Ok(()),
-        };
-        Err(RuleError::on(&[], refusal))
-    }
-
-    /// True for the mesh geometries, whose errors [`crate::Scene::build`] reports as
-    /// [`super::BuildError::BadMesh`].
-    pub fn is_mesh(&self) -> bool {
-        matches!(self, Geometry::TriangleMesh(_) | Geometry::BilinearMesh(_))
-    }
-}
-
 /// A diffuse area light attached to a shape.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AreaLightDesc {
@@ -437,7 +236,7 @@ pub struct AreaLightDesc {
     pub spectrum: Option<crate::spectrum::dense::Measured>,
     /// pbrt-v4's `power` Φ in watts, when given: each primitive the shape becomes (a mesh's
     /// every triangle, as in pbrt-v4) then emits `l · Φ / (π · sides · area)`, sides 2 when
-    /// two-sided, area the primitive's own (see [`crate::scene::power::emission_area`]).
+    /// two-sided, area the primitive's own (see [`crate::shape::Shape::emission_area`]).
     pub power: Option<f32>,
     /// pbrt-v4's `filename`: the index of an image texture among
     /// [`SceneDesc::spectrum_textures`] the radiance is read from by uv; `l` is then the

@@ -7,11 +7,13 @@
 //! moved back: points and tangents by M, normals by the inverse transpose (M⁻¹)ᵀ.
 
 use super::desc::{Geometry, ObjectDesc};
-use super::prim::{BuildError, PrimInfo, check_shape, mesh_bytes, mesh_triangles};
+use super::prim::{BuildError, PrimInfo, check_shape, mesh_bytes};
 use crate::accel::{Bvh, MeshBvh};
 use crate::math::{Bounds3, Frame, Transform, normalize};
 use crate::ray::Ray;
-use crate::shape::{Shading, ShapeHit, SurfaceInteraction, Triangle, TriangleMesh, TriangleRay};
+use crate::shape::{
+    Shading, ShapeHit, SurfaceInteraction, Triangle, TriangleMesh, TriangleRay, mesh_triangles,
+};
 
 /// An object made only of triangle meshes, with its own BVH (object space).
 #[derive(Debug)]

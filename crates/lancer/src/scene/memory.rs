@@ -66,36 +66,9 @@ impl Scene {
         let mut meshes: usize = self.meshes.iter().map(mesh_bytes).sum();
         let mut boxed = 0;
         for s in &self.shapes {
-            boxed += match s {
-                Shape::Sphere(b) => size_of_val(&**b),
-                Shape::Disk(b) => size_of_val(&**b),
-                Shape::Cylinder(b) => size_of_val(&**b),
-                Shape::Cone(b) => size_of_val(&**b),
-                Shape::Paraboloid(b) => size_of_val(&**b),
-                Shape::Hyperboloid(b) => size_of_val(&**b),
-                Shape::Box(b) => size_of_val(&**b),
-                Shape::Plane(b) => size_of_val(&**b),
-                Shape::Sdf(b) => size_of_val(&**b),
-                // The cells (a byte each, shared by instances of one grid but counted per
-                // instance) and the bricks.
-                Shape::Voxels(b) => size_of_val(&**b) + b.heap_bytes(),
-                Shape::Curve(c) => {
-                    let common = Arc::as_ptr(&c.common);
-                    if seen.insert(common as usize) {
-                        size_of_val(&*c.common)
-                    } else {
-                        0
-                    }
-                }
-                Shape::Bilinear(b) => {
-                    let mesh = Arc::as_ptr(&b.mesh);
-                    if seen.insert(mesh as usize) {
-                        meshes += mesh_bytes(&*b.mesh);
-                    }
-                    size_of_val(&**b)
-                }
-                Shape::Triangle(_) => 0,
-            };
+            let held = s.held_bytes(&mut seen);
+            boxed += held.primitive;
+            meshes += held.meshes;
         }
         let primitives = vec_bytes::<Shape>(self.shapes.capacity())
             + boxed

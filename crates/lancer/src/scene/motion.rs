@@ -158,7 +158,7 @@ impl Motion {
         prims: &mut Vec<PrimInfo>,
         shapes_of: ShapesOf,
     ) -> Result<What, BuildError> {
-        if matches!(sd.geometry, Geometry::Plane { .. }) {
+        if matches!(sd.geometry, Geometry::Plane(_)) {
             return Err(BuildError::Invalid(format!(
                 "shape {index}: an infinite plane cannot move"
             )));

@@ -1,26 +1,11 @@
 //! Area lights given by their power (pbrt-v4's `"float power"` on a `diffuse` area light):
 //! each primitive a shape becomes emits the power Φ on its own, so its radiance is
 //! `L · Φ / (π · sides · A)` with `sides` 2 for a two-sided light and `A` the primitive's area
-//! as pbrt-v4 measures it (a diffuse emitter of radiance L and area A emits Φ = π·L·A per side).
+//! as pbrt-v4 measures it ([`crate::shape::Shape::emission_area`]; a diffuse emitter of
+//! radiance L and area A emits Φ = π·L·A per side).
 
 use crate::math::Rgb;
-use crate::shape::Shape;
 use std::f32::consts::PI;
-
-/// The area pbrt-v4 divides a light's power by: the object-space area of a quadric (pbrt-v4's
-/// `Sphere::Area`, `Disk::Area` and `Cylinder::Area` ignore the transformation; lancer's other
-/// quadrics follow them), the world-space area of anything else (a triangle, a bilinear patch).
-pub fn emission_area(shape: &Shape) -> f32 {
-    match shape {
-        Shape::Sphere(s) => s.object_area(),
-        Shape::Disk(d) => d.object_area(),
-        Shape::Cylinder(c) => c.object_area(),
-        Shape::Cone(c) => c.object_area(),
-        Shape::Paraboloid(p) => p.object_area(),
-        Shape::Hyperboloid(h) => h.object_area(),
-        other => other.area(),
-    }
-}
 
 /// The radiance of one primitive of an area light of radiance `l` (already normalised to unit
 /// luminance for spectra, as pbrt-v4 does) given by power `phi`:
@@ -36,7 +21,7 @@ pub fn power_radiance(l: Rgb, phi: f32, two_sided: bool, area: f32) -> Rgb {
 mod tests {
     use super::*;
     use crate::math::{Transform, Vec3};
-    use crate::shape::{Disk, Placement, Sphere};
+    use crate::shape::{Disk, Placement, Shape, Sphere};
 
     #[test]
     fn a_unit_disk_of_power_pi_has_radiance_one_over_pi() {
@@ -48,7 +33,7 @@ mod tests {
             0.0,
             360.0,
         )));
-        let a = emission_area(&d);
+        let a = d.emission_area();
         assert!((a - PI).abs() < 1e-5, "{a}");
         let l = power_radiance(Rgb::ONE, PI, false, a);
         assert!((l.x - 1.0 / PI).abs() < 1e-6, "{l:?}");
@@ -67,7 +52,7 @@ mod tests {
             0.5,
             360.0,
         )));
-        let a = emission_area(&s);
+        let a = s.emission_area();
         assert!((a - PI).abs() < 1e-5, "{a}");
         let l = power_radiance(Rgb::ONE, 10.0, false, a);
         // 10 / (π·π) = 1.01321.

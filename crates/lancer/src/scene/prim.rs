@@ -3,8 +3,8 @@
 //! shapes and the instanced objects).
 
 use super::desc::ShapeDesc;
-use crate::math::{PackedRgb, PackedVec3, Vec2, Vec3};
-use crate::shape::{IndexedMesh, TriangleMesh, is_degenerate};
+use crate::math::PackedRgb;
+use crate::shape::IndexedMesh;
 use crate::texture::FloatTex;
 use std::mem::size_of;
 
@@ -100,23 +100,6 @@ pub(crate) fn check_shape(
         .map_err(|e| invalid_shape(sd, index, e.message))
 }
 
-/// The triangles of a mesh that a ray can hit (one of zero area never can): each one's three
-/// vertex positions and its index in the mesh.
-pub(crate) fn mesh_triangles(
-    mesh: &TriangleMesh,
-) -> impl Iterator<Item = ([PackedVec3; 3], u32)> + '_ {
-    (0..mesh.triangle_count() as u32).filter_map(move |i| {
-        let v = mesh.vertices(i);
-        let p = [
-            mesh.positions[v[0]],
-            mesh.positions[v[1]],
-            mesh.positions[v[2]],
-        ];
-        let [a, b, c] = p.map(Vec3::from);
-        (!is_degenerate(a, b, c)).then_some((p, i))
-    })
-}
-
 /// The interface a primitive keeps: the shape's, when crossing it changes medium.
 pub(crate) fn prim_media(sd: &ShapeDesc) -> Option<crate::medium::MediumInterface> {
     sd.medium_interface.filter(|mi| mi.is_transition())
@@ -154,8 +137,5 @@ pub(crate) fn vec_bytes<T>(cap: usize) -> usize {
 
 /// Bytes of a mesh's arrays: positions, normals, uvs, indices.
 pub(crate) fn mesh_bytes<const N: usize>(m: &IndexedMesh<N>) -> usize {
-    vec_bytes::<PackedVec3>(m.positions.capacity())
-        + vec_bytes::<PackedVec3>(m.normals.capacity())
-        + vec_bytes::<Vec2>(m.uvs.capacity())
-        + vec_bytes::<u32>(m.indices.capacity())
+    m.heap_bytes()
 }

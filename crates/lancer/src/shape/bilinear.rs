@@ -11,13 +11,16 @@
 //!
 //! Patches are kept in world space (the mesh is transformed once when the scene is built).
 
-use super::hit::{Shading, ShapeHit, SurfaceInteraction};
-use super::mesh::IndexedMesh;
+use super::hit::{Shading, ShapeHit, ShapeSample, SurfaceInteraction};
+use super::kind::{GeometryKind, HeldBytes, Placing, ShapeKind};
+use super::mesh::{IndexedMesh, RuleError, TriangleMesh};
+use super::triangle_ray::TriangleRay;
 use crate::math::{
     Bounds3, Frame, PackedVec3, Vec2, Vec3, cross, gamma, normalize, solve_quadratic,
 };
 use crate::ray::Ray;
 use glam::DVec3;
+use std::collections::HashSet;
 use std::sync::Arc;
 
 /// A mesh of bilinear patches: shared vertices, four indices per patch (p₀₀, p₁₀, p₀₁, p₁₁);
@@ -361,6 +364,77 @@ pub fn intersect_bilinear(ray: &Ray, p: &[Vec3; 4]) -> Option<(f32, f32, f32)> {
     let (t, u, v) = best?;
     let tf = t as f32;
     (tf > 0.0 && tf < ray.t_max).then_some((tf, u as f32, v as f32))
+}
+
+/// pbrt's `bilinearmesh` as a scene gives it, shared by its copies.
+impl GeometryKind for Arc<BilinearMesh> {
+    type Prim = Box<BilinearPatch>;
+
+    fn pbrt_name(&self) -> &'static str {
+        "bilinearmesh"
+    }
+
+    /// Its indices and arrays consistent ([`IndexedMesh::check`]).
+    fn validate(&self) -> Result<(), RuleError> {
+        self.check()
+    }
+
+    fn is_mesh(&self) -> bool {
+        true
+    }
+
+    /// The mesh moved to the world once, shared by its patches.
+    fn build(
+        &self,
+        at: &mut Placing<'_>,
+        out: &mut impl Extend<Box<BilinearPatch>>,
+    ) -> Result<(), String> {
+        let world = Arc::new(self.transformed(&at.to_world, at.reverse_orientation));
+        out.extend(BilinearMesh::patches(&world).into_iter().map(Box::new));
+        Ok(())
+    }
+}
+
+impl ShapeKind for BilinearPatch {
+    fn bounds(&self) -> Bounds3 {
+        BilinearPatch::bounds(self)
+    }
+
+    #[inline]
+    fn intersect(&self, ray: &Ray, _: &TriangleRay) -> Option<ShapeHit> {
+        BilinearPatch::intersect(self, ray)
+    }
+
+    fn interaction(&self, ray: &Ray, hit: &ShapeHit, _: &[TriangleMesh]) -> SurfaceInteraction {
+        BilinearPatch::interaction(self, ray, hit)
+    }
+
+    /// A = ∫∫ |∂p/∂u × ∂p/∂v| du dv ([`BilinearPatch::area`]).
+    fn area(&self) -> f32 {
+        BilinearPatch::area(self)
+    }
+
+    /// [`BilinearPatch::sample_uv`], with the normal the intersection gives there.
+    fn sample_area(&self, u: Vec2, _: &[TriangleMesh]) -> Option<ShapeSample> {
+        let (p, uv) = self.sample_uv(u);
+        Some(ShapeSample {
+            p,
+            n: self.normal_at(uv.x, uv.y),
+        })
+    }
+
+    /// The mesh its patches share, once.
+    fn held_bytes(&self, seen: &mut HashSet<usize>) -> HeldBytes {
+        let mesh = Arc::as_ptr(&self.mesh) as usize;
+        HeldBytes {
+            primitive: 0,
+            meshes: if seen.insert(mesh) {
+                self.mesh.heap_bytes()
+            } else {
+                0
+            },
+        }
+    }
 }
 
 #[cfg(test)]

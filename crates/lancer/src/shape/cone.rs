@@ -1,9 +1,43 @@
 //! The cone: x² + y² = (r/h)²·(z − h)² for 0 ≤ z ≤ h (apex at z = h), swept to `phimax`.
 
-use super::hit::{ShapeHit, SurfaceInteraction};
+use super::hit::{ShapeHit, ShapeSample, SurfaceInteraction};
+use super::kind::{GeometryKind, Placing, ShapeKind, positive};
+use super::mesh::{RuleError, TriangleMesh};
 use super::placement::{Placement, phi_of, quadric_error, quadric_hit, quadric_t};
+use super::triangle_ray::TriangleRay;
 use crate::math::{Bounds3, Vec2, Vec3, normalize, solve_quadratic};
 use crate::ray::Ray;
+
+/// pbrt's `cone` as a scene gives it: base radius at z = 0, apex at z = `height`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ConeDesc {
+    /// Radius of the base.
+    pub radius: f32,
+    /// Height of the apex.
+    pub height: f32,
+    /// Sweep, degrees.
+    pub phi_max: f32,
+}
+
+impl GeometryKind for ConeDesc {
+    type Prim = Box<Cone>;
+
+    fn pbrt_name(&self) -> &'static str {
+        "cone"
+    }
+
+    /// The radius and the height positive.
+    fn validate(&self) -> Result<(), RuleError> {
+        positive(self.radius, &["radius"], "radius")?;
+        positive(self.height, &["height"], "height")
+    }
+
+    fn build(&self, at: &mut Placing<'_>, out: &mut impl Extend<Box<Cone>>) -> Result<(), String> {
+        let c = Cone::new(at.placement(), self.radius, self.height, self.phi_max);
+        out.extend([Box::new(c)]);
+        Ok(())
+    }
+}
 
 /// pbrt's cone around the object-space z axis: base circle of radius `r` at z = 0, apex at
 /// z = `h`, open at the base.
@@ -117,6 +151,37 @@ impl Cone {
         let p = Vec3::new(rho * cos, rho * sin, z);
         let n = normalize(Vec3::new(self.height * cos, self.height * sin, self.radius));
         (p, n)
+    }
+}
+
+impl ShapeKind for Cone {
+    fn bounds(&self) -> Bounds3 {
+        Cone::bounds(self)
+    }
+
+    #[inline]
+    fn intersect(&self, ray: &Ray, _: &TriangleRay) -> Option<ShapeHit> {
+        Cone::intersect(self, ray)
+    }
+
+    fn interaction(&self, ray: &Ray, hit: &ShapeHit, _: &[TriangleMesh]) -> SurfaceInteraction {
+        Cone::interaction(self, ray, hit)
+    }
+
+    /// The object-space area scaled by the placement.
+    fn area(&self) -> f32 {
+        self.object_area() * self.placement.area_scale()
+    }
+
+    /// A point sampled in object space, then placed.
+    fn sample_area(&self, u: Vec2, _: &[TriangleMesh]) -> Option<ShapeSample> {
+        let (p, n) = self.sample_object(u);
+        Some(self.placement.place(p, n))
+    }
+
+    /// The object-space area, as pbrt-v4's quadrics.
+    fn emission_area(&self) -> f32 {
+        self.object_area()
     }
 }
 

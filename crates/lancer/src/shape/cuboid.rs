@@ -1,9 +1,54 @@
 //! lancer's box: the axis-aligned box [min, max] of object space, placed by the CTM.
 
-use super::hit::{ShapeHit, SurfaceInteraction};
+use super::hit::{ShapeHit, ShapeSample, SurfaceInteraction};
+use super::kind::{GeometryKind, Placing, ShapeKind};
+use super::mesh::{RuleError, TriangleMesh};
 use super::placement::Placement;
+use super::triangle_ray::TriangleRay;
 use crate::math::{Bounds3, Vec2, Vec3, cross, gamma, normalize};
 use crate::ray::Ray;
+
+/// lancer's `box` as a scene gives it: the object-space box between `min` and `max`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BoxDesc {
+    /// Low corner.
+    pub min: Vec3,
+    /// High corner (greater than `min` on every axis).
+    pub max: Vec3,
+}
+
+impl GeometryKind for BoxDesc {
+    type Prim = Box<Cuboid>;
+
+    fn pbrt_name(&self) -> &'static str {
+        "box"
+    }
+
+    /// `min` below `max` on every axis, both finite.
+    fn validate(&self) -> Result<(), RuleError> {
+        let (min, max) = (self.min, self.max);
+        if min.cmplt(max).all() && min.is_finite() && max.is_finite() {
+            Ok(())
+        } else {
+            Err(RuleError::on(
+                &["min", "max"],
+                format!(
+                    "the box's \"min\" {min} must be finite and below its \"max\" {max} on \
+                     every axis"
+                ),
+            ))
+        }
+    }
+
+    fn build(
+        &self,
+        at: &mut Placing<'_>,
+        out: &mut impl Extend<Box<Cuboid>>,
+    ) -> Result<(), String> {
+        out.extend([Box::new(Cuboid::new(at.placement(), self.min, self.max))]);
+        Ok(())
+    }
+}
 
 /// A box, axis-aligned in object space, with outward normals (`Shape "box"`).
 #[derive(Clone, Debug, PartialEq)]
@@ -166,6 +211,32 @@ impl Cuboid {
             -Vec3::AXES[k]
         };
         (p, n)
+    }
+}
+
+impl ShapeKind for Cuboid {
+    fn bounds(&self) -> Bounds3 {
+        Cuboid::bounds(self)
+    }
+
+    #[inline]
+    fn intersect(&self, ray: &Ray, _: &TriangleRay) -> Option<ShapeHit> {
+        Cuboid::intersect(self, ray)
+    }
+
+    fn interaction(&self, ray: &Ray, hit: &ShapeHit, _: &[TriangleMesh]) -> SurfaceInteraction {
+        Cuboid::interaction(self, ray, hit)
+    }
+
+    /// Exact in world space (see [`Cuboid::area`]), and so its power's area too.
+    fn area(&self) -> f32 {
+        Cuboid::area(self)
+    }
+
+    /// A point sampled in object space, then placed.
+    fn sample_area(&self, u: Vec2, _: &[TriangleMesh]) -> Option<ShapeSample> {
+        let (p, n) = self.sample_object(u);
+        Some(self.placement.place(p, n))
     }
 }
 

@@ -21,10 +21,13 @@
 //! scene is built; widths scaled by the transform's mean scale |det M|^(1/3)); this is pbrt's
 //! object-space curve exactly for similarity transforms.
 
-use super::RuleError;
-use super::hit::{Shading, ShapeHit, SurfaceInteraction};
+use super::hit::{Shading, ShapeHit, ShapeSample, SurfaceInteraction};
+use super::kind::{GeometryKind, HeldBytes, Placing, ShapeKind};
+use super::mesh::{RuleError, TriangleMesh};
+use super::triangle_ray::TriangleRay;
 use crate::math::{Bounds3, PackedVec3, Transform, Vec2, Vec3, cross, lerp, normalize};
 use crate::ray::Ray;
+use std::collections::HashSet;
 use std::sync::Arc;
 
 /// How a curve presents itself to rays (pbrt's `type`).
@@ -603,6 +606,68 @@ impl Curve {
             wo: -dir,
             t: hit.t,
             time: 0.0,
+        }
+    }
+}
+
+/// pbrt's `curve` as a scene gives it, shared by its copies.
+impl GeometryKind for Arc<CurveDesc> {
+    type Prim = Curve;
+
+    fn pbrt_name(&self) -> &'static str {
+        "curve"
+    }
+
+    /// [`CurveDesc::validate`].
+    fn validate(&self) -> Result<(), RuleError> {
+        CurveDesc::validate(self)
+    }
+
+    fn emitter_refusal(&self) -> Option<&'static str> {
+        Some("a curve cannot be an area light (pbrt-v4 cannot sample curves either)")
+    }
+
+    /// Its pieces ([`CurveDesc::curves`]).
+    fn build(&self, at: &mut Placing<'_>, out: &mut impl Extend<Curve>) -> Result<(), String> {
+        out.extend(self.curves(&at.to_world, at.reverse_orientation)?);
+        Ok(())
+    }
+}
+
+/// A piece of a curve: pbrt's approximate area, but no area sampling (pbrt-v4 has none), so
+/// it cannot emit.
+impl ShapeKind for Curve {
+    fn bounds(&self) -> Bounds3 {
+        Curve::bounds(self)
+    }
+
+    #[inline]
+    fn intersect(&self, ray: &Ray, _: &TriangleRay) -> Option<ShapeHit> {
+        Curve::intersect(self, ray)
+    }
+
+    fn interaction(&self, ray: &Ray, hit: &ShapeHit, _: &[TriangleMesh]) -> SurfaceInteraction {
+        Curve::interaction(self, ray, hit)
+    }
+
+    fn area(&self) -> f32 {
+        Curve::area(self)
+    }
+
+    fn sample_area(&self, _: Vec2, _: &[TriangleMesh]) -> Option<ShapeSample> {
+        None
+    }
+
+    /// The segment its pieces share, once.
+    fn held_bytes(&self, seen: &mut HashSet<usize>) -> HeldBytes {
+        let common = Arc::as_ptr(&self.common) as usize;
+        HeldBytes {
+            primitive: if seen.insert(common) {
+                size_of_val(&*self.common)
+            } else {
+                0
+            },
+            meshes: 0,
         }
     }
 }

@@ -1,9 +1,54 @@
 //! The cylinder: x² + y² = r² between `zmin` and `zmax`, swept to `phimax` (open ends).
 
-use super::hit::{ShapeHit, SurfaceInteraction};
+use super::hit::{ShapeHit, ShapeSample, SurfaceInteraction};
+use super::kind::{GeometryKind, Placing, ShapeKind, positive};
+use super::mesh::{RuleError, TriangleMesh};
 use super::placement::{Placement, phi_of};
+use super::triangle_ray::TriangleRay;
 use crate::math::{Bounds3, Vec2, Vec3, gamma, normalize};
 use crate::ray::Ray;
+
+/// pbrt's `cylinder` as a scene gives it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CylinderDesc {
+    /// Radius.
+    pub radius: f32,
+    /// Bottom.
+    pub z_min: f32,
+    /// Top.
+    pub z_max: f32,
+    /// Sweep, degrees.
+    pub phi_max: f32,
+}
+
+impl GeometryKind for CylinderDesc {
+    type Prim = Box<Cylinder>;
+
+    fn pbrt_name(&self) -> &'static str {
+        "cylinder"
+    }
+
+    /// The radius positive.
+    fn validate(&self) -> Result<(), RuleError> {
+        positive(self.radius, &["radius"], "radius")
+    }
+
+    fn build(
+        &self,
+        at: &mut Placing<'_>,
+        out: &mut impl Extend<Box<Cylinder>>,
+    ) -> Result<(), String> {
+        let s = Cylinder::new(
+            at.placement(),
+            self.radius,
+            self.z_min,
+            self.z_max,
+            self.phi_max,
+        );
+        out.extend([Box::new(s)]);
+        Ok(())
+    }
+}
 
 /// An open cylinder around the object-space z axis.
 #[derive(Clone, Debug, PartialEq)]
@@ -137,6 +182,37 @@ impl Cylinder {
         let phi = u.y * self.phi_max;
         let (x, y) = (self.radius * phi.cos(), self.radius * phi.sin());
         (Vec3::new(x, y, z), Vec3::new(x, y, 0.0) / self.radius)
+    }
+}
+
+impl ShapeKind for Cylinder {
+    fn bounds(&self) -> Bounds3 {
+        Cylinder::bounds(self)
+    }
+
+    #[inline]
+    fn intersect(&self, ray: &Ray, _: &TriangleRay) -> Option<ShapeHit> {
+        Cylinder::intersect(self, ray)
+    }
+
+    fn interaction(&self, ray: &Ray, hit: &ShapeHit, _: &[TriangleMesh]) -> SurfaceInteraction {
+        Cylinder::interaction(self, ray, hit)
+    }
+
+    /// The object-space area scaled by the placement.
+    fn area(&self) -> f32 {
+        self.object_area() * self.placement.area_scale()
+    }
+
+    /// A point sampled in object space, then placed.
+    fn sample_area(&self, u: Vec2, _: &[TriangleMesh]) -> Option<ShapeSample> {
+        let (p, n) = self.sample_object(u);
+        Some(self.placement.place(p, n))
+    }
+
+    /// The object-space area, as pbrt-v4's quadrics.
+    fn emission_area(&self) -> f32 {
+        self.object_area()
     }
 }
 

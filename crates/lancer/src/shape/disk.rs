@@ -1,9 +1,50 @@
 //! The disk: the plane z = h inside radius r (and outside `innerradius`), swept to `phimax`.
 
-use super::hit::{ShapeHit, SurfaceInteraction};
+use super::hit::{ShapeHit, ShapeSample, SurfaceInteraction};
+use super::kind::{GeometryKind, Placing, ShapeKind, positive};
+use super::mesh::{RuleError, TriangleMesh};
 use super::placement::{Placement, phi_of};
+use super::triangle_ray::TriangleRay;
 use crate::math::{Bounds3, Vec2, Vec3, cross, normalize};
 use crate::ray::Ray;
+
+/// pbrt's `disk` as a scene gives it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DiskDesc {
+    /// Height (z) of the disk.
+    pub height: f32,
+    /// Outer radius.
+    pub radius: f32,
+    /// Inner radius.
+    pub inner_radius: f32,
+    /// Sweep, degrees.
+    pub phi_max: f32,
+}
+
+impl GeometryKind for DiskDesc {
+    type Prim = Box<Disk>;
+
+    fn pbrt_name(&self) -> &'static str {
+        "disk"
+    }
+
+    /// The radius positive.
+    fn validate(&self) -> Result<(), RuleError> {
+        positive(self.radius, &["radius"], "radius")
+    }
+
+    fn build(&self, at: &mut Placing<'_>, out: &mut impl Extend<Box<Disk>>) -> Result<(), String> {
+        let s = Disk::new(
+            at.placement(),
+            self.height,
+            self.radius,
+            self.inner_radius,
+            self.phi_max,
+        );
+        out.extend([Box::new(s)]);
+        Ok(())
+    }
+}
 
 /// A disk (or annulus) at height `height` in object space, normal +z.
 #[derive(Clone, Debug, PartialEq)]
@@ -130,6 +171,37 @@ impl Disk {
         let phi = u.y * self.phi_max;
         let p = Vec3::new(r * phi.cos(), r * phi.sin(), self.height);
         (p, Vec3::Z)
+    }
+}
+
+impl ShapeKind for Disk {
+    fn bounds(&self) -> Bounds3 {
+        Disk::bounds(self)
+    }
+
+    #[inline]
+    fn intersect(&self, ray: &Ray, _: &TriangleRay) -> Option<ShapeHit> {
+        Disk::intersect(self, ray)
+    }
+
+    fn interaction(&self, ray: &Ray, hit: &ShapeHit, _: &[TriangleMesh]) -> SurfaceInteraction {
+        Disk::interaction(self, ray, hit)
+    }
+
+    /// The object-space area scaled by the placement.
+    fn area(&self) -> f32 {
+        self.object_area() * self.placement.area_scale()
+    }
+
+    /// A point sampled in object space, then placed.
+    fn sample_area(&self, u: Vec2, _: &[TriangleMesh]) -> Option<ShapeSample> {
+        let (p, n) = self.sample_object(u);
+        Some(self.placement.place(p, n))
+    }
+
+    /// The object-space area, as pbrt-v4's quadrics.
+    fn emission_area(&self) -> f32 {
+        self.object_area()
     }
 }
 

@@ -1,11 +1,61 @@
 //! The hyperboloid: the surface swept by the segment p₁p₂ turning about the z axis, up to
 //! `phimax`.
 
-use super::hit::{ShapeHit, SurfaceInteraction};
+use super::hit::{ShapeHit, ShapeSample, SurfaceInteraction};
+use super::kind::{GeometryKind, Placing, ShapeKind};
+use super::mesh::{RuleError, TriangleMesh};
 use super::placement::{Placement, quadric_error, quadric_hit, quadric_t};
+use super::triangle_ray::TriangleRay;
 use crate::math::{Bounds3, Vec2, Vec3, normalize, solve_quadratic};
 use crate::ray::Ray;
 use glam::{DVec2, DVec3};
+
+/// pbrt's `hyperboloid` as a scene gives it: the segment `p1`–`p2` swept about the z axis.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HyperboloidDesc {
+    /// Start of the segment.
+    pub p1: Vec3,
+    /// End of the segment (at a different height from `p1`).
+    pub p2: Vec3,
+    /// Sweep, degrees.
+    pub phi_max: f32,
+}
+
+impl GeometryKind for HyperboloidDesc {
+    type Prim = Box<Hyperboloid>;
+
+    fn pbrt_name(&self) -> &'static str {
+        "hyperboloid"
+    }
+
+    /// The ends finite and at different heights.
+    fn validate(&self) -> Result<(), RuleError> {
+        let (p1, p2) = (self.p1, self.p2);
+        if p1.z != p2.z && p1.is_finite() && p2.is_finite() {
+            Ok(())
+        } else {
+            Err(RuleError::on(
+                &["p1", "p2"],
+                format!(
+                    "the hyperboloid's \"p1\" {p1} and \"p2\" {p2} must be finite and at \
+                     different heights (at one height the swept segment is a flat \
+                     annulus: use a disk)"
+                ),
+            ))
+        }
+    }
+
+    fn build(
+        &self,
+        at: &mut Placing<'_>,
+        out: &mut impl Extend<Box<Hyperboloid>>,
+    ) -> Result<(), String> {
+        let s = Hyperboloid::new(at.placement(), self.p1, self.p2, self.phi_max)
+            .expect("validated: finite ends at different heights");
+        out.extend([Box::new(s)]);
+        Ok(())
+    }
+}
 
 /// pbrt's hyperboloid: the segment from `p1` (v = 0) to `p2` (v = 1) swept about the
 /// object-space z axis through φ ∈ [0, φmax].
@@ -214,6 +264,37 @@ impl Hyperboloid {
         let p = rot(DVec3::new(r.x, r.y, self.p1.z as f64 + s * dz));
         let n = rot(DVec3::new(r.x * dz, r.y * dz, -r.dot(e))).normalize_or_zero();
         (p.as_vec3a(), n.as_vec3a())
+    }
+}
+
+impl ShapeKind for Hyperboloid {
+    fn bounds(&self) -> Bounds3 {
+        Hyperboloid::bounds(self)
+    }
+
+    #[inline]
+    fn intersect(&self, ray: &Ray, _: &TriangleRay) -> Option<ShapeHit> {
+        Hyperboloid::intersect(self, ray)
+    }
+
+    fn interaction(&self, ray: &Ray, hit: &ShapeHit, _: &[TriangleMesh]) -> SurfaceInteraction {
+        Hyperboloid::interaction(self, ray, hit)
+    }
+
+    /// The object-space area scaled by the placement.
+    fn area(&self) -> f32 {
+        self.object_area() * self.placement.area_scale()
+    }
+
+    /// A point sampled in object space, then placed.
+    fn sample_area(&self, u: Vec2, _: &[TriangleMesh]) -> Option<ShapeSample> {
+        let (p, n) = self.sample_object(u);
+        Some(self.placement.place(p, n))
+    }
+
+    /// The object-space area, as pbrt-v4's quadrics.
+    fn emission_area(&self) -> f32 {
+        self.object_area()
     }
 }
 

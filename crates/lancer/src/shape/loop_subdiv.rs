@@ -14,7 +14,7 @@
 //! (pbrt computes the limit surface's tangents instead; at three levels the two agree closely).
 //! Non-manifold edges (more than two faces) are treated like boundary edges.
 
-use super::triangle::TriangleMesh;
+use super::mesh::TriangleMesh;
 use crate::math::{PackedVec3, Vec3, cross};
 use std::collections::HashMap;
 

@@ -39,6 +39,10 @@ impl From<RuleError> for String {
     }
 }
 
+/// A triangle mesh: shared vertices and three indices per triangle ((0,0), (1,0), (1,1) is
+/// each triangle's own (u, v) when the mesh has none).
+pub type TriangleMesh = IndexedMesh<3>;
+
 /// Shared vertices and `N` vertex indices per face.
 ///
 /// In a scene description the positions are in object space; once the scene is built they are
@@ -158,6 +162,14 @@ impl<const N: usize> IndexedMesh<N> {
             indices: self.indices.clone(),
             flip_normal: reverse_orientation ^ t.swaps_handedness(),
         }
+    }
+
+    /// Bytes of the mesh's arrays (their capacity): positions, normals, uvs, indices.
+    pub fn heap_bytes(&self) -> usize {
+        self.positions.capacity() * size_of::<PackedVec3>()
+            + self.normals.capacity() * size_of::<PackedVec3>()
+            + self.uvs.capacity() * size_of::<Vec2>()
+            + self.indices.capacity() * size_of::<u32>()
     }
 
     /// Position of vertex `i`, unpacked for computing.

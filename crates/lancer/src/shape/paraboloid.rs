@@ -1,9 +1,55 @@
 //! The paraboloid: z = zmax·(x² + y²)/r² between `zmin` and `zmax`, swept to `phimax`.
 
-use super::hit::{ShapeHit, SurfaceInteraction};
+use super::hit::{ShapeHit, ShapeSample, SurfaceInteraction};
+use super::kind::{GeometryKind, Placing, ShapeKind, positive};
+use super::mesh::{RuleError, TriangleMesh};
 use super::placement::{Placement, phi_of, quadric_error, quadric_hit, quadric_t};
+use super::triangle_ray::TriangleRay;
 use crate::math::{Bounds3, Vec2, Vec3, normalize, solve_quadratic};
 use crate::ray::Ray;
+
+/// pbrt's `paraboloid` as a scene gives it: z = zmax·(x² + y²)/radius², cut to [zmin, zmax].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ParaboloidDesc {
+    /// Radius at `z_max`.
+    pub radius: f32,
+    /// Bottom.
+    pub z_min: f32,
+    /// Top (positive).
+    pub z_max: f32,
+    /// Sweep, degrees.
+    pub phi_max: f32,
+}
+
+impl GeometryKind for ParaboloidDesc {
+    type Prim = Box<Paraboloid>;
+
+    fn pbrt_name(&self) -> &'static str {
+        "paraboloid"
+    }
+
+    /// The radius and the top positive.
+    fn validate(&self) -> Result<(), RuleError> {
+        positive(self.radius, &["radius"], "radius")?;
+        positive(self.z_max, &["z_max"], "zmax")
+    }
+
+    fn build(
+        &self,
+        at: &mut Placing<'_>,
+        out: &mut impl Extend<Box<Paraboloid>>,
+    ) -> Result<(), String> {
+        let s = Paraboloid::new(
+            at.placement(),
+            self.radius,
+            self.z_min,
+            self.z_min.max(self.z_max),
+            self.phi_max,
+        );
+        out.extend([Box::new(s)]);
+        Ok(())
+    }
+}
 
 /// pbrt's paraboloid around the object-space z axis: its rim of radius `r` is at z = `zmax`,
 /// its apex at the origin; the part with `zmin ≤ z ≤ zmax` is kept.
@@ -142,6 +188,37 @@ impl Paraboloid {
         let p = glam::DVec3::new(rho * cos, rho * sin, z);
         let n = glam::DVec3::new(p.x, p.y, -0.5 / k).normalize();
         (p.as_vec3a(), n.as_vec3a())
+    }
+}
+
+impl ShapeKind for Paraboloid {
+    fn bounds(&self) -> Bounds3 {
+        Paraboloid::bounds(self)
+    }
+
+    #[inline]
+    fn intersect(&self, ray: &Ray, _: &TriangleRay) -> Option<ShapeHit> {
+        Paraboloid::intersect(self, ray)
+    }
+
+    fn interaction(&self, ray: &Ray, hit: &ShapeHit, _: &[TriangleMesh]) -> SurfaceInteraction {
+        Paraboloid::interaction(self, ray, hit)
+    }
+
+    /// The object-space area scaled by the placement.
+    fn area(&self) -> f32 {
+        self.object_area() * self.placement.area_scale()
+    }
+
+    /// A point sampled in object space, then placed.
+    fn sample_area(&self, u: Vec2, _: &[TriangleMesh]) -> Option<ShapeSample> {
+        let (p, n) = self.sample_object(u);
+        Some(self.placement.place(p, n))
+    }
+
+    /// The object-space area, as pbrt-v4's quadrics.
+    fn emission_area(&self) -> f32 {
+        self.object_area()
     }
 }
 

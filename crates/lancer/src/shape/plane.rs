@@ -1,9 +1,55 @@
 //! The infinite plane of the course (a lancer extension to pbrt's shapes).
 
-use super::hit::{Shading, ShapeHit, SurfaceInteraction};
-use crate::math::{Frame, Vec2, Vec3, gamma, normalize};
+use super::hit::{Shading, ShapeHit, ShapeSample, SurfaceInteraction};
+use super::kind::{GeometryKind, Placing, ShapeKind};
+use super::mesh::{RuleError, TriangleMesh};
+use super::triangle_ray::TriangleRay;
+use crate::math::{Bounds3, Frame, Vec2, Vec3, gamma, normalize};
 use crate::ray::Ray;
 use glam::DVec3;
+
+/// lancer's infinite `plane` as a scene gives it: through `p` with normal `n`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlaneDesc {
+    /// A point of the plane.
+    pub p: Vec3,
+    /// Its normal.
+    pub n: Vec3,
+}
+
+/// The rule a plane breaks when its normal is zero (in its description, or once placed in the
+/// world by a degenerate transform).
+const ZERO_PLANE_NORMAL: &str = "the plane's normal \"n\" is zero";
+
+impl GeometryKind for PlaneDesc {
+    type Prim = Box<Plane>;
+
+    fn pbrt_name(&self) -> &'static str {
+        "plane"
+    }
+
+    /// The normal not zero.
+    fn validate(&self) -> Result<(), RuleError> {
+        match self.n.try_normalize() {
+            Some(_) => Ok(()),
+            None => Err(RuleError::on(&["n"], ZERO_PLANE_NORMAL)),
+        }
+    }
+
+    /// The plane moved to the world: its point as a point, its normal as a normal (flipped by
+    /// `ReverseOrientation`).
+    fn build(&self, at: &mut Placing<'_>, out: &mut impl Extend<Box<Plane>>) -> Result<(), String> {
+        let t = &at.to_world;
+        let mut n = t.normal(self.n);
+        if at.reverse_orientation {
+            n = -n;
+        }
+        // A degenerate transform can still crush a valid normal.
+        let plane = Plane::new(t.point(self.p), n).ok_or_else(|| ZERO_PLANE_NORMAL.to_string())?;
+        out.extend([Box::new(plane)]);
+        Ok(())
+    }
+}
 
 /// The plane through `a` with normal `n`, world space. (u, v) are coordinates along two tangent
 /// directions from `a`.
@@ -70,6 +116,35 @@ impl Plane {
             t: hit.t,
             time: 0.0,
         }
+    }
+}
+
+/// An infinite plane: unbounded (kept out of the BVH, tested on every ray), and of no area, so
+/// it cannot emit.
+impl ShapeKind for Plane {
+    fn bounds(&self) -> Bounds3 {
+        Bounds3::new(Vec3::splat(f32::NEG_INFINITY), Vec3::splat(f32::INFINITY))
+    }
+
+    fn is_unbounded(&self) -> bool {
+        true
+    }
+
+    #[inline]
+    fn intersect(&self, ray: &Ray, _: &TriangleRay) -> Option<ShapeHit> {
+        Plane::intersect(self, ray)
+    }
+
+    fn interaction(&self, ray: &Ray, hit: &ShapeHit, _: &[TriangleMesh]) -> SurfaceInteraction {
+        Plane::interaction(self, ray, hit)
+    }
+
+    fn area(&self) -> f32 {
+        0.0
+    }
+
+    fn sample_area(&self, _: Vec2, _: &[TriangleMesh]) -> Option<ShapeSample> {
+        None
     }
 }
 

@@ -1,10 +1,55 @@
 //! The sphere: x² + y² + z² = r², optionally cut by `zmin`/`zmax` and swept to `phimax`.
 
-use super::hit::{ShapeHit, SurfaceInteraction};
+use super::hit::{ShapeHit, ShapeSample, SurfaceInteraction};
+use super::kind::{GeometryKind, Placing, ShapeKind, positive};
+use super::mesh::{RuleError, TriangleMesh};
 use super::placement::{Placement, phi_of};
-use crate::math::{Bounds3, Vec2, Vec3, gamma, normalize};
+use super::triangle_ray::TriangleRay;
+use crate::math::{Bounds3, PackedVec3, Vec2, Vec3, gamma, normalize};
 use crate::ray::Ray;
 use glam::DVec3;
+
+/// pbrt's `sphere` as a scene gives it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SphereDesc {
+    /// Radius.
+    pub radius: f32,
+    /// Lowest z kept.
+    pub z_min: f32,
+    /// Highest z kept.
+    pub z_max: f32,
+    /// Sweep, degrees.
+    pub phi_max: f32,
+}
+
+impl GeometryKind for SphereDesc {
+    type Prim = Box<Sphere>;
+
+    fn pbrt_name(&self) -> &'static str {
+        "sphere"
+    }
+
+    /// The radius positive.
+    fn validate(&self) -> Result<(), RuleError> {
+        positive(self.radius, &["radius"], "radius")
+    }
+
+    fn build(
+        &self,
+        at: &mut Placing<'_>,
+        out: &mut impl Extend<Box<Sphere>>,
+    ) -> Result<(), String> {
+        let s = Sphere::new(
+            at.placement(),
+            self.radius,
+            self.z_min,
+            self.z_max,
+            self.phi_max,
+        );
+        out.extend([Box::new(s)]);
+        Ok(())
+    }
+}
 
 /// A sphere of radius `r` centred at the object-space origin, keeping the part with
 /// `z_min ≤ z ≤ z_max` and `0 ≤ φ ≤ φ_max`.
@@ -169,6 +214,48 @@ impl Sphere {
         let rho = (self.radius * self.radius - z * z).max(0.0).sqrt();
         let p = Vec3::new(rho * phi.cos(), rho * phi.sin(), z);
         (p, p / self.radius)
+    }
+}
+
+impl ShapeKind for Sphere {
+    fn bounds(&self) -> Bounds3 {
+        Sphere::bounds(self)
+    }
+
+    #[inline]
+    fn intersect(&self, ray: &Ray, _: &TriangleRay) -> Option<ShapeHit> {
+        Sphere::intersect(self, ray)
+    }
+
+    fn interaction(&self, ray: &Ray, hit: &ShapeHit, _: &[TriangleMesh]) -> SurfaceInteraction {
+        Sphere::interaction(self, ray, hit)
+    }
+
+    /// The object-space area scaled by the placement.
+    fn area(&self) -> f32 {
+        self.object_area() * self.placement.area_scale()
+    }
+
+    /// A point sampled in object space, then placed.
+    fn sample_area(&self, u: Vec2, _: &[TriangleMesh]) -> Option<ShapeSample> {
+        let (p, n) = self.sample_object(u);
+        Some(self.placement.place(p, n))
+    }
+
+    /// The object-space area, as pbrt-v4's quadrics.
+    fn emission_area(&self) -> f32 {
+        self.object_area()
+    }
+
+    /// Its world centre and radius when nothing is cut away (the radius scaled by the cube root
+    /// of the placement's |det|).
+    fn whole_sphere(&self) -> Option<(PackedVec3, f32)> {
+        let whole = self.z_min <= -self.radius
+            && self.z_max >= self.radius
+            && self.phi_max >= 2.0 * std::f32::consts::PI;
+        let t = &self.placement.to_world;
+        let scale = glam::Mat3::from_mat4(t.m).determinant().abs().cbrt();
+        whole.then(|| (t.point(Vec3::ZERO).into(), self.radius * scale))
     }
 }
 

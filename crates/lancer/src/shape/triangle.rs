@@ -1,15 +1,15 @@
 //! Triangles and triangle meshes: the watertight ray–triangle test.
 
-use super::hit::{Shading, ShapeHit, SurfaceInteraction};
-use super::mesh::IndexedMesh;
+use super::hit::{Shading, ShapeHit, ShapeSample, SurfaceInteraction};
+use super::kind::{GeometryKind, Placing, ShapeKind};
+use super::mesh::{RuleError, TriangleMesh};
+use super::triangle_ray::TriangleRay;
 use crate::math::{
     Bounds3, Frame, PackedVec3, Vec2, Vec3, cross, difference_of_products, gamma, normalize,
 };
 use crate::ray::Ray;
-
-/// A triangle mesh: shared vertices and three indices per triangle ((0,0), (1,0), (1,1) is
-/// each triangle's own (u, v) when the mesh has none).
-pub type TriangleMesh = IndexedMesh<3>;
+use crate::sampling::sample_uniform_triangle;
+use std::sync::Arc;
 
 impl TriangleMesh {
     /// Number of triangles.
@@ -134,7 +134,7 @@ impl TriangleFrame {
 }
 
 /// Full interaction of a triangle with vertices `p`, per-vertex shading `normals` and `uvs`
-/// when its mesh has them, and `flip` its mesh's [`IndexedMesh::flip_normal`]:
+/// when its mesh has them, and `flip` its mesh's [`super::IndexedMesh::flip_normal`]:
 /// p = b₀p₀ + b₁p₁ + b₂p₂ with error ≤ γ₇ Σ|bᵢpᵢ|; ∂p/∂u, ∂p/∂v from the (u, v) of the
 /// vertices; geometric normal (p₀ − p₂) × (p₁ − p₂), turned to agree with the interpolated
 /// vertex normal when there is one (pbrt's rule).
@@ -272,71 +272,6 @@ pub fn is_degenerate(p0: Vec3, p1: Vec3, p2: Vec3) -> bool {
     cross(p2 - p0, p1 - p0).length_squared() == 0.0
 }
 
-/// The part of the watertight test that depends on the ray alone, computed once per ray
-/// rather than once per triangle: the axis `kz` along which the ray runs most (it becomes z),
-/// and the shear (sx, sy, sz) that turns the permuted direction into +z.
-#[derive(Clone, Copy, Debug)]
-pub struct TriangleRay {
-    kz: u8,
-    /// (kz + 1) mod 3 and (kz + 2) mod 3, kept rather than recomputed for every packet.
-    kxy: [u8; 2],
-    shear: Vec3,
-}
-
-impl TriangleRay {
-    /// Precomputes the permutation and shear for `ray`.
-    #[inline]
-    pub fn new(ray: &Ray) -> TriangleRay {
-        let ad = ray.d.abs();
-        let kz = if ad.x > ad.y {
-            if ad.x > ad.z { 0 } else { 2 }
-        } else if ad.y > ad.z {
-            1
-        } else {
-            2
-        };
-        let mut pre = TriangleRay {
-            kz,
-            kxy: [(kz + 1) % 3, (kz + 2) % 3],
-            shear: Vec3::ZERO,
-        };
-        let d = pre.permute(ray.d);
-        // One vector division for the three: each lane is rounded as its scalar quotient
-        // would be, and the three scalar divisions stood in a row on every ray.
-        pre.shear = Vec3::new(-d.x, -d.y, 1.0) / Vec3::splat(d.z);
-        pre
-    }
-
-    /// The axis kz along which the ray's direction is largest (0, 1, 2 for x, y, z); the
-    /// permutation is (kx, ky, kz) = (kz + 1, kz + 2, kz) mod 3.
-    #[inline(always)]
-    pub fn kz(&self) -> usize {
-        self.kz as usize
-    }
-
-    /// The two other axes (kx, ky) = ((kz + 1) mod 3, (kz + 2) mod 3).
-    #[inline(always)]
-    pub fn kxy(&self) -> (usize, usize) {
-        (self.kxy[0] as usize, self.kxy[1] as usize)
-    }
-
-    /// The shear (S_x, S_y, S_z) = (−d_x/d_z, −d_y/d_z, 1/d_z) of the permuted direction.
-    #[inline(always)]
-    pub fn shear(&self) -> Vec3 {
-        self.shear
-    }
-
-    /// (v[kx], v[ky], v[kz]) with kx, ky the two other axes in cyclic order.
-    #[inline(always)]
-    fn permute(&self, v: Vec3) -> Vec3 {
-        match self.kz {
-            0 => Vec3::new(v.y, v.z, v.x),
-            1 => Vec3::new(v.z, v.x, v.y),
-            _ => v,
-        }
-    }
-}
-
 /// [`intersect_triangle`] with the ray's permutation and shear already computed, for a
 /// triangle known not to be degenerate.
 #[inline]
@@ -350,7 +285,8 @@ pub fn intersect_triangle_with(
     let mut p0t = pre.permute(p0 - ray.o);
     let mut p1t = pre.permute(p1 - ray.o);
     let mut p2t = pre.permute(p2 - ray.o);
-    let (sx, sy, sz) = (pre.shear.x, pre.shear.y, pre.shear.z);
+    let shear = pre.shear();
+    let (sx, sy, sz) = (shear.x, shear.y, shear.z);
     p0t.x += sx * p0t.z;
     p0t.y += sy * p0t.z;
     p1t.x += sx * p1t.z;
@@ -413,6 +349,97 @@ pub fn intersect_triangle_with(
         return None;
     }
     Some(ShapeHit { t, u: b1, v: b2 })
+}
+
+/// The triangles of a mesh that a ray can hit (one of zero area never can): each one's three
+/// vertex positions and its index in the mesh.
+pub fn mesh_triangles(mesh: &TriangleMesh) -> impl Iterator<Item = ([PackedVec3; 3], u32)> + '_ {
+    (0..mesh.triangle_count() as u32).filter_map(move |i| {
+        let v = mesh.vertices(i);
+        let p = [
+            mesh.positions[v[0]],
+            mesh.positions[v[1]],
+            mesh.positions[v[2]],
+        ];
+        let [a, b, c] = p.map(Vec3::from);
+        (!is_degenerate(a, b, c)).then_some((p, i))
+    })
+}
+
+/// A triangle mesh as a scene gives it (`trianglemesh`, `plymesh`, `objmesh`, glTF, …),
+/// shared by its copies.
+impl GeometryKind for Arc<TriangleMesh> {
+    type Prim = Triangle;
+
+    fn pbrt_name(&self) -> &'static str {
+        "trianglemesh"
+    }
+
+    /// Its indices and arrays consistent ([`super::IndexedMesh::check`]).
+    fn validate(&self) -> Result<(), RuleError> {
+        self.check()
+    }
+
+    fn is_mesh(&self) -> bool {
+        true
+    }
+
+    /// The mesh moved to the world and appended to the scene's meshes; its triangles that a
+    /// ray can hit ([`mesh_triangles`]) as primitives.
+    fn build(&self, at: &mut Placing<'_>, out: &mut impl Extend<Triangle>) -> Result<(), String> {
+        let world = self.transformed(&at.to_world, at.reverse_orientation);
+        let mesh = at.meshes.len() as u32;
+        out.extend(mesh_triangles(&world).map(|(p, index)| Triangle { p, mesh, index }));
+        at.meshes.push(world);
+        Ok(())
+    }
+}
+
+impl ShapeKind for Triangle {
+    fn bounds(&self) -> Bounds3 {
+        Triangle::bounds(self)
+    }
+
+    #[inline]
+    fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<ShapeHit> {
+        Triangle::intersect(self, ray, pre)
+    }
+
+    fn interaction(
+        &self,
+        ray: &Ray,
+        hit: &ShapeHit,
+        meshes: &[TriangleMesh],
+    ) -> SurfaceInteraction {
+        Triangle::interaction(self, ray, hit, &meshes[self.mesh as usize])
+    }
+
+    /// A = |(p₁ − p₀) × (p₂ − p₀)| / 2.
+    fn area(&self) -> f32 {
+        let [p0, p1, p2] = self.vertices();
+        0.5 * cross(p1 - p0, p2 - p0).length()
+    }
+
+    /// A point uniform by area (uniform barycentrics), with the normal oriented by the same
+    /// rule as [`Triangle::interaction`]: towards the interpolated vertex normal when the mesh
+    /// has normals, else flipped by the mesh's orientation.
+    fn sample_area(&self, u: Vec2, meshes: &[TriangleMesh]) -> Option<ShapeSample> {
+        let [b0, b1, b2] = sample_uniform_triangle(u);
+        let [p0, p1, p2] = self.vertices();
+        let p = b0 * p0 + b1 * p1 + b2 * p2;
+        let mesh = &meshes[self.mesh as usize];
+        let mut n = cross(p0 - p2, p1 - p2).normalize_or_zero();
+        if !mesh.normals.is_empty() {
+            let v = mesh.vertices(self.index);
+            let ns = b0 * mesh.normal(v[0]) + b1 * mesh.normal(v[1]) + b2 * mesh.normal(v[2]);
+            if n.dot(ns) < 0.0 {
+                n = -n;
+            }
+        } else if mesh.flip_normal {
+            n = -n;
+        }
+        Some(ShapeSample { p, n })
+    }
 }
 
 #[cfg(test)]
@@ -583,5 +610,25 @@ mod tests {
         let want = normalize(Vec3::new(0.15, 0.15, -0.9));
         assert!((si.shading.n - want).length() < 1e-6, "{}", si.shading.n);
         assert!(si.shading.dpdu.dot(si.shading.n).abs() < 1e-6);
+    }
+
+    #[test]
+    fn mesh_triangles_leave_out_degenerate_ones() {
+        let mut m = TriangleMesh::default();
+        m.positions.extend(
+            [
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [2.0, 0.0, 0.0],
+            ]
+            .map(PackedVec3::from),
+        );
+        // Triangle 1 is three points on the x axis: zero area.
+        m.indices.extend([0, 1, 2, 0, 1, 3, 2, 1, 0]);
+        let tris: Vec<u32> = mesh_triangles(&m).map(|(_, i)| i).collect();
+        assert_eq!(tris, [0, 2]);
+        let (p, _) = mesh_triangles(&m).nth(1).unwrap();
+        assert_eq!(p[0], PackedVec3::new(0.0, 1.0, 0.0));
     }
 }

@@ -16,11 +16,15 @@
 //!
 //! A voxel grid is not an emitter: `Scene::build` refuses an area light on it.
 
-use super::hit::{ShapeHit, SurfaceInteraction};
+use super::hit::{ShapeHit, ShapeSample, SurfaceInteraction};
+use super::kind::{GeometryKind, HeldBytes, Placing, ShapeKind};
+use super::mesh::{RuleError, TriangleMesh};
 use super::placement::Placement;
+use super::triangle_ray::TriangleRay;
 use crate::math::{Bounds3, Rgb, Vec2, Vec3, gamma, normalize};
 use crate::ray::Ray;
 use glam::DVec3;
+use std::collections::HashSet;
 use std::sync::Arc;
 
 /// Side of a brick, in cells: the coarse level of the traversal.
@@ -478,6 +482,77 @@ fn walk(
         t_in = t_next[k];
         axis_in = Some(k);
         t_next[k] = plane(cell[k], step[k], k);
+    }
+}
+
+/// A voxel grid as a scene gives it (lancer's `voxels`), shared by its copies.
+impl GeometryKind for Arc<VoxelGrid> {
+    type Prim = Box<Voxels>;
+
+    fn pbrt_name(&self) -> &'static str {
+        "voxels"
+    }
+
+    /// Its constructor checks its size; an empty grid is valid (and makes no primitive).
+    fn validate(&self) -> Result<(), RuleError> {
+        Ok(())
+    }
+
+    fn emitter_refusal(&self) -> Option<&'static str> {
+        Some(
+            "a \"voxels\" shape cannot be an area light (AttributeBegin/AttributeEnd around \
+             the AreaLightSource keeps it from the voxels)",
+        )
+    }
+
+    fn build(
+        &self,
+        at: &mut Placing<'_>,
+        out: &mut impl Extend<Box<Voxels>>,
+    ) -> Result<(), String> {
+        // An empty grid has nothing to hit: no primitive.
+        if let Some(v) = Voxels::new(at.placement(), self.clone()) {
+            out.extend([Box::new(v)]);
+        }
+        Ok(())
+    }
+}
+
+/// A placed grid: no area (it cannot emit), its cells' palette colours as the hits' albedo.
+impl ShapeKind for Voxels {
+    fn bounds(&self) -> Bounds3 {
+        Voxels::bounds(self)
+    }
+
+    #[inline]
+    fn intersect(&self, ray: &Ray, _: &TriangleRay) -> Option<ShapeHit> {
+        Voxels::intersect(self, ray)
+    }
+
+    fn interaction(&self, ray: &Ray, hit: &ShapeHit, _: &[TriangleMesh]) -> SurfaceInteraction {
+        Voxels::interaction(self, ray, hit)
+    }
+
+    fn area(&self) -> f32 {
+        0.0
+    }
+
+    fn sample_area(&self, _: Vec2, _: &[TriangleMesh]) -> Option<ShapeSample> {
+        None
+    }
+
+    #[inline]
+    fn hit_albedo(&self, hit: &ShapeHit) -> Option<Rgb> {
+        Some(Voxels::hit_albedo(self, hit))
+    }
+
+    /// The cells (a byte each, shared by instances of one grid but counted per instance) and
+    /// the bricks.
+    fn held_bytes(&self, _: &mut HashSet<usize>) -> HeldBytes {
+        HeldBytes {
+            primitive: self.heap_bytes(),
+            meshes: 0,
+        }
     }
 }
 

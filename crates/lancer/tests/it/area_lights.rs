@@ -8,6 +8,7 @@ use lancer::math::{PackedVec3, Rgb, Transform, Vec2, Vec3};
 use lancer::ray::Ray;
 use lancer::scene::desc::{AreaLightDesc, Geometry, SceneDesc, ShapeDesc};
 use lancer::shape::TriangleMesh;
+use lancer::shape::{CylinderDesc, DiskDesc, SphereDesc};
 use std::f32::consts::PI;
 use std::sync::Arc;
 
@@ -72,34 +73,34 @@ fn all_shapes() -> Vec<ShapeDesc> {
         (mirror, true),
     ] {
         out.push(emitter(
-            Geometry::Sphere {
+            Geometry::Sphere(SphereDesc {
                 radius: 0.8,
                 z_min: -0.5,
                 z_max: 0.7,
                 phi_max: 270.0,
-            },
+            }),
             xf,
             reverse,
             1.0,
         ));
         out.push(emitter(
-            Geometry::Disk {
+            Geometry::Disk(DiskDesc {
                 height: 0.2,
                 radius: 1.0,
                 inner_radius: 0.3,
                 phi_max: 300.0,
-            },
+            }),
             xf,
             reverse,
             1.0,
         ));
         out.push(emitter(
-            Geometry::Cylinder {
+            Geometry::Cylinder(CylinderDesc {
                 radius: 0.6,
                 z_min: -0.4,
                 z_max: 0.9,
                 phi_max: 200.0,
-            },
+            }),
             xf,
             reverse,
             1.0,
@@ -165,34 +166,34 @@ fn sampled_points_carry_the_intersection_normal() {
 fn areas_match_closed_forms() {
     let scene = scene_of(vec![
         emitter(
-            Geometry::Disk {
+            Geometry::Disk(DiskDesc {
                 height: 0.0,
                 radius: 2.0,
                 inner_radius: 1.0,
                 phi_max: 180.0,
-            },
+            }),
             Transform::scale(Vec3::splat(3.0)).unwrap(),
             false,
             1.0,
         ),
         emitter(
-            Geometry::Sphere {
+            Geometry::Sphere(SphereDesc {
                 radius: 1.0,
                 z_min: -1.0,
                 z_max: 1.0,
                 phi_max: 360.0,
-            },
+            }),
             Transform::IDENTITY,
             false,
             1.0,
         ),
         emitter(
-            Geometry::Cylinder {
+            Geometry::Cylinder(CylinderDesc {
                 radius: 0.5,
                 z_min: 0.0,
                 z_max: 2.0,
                 phi_max: 90.0,
-            },
+            }),
             Transform::IDENTITY,
             false,
             1.0,
@@ -246,12 +247,12 @@ fn disk_light_gives_the_closed_form_irradiance() {
     let flip =
         Transform::translate(Vec3::new(0.0, 0.0, h)) * Transform::rotate(180.0, Vec3::X).unwrap();
     let scene = scene_of(vec![emitter(
-        Geometry::Disk {
+        Geometry::Disk(DiskDesc {
             height: 0.0,
             radius: r,
             inner_radius: 0.0,
             phi_max: 360.0,
-        },
+        }),
         flip,
         false,
         l,
@@ -268,12 +269,12 @@ fn disk_light_gives_the_closed_form_irradiance() {
     );
     // Facing away (one-sided, normal up): no light at all.
     let scene = scene_of(vec![emitter(
-        Geometry::Disk {
+        Geometry::Disk(DiskDesc {
             height: h,
             radius: r,
             inner_radius: 0.0,
             phi_max: 360.0,
-        },
+        }),
         Transform::IDENTITY,
         false,
         l,
@@ -297,12 +298,12 @@ fn sphere_light_gives_the_closed_form_irradiance() {
     for (label, z_max) in [("whole (cone sampling)", r), ("cut (area sampling)", 0.0)] {
         // The cut sphere keeps its lower half, which is all the point sees anyway.
         let scene = scene_of(vec![emitter(
-            Geometry::Sphere {
+            Geometry::Sphere(SphereDesc {
                 radius: r,
                 z_min: -r,
                 z_max,
                 phi_max: 360.0,
-            },
+            }),
             Transform::translate(Vec3::new(0.0, 0.0, d)),
             false,
             l,
@@ -331,23 +332,23 @@ fn sphere_light_gives_the_closed_form_irradiance() {
 fn lights_are_chosen_by_power() {
     let scene = scene_of(vec![
         emitter(
-            Geometry::Disk {
+            Geometry::Disk(DiskDesc {
                 height: 0.0,
                 radius: 1.0,
                 inner_radius: 0.0,
                 phi_max: 360.0,
-            },
+            }),
             Transform::IDENTITY,
             false,
             1.0,
         ),
         emitter(
-            Geometry::Disk {
+            Geometry::Disk(DiskDesc {
                 height: 0.0,
                 radius: 1.0,
                 inner_radius: 0.0,
                 phi_max: 360.0,
-            },
+            }),
             Transform::translate(Vec3::new(5.0, 0.0, 0.0)),
             false,
             3.0,

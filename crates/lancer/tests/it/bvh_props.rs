@@ -9,6 +9,10 @@ use lancer::math::{PackedVec3, Transform, Vec3};
 use lancer::ray::Ray;
 use lancer::sampling::Pcg32;
 use lancer::scene::desc::{Geometry, ShapeDesc};
+use lancer::shape::{
+    BoxDesc, ConeDesc, CylinderDesc, DiskDesc, HyperboloidDesc, ParaboloidDesc, PlaneDesc,
+    SphereDesc,
+};
 use lancer::shape::{ShapeHit, TriangleMesh, TriangleRay, intersect_triangle};
 use lancer::{Scene, SceneDesc};
 
@@ -153,44 +157,44 @@ fn mixed_scene(rng: &mut Pcg32) -> SceneDesc {
         let at = v3(rng) * 10.0 - 5.0;
         let r = 0.2 + rng.uniform();
         let g = match k % 8 {
-            0 => Geometry::Sphere {
+            0 => Geometry::Sphere(SphereDesc {
                 radius: r,
                 z_min: -r,
                 z_max: r * 0.5,
                 phi_max: 300.0,
-            },
-            1 => Geometry::Disk {
+            }),
+            1 => Geometry::Disk(DiskDesc {
                 height: 0.1,
                 radius: r,
                 inner_radius: 0.1,
                 phi_max: 360.0,
-            },
-            2 => Geometry::Cylinder {
+            }),
+            2 => Geometry::Cylinder(CylinderDesc {
                 radius: r,
                 z_min: -0.3,
                 z_max: 0.4,
                 phi_max: 360.0,
-            },
-            3 => Geometry::Cone {
+            }),
+            3 => Geometry::Cone(ConeDesc {
                 radius: r,
                 height: 0.7,
                 phi_max: 360.0,
-            },
-            4 => Geometry::Paraboloid {
+            }),
+            4 => Geometry::Paraboloid(ParaboloidDesc {
                 radius: r,
                 z_min: 0.0,
                 z_max: 0.8,
                 phi_max: 360.0,
-            },
-            5 => Geometry::Hyperboloid {
+            }),
+            5 => Geometry::Hyperboloid(HyperboloidDesc {
                 p1: Vec3::new(r, 0.0, -0.3),
                 p2: Vec3::new(0.2, r, 0.4),
                 phi_max: 360.0,
-            },
-            6 => Geometry::Box {
+            }),
+            6 => Geometry::Box(BoxDesc {
                 min: Vec3::splat(-0.3 * r),
                 max: Vec3::splat(0.3 * r),
-            },
+            }),
             _ => {
                 let tris = random_mesh(rng, 0);
                 let tris = &tris[..tris.len().min(20)];
@@ -204,10 +208,10 @@ fn mixed_scene(rng: &mut Pcg32) -> SceneDesc {
         desc.shapes.push(shape(g, at));
     }
     desc.shapes.push(shape(
-        Geometry::Plane {
+        Geometry::Plane(PlaneDesc {
             p: Vec3::new(0.0, 0.0, -7.0),
             n: Vec3::Z,
-        },
+        }),
         Vec3::ZERO,
     ));
     desc

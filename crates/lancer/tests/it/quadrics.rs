@@ -13,60 +13,61 @@ use lancer::ray::Ray;
 use lancer::sampling::Pcg32;
 use lancer::scene::desc::Geometry;
 use lancer::shape::Shape;
+use lancer::shape::{BoxDesc, ConeDesc, HyperboloidDesc, ParaboloidDesc};
 use std::f64::consts::PI;
 
 fn geometries() -> Vec<Geometry> {
     vec![
-        Geometry::Cone {
+        Geometry::Cone(ConeDesc {
             radius: 1.2,
             height: 1.5,
             phi_max: 360.0,
-        },
-        Geometry::Cone {
+        }),
+        Geometry::Cone(ConeDesc {
             radius: 0.8,
             height: 2.0,
             phi_max: 250.0,
-        },
-        Geometry::Paraboloid {
+        }),
+        Geometry::Paraboloid(ParaboloidDesc {
             radius: 1.0,
             z_min: 0.0,
             z_max: 1.0,
             phi_max: 360.0,
-        },
-        Geometry::Paraboloid {
+        }),
+        Geometry::Paraboloid(ParaboloidDesc {
             radius: 0.7,
             z_min: 0.3,
             z_max: 1.4,
             phi_max: 290.0,
-        },
+        }),
         // Skew segment: a one-sheet hyperboloid whose waist is not at z = 0.
-        Geometry::Hyperboloid {
+        Geometry::Hyperboloid(HyperboloidDesc {
             p1: Vec3::new(1.0, 0.0, -0.5),
             p2: Vec3::new(0.3, 0.8, 0.7),
             phi_max: 360.0,
-        },
+        }),
         // pbrt's defaults: the segment's line meets the axis, a cone.
-        Geometry::Hyperboloid {
+        Geometry::Hyperboloid(HyperboloidDesc {
             p1: Vec3::ZERO,
             p2: Vec3::ONE,
             phi_max: 300.0,
-        },
+        }),
         // Parallel to the axis: a cylinder.
-        Geometry::Hyperboloid {
+        Geometry::Hyperboloid(HyperboloidDesc {
             p1: Vec3::new(0.5, 0.0, -1.0),
             p2: Vec3::new(0.5, 0.0, 1.0),
             phi_max: 200.0,
-        },
+        }),
         // The classic hyperboloid, its segment going down.
-        Geometry::Hyperboloid {
+        Geometry::Hyperboloid(HyperboloidDesc {
             p1: Vec3::new(1.0, -1.0, 1.0),
             p2: Vec3::new(1.0, 1.0, -1.0),
             phi_max: 360.0,
-        },
-        Geometry::Box {
+        }),
+        Geometry::Box(BoxDesc {
             min: Vec3::new(-0.5, -1.0, -0.2),
             max: Vec3::new(0.7, 0.4, 1.3),
-        },
+        }),
     ]
 }
 
@@ -90,11 +91,11 @@ fn placements() -> Vec<(Transform, bool)> {
 /// definitions, independently of the shape code.
 fn implicit(g: &Geometry, p: DVec3) -> (f64, DVec3, bool, f64) {
     match *g {
-        Geometry::Cone {
+        Geometry::Cone(ConeDesc {
             radius,
             height,
             phi_max,
-        } => {
+        }) => {
             let (r, h) = (radius as f64, height as f64);
             let k = (r / h).powi(2);
             let f = p.x * p.x + p.y * p.y - k * (p.z - h).powi(2);
@@ -102,12 +103,12 @@ fn implicit(g: &Geometry, p: DVec3) -> (f64, DVec3, bool, f64) {
             let ok = (0.0..=h).contains(&p.z) && azimuth(p.x, p.y) <= (phi_max as f64).to_radians();
             (f, grad, ok, 1.0)
         }
-        Geometry::Paraboloid {
+        Geometry::Paraboloid(ParaboloidDesc {
             radius,
             z_min,
             z_max,
             phi_max,
-        } => {
+        }) => {
             let k = z_max as f64 / (radius as f64).powi(2);
             let f = k * (p.x * p.x + p.y * p.y) - p.z;
             let grad = DVec3::new(2.0 * k * p.x, 2.0 * k * p.y, -1.0);
@@ -115,7 +116,7 @@ fn implicit(g: &Geometry, p: DVec3) -> (f64, DVec3, bool, f64) {
                 && azimuth(p.x, p.y) <= (phi_max as f64).to_radians();
             (f, grad, ok, 1.0)
         }
-        Geometry::Hyperboloid { p1, p2, phi_max } => {
+        Geometry::Hyperboloid(HyperboloidDesc { p1, p2, phi_max }) => {
             let (p1, p2) = (p1.as_dvec3(), p2.as_dvec3());
             let dz = p2.z - p1.z;
             let s = (p.z - p1.z) / dz;
@@ -130,7 +131,7 @@ fn implicit(g: &Geometry, p: DVec3) -> (f64, DVec3, bool, f64) {
             let ok = (0.0..=1.0).contains(&s) && turn <= (phi_max as f64).to_radians();
             (f, grad, ok, dz.signum())
         }
-        Geometry::Box { min, max } => {
+        Geometry::Box(BoxDesc { min, max }) => {
             let (c, h) = ((min + max).as_dvec3() * 0.5, (max - min).as_dvec3() * 0.5);
             let q = (p - c).abs() - h;
             let k = if q.x >= q.y && q.x >= q.z {
@@ -380,7 +381,7 @@ fn crofton(shape: &Shape, rng: &mut Pcg32, lines: usize) -> (f64, Vec<Vec3>) {
 /// A placement under which the shape's area and area sampling are exact: quadrics (like
 /// pbrt's) assume a similarity transform; the box handles any affine map.
 fn area_exact_placement(g: &Geometry) -> Transform {
-    if matches!(g, Geometry::Box { .. }) {
+    if matches!(g, Geometry::Box(_)) {
         placements()[1].0
     } else {
         Transform::translate(Vec3::new(0.2, 0.1, -0.3))

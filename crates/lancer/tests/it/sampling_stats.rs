@@ -18,6 +18,7 @@ use lancer::sampling::{
 };
 use lancer::scene::desc::{AreaLightDesc, Geometry, LightDesc, SceneDesc, ShapeDesc};
 use lancer::shape::TriangleMesh;
+use lancer::shape::{CylinderDesc, DiskDesc, SphereDesc};
 use std::sync::Arc;
 
 /// Chi-square tests in this file, for the Šidák correction.
@@ -308,11 +309,13 @@ fn chi2_area_lights() {
             Transform::IDENTITY,
         )]),
     );
-    let sphere = |z_min: f32, z_max: f32, phi: f32| Geometry::Sphere {
-        radius: 0.7,
-        z_min,
-        z_max,
-        phi_max: phi,
+    let sphere = |z_min: f32, z_max: f32, phi: f32| {
+        Geometry::Sphere(SphereDesc {
+            radius: 0.7,
+            z_min,
+            z_max,
+            phi_max: phi,
+        })
     };
     chi2_light(
         "whole sphere light (cone)",
@@ -333,12 +336,12 @@ fn chi2_area_lights() {
     chi2_light(
         "disk light",
         scene_with(vec![emitter(
-            Geometry::Disk {
+            Geometry::Disk(DiskDesc {
                 height: 0.0,
                 radius: 1.0,
                 inner_radius: 0.3,
                 phi_max: 300.0,
-            },
+            }),
             // Above the origin, tilted, its normal turned down towards it.
             Transform::translate(Vec3::new(0.5, 0.3, 1.2))
                 * Transform::rotate(160.0, Vec3::new(1.0, 0.3, 0.0)).unwrap(),
@@ -346,12 +349,12 @@ fn chi2_area_lights() {
     );
     // The cylinder too, from inside.
     let mut tube = emitter(
-        Geometry::Cylinder {
+        Geometry::Cylinder(CylinderDesc {
             radius: 0.5,
             z_min: -0.8,
             z_max: 0.8,
             phi_max: 300.0,
-        },
+        }),
         Transform::translate(Vec3::new(0.1, 0.15, 0.2)) * Transform::rotate(40.0, Vec3::X).unwrap(),
     );
     tube.reverse_orientation = true;

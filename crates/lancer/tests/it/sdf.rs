@@ -613,13 +613,14 @@ fn scenes_build_sdf_objects_and_refuse_them_as_emitters() {
     use lancer::Scene;
     use lancer::math::Rgb;
     use lancer::scene::desc::{AreaLightDesc, Geometry, SceneDesc, ShapeDesc};
+    use lancer::shape::SdfDesc;
     let shape = |src: &str, bounds, area_light| SceneDesc {
         shapes: vec![ShapeDesc {
             medium_interface: None,
-            geometry: Geometry::Sdf {
+            geometry: Geometry::Sdf(SdfDesc {
                 function: Arc::new(f(src)),
                 bounds,
-            },
+            }),
             object_to_world: Transform::translate(Vec3::new(0.0, 0.0, -3.0)),
             reverse_orientation: false,
             material: 0,

@@ -19,66 +19,69 @@ use lancer::math::{Transform, Vec2, Vec3};
 use lancer::ray::Ray;
 use lancer::sampling::Pcg32;
 use lancer::scene::desc::Geometry;
+use lancer::shape::{
+    BoxDesc, ConeDesc, CylinderDesc, DiskDesc, HyperboloidDesc, ParaboloidDesc, SphereDesc,
+};
 use std::f64::consts::PI;
 
 fn geometries() -> Vec<Geometry> {
     vec![
-        Geometry::Sphere {
+        Geometry::Sphere(SphereDesc {
             radius: 1.1,
             z_min: -1.1,
             z_max: 1.1,
             phi_max: 360.0,
-        },
-        Geometry::Sphere {
+        }),
+        Geometry::Sphere(SphereDesc {
             radius: 0.9,
             z_min: -0.5,
             z_max: 0.7,
             phi_max: 270.0,
-        },
-        Geometry::Disk {
+        }),
+        Geometry::Disk(DiskDesc {
             height: 0.2,
             radius: 1.0,
             inner_radius: 0.3,
             phi_max: 200.0,
-        },
-        Geometry::Cylinder {
+        }),
+        Geometry::Cylinder(CylinderDesc {
             radius: 0.8,
             z_min: -0.4,
             z_max: 0.9,
             phi_max: 300.0,
-        },
-        Geometry::Cone {
+        }),
+        Geometry::Cone(ConeDesc {
             radius: 0.9,
             height: 1.3,
             phi_max: 250.0,
-        },
-        Geometry::Paraboloid {
+        }),
+        Geometry::Paraboloid(ParaboloidDesc {
             radius: 0.7,
             z_min: 0.3,
             z_max: 1.4,
             phi_max: 290.0,
-        },
-        Geometry::Hyperboloid {
+        }),
+        Geometry::Hyperboloid(HyperboloidDesc {
             p1: Vec3::new(1.0, 0.0, -0.5),
             p2: Vec3::new(0.3, 0.8, 0.7),
             phi_max: 320.0,
-        },
-        Geometry::Box {
+        }),
+        Geometry::Box(BoxDesc {
             min: Vec3::new(-0.5, -1.0, -0.2),
             max: Vec3::new(0.7, 0.4, 1.3),
-        },
+        }),
     ]
 }
 
 fn name(g: &Geometry) -> &'static str {
     match g {
-        Geometry::Sphere { .. } => "sphere",
-        Geometry::Disk { .. } => "disk",
-        Geometry::Cylinder { .. } => "cylinder",
-        Geometry::Cone { .. } => "cone",
-        Geometry::Paraboloid { .. } => "paraboloid",
-        Geometry::Hyperboloid { .. } => "hyperboloid",
-        Geometry::Box { .. } => "box",
+        Geometry::Sphere(_) => "sphere",
+        Geometry::Disk(_) => "disk",
+        Geometry::Cylinder(_) => "cylinder",
+        Geometry::Cone(_) => "cone",
+        Geometry::Paraboloid(_) => "paraboloid",
+        Geometry::Hyperboloid(_) => "hyperboloid",
+        Geometry::Box(_) => "box",
         _ => unreachable!(),
     }
 }
@@ -118,34 +121,34 @@ fn implicit(g: &Geometry, p: DVec3, slack: f64) -> (f64, DVec3, bool, f64) {
     };
     let within = |v: f64, lo: f64, hi: f64| v >= lo - slack && v <= hi + slack;
     match *g {
-        Geometry::Sphere {
+        Geometry::Sphere(SphereDesc {
             radius,
             z_min,
             z_max,
             phi_max,
-        } => {
+        }) => {
             let r = radius as f64;
             let (lo, hi) = ((z_min as f64).max(-r), (z_max as f64).min(r));
             let ok = within(p.z, lo, hi) && in_sweep(phi_max, azimuth(p.x, p.y));
             (p.length_squared() - r * r, 2.0 * p, ok, 1.0)
         }
-        Geometry::Disk {
+        Geometry::Disk(DiskDesc {
             height,
             radius,
             inner_radius,
             phi_max,
-        } => {
+        }) => {
             let rho = p.truncate().length();
             let ok = within(rho, inner_radius as f64, radius as f64)
                 && in_sweep(phi_max, azimuth(p.x, p.y));
             (p.z - height as f64, DVec3::Z, ok, 1.0)
         }
-        Geometry::Cylinder {
+        Geometry::Cylinder(CylinderDesc {
             radius,
             z_min,
             z_max,
             phi_max,
-        } => {
+        }) => {
             let r = radius as f64;
             let ok =
                 within(p.z, z_min as f64, z_max as f64) && in_sweep(phi_max, azimuth(p.x, p.y));
@@ -156,11 +159,11 @@ fn implicit(g: &Geometry, p: DVec3, slack: f64) -> (f64, DVec3, bool, f64) {
                 1.0,
             )
         }
-        Geometry::Cone {
+        Geometry::Cone(ConeDesc {
             radius,
             height,
             phi_max,
-        } => {
+        }) => {
             // x² + y² = (r/h)²·(h − z)².
             let (r, h) = (radius as f64, height as f64);
             let k = (r / h) * (r / h);
@@ -172,12 +175,12 @@ fn implicit(g: &Geometry, p: DVec3, slack: f64) -> (f64, DVec3, bool, f64) {
                 1.0,
             )
         }
-        Geometry::Paraboloid {
+        Geometry::Paraboloid(ParaboloidDesc {
             radius,
             z_min,
             z_max,
             phi_max,
-        } => {
+        }) => {
             // z = zmax·(x² + y²)/r².
             let k = z_max as f64 / (radius as f64 * radius as f64);
             let ok =
@@ -189,7 +192,7 @@ fn implicit(g: &Geometry, p: DVec3, slack: f64) -> (f64, DVec3, bool, f64) {
                 1.0,
             )
         }
-        Geometry::Hyperboloid { p1, p2, phi_max } => {
+        Geometry::Hyperboloid(HyperboloidDesc { p1, p2, phi_max }) => {
             // The segment's point q(s) at p's height; p is on the surface when its distance to
             // the axis equals q's, and inside the sweep when turning q by at most φmax about z
             // brings it onto p.
@@ -203,7 +206,7 @@ fn implicit(g: &Geometry, p: DVec3, slack: f64) -> (f64, DVec3, bool, f64) {
             let ok = within(p.z, a.z.min(b.z), a.z.max(b.z)) && in_sweep(phi_max, turn);
             (f, grad, ok, (b.z - a.z).signum())
         }
-        Geometry::Box { min, max } => {
+        Geometry::Box(BoxDesc { min, max }) => {
             // F = max over axes of |p − c| − h: zero on the faces, gradient the face's normal.
             let (c, h) = ((min + max).as_dvec3() * 0.5, (max - min).as_dvec3() * 0.5);
             let q = (p - c).abs() - h;
@@ -382,58 +385,58 @@ fn patch_point(g: &Geometry, patch: usize, a: f64, b: f64) -> DVec3 {
         )
     };
     match *g {
-        Geometry::Sphere {
+        Geometry::Sphere(SphereDesc {
             radius,
             z_min,
             z_max,
             phi_max,
-        } => {
+        }) => {
             let r = radius as f64;
             let (lo, hi) = ((z_min as f64).max(-r), (z_max as f64).min(r));
             let z = lo + a * (hi - lo);
             turn(phi_max, (r * r - z * z).max(0.0).sqrt(), 0.0, z)
         }
-        Geometry::Disk {
+        Geometry::Disk(DiskDesc {
             height,
             radius,
             inner_radius,
             phi_max,
-        } => turn(
+        }) => turn(
             phi_max,
             inner_radius as f64 + a * (radius - inner_radius) as f64,
             0.0,
             height as f64,
         ),
-        Geometry::Cylinder {
+        Geometry::Cylinder(CylinderDesc {
             radius,
             z_min,
             z_max,
             phi_max,
-        } => turn(
+        }) => turn(
             phi_max,
             radius as f64,
             0.0,
             z_min as f64 + a * (z_max - z_min) as f64,
         ),
-        Geometry::Cone {
+        Geometry::Cone(ConeDesc {
             radius,
             height,
             phi_max,
-        } => turn(phi_max, (1.0 - a) * radius as f64, 0.0, a * height as f64),
-        Geometry::Paraboloid {
+        }) => turn(phi_max, (1.0 - a) * radius as f64, 0.0, a * height as f64),
+        Geometry::Paraboloid(ParaboloidDesc {
             radius,
             z_min,
             z_max,
             phi_max,
-        } => {
+        }) => {
             let z = z_min as f64 + a * (z_max - z_min) as f64;
             turn(phi_max, radius as f64 * (z / z_max as f64).sqrt(), 0.0, z)
         }
-        Geometry::Hyperboloid { p1, p2, phi_max } => {
+        Geometry::Hyperboloid(HyperboloidDesc { p1, p2, phi_max }) => {
             let q = p1.as_dvec3() + a * (p2 - p1).as_dvec3();
             turn(phi_max, q.x, q.y, q.z)
         }
-        Geometry::Box { min, max } => {
+        Geometry::Box(BoxDesc { min, max }) => {
             let (lo, hi) = (min.as_dvec3(), max.as_dvec3());
             let k = patch % 3;
             let (i, j) = ((k + 1) % 3, (k + 2) % 3);
@@ -448,11 +451,7 @@ fn patch_point(g: &Geometry, patch: usize, a: f64, b: f64) -> DVec3 {
 }
 
 fn patches(g: &Geometry) -> usize {
-    if matches!(g, Geometry::Box { .. }) {
-        6
-    } else {
-        1
-    }
+    if matches!(g, Geometry::Box(_)) { 6 } else { 1 }
 }
 
 /// The patch and (a, b) of an object-space point of the surface (the inverse of
@@ -460,52 +459,52 @@ fn patches(g: &Geometry) -> usize {
 fn locate(g: &Geometry, p: DVec3) -> (usize, f64, f64) {
     let sweep = |phi_max: f32, x: f64, y: f64| azimuth(x, y) / (phi_max as f64).to_radians();
     match *g {
-        Geometry::Sphere {
+        Geometry::Sphere(SphereDesc {
             radius,
             z_min,
             z_max,
             phi_max,
-        } => {
+        }) => {
             let r = radius as f64;
             let (lo, hi) = ((z_min as f64).max(-r), (z_max as f64).min(r));
             (0, (p.z - lo) / (hi - lo), sweep(phi_max, p.x, p.y))
         }
-        Geometry::Disk {
+        Geometry::Disk(DiskDesc {
             radius,
             inner_radius,
             phi_max,
             ..
-        } => (
+        }) => (
             0,
             (p.truncate().length() - inner_radius as f64) / (radius - inner_radius) as f64,
             sweep(phi_max, p.x, p.y),
         ),
-        Geometry::Cylinder {
+        Geometry::Cylinder(CylinderDesc {
             z_min,
             z_max,
             phi_max,
             ..
-        }
-        | Geometry::Paraboloid {
+        })
+        | Geometry::Paraboloid(ParaboloidDesc {
             z_min,
             z_max,
             phi_max,
             ..
-        } => (
+        }) => (
             0,
             (p.z - z_min as f64) / (z_max - z_min) as f64,
             sweep(phi_max, p.x, p.y),
         ),
-        Geometry::Cone {
+        Geometry::Cone(ConeDesc {
             height, phi_max, ..
-        } => (0, p.z / height as f64, sweep(phi_max, p.x, p.y)),
-        Geometry::Hyperboloid { p1, p2, phi_max } => {
+        }) => (0, p.z / height as f64, sweep(phi_max, p.x, p.y)),
+        Geometry::Hyperboloid(HyperboloidDesc { p1, p2, phi_max }) => {
             let a = (p.z - p1.z as f64) / (p2.z - p1.z) as f64;
             let q = p1.as_dvec3() + a * (p2 - p1).as_dvec3();
             let turn = azimuth(q.x * p.x + q.y * p.y, q.x * p.y - q.y * p.x);
             (0, a, turn / (phi_max as f64).to_radians())
         }
-        Geometry::Box { min, max } => {
+        Geometry::Box(BoxDesc { min, max }) => {
             let (lo, hi) = (min.as_dvec3(), max.as_dvec3());
             let d_lo = (p - lo).abs();
             let d_hi = (p - hi).abs();

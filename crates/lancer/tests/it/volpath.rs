@@ -13,6 +13,7 @@ use lancer::medium::{HomogeneousDesc, MediumDesc, MediumInterface};
 use lancer::ray::Ray;
 use lancer::sampling::{Sampler, SamplerKind};
 use lancer::scene::desc::{Geometry, LightDesc, SceneDesc, ShapeDesc};
+use lancer::shape::SphereDesc;
 use lancer::spectrum::sampled::SampledWavelengths;
 
 /// A unit sphere of `medium` (index-matched: `interface` material) under a uniform white sky.
@@ -24,12 +25,12 @@ fn furnace(medium: MediumDesc) -> Scene {
                 inside: Some(0),
                 outside: None,
             }),
-            geometry: Geometry::Sphere {
+            geometry: Geometry::Sphere(SphereDesc {
                 radius: 1.0,
                 z_min: -1.0,
                 z_max: 1.0,
                 phi_max: 360.0,
-            },
+            }),
             object_to_world: Transform::IDENTITY,
             reverse_orientation: false,
             material: 0,

@@ -10,6 +10,7 @@ use lancer::math::{INV_PI, Rgb, SampledSpectrum, Transform, Vec2, Vec3, lanes_rg
 use lancer::render::{RenderSettings, render};
 use lancer::sampling::SamplerKind;
 use lancer::scene::desc::{CameraDesc, FilterDesc, Geometry, LightDesc, SceneDesc, ShapeDesc};
+use lancer::shape::{PlaneDesc, SphereDesc};
 use lancer::texture::SpectrumTex;
 use lancer::{Scene, ray::Ray};
 
@@ -44,12 +45,12 @@ fn shape(geometry: Geometry, at: Vec3, material: u32) -> ShapeDesc {
 }
 
 fn sphere(r: f32) -> Geometry {
-    Geometry::Sphere {
+    Geometry::Sphere(SphereDesc {
         radius: r,
         z_min: -r,
         z_max: r,
         phi_max: 360.0,
-    }
+    })
 }
 
 fn diffuse(c: Rgb) -> MaterialDesc {
@@ -192,10 +193,10 @@ fn mirror_reflects_the_scene_with_its_fresnel_reflectance() {
     d.shapes = vec![
         shape(sphere(r), c, 0),
         shape(
-            Geometry::Plane {
+            Geometry::Plane(PlaneDesc {
                 p: Vec3::new(0.0, 0.0, mirror_z),
                 n: Vec3::Z,
-            },
+            }),
             Vec3::ZERO,
             1,
         ),
@@ -258,10 +259,10 @@ fn shadows_are_exactly_where_the_geometry_puts_them() {
     d.materials = vec![diffuse(rho), diffuse(Rgb::splat(0.5))];
     d.shapes = vec![
         shape(
-            Geometry::Plane {
+            Geometry::Plane(PlaneDesc {
                 p: Vec3::ZERO,
                 n: Vec3::Y,
-            },
+            }),
             Vec3::new(0.0, -1.0, 0.0),
             0,
         ),

@@ -4,6 +4,10 @@ use super::*;
 use crate::pbrt::convert::TextureNames;
 use crate::pbrt::convert::testing::{err, typed_in, unused, with_textures};
 use lancer::math::Vec2;
+use lancer::shape::{
+    BoxDesc, ConeDesc, CylinderDesc, DiskDesc, HyperboloidDesc, ParaboloidDesc, PlaneDesc,
+    SphereDesc,
+};
 use std::path::{Path, PathBuf};
 
 mod rules;
@@ -56,55 +60,55 @@ fn v3(x: f32, y: f32, z: f32) -> PackedVec3 {
 
 #[test]
 fn quadrics_take_pbrt_defaults() {
-    let sphere = Geometry::Sphere {
+    let sphere = Geometry::Sphere(SphereDesc {
         radius: 1.0,
         z_min: -1.0,
         z_max: 1.0,
         phi_max: 360.0,
-    };
+    });
     assert_eq!(geometry(r#"Shape "sphere""#), sphere);
-    let disk = Geometry::Disk {
+    let disk = Geometry::Disk(DiskDesc {
         height: 0.0,
         radius: 1.0,
         inner_radius: 0.0,
         phi_max: 360.0,
-    };
+    });
     assert_eq!(geometry(r#"Shape "disk""#), disk);
-    let cylinder = Geometry::Cylinder {
+    let cylinder = Geometry::Cylinder(CylinderDesc {
         radius: 1.0,
         z_min: -1.0,
         z_max: 1.0,
         phi_max: 360.0,
-    };
+    });
     assert_eq!(geometry(r#"Shape "cylinder""#), cylinder);
-    let cone = Geometry::Cone {
+    let cone = Geometry::Cone(ConeDesc {
         radius: 1.0,
         height: 1.0,
         phi_max: 360.0,
-    };
+    });
     assert_eq!(geometry(r#"Shape "cone""#), cone);
-    let paraboloid = Geometry::Paraboloid {
+    let paraboloid = Geometry::Paraboloid(ParaboloidDesc {
         radius: 1.0,
         z_min: 0.0,
         z_max: 1.0,
         phi_max: 360.0,
-    };
+    });
     assert_eq!(geometry(r#"Shape "paraboloid""#), paraboloid);
-    let hyperboloid = Geometry::Hyperboloid {
+    let hyperboloid = Geometry::Hyperboloid(HyperboloidDesc {
         p1: Vec3::ZERO,
         p2: Vec3::ONE,
         phi_max: 360.0,
-    };
+    });
     assert_eq!(geometry(r#"Shape "hyperboloid""#), hyperboloid);
-    let cuboid = Geometry::Box {
+    let cuboid = Geometry::Box(BoxDesc {
         min: Vec3::splat(-1.0),
         max: Vec3::ONE,
-    };
+    });
     assert_eq!(geometry(r#"Shape "box""#), cuboid);
-    let plane = Geometry::Plane {
+    let plane = Geometry::Plane(PlaneDesc {
         p: Vec3::ZERO,
         n: Vec3::Z,
-    };
+    });
     assert_eq!(geometry(r#"Shape "plane""#), plane);
 }
 
@@ -113,15 +117,16 @@ fn quadrics_read_every_parameter() {
     let g = geometry(
         r#"Shape "sphere" "float radius" 2 "float zmin" -1 "float zmax" 1.5 "float phimax" 90"#,
     );
-    let sphere = Geometry::Sphere {
+    let sphere = Geometry::Sphere(SphereDesc {
         radius: 2.0,
         z_min: -1.0,
         z_max: 1.5,
         phi_max: 90.0,
-    };
+    });
     assert_eq!(g, sphere);
     // A sphere's zmin and zmax default to ∓ its radius.
-    let Geometry::Sphere { z_min, z_max, .. } = geometry(r#"Shape "sphere" "float radius" 3"#)
+    let Geometry::Sphere(SphereDesc { z_min, z_max, .. }) =
+        geometry(r#"Shape "sphere" "float radius" 3"#)
     else {
         panic!("a sphere")
     };
@@ -129,61 +134,61 @@ fn quadrics_read_every_parameter() {
     let g = geometry(
         r#"Shape "disk" "float height" 0.5 "float radius" 2 "float innerradius" 1 "float phimax" 180"#,
     );
-    let disk = Geometry::Disk {
+    let disk = Geometry::Disk(DiskDesc {
         height: 0.5,
         radius: 2.0,
         inner_radius: 1.0,
         phi_max: 180.0,
-    };
+    });
     assert_eq!(g, disk);
     let g = geometry(
         r#"Shape "cylinder" "float radius" 2 "float zmin" 0 "float zmax" 3 "float phimax" 45"#,
     );
-    let cylinder = Geometry::Cylinder {
+    let cylinder = Geometry::Cylinder(CylinderDesc {
         radius: 2.0,
         z_min: 0.0,
         z_max: 3.0,
         phi_max: 45.0,
-    };
+    });
     assert_eq!(g, cylinder);
     let g = geometry(r#"Shape "cone" "float radius" 2 "float height" 3 "float phimax" 10"#);
-    let cone = Geometry::Cone {
+    let cone = Geometry::Cone(ConeDesc {
         radius: 2.0,
         height: 3.0,
         phi_max: 10.0,
-    };
+    });
     assert_eq!(g, cone);
     let g = geometry(
         r#"Shape "paraboloid" "float radius" 2 "float zmin" 0.5 "float zmax" 3 "float phimax" 20"#,
     );
-    let paraboloid = Geometry::Paraboloid {
+    let paraboloid = Geometry::Paraboloid(ParaboloidDesc {
         radius: 2.0,
         z_min: 0.5,
         z_max: 3.0,
         phi_max: 20.0,
-    };
+    });
     assert_eq!(g, paraboloid);
     let g = geometry(
         r#"Shape "hyperboloid" "point3 p1" [1 0 -1] "point3 p2" [0 1 1] "float phimax" 30"#,
     );
-    let hyperboloid = Geometry::Hyperboloid {
+    let hyperboloid = Geometry::Hyperboloid(HyperboloidDesc {
         p1: Vec3::new(1.0, 0.0, -1.0),
         p2: Vec3::new(0.0, 1.0, 1.0),
         phi_max: 30.0,
-    };
+    });
     assert_eq!(g, hyperboloid);
     let g = geometry(r#"Shape "box" "point3 min" [0 0 0] "point3 max" [1 2 3]"#);
-    let cuboid = Geometry::Box {
+    let cuboid = Geometry::Box(BoxDesc {
         min: Vec3::ZERO,
         max: Vec3::new(1.0, 2.0, 3.0),
-    };
+    });
     assert_eq!(g, cuboid);
     let g = geometry(r#"Shape "plane" "point3 p" [0 1 0] "normal n" [0 2 0]"#);
     // The normal is kept as written (the renderer normalises it).
-    let plane = Geometry::Plane {
+    let plane = Geometry::Plane(PlaneDesc {
         p: Vec3::Y,
         n: Vec3::new(0.0, 2.0, 0.0),
-    };
+    });
     assert_eq!(g, plane);
 }
 

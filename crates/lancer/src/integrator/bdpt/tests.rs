@@ -12,7 +12,7 @@ use crate::scene::desc::{
     AreaLightDesc, CameraDesc, FilmDesc, FilterDesc, Geometry, LightDesc, Projection, SceneDesc,
     ShapeDesc,
 };
-use crate::shape::TriangleMesh;
+use crate::shape::{SphereDesc, TriangleMesh};
 use crate::texture::SpectrumTex;
 use std::sync::Arc;
 
@@ -488,12 +488,12 @@ fn white_furnace() {
         })],
         shapes: vec![ShapeDesc {
             medium_interface: None,
-            geometry: Geometry::Sphere {
+            geometry: Geometry::Sphere(SphereDesc {
                 radius: 1.0,
                 z_min: -1.0,
                 z_max: 1.0,
                 phi_max: 360.0,
-            },
+            }),
             object_to_world: Transform::IDENTITY,
             reverse_orientation: false,
             material: 0,

@@ -1,14 +1,17 @@
 //! The description's validation rules, one message per rule.
 
 use super::*;
+use crate::shape::{
+    BoxDesc, ConeDesc, HyperboloidDesc, ParaboloidDesc, PlaneDesc, SphereDesc, TriangleMesh,
+};
 
 fn sphere(radius: f32) -> Geometry {
-    Geometry::Sphere {
+    Geometry::Sphere(SphereDesc {
         radius,
         z_min: -1.0,
         z_max: 1.0,
         phi_max: 360.0,
-    }
+    })
 }
 
 #[test]
@@ -25,11 +28,11 @@ fn each_geometry_rule_has_one_message() {
             "radius must be positive, got NaN"
         ))
     );
-    let cone = Geometry::Cone {
+    let cone = Geometry::Cone(ConeDesc {
         radius: 1.0,
         height: -2.0,
         phi_max: 360.0,
-    };
+    });
     assert_eq!(
         cone.validate(),
         Err(RuleError::on(
@@ -37,21 +40,21 @@ fn each_geometry_rule_has_one_message() {
             "height must be positive, got -2"
         ))
     );
-    let paraboloid = Geometry::Paraboloid {
+    let paraboloid = Geometry::Paraboloid(ParaboloidDesc {
         radius: 1.0,
         z_min: -3.0,
         z_max: -1.0,
         phi_max: 360.0,
-    };
+    });
     assert_eq!(
         paraboloid.validate(),
         Err(RuleError::on(&["z_max"], "zmax must be positive, got -1"))
     );
-    let flat = Geometry::Hyperboloid {
+    let flat = Geometry::Hyperboloid(HyperboloidDesc {
         p1: Vec3::new(1.0, 0.0, 0.5),
         p2: Vec3::new(0.0, 1.0, 0.5),
         phi_max: 360.0,
-    };
+    });
     assert_eq!(
         flat.validate(),
         Err(RuleError::on(
@@ -60,10 +63,10 @@ fn each_geometry_rule_has_one_message() {
              different heights (at one height the swept segment is a flat annulus: use a disk)"
         ))
     );
-    let inverted = Geometry::Box {
+    let inverted = Geometry::Box(BoxDesc {
         min: Vec3::new(0.0, 0.0, 1.0),
         max: Vec3::ONE,
-    };
+    });
     assert_eq!(
         inverted.validate(),
         Err(RuleError::on(
@@ -72,10 +75,10 @@ fn each_geometry_rule_has_one_message() {
              every axis"
         ))
     );
-    let plane = Geometry::Plane {
+    let plane = Geometry::Plane(PlaneDesc {
         p: Vec3::ZERO,
         n: Vec3::ZERO,
-    };
+    });
     assert_eq!(
         plane.validate(),
         Err(RuleError::on(&["n"], "the plane's normal \"n\" is zero"))

@@ -7,6 +7,7 @@ use crate::math::{Vec2, Vec3};
 use crate::scene::desc::{
     CameraDesc, InstanceDesc, MotionDesc, MovingInstanceDesc, MovingShapeDesc,
 };
+use crate::shape::SphereDesc;
 use std::sync::Arc;
 
 fn shape(geometry: Geometry, material: u32) -> ShapeDesc {
@@ -22,12 +23,12 @@ fn shape(geometry: Geometry, material: u32) -> ShapeDesc {
 }
 
 fn unit_sphere() -> Geometry {
-    Geometry::Sphere {
+    Geometry::Sphere(SphereDesc {
         radius: 1.0,
         z_min: -1.0,
         z_max: 1.0,
         phi_max: 360.0,
-    }
+    })
 }
 
 /// The square [−1, 1]² in the plane z = 0: two triangles.

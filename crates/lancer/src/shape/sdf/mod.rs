@@ -19,8 +19,11 @@ pub use node::{Aabb, FUNCTIONS, Node};
 use crate::math::{Bounds3, Vec2, Vec3, gamma, normalize};
 use crate::ray::Ray;
 use crate::shape::RuleError;
-use crate::shape::hit::{ShapeHit, SurfaceInteraction};
+use crate::shape::hit::{ShapeHit, ShapeSample, SurfaceInteraction};
+use crate::shape::kind::{GeometryKind, Placing, ShapeKind};
+use crate::shape::mesh::TriangleMesh;
 use crate::shape::placement::{Placement, quadric_hit, quadric_t};
+use crate::shape::triangle_ray::TriangleRay;
 use glam::DVec3;
 use std::sync::Arc;
 
@@ -128,6 +131,39 @@ pub const TAU_ABS: f64 = 1e-7;
 
 /// Steps after which a march gives up (grazing rays near a silhouette): a miss.
 pub const MAX_STEPS: usize = 600;
+
+/// lancer's `sdf` as a scene gives it: a signed-distance expression, optionally clipped to a
+/// box.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SdfDesc {
+    /// The parsed expression.
+    pub function: Arc<SdfFunction>,
+    /// Object-space box (`min`, `max`) clipping the solid; required when it is unbounded.
+    pub bounds: Option<(Vec3, Vec3)>,
+}
+
+impl GeometryKind for SdfDesc {
+    type Prim = Box<Sdf>;
+
+    fn pbrt_name(&self) -> &'static str {
+        "sdf"
+    }
+
+    /// The solid finite and not empty ([`SdfFunction::solid_box`]).
+    fn validate(&self) -> Result<(), RuleError> {
+        self.function.solid_box(self.bounds).map(|_| ())
+    }
+
+    fn emitter_refusal(&self) -> Option<&'static str> {
+        Some("an sdf shape cannot be an area light (its area has no closed form)")
+    }
+
+    fn build(&self, at: &mut Placing<'_>, out: &mut impl Extend<Box<Sdf>>) -> Result<(), String> {
+        let sdf = Sdf::new(at.placement(), self.function.clone(), self.bounds)?;
+        out.extend([Box::new(sdf)]);
+        Ok(())
+    }
+}
 
 /// A signed-distance object placed in the world (`Shape "sdf"`).
 #[derive(Clone, Debug, PartialEq)]
@@ -319,5 +355,29 @@ impl Sdf {
             -normalize(ray.d),
             hit.t,
         )
+    }
+}
+
+/// An SDF object: no closed-form area, so it cannot emit.
+impl ShapeKind for Sdf {
+    fn bounds(&self) -> Bounds3 {
+        Sdf::bounds(self)
+    }
+
+    #[inline]
+    fn intersect(&self, ray: &Ray, _: &TriangleRay) -> Option<ShapeHit> {
+        Sdf::intersect(self, ray)
+    }
+
+    fn interaction(&self, ray: &Ray, hit: &ShapeHit, _: &[TriangleMesh]) -> SurfaceInteraction {
+        Sdf::interaction(self, ray, hit)
+    }
+
+    fn area(&self) -> f32 {
+        0.0
+    }
+
+    fn sample_area(&self, _: Vec2, _: &[TriangleMesh]) -> Option<ShapeSample> {
+        None
     }
 }

@@ -2,6 +2,9 @@
 //! reported by the reader with lancer's message at the parameter's place.
 
 use super::*;
+use lancer::shape::{
+    BoxDesc, ConeDesc, HyperboloidDesc, ParaboloidDesc, PlaneDesc, SdfDesc, SphereDesc,
+};
 
 /// The description `geometry` as an area light.
 fn glowing_desc(geometry: Geometry) -> lancer::scene::desc::ShapeDesc {
@@ -55,58 +58,58 @@ fn the_readers_errors_are_lancers_rules() {
         (
             "Shape \"sphere\"\n  \"float radius\" -1".to_string(),
             "t.pbrt:2:3",
-            Geometry::Sphere {
+            Geometry::Sphere(SphereDesc {
                 radius: -1.0,
                 z_min: 1.0,
                 z_max: -1.0,
                 phi_max: 360.0,
-            },
+            }),
         ),
         (
             "Shape \"cone\"\n  \"float height\" 0".into(),
             "t.pbrt:2:3",
-            Geometry::Cone {
+            Geometry::Cone(ConeDesc {
                 radius: 1.0,
                 height: 0.0,
                 phi_max: 360.0,
-            },
+            }),
         ),
         (
             "Shape \"paraboloid\"\n  \"float zmax\" -1".into(),
             "t.pbrt:2:3",
-            Geometry::Paraboloid {
+            Geometry::Paraboloid(ParaboloidDesc {
                 radius: 1.0,
                 z_min: 0.0,
                 z_max: -1.0,
                 phi_max: 360.0,
-            },
+            }),
         ),
         (
             // Both ends given: at the second.
             "Shape \"hyperboloid\" \"point3 p1\" [1 0 2]\n  \"point3 p2\" [0 1 2]".into(),
             "t.pbrt:2:3",
-            Geometry::Hyperboloid {
+            Geometry::Hyperboloid(HyperboloidDesc {
                 p1: Vec3::new(1.0, 0.0, 2.0),
                 p2: Vec3::new(0.0, 1.0, 2.0),
                 phi_max: 360.0,
-            },
+            }),
         ),
         (
             // Only "min" given: at it.
             "Shape \"box\"\n  \"point3 min\" [0 0 1]".into(),
             "t.pbrt:2:3",
-            Geometry::Box {
+            Geometry::Box(BoxDesc {
                 min: Vec3::new(0.0, 0.0, 1.0),
                 max: Vec3::ONE,
-            },
+            }),
         ),
         (
             "Shape \"plane\"\n  \"normal n\" [0 0 0]".into(),
             "t.pbrt:2:3",
-            Geometry::Plane {
+            Geometry::Plane(PlaneDesc {
                 p: Vec3::ZERO,
                 n: Vec3::ZERO,
-            },
+            }),
         ),
         // trianglemesh's inconsistent arrays are warnings, as in pbrt-v4 (trianglemesh.rs).
         (
@@ -136,20 +139,20 @@ fn the_readers_errors_are_lancers_rules() {
         (
             "Shape \"sdf\"\n  \"string expr\" \"plane([0, 1, 0], 0)\"".into(),
             "t.pbrt:2:3",
-            Geometry::Sdf {
+            Geometry::Sdf(SdfDesc {
                 function: Arc::new(lancer::shape::SdfFunction::parse("plane([0, 1, 0], 0)").unwrap()),
                 bounds: None,
-            },
+            }),
         ),
         (
             // The box misses the sphere: at its "max".
             "Shape \"sdf\" \"string expr\" \"sphere(1)\" \"point3 min\" [5 5 5]\n  \"point3 max\" [6 6 6]"
                 .into(),
             "t.pbrt:2:3",
-            Geometry::Sdf {
+            Geometry::Sdf(SdfDesc {
                 function: Arc::new(lancer::shape::SdfFunction::parse("sphere(1)").unwrap()),
                 bounds: Some((Vec3::splat(5.0), Vec3::splat(6.0))),
-            },
+            }),
         ),
         (
             format!("{bezier}\n  \"float width0\" -1"),
@@ -186,10 +189,10 @@ fn the_readers_errors_are_lancers_rules() {
     // Shapes that cannot be area lights: at the directive.
     let glowing =
         |text: &str| err(convert_full(text, Path::new("."), &TextureNames::default(), true).0);
-    let sdf = Geometry::Sdf {
+    let sdf = Geometry::Sdf(SdfDesc {
         function: Arc::new(lancer::shape::SdfFunction::parse("sphere(1)").unwrap()),
         bounds: None,
-    };
+    });
     let curve = geometry(r#"Shape "curve" "point3 P" [0 0 0 1 0 0 2 0 0 3 0 0]"#);
     let voxels = Geometry::Voxels(Arc::new(
         VoxelGrid::new([1, 1, 1], vec![1], linear_palette(&default_palette())).unwrap(),
