@@ -14,10 +14,8 @@ use lancer::ray::Ray;
 use lancer::sampling::Pcg32;
 use lancer::scene::desc::{Geometry, SceneDesc, ShapeDesc};
 use lancer::shape::{
-    BilinearMesh, CurveBasis, CurveDesc, CurveType, SdfFunction, TriangleMesh, VoxelGrid,
-};
-use lancer::shape::{
-    BoxDesc, ConeDesc, CylinderDesc, DiskDesc, HyperboloidDesc, ParaboloidDesc, SdfDesc, SphereDesc,
+    BilinearMesh, BoxDesc, ConeDesc, CurveBasis, CurveDesc, CurveType, CylinderDesc, DiskDesc,
+    HyperboloidDesc, ParaboloidDesc, SdfDesc, SdfFunction, SphereDesc, TriangleMesh, VoxelGrid,
 };
 use std::sync::Arc;
 use std::time::Instant;

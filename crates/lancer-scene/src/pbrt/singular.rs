@@ -91,8 +91,7 @@ pub fn flatten(geometry: Geometry, ty: &str, ctm: &Transform) -> Fallback<Option
 mod tests {
     use super::*;
     use lancer::math::Vec2;
-    use lancer::shape::SphereDesc;
-    use lancer::shape::TriangleMesh;
+    use lancer::shape::{SphereDesc, TriangleMesh};
 
     fn v3(x: f32, y: f32, z: f32) -> PackedVec3 {
         Vec3::new(x, y, z).into()

@@ -85,8 +85,7 @@ mod tests {
     use super::*;
     use crate::math::{PackedVec3, Rgb, Transform, Vec3};
     use crate::scene::desc::{AreaLightDesc, InstanceDesc, ObjectDesc};
-    use crate::shape::SphereDesc;
-    use crate::shape::TriangleMesh;
+    use crate::shape::{SphereDesc, TriangleMesh};
     use std::sync::Arc;
 
     fn shape(geometry: Geometry, emits: bool) -> ShapeDesc {

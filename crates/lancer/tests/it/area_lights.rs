@@ -7,8 +7,7 @@ use lancer::light::{Light, LightSampleContext};
 use lancer::math::{PackedVec3, Rgb, Transform, Vec2, Vec3};
 use lancer::ray::Ray;
 use lancer::scene::desc::{AreaLightDesc, Geometry, SceneDesc, ShapeDesc};
-use lancer::shape::TriangleMesh;
-use lancer::shape::{CylinderDesc, DiskDesc, SphereDesc};
+use lancer::shape::{CylinderDesc, DiskDesc, SphereDesc, TriangleMesh};
 use std::f32::consts::PI;
 use std::sync::Arc;
 

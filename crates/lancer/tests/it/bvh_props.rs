@@ -11,9 +11,8 @@ use lancer::sampling::Pcg32;
 use lancer::scene::desc::{Geometry, ShapeDesc};
 use lancer::shape::{
     BoxDesc, ConeDesc, CylinderDesc, DiskDesc, HyperboloidDesc, ParaboloidDesc, PlaneDesc,
-    SphereDesc,
+    ShapeHit, SphereDesc, TriangleMesh, TriangleRay, intersect_triangle,
 };
-use lancer::shape::{ShapeHit, TriangleMesh, TriangleRay, intersect_triangle};
 use lancer::{Scene, SceneDesc};
 
 fn v3(rng: &mut Pcg32) -> Vec3 {

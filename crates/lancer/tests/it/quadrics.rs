@@ -12,8 +12,7 @@ use lancer::math::{Transform, Vec2, Vec3, cross, normalize};
 use lancer::ray::Ray;
 use lancer::sampling::Pcg32;
 use lancer::scene::desc::Geometry;
-use lancer::shape::Shape;
-use lancer::shape::{BoxDesc, ConeDesc, HyperboloidDesc, ParaboloidDesc};
+use lancer::shape::{BoxDesc, ConeDesc, HyperboloidDesc, ParaboloidDesc, Shape};
 use std::f64::consts::PI;
 
 fn geometries() -> Vec<Geometry> {

@@ -17,8 +17,7 @@ use lancer::sampling::{
     sample_uniform_triangle, uniform_cone_pdf, uniform_hemisphere_pdf, uniform_sphere_pdf,
 };
 use lancer::scene::desc::{AreaLightDesc, Geometry, LightDesc, SceneDesc, ShapeDesc};
-use lancer::shape::TriangleMesh;
-use lancer::shape::{CylinderDesc, DiskDesc, SphereDesc};
+use lancer::shape::{CylinderDesc, DiskDesc, SphereDesc, TriangleMesh};
 use std::sync::Arc;
 
 /// Chi-square tests in this file, for the Šidák correction.

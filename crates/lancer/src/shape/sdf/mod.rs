@@ -18,10 +18,9 @@ pub use node::{Aabb, FUNCTIONS, Node};
 
 use crate::math::{Bounds3, Vec2, Vec3, gamma, normalize};
 use crate::ray::Ray;
-use crate::shape::RuleError;
 use crate::shape::hit::{ShapeHit, ShapeSample, SurfaceInteraction};
 use crate::shape::kind::{GeometryKind, Placing, ShapeKind};
-use crate::shape::mesh::TriangleMesh;
+use crate::shape::mesh::{RuleError, TriangleMesh};
 use crate::shape::placement::{Placement, quadric_hit, quadric_t};
 use crate::shape::triangle_ray::TriangleRay;
 use glam::DVec3;
