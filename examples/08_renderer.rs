@@ -7,6 +7,7 @@
 
 use lancer::film::{Film, PixelBounds};
 use lancer::integrator::Integrator;
+use lancer::light::PointDesc;
 use lancer::material::DiffuseMaterial;
 use lancer::material::MaterialDesc;
 use lancer::math::{Rgb, Transform, Vec3};
@@ -66,9 +67,11 @@ pub fn scene_desc(width: u32, height: u32) -> SceneDesc {
     ];
     desc.lights = step7::lights()
         .iter()
-        .map(|l| LightDesc::Point {
-            from: l.at,
-            intensity: l.intensity,
+        .map(|l| {
+            LightDesc::Point(PointDesc {
+                from: l.at,
+                intensity: l.intensity,
+            })
         })
         .collect();
     desc

@@ -14,6 +14,7 @@ use crate::image_read::{Encoding, ImageCache};
 use crate::obj::{ObjError, read_mtl, read_obj};
 use crate::ply::read_ply;
 use lancer::integrator::Integrator;
+use lancer::light::{DistantDesc, UniformInfiniteDesc};
 use lancer::material::DiffuseMaterial;
 use lancer::material::MaterialDesc;
 use lancer::math::{Rgb, Transform, Vec3, normalize};
@@ -308,15 +309,13 @@ fn scene_around(
 /// The lights of a scene whose file has none: the uniform sky and the distant key light.
 pub fn default_lights() -> Vec<LightDesc> {
     vec![
-        LightDesc::Infinite {
-            light_to_world: Transform::IDENTITY,
+        LightDesc::UniformInfinite(UniformInfiniteDesc {
             l: Rgb::splat(defaults::SKY_RADIANCE),
-            image: None,
-        },
-        LightDesc::Distant {
+        }),
+        LightDesc::Distant(DistantDesc {
             direction: defaults::KEY_LIGHT_FROM,
             l: Rgb::splat(defaults::KEY_LIGHT_RADIANCE),
-        },
+        }),
     ]
 }
 

@@ -54,6 +54,7 @@ use crate::mesh_scene::{default_lights, defaults, framing_camera};
 use ::gltf::Document;
 use ::gltf::mesh::{Mode, Semantic};
 use lancer::integrator::Integrator;
+use lancer::light::{DistantDesc, PointDesc, SpotDesc};
 use lancer::math::{Mat4, PackedVec3, Rgb, Transform, Vec2, Vec3, Vec4};
 use lancer::scene::desc::{
     AreaLightDesc, CameraDesc, FilmDesc, Geometry, LightDesc, Projection, SceneDesc, ShapeDesc,
@@ -525,28 +526,28 @@ impl GltfLoader<'_> {
             return;
         }
         let desc = match light.kind() {
-            Kind::Point => LightDesc::Point {
+            Kind::Point => LightDesc::Point(PointDesc {
                 from,
                 intensity: power,
-            },
+            }),
             Kind::Spot {
                 inner_cone_angle,
                 outer_cone_angle,
             } => {
                 let outer = outer_cone_angle.to_degrees();
                 let inner = inner_cone_angle.to_degrees().clamp(0.0, outer);
-                LightDesc::Spot {
+                LightDesc::Spot(SpotDesc {
                     from,
                     to: from + dir,
                     intensity: power,
                     cone_angle: outer,
                     cone_delta_angle: outer - inner,
-                }
+                })
             }
-            Kind::Directional => LightDesc::Distant {
+            Kind::Directional => LightDesc::Distant(DistantDesc {
                 direction: -dir,
                 l: power,
-            },
+            }),
         };
         self.lights.push(desc);
     }

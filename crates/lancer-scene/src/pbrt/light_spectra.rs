@@ -31,10 +31,10 @@ pub fn light_spectrum(
     dir: &SearchPath,
 ) -> Result<Option<Measured>, SceneError> {
     let name = match light {
-        LightDesc::Point { .. } | LightDesc::Spot { .. } | LightDesc::Goniometric { .. } => "I",
-        LightDesc::Distant { .. } | LightDesc::Infinite { image: None, .. } => "L",
-        LightDesc::Infinite { .. } | LightDesc::PortalInfinite { .. } => return Ok(None),
-        LightDesc::Projection { .. } | LightDesc::Sunsky { .. } => return Ok(None),
+        LightDesc::Point(_) | LightDesc::Spot(_) | LightDesc::Goniometric(_) => "I",
+        LightDesc::Distant(_) | LightDesc::UniformInfinite(_) => "L",
+        LightDesc::ImageInfinite(_) | LightDesc::PortalInfinite(_) => return Ok(None),
+        LightDesc::Projection(_) | LightDesc::Sunsky(_) => return Ok(None),
     };
     emission_spectrum(params, name, dir)
 }

@@ -8,6 +8,10 @@ use super::search_path::SearchPath;
 use crate::error::{Location, SceneError};
 use crate::image_read::Encoding;
 use lancer::light::environment_mapping;
+use lancer::light::{
+    DistantDesc, GoniometricDesc, ImageInfiniteDesc, PointDesc, PortalInfiniteDesc, ProjectionDesc,
+    SpotDesc, SunskyDesc, SunskyParams, UniformInfiniteDesc,
+};
 use lancer::math::{Rgb, Transform, Vec3};
 use lancer::scene::desc::{AreaLightDesc, LightDesc};
 use lancer::spectrum::SpectrumKind;
@@ -39,10 +43,10 @@ pub fn light(
                 // Φ = 4π·I for an isotropic point light.
                 i *= power / (4.0 * PI);
             }
-            LightDesc::Point {
+            LightDesc::Point(PointDesc {
                 from: ctm.point(params.point3("from", Vec3::ZERO)?),
                 intensity: i,
-            }
+            })
         }
         "spot" => {
             let mut i = emission(params, "I", r.dir)?;
@@ -62,13 +66,13 @@ pub fn light(
                 let k = 2.0 * PI * ((1.0 - c_start) + (c_start - c_end) / 2.0);
                 i *= power / k;
             }
-            LightDesc::Spot {
+            LightDesc::Spot(SpotDesc {
                 from: ctm.point(params.point3("from", Vec3::ZERO)?),
                 to: ctm.point(params.point3("to", Vec3::Z)?),
                 intensity: i,
                 cone_angle,
                 cone_delta_angle,
-            }
+            })
         }
         "distant" => {
             let mut l = emission(params, "L", r.dir)?;
@@ -80,10 +84,10 @@ pub fn light(
                 // that patch's cos θ), E = L for a unit-luminance colour.
                 l *= illuminance;
             }
-            LightDesc::Distant {
+            LightDesc::Distant(DistantDesc {
                 direction: ctm.vector(w),
                 l,
-            }
+            })
         }
         "infinite" => return Ok(infinite(r, ctm, loc)?.map(Some)),
         "sunsky" => return Ok(sunsky(r, ctm, loc)?.map(Some)),
@@ -115,7 +119,7 @@ pub fn light(
 fn sunsky(r: &Reader, ctm: Transform, loc: &Location) -> Result<Fallback<LightDesc>, SceneError> {
     let params = r.params;
     let e = 10f32.to_radians();
-    let mut p = lancer::light::SunskyParams::new(
+    let mut p = SunskyParams::new(
         params.vector3("sundirection", Vec3::new(0.0, e.cos(), e.sin()))?,
     );
     p.turbidity = params.float("turbidity", p.turbidity)?;
@@ -123,10 +127,10 @@ fn sunsky(r: &Reader, ctm: Transform, loc: &Location) -> Result<Fallback<LightDe
     p.sun_scale = params.float("sunscale", 1.0)?;
     p.sky_scale = params.float("skyscale", 1.0)?;
     p.scale = params.float("scale", 1.0)?;
-    let light = LightDesc::Sunsky {
+    let light = LightDesc::Sunsky(SunskyDesc {
         light_to_world: ctm,
         params: p,
-    };
+    });
     light
         .validate()
         .map_err(|m| SceneError::at(loc.clone(), format!("sunsky light: {m}")))?;
@@ -192,11 +196,11 @@ fn image_light(
                 intensity *= power / k;
             }
         }
-        LightDesc::Goniometric {
+        LightDesc::Goniometric(GoniometricDesc {
             light_to_world: ctm,
             intensity,
             image,
-        }
+        })
     } else {
         let fov = params.float_checked("fov", 90.0, "in (0, 180)", |v| v > 0.0 && v < 180.0)?;
         let mut scale = params.float("scale", 1.0)?;
@@ -208,12 +212,12 @@ fn image_light(
                 scale *= power / k;
             }
         }
-        LightDesc::Projection {
+        LightDesc::Projection(ProjectionDesc {
             light_to_world: ctm,
             scale,
             fov,
             image,
-        }
+        })
     };
     Ok(Fallback::done(light))
 }
@@ -234,11 +238,9 @@ fn infinite(r: &Reader, ctm: Transform, loc: &Location) -> Result<Fallback<Light
             // A uniform sky of radiance L gives an illuminance of π·L.
             l *= illuminance / PI;
         }
-        return Ok(Fallback::done(LightDesc::Infinite {
-            light_to_world: ctm,
-            l,
-            image: None,
-        }));
+        return Ok(Fallback::done(LightDesc::UniformInfinite(
+            UniformInfiniteDesc { l },
+        )));
     }
     let at = |message: String| SceneError::at(loc.clone(), message);
     if params.has("L") && !portal_sky {
@@ -297,18 +299,18 @@ fn infinite(r: &Reader, ctm: Transform, loc: &Location) -> Result<Fallback<Light
                 }
             };
             lancer::light::portal_frame(&portal).map_err(at)?;
-            LightDesc::PortalInfinite {
+            LightDesc::PortalInfinite(PortalInfiniteDesc {
                 light_to_world: ctm,
                 l: Rgb::splat(scale),
                 image,
                 portal,
-            }
+            })
         }
-        None => LightDesc::Infinite {
+        None => LightDesc::ImageInfinite(ImageInfiniteDesc {
             light_to_world: ctm,
             l: Rgb::splat(scale),
-            image: Some(image),
-        },
+            image,
+        }),
     };
     Ok(Fallback { value, warnings })
 }
@@ -386,10 +388,10 @@ mod tests {
     fn point_lights() {
         assert_eq!(
             converted(r#"LightSource "point""#, ID),
-            LightDesc::Point {
+            LightDesc::Point(PointDesc {
                 from: Vec3::ZERO,
                 intensity: Rgb::ONE
-            }
+            })
         );
         // Placed by the CTM; I times scale.
         let ctm = Transform::translate(Vec3::new(1.0, 2.0, 3.0));
@@ -398,14 +400,14 @@ mod tests {
                 r#"LightSource "point" "point3 from" [0 1 0] "rgb I" [1 2 3] "float scale" 2"#,
                 ctm
             ),
-            LightDesc::Point {
+            LightDesc::Point(PointDesc {
                 from: Vec3::new(1.0, 3.0, 3.0),
                 intensity: Rgb::new(2.0, 4.0, 6.0)
-            }
+            })
         );
         // `power` Φ gives I = Φ / 4π: Φ = 8π gives 2.
         let power = 8.0 * PI;
-        let LightDesc::Point { intensity, .. } = converted(
+        let LightDesc::Point(PointDesc { intensity, .. }) = converted(
             &format!("LightSource \"point\" \"float power\" {power}"),
             ID,
         ) else {
@@ -418,21 +420,21 @@ mod tests {
     fn spot_lights() {
         assert_eq!(
             converted(r#"LightSource "spot""#, ID),
-            LightDesc::Spot {
+            LightDesc::Spot(SpotDesc {
                 from: Vec3::ZERO,
                 to: Vec3::Z,
                 intensity: Rgb::ONE,
                 cone_angle: 30.0,
                 cone_delta_angle: 5.0,
-            }
+            })
         );
-        let LightDesc::Spot {
+        let LightDesc::Spot(SpotDesc {
             from,
             to,
             intensity,
             cone_angle,
             cone_delta_angle,
-        } = converted(
+        }) = converted(
             r#"LightSource "spot" "point3 from" [1 0 0] "point3 to" [1 0 5] "rgb I" [2 2 2]
                "float coneangle" 60 "float conedeltaangle" 60 "float power" 1"#,
             ID,
@@ -462,10 +464,10 @@ mod tests {
     #[test]
     fn sunsky_lights() {
         let ctm = Transform::rotate(-90.0, Vec3::X).expect("a rotation");
-        let LightDesc::Sunsky {
+        let LightDesc::Sunsky(SunskyDesc {
             light_to_world,
             params,
-        } = converted(
+        }) = converted(
             r#"LightSource "sunsky" "vector3 sundirection" [-0.45 0.6 0.65] "float turbidity" 4
                "float albedo" 0.5 "float sunscale" 2 "float skyscale" 0.5 "float scale" 3"#,
             ctm,
@@ -486,7 +488,7 @@ mod tests {
             (4.0, 0.5, 2.0, 0.5, 3.0)
         );
         // Defaults: Mitsuba's turbidity and albedo, makesky's sun 10° above the horizon.
-        let LightDesc::Sunsky { params, .. } = converted(r#"LightSource "sunsky""#, ID) else {
+        let LightDesc::Sunsky(SunskyDesc { params, .. }) = converted(r#"LightSource "sunsky""#, ID) else {
             panic!("a sunsky light")
         };
         assert_eq!((params.turbidity, params.albedo), (3.0, 0.3));
@@ -515,14 +517,14 @@ mod tests {
     fn distant_lights() {
         assert_eq!(
             converted(r#"LightSource "distant""#, ID),
-            LightDesc::Distant {
+            LightDesc::Distant(DistantDesc {
                 direction: -Vec3::Z,
                 l: Rgb::ONE
-            }
+            })
         );
         // Light travels from "from" to "to"; the colour times scale (5·2) is multiplied by
         // E = 3, as pbrt-v4 does.
-        let LightDesc::Distant { direction, l } = converted(
+        let LightDesc::Distant(DistantDesc { direction, l }) = converted(
             r#"LightSource "distant" "point3 from" [0 1 0] "point3 to" [0 0 0] "rgb L" [5 5 5]
                "float scale" 2 "float illuminance" 3"#,
             Transform::scale(Vec3::splat(2.0)).unwrap(),
@@ -533,7 +535,7 @@ mod tests {
         assert_close(l, Rgb::splat(30.0));
         // Slanted light gets the same factor: pbrt-v4 does not divide by the upward patch's
         // cos θ.
-        let LightDesc::Distant { l, .. } = converted(
+        let LightDesc::Distant(DistantDesc { l, .. }) = converted(
             r#"LightSource "distant" "point3 from" [1 1 0] "point3 to" [0 0 0] "float illuminance" 3"#,
             ID,
         ) else {
@@ -551,15 +553,11 @@ mod tests {
         let ctm = Transform::translate(Vec3::X);
         assert_eq!(
             converted(r#"LightSource "infinite""#, ctm),
-            LightDesc::Infinite {
-                light_to_world: ctm,
-                l: Rgb::ONE,
-                image: None
-            }
+            LightDesc::UniformInfinite(UniformInfiniteDesc { l: Rgb::ONE })
         );
         // A unit sky gives E = π: illuminance 2π multiplies the colour 4 by 2.
         let e = 2.0 * PI;
-        let LightDesc::Infinite { l, .. } = converted(
+        let LightDesc::UniformInfinite(UniformInfiniteDesc { l }) = converted(
             &format!("LightSource \"infinite\" \"rgb L\" [4 4 4] \"float illuminance\" {e}"),
             ID,
         ) else {
@@ -600,11 +598,10 @@ mod tests {
         let (f, unused) =
             convert(r#"LightSource "infinite" "string filename" "sky.png" "float scale" 3"#);
         assert!(f.warnings.is_empty() && unused.is_empty());
-        let Some(LightDesc::Infinite { l, image, .. }) = f.value else {
+        let Some(LightDesc::ImageInfinite(ImageInfiniteDesc { l, image, .. })) = f.value else {
             panic!("a sky")
         };
         assert_eq!(l, Rgb::splat(3.0));
-        let image = image.expect("an image");
         assert_eq!((image.width, image.height, image.texels[0].x), (2, 2, 1.0));
         let (f, _) = convert(
             r#"LightSource "infinite" "string filename" "black.png" "float illuminance" 1
@@ -619,7 +616,7 @@ mod tests {
             )]
         );
         // The portal's corners are world space, whatever the CTM.
-        let Some(LightDesc::PortalInfinite { portal, .. }) = f.value else {
+        let Some(LightDesc::PortalInfinite(PortalInfiniteDesc { portal, .. })) = f.value else {
             panic!("a portal light")
         };
         assert_eq!(portal[2], Vec3::new(1.0, 1.0, 0.0));
@@ -630,7 +627,7 @@ mod tests {
                "float illuminance" 6.2831853 "point3 portal" [0 0 0 1 0 0 1 1 0 0 1 0]"#,
         );
         assert!(f.warnings.is_empty() && unused.is_empty());
-        let Some(LightDesc::PortalInfinite { l, image, .. }) = f.value else {
+        let Some(LightDesc::PortalInfinite(PortalInfiniteDesc { l, image, .. })) = f.value else {
             panic!("a portal light")
         };
         assert_eq!((image.width, image.height, image.texels[0].x), (1, 1, 0.5));
@@ -673,37 +670,37 @@ mod tests {
     /// for an image, its file name).
     #[test]
     fn the_readers_errors_are_lancers_rules() {
-        let spot = LightDesc::Spot {
+        let spot = LightDesc::Spot(SpotDesc {
             from: Vec3::Z,
             to: Vec3::Z,
             intensity: Rgb::ONE,
             cone_angle: 30.0,
             cone_delta_angle: 5.0,
-        };
+        });
         let rule = spot.validate().unwrap_err();
         assert_eq!(
             error(r#"LightSource "spot" "point3 from" [0 0 1]"#),
             format!("t.pbrt:1:1: {rule}")
         );
-        let sun = LightDesc::Distant {
+        let sun = LightDesc::Distant(DistantDesc {
             direction: Vec3::ZERO,
             l: Rgb::ONE,
-        };
+        });
         let rule = sun.validate().unwrap_err();
         assert_eq!(
             error(r#"LightSource "distant" "point3 to" [0 0 0]"#),
             format!("t.pbrt:1:1: {rule}")
         );
         let dir = folder_with_pngs("rules", &[("wide.png", 3, 1, 255)]);
-        let wide = LightDesc::Infinite {
+        let wide = LightDesc::ImageInfinite(ImageInfiniteDesc {
             light_to_world: ID,
             l: Rgb::ONE,
-            image: Some(std::sync::Arc::new(lancer::image::Image {
+            image: std::sync::Arc::new(lancer::image::Image {
                 width: 3,
                 height: 1,
                 texels: vec![lancer::math::PackedRgb::ONE; 3],
-            })),
-        };
+            }),
+        });
         let rule = wide.validate().unwrap_err();
         assert_eq!(
             err(convert_in(
@@ -733,11 +730,11 @@ mod tests {
         );
         let f = out.unwrap();
         assert!(f.warnings.is_empty() && unused.is_empty());
-        let Some(LightDesc::Goniometric {
+        let Some(LightDesc::Goniometric(GoniometricDesc {
             light_to_world,
             intensity,
             image,
-        }) = f.value
+        })) = f.value
         else {
             panic!("a goniometric light")
         };
@@ -749,9 +746,9 @@ mod tests {
             &dir,
             ID,
         );
-        let Some(LightDesc::Goniometric {
+        let Some(LightDesc::Goniometric(GoniometricDesc {
             intensity, image, ..
-        }) = out.unwrap().value
+        })) = out.unwrap().value
         else {
             panic!("a goniometric light")
         };
@@ -763,7 +760,8 @@ mod tests {
             ctm,
         );
         assert!(unused.is_empty());
-        let Some(LightDesc::Projection { scale, fov, .. }) = out.unwrap().value else {
+        let Some(LightDesc::Projection(ProjectionDesc { scale, fov, .. })) = out.unwrap().value
+        else {
             panic!("a projection light")
         };
         assert_eq!((scale, fov), (6.0, 35.0));

@@ -4,7 +4,7 @@
 
 use crate::common::ScratchDir;
 use lancer::Scene;
-use lancer::light::Light;
+use lancer::light::{AreaLight, Light};
 use lancer::math::{Rgb, Vec2};
 use lancer_scene::load;
 use std::f32::consts::PI;
@@ -46,7 +46,7 @@ fn image_area_lights_read_their_image_and_scale() {
     assert_eq!(a.l, Rgb::splat(2.0));
     assert_eq!(a.image, Some(0));
     let scene = Scene::build(&loaded.desc).unwrap();
-    let Light::Area { l, image, area, .. } = &scene.lights()[0] else {
+    let Light::Area(AreaLight { l, image, area, .. }) = &scene.lights()[0] else {
         panic!("{:?}", scene.lights()[0])
     };
     let image = image.as_ref().expect("an image");
@@ -75,7 +75,7 @@ fn image_area_lights_given_by_power_divide_by_the_mean_luminance() {
         1.0 / k
     );
     let scene = Scene::build(&loaded.desc).unwrap();
-    let Light::Area { image, .. } = &scene.lights()[0] else {
+    let Light::Area(AreaLight { image, .. }) = &scene.lights()[0] else {
         panic!()
     };
     // The emitted luminance, averaged over the image, times π·A is Φ.
@@ -122,7 +122,7 @@ fn area_lights_given_by_power_scale_l_by_power_over_pi_sides_area() {
     ] {
         let loaded = scene(&dir, params).unwrap();
         let scene = Scene::build(&loaded.desc).unwrap();
-        let Light::Area { l, area, .. } = &scene.lights()[0] else {
+        let Light::Area(AreaLight { l, area, .. }) = &scene.lights()[0] else {
             panic!("{:?}", scene.lights()[0])
         };
         assert!((area - 1.0).abs() < 1e-6, "{area}");

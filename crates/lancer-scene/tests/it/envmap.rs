@@ -36,10 +36,11 @@ fn infinite_lights_read_their_image() {
     )
     .unwrap();
     assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
-    let LightDesc::Infinite { l, image, .. } = &loaded.desc.lights[0] else {
+    let LightDesc::ImageInfinite(lancer::light::ImageInfiniteDesc { l, image, .. }) =
+        &loaded.desc.lights[0]
+    else {
         panic!("{:?}", loaded.desc.lights)
     };
-    let image = image.as_ref().expect("an image");
     assert_eq!((image.width, image.height), (8, 8));
     assert_eq!(image.texels[8 + 3], PackedRgb::new(4.0, 2.0, 1.0));
     assert_eq!(*l, Vec3::splat(2.0));
@@ -71,7 +72,9 @@ fn illuminance_scales_as_pbrt_does() {
             &format!(r#"LightSource "infinite" "string filename" "{f}" "float illuminance" 10"#),
         )
         .unwrap();
-        let LightDesc::Infinite { l, .. } = &loaded.desc.lights[0] else {
+        let LightDesc::ImageInfinite(lancer::light::ImageInfiniteDesc { l, .. }) =
+            &loaded.desc.lights[0]
+        else {
             panic!()
         };
         // pbrt-v4 takes the image's illuminance to be 2π/N·Σ Y cos θ over the upper

@@ -5,6 +5,7 @@
 use crate::common::ScratchDir;
 use lancer::Scene;
 use lancer::film::{Film, PixelBounds};
+use lancer::light::{DistantDesc, PointDesc, SpotDesc};
 use lancer::material::MaterialDesc;
 use lancer::material::{CoatedDiffuseMaterial, ConductorMaterial, MixMaterial};
 use lancer::math::{PackedVec3, Vec3, cross, normalize};
@@ -362,7 +363,7 @@ fn punctual_lights_are_placed_by_their_nodes() {
     assert_eq!(d.lights.len(), 3, "{:?}", d.lights);
     let close = |a: Vec3, b: Vec3| (a - b).length() < 1e-5;
     match &d.lights[0] {
-        LightDesc::Point { from, intensity } => {
+        LightDesc::Point(PointDesc { from, intensity }) => {
             assert!(close(*from, Vec3::new(1.0, 2.0, 3.0)));
             // 683 cd → 1 W/sr, times the colour.
             assert!(close(*intensity, Vec3::new(1.0, 0.5, 0.25)), "{intensity}");
@@ -370,13 +371,13 @@ fn punctual_lights_are_placed_by_their_nodes() {
         l => panic!("{l:?}"),
     }
     match &d.lights[1] {
-        LightDesc::Spot {
+        LightDesc::Spot(SpotDesc {
             from,
             to,
             intensity,
             cone_angle,
             cone_delta_angle,
-        } => {
+        }) => {
             assert!(close(*from, Vec3::new(0.0, 5.0, 0.0)));
             assert!(close(normalize(*to - *from), -Vec3::Y), "{to}");
             assert!(close(*intensity, Vec3::splat(2.0)));
@@ -386,7 +387,7 @@ fn punctual_lights_are_placed_by_their_nodes() {
         l => panic!("{l:?}"),
     }
     match &d.lights[2] {
-        LightDesc::Distant { direction, l } => {
+        LightDesc::Distant(DistantDesc { direction, l }) => {
             // Direction towards the light: up.
             assert!(close(normalize(*direction), Vec3::Y), "{direction}");
             assert!(close(*l, Vec3::splat(3.0)));
@@ -984,7 +985,7 @@ fn shared_samples_load() {
     let d = load_ok(&root.join("spot.glb"));
     assert_eq!((d.film.xresolution, d.film.yresolution), (1067, 600));
     assert_eq!(d.lights.len(), 1);
-    let LightDesc::Distant { l, .. } = d.lights[0] else {
+    let LightDesc::Distant(DistantDesc { l, .. }) = d.lights[0] else {
         panic!("{:?}", d.lights)
     };
     assert!((l - Vec3::splat(3.0)).length() < 1e-4, "{l}");

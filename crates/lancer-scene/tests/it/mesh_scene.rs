@@ -80,13 +80,9 @@ fn check_framing(d: &SceneDesc) {
     assert!(
         d.lights
             .iter()
-            .any(|l| matches!(l, LightDesc::Infinite { .. }))
+            .any(|l| matches!(l, LightDesc::UniformInfinite(_)))
     );
-    assert!(
-        d.lights
-            .iter()
-            .any(|l| matches!(l, LightDesc::Distant { .. }))
-    );
+    assert!(d.lights.iter().any(|l| matches!(l, LightDesc::Distant(_))));
 }
 
 #[test]

@@ -4,6 +4,7 @@
 
 use crate::common::ScratchDir;
 use lancer::integrator::Integrator;
+use lancer::light::{DistantDesc, PointDesc, SpotDesc};
 use lancer::material::MaterialDesc;
 use lancer::material::{DielectricMaterial, DiffuseMaterial, MixMaterial};
 use lancer::math::{Vec3, normalize};
@@ -247,7 +248,7 @@ fn stratified_sampler_takes_x_times_y_samples() {
 fn point_intensity(light: &str) -> Vec3 {
     let d = scene(&format!("WorldBegin {light}"));
     match &d.lights[..] {
-        [LightDesc::Point { intensity, .. }] => *intensity,
+        [LightDesc::Point(PointDesc { intensity, .. })] => *intensity,
         other => panic!("{other:?}"),
     }
 }
@@ -289,7 +290,7 @@ fn power_sets_the_total_flux() {
         LightSource "spot" "rgb I" [1 1 1] "float power" [10]
             "float coneangle" [30] "float conedeltaangle" [0]"#,
     );
-    let LightDesc::Spot { intensity, .. } = d.lights[0] else {
+    let LightDesc::Spot(SpotDesc { intensity, .. }) = d.lights[0] else {
         panic!("{:?}", d.lights)
     };
     // A hard-edged cone: Φ = 2π(1 − cos θ)·I.
@@ -306,11 +307,11 @@ fn lights_are_placed_by_the_ctm() {
         Rotate 90 1 0 0
         LightSource "distant" "point3 from" [0 0 0] "point3 to" [0 0 1]"#,
     );
-    let LightDesc::Point { from, .. } = d.lights[0] else {
+    let LightDesc::Point(PointDesc { from, .. }) = d.lights[0] else {
         panic!()
     };
     assert_close(from, Vec3::new(1.0, 10.0, 0.0));
-    let LightDesc::Distant { direction, .. } = d.lights[1] else {
+    let LightDesc::Distant(DistantDesc { direction, .. }) = d.lights[1] else {
         panic!()
     };
     // Towards the light: from − to = −z, which a 90° turn about x takes to +y.
@@ -411,7 +412,7 @@ fn attribute_sets_defaults_for_later_directives() {
         ref g => panic!("{g:?}"),
     };
     assert_eq!((radius(0), radius(1)), (0.25, 2.0));
-    let LightDesc::Point { intensity, .. } = d.lights[0] else {
+    let LightDesc::Point(PointDesc { intensity, .. }) = d.lights[0] else {
         panic!()
     };
     assert_close(intensity, Vec3::splat(3.0));
@@ -495,7 +496,7 @@ fn spectrum_files_resolve_like_includes() {
     let d = load(&dir.join("main.pbrt"))
         .unwrap_or_else(|e| panic!("{e}"))
         .desc;
-    let LightDesc::Point { intensity, .. } = d.lights[0] else {
+    let LightDesc::Point(PointDesc { intensity, .. }) = d.lights[0] else {
         panic!()
     };
     // A flat spectrum normalised to luminance 1: nearly white (illuminant E is a bit pink
@@ -642,7 +643,7 @@ fn color_space_applies_to_rgb_values_inside_its_block() {
         .lights
         .iter()
         .map(|l| match l {
-            LightDesc::Point { intensity, .. } => Vec3::from(*intensity),
+            LightDesc::Point(PointDesc { intensity, .. }) => Vec3::from(*intensity),
             other => panic!("{other:?}"),
         })
         .collect();

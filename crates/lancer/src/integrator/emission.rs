@@ -10,10 +10,8 @@ use crate::spectrum::sampled::SampledWavelengths;
 #[cold]
 #[inline(never)]
 fn image_emission(scene: &Scene, light: u32, l: crate::math::PackedRgb, hit: &SceneHit) -> Rgb {
-    match &scene.lights()[light as usize] {
-        crate::light::Light::Area {
-            image: Some(img), ..
-        } => img.le(hit.si.uv),
+    match scene.lights()[light as usize].as_area() {
+        Some(a) if let Some(img) = &a.image => img.le(hit.si.uv),
         _ => l.into(),
     }
 }
@@ -61,10 +59,10 @@ pub(crate) fn emission_at(
     if !(e.two_sided || n.dot(w) > 0.0) {
         return None;
     }
-    let l = match &scene.lights()[e.light as usize] {
-        crate::light::Light::Area {
-            image: Some(img), ..
-        } if e.spectrum == crate::scene::IMAGE_EMISSION => img.le(uv),
+    let l = match scene.lights()[e.light as usize].as_area() {
+        Some(a) if e.spectrum == crate::scene::IMAGE_EMISSION && let Some(img) = &a.image => {
+            img.le(uv)
+        }
         _ => e.l.into(),
     };
     Some((e.light as usize, l))

@@ -8,10 +8,9 @@
 //! with the lens point sampled for it (density p_c per solid angle at x, importance We), the
 //! film receives β·f(x, towards the lens)·|cos θ_x|·We/p_c.
 
-use super::light_emit::sample_le;
 use super::{Splat, bsdf_at};
 use crate::material::TransportMode;
-use crate::math::SampledSpectrum;
+use crate::math::{SampledSpectrum, Vec3};
 use crate::ray::Ray;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
@@ -34,32 +33,27 @@ pub fn li(
         return SampledSpectrum::ZERO;
     };
     let (u1, u2) = (sampler.get_2d(), sampler.get_2d());
-    let Some(les) = sample_le(scene, light, u1, u2) else {
+    let emitter = &scene.lights()[light];
+    let Some(les) = emitter.sample_le(u1, u2, scene.shapes(), scene.meshes()) else {
         return SampledSpectrum::ZERO;
     };
-    let le = scene.light_radiance(light, wavelengths.as_ref(), les.l, les.factor, -les.d);
+    let le = scene.light_radiance(light, wavelengths.as_ref(), les.l, les.factor, -les.w);
     // The light's own surface, seen directly: Le·We·|cos θ_light| / (p_l·p_pos·p_c), with
     // p_pos = 1/A the density of the point on the light.
-    if let Some(n) = les.n
-        && let Some(cs) = camera.sample_wi(les.o, sampler.get_2d())
+    if les.n != Vec3::ZERO
+        && let Some(cs) = camera.sample_wi(les.p, sampler.get_2d())
     {
-        let cos = n.dot(cs.wi);
-        let two_sided = matches!(
-            scene.lights()[light],
-            crate::light::Light::Area {
-                two_sided: true,
-                ..
-            }
-        );
+        let cos = les.n.dot(cs.wi);
+        let two_sided = emitter.as_area().is_some_and(|a| a.two_sided);
         if (cos > 0.0 || two_sided)
-            && !scene.intersect_p(&Ray::spawn_to(les.o, les.o_error, n, cs.p_lens))
+            && !scene.intersect_p(&Ray::spawn_to(les.p, les.p_error, les.n, cs.p_lens))
         {
             let l = le * (cs.wi_importance * cos.abs() / (p_l * les.pdf_pos * cs.pdf));
             splat(cs.p_raster, l * scale);
         }
     }
     let mut beta = le * (les.abs_cos() / (p_l * les.pdf_pos * les.pdf_dir));
-    let mut ray = Ray::spawn(les.o, les.o_error, les.n.unwrap_or(les.d), les.d);
+    let mut ray = les.ray();
     let mut depth = 0;
     while let Some(hit) = scene.intersect(&ray) {
         let si = &hit.si;

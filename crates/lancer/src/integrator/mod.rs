@@ -21,7 +21,6 @@ pub mod bdpt;
 mod debug;
 mod desc;
 mod emission;
-mod light_emit;
 pub mod lightpath;
 mod path;
 mod path_spectra;

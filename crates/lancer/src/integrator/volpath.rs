@@ -567,12 +567,9 @@ impl Walk<'_> {
 /// light sampling is its only strategy and takes the full weight (pbrt-v4 makes such lights
 /// delta-position lights for the same reason).
 fn invisible(scene: &Scene, light: &crate::light::Light) -> bool {
-    match *light {
-        crate::light::Light::Area { prim, .. } => {
-            scene.prim(prim).alpha == Some(crate::texture::FloatTex::Const(0.0))
-        }
-        _ => false,
-    }
+    light
+        .as_area()
+        .is_some_and(|a| scene.prim(a.prim).alpha == Some(crate::texture::FloatTex::Const(0.0)))
 }
 
 /// True when the surface hit has no BSDF (an `interface` material): shadow rays pass it.

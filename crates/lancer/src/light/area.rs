@@ -1,16 +1,262 @@
-//! Diffuse area lights: the surface a light samples points on, prepared once at scene build
-//! ([`Emitter`]), and the sampling of incident light from it ([`sample_area_li`],
-//! [`area_pdf_li`]).
+//! Diffuse area lights (pbrt-v4's `diffuse` `AreaLightSource`): a primitive of the scene that
+//! emits radiance L from its surface, one light per primitive ([`AreaLight`]); the surface a
+//! light samples points on, prepared once at scene build ([`Emitter`]); the sampling of
+//! incident light from it ([`sample_area_li`], [`area_pdf_li`]) and of light leaving it.
 //!
 //! A triangle of an emitting mesh keeps its three vertices and its oriented unit normal, so
 //! that a light sample reads one record: no lookup through the shape list or the mesh's index
 //! buffer, no cross product, no normalisation. The point is b₀p₀ + b₁p₁ + b₂p₂ and the normal
 //! the one [`Shape::sample_area`] would give, bit for bit.
+//!
+//! Power: a diffuse emitter of radiance L and area A emits Φ = π·A·L per emitting side.
 
+use super::area_image::{AreaImage, sampled_radiance};
+use super::bounds::{DirectionCone, LightBounds, LightExtent};
+use super::kind::{LightKind, LightLePdf, LightLeSample, LightType, point_error};
 use super::sample::{LightLiSample, LightSampleContext};
-use crate::math::{Frame, PackedRgb, PackedVec3, Vec2, Vec3, cross};
-use crate::sampling::sample_uniform_triangle;
+use crate::math::{Frame, PackedRgb, PackedVec3, Rgb, Vec2, Vec3, cross};
+use crate::sampling::{cosine_hemisphere_pdf, sample_cosine_hemisphere, sample_uniform_triangle};
 use crate::shape::{Shape, ShapeSample, TriangleMesh};
+use std::f32::consts::PI;
+
+/// A diffuse area light attached to a shape, as a scene describes it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AreaLightDesc {
+    /// Emitted radiance (already scaled and normalised as pbrt does).
+    pub l: Rgb,
+    /// Emits from both sides (otherwise only the side the normal faces).
+    pub two_sided: bool,
+    /// The spectrum `l` is a multiple of, when the scene gave one (spectral mode emits it).
+    pub spectrum: Option<crate::spectrum::dense::Measured>,
+    /// pbrt-v4's `power` Φ in watts, when given: each primitive the shape becomes (a mesh's
+    /// every triangle, as in pbrt-v4) then emits `l · Φ / (π · sides · area)`, sides 2 when
+    /// two-sided, area the primitive's own (see `crate::scene::power::emission_area`).
+    pub power: Option<f32>,
+    /// pbrt-v4's `filename`: the index of an image texture among the scene description's
+    /// `spectrum_textures` the radiance is read from by uv; `l` is then the factor its
+    /// texels are multiplied by (grey).
+    pub image: Option<u32>,
+}
+
+/// A diffuse area light: a primitive of the scene that emits radiance L from its surface.
+/// There is one per emitting primitive, so its vectors are packed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AreaLight {
+    /// Index of the primitive in the scene's shapes.
+    pub prim: u32,
+    /// Emitted radiance.
+    pub l: PackedRgb,
+    /// Emits from both sides (otherwise only from the side its normal faces).
+    pub two_sided: bool,
+    /// Surface area, world space.
+    pub area: f32,
+    /// Its surface, prepared for sampling (a whole sphere is sampled by the cone of
+    /// directions it subtends rather than by area).
+    pub emitter: Emitter,
+    /// The image the radiance comes from (pbrt-v4's `filename`; `l` is then its mean times
+    /// its scale).
+    pub image: Option<Box<AreaImage>>,
+}
+
+impl AreaLight {
+    /// The light of primitive `prim`, `shape` (of the scene whose meshes are `meshes`),
+    /// emitting `l` (on both sides when `two_sided`), or read from `image`; `None` when it
+    /// emits nothing (no area, or black).
+    pub fn new(
+        prim: u32,
+        shape: &Shape,
+        meshes: &[TriangleMesh],
+        l: PackedRgb,
+        two_sided: bool,
+        image: Option<Box<AreaImage>>,
+    ) -> Option<AreaLight> {
+        let area = shape.area();
+        if !(area > 0.0 && area.is_finite()) || l == PackedRgb::ZERO {
+            return None;
+        }
+        Some(AreaLight {
+            prim,
+            // With an image: its mean times its factor, for the power and the light bounds
+            // (pbrt-v4's `Phi` and `Bounds`).
+            l: image.as_ref().map_or(l, |im| (im.mean() * im.scale).into()),
+            two_sided,
+            area,
+            emitter: Emitter::new(shape, meshes, whole_sphere(shape)),
+            image,
+        })
+    }
+
+    /// Its triangle's vertices and oriented normal when it is a triangle of constant
+    /// radiance: the commonest light, sampled inline where lights are sampled
+    /// ([`sample_triangle_li`]).
+    #[inline(always)]
+    pub fn plain_triangle(&self) -> Option<(&[PackedVec3; 3], &PackedVec3)> {
+        match (&self.emitter, &self.image) {
+            (Emitter::Triangle { p, n }, None) => Some((p, n)),
+            _ => None,
+        }
+    }
+}
+
+/// The world centre and radius of a shape that is a whole sphere (no cut, full sweep).
+fn whole_sphere(shape: &Shape) -> Option<(PackedVec3, f32)> {
+    let Shape::Sphere(s) = shape else { return None };
+    let whole = s.z_min <= -s.radius && s.z_max >= s.radius && s.phi_max >= 2.0 * PI;
+    let t = &s.placement.to_world;
+    let scale = glam::Mat3::from_mat4(t.m).determinant().abs().cbrt();
+    whole.then(|| (t.point(Vec3::ZERO).into(), s.radius * scale))
+}
+
+/// The largest float below 1.
+const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
+
+impl LightKind for AreaLight {
+    fn light_type(&self) -> LightType {
+        LightType::Area
+    }
+
+    fn sample_li(
+        &self,
+        ctx: &LightSampleContext,
+        u: Vec2,
+        shapes: &[Shape],
+        meshes: &[TriangleMesh],
+    ) -> Option<LightLiSample> {
+        let mut s = sample_area_li(
+            self.prim,
+            self.l,
+            self.two_sided,
+            self.area,
+            &self.emitter,
+            ctx,
+            u,
+            shapes,
+            meshes,
+        )?;
+        if self.image.is_some() {
+            s.l = sampled_radiance(
+                &self.image,
+                self.l,
+                shapes,
+                self.prim,
+                meshes,
+                ctx.p,
+                s.p_light,
+            );
+        }
+        Some(s)
+    }
+
+    fn pdf_li(&self, ctx: &LightSampleContext, wi: Vec3, hit: Option<(Vec3, Vec3)>) -> f32 {
+        area_pdf_li(self.area, &self.emitter, ctx, wi, hit)
+    }
+
+    /// Φ = π·A·L per emitting side.
+    fn power(&self) -> f32 {
+        let l = Rgb::from(self.l);
+        PI * self.area * ((l.x + l.y + l.z) / 3.0) * if self.two_sided { 2.0 } else { 1.0 }
+    }
+
+    /// φ = π·A·max(L), its normals' cone, emission over a hemisphere.
+    fn extent(&self, shapes: &[Shape], meshes: &[TriangleMesh]) -> LightExtent {
+        let shape = &shapes[self.prim as usize];
+        let normals = match shape {
+            // Flat shapes: one normal, as the shape orients it.
+            Shape::Triangle(_) | Shape::Disk(_) => shape
+                .sample_area(Vec2::splat(1.0 / 3.0), meshes)
+                .map(|s| DirectionCone {
+                    w: s.n,
+                    cos_theta: 1.0,
+                })
+                .unwrap_or(DirectionCone::ENTIRE_SPHERE),
+            _ => DirectionCone::ENTIRE_SPHERE,
+        };
+        let bounds = shape.bounds();
+        if bounds.is_empty() || !bounds.diagonal().is_finite() {
+            return LightExtent::Dark;
+        }
+        let l = Rgb::from(self.l);
+        LightBounds {
+            bounds,
+            phi: l.x.max(l.y).max(l.z) * self.area * PI,
+            normals,
+            cos_theta_e: (PI / 2.0).cos(),
+            two_sided: self.two_sided,
+        }
+        .extent()
+    }
+
+    fn constant_colour(&self) -> Option<Rgb> {
+        match self.image {
+            None => Some(self.l.into()),
+            Some(_) => None,
+        }
+    }
+
+    /// pbrt-v4's: a point uniform on the surface from `u1` (p_pos = 1/A, as
+    /// [`sample_area_li`] assumes), a direction cosine-weighted about its normal from `u2`
+    /// (p_dir = cos θ/π); two-sided, `u2.x` first picks the side (p_dir = |cos θ|/2π).
+    fn sample_le(
+        &self,
+        u1: Vec2,
+        u2: Vec2,
+        shapes: &[Shape],
+        meshes: &[TriangleMesh],
+    ) -> Option<LightLeSample> {
+        let shape = &shapes[self.prim as usize];
+        let ss = match &self.emitter {
+            Emitter::Triangle { p, n } => triangle_point(p, n, u1),
+            _ => shape.sample_area(u1, meshes)?,
+        };
+        let (local, pdf_dir) = if self.two_sided {
+            let back = u2.x >= 0.5;
+            let ux = if back { (u2.x - 0.5) * 2.0 } else { u2.x * 2.0 };
+            let mut w = sample_cosine_hemisphere(Vec2::new(ux.min(ONE_MINUS_EPSILON), u2.y));
+            if back {
+                w.z = -w.z;
+            }
+            (w, cosine_hemisphere_pdf(w.z.abs()) / 2.0)
+        } else {
+            let w = sample_cosine_hemisphere(u2);
+            (w, cosine_hemisphere_pdf(w.z))
+        };
+        if pdf_dir == 0.0 || ss.n == Vec3::ZERO {
+            return None;
+        }
+        let l = match &self.image {
+            None => self.l.into(),
+            // Its uv found by a ray from just off the surface back to the point.
+            Some(img) => {
+                let off = 1e-3 * shape.bounds().diagonal().length();
+                img.le_towards(shape, meshes, ss.p + ss.n * off, ss.p, self.l.into())
+            }
+        };
+        Some(LightLeSample {
+            l,
+            factor: 1.0,
+            p: ss.p,
+            p_error: point_error(ss.p),
+            w: Frame::from_z(ss.n).from_local(local),
+            n: ss.n,
+            pdf_pos: 1.0 / self.area,
+            pdf_dir,
+        })
+    }
+
+    /// p_pos = 1/A; p_dir = cos θ/π about the emitting side's normal `n`, |cos θ|/2π when
+    /// two-sided.
+    fn pdf_le(&self, _: Vec3, n: Vec3, w: Vec3) -> LightLePdf {
+        let cos = n.dot(w);
+        LightLePdf {
+            pos: 1.0 / self.area,
+            dir: if self.two_sided {
+                cosine_hemisphere_pdf(cos.abs()) / 2.0
+            } else {
+                cosine_hemisphere_pdf(cos)
+            },
+        }
+    }
+}
 
 /// The surface of an area light, as its samples need it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -482,5 +728,103 @@ mod tests {
         );
         // A triangle whose mesh is missing is sampled through the shape.
         assert_eq!(Emitter::new(&tri, &[], None), Emitter::Shape);
+    }
+
+    #[test]
+    fn emitted_rays_carry_the_power_from_either_side() {
+        use crate::light::testing::{le_dir_integral, le_pdfs_agree, le_power};
+        use crate::math::Transform;
+        use crate::shape::{Disk, Placement, Sphere};
+        let (tri, mesh) = triangle(&[], true);
+        let meshes = std::slice::from_ref(&mesh);
+        let sphere = |reverse| {
+            let placement = Placement::new(Transform::translate(Vec3::new(0.0, 1.0, 5.0)), reverse);
+            Shape::Sphere(Box::new(Sphere::new(placement, 0.5, -0.5, 0.5, 360.0)))
+        };
+        let disk = Shape::Disk(Box::new(Disk::new(
+            Placement::new(Transform::rotate(30.0, Vec3::X).unwrap(), false),
+            0.5,
+            2.0,
+            0.5,
+            360.0,
+        )));
+        let l = PackedRgb::new(1.0, 2.0, 0.5);
+        for (name, shape) in [
+            ("triangle", tri),
+            ("sphere", sphere(false)),
+            ("reversed sphere", sphere(true)),
+            ("disk", disk),
+        ] {
+            let shapes = std::slice::from_ref(&shape);
+            for two_sided in [false, true] {
+                let light = AreaLight::new(0, &shape, meshes, l, two_sided, None).unwrap();
+                let phi = le_power(&light, shapes, meshes, 1 << 14);
+                let want = light.power();
+                assert!(
+                    (phi - want).abs() < 0.01 * want,
+                    "{name} {two_sided}: {phi} vs {want}"
+                );
+                le_pdfs_agree(&light, shapes, meshes, 256, 1e-3);
+                let s = light
+                    .sample_le(Vec2::new(0.3, 0.7), Vec2::new(0.6, 0.2), shapes, meshes)
+                    .unwrap();
+                let total = le_dir_integral(&light, s.p, s.n, 1 << 16);
+                assert!((total - 1.0).abs() < 0.02, "{name} {two_sided}: {total}");
+                // One-sided, rays leave on the side the normal faces.
+                for i in 0..64 {
+                    let u = Vec2::new((i % 8) as f32 / 8.0 + 0.05, (i / 8) as f32 / 8.0 + 0.05);
+                    let s = light
+                        .sample_le(u, Vec2::new(u.y, u.x), shapes, meshes)
+                        .unwrap();
+                    assert!(two_sided || s.n.dot(s.w) > 0.0, "{name}: {s:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn an_image_light_emits_the_texel_where_its_ray_starts() {
+        use crate::image::Image;
+        use crate::math::Transform;
+        use crate::shape::{Disk, Placement};
+        use crate::texture::MipMap;
+        use std::sync::Arc;
+        // A unit disk: u = φ/2π, v = 1 − r; left half of the image (u < ½) red, right blue.
+        let disk = Shape::Disk(Box::new(Disk::new(
+            Placement::new(Transform::IDENTITY, false),
+            0.0,
+            1.0,
+            0.0,
+            360.0,
+        )));
+        let img = Image::new(
+            2,
+            1,
+            vec![PackedRgb::new(1.0, 0.0, 0.0), PackedRgb::new(0.0, 0.0, 3.0)],
+        )
+        .unwrap();
+        let image = Box::new(AreaImage {
+            mipmap: Arc::new(MipMap::single(Arc::new(img))),
+            scale: 2.0,
+        });
+        let shapes = std::slice::from_ref(&disk);
+        let light =
+            AreaLight::new(0, &disk, &[], PackedRgb::ONE, false, Some(image.clone())).unwrap();
+        assert_eq!(light.constant_colour(), None);
+        for i in 0..32 {
+            let u = Vec2::new((i as f32 + 0.5) / 32.0, 0.37);
+            let s = light
+                .sample_le(u, Vec2::new(0.5, 0.5), shapes, &[])
+                .unwrap();
+            let phi = s.p.y.atan2(s.p.x).rem_euclid(2.0 * PI);
+            let uv = Vec2::new(phi / (2.0 * PI), 1.0 - s.p.truncate().length());
+            let want = image.le(uv);
+            assert!(
+                (s.l - want).abs().max_element() < 1e-3,
+                "{:?}: {} vs {want}",
+                s.p,
+                s.l
+            );
+        }
     }
 }

@@ -12,7 +12,7 @@ use crate::image::WrapMode;
 use crate::math::{PackedRgb, Rgb, Vec2, Vec3};
 use crate::ray::Ray;
 use crate::shape::{Shape, TriangleMesh};
-use crate::texture::MipMap;
+use crate::texture::{MipMap, SpectrumTexture};
 use std::sync::Arc;
 
 /// The image of an area light and the factor its texels are multiplied by.
@@ -32,6 +32,18 @@ impl PartialEq for AreaImage {
 }
 
 impl AreaImage {
+    /// The image of an area light whose radiance is texture `tex` times `factor` (grey),
+    /// `None` when that is not an image texture (the readers make only those).
+    pub fn from_texture(tex: Option<&SpectrumTexture>, factor: Rgb) -> Option<Box<AreaImage>> {
+        match tex? {
+            SpectrumTexture::Image(it) => Some(Box::new(AreaImage {
+                mipmap: it.mipmap.clone(),
+                scale: it.scale * factor.x,
+            })),
+            _ => None,
+        }
+    }
+
     /// Radiance at surface coordinates `uv`: scale · max(0, bilinear lookup at (u, 1 − v))
     /// with clamped edges (pbrt-v4's `DiffuseAreaLight::L`; [`crate::image::Image::lookup`]
     /// flips v itself).

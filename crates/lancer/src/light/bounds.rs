@@ -27,6 +27,7 @@ pub struct DirectionCone {
     pub cos_theta: f32,
 }
 
+/// acos of `x` clamped to [−1, 1].
 pub(super) fn safe_acos(x: f32) -> f32 {
     x.clamp(-1.0, 1.0).acos()
 }
@@ -110,6 +111,16 @@ impl LightBounds {
             normals: DirectionCone::union(self.normals, o.normals),
             cos_theta_e: self.cos_theta_e.min(o.cos_theta_e),
             two_sided: self.two_sided || o.two_sided,
+        }
+    }
+
+    /// These bounds as a light's extent: [`LightExtent::Bounded`] when the power is positive
+    /// and finite, else [`LightExtent::Dark`] (never chosen by the BVH).
+    pub fn extent(self) -> LightExtent {
+        if self.phi > 0.0 && self.phi.is_finite() {
+            LightExtent::Bounded(self)
+        } else {
+            LightExtent::Dark
         }
     }
 

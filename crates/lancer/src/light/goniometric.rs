@@ -6,10 +6,44 @@
 //! (pbrt-v4's `swapYZ`), so that the image's pole is the light's +y axis. Emitted power:
 //! Φ = I · 4π · mean(Y).
 
+use super::bounds::{DirectionCone, LightBounds, LightExtent};
+use super::kind::{LightDescKind, LightKind, LightLePdf, LightLeSample, LightType, SceneSphere};
 use super::sample::{LightLiSample, LightSampleContext};
 use crate::image::Image;
-use crate::math::{PI, Rgb, Transform, Vec2, Vec3};
-use crate::sampling::equal_area_sphere_to_square;
+use crate::math::{Bounds3, PI, Rgb, Transform, Vec2, Vec3};
+use crate::sampling::{
+    PiecewiseConstant2D, equal_area_sphere_to_square, equal_area_square_to_sphere,
+};
+use crate::shape::{Shape, TriangleMesh};
+use std::sync::Arc;
+
+/// A goniometric light as a scene describes it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GoniometricDesc {
+    /// Light space → world space (the CTM).
+    pub light_to_world: Transform,
+    /// Intensity colour (scaled and normalised).
+    pub intensity: Rgb,
+    /// Square equal-area image; its channel average modulates the intensity.
+    pub image: Arc<Image>,
+}
+
+impl LightDescKind for GoniometricDesc {
+    type Light = GoniometricLight;
+
+    fn pbrt_name(&self) -> &'static str {
+        "goniometric"
+    }
+
+    /// The image is checked as the light is made ([`GoniometricLight::new`]).
+    fn validate(&self) -> Result<(), String> {
+        Ok(())
+    }
+
+    fn build(&self, _: &SceneSphere) -> Result<GoniometricLight, String> {
+        GoniometricLight::new(self.light_to_world, self.intensity, &self.image)
+    }
+}
 
 /// A point light with an equal-area intensity image.
 #[derive(Clone, Debug, PartialEq)]
@@ -18,12 +52,16 @@ pub struct GoniometricLight {
     p: Vec3,
     /// World space → light space (the image's frame).
     light_from_world: Transform,
+    /// Light space → world space.
+    world_from_light: Transform,
     /// Intensity colour (times `scale`).
     intensity: Rgb,
     /// Channel averages of the image, row-major, square.
     y: Vec<f32>,
     /// The image's side in texels.
     side: usize,
+    /// Over the texels, in proportion to Y (pbrt-v4's sampling of emitted directions).
+    distribution: PiecewiseConstant2D,
 }
 
 impl GoniometricLight {
@@ -48,7 +86,7 @@ impl GoniometricLight {
         ]))
         .expect("a permutation is invertible");
         let world = light_to_world * swap_yz;
-        let y = image
+        let y: Vec<f32> = image
             .texels
             .iter()
             .map(|&t| {
@@ -56,12 +94,18 @@ impl GoniometricLight {
                 (c.x + c.y + c.z) / 3.0
             })
             .collect();
+        let side = image.width as usize;
+        let weights: Vec<f32> = y.iter().map(|v: &f32| v.max(0.0)).collect();
+        let distribution =
+            PiecewiseConstant2D::new(&weights, side, side).expect("one weight per texel");
         Ok(GoniometricLight {
             p: world.point(Vec3::ZERO),
             light_from_world: world.inverse(),
+            world_from_light: world,
             intensity,
             y,
-            side: image.width as usize,
+            side,
+            distribution,
         })
     }
 
@@ -108,6 +152,83 @@ impl GoniometricLight {
         let mean = self.y.iter().map(|&v| v as f64).sum::<f64>() / self.y.len() as f64;
         let i = (self.intensity.x + self.intensity.y + self.intensity.z) / 3.0;
         4.0 * PI * i * mean as f32
+    }
+}
+
+impl LightKind for GoniometricLight {
+    fn light_type(&self) -> LightType {
+        LightType::DeltaPosition
+    }
+
+    fn sample_li(
+        &self,
+        ctx: &LightSampleContext,
+        _: Vec2,
+        _: &[Shape],
+        _: &[TriangleMesh],
+    ) -> Option<LightLiSample> {
+        GoniometricLight::sample_li(self, ctx)
+    }
+
+    fn power(&self) -> f32 {
+        GoniometricLight::power(self)
+    }
+
+    /// Bounded by its total power over the whole sphere of directions (coarser than
+    /// pbrt-v4's per-light cones, but never zero where it shines, so the choice stays
+    /// unbiased).
+    fn extent(&self, _: &[Shape], _: &[TriangleMesh]) -> LightExtent {
+        LightBounds {
+            bounds: Bounds3::from_point(self.p),
+            phi: GoniometricLight::power(self),
+            normals: DirectionCone::ENTIRE_SPHERE,
+            cos_theta_e: (PI / 2.0).cos(),
+            two_sided: false,
+        }
+        .extent()
+    }
+
+    fn constant_colour(&self) -> Option<Rgb> {
+        Some(self.intensity)
+    }
+
+    /// pbrt-v4's: a direction chosen by the image from `u1` (p_dir = p(u, v)/4π, the
+    /// equal-area map's Jacobian being 4π).
+    fn sample_le(
+        &self,
+        u1: Vec2,
+        _: Vec2,
+        _: &[Shape],
+        _: &[TriangleMesh],
+    ) -> Option<LightLeSample> {
+        let (uv, pdf) = self.distribution.sample(u1);
+        let wl = equal_area_square_to_sphere(uv);
+        let factor = self.image_y(wl);
+        let w = self.world_from_light.vector(wl).normalize_or_zero();
+        (factor > 0.0 && pdf > 0.0 && w != Vec3::ZERO).then(|| LightLeSample {
+            l: self.intensity * factor,
+            factor,
+            p: self.p,
+            p_error: Vec3::ZERO,
+            w,
+            n: Vec3::ZERO,
+            pdf_pos: 1.0,
+            pdf_dir: pdf / (4.0 * PI),
+        })
+    }
+
+    fn pdf_le(&self, _: Vec3, _: Vec3, w: Vec3) -> LightLePdf {
+        let wl = self.light_from_world.vector(w).normalize_or_zero();
+        let dir = if wl == Vec3::ZERO {
+            0.0
+        } else {
+            self.distribution.pdf(equal_area_sphere_to_square(wl)) / (4.0 * PI)
+        };
+        LightLePdf { pos: 0.0, dir }
+    }
+
+    fn heap_bytes(&self) -> usize {
+        size_of_val(self) + self.y.capacity() * size_of::<f32>() + self.distribution.memory_bytes()
     }
 }
 
@@ -162,5 +283,23 @@ mod tests {
             )
             .is_err()
         );
+    }
+
+    #[test]
+    fn emitted_rays_carry_the_power() {
+        use crate::light::testing::{le_dir_integral, le_pdfs_agree, le_power};
+        let texels = (0..64)
+            .map(|i| PackedRgb::splat(((i * 37) % 11) as f32 / 5.0))
+            .collect();
+        let image = Image::new(8, 8, texels).unwrap();
+        let at = Transform::translate(Vec3::new(1.0, 2.0, 3.0))
+            * Transform::rotate(40.0, Vec3::new(1.0, 1.0, 0.0)).unwrap();
+        let light = GoniometricLight::new(at, Rgb::new(1.0, 2.0, 4.0), &image).unwrap();
+        let phi = le_power(&light, &[], &[], 1 << 14);
+        let want = GoniometricLight::power(&light);
+        assert!((phi - want).abs() < 0.01 * want, "{phi} vs {want}");
+        le_pdfs_agree(&light, &[], &[], 256, 1e-3);
+        let total = le_dir_integral(&light, light.p, Vec3::ZERO, 1 << 16);
+        assert!((total - 1.0).abs() < 0.03, "{total}");
     }
 }

@@ -11,13 +11,52 @@
 //! lat-long, whose texels near the poles cover less solid angle), and
 //! p(ω) = p(u, v) / |dω/d(u, v)| with |dω/d(u, v)| = 4π (equal-area) or 2π² sin θ (lat-long).
 
+use super::bounds::LightExtent;
+use super::distant::{disk_pdf, disk_point, has_disk};
+use super::kind::{
+    LightDescKind, LightKind, LightLePdf, LightLeSample, LightType, SceneSphere, point_error,
+};
 use super::sample::{LightLiSample, LightSampleContext};
 use crate::image::Image;
 use crate::math::{PI, Rgb, Transform, Vec2, Vec3, luminance};
 use crate::sampling::{
     PiecewiseConstant2D, equal_area_sphere_to_square, equal_area_square_to_sphere,
 };
+use crate::shape::{Shape, TriangleMesh};
 use std::sync::Arc;
+
+/// An image environment as a scene describes it (pbrt-v4's `infinite` light with
+/// `filename`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ImageInfiniteDesc {
+    /// Light space → world space.
+    pub light_to_world: Transform,
+    /// Multiplies the image.
+    pub l: Rgb,
+    /// Environment map, equal-area octahedral (square) or lat-long (2:1).
+    pub image: Arc<Image>,
+}
+
+impl LightDescKind for ImageInfiniteDesc {
+    type Light = ImageInfiniteLight;
+
+    fn pbrt_name(&self) -> &'static str {
+        "infinite"
+    }
+
+    fn count_name(&self) -> &'static str {
+        "infinite (image)"
+    }
+
+    /// An image of a known layout with finite values ([`environment_mapping`]).
+    fn validate(&self) -> Result<(), String> {
+        environment_mapping(&self.image).map(|_| ())
+    }
+
+    fn build(&self, scene: &SceneSphere) -> Result<ImageInfiniteLight, String> {
+        ImageInfiniteLight::new(self.light_to_world, self.image.clone(), self.l, *scene)
+    }
+}
 
 /// How an environment image covers the sphere.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -152,8 +191,8 @@ pub struct ImageInfiniteLight {
     world_to_light: Transform,
     /// Over the texels, in proportion to their channel average (× sin θ for lat-long).
     distribution: PiecewiseConstant2D,
-    /// Radius of the scene's bounding sphere.
-    scene_radius: f32,
+    /// The scene's bounding sphere.
+    scene: SceneSphere,
     /// ∫ L dω over the sphere, averaged over the channels (for the power).
     radiance_integral: f32,
 }
@@ -165,7 +204,7 @@ impl ImageInfiniteLight {
         light_to_world: Transform,
         image: Arc<Image>,
         scale: Rgb,
-        scene_radius: f32,
+        scene: SceneSphere,
     ) -> Result<ImageInfiniteLight, String> {
         let (w, h) = (image.width, image.height);
         let mapping = environment_mapping(&image)?;
@@ -194,7 +233,7 @@ impl ImageInfiniteLight {
             world_to_light: light_to_world.inverse(),
             light_to_world,
             distribution,
-            scene_radius,
+            scene,
             radiance_integral: integral as f32,
         })
     }
@@ -260,25 +299,113 @@ impl ImageInfiniteLight {
             l: self.image_le(uv),
             wi,
             pdf,
-            p_light: ctx.p + wi * (2.0 * self.scene_radius.max(1e-3)),
+            p_light: ctx.p + wi * (2.0 * self.scene.radius.max(1e-3)),
         })
     }
 
     /// Density with which [`ImageInfiniteLight::sample_li`] picks world direction `wi`.
     #[inline]
     pub fn pdf_li(&self, wi: Vec3) -> f32 {
-        let w = self.to_light(wi);
+        self.pdf_towards(wi)
+    }
+
+    /// Φ = π r² ∫ L dω (pbrt-v4: 4π²r²·scale·mean(L) for an equal-area image), averaged over
+    /// the channels.
+    pub fn power(&self) -> f32 {
+        PI * self.scene.radius * self.scene.radius * self.radiance_integral
+    }
+
+    /// Density per solid angle with which the image's distribution picks the world direction
+    /// `d` (towards the light).
+    fn pdf_towards(&self, d: Vec3) -> f32 {
+        let w = self.to_light(d);
         let jacobian = self.mapping.jacobian_at(w);
         if w == Vec3::ZERO || jacobian <= 0.0 {
             return 0.0;
         }
         self.distribution.pdf(self.mapping.dir_to_uv(w)) / jacobian
     }
+}
 
-    /// Φ = π r² ∫ L dω (pbrt-v4: 4π²r²·scale·mean(L) for an equal-area image), averaged over
-    /// the channels.
-    pub fn power(&self) -> f32 {
-        PI * self.scene_radius * self.scene_radius * self.radiance_integral
+impl LightKind for ImageInfiniteLight {
+    fn light_type(&self) -> LightType {
+        LightType::Infinite
+    }
+
+    #[inline]
+    fn sample_li(
+        &self,
+        ctx: &LightSampleContext,
+        u: Vec2,
+        _: &[Shape],
+        _: &[TriangleMesh],
+    ) -> Option<LightLiSample> {
+        ImageInfiniteLight::sample_li(self, ctx, u)
+    }
+
+    fn pdf_li(&self, _: &LightSampleContext, wi: Vec3, _: Option<(Vec3, Vec3)>) -> f32 {
+        ImageInfiniteLight::pdf_li(self, wi)
+    }
+
+    fn power(&self) -> f32 {
+        ImageInfiniteLight::power(self)
+    }
+
+    fn extent(&self, _: &[Shape], _: &[TriangleMesh]) -> LightExtent {
+        LightExtent::Unbounded
+    }
+
+    fn constant_colour(&self) -> Option<Rgb> {
+        None
+    }
+
+    fn le(&self, d: Vec3) -> Rgb {
+        ImageInfiniteLight::le(self, d)
+    }
+
+    /// pbrt-v4's: the direction the light comes from chosen by the image's brightness from
+    /// `u1` (p_dir = p(u, v)/|dω/d(u, v)|), the ray travelling opposite it from a point
+    /// uniform on the scene's disk (p_pos = 1/(π r²)).
+    fn sample_le(
+        &self,
+        u1: Vec2,
+        u2: Vec2,
+        _: &[Shape],
+        _: &[TriangleMesh],
+    ) -> Option<LightLeSample> {
+        let (uv, map_pdf) = self.distribution.sample(u1);
+        let (wl, jacobian) = self.mapping.uv_to_dir(uv);
+        let from = self.light_to_world.vector(wl).normalize_or_zero();
+        if map_pdf == 0.0 || jacobian <= 0.0 || from == Vec3::ZERO || !has_disk(&self.scene) {
+            return None;
+        }
+        let pdf_dir = map_pdf / jacobian;
+        let p = disk_point(&self.scene, from, u2);
+        pdf_dir.is_finite().then(|| LightLeSample {
+            l: self.image_le(uv),
+            factor: 1.0,
+            p,
+            p_error: point_error(p),
+            w: -from,
+            n: Vec3::ZERO,
+            pdf_pos: disk_pdf(&self.scene),
+            pdf_dir,
+        })
+    }
+
+    fn pdf_le(&self, _: Vec3, _: Vec3, w: Vec3) -> LightLePdf {
+        LightLePdf {
+            pos: disk_pdf(&self.scene),
+            dir: self.pdf_towards(-w),
+        }
+    }
+
+    fn image(&self) -> Option<&Arc<Image>> {
+        Some(&self.image)
+    }
+
+    fn heap_bytes(&self) -> usize {
+        size_of_val(self) + self.table_bytes()
     }
 }
 
@@ -291,6 +418,13 @@ mod tests {
     fn rand2(i: u64, seed: u64) -> Vec2 {
         let h = hash_u64(&[i, seed]);
         Vec2::new(u32_to_unit_f32(h as u32), u32_to_unit_f32((h >> 32) as u32))
+    }
+
+    fn unit() -> SceneSphere {
+        SceneSphere {
+            centre: Vec3::ZERO,
+            radius: 1.0,
+        }
     }
 
     fn ctx() -> LightSampleContext {
@@ -323,7 +457,7 @@ mod tests {
         let scale = Rgb::splat(2.0);
         for (w, h) in [(16, 16), (32, 16)] {
             let image = Arc::new(Image::new(w, h, vec![l.into(); (w * h) as usize]).unwrap());
-            let light = ImageInfiniteLight::new(rotated(), image, scale, 1.0).unwrap();
+            let light = ImageInfiniteLight::new(rotated(), image, scale, unit()).unwrap();
             let e = irradiance(&light, 100_000);
             let want = PI * l * scale;
             assert!(
@@ -363,7 +497,7 @@ mod tests {
             })
             .collect();
         let image = Arc::new(Image::new(w, h, texels).unwrap());
-        let light = ImageInfiniteLight::new(Transform::IDENTITY, image, Rgb::ONE, 1.0).unwrap();
+        let light = ImageInfiniteLight::new(Transform::IDENTITY, image, Rgb::ONE, unit()).unwrap();
         let e = irradiance(&light, 100_000);
         assert!((e.x - PI).abs() < 0.01 * PI, "{e}");
         assert_eq!(light.le(Vec3::new(0.1, 0.2, 0.9)), Rgb::ONE);
@@ -374,7 +508,7 @@ mod tests {
             Transform::rotate(180.0, Vec3::X).unwrap(),
             light.image.clone(),
             Rgb::ONE,
-            1.0,
+            unit(),
         )
         .unwrap();
         assert_eq!(flipped.le(Vec3::new(0.1, 0.2, -0.9)), Rgb::ONE);
@@ -388,7 +522,7 @@ mod tests {
         let mut texels = vec![PackedRgb::ZERO; 16];
         texels[4 + 2] = PackedRgb::ONE;
         let image = Arc::new(Image::new(4, 4, texels).unwrap());
-        let light = ImageInfiniteLight::new(Transform::IDENTITY, image, Rgb::ONE, 1.0).unwrap();
+        let light = ImageInfiniteLight::new(Transform::IDENTITY, image, Rgb::ONE, unit()).unwrap();
         let centre = equal_area_square_to_sphere(Vec2::new(2.5 / 4.0, 1.5 / 4.0));
         assert_eq!(light.le(centre), Rgb::ONE);
         // That texel is in the upper hemisphere, towards +x and −y.
@@ -410,12 +544,38 @@ mod tests {
             Arc::new(Image::new(w, h, vec![PackedRgb::splat(v); (w * h) as usize]).unwrap())
         };
         assert!(
-            ImageInfiniteLight::new(Transform::IDENTITY, image(3, 2, 1.0), Rgb::ONE, 1.0).is_err()
+            ImageInfiniteLight::new(Transform::IDENTITY, image(3, 2, 1.0), Rgb::ONE, unit())
+                .is_err()
         );
         assert!(
-            ImageInfiniteLight::new(Transform::IDENTITY, image(2, 2, f32::NAN), Rgb::ONE, 1.0)
+            ImageInfiniteLight::new(Transform::IDENTITY, image(2, 2, f32::NAN), Rgb::ONE, unit())
                 .unwrap_err()
                 .contains("NaN")
         );
+    }
+
+    #[test]
+    fn emitted_rays_carry_the_power_in_either_layout() {
+        use crate::light::testing::{le_dir_integral, le_pdfs_agree, le_power};
+        for (w, h) in [(8, 8), (16, 8)] {
+            let texels = (0..w * h)
+                .map(|i| {
+                    let u = ((i * 7919) % 97) as f32 / 97.0;
+                    PackedRgb::new(0.2 + 3.0 * u * u, 0.5 * u, 1.0 - u)
+                })
+                .collect();
+            let image = Arc::new(Image::new(w, h, texels).unwrap());
+            let scene = SceneSphere {
+                centre: Vec3::new(0.5, 0.0, -1.0),
+                radius: 2.0,
+            };
+            let light = ImageInfiniteLight::new(rotated(), image, Rgb::splat(1.5), scene).unwrap();
+            let phi = le_power(&light, &[], &[], 1 << 14);
+            let want = light.power();
+            assert!((phi - want).abs() < 0.01 * want, "{w}x{h}: {phi} vs {want}");
+            le_pdfs_agree(&light, &[], &[], 256, 1e-3);
+            let total = le_dir_integral(&light, Vec3::ZERO, Vec3::ZERO, 1 << 16);
+            assert!((total - 1.0).abs() < 0.03, "{w}x{h}: {total}");
+        }
     }
 }

@@ -21,11 +21,55 @@
 //! origin, so it keeps the environment there (and [`PortalInfiniteLight::pdf_li`] is zero
 //! for them, which keeps MIS unbiased). In a room closed but for the window the two agree.
 
-use super::image_infinite::ImageInfiniteLight;
+use super::bounds::LightExtent;
+use super::distant::{disk_pdf, disk_point, has_disk};
+use super::image_infinite::{ImageInfiniteLight, environment_mapping};
+use super::kind::{
+    LightDescKind, LightKind, LightLePdf, LightLeSample, LightType, SceneSphere, point_error,
+};
 use super::sample::{LightLiSample, LightSampleContext};
 use crate::image::Image;
 use crate::math::{Frame, PI, Rgb, Transform, Vec2, Vec3, cross, normalize};
+use crate::shape::{Shape, TriangleMesh};
 use std::sync::Arc;
+
+/// An environment seen through a portal as a scene describes it (pbrt-v4's `infinite` light
+/// with `portal`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PortalInfiniteDesc {
+    /// Light space → world space.
+    pub light_to_world: Transform,
+    /// Multiplies the image.
+    pub l: Rgb,
+    /// Environment map, equal-area octahedral (square) or lat-long (2:1).
+    pub image: Arc<Image>,
+    /// The portal's corners, world space, in order around the rectangle.
+    pub portal: [Vec3; 4],
+}
+
+impl LightDescKind for PortalInfiniteDesc {
+    type Light = PortalInfiniteLight;
+
+    fn pbrt_name(&self) -> &'static str {
+        "infinite"
+    }
+
+    /// An image of a known layout with finite values ([`environment_mapping`]); the
+    /// portal's shape is checked as the light is made ([`portal_frame`]).
+    fn validate(&self) -> Result<(), String> {
+        environment_mapping(&self.image).map(|_| ())
+    }
+
+    fn build(&self, scene: &SceneSphere) -> Result<PortalInfiniteLight, String> {
+        PortalInfiniteLight::new(
+            self.light_to_world,
+            self.image.clone(),
+            self.l,
+            self.portal,
+            *scene,
+        )
+    }
+}
 
 /// An image environment light that only lets light in through a rectangular portal.
 #[derive(Clone, Debug, PartialEq)]
@@ -44,8 +88,8 @@ pub struct PortalInfiniteLight {
     func: Vec<f32>,
     /// Summed-area table of `func`: `sat[y·nx + x]` = Σ over cells (≤ x, ≤ y).
     sat: Vec<f64>,
-    /// Radius of the scene's bounding sphere.
-    scene_radius: f32,
+    /// The scene's bounding sphere.
+    scene: SceneSphere,
     /// pbrt-v4's Φ for a portal light, channel average.
     power: f32,
 }
@@ -111,9 +155,9 @@ impl PortalInfiniteLight {
         image: Arc<Image>,
         scale: Rgb,
         portal: [Vec3; 4],
-        scene_radius: f32,
+        scene: SceneSphere,
     ) -> Result<PortalInfiniteLight, String> {
-        let env = ImageInfiniteLight::new(light_to_world, image, scale, scene_radius)?;
+        let env = ImageInfiniteLight::new(light_to_world, image, scale, scene)?;
         let frame = portal_frame(&portal)?;
         let (nx, ny) = (env.image().width as usize, env.image().height as usize);
         let area = (portal[1] - portal[0]).length() * (portal[3] - portal[0]).length();
@@ -150,7 +194,7 @@ impl PortalInfiniteLight {
             ny,
             func,
             sat,
-            scene_radius,
+            scene,
             power: (area as f64 * phi / (nx * ny) as f64) as f32,
         })
     }
@@ -302,7 +346,7 @@ impl PortalInfiniteLight {
             l: self.env.le(wi),
             wi,
             pdf,
-            p_light: ctx.p + wi * (2.0 * self.scene_radius.max(1e-3)),
+            p_light: ctx.p + wi * (2.0 * self.scene.radius.max(1e-3)),
         })
     }
 
@@ -332,6 +376,103 @@ impl PortalInfiniteLight {
     }
 }
 
+/// The whole grid of rectified coordinates: where light arrives from through the portal
+/// from anywhere.
+const WHOLE: Window = (Vec2::ZERO, Vec2::ONE);
+
+impl LightKind for PortalInfiniteLight {
+    fn light_type(&self) -> LightType {
+        LightType::Infinite
+    }
+
+    fn sample_li(
+        &self,
+        ctx: &LightSampleContext,
+        u: Vec2,
+        _: &[Shape],
+        _: &[TriangleMesh],
+    ) -> Option<LightLiSample> {
+        PortalInfiniteLight::sample_li(self, ctx, u)
+    }
+
+    fn pdf_li(&self, ctx: &LightSampleContext, wi: Vec3, _: Option<(Vec3, Vec3)>) -> f32 {
+        PortalInfiniteLight::pdf_li(self, ctx.p, wi)
+    }
+
+    fn power(&self) -> f32 {
+        self.power
+    }
+
+    fn extent(&self, _: &[Shape], _: &[TriangleMesh]) -> LightExtent {
+        LightExtent::Unbounded
+    }
+
+    fn constant_colour(&self) -> Option<Rgb> {
+        None
+    }
+
+    fn le(&self, d: Vec3) -> Rgb {
+        PortalInfiniteLight::le(self, d)
+    }
+
+    /// pbrt-v4's: the direction the light comes from chosen over the whole rectified grid by
+    /// `u1` (p_dir = f(u, v)/∫f / |dω/d(u, v)|), the ray travelling opposite it from a point
+    /// uniform on the scene's disk (p_pos = 1/(π r²)); pbrt-v4 leaves sampling the portal's
+    /// own area aside, as it does not suit bidirectional methods.
+    fn sample_le(
+        &self,
+        u1: Vec2,
+        u2: Vec2,
+        _: &[Shape],
+        _: &[TriangleMesh],
+    ) -> Option<LightLeSample> {
+        let (uv, map_pdf) = self.sample_window(u1, WHOLE)?;
+        let (local, jacobian) = rectified_to_local(uv);
+        if map_pdf <= 0.0 || jacobian <= 0.0 || !has_disk(&self.scene) {
+            return None;
+        }
+        let from = self.frame.from_local(local);
+        let pdf_dir = map_pdf / jacobian;
+        let p = disk_point(&self.scene, from, u2);
+        pdf_dir.is_finite().then(|| LightLeSample {
+            l: self.env.le(from),
+            factor: 1.0,
+            p,
+            p_error: point_error(p),
+            w: -from,
+            n: Vec3::ZERO,
+            pdf_pos: disk_pdf(&self.scene),
+            pdf_dir,
+        })
+    }
+
+    fn pdf_le(&self, _: Vec3, _: Vec3, w: Vec3) -> LightLePdf {
+        let dir = match self.rectified(-w) {
+            Some((uv, jacobian)) if jacobian > 0.0 => {
+                let total = self.integral(WHOLE);
+                if total > 0.0 {
+                    (self.eval(uv) as f64 / total) as f32 / jacobian
+                } else {
+                    0.0
+                }
+            }
+            _ => 0.0,
+        };
+        LightLePdf {
+            pos: disk_pdf(&self.scene),
+            dir,
+        }
+    }
+
+    fn image(&self) -> Option<&Arc<Image>> {
+        Some(PortalInfiniteLight::image(self))
+    }
+
+    fn heap_bytes(&self) -> usize {
+        size_of_val(self) + self.table_bytes()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -342,6 +483,12 @@ mod tests {
         let h = hash_u64(&[i, seed]);
         Vec2::new(u32_to_unit_f32(h as u32), u32_to_unit_f32((h >> 32) as u32))
     }
+
+    /// The scene's bounding sphere in these tests.
+    const SCENE: SceneSphere = SceneSphere {
+        centre: Vec3::ZERO,
+        radius: 10.0,
+    };
 
     /// A 16×16 equal-area sky of uneven texels, rotated, behind a 2×1.5 window in the plane
     /// x = 1 (corners in the order pbrt-v4 expects: z = (p3 − p0) × (p1 − p0) = +x).
@@ -362,8 +509,8 @@ mod tests {
         ];
         let scale = Rgb::splat(2.0);
         (
-            PortalInfiniteLight::new(to_world, image.clone(), scale, portal, 10.0).unwrap(),
-            ImageInfiniteLight::new(to_world, image, scale, 10.0).unwrap(),
+            PortalInfiniteLight::new(to_world, image.clone(), scale, portal, SCENE).unwrap(),
+            ImageInfiniteLight::new(to_world, image, scale, SCENE).unwrap(),
         )
     }
 
@@ -473,5 +620,24 @@ mod tests {
         assert!(portal_frame(&skew).unwrap_err().contains("rectangle"));
         let point = [Vec3::ZERO; 4];
         assert!(portal_frame(&point).unwrap_err().contains("coincident"));
+    }
+
+    #[test]
+    fn emitted_rays_carry_what_crosses_the_disk_from_the_portals_side() {
+        use crate::light::testing::{le_dir_integral, le_pdfs_agree, le_power};
+        let (light, _) = light();
+        let phi = le_power(&light, &[], &[], 1 << 14);
+        // π r² ∫ L dω over the directions in front of the portal, by uniform directions.
+        let n = 1 << 16;
+        let mut sum = 0.0f64;
+        for i in 0..n {
+            let l = light.le(crate::sampling::sample_uniform_sphere(rand2(i, 11)));
+            sum += ((l.x + l.y + l.z) / 3.0) as f64;
+        }
+        let want = (PI * 100.0) as f64 * 4.0 * PI as f64 * sum / n as f64;
+        assert!((phi as f64 - want).abs() < 0.02 * want, "{phi} vs {want}");
+        le_pdfs_agree(&light, &[], &[], 256, 1e-2);
+        let total = le_dir_integral(&light, Vec3::ZERO, Vec3::ZERO, 1 << 16);
+        assert!((total - 1.0).abs() < 0.03, "{total}");
     }
 }

@@ -4,7 +4,7 @@
 //! made; the order of every list (and so every render) is the order these phases give.
 
 use super::Scene;
-use super::desc::{AreaLightDesc, Geometry, LightDesc, SceneDesc, ShapeDesc};
+use super::desc::{AreaLightDesc, Geometry, SceneDesc, ShapeDesc};
 use super::instance::{Instance, Instances, ObjectAccel};
 use super::power::power_radiance;
 use super::prim::{
@@ -15,10 +15,7 @@ use super::tris::SceneTrisBuilder;
 use crate::accel::{Bvh, Tri4};
 use crate::camera::Camera;
 use crate::camera::footprint::Footprints;
-use crate::light::{
-    AreaImage, Emitter, GoniometricLight, ImageInfiniteLight, Light, LightDistribution,
-    LightSampler, PortalInfiniteLight, ProjectionLight, SunskyLight,
-};
+use crate::light::{AreaImage, AreaLight, Light, LightDistribution, LightSampler, SceneSphere};
 use crate::material::{Material, MaterialDesc};
 use crate::math::{Bounds3, PackedRgb, Rgb, Transform, Vec3};
 use crate::shape::{Placing, Shape, TriangleMesh};
@@ -54,10 +51,10 @@ impl Scene {
         if bounds.is_empty() {
             bounds = Bounds3::from_point(Vec3::ZERO);
         }
-        let (_, scene_radius) = bounds.bounding_sphere();
+        let (centre, radius) = bounds.bounding_sphere();
         let lights = lights(
             desc,
-            scene_radius,
+            &SceneSphere { centre, radius },
             &shapes,
             &meshes,
             &mut prims,
@@ -449,12 +446,12 @@ struct Lights {
     infinite: Vec<u32>,
 }
 
-/// Phase 5. The description's lights (checked by [`LightDesc::validate`]), then every
-/// emitting primitive as a light of its own (a mesh light: one per triangle), whose index is
-/// written in its record.
+/// Phase 5. The description's lights (checked by [`crate::light::LightDesc::validate`]),
+/// then every emitting primitive as a light of its own (a mesh light: one per triangle), whose
+/// index is written in its record.
 fn lights(
     desc: &SceneDesc,
-    scene_radius: f32,
+    scene: &SceneSphere,
     shapes: &[Shape],
     meshes: &[TriangleMesh],
     prims: &mut [PrimInfo],
@@ -463,7 +460,7 @@ fn lights(
     let mut lights = desc
         .lights
         .iter()
-        .map(|l| light_of(l, scene_radius))
+        .map(|l| l.build(scene).map_err(BuildError::Invalid))
         .collect::<Result<Vec<Light>, BuildError>>()?;
     let mut spectra: Vec<Option<Measured>> = (0..lights.len())
         .map(|i| desc.light_spectra.get(i).copied().flatten())
@@ -472,26 +469,17 @@ fn lights(
         let Some(e) = info.emission.as_mut() else {
             continue;
         };
-        let area = shape.area();
-        if !(area > 0.0 && area.is_finite()) || e.l == PackedRgb::ZERO {
-            continue;
-        }
+        // Until now `light` holds the image's texture index.
         let image = (e.spectrum == IMAGE_EMISSION)
-            .then(|| area_image(desc, e.light, e.l.into()))
+            .then(|| {
+                AreaImage::from_texture(desc.spectrum_textures.get(e.light as usize), e.l.into())
+            })
             .flatten();
+        let Some(light) = AreaLight::new(i as u32, shape, meshes, e.l, e.two_sided, image) else {
+            continue;
+        };
         e.light = lights.len() as u32;
-        lights.push(Light::Area {
-            prim: i as u32,
-            // With an image: its mean times its factor, for the power and the light bounds
-            // (pbrt-v4's `Phi` and `Bounds`).
-            l: image
-                .as_ref()
-                .map_or(e.l, |im| (im.mean() * im.scale).into()),
-            two_sided: e.two_sided,
-            area,
-            emitter: Emitter::new(shape, meshes, shape.whole_sphere()),
-            image,
-        });
+        lights.push(Light::Area(light));
         spectra.push(area_spectra.get(e.spectrum as usize).copied());
     }
     let powers: Vec<f32> = lights.iter().map(Light::power).collect();
@@ -519,97 +507,6 @@ fn spectrum_index(list: &mut Vec<Measured>, m: Measured) -> u16 {
         }
         None => NO_SPECTRUM,
     }
-}
-
-/// The image of an area light whose radiance is texture `tex` of `desc` times `factor` (grey),
-/// `None` when that is not an image texture (the reader makes only those).
-fn area_image(desc: &SceneDesc, tex: u32, factor: Rgb) -> Option<Box<AreaImage>> {
-    match desc.spectrum_textures.get(tex as usize)? {
-        crate::texture::SpectrumTexture::Image(it) => Some(Box::new(AreaImage {
-            mipmap: it.mipmap.clone(),
-            scale: it.scale * factor.x,
-        })),
-        _ => None,
-    }
-}
-
-/// One light of the description, for a scene of bounding radius `scene_radius`.
-fn light_of(l: &LightDesc, scene_radius: f32) -> Result<Light, BuildError> {
-    l.validate().map_err(BuildError::Invalid)?;
-    Ok(match l {
-        LightDesc::Point { from, intensity } => Light::Point {
-            p: *from,
-            intensity: *intensity,
-        },
-        LightDesc::Spot {
-            from,
-            to,
-            intensity,
-            cone_angle,
-            cone_delta_angle,
-        } => Light::Spot {
-            p: *from,
-            axis: (*to - *from)
-                .try_normalize()
-                .expect("validated: from and to apart"),
-            intensity: *intensity,
-            cos_falloff_end: cone_angle.to_radians().cos(),
-            cos_falloff_start: (cone_angle - cone_delta_angle).to_radians().cos(),
-        },
-        LightDesc::Distant { direction, l } => Light::Distant {
-            w: direction
-                .try_normalize()
-                .expect("validated: a direction not zero"),
-            l: *l,
-            scene_radius,
-        },
-        LightDesc::Infinite { l, image: None, .. } => Light::UniformInfinite {
-            l: *l,
-            scene_radius,
-        },
-        LightDesc::Goniometric {
-            light_to_world,
-            intensity,
-            image,
-        } => Light::Goniometric(Box::new(
-            GoniometricLight::new(*light_to_world, *intensity, image)
-                .map_err(BuildError::Invalid)?,
-        )),
-        LightDesc::Projection {
-            light_to_world,
-            scale,
-            fov,
-            image,
-        } => Light::Projection(Box::new(
-            ProjectionLight::new(*light_to_world, image.clone(), *scale, *fov)
-                .map_err(BuildError::Invalid)?,
-        )),
-        LightDesc::Infinite {
-            light_to_world,
-            l,
-            image: Some(image),
-        } => Light::ImageInfinite(Box::new(
-            ImageInfiniteLight::new(*light_to_world, image.clone(), *l, scene_radius)
-                .map_err(BuildError::Invalid)?,
-        )),
-        LightDesc::Sunsky {
-            light_to_world,
-            params,
-        } => Light::Sunsky(Box::new(SunskyLight::new(
-            *light_to_world,
-            params,
-            scene_radius,
-        ))),
-        LightDesc::PortalInfinite {
-            light_to_world,
-            l,
-            image,
-            portal,
-        } => Light::PortalInfinite(Box::new(
-            PortalInfiniteLight::new(*light_to_world, image.clone(), *l, *portal, scene_radius)
-                .map_err(BuildError::Invalid)?,
-        )),
-    })
 }
 
 #[cfg(test)]
@@ -687,10 +584,12 @@ mod tests {
             "shape 0: object \"o\": index 1 out of range for 1 vertices"
         );
         let desc = SceneDesc {
-            lights: vec![LightDesc::Distant {
-                direction: Vec3::ZERO,
-                l: crate::math::Rgb::ONE,
-            }],
+            lights: vec![crate::light::LightDesc::Distant(
+                crate::light::DistantDesc {
+                    direction: Vec3::ZERO,
+                    l: crate::math::Rgb::ONE,
+                },
+            )],
             ..SceneDesc::default()
         };
         assert_eq!(

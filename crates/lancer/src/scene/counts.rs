@@ -1,24 +1,8 @@
 //! What a scene description holds, counted by kind under pbrt-v4's names: what `lancer info`
 //! and the Python module's `Scene.info()` report.
 
-use super::desc::{Geometry, LightDesc, SceneDesc, ShapeDesc};
+use super::desc::{Geometry, SceneDesc, ShapeDesc};
 use std::collections::BTreeMap;
-
-impl LightDesc {
-    /// The pbrt-v4 name of this light (`LightSource "…"`).
-    pub fn pbrt_name(&self) -> &'static str {
-        match self {
-            LightDesc::Point { .. } => "point",
-            LightDesc::Spot { .. } => "spot",
-            LightDesc::Distant { .. } => "distant",
-            LightDesc::Infinite { .. }
-            | LightDesc::PortalInfinite { .. }
-            | LightDesc::Sunsky { .. } => "infinite",
-            LightDesc::Goniometric { .. } => "goniometric",
-            LightDesc::Projection { .. } => "projection",
-        }
-    }
-}
 
 /// Counts of what a scene description holds.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -27,8 +11,8 @@ pub struct DescCounts {
     pub shapes: BTreeMap<&'static str, u64>,
     /// Shapes by kind inside object definitions (instanced).
     pub object_shapes: BTreeMap<&'static str, u64>,
-    /// Lights by kind ([`LightDesc::pbrt_name`]; an infinite light with an image as
-    /// `infinite (image)`), area lights excluded.
+    /// Lights by kind ([`crate::light::LightDesc::count_name`]: the pbrt-v4 name, an
+    /// infinite light with an image as `infinite (image)`), area lights excluded.
     pub lights: BTreeMap<&'static str, u64>,
     /// Area lights (shapes that emit), in the world and in object definitions.
     pub area_lights: u64,
@@ -57,11 +41,7 @@ impl SceneDesc {
             .filter_map(|i| per_object.get(i.object as usize))
             .sum();
         for l in &self.lights {
-            let kind = match l {
-                LightDesc::Infinite { image: Some(_), .. } => "infinite (image)",
-                l => l.pbrt_name(),
-            };
-            *c.lights.entry(kind).or_default() += 1;
+            *c.lights.entry(l.count_name()).or_default() += 1;
         }
         c
     }
@@ -124,10 +104,10 @@ mod tests {
             z_max: 1.0,
             phi_max: 360.0,
         });
-        let point = LightDesc::Point {
+        let point = crate::light::LightDesc::Point(crate::light::PointDesc {
             from: Vec3::ZERO,
             intensity: Rgb::ONE,
-        };
+        });
         let d = SceneDesc {
             shapes: vec![shape(sphere.clone(), true), shape(quad(), false)],
             objects: vec![ObjectDesc {

@@ -8,12 +8,13 @@
 pub use crate::camera::desc::{CameraDesc, Projection};
 use crate::film::PixelBounds;
 use crate::integrator::Integrator;
+/// Lights are described where their kinds live, in [`crate::light`].
+pub use crate::light::{AreaLightDesc, LightDesc};
 use crate::material::MaterialDesc;
-use crate::math::{AnimatedTransform, Rgb, Transform, Vec3};
+use crate::math::{AnimatedTransform, Transform, Vec3};
 pub use crate::shape::Geometry;
 use crate::shape::RuleError;
 use crate::texture::{FloatTex, FloatTexture, SpectrumTexture};
-use std::sync::Arc;
 
 /// A whole scene: what to render and how.
 #[derive(Clone, Debug, Default)]
@@ -225,25 +226,6 @@ impl Default for FilterDesc {
     }
 }
 
-/// A diffuse area light attached to a shape.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct AreaLightDesc {
-    /// Emitted radiance (already scaled and normalised as pbrt does).
-    pub l: Rgb,
-    /// Emits from both sides (otherwise only the side the normal faces).
-    pub two_sided: bool,
-    /// The spectrum `l` is a multiple of, when the scene gave one (spectral mode emits it).
-    pub spectrum: Option<crate::spectrum::dense::Measured>,
-    /// pbrt-v4's `power` Φ in watts, when given: each primitive the shape becomes (a mesh's
-    /// every triangle, as in pbrt-v4) then emits `l · Φ / (π · sides · area)`, sides 2 when
-    /// two-sided, area the primitive's own (see [`crate::shape::Shape::emission_area`]).
-    pub power: Option<f32>,
-    /// pbrt-v4's `filename`: the index of an image texture among
-    /// [`SceneDesc::spectrum_textures`] the radiance is read from by uv; `l` is then the
-    /// factor its texels are multiplied by (grey).
-    pub image: Option<u32>,
-}
-
 /// A shape placed in the world with its material and optional emission.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ShapeDesc {
@@ -264,87 +246,6 @@ pub struct ShapeDesc {
     pub medium_interface: Option<crate::medium::MediumInterface>,
 }
 
-/// A light source.
-#[derive(Clone, Debug, PartialEq)]
-pub enum LightDesc {
-    /// An isotropic point light.
-    Point {
-        /// Position, world space.
-        from: Vec3,
-        /// Radiant intensity (scaled and normalised).
-        intensity: Rgb,
-    },
-    /// A spot light: a point light limited to a cone with a smooth falloff.
-    Spot {
-        /// Position, world space.
-        from: Vec3,
-        /// A point on the axis, world space.
-        to: Vec3,
-        /// Radiant intensity on the axis.
-        intensity: Rgb,
-        /// Total half-angle of the cone, degrees.
-        cone_angle: f32,
-        /// Width of the falloff at the cone's edge, degrees.
-        cone_delta_angle: f32,
-    },
-    /// A directional light (the sun): light arrives along `to − from` everywhere.
-    Distant {
-        /// Direction *towards* the light, world space (not necessarily normalised).
-        direction: Vec3,
-        /// Radiance (scaled and normalised).
-        l: Rgb,
-    },
-    /// Light from infinitely far away in every direction: a constant colour or an
-    /// environment image.
-    Infinite {
-        /// Light space → world space.
-        light_to_world: Transform,
-        /// Constant radiance (multiplies the image when there is one).
-        l: Rgb,
-        /// Environment map, equal-area octahedral (square) or lat-long (2:1).
-        image: Option<Arc<crate::image::Image>>,
-    },
-    /// An environment image that lights the scene only through a rectangular portal (pbrt-v4's
-    /// `infinite` light with `portal`), sampled through it.
-    PortalInfinite {
-        /// Light space → world space.
-        light_to_world: Transform,
-        /// Multiplies the image.
-        l: Rgb,
-        /// Environment map, equal-area octahedral (square) or lat-long (2:1).
-        image: Arc<crate::image::Image>,
-        /// The portal's corners, world space, in order around the rectangle.
-        portal: [Vec3; 4],
-    },
-    /// pbrt-v4's `goniometric` light: intensity `intensity` times an equal-area image.
-    Goniometric {
-        /// Light space → world space (the CTM).
-        light_to_world: Transform,
-        /// Intensity colour (scaled and normalised).
-        intensity: Rgb,
-        /// Square equal-area image; its channel average modulates the intensity.
-        image: Arc<crate::image::Image>,
-    },
-    /// lancer's `sunsky` light: the Hosek–Wilkie sky and sun ([`crate::light::SunskyLight`]).
-    Sunsky {
-        /// Light space (zenith +z) → world space.
-        light_to_world: Transform,
-        /// The sun's direction, turbidity, albedo and scales.
-        params: crate::light::SunskyParams,
-    },
-    /// pbrt-v4's `projection` light: a slide projector.
-    Projection {
-        /// Light space → world space (the CTM).
-        light_to_world: Transform,
-        /// Multiplies the image's texels (scaled and normalised).
-        scale: f32,
-        /// Field of view of the image's shorter side, degrees.
-        fov: f32,
-        /// The slide.
-        image: Arc<crate::image::Image>,
-    },
-}
-
 impl ShapeDesc {
     /// [`Geometry::validate`], then, when the shape emits, [`Geometry::validate_emitter`].
     pub fn validate(&self) -> Result<(), RuleError> {
@@ -352,35 +253,6 @@ impl ShapeDesc {
         match self.area_light {
             Some(_) => self.geometry.validate_emitter(),
             None => Ok(()),
-        }
-    }
-}
-
-impl LightDesc {
-    /// Checks the rules without which the light means nothing, and returns the first one
-    /// broken (one message per rule): a spot light's `from` and `to` apart, a distant light's
-    /// direction not zero, an environment image of a known layout with finite values
-    /// ([`crate::light::environment_mapping`]).
-    pub fn validate(&self) -> Result<(), String> {
-        match self {
-            LightDesc::Point { .. } | LightDesc::Infinite { image: None, .. } => Ok(()),
-            LightDesc::Spot { from, to, .. } => match (*to - *from).try_normalize() {
-                Some(_) => Ok(()),
-                None => Err("spot light with \"from\" equal to \"to\"".to_string()),
-            },
-            LightDesc::Distant { direction, .. } => match direction.try_normalize() {
-                Some(_) => Ok(()),
-                None => Err("distant light with \"from\" equal to \"to\"".to_string()),
-            },
-            LightDesc::Infinite {
-                image: Some(image), ..
-            }
-            | LightDesc::PortalInfinite { image, .. } => {
-                crate::light::environment_mapping(image).map(|_| ())
-            }
-            // The goniometric and projection lights check their images as they are made.
-            LightDesc::Goniometric { .. } | LightDesc::Projection { .. } => Ok(()),
-            LightDesc::Sunsky { params, .. } => params.check().map_or(Ok(()), Err),
         }
     }
 }

@@ -31,7 +31,7 @@ pub struct SceneMemory {
     pub bvh: usize,
     /// Instancing: the objects' trees, meshes and tables, the placements and their tree.
     pub instances: usize,
-    /// Images: textures' and environment lights', each shared image once.
+    /// Images: textures' and lights' (environment, projection), each shared image once.
     pub images: usize,
     /// Texture records.
     pub textures: usize,
@@ -89,11 +89,7 @@ impl Scene {
                 _ => None,
             }))
             .flatten()
-            .chain(self.lights.iter().filter_map(|l| match l {
-                Light::ImageInfinite(e) => Some(e.image()),
-                Light::PortalInfinite(e) => Some(e.image()),
-                _ => None,
-            }));
+            .chain(self.lights.iter().filter_map(Light::image));
         for img in texture_images {
             if seen.insert(Arc::as_ptr(img) as usize) {
                 images += img.memory_bytes();
@@ -117,16 +113,7 @@ impl Scene {
             }
         }
         let lights = vec_bytes::<Light>(self.lights.capacity())
-            + self
-                .lights
-                .iter()
-                .map(|l| match l {
-                    Light::ImageInfinite(e) => size_of_val(&**e) + e.table_bytes(),
-                    Light::PortalInfinite(e) => size_of_val(&**e) + e.table_bytes(),
-                    Light::Sunsky(e) => size_of_val(&**e) + e.table_bytes(),
-                    _ => 0,
-                })
-                .sum::<usize>()
+            + self.lights.iter().map(Light::heap_bytes).sum::<usize>()
             + self.light_distribution.memory_bytes()
             + self.light_sampler.memory_bytes()
             + vec_bytes::<u32>(self.infinite_lights.capacity());

@@ -556,10 +556,9 @@ impl Scene {
             None => rgb_lanes(l),
             Some(w) => match &self.spectra().lights[i] {
                 Some(sp) => w.sample_prepared_illuminant(sp) * factor,
-                None => match &self.lights[i] {
-                    Light::Sunsky(sky) => sky.le_spectral(wi, w),
-                    _ => w.illuminant(l),
-                },
+                None => self.lights[i]
+                    .le_spectral(wi, w)
+                    .unwrap_or_else(|| w.illuminant(l)),
             },
         }
     }

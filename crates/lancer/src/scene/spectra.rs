@@ -94,9 +94,11 @@ mod tests {
     /// another colour, and one of the first colour after it, start runs of their own.
     #[test]
     fn consecutive_lights_of_one_colour_share_a_key() {
-        let point = |c: Rgb| Light::Point {
-            p: Vec3::ZERO,
-            intensity: c,
+        let point = |c: Rgb| {
+            Light::Point(crate::light::PointLight {
+                p: Vec3::ZERO,
+                intensity: c,
+            })
         };
         let (a, b) = (Rgb::new(1.0, 0.5, 0.25), Rgb::new(0.2, 0.4, 3.0));
         let s = SceneSpectra::new(

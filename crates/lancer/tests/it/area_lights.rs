@@ -310,10 +310,10 @@ fn sphere_light_gives_the_closed_form_irradiance() {
         assert_eq!(
             matches!(
                 scene.lights()[0],
-                Light::Area {
+                Light::Area(lancer::light::AreaLight {
                     emitter: lancer::light::Emitter::Sphere { .. },
                     ..
-                }
+                })
             ),
             z_max == r
         );

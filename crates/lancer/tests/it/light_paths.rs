@@ -5,6 +5,7 @@
 use lancer::Scene;
 use lancer::film::{Film, PixelBounds};
 use lancer::integrator::Integrator;
+use lancer::light::PointDesc;
 use lancer::material::{DiffuseMaterial, MaterialDesc};
 use lancer::math::{PackedVec3, Rgb, Transform, Vec3};
 use lancer::render::{RenderSettings, render_units_with, work_units};
@@ -48,10 +49,10 @@ fn desc(integrator: Integrator) -> SceneDesc {
             area_light: None,
             alpha: None,
         }],
-        lights: vec![LightDesc::Point {
+        lights: vec![LightDesc::Point(PointDesc {
             from: Vec3::new(0.3, 1.0, 0.2),
             intensity: Rgb::splat(3.0),
-        }],
+        })],
         ..SceneDesc::default()
     };
     d.camera.camera_from_world =

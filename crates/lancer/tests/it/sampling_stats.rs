@@ -261,7 +261,7 @@ fn chi2_light(name: &str, desc: SceneDesc) {
             } else {
                 // An area light has a density only where the direction meets it, and only on
                 // the side it emits from.
-                let Light::Area { prim, .. } = light else {
+                let Light::Area(lancer::light::AreaLight { prim, .. }) = light else {
                     unreachable!("scenes with shapes test their area light")
                 };
                 match scene.intersect(&Ray::new(Vec3::ZERO, w)) {
@@ -365,11 +365,9 @@ fn chi2_uniform_sky() {
     chi2_light(
         "uniform sky",
         SceneDesc {
-            lights: vec![LightDesc::Infinite {
-                light_to_world: Transform::IDENTITY,
-                l: Rgb::ONE,
-                image: None,
-            }],
+            lights: vec![LightDesc::UniformInfinite(
+                lancer::light::UniformInfiniteDesc { l: Rgb::ONE },
+            )],
             ..SceneDesc::default()
         },
     );
@@ -400,11 +398,11 @@ fn chi2_environment_lights() {
         chi2_light(
             name,
             SceneDesc {
-                lights: vec![LightDesc::Infinite {
+                lights: vec![LightDesc::ImageInfinite(lancer::light::ImageInfiniteDesc {
                     light_to_world: Transform::rotate(35.0, Vec3::new(1.0, 2.0, 0.5)).unwrap(),
                     l: Rgb::ONE,
-                    image: Some(sky_image(w, h)),
-                }],
+                    image: sky_image(w, h),
+                })],
                 ..SceneDesc::default()
             },
         );

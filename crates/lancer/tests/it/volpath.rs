@@ -37,11 +37,9 @@ fn furnace(medium: MediumDesc) -> Scene {
             area_light: None,
             alpha: None,
         }],
-        lights: vec![LightDesc::Infinite {
-            light_to_world: Transform::IDENTITY,
-            l: Rgb::ONE,
-            image: None,
-        }],
+        lights: vec![LightDesc::UniformInfinite(
+            lancer::light::UniformInfiniteDesc { l: Rgb::ONE },
+        )],
         media: vec![medium],
         ..SceneDesc::default()
     };

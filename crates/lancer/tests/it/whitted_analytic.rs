@@ -4,6 +4,7 @@
 
 use lancer::film::{Film, PixelBounds};
 use lancer::integrator::Integrator;
+use lancer::light::PointDesc;
 use lancer::material::{ConductorMaterial, DiffuseMaterial};
 use lancer::material::{MaterialDesc, fresnel_complex};
 use lancer::math::{INV_PI, Rgb, SampledSpectrum, Transform, Vec2, Vec3, lanes_rgb, normalize};
@@ -133,10 +134,10 @@ fn diffuse_sphere_under_a_point_light_follows_lamberts_law() {
     let mut d = course_desc();
     d.materials = vec![diffuse(rho)];
     d.shapes = vec![shape(sphere(r), c, 0)];
-    d.lights = vec![LightDesc::Point {
+    d.lights = vec![LightDesc::Point(PointDesc {
         from: light,
         intensity: Rgb::splat(i),
-    }];
+    })];
     let (scene, img) = render_centres(&d);
     let mut checked = 0;
     for y in 0..H {
@@ -201,10 +202,10 @@ fn mirror_reflects_the_scene_with_its_fresnel_reflectance() {
             1,
         ),
     ];
-    d.lights = vec![LightDesc::Point {
+    d.lights = vec![LightDesc::Point(PointDesc {
         from: light,
         intensity: Rgb::splat(i),
-    }];
+    })];
     let (scene, img) = render_centres(&d);
     // pbrt's reflectance parameterisation: η = 1, k = 2√R/√(1 − R), so F(0°) = R.
     let k = SampledSpectrum::splat(2.0 * reflectance.sqrt() / (1.0 - reflectance).sqrt());
@@ -268,10 +269,10 @@ fn shadows_are_exactly_where_the_geometry_puts_them() {
         ),
         shape(sphere(r), c, 1),
     ];
-    d.lights = vec![LightDesc::Point {
+    d.lights = vec![LightDesc::Point(PointDesc {
         from: light,
         intensity: Rgb::splat(i),
-    }];
+    })];
     let (scene, img) = render_centres(&d);
     let (mut shadowed, mut lit) = (0, 0);
     for y in 0..H {

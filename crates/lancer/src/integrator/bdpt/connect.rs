@@ -3,7 +3,7 @@
 //! that could have made the same path (pbrt-v4's `MISWeight`).
 
 use super::vertex::{Kind, Vertex};
-use crate::light::{Emitter, Light, LightSampleContext};
+use crate::light::{AreaLight, Emitter, LightSampleContext};
 use crate::material::TransportMode;
 use crate::math::{SampledSpectrum, Vec2, Vec3};
 use crate::ray::Ray;
@@ -58,8 +58,8 @@ fn g(scene: &Scene, a: &Vertex, b: &Vertex) -> f32 {
 /// The normal of area light `i` at `p`, a point its `sample_li` chose (zero for the other
 /// lights). Triangles and spheres know it; other shapes are asked by a ray from `from`.
 fn light_normal(scene: &Scene, i: usize, p: Vec3, from: &Vertex) -> Vec3 {
-    match &scene.lights()[i] {
-        Light::Area { emitter, prim, .. } => match emitter {
+    match scene.lights()[i].as_area() {
+        Some(AreaLight { emitter, prim, .. }) => match emitter {
             Emitter::Triangle { n, .. } => Vec3::from(*n),
             Emitter::Sphere {
                 centre,

@@ -5,6 +5,7 @@ use super::connect::mis_weight;
 use super::vertex::{Kind, Vertex};
 use super::*;
 use crate::integrator::{Integrator, bsdf_at};
+use crate::light::{PointDesc, UniformInfiniteDesc};
 use crate::material::{DiffuseMaterial, MaterialDesc};
 use crate::math::{PackedVec3, Rgb, Transform, Vec3, normalize};
 use crate::sampling::SamplerKind;
@@ -116,10 +117,10 @@ fn room(area: bool, integrator: Integrator) -> Scene {
             Some(6.0),
         ));
     } else {
-        lights.push(LightDesc::Point {
+        lights.push(LightDesc::Point(PointDesc {
             from: Vec3::new(0.2, 1.7, 0.1),
             intensity: Rgb::splat(2.0),
-        });
+        }));
     }
     let desc = SceneDesc {
         camera: CameraDesc {
@@ -500,11 +501,7 @@ fn white_furnace() {
             area_light: None,
             alpha: None,
         }],
-        lights: vec![LightDesc::Infinite {
-            light_to_world: Transform::IDENTITY,
-            l: Rgb::ONE,
-            image: None,
-        }],
+        lights: vec![LightDesc::UniformInfinite(UniformInfiniteDesc { l: Rgb::ONE })],
         ..SceneDesc::default()
     };
     let scene = Scene::build(&desc).unwrap();

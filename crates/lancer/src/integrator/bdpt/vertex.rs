@@ -2,8 +2,7 @@
 //! carries, and the densities with which either subpath would have reached it, per unit area
 //! (the measure in which the strategies' densities compare).
 
-use super::super::light_emit::{pdf_le, scene_sphere};
-use crate::light::{Light, LightSampleContext};
+use crate::light::{LightSampleContext, LightType};
 use crate::material::{Bsdf, TransportMode};
 use crate::math::{PI, SampledSpectrum, Vec2, Vec3, normalize};
 use crate::ray::Ray;
@@ -110,7 +109,7 @@ impl Vertex {
             Kind::Escaped => true,
             Kind::Light(i) => {
                 let l = &scene.lights()[i as usize];
-                l.is_infinite() || matches!(l, Light::Distant { .. })
+                l.is_infinite() || l.light_type() == LightType::DeltaDirection
             }
             _ => false,
         }
@@ -121,7 +120,7 @@ impl Vertex {
     pub fn is_connectible(&self, scene: &Scene) -> bool {
         match self.kind {
             Kind::Camera | Kind::Escaped => true,
-            Kind::Light(i) => !matches!(scene.lights()[i as usize], Light::Distant { .. }),
+            Kind::Light(i) => scene.lights()[i as usize].light_type() != LightType::DeltaDirection,
             Kind::Surface => self.bsdf.is_some_and(|b| b.flags().is_non_specular()),
         }
     }
@@ -222,14 +221,12 @@ impl Vertex {
         let inv_d2 = 1.0 / d2;
         let w = w * inv_d2.sqrt();
         let mut pdf = if self.is_infinite_light(scene) {
-            let (_, r) = scene_sphere(scene);
-            1.0 / (PI * r * r)
+            scene_disk_density(scene)
         } else {
             let Some(i) = self.light(scene) else {
                 return 0.0;
             };
-            let n = self.is_on_surface().then_some(self.ng);
-            pdf_le(scene, i as usize, n, w).1 * inv_d2
+            scene.lights()[i as usize].pdf_le(self.p, self.ng, w).dir * inv_d2
         };
         if v.is_on_surface() {
             pdf *= v.ng.dot(w).abs();
@@ -252,14 +249,21 @@ impl Vertex {
         let Some(i) = self.light(scene) else {
             return 0.0;
         };
-        let n = self.is_on_surface().then_some(self.ng);
-        scene.light_distribution().pmf(i as usize) * pdf_le(scene, i as usize, n, w).0
+        scene.light_distribution().pmf(i as usize) * scene.lights()[i as usize].pdf_le(self.p, self.ng, w).pos
     }
 
     /// The ray leaving this vertex towards `target` for a visibility test.
     pub fn shadow_ray(&self, target: Vec3) -> Ray {
         Ray::spawn_to(self.p, self.p_error, self.ng, target)
     }
+}
+
+/// Density per unit area with which a light at infinity starts its rays on the scene's disk,
+/// whichever light it is (pbrt-v4's `PDFLight` for them): 1/(π r²), r the radius of the
+/// scene's bounding sphere, as the lights' own `pdf_le` gives it.
+fn scene_disk_density(scene: &Scene) -> f32 {
+    let (_, r) = scene.bounds().bounding_sphere();
+    1.0 / (PI * r * r)
 }
 
 /// Density, per unit solid angle, with which the environment lights (chosen by power) emit

@@ -4,7 +4,6 @@
 //! the other direction would have (`pdf_rev`, filled in as the next vertex is sampled).
 
 use super::super::bsdf_at;
-use super::super::light_emit::sample_le;
 use super::vertex::{Kind, Vertex, infinite_light_density};
 use crate::material::TransportMode;
 use crate::math::{SampledSpectrum, Vec3};
@@ -78,22 +77,22 @@ impl Walk<'_> {
             return;
         };
         let (u1, u2) = (sampler.get_2d(), sampler.get_2d());
-        let Some(les) = sample_le(scene, light, u1, u2) else {
+        let Some(les) = scene.lights()[light].sample_le(u1, u2, scene.shapes(), scene.meshes())
+        else {
             return;
         };
-        let le = scene.light_radiance(light, self.lambda.as_ref(), les.l, les.factor, -les.d);
+        let le = scene.light_radiance(light, self.lambda.as_ref(), les.l, les.factor, -les.w);
         if le == SampledSpectrum::ZERO {
             return;
         }
         // The first vertex: density p_l·p_pos of its position.
         let p = p_choice * les.pdf_pos;
-        let n = les.n.unwrap_or(Vec3::ZERO);
-        let mut v = Vertex::endpoint(Kind::Light(light as u32), les.o, les.o_error, n, le);
+        let mut v = Vertex::endpoint(Kind::Light(light as u32), les.p, les.p_error, les.n, le);
         v.pdf_fwd = p;
         path.push(v);
         // β = Le·|cos θ| / (p_l·p_pos·p_dir).
         let beta = le * (les.abs_cos() / (p * les.pdf_dir));
-        let ray = Ray::spawn(les.o, les.o_error, les.n.unwrap_or(les.d), les.d);
+        let ray = les.ray();
         let n_walk = self.random_walk(
             ray,
             sampler,

@@ -15,9 +15,15 @@
 
 pub mod model;
 
+use super::bounds::LightExtent;
+use super::distant::{disk_pdf, disk_point, has_disk};
+use super::kind::{
+    LightDescKind, LightKind, LightLePdf, LightLeSample, LightType, SceneSphere, point_error,
+};
 use super::sample::{LightLiSample, LightSampleContext};
 use crate::math::{PI, Rgb, SampledSpectrum, Transform, Vec2, Vec3, luminance};
 use crate::sampling::PiecewiseConstant2D;
+use crate::shape::{Shape, TriangleMesh};
 use crate::spectrum::sampled::SampledWavelengths;
 use glam::DVec3;
 use model::{Basis, SPECTRAL_CHANNELS, SkyChannel};
@@ -25,6 +31,37 @@ use model::{Basis, SPECTRAL_CHANNELS, SkyChannel};
 /// Azimuth × cos θ cells of the sky's sampling table.
 const TABLE_PHI: usize = 128;
 const TABLE_Z: usize = 64;
+
+/// A `sunsky` light as a scene describes it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SunskyDesc {
+    /// Light space (zenith +z) → world space.
+    pub light_to_world: Transform,
+    /// The sun's direction, turbidity, albedo and scales.
+    pub params: SunskyParams,
+}
+
+impl LightDescKind for SunskyDesc {
+    type Light = SunskyLight;
+
+    fn pbrt_name(&self) -> &'static str {
+        "sunsky"
+    }
+
+    /// Counted with the environment lights, as `infinite`.
+    fn count_name(&self) -> &'static str {
+        "infinite"
+    }
+
+    /// [`SunskyParams::check`].
+    fn validate(&self) -> Result<(), String> {
+        self.params.check().map_or(Ok(()), Err)
+    }
+
+    fn build(&self, scene: &SceneSphere) -> Result<SunskyLight, String> {
+        Ok(SunskyLight::new(self.light_to_world, &self.params, *scene))
+    }
+}
 
 /// What a `sunsky` light is made of (the scene description's parameters).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -116,13 +153,13 @@ pub struct SunskyLight {
     p_sun: f32,
     /// ∫ L dω over sky and sun, averaged over the RGB channels (for the power).
     radiance_integral: f32,
-    /// Radius of the scene's bounding sphere.
-    scene_radius: f32,
+    /// The scene's bounding sphere.
+    scene: SceneSphere,
 }
 
 impl SunskyLight {
     /// The light; `params` must pass [`SunskyParams::check`].
-    pub fn new(light_to_world: Transform, params: &SunskyParams, scene_radius: f32) -> SunskyLight {
+    pub fn new(light_to_world: Transform, params: &SunskyParams, scene: SceneSphere) -> SunskyLight {
         let sun_d = DVec3::new(
             params.sun_direction.x as f64,
             params.sun_direction.y as f64,
@@ -163,7 +200,7 @@ impl SunskyLight {
             sky_table: PiecewiseConstant2D::new(&[1.0], 1, 1).expect("one cell"),
             p_sun: 0.0,
             radiance_integral: 0.0,
-            scene_radius,
+            scene,
         };
         light.build_sampling();
         light
@@ -329,6 +366,21 @@ impl SunskyLight {
     /// A direction towards the sun (probability `p_sun`, uniform over its disk) or the sky (by
     /// its luminance), with the radiance from there and the mixture's density.
     pub fn sample_li(&self, ctx: &LightSampleContext, u: Vec2) -> Option<LightLiSample> {
+        let (wi, wl, pdf) = self.sample_direction(u)?;
+        Some(LightLiSample {
+            l: self.radiance_rgb(wl),
+            factor: 1.0,
+            wi,
+            pdf,
+            p_light: ctx.p + wi * (2.0 * self.scene.radius.max(1e-3)),
+        })
+    }
+
+    /// A world direction towards the sun (probability `p_sun`, uniform over its disk) or the
+    /// sky (by its luminance) from `u`, with its light-space twin (as `le` and `pdf_li` will
+    /// see it) and the mixture's density there; `None` when the light is black or the
+    /// density is not positive and finite.
+    fn sample_direction(&self, u: Vec2) -> Option<(Vec3, Vec3, f32)> {
         if self.is_black() {
             return None;
         }
@@ -355,13 +407,7 @@ impl SunskyLight {
         // Evaluated at the world direction as `le` and `pdf_li` will be.
         let wl = self.to_light(wi);
         let pdf = self.pdf_light(wl);
-        (pdf > 0.0 && pdf.is_finite()).then(|| LightLiSample {
-            l: self.radiance_rgb(wl),
-            factor: 1.0,
-            wi,
-            pdf,
-            p_light: ctx.p + wi * (2.0 * self.scene_radius.max(1e-3)),
-        })
+        (pdf > 0.0 && pdf.is_finite()).then_some((wi, wl, pdf))
     }
 
     /// Density with which [`SunskyLight::sample_li`] picks world direction `wi`.
@@ -372,12 +418,92 @@ impl SunskyLight {
 
     /// Φ = π r² ∫ L dω, averaged over the RGB channels.
     pub fn power(&self) -> f32 {
-        PI * self.scene_radius * self.scene_radius * self.radiance_integral
+        PI * self.scene.radius * self.scene.radius * self.radiance_integral
     }
 
     /// Bytes of the sampling table.
     pub fn table_bytes(&self) -> usize {
         self.sky_table.memory_bytes()
+    }
+}
+
+impl LightKind for SunskyLight {
+    fn light_type(&self) -> LightType {
+        LightType::Infinite
+    }
+
+    #[inline]
+    fn sample_li(
+        &self,
+        ctx: &LightSampleContext,
+        u: Vec2,
+        _: &[Shape],
+        _: &[TriangleMesh],
+    ) -> Option<LightLiSample> {
+        SunskyLight::sample_li(self, ctx, u)
+    }
+
+    fn pdf_li(&self, _: &LightSampleContext, wi: Vec3, _: Option<(Vec3, Vec3)>) -> f32 {
+        SunskyLight::pdf_li(self, wi)
+    }
+
+    fn power(&self) -> f32 {
+        SunskyLight::power(self)
+    }
+
+    fn extent(&self, _: &[Shape], _: &[TriangleMesh]) -> LightExtent {
+        LightExtent::Unbounded
+    }
+
+    fn constant_colour(&self) -> Option<Rgb> {
+        None
+    }
+
+    fn le(&self, d: Vec3) -> Rgb {
+        SunskyLight::le(self, d)
+    }
+
+    /// The sun and sky are spectral by nature: the model's spectrum along `wi`.
+    fn le_spectral(&self, wi: Vec3, lambda: &SampledWavelengths) -> Option<SampledSpectrum> {
+        Some(SunskyLight::le_spectral(self, wi, lambda))
+    }
+
+    /// As the image environment's: the direction the light comes from chosen from `u1` as
+    /// [`SunskyLight::sample_li`] chooses it (p_dir its density), the ray travelling opposite
+    /// it from a point uniform on the scene's disk (p_pos = 1/(π r²)).
+    fn sample_le(
+        &self,
+        u1: Vec2,
+        u2: Vec2,
+        _: &[Shape],
+        _: &[TriangleMesh],
+    ) -> Option<LightLeSample> {
+        if !has_disk(&self.scene) {
+            return None;
+        }
+        let (from, wl, pdf_dir) = self.sample_direction(u1)?;
+        let p = disk_point(&self.scene, from, u2);
+        Some(LightLeSample {
+            l: self.radiance_rgb(wl),
+            factor: 1.0,
+            p,
+            p_error: point_error(p),
+            w: -from,
+            n: Vec3::ZERO,
+            pdf_pos: disk_pdf(&self.scene),
+            pdf_dir,
+        })
+    }
+
+    fn pdf_le(&self, _: Vec3, _: Vec3, w: Vec3) -> LightLePdf {
+        LightLePdf {
+            pos: disk_pdf(&self.scene),
+            dir: SunskyLight::pdf_li(self, -w),
+        }
+    }
+
+    fn heap_bytes(&self) -> usize {
+        size_of_val(self) + self.table_bytes()
     }
 }
 

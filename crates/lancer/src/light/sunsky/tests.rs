@@ -10,7 +10,11 @@ fn rand2(i: u64, seed: u64) -> Vec2 {
 /// 0.65) in light space, turbidity 3, albedo 0.3.
 fn light(params: SunskyParams) -> SunskyLight {
     let t = Transform::rotate(-90.0, Vec3::X).expect("a rotation");
-    SunskyLight::new(t, &params, 10.0)
+    let scene = SceneSphere {
+        centre: Vec3::ZERO,
+        radius: 10.0,
+    };
+    SunskyLight::new(t, &params, scene)
 }
 
 fn reference() -> SunskyLight {
@@ -163,6 +167,24 @@ fn sampling_estimates_the_irradiance() {
 
 /// A sun below the horizon leaves the light black (as Mitsuba): no radiance, no samples, no
 /// power.
+/// Rays leaving the light (`sample_le`) carry its power, `pdf_le` gives each ray's densities,
+/// and the directions' density integrates over the sphere to the sky's share (uniform
+/// directions miss the sun's tiny disk, which holds the rest, `p_sun`).
+#[test]
+fn emitted_rays_carry_the_power() {
+    use crate::light::testing::{le_dir_integral, le_pdfs_agree, le_power};
+    let l = reference();
+    let phi = le_power(&l, &[], &[], 1 << 16);
+    let want = l.power();
+    assert!((phi - want).abs() < 0.02 * want, "{phi} vs {want}");
+    le_pdfs_agree(&l, &[], &[], 256, 1e-4);
+    let sky = le_dir_integral(&l, Vec3::ZERO, Vec3::ZERO, 1 << 16);
+    assert!((sky - (1.0 - l.p_sun)).abs() < 0.02, "{sky} vs {}", 1.0 - l.p_sun);
+    // Below the horizon nothing leaves.
+    let dark = light(SunskyParams::new(Vec3::new(0.3, 0.2, -0.1)));
+    assert!(dark.sample_le(Vec2::splat(0.5), Vec2::splat(0.5), &[], &[]).is_none());
+}
+
 #[test]
 fn a_sun_below_the_horizon_is_black() {
     let l = light(SunskyParams::new(Vec3::new(0.3, 0.2, -0.1)));
