@@ -119,9 +119,8 @@ pub fn light(
 fn sunsky(r: &Reader, ctm: Transform, loc: &Location) -> Result<Fallback<LightDesc>, SceneError> {
     let params = r.params;
     let e = 10f32.to_radians();
-    let mut p = SunskyParams::new(
-        params.vector3("sundirection", Vec3::new(0.0, e.cos(), e.sin()))?,
-    );
+    let mut p =
+        SunskyParams::new(params.vector3("sundirection", Vec3::new(0.0, e.cos(), e.sin()))?);
     p.turbidity = params.float("turbidity", p.turbidity)?;
     p.albedo = params.float("albedo", p.albedo)?;
     p.sun_scale = params.float("sunscale", 1.0)?;
@@ -488,7 +487,8 @@ mod tests {
             (4.0, 0.5, 2.0, 0.5, 3.0)
         );
         // Defaults: Mitsuba's turbidity and albedo, makesky's sun 10° above the horizon.
-        let LightDesc::Sunsky(SunskyDesc { params, .. }) = converted(r#"LightSource "sunsky""#, ID) else {
+        let LightDesc::Sunsky(SunskyDesc { params, .. }) = converted(r#"LightSource "sunsky""#, ID)
+        else {
             panic!("a sunsky light")
         };
         assert_eq!((params.turbidity, params.albedo), (3.0, 0.3));

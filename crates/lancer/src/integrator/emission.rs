@@ -60,7 +60,10 @@ pub(crate) fn emission_at(
         return None;
     }
     let l = match scene.lights()[e.light as usize].as_area() {
-        Some(a) if e.spectrum == crate::scene::IMAGE_EMISSION && let Some(img) = &a.image => {
+        Some(a)
+            if e.spectrum == crate::scene::IMAGE_EMISSION
+                && let Some(img) = &a.image =>
+        {
             img.le(uv)
         }
         _ => e.l.into(),

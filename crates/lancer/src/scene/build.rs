@@ -17,7 +17,7 @@ use crate::camera::Camera;
 use crate::camera::footprint::Footprints;
 use crate::light::{AreaImage, AreaLight, Light, LightDistribution, LightSampler, SceneSphere};
 use crate::material::{Material, MaterialDesc};
-use crate::math::{Bounds3, PackedRgb, Rgb, Transform, Vec3};
+use crate::math::{Bounds3, Transform, Vec3};
 use crate::shape::{Placing, Shape, TriangleMesh};
 use crate::spectrum::dense::Measured;
 use crate::texture::{FloatTex, FloatTexture, ImageTexture, SpectrumTexture};

@@ -11,7 +11,7 @@ use crate::integrator::Integrator;
 /// Lights are described where their kinds live, in [`crate::light`].
 pub use crate::light::{AreaLightDesc, LightDesc};
 use crate::material::MaterialDesc;
-use crate::math::{AnimatedTransform, Transform, Vec3};
+use crate::math::{AnimatedTransform, Transform};
 pub use crate::shape::Geometry;
 use crate::shape::RuleError;
 use crate::texture::{FloatTex, FloatTexture, SpectrumTexture};

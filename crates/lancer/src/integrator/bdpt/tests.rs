@@ -501,7 +501,9 @@ fn white_furnace() {
             area_light: None,
             alpha: None,
         }],
-        lights: vec![LightDesc::UniformInfinite(UniformInfiniteDesc { l: Rgb::ONE })],
+        lights: vec![LightDesc::UniformInfinite(UniformInfiniteDesc {
+            l: Rgb::ONE,
+        })],
         ..SceneDesc::default()
     };
     let scene = Scene::build(&desc).unwrap();

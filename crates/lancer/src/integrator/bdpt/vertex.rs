@@ -249,7 +249,8 @@ impl Vertex {
         let Some(i) = self.light(scene) else {
             return 0.0;
         };
-        scene.light_distribution().pmf(i as usize) * scene.lights()[i as usize].pdf_le(self.p, self.ng, w).pos
+        scene.light_distribution().pmf(i as usize)
+            * scene.lights()[i as usize].pdf_le(self.p, self.ng, w).pos
     }
 
     /// The ray leaving this vertex towards `target` for a visibility test.

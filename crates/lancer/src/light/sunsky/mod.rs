@@ -159,7 +159,11 @@ pub struct SunskyLight {
 
 impl SunskyLight {
     /// The light; `params` must pass [`SunskyParams::check`].
-    pub fn new(light_to_world: Transform, params: &SunskyParams, scene: SceneSphere) -> SunskyLight {
+    pub fn new(
+        light_to_world: Transform,
+        params: &SunskyParams,
+        scene: SceneSphere,
+    ) -> SunskyLight {
         let sun_d = DVec3::new(
             params.sun_direction.x as f64,
             params.sun_direction.y as f64,

@@ -179,10 +179,17 @@ fn emitted_rays_carry_the_power() {
     assert!((phi - want).abs() < 0.02 * want, "{phi} vs {want}");
     le_pdfs_agree(&l, &[], &[], 256, 1e-4);
     let sky = le_dir_integral(&l, Vec3::ZERO, Vec3::ZERO, 1 << 16);
-    assert!((sky - (1.0 - l.p_sun)).abs() < 0.02, "{sky} vs {}", 1.0 - l.p_sun);
+    assert!(
+        (sky - (1.0 - l.p_sun)).abs() < 0.02,
+        "{sky} vs {}",
+        1.0 - l.p_sun
+    );
     // Below the horizon nothing leaves.
     let dark = light(SunskyParams::new(Vec3::new(0.3, 0.2, -0.1)));
-    assert!(dark.sample_le(Vec2::splat(0.5), Vec2::splat(0.5), &[], &[]).is_none());
+    assert!(
+        dark.sample_le(Vec2::splat(0.5), Vec2::splat(0.5), &[], &[])
+            .is_none()
+    );
 }
 
 #[test]

@@ -1,10 +1,11 @@
 //! The description's validation rules, one message per rule.
 
 use super::*;
-use crate::math::Rgb;
+use crate::math::{Rgb, Vec3};
 use crate::shape::{
     BoxDesc, ConeDesc, HyperboloidDesc, ParaboloidDesc, PlaneDesc, SphereDesc, TriangleMesh,
 };
+use std::sync::Arc;
 
 fn sphere(radius: f32) -> Geometry {
     Geometry::Sphere(SphereDesc {
