@@ -323,28 +323,6 @@ pub fn render_tile<T: FilmTile, I: SampleIntegrator + ?Sized>(
     stats
 }
 
-/// [`render_tile`] for an `rgb` film with the settings' integrator: the tile's colour sums
-/// (row-major) and totals.
-pub fn render_tile_samples(
-    scene: &Scene,
-    settings: &RenderSettings,
-    tile: &PixelBounds,
-    samples: std::ops::Range<u32>,
-) -> (Vec<PixelSum>, RenderStats) {
-    let mut sums = RgbTile::new(tile);
-    let splats = Splats::none(scene, settings);
-    let stats = render_tile(
-        scene,
-        settings,
-        &settings.integrator,
-        &mut sums,
-        &splats,
-        tile,
-        samples,
-    );
-    (sums.colour().to_vec(), stats)
-}
-
 /// What a camera sample's colour adds to the film: black for a non-finite sample (a bug
 /// upstream, counted in `stats`; it must not poison the pixel), and scaled down to
 /// `maxcomponentvalue` when brighter.

@@ -74,9 +74,6 @@ pub trait FilmTile: Send {
     /// weight `weight`.
     fn add_sample(&mut self, pixel: usize, sample: &FilmSample<'_>, weight: f32);
 
-    /// The colour sums, row-major over the tile.
-    fn colour(&self) -> &[PixelSum];
-
     /// Adds the tile's sums (over `tile`) into `film` (exact integer sums; the g-buffer's
     /// floating-point sums are added pixel by pixel, in the order the tiles are merged).
     fn merge_into(&self, film: &mut Film, tile: &PixelBounds);
@@ -101,10 +98,6 @@ impl FilmTile for RgbTile {
     #[inline(always)]
     fn add_sample(&mut self, pixel: usize, sample: &FilmSample<'_>, weight: f32) {
         self.sums[pixel].add(sample.rgb, weight);
-    }
-
-    fn colour(&self) -> &[PixelSum] {
-        &self.sums
     }
 
     fn merge_into(&self, film: &mut Film, tile: &PixelBounds) {
@@ -153,10 +146,6 @@ impl FilmTile for GbufferTile {
         self.aux[pixel].add(sample.sensor_rgb, weight, vs.as_ref());
     }
 
-    fn colour(&self) -> &[PixelSum] {
-        &self.sums
-    }
-
     fn merge_into(&self, film: &mut Film, tile: &PixelBounds) {
         film.merge_tile(tile, &self.sums);
         film.merge_gbuffer_tile(tile, &self.aux);
@@ -197,10 +186,6 @@ impl FilmTile for SpectralTile {
             self.buckets
                 .add(pixel, sample.l, lambda, weight, self.max_component_value);
         }
-    }
-
-    fn colour(&self) -> &[PixelSum] {
-        &self.sums
     }
 
     fn merge_into(&self, film: &mut Film, tile: &PixelBounds) {
