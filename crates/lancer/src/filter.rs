@@ -97,6 +97,22 @@ fn mitchell_1d(x: f32, b: f32, c: f32) -> f32 {
     }
 }
 
+/// The filter's profile along one axis of half-width `r`, f(x) for |x| ≤ r (its 2D value
+/// is f(x)·f(y)), as pbrt-v4's filters evaluate it: 1 (box), r − |x| (triangle),
+/// g(x) − g(r) for the normal density g of deviation σ (gaussian), Mitchell–Netravali's
+/// cubic at 2x/r, and sinc(x)·sinc(x/τ) (lanczos). What the sampling tables hold and what
+/// splats are spread by.
+#[inline]
+fn profile(desc: FilterDesc, x: f32, r: f32) -> f32 {
+    match desc {
+        FilterDesc::Box { .. } => 1.0,
+        FilterDesc::Triangle { .. } => (r - x.abs()).max(0.0),
+        FilterDesc::Gaussian { sigma, .. } => (gaussian(x, sigma) - gaussian(r, sigma)).max(0.0),
+        FilterDesc::Mitchell { b, c, .. } => mitchell_1d(2.0 * x / r, b, c),
+        FilterDesc::Lanczos { tau, .. } => sinc(x) * sinc(x / tau),
+    }
+}
+
 fn sinc(x: f32) -> f32 {
     if x.abs() < 1e-5 {
         1.0
@@ -109,29 +125,13 @@ fn sinc(x: f32) -> f32 {
 impl Filter {
     /// A filter from its description.
     pub fn new(desc: FilterDesc) -> Filter {
-        let table = |r: f32, f: &dyn Fn(f32) -> f32| Table1D::new(r.max(1e-3), f);
         let tables = match desc {
             FilterDesc::Box { .. } => None,
-            FilterDesc::Triangle { radius } => Some([
-                table(radius[0], &|x| (radius[0] - x.abs()).max(0.0)),
-                table(radius[1], &|y| (radius[1] - y.abs()).max(0.0)),
-            ]),
-            FilterDesc::Gaussian { radius, sigma } => Some([
-                table(radius[0], &|x| {
-                    (gaussian(x, sigma) - gaussian(radius[0], sigma)).max(0.0)
-                }),
-                table(radius[1], &|y| {
-                    (gaussian(y, sigma) - gaussian(radius[1], sigma)).max(0.0)
-                }),
-            ]),
-            FilterDesc::Mitchell { radius, b, c } => Some([
-                table(radius[0], &|x| mitchell_1d(2.0 * x / radius[0], b, c)),
-                table(radius[1], &|y| mitchell_1d(2.0 * y / radius[1], b, c)),
-            ]),
-            FilterDesc::Lanczos { radius, tau } => Some([
-                table(radius[0], &|x| sinc(x) * sinc(x / tau)),
-                table(radius[1], &|y| sinc(y) * sinc(y / tau)),
-            ]),
+            _ => {
+                let r = desc.radius();
+                let table = |r: f32| Table1D::new(r.max(1e-3), |x| profile(desc, x, r));
+                Some([table(r.x), table(r.y)])
+            }
         };
         Filter { desc, tables }
     }
@@ -164,15 +164,9 @@ impl Filter {
     }
 
     /// The filter's half-widths (pbrt-v4's `Filter::Radius`).
+    #[inline]
     pub fn radius(&self) -> Vec2 {
-        let r = match self.desc {
-            FilterDesc::Box { radius }
-            | FilterDesc::Triangle { radius }
-            | FilterDesc::Gaussian { radius, .. }
-            | FilterDesc::Mitchell { radius, .. }
-            | FilterDesc::Lanczos { radius, .. } => radius,
-        };
-        Vec2::new(r[0], r[1])
+        self.desc.radius()
     }
 
     /// The filter's value at offset `p` from a pixel centre (pbrt-v4's `Filter::Evaluate`):
@@ -182,16 +176,7 @@ impl Filter {
         if p.x.abs() > r.x || p.y.abs() > r.y {
             return 0.0;
         }
-        let f = |x: f32, r: f32| match self.desc {
-            FilterDesc::Box { .. } => 1.0,
-            FilterDesc::Triangle { .. } => (r - x.abs()).max(0.0),
-            FilterDesc::Gaussian { sigma, .. } => {
-                (gaussian(x, sigma) - gaussian(r, sigma)).max(0.0)
-            }
-            FilterDesc::Mitchell { b, c, .. } => mitchell_1d(2.0 * x / r, b, c),
-            FilterDesc::Lanczos { tau, .. } => sinc(x) * sinc(x / tau),
-        };
-        f(p.x, r.x) * f(p.y, r.y)
+        profile(self.desc, p.x, r.x) * profile(self.desc, p.y, r.y)
     }
 
     /// ∫∫ f(x, y) dx dy over the filter's support (pbrt-v4's `Filter::Integral`, which splats
@@ -232,6 +217,68 @@ mod tests {
                 assert!(p.x.abs() <= 1.5 && p.y.abs() <= 1.5);
                 assert!((w - 1.0).abs() < 1e-3, "{d:?}: weight {w}");
             }
+        }
+    }
+
+    /// Splats are spread by `evaluate` and divided by `integral`: the integral must be that of
+    /// `evaluate` over the support (a midpoint sum on a fine grid), negative lobes included,
+    /// and pbrt-v4's closed forms where it has them: 4·rx·ry (box), rx²·ry² (triangle),
+    /// rx·ry/4 (Mitchell).
+    #[test]
+    fn integral_is_that_of_evaluate() {
+        let third = 1.0 / 3.0;
+        let cases = [
+            (FilterDesc::Box { radius: [0.5, 1.5] }, Some(3.0)),
+            (FilterDesc::Triangle { radius: [1.0, 2.0] }, Some(4.0)),
+            (
+                FilterDesc::Gaussian {
+                    radius: [1.5, 1.5],
+                    sigma: 0.5,
+                },
+                None,
+            ),
+            (
+                FilterDesc::Mitchell {
+                    radius: [2.0, 1.0],
+                    b: third,
+                    c: third,
+                },
+                Some(0.5),
+            ),
+            (
+                FilterDesc::Lanczos {
+                    radius: [2.0, 2.0],
+                    tau: 2.0,
+                },
+                None,
+            ),
+        ];
+        for (d, closed) in cases {
+            let f = Filter::new(d);
+            let r = f.radius();
+            let n = 500;
+            let (dx, dy) = (2.0 * r.x as f64 / n as f64, 2.0 * r.y as f64 / n as f64);
+            let mut sum = 0.0f64;
+            for i in 0..n {
+                for j in 0..n {
+                    let p = Vec2::new(
+                        (-r.x as f64 + (i as f64 + 0.5) * dx) as f32,
+                        (-r.y as f64 + (j as f64 + 0.5) * dy) as f32,
+                    );
+                    sum += f.evaluate(p) as f64;
+                }
+            }
+            let numeric = sum * dx * dy;
+            let got = f.integral() as f64;
+            assert!(
+                (got - numeric).abs() < 1e-3 * numeric.abs(),
+                "{d:?}: integral {got}, ∫∫evaluate {numeric}"
+            );
+            if let Some(c) = closed {
+                assert!((got - c).abs() < 1e-3 * c, "{d:?}: integral {got}, want {c}");
+            }
+            // Nothing outside the radius.
+            assert_eq!(f.evaluate(Vec2::new(r.x * 1.01, 0.0)), 0.0);
         }
     }
 
