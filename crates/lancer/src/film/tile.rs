@@ -110,6 +110,8 @@ impl FilmTile for RgbTile {
 #[derive(Clone, Debug)]
 pub struct GbufferTile {
     config: GbufferConfig,
+    /// The ray differentials' scale for the configuration's spp.
+    differential_scale: f32,
     sums: Vec<PixelSum>,
     aux: Vec<GPixel>,
 }
@@ -120,6 +122,7 @@ impl GbufferTile {
         let n = tile.area() as usize;
         GbufferTile {
             config,
+            differential_scale: super::gsums::differential_scale(config.spp),
             sums: vec![PixelSum::default(); n],
             aux: vec![GPixel::default(); n],
         }
@@ -131,8 +134,9 @@ impl FilmTile for GbufferTile {
     // pbrt-v4's variance is of the sensor's RGB.
     const NEEDS_SENSOR_RGB: bool = true;
 
+    #[inline]
     fn differential_scale(&self) -> f32 {
-        super::gsums::differential_scale(self.config.spp)
+        self.differential_scale
     }
 
     #[inline]
