@@ -695,7 +695,13 @@ pub fn report(
             }
         }
     }
-    report_nonfinite(scene, settings, &done.stats, args.check_nan)
+    report_nonfinite(
+        scene,
+        settings,
+        plan.state.film.kind(),
+        &done.stats,
+        args.check_nan,
+    )
 }
 
 /// Says how many samples were NaN or infinite; with `--check-nan`, replays the first one and
@@ -703,6 +709,7 @@ pub fn report(
 fn report_nonfinite(
     scene: &Scene,
     settings: &RenderSettings,
+    film: lancer::film::tile::FilmKind,
     stats: &RenderStats,
     check_nan: bool,
 ) -> Result<(), CliError> {
@@ -723,7 +730,7 @@ fn report_nonfinite(
         eprintln!("warning: {what} (--check-nan shows its path)");
         return Ok(());
     }
-    let (l, path) = lancer::render::trace_sample(scene, settings, id);
+    let (l, path) = lancer::render::trace_sample(scene, settings, film, id);
     eprintln!("{what}; its radiance is {l:?}; its path:");
     for v in &path {
         eprintln!(

@@ -364,18 +364,6 @@ fn scene_film_rgb(
     }
 }
 
-/// In spectral mode (radiance integrators only), the sample's wavelengths, drawn from the
-/// sampler's next dimension, right after the camera's (so they are, like everything else, a
-/// pure function of seed, pixel and sample index). In RGB mode nothing: the dimension layout
-/// is the same as before spectral mode existed.
-fn sample_wavelengths(
-    settings: &RenderSettings,
-    sampler: &mut Sampler,
-) -> Option<crate::spectrum::sampled::SampledWavelengths> {
-    (settings.spectral && settings.integrator.computes_radiance())
-        .then(|| crate::spectrum::sampled::SampledWavelengths::sample_visible(sampler.get_1d()))
-}
-
 /// The camera ray of sample `s` of pixel (`x`, `y`) (`None` when a lens blocks it) and its
 /// filter weight, leaving `sampler` ready for the integrator's dimensions. Inlined: returned
 /// from a call, the ray came back through memory in narrow stores that the caller read in
@@ -422,16 +410,19 @@ fn camera_ray_at(
     )
 }
 
-/// Replays one camera sample, recording the path the integrator followed (for
-/// `--check-nan`): the same radiance as the render computed for it, and its vertices.
+/// Replays one camera sample of a film of kind `film`, recording the path the integrator
+/// followed (for `--check-nan`): the same radiance as the render computed for it (its
+/// wavelengths drawn as the film's tiles draw them), and its vertices.
 pub fn trace_sample(
     scene: &Scene,
     settings: &RenderSettings,
+    film: FilmKind,
     id: SampleId,
 ) -> (crate::math::Rgb, Vec<crate::integrator::PathVertex>) {
     let mut sampler = Sampler::new(settings.sampler, settings.spp, settings.seed);
     let (ray, _) = camera_ray(scene, settings, &mut sampler, id.x, id.y, id.sample);
-    let lambda = sample_wavelengths(settings, &mut sampler);
+    let lambda = (settings.spectral && settings.integrator.computes_radiance())
+        .then(|| film.sample_wavelengths(sampler.get_1d()));
     let mut path = Vec::new();
     let l = match ray {
         Some(r) => {
@@ -666,6 +657,66 @@ impl<I: SampleIntegrator + ?Sized> UnitContext<'_, I> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `--check-nan`'s replay takes the very sample the render took: on a `spectral` film the
+    /// wavelengths are drawn over the buckets' range (not by the visible density), and the
+    /// replayed colour is the one the film received, sample by sample.
+    #[test]
+    fn trace_sample_replays_the_films_wavelengths() {
+        use crate::film::spectral::{SpectralDesc, SpectralSums};
+        use crate::light::UniformInfiniteDesc;
+        use crate::scene::desc::LightDesc;
+        let mut d = SceneDesc {
+            lights: vec![LightDesc::UniformInfinite(UniformInfiniteDesc {
+                l: Rgb::new(0.9, 0.3, 0.1),
+            })],
+            ..SceneDesc::default()
+        };
+        d.film.xresolution = 2;
+        d.film.yresolution = 1;
+        d.sampler.spp = 4;
+        let scene = Scene::build(&d).unwrap();
+        let settings = RenderSettings::from_desc(&d);
+        assert!(settings.spectral && settings.integrator.computes_radiance());
+        let spectral = SpectralDesc::default();
+        for kind in [FilmKind::Rgb, FilmKind::Spectral(spectral)] {
+            for x in 0..2 {
+                for s in 0..4 {
+                    let pixel = PixelBounds {
+                        x0: x,
+                        x1: x + 1,
+                        y0: 0,
+                        y1: 1,
+                    };
+                    let mut film = Film::new(2, 1, pixel);
+                    if let FilmKind::Spectral(desc) = kind {
+                        film.spectral = Some(Box::new(SpectralSums::new(desc, 1)));
+                    }
+                    assert_eq!(film.kind(), kind);
+                    let units = work_units(&pixel, 1, s..s + 1, 1);
+                    let mut done = vec![false; units.len()];
+                    render_units(
+                        &scene,
+                        &settings,
+                        &mut film,
+                        &units,
+                        &mut done,
+                        &|_, _| {},
+                        &|| false,
+                    );
+                    let rendered = film.pixels[0].value();
+                    let id = SampleId { y: 0, x, sample: s };
+                    let (replayed, _) = trace_sample(&scene, &settings, kind, id);
+                    assert!(rendered.max_element() > 0.0);
+                    assert!(
+                        (rendered - replayed).abs().max_element()
+                            <= 1e-5 * rendered.max_element(),
+                        "{kind:?} {id:?}: rendered {rendered}, replayed {replayed}"
+                    );
+                }
+            }
+        }
+    }
 
     #[test]
     fn work_units_cover_every_pixel_sample_once_pass_by_pass() {

@@ -8,6 +8,7 @@
 
 use crate::common::*;
 use lancer::Scene;
+use lancer::film::tile::FilmKind;
 use lancer::filter::Filter;
 use lancer::integrator::Integrator;
 use lancer::math::Vec2;
@@ -140,7 +141,7 @@ fn nonfinite_samples_are_counted_dropped_and_replayed() {
     // Replaying it gives the same non-finite radiance, along a path that reaches the
     // poisoned sphere (seen or hit) or samples it as a light (the radiance gathered so far
     // turns non-finite at that vertex).
-    let (l, path) = lancer::render::trace_sample(&scene, &settings, first);
+    let (l, path) = lancer::render::trace_sample(&scene, &settings, FilmKind::Rgb, first);
     assert!(!l.is_finite(), "replayed radiance {l:?}");
     let on_poisoned = |p: lancer::math::Vec3| {
         ((p - lancer::math::Vec3::new(-1.0, 0.0, 0.0)).length() - 0.6).abs() < 1e-3
@@ -157,7 +158,7 @@ fn nonfinite_samples_are_counted_dropped_and_replayed() {
                 if id >= first {
                     continue;
                 }
-                let (l, _) = lancer::render::trace_sample(&scene, &settings, id);
+                let (l, _) = lancer::render::trace_sample(&scene, &settings, FilmKind::Rgb, id);
                 assert!(l.is_finite(), "{id:?} gave {l:?} before the first");
             }
         }

@@ -64,10 +64,10 @@ pub trait FilmTile: Send {
     }
 
     /// A camera sample's wavelengths from one uniform number: by default pbrt-v4's density
-    /// over the visible range.
+    /// over the visible range ([`FilmKind::sample_wavelengths`], which replays draw with).
     #[inline]
     fn sample_wavelengths(&self, u: f32) -> SampledWavelengths {
-        SampledWavelengths::sample_visible(u)
+        FilmKind::Rgb.sample_wavelengths(u)
     }
 
     /// Adds a camera sample of pixel `pixel` (row-major index within the tile) with filter
@@ -181,7 +181,7 @@ impl SpectralTile {
 impl FilmTile for SpectralTile {
     #[inline]
     fn sample_wavelengths(&self, u: f32) -> SampledWavelengths {
-        self.buckets.desc.sample_wavelengths(u)
+        FilmKind::Spectral(self.buckets.desc).sample_wavelengths(u)
     }
 
     fn add_sample(&mut self, pixel: usize, sample: &FilmSample<'_>, weight: f32) {
@@ -210,6 +210,16 @@ pub enum FilmKind {
 }
 
 impl FilmKind {
+    /// A camera sample's wavelengths from one uniform number, as this kind's tiles draw them
+    /// ([`FilmTile::sample_wavelengths`]): uniformly over the buckets' range for a spectral
+    /// film, else by pbrt-v4's density over the visible range.
+    pub fn sample_wavelengths(&self, u: f32) -> SampledWavelengths {
+        match self {
+            FilmKind::Spectral(d) => d.sample_wavelengths(u),
+            _ => SampledWavelengths::sample_visible(u),
+        }
+    }
+
     /// Splat values per pixel: the colour, and one per bucket for a spectral film.
     pub fn splat_channels(&self) -> usize {
         match self {
