@@ -213,16 +213,7 @@ pub struct Splats<'a> {
     film: Option<FilmSplats<'a>>,
 }
 
-impl<'a> Splats<'a> {
-    /// Splats that go nowhere (for an integrator that never splats, or a replay).
-    pub fn none(scene: &'a Scene, settings: &RenderSettings) -> Splats<'a> {
-        Splats {
-            scene,
-            max_component_value: settings.max_component_value,
-            film: None,
-        }
-    }
-
+impl Splats<'_> {
     /// Adds radiance `l` (at `lambda` in spectral mode) arriving at film point `p_film`
     /// (pixel units, full image) to the pixels around it, as pbrt-v4's `AddSplat`: turned
     /// into the film's colour as a camera sample is, scaled down to `maxcomponentvalue`, and
@@ -563,7 +554,7 @@ pub fn render_units_with<I: SampleIntegrator + ?Sized>(
     // One plane shared by the threads, only for an integrator that splats.
     let plane = integrator
         .splats()
-        .then(|| AtomicSplats::new(settings.splat_bounds, kind.splat_channels(), None));
+        .then(|| AtomicSplats::new(settings.splat_bounds, kind.splat_channels()));
     let splats = Splats {
         scene,
         max_component_value: settings.max_component_value,

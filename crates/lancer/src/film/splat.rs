@@ -16,6 +16,17 @@
 use super::{PixelBounds, from_fixed, to_fixed};
 use std::sync::atomic::{AtomicI64, Ordering};
 
+/// Where the values of pixel (`x`, `y`) (full-image coordinates) begin in a plane over
+/// `bounds` with `channels` values per pixel, row-major; `None` outside it.
+#[inline]
+fn offset(bounds: &PixelBounds, channels: usize, x: i32, y: i32) -> Option<usize> {
+    let b = bounds;
+    if x < b.x0 || x >= b.x1 || y < b.y0 || y >= b.y1 {
+        return None;
+    }
+    Some(((y - b.y0) as usize * b.width() as usize + (x - b.x0) as usize) * channels)
+}
+
 /// A film's splat sums: `channels` fixed-point values per pixel of `bounds`, row-major: the
 /// colour (R, G, B), then, for a `spectral` film, one value per wavelength bucket.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -40,12 +51,8 @@ impl SplatPlane {
 
     /// The sums of pixel (`x`, `y`) (full-image coordinates), if the plane holds it.
     pub fn pixel(&self, x: i32, y: i32) -> Option<&[i64]> {
-        let b = &self.bounds;
-        if x < b.x0 || x >= b.x1 || y < b.y0 || y >= b.y1 {
-            return None;
-        }
-        let i = (y - b.y0) as usize * b.width() as usize + (x - b.x0) as usize;
-        self.sums.get(i * self.channels..(i + 1) * self.channels)
+        let i = offset(&self.bounds, self.channels, x, y)?;
+        self.sums.get(i..i + self.channels)
     }
 
     /// Channel `c` of pixel (`x`, `y`) as a float (0 outside the plane).
@@ -58,12 +65,14 @@ impl SplatPlane {
     pub fn merge(&mut self, o: &SplatPlane) {
         let t = self.bounds.intersect(&o.bounds);
         let c = self.channels.min(o.channels);
-        let (sw, ow) = (self.bounds.width() as usize, o.bounds.width() as usize);
         for y in t.y0..t.y1 {
             for x in t.x0..t.x1 {
-                let d = ((y - self.bounds.y0) as usize * sw + (x - self.bounds.x0) as usize)
-                    * self.channels;
-                let s = ((y - o.bounds.y0) as usize * ow + (x - o.bounds.x0) as usize) * o.channels;
+                let (Some(d), Some(s)) = (
+                    offset(&self.bounds, self.channels, x, y),
+                    offset(&o.bounds, o.channels, x, y),
+                ) else {
+                    continue;
+                };
                 for k in 0..c {
                     self.sums[d + k] = self.sums[d + k].wrapping_add(o.sums[s + k]);
                 }
@@ -83,16 +92,14 @@ pub struct AtomicSplats {
 }
 
 impl AtomicSplats {
-    /// A plane of zeros, or a copy of `start`.
-    pub fn new(bounds: PixelBounds, channels: usize, start: Option<&SplatPlane>) -> AtomicSplats {
-        let mut plane = SplatPlane::new(bounds, channels);
-        if let Some(s) = start {
-            plane.merge(s);
-        }
+    /// A plane of zeros.
+    pub fn new(bounds: PixelBounds, channels: usize) -> AtomicSplats {
         AtomicSplats {
             bounds,
             channels,
-            sums: plane.sums.into_iter().map(AtomicI64::new).collect(),
+            sums: (0..bounds.area() as usize * channels)
+                .map(|_| AtomicI64::new(0))
+                .collect(),
         }
     }
 
@@ -105,11 +112,9 @@ impl AtomicSplats {
     /// nothing outside the plane.
     #[inline]
     pub fn add(&self, x: i32, y: i32, values: &[f32]) {
-        let b = &self.bounds;
-        if x < b.x0 || x >= b.x1 || y < b.y0 || y >= b.y1 {
+        let Some(i) = offset(&self.bounds, self.channels, x, y) else {
             return;
-        }
-        let i = ((y - b.y0) as usize * b.width() as usize + (x - b.x0) as usize) * self.channels;
+        };
         for (s, &v) in self.sums[i..i + self.channels].iter().zip(values) {
             let v = to_fixed(v);
             if v != 0 {
@@ -122,11 +127,10 @@ impl AtomicSplats {
     /// Adds the single value `v` to channel `c` of pixel (`x`, `y`) (nothing outside).
     #[inline]
     pub fn add_channel(&self, x: i32, y: i32, c: usize, v: f32) {
-        let b = &self.bounds;
-        if x < b.x0 || x >= b.x1 || y < b.y0 || y >= b.y1 || c >= self.channels {
+        let Some(i) = offset(&self.bounds, self.channels, x, y).filter(|_| c < self.channels)
+        else {
             return;
-        }
-        let i = ((y - b.y0) as usize * b.width() as usize + (x - b.x0) as usize) * self.channels;
+        };
         let v = to_fixed(v);
         if v != 0 {
             self.sums[i + c].fetch_add(v, Ordering::Relaxed);
@@ -161,7 +165,7 @@ mod tests {
             y0: 1,
             y1: 2,
         };
-        let acc = AtomicSplats::new(b_b, 3, None);
+        let acc = AtomicSplats::new(b_b, 3);
         acc.add(3, 1, &[1.0, 2.0, 3.0]);
         acc.add(5, 1, &[1.0, 1.0, 1.0]);
         acc.add(9, 9, &[1.0, 1.0, 1.0]);
