@@ -225,13 +225,37 @@ impl Film {
         let (Some(s), Some(n)) = (&self.splats, divisor) else {
             return v;
         };
-        let w = self.bounds.width().max(1) as usize;
-        let (x, y) = (
-            self.bounds.x0 + (i % w) as i32,
-            self.bounds.y0 + (i / w) as i32,
-        );
+        let (x, y) = self.pixel_xy(i);
         let splat = |c: usize| (v[c] as f64 + s.value(x, y, c) / n) as f32;
         Rgb::new(splat(0), splat(1), splat(2))
+    }
+
+    /// The wavelength-bucket values of a `spectral` film's pixel `i` (row-major over
+    /// `bounds`): Σw·L/Σw per bucket ([`spectral::SpectralSums::values`]), plus S/n with the
+    /// bucket's splat sum S as [`Film::pixel_rgb`] adds the colour's (`divisor` =
+    /// [`Film::splat_divisor`]). Empty for other films.
+    pub fn bucket_values(&self, i: usize, divisor: Option<f64>) -> Vec<f32> {
+        let Some(s) = &self.spectral else {
+            return Vec::new();
+        };
+        let mut values = s.values(i);
+        if let (Some(sp), Some(n)) = (&self.splats, divisor) {
+            let (x, y) = self.pixel_xy(i);
+            for (b, v) in values.iter_mut().enumerate() {
+                *v += (sp.value(x, y, 3 + b) / n) as f32;
+            }
+        }
+        values
+    }
+
+    /// The full-image coordinates of pixel `i` (row-major over `bounds`).
+    #[inline]
+    fn pixel_xy(&self, i: usize) -> (i32, i32) {
+        let w = self.bounds.width().max(1) as usize;
+        (
+            self.bounds.x0 + (i % w) as i32,
+            self.bounds.y0 + (i / w) as i32,
+        )
     }
 
     /// Adds a tile's wavelength-bucket sums, if the film is a spectral one.

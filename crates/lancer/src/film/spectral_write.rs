@@ -49,27 +49,13 @@ fn spectral_layer(
         planes.push(c, v);
     };
     let divisor = film.splat_divisor();
-    let w = film.bounds.width() as usize;
     for i in 0..n {
         let rgb = film.pixel_rgb(i, divisor) * scale;
         for c in 0..3 {
             put(c, rgb[c], &mut planes);
         }
-        // A bucket's splats add S/n as the colour's do ([`super::splat`]).
-        let (x, y) = (
-            film.bounds.x0 + (i % w) as i32,
-            film.bounds.y0 + (i / w) as i32,
-        );
-        let splat = |b: usize| match (&film.splats, divisor) {
-            (Some(sp), Some(d)) => (sp.value(x, y, 3 + b) / d) as f32,
-            _ => 0.0,
-        };
-        for (b, v) in s.values(i).into_iter().enumerate() {
-            put(
-                3 + b,
-                if divisor.is_some() { v + splat(b) } else { v },
-                &mut planes,
-            );
+        for (b, v) in film.bucket_values(i, divisor).into_iter().enumerate() {
+            put(3 + b, v, &mut planes);
         }
     }
     let mut attrs = LayerAttributes {

@@ -4,6 +4,7 @@
 
 use lancer::Scene;
 use lancer::film::part::{PartMeta, read_part, write_part};
+use lancer::film::spectral::{SpectralDesc, SpectralSums};
 use lancer::film::{Film, PixelBounds};
 use lancer::math::{SampledSpectrum, Vec2};
 use lancer::ray::Ray;
@@ -79,13 +80,24 @@ fn render(
     samples: std::ops::Range<u32>,
     threads: usize,
 ) -> (Film, RenderStats) {
+    render_into(scene, d, Film::new(W, H, bounds), samples, threads)
+}
+
+/// [`render`] into `film` (over the pixels it holds; spectral mode for a spectral film).
+fn render_into(
+    scene: &Scene,
+    d: &SceneDesc,
+    mut film: Film,
+    samples: std::ops::Range<u32>,
+    threads: usize,
+) -> (Film, RenderStats) {
+    let bounds = film.bounds;
     let settings = RenderSettings {
         bounds,
         samples: samples.clone(),
-        spectral: false,
+        spectral: film.spectral.is_some(),
         ..RenderSettings::from_desc(d)
     };
-    let mut film = Film::new(W, H, bounds);
     let units: Vec<WorkUnit> = work_units(&bounds, 8, samples, 3);
     let mut done = vec![false; units.len()];
     let pool = rayon::ThreadPoolBuilder::new()
@@ -181,4 +193,39 @@ fn splats_add_their_sum_over_the_samples_per_pixel() {
     assert!((mean - SPLAT as f64).abs() < 1e-4, "mean splat {mean}");
     // The samples' own radiance is untouched by the splats: Σw·L/Σw as before.
     assert!(plain.iter().all(|p| p.x > 0.0 && p.x <= 0.1));
+}
+
+/// A spectral film's buckets take splats as its colour does: each splat of radiance L adds
+/// L(λₖ)/(pdf(λₖ)·Δλ·4) to the bucket of each of its four wavelengths, so that S/n is in
+/// the units of a bucket's sample value. The fake splats a constant `SPLAT` once per camera
+/// sample, so every bucket's splats average `SPLAT` over the image (the four wavelengths of
+/// a sample are a bucket group apart, so each bucket gets its share).
+#[test]
+fn a_spectral_films_buckets_take_splats_in_their_units() {
+    let d = desc();
+    let scene = Scene::build(&d).unwrap();
+    let buckets = SpectralDesc::default();
+    let mut film = Film::new(W, H, full());
+    film.spectral = Some(Box::new(SpectralSums::new(buckets, full().area() as usize)));
+    let (film, _) = render_into(&scene, &d, film, 0..SPP, 2);
+    let splats = film.splats.as_ref().expect("the film has a splat plane");
+    assert_eq!(splats.channels, 3 + buckets.nbuckets as usize);
+    let divisor = film.splat_divisor();
+    let nb = buckets.nbuckets as usize;
+    let mut mean = vec![0.0f64; nb];
+    for i in 0..film.pixels.len() {
+        let (with, without) = (film.bucket_values(i, divisor), film.bucket_values(i, None));
+        assert_eq!(with.len(), nb);
+        for b in 0..nb {
+            mean[b] += (with[b] - without[b]) as f64 / film.pixels.len() as f64;
+        }
+    }
+    let overall = mean.iter().sum::<f64>() / nb as f64;
+    assert!((overall - SPLAT as f64).abs() < 1e-3, "mean bucket splat {overall}");
+    for (b, m) in mean.iter().enumerate() {
+        assert!(
+            (m - SPLAT as f64).abs() < 0.05 * SPLAT as f64,
+            "bucket {b}: mean splat {m}"
+        );
+    }
 }
