@@ -62,13 +62,9 @@ fn desc() -> SceneDesc {
     d
 }
 
+/// The whole image.
 fn full() -> PixelBounds {
-    PixelBounds {
-        x0: 0,
-        x1: W as i32,
-        y0: 0,
-        y1: H as i32,
-    }
+    desc().film.render_bounds()
 }
 
 /// Renders `bounds` × `samples` with the fake integrator on `threads` threads into a fresh
