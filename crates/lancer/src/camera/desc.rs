@@ -2,11 +2,11 @@
 //! builds the camera from (the scene description re-exports it beside the rest of a scene).
 
 use crate::math::Transform;
+use std::sync::Arc;
 
 /// pbrt-v4's default sensor diagonal in millimetres (the film's `diagonal`), which only a
 /// realistic camera reads.
 pub const DEFAULT_DIAGONAL: f32 = 35.0;
-use std::sync::Arc;
 
 /// Camera projection.
 #[derive(Clone, Debug, PartialEq)]

@@ -1,8 +1,8 @@
 //! The film interface: what the tile loop ([`crate::render`]) adds camera samples to, one
 //! implementation per film kind (`rgb`, `gbuffer`, `spectral`), and the splats any film takes.
 //!
-//! A render gives each unit of work a fresh [`FilmTile`] of the film's kind
-//! ([`Film::new_tile`]); the loop adds every camera sample of the tile's pixels to it with
+//! A render gives each unit of work a fresh [`FilmTile`] of the film's kind ([`Film::kind`],
+//! matched once per unit by [`crate::render::render_units_with`]); the loop adds every camera sample of the tile's pixels to it with
 //! [`FilmTile::add_sample`], then the tile's sums are added into the film
 //! ([`FilmTile::merge_into`]). The loop is generic over the tile type, so each kind gets its
 //! own compiled loop: no dynamic call per sample, and what a kind does not use (the visible
