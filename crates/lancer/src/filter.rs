@@ -275,7 +275,10 @@ mod tests {
                 "{d:?}: integral {got}, ∫∫evaluate {numeric}"
             );
             if let Some(c) = closed {
-                assert!((got - c).abs() < 1e-3 * c, "{d:?}: integral {got}, want {c}");
+                assert!(
+                    (got - c).abs() < 1e-3 * c,
+                    "{d:?}: integral {got}, want {c}"
+                );
             }
             // Nothing outside the radius.
             assert_eq!(f.evaluate(Vec2::new(r.x * 1.01, 0.0)), 0.0);

@@ -700,8 +700,7 @@ mod tests {
                     let (replayed, _) = trace_sample(&scene, &settings, kind, id);
                     assert!(rendered.max_element() > 0.0);
                     assert!(
-                        (rendered - replayed).abs().max_element()
-                            <= 1e-5 * rendered.max_element(),
+                        (rendered - replayed).abs().max_element() <= 1e-5 * rendered.max_element(),
                         "{kind:?} {id:?}: rendered {rendered}, replayed {replayed}"
                     );
                 }

@@ -2,11 +2,11 @@
 //! implementation per film kind (`rgb`, `gbuffer`, `spectral`), and the splats any film takes.
 //!
 //! A render gives each unit of work a fresh [`FilmTile`] of the film's kind ([`Film::kind`],
-//! matched once per unit by [`crate::render::render_units_with`]); the loop adds every camera sample of the tile's pixels to it with
-//! [`FilmTile::add_sample`], then the tile's sums are added into the film
-//! ([`FilmTile::merge_into`]). The loop is generic over the tile type, so each kind gets its
-//! own compiled loop: no dynamic call per sample, and what a kind does not use (the visible
-//! surface, the wavelength buckets) costs it nothing. Light landing on any pixel goes through
+//! matched once per unit by [`crate::render::render_units_with`]); the loop adds every camera
+//! sample of the tile's pixels to it with [`FilmTile::add_sample`], then the tile's sums are
+//! added into the film ([`FilmTile::merge_into`]). The loop is generic over the tile type,
+//! so each kind gets its own compiled loop: no dynamic call per sample, and what a kind does
+//! not use (the visible surface, the wavelength buckets) costs it nothing. Light landing on any pixel goes through
 //! [`FilmSplats::add_splat`] instead ([`super::splat`]).
 //!
 //! A new per-pixel channel (a denoiser's albedo and normal, say) is a new `FilmTile`: its
