@@ -2,13 +2,14 @@
 //! a render split by samples merges into the whole render exactly (their light paths splat
 //! anywhere in the image).
 
+use crate::common::units::render_units_on;
 use lancer::Scene;
-use lancer::film::{Film, PixelBounds};
+use lancer::film::Film;
 use lancer::integrator::Integrator;
 use lancer::light::PointDesc;
 use lancer::material::{DiffuseMaterial, MaterialDesc};
 use lancer::math::{PackedVec3, Rgb, Transform, Vec3};
-use lancer::render::{RenderSettings, render_units_with, work_units};
+use lancer::render::{RenderSettings, work_units};
 use lancer::scene::desc::{FilterDesc, Geometry, LightDesc, SceneDesc, ShapeDesc};
 use lancer::shape::TriangleMesh;
 use lancer::texture::SpectrumTex;
@@ -63,15 +64,6 @@ fn desc(integrator: Integrator) -> SceneDesc {
     d
 }
 
-fn full() -> PixelBounds {
-    PixelBounds {
-        x0: 0,
-        x1: W as i32,
-        y0: 0,
-        y1: H as i32,
-    }
-}
-
 /// Renders sample indices `samples` of the whole image on `threads` threads, in 8-pixel tiles
 /// and 2-sample passes, spectral or RGB.
 fn render(d: &SceneDesc, samples: std::ops::Range<u32>, threads: usize, spectral: bool) -> Film {
@@ -81,25 +73,10 @@ fn render(d: &SceneDesc, samples: std::ops::Range<u32>, threads: usize, spectral
         spectral,
         ..RenderSettings::from_desc(d)
     };
-    let mut film = Film::new(W, H, full());
-    let units = work_units(&full(), 8, samples, 2);
-    let mut done = vec![false; units.len()];
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap();
-    pool.install(|| {
-        render_units_with(
-            &scene,
-            &settings,
-            &d.integrator,
-            &mut film,
-            &units,
-            &mut done,
-            &|_, _| {},
-            &|| false,
-        )
-    });
+    let full = d.film.render_bounds();
+    let mut film = Film::new(W, H, full);
+    let units = work_units(&full, 8, samples, 2);
+    render_units_on(threads, &scene, &settings, &d.integrator, &mut film, &units);
     film
 }
 
@@ -121,7 +98,7 @@ fn light_path_renders_are_exact_across_threads_and_sample_splits() {
             assert!(splats.sums.iter().any(|&s| s != 0));
             assert!(whole.image(1.0).iter().any(|p| p.x > 0.0));
             assert_eq!(render(&d, 0..SPP, 2, spectral), whole, "{integrator:?}");
-            let mut merged = Film::new(W, H, full());
+            let mut merged = Film::new(W, H, d.film.render_bounds());
             for r in [0..2, 2..5, 5..SPP] {
                 merged.merge_film(&render(&d, r, 2, spectral));
             }

@@ -2,15 +2,14 @@
 //! pixels anywhere in the image gives the same film bits whatever the thread count, and split
 //! parts (by samples or by tiles, through part files too) merge into the whole render's film.
 
+use crate::common::units::render_units_on;
 use lancer::Scene;
 use lancer::film::part::{PartMeta, read_part, write_part};
 use lancer::film::spectral::{SpectralDesc, SpectralSums};
 use lancer::film::{Film, PixelBounds};
 use lancer::math::{SampledSpectrum, Vec2};
 use lancer::ray::Ray;
-use lancer::render::{
-    RenderSettings, RenderStats, SampleIntegrator, Splats, WorkUnit, render_units_with, work_units,
-};
+use lancer::render::{RenderSettings, RenderStats, SampleIntegrator, Splats, work_units};
 use lancer::sampling::Sampler;
 use lancer::scene::desc::{FilterDesc, SceneDesc};
 use lancer::spectrum::sampled::SampledWavelengths;
@@ -94,24 +93,15 @@ fn render_into(
         spectral: film.spectral.is_some(),
         ..RenderSettings::from_desc(d)
     };
-    let units: Vec<WorkUnit> = work_units(&bounds, 8, samples, 3);
-    let mut done = vec![false; units.len()];
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap();
-    let stats = pool.install(|| {
-        render_units_with(
-            scene,
-            &settings,
-            &FakeLightTracer,
-            &mut film,
-            &units,
-            &mut done,
-            &|_, _| {},
-            &|| false,
-        )
-    });
+    let units = work_units(&bounds, 8, samples, 3);
+    let stats = render_units_on(
+        threads,
+        scene,
+        &settings,
+        &FakeLightTracer,
+        &mut film,
+        &units,
+    );
     (film, stats)
 }
 
@@ -217,7 +207,10 @@ fn a_spectral_films_buckets_take_splats_in_their_units() {
         }
     }
     let overall = mean.iter().sum::<f64>() / nb as f64;
-    assert!((overall - SPLAT as f64).abs() < 1e-3, "mean bucket splat {overall}");
+    assert!(
+        (overall - SPLAT as f64).abs() < 1e-3,
+        "mean bucket splat {overall}"
+    );
     for (b, m) in mean.iter().enumerate() {
         assert!(
             (m - SPLAT as f64).abs() < 0.05 * SPLAT as f64,

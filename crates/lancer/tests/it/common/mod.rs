@@ -7,3 +7,4 @@
 pub mod bsdf_file;
 pub mod chi2;
 pub mod shapes;
+pub mod units;
