@@ -136,63 +136,52 @@ impl Checkpoint {
         for (n, line) in lines.iter().enumerate().skip(1) {
             let bad = |what: &str| format!("line {}: bad {what} '{line}'", n + 1);
             let (k, v) = line.split_once('=').ok_or_else(|| bad("line"))?;
+            // The comma-separated integers of a `film` or `splats` line.
+            let ints = |what: &str| -> Result<Vec<i64>, String> {
+                v.split(',')
+                    .map(|x| x.parse())
+                    .collect::<Result<_, _>>()
+                    .map_err(|_| bad(what))
+            };
+            let rect = |x0: i64, x1: i64, y0: i64, y1: i64| PixelBounds {
+                x0: x0 as i32,
+                x1: x1 as i32,
+                y0: y0 as i32,
+                y1: y1 as i32,
+            };
             match k {
                 "cwd" => cwd = Some(PathBuf::from(v)),
                 "arg" => args.push(v.to_string()),
                 "hash" => hash = Some(u64::from_str_radix(v, 16).map_err(|_| bad("hash"))?),
                 "units" => units = Some(v.parse::<usize>().map_err(|_| bad("unit count"))?),
-                "film" => {
-                    let f: Vec<i64> = v
-                        .split(',')
-                        .map(|x| x.parse())
-                        .collect::<Result<_, _>>()
-                        .map_err(|_| bad("film"))?;
-                    match f[..] {
-                        [x0, x1, y0, y1, w, h]
-                            if x0 <= x1
-                                && y0 <= y1
-                                && (1..=1 << 20).contains(&w)
-                                && (1..=1 << 20).contains(&h)
-                                && x0 >= 0
-                                && y0 >= 0
-                                && x1 <= w
-                                && y1 <= h =>
-                        {
-                            let b = PixelBounds {
-                                x0: x0 as i32,
-                                x1: x1 as i32,
-                                y0: y0 as i32,
-                                y1: y1 as i32,
-                            };
-                            film = Some((b, w as u32, h as u32));
-                        }
-                        _ => return Err(bad("film")),
+                "film" => match ints("film")?[..] {
+                    [x0, x1, y0, y1, w, h]
+                        if x0 <= x1
+                            && y0 <= y1
+                            && (1..=1 << 20).contains(&w)
+                            && (1..=1 << 20).contains(&h)
+                            && x0 >= 0
+                            && y0 >= 0
+                            && x1 <= w
+                            && y1 <= h =>
+                    {
+                        film = Some((rect(x0, x1, y0, y1), w as u32, h as u32));
                     }
-                }
-                "splats" => {
-                    let f: Vec<i64> = v
-                        .split(',')
-                        .map(|x| x.parse())
-                        .collect::<Result<_, _>>()
-                        .map_err(|_| bad("splats"))?;
-                    match f[..] {
-                        [x0, x1, y0, y1, c]
-                            if x0 <= x1
-                                && y0 <= y1
-                                && [x0, x1, y0, y1].iter().all(|v| (0..=1 << 20).contains(v))
-                                && (1..=1024).contains(&c) =>
-                        {
-                            let b = PixelBounds {
-                                x0: x0 as i32,
-                                x1: x1 as i32,
-                                y0: y0 as i32,
-                                y1: y1 as i32,
-                            };
-                            splats = Some(SplatPlane::new(b, c as usize));
-                        }
-                        _ => return Err(bad("splats")),
+                    _ => return Err(bad("film")),
+                },
+                // Only the plane's shape here: its sums are allocated once the data's length
+                // has been checked against it (a damaged header must not ask for petabytes).
+                "splats" => match ints("splats")?[..] {
+                    [x0, x1, y0, y1, c]
+                        if x0 <= x1
+                            && y0 <= y1
+                            && [x0, x1, y0, y1].iter().all(|v| (0..=1 << 20).contains(v))
+                            && (1..=1024).contains(&c) =>
+                    {
+                        splats = Some((rect(x0, x1, y0, y1), c as usize));
                     }
-                }
+                    _ => return Err(bad("splats")),
+                },
                 _ => return Err(format!("line {}: unknown key '{k}'", n + 1)),
             }
         }
@@ -200,14 +189,16 @@ impl Checkpoint {
         let (bounds, w, h) = film.ok_or_else(|| missing("film"))?;
         let units = units.ok_or_else(|| missing("units"))?;
         let npix = bounds.area() as usize;
-        let splat_bytes = splats.as_ref().map_or(0, |s: &SplatPlane| s.sums.len() * 8);
+        let splat_bytes = splats.map_or(0, |(b, c): (PixelBounds, usize)| {
+            (b.area() as usize).saturating_mul(c).saturating_mul(8)
+        });
         let expected = units
             .saturating_add(npix.saturating_mul(PIXEL_BYTES))
             .saturating_add(splat_bytes);
         if bytes.len() - pos != expected {
             return Err(format!(
-                "{} bytes of data where {units} units, {npix} pixels and {splat_bytes} bytes of splats need {expected}: \
-                 the file is truncated or damaged",
+                "{} bytes of data where {units} units, {npix} pixels and {splat_bytes} bytes \
+                 of splats need {expected}: the file is truncated or damaged",
                 bytes.len() - pos
             ));
         }
@@ -223,7 +214,8 @@ impl Checkpoint {
             };
             pos += PIXEL_BYTES;
         }
-        if let Some(mut sp) = splats {
+        if let Some((b, c)) = splats {
+            let mut sp = SplatPlane::new(b, c);
             for v in sp.sums.iter_mut() {
                 *v = i64_at(pos);
                 pos += 8;
@@ -375,6 +367,14 @@ mod tests {
         let bytes2 = c2.encode();
         assert_eq!(Checkpoint::decode(&bytes2).unwrap(), c2);
         assert!(Checkpoint::decode(&bytes2[..bytes2.len() - 8]).is_err());
+        // A damaged splats line asking for a huge plane is an error, not an allocation.
+        let line = b"splats=0,5,0,3,4\n";
+        let at = bytes2.windows(line.len()).position(|w| w == line).unwrap();
+        let mut huge = bytes2[..at].to_vec();
+        huge.extend_from_slice(b"splats=0,1048576,0,1048576,1024\n");
+        huge.extend_from_slice(&bytes2[at + line.len()..]);
+        let e = Checkpoint::decode(&huge).unwrap_err();
+        assert!(e.contains("truncated or damaged"), "{e}");
         // Without splats, the file is the one written before splats existed.
         assert!(!String::from_utf8_lossy(&bytes).contains("splats="));
     }
