@@ -146,6 +146,16 @@ impl PixelBounds {
     pub fn is_empty(&self) -> bool {
         self.x1 <= self.x0 || self.y1 <= self.y0
     }
+
+    /// The row-major index of pixel (`x`, `y`) (full-image coordinates) among the
+    /// rectangle's pixels, (y − y0)·width + (x − x0); `None` outside it.
+    #[inline]
+    pub fn index(&self, x: i32, y: i32) -> Option<usize> {
+        if x < self.x0 || x >= self.x1 || y < self.y0 || y >= self.y1 {
+            return None;
+        }
+        Some((y - self.y0) as usize * self.width() as usize + (x - self.x0) as usize)
+    }
 }
 
 /// The film: sums for every pixel of `bounds`, part of a `full_width × full_height` image.
@@ -282,11 +292,7 @@ impl Film {
     /// The sums of pixel `(x, y)` (full-image coordinates), if the film holds it.
     #[inline]
     pub fn pixel_mut(&mut self, x: i32, y: i32) -> Option<&mut PixelSum> {
-        let b = &self.bounds;
-        if x < b.x0 || x >= b.x1 || y < b.y0 || y >= b.y1 {
-            return None;
-        }
-        let i = (y - b.y0) as usize * b.width() as usize + (x - b.x0) as usize;
+        let i = self.bounds.index(x, y)?;
         self.pixels.get_mut(i)
     }
 
@@ -384,6 +390,24 @@ mod tests {
         }
         assert_eq!(to_fixed4([0.5 * step; 4])[0], 1);
         assert_eq!(to_fixed4([-2.5 * step; 4])[0], -3);
+    }
+
+    /// Row-major within the rectangle, one past each end outside it.
+    #[test]
+    fn pixel_bounds_index_is_row_major_inside_only() {
+        let b = PixelBounds {
+            x0: -2,
+            x1: 3,
+            y0: 4,
+            y1: 6,
+        };
+        assert_eq!(b.index(-2, 4), Some(0));
+        assert_eq!(b.index(2, 4), Some(4));
+        assert_eq!(b.index(-2, 5), Some(5));
+        assert_eq!(b.index(2, 5), Some(9));
+        for (x, y) in [(-3, 4), (3, 4), (0, 3), (0, 6)] {
+            assert_eq!(b.index(x, y), None, "({x}, {y})");
+        }
     }
 
     #[test]

@@ -16,17 +16,6 @@
 use super::{PixelBounds, from_fixed, to_fixed};
 use std::sync::atomic::{AtomicI64, Ordering};
 
-/// Where the values of pixel (`x`, `y`) (full-image coordinates) begin in a plane over
-/// `bounds` with `channels` values per pixel, row-major; `None` outside it.
-#[inline]
-fn offset(bounds: &PixelBounds, channels: usize, x: i32, y: i32) -> Option<usize> {
-    let b = bounds;
-    if x < b.x0 || x >= b.x1 || y < b.y0 || y >= b.y1 {
-        return None;
-    }
-    Some(((y - b.y0) as usize * b.width() as usize + (x - b.x0) as usize) * channels)
-}
-
 /// A film's splat sums: `channels` fixed-point values per pixel of `bounds`, row-major: the
 /// colour (R, G, B), then, for a `spectral` film, one value per wavelength bucket.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -51,7 +40,7 @@ impl SplatPlane {
 
     /// The sums of pixel (`x`, `y`) (full-image coordinates), if the plane holds it.
     pub fn pixel(&self, x: i32, y: i32) -> Option<&[i64]> {
-        let i = offset(&self.bounds, self.channels, x, y)?;
+        let i = self.bounds.index(x, y)? * self.channels;
         self.sums.get(i..i + self.channels)
     }
 
@@ -67,12 +56,10 @@ impl SplatPlane {
         let c = self.channels.min(o.channels);
         for y in t.y0..t.y1 {
             for x in t.x0..t.x1 {
-                let (Some(d), Some(s)) = (
-                    offset(&self.bounds, self.channels, x, y),
-                    offset(&o.bounds, o.channels, x, y),
-                ) else {
+                let (Some(d), Some(s)) = (self.bounds.index(x, y), o.bounds.index(x, y)) else {
                     continue;
                 };
+                let (d, s) = (d * self.channels, s * o.channels);
                 for k in 0..c {
                     self.sums[d + k] = self.sums[d + k].wrapping_add(o.sums[s + k]);
                 }
@@ -112,7 +99,7 @@ impl AtomicSplats {
     /// nothing outside the plane.
     #[inline]
     pub fn add(&self, x: i32, y: i32, values: &[f32]) {
-        let Some(i) = offset(&self.bounds, self.channels, x, y) else {
+        let Some(i) = self.bounds.index(x, y).map(|i| i * self.channels) else {
             return;
         };
         for (s, &v) in self.sums[i..i + self.channels].iter().zip(values) {
@@ -127,10 +114,10 @@ impl AtomicSplats {
     /// Adds the single value `v` to channel `c` of pixel (`x`, `y`) (nothing outside).
     #[inline]
     pub fn add_channel(&self, x: i32, y: i32, c: usize, v: f32) {
-        let Some(i) = offset(&self.bounds, self.channels, x, y).filter(|_| c < self.channels)
-        else {
+        let Some(i) = self.bounds.index(x, y).filter(|_| c < self.channels) else {
             return;
         };
+        let i = i * self.channels;
         let v = to_fixed(v);
         if v != 0 {
             self.sums[i + c].fetch_add(v, Ordering::Relaxed);
