@@ -49,8 +49,9 @@ pub struct RenderSettings {
     /// Spectral mode (the default, as pbrt-v4 renders): each camera sample carries four
     /// wavelengths and the scene's RGB colours are uplifted to spectra (see
     /// [`crate::spectrum::sampled`]); the samples' radiance is converted to linear sRGB before
-    /// the film, so the film is the same either way. Applies to the radiance integrators only
-    /// (path, Whitted); false is plain RGB rendering, as Mitsuba 3's RGB variants do.
+    /// the film, so the film is the same either way. Applies to the integrators that compute
+    /// radiance ([`Integrator::computes_radiance`]); false is plain RGB rendering, as Mitsuba
+    /// 3's RGB variants do.
     pub spectral: bool,
 }
 
@@ -355,24 +356,11 @@ fn scene_film_rgb(
     }
 }
 
-/// The camera ray of sample `s` of pixel (`x`, `y`) (`None` when a lens blocks it) and its
-/// filter weight, leaving `sampler` ready for the integrator's dimensions. Inlined: returned
-/// from a call, the ray came back through memory in narrow stores that the caller read in
-/// wide loads, a store-forwarding stall per camera sample.
-#[inline(always)]
-fn camera_ray(
-    scene: &Scene,
-    settings: &RenderSettings,
-    sampler: &mut Sampler,
-    x: i32,
-    y: i32,
-    s: u32,
-) -> (Option<crate::camera::CameraRay>, f32) {
-    let (ray, weight, _, _) = camera_ray_at(scene, settings, sampler, x, y, s);
-    (ray, weight)
-}
-
-/// [`camera_ray`], with the film and lens points the ray was made from.
+/// The camera ray of sample `s` of pixel (`x`, `y`) (`None` when a lens blocks it), its
+/// filter weight, and the film and lens points it was made from, leaving `sampler` ready for
+/// the integrator's dimensions. Inlined: returned from a call, the ray came back through
+/// memory in narrow stores that the caller read in wide loads, a store-forwarding stall per
+/// camera sample.
 #[inline(always)]
 fn camera_ray_at(
     scene: &Scene,
@@ -411,7 +399,7 @@ pub fn trace_sample(
     id: SampleId,
 ) -> (crate::math::Rgb, Vec<crate::integrator::PathVertex>) {
     let mut sampler = Sampler::new(settings.sampler, settings.spp, settings.seed);
-    let (ray, _) = camera_ray(scene, settings, &mut sampler, id.x, id.y, id.sample);
+    let (ray, ..) = camera_ray_at(scene, settings, &mut sampler, id.x, id.y, id.sample);
     let lambda = (settings.spectral && settings.integrator.computes_radiance())
         .then(|| film.sample_wavelengths(sampler.get_1d()));
     let mut path = Vec::new();
