@@ -319,12 +319,7 @@ pub fn render_tile<T: FilmTile, I: SampleIntegrator + ?Sized>(
 /// upstream, counted in `stats`; it must not poison the pixel), and scaled down to
 /// `maxcomponentvalue` when brighter.
 #[inline(always)]
-fn film_sample(
-    settings: &RenderSettings,
-    stats: &mut RenderStats,
-    l: crate::math::Rgb,
-    id: SampleId,
-) -> crate::math::Rgb {
+fn film_sample(settings: &RenderSettings, stats: &mut RenderStats, l: Rgb, id: SampleId) -> Rgb {
     let l = if l.is_finite() {
         l
     } else {
@@ -332,7 +327,7 @@ fn film_sample(
         if stats.first_nonfinite.is_none() {
             stats.first_nonfinite = Some(id);
         }
-        crate::math::Rgb::ZERO
+        Rgb::ZERO
     };
     let m = l.max_element();
     if m > settings.max_component_value {
@@ -345,11 +340,7 @@ fn film_sample(
 /// The film colour of a camera sample's radiance: the scene's film response (sensor, white
 /// balance, output space) when it has one, else the CIE 1931 observer's linear sRGB.
 #[inline]
-fn scene_film_rgb(
-    scene: &Scene,
-    lambda: Option<&crate::spectrum::sampled::SampledWavelengths>,
-    l: crate::math::SampledSpectrum,
-) -> crate::math::Rgb {
+fn scene_film_rgb(scene: &Scene, lambda: Option<&SampledWavelengths>, l: SampledSpectrum) -> Rgb {
     match scene.film_response() {
         None => film_rgb(lambda, l),
         Some(r) => r.film_rgb(lambda, l),
@@ -397,7 +388,7 @@ pub fn trace_sample(
     settings: &RenderSettings,
     film: FilmKind,
     id: SampleId,
-) -> (crate::math::Rgb, Vec<crate::integrator::PathVertex>) {
+) -> (Rgb, Vec<crate::integrator::PathVertex>) {
     let mut sampler = Sampler::new(settings.sampler, settings.spp, settings.seed);
     let (ray, ..) = camera_ray_at(scene, settings, &mut sampler, id.x, id.y, id.sample);
     let lambda = (settings.spectral && settings.integrator.computes_radiance())
@@ -410,7 +401,7 @@ pub fn trace_sample(
                 .li_traced(scene, &r.ray, &mut sampler, lambda.as_ref(), &mut path)
                 * r.weight
         }
-        None => crate::math::SampledSpectrum::ZERO,
+        None => SampledSpectrum::ZERO,
     };
     // The film's colour, as the render computed it (in spectral mode the path's vertices hold
     // values at the wavelengths).
