@@ -19,7 +19,6 @@
 
 pub use crate::film::gsums::{
     CHANNELS, GPixel, GbufferConfig, GbufferDesc, GbufferFilm, Variance, VisibleSurface,
-    differential_scale,
 };
 use crate::integrator::bsdf_at;
 use crate::material::TransportMode;
@@ -218,6 +217,7 @@ pub fn visible_surface(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::camera::footprint::differential_scale;
     use crate::math::Rgb;
 
     #[test]

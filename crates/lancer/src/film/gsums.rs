@@ -216,11 +216,6 @@ impl GPixel {
     }
 }
 
-/// pbrt-v4's scale of camera ray differentials: max(1/8, 1/√spp).
-pub fn differential_scale(spp: u32) -> f32 {
-    (1.0 / (spp.max(1) as f32).sqrt()).max(0.125)
-}
-
 /// How a render fills a g-buffer: the space its positions and normals are written in.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GbufferConfig {

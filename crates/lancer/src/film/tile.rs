@@ -122,7 +122,7 @@ impl GbufferTile {
         let n = tile.area() as usize;
         GbufferTile {
             config,
-            differential_scale: super::gsums::differential_scale(config.spp),
+            differential_scale: crate::camera::footprint::differential_scale(config.spp),
             sums: vec![PixelSum::default(); n],
             aux: vec![GPixel::default(); n],
         }
