@@ -1,4 +1,7 @@
-//! The denoiser end to end, without OIDN: tiling seams, and that it removes noise.
+//! The denoiser end to end: OIDN's own output on a small image (stored, as OIDN is not
+//! here), tiling seams, and that it removes noise.
+
+mod oidn;
 
 use lancer_denoise::{Options, denoise, denoise_with, tile_plan};
 
@@ -16,27 +19,30 @@ fn uniform(n: usize, seed: u64) -> Vec<f32> {
 }
 
 /// A clean synthetic image: two flat regions split by a slanted edge, a soft gradient over
-/// them, and its albedo (the regions' colours).
-fn scene(w: usize, h: usize) -> (Vec<f32>, Vec<f32>) {
+/// them; its albedo (the regions' colours) and normal (one per region).
+/// `tools/oidn_golden.py` makes the same floats.
+fn scene(w: usize, h: usize) -> (Vec<f32>, Vec<f32>, Vec<f32>) {
     let mut clean = Vec::with_capacity(w * h * 3);
     let mut albedo = Vec::with_capacity(w * h * 3);
+    let mut normal = Vec::with_capacity(w * h * 3);
     for y in 0..h {
         for x in 0..w {
-            let a = if 3 * x + y < 2 * w {
-                [0.8, 0.3, 0.2]
+            let (a, n) = if 3 * x + y < 2 * w {
+                ([0.8, 0.3, 0.2], [0.0, 0.0, -1.0])
             } else {
-                [0.2, 0.5, 0.8]
+                ([0.2, 0.5, 0.8], [0.6, 0.0, -0.8])
             };
             let light = 0.5 + 0.5 * y as f32 / h as f32;
             clean.extend(a.map(|c| c * light));
             albedo.extend(a);
+            normal.extend(n);
         }
     }
-    (clean, albedo)
+    (clean, albedo, normal)
 }
 
-/// Monte Carlo-like noise: each pixel is its clean value times 4·u² (mean 4/3·… scaled to
-/// mean 1: (4/3)⁻¹·4u² has mean 1), one u per pixel, so colour stays and brightness is noisy.
+/// Monte Carlo-like noise: each pixel is its clean value times 3u² (mean 1), one u per
+/// pixel, so colour stays and brightness is noisy.
 fn noisy(clean: &[f32], seed: u64) -> Vec<f32> {
     let u = uniform(clean.len() / 3, seed);
     clean
@@ -62,7 +68,7 @@ fn relmse(a: &[f32], b: &[f32]) -> f64 {
 #[test]
 fn the_denoiser_removes_most_of_the_noise() {
     let (w, h) = (96, 80);
-    let (clean, albedo) = scene(w, h);
+    let (clean, albedo, normal) = scene(w, h);
     let input = noisy(&clean, 7);
     let before = relmse(&input, &clean);
     for (name, out) in [
@@ -70,6 +76,10 @@ fn the_denoiser_removes_most_of_the_noise() {
         (
             "colour + albedo",
             denoise(&input, Some(&albedo), None, w, h).unwrap(),
+        ),
+        (
+            "colour + albedo + normal",
+            denoise(&input, Some(&albedo), Some(&normal), w, h).unwrap(),
         ),
     ] {
         let after = relmse(&out, &clean);
@@ -94,7 +104,7 @@ fn mean(v: &[f32]) -> f64 {
 #[test]
 fn a_tiled_image_equals_the_untiled_one() {
     let (w, h) = (480, 160);
-    let (clean, albedo) = scene(w, h);
+    let (clean, albedo, _) = scene(w, h);
     let input = noisy(&clean, 11);
     // tiles are at least 4 overlaps (384) wide: two tiles across
     let small = Options {
