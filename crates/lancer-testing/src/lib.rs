@@ -1,5 +1,6 @@
 //! Helpers for lancer's own tests, shared by every crate of the workspace as a
-//! dev-dependency: scratch folders removed when the test is done.
+//! dev-dependency: scratch folders removed when the test is done, and a deterministic
+//! sequence of pseudo-random numbers ([`uniform`]).
 
 use std::ops::Deref;
 use std::path::{Path, PathBuf};
@@ -68,6 +69,21 @@ impl Drop for ScratchDir {
             let _ = std::fs::remove_dir_all(&self.path);
         }
     }
+}
+
+/// `n` pseudo-random numbers in [0, 1), a pure function of `seed`: xorshift64 (shifts 13, 7,
+/// 17) from the state `seed`·0x9E3779B97F4A7C15 | 1, each number the state's top 24 bits
+/// / 2²⁴ (exact in f32). `tools/oidn_golden.py` makes the same sequence, so keep it.
+pub fn uniform(n: usize, seed: u64) -> Vec<f32> {
+    let mut s = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
+    (0..n)
+        .map(|_| {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / (1u64 << 24) as f32
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -4,19 +4,7 @@
 mod oidn;
 
 use lancer_denoise::{Options, denoise, denoise_with, tile_plan};
-
-/// A deterministic pseudo-random sequence in [0, 1).
-fn uniform(n: usize, seed: u64) -> Vec<f32> {
-    let mut s = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
-    (0..n)
-        .map(|_| {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32
-        })
-        .collect()
-}
+use lancer_testing::uniform;
 
 /// A clean synthetic image: two flat regions split by a slanted edge, a soft gradient over
 /// them; its albedo (the regions' colours) and normal (one per region).

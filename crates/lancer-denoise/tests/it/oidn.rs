@@ -21,7 +21,10 @@ fn oidn_outputs() -> Vec<Vec<f32>> {
         .map(|b| f32::from_le_bytes(b.try_into().unwrap()))
         .collect();
     assert_eq!(floats.len(), 3 * W * H * 3);
-    floats.chunks_exact(W * H * 3).map(<[f32]>::to_vec).collect()
+    floats
+        .chunks_exact(W * H * 3)
+        .map(<[f32]>::to_vec)
+        .collect()
 }
 
 #[test]
@@ -31,7 +34,11 @@ fn each_network_gives_oidns_output() {
     let cases = [
         ("colour", None, None),
         ("colour + albedo", Some(&albedo[..]), None),
-        ("colour + albedo + normal", Some(&albedo[..]), Some(&normal[..])),
+        (
+            "colour + albedo + normal",
+            Some(&albedo[..]),
+            Some(&normal[..]),
+        ),
     ];
     for ((name, a, n), want) in cases.into_iter().zip(oidn_outputs()) {
         let got = denoise(&input, a, n, W, H).unwrap();
@@ -41,9 +48,12 @@ fn each_network_gives_oidns_output() {
             .zip(&want)
             .map(|(g, e)| (g - e).abs() / (e.abs() + 0.01))
             .fold(0.0f32, f32::max);
-        let (se, ss) = got.iter().zip(&want).fold((0.0f64, 0.0f64), |(se, ss), (g, e)| {
-            (se + ((g - e) as f64).powi(2), ss + (*e as f64).powi(2))
-        });
+        let (se, ss) = got
+            .iter()
+            .zip(&want)
+            .fold((0.0f64, 0.0f64), |(se, ss), (g, e)| {
+                (se + ((g - e) as f64).powi(2), ss + (*e as f64).powi(2))
+            });
         let nrmse = (se / ss).sqrt();
         assert!(
             worst < 1e-3 && nrmse < 1e-4,
