@@ -11,23 +11,27 @@
 use crate::tensor::Tensor;
 use rayon::prelude::*;
 
-/// 8-lane vectors: AVX2 + FMA where the build has them.
+/// 8-lane vectors: AVX2 + FMA where the build has them (the intrinsics are compiled only
+/// when the target has these features, so they never run on a CPU without them).
 #[cfg(all(
     target_arch = "x86_64",
     target_feature = "avx2",
     target_feature = "fma"
 ))]
-mod simd {
+mod avx2 {
     use core::arch::x86_64::*;
     pub type V = __m256;
+    /// Eight floats from `p` (unaligned). Safety: `p..p+8` readable.
     #[inline(always)]
     pub unsafe fn load(p: *const f32) -> V {
         unsafe { _mm256_loadu_ps(p) }
     }
+    /// `*p` in every lane. Safety: `p` readable.
     #[inline(always)]
     pub unsafe fn splat(p: *const f32) -> V {
         unsafe { _mm256_broadcast_ss(&*p) }
     }
+    /// The lanes to `p..p+8` (unaligned). Safety: `p..p+8` writable.
     #[inline(always)]
     pub unsafe fn store(p: *mut f32, v: V) {
         unsafe { _mm256_storeu_ps(p, v) }
@@ -37,42 +41,65 @@ mod simd {
     pub fn fma(a: V, b: V, c: V) -> V {
         unsafe { _mm256_fmadd_ps(a, b, c) }
     }
+    /// max(a, 0).
     #[inline(always)]
     pub fn relu(a: V) -> V {
         unsafe { _mm256_max_ps(a, _mm256_setzero_ps()) }
     }
 }
 
-/// 8-lane vectors as plain arrays (the same arithmetic: fused multiply-adds).
-#[cfg(not(all(
-    target_arch = "x86_64",
-    target_feature = "avx2",
-    target_feature = "fma"
-)))]
-mod simd {
+/// 8-lane vectors as plain arrays, the same arithmetic (fused multiply-adds): the fallback
+/// where AVX2 + FMA are not enabled, also compiled in tests, which compare it with the
+/// vectors the build uses.
+#[cfg(any(
+    test,
+    not(all(
+        target_arch = "x86_64",
+        target_feature = "avx2",
+        target_feature = "fma"
+    ))
+))]
+mod portable {
     pub type V = [f32; 8];
+    /// Eight floats from `p` (unaligned). Safety: `p..p+8` readable.
     #[inline(always)]
     pub unsafe fn load(p: *const f32) -> V {
         unsafe { std::ptr::read_unaligned(p as *const V) }
     }
+    /// `*p` in every lane. Safety: `p` readable.
     #[inline(always)]
     pub unsafe fn splat(p: *const f32) -> V {
         unsafe { [*p; 8] }
     }
+    /// The lanes to `p..p+8` (unaligned). Safety: `p..p+8` writable.
     #[inline(always)]
     pub unsafe fn store(p: *mut f32, v: V) {
         unsafe { std::ptr::write_unaligned(p as *mut V, v) }
     }
+    /// a·b + c, one rounding.
     #[inline(always)]
     pub fn fma(a: V, b: V, c: V) -> V {
         std::array::from_fn(|i| a[i].mul_add(b[i], c[i]))
     }
+    /// max(a, 0).
     #[inline(always)]
     pub fn relu(a: V) -> V {
         a.map(|x| x.max(0.0))
     }
 }
 
+#[cfg(all(
+    target_arch = "x86_64",
+    target_feature = "avx2",
+    target_feature = "fma"
+))]
+use avx2 as simd;
+#[cfg(not(all(
+    target_arch = "x86_64",
+    target_feature = "avx2",
+    target_feature = "fma"
+)))]
+use portable as simd;
 use simd::V;
 
 /// A convolution layer's weights, packed for the inner block.
@@ -305,15 +332,34 @@ mod tests {
 
     /// A deterministic pseudo-random sequence in [-1, 1).
     fn noise(n: usize, seed: u64) -> Vec<f32> {
-        let mut s = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
-        (0..n)
-            .map(|_| {
-                s ^= s << 13;
-                s ^= s >> 7;
-                s ^= s << 17;
-                (s >> 40) as f32 / (1u64 << 23) as f32 - 1.0
-            })
+        lancer_testing::uniform(n, seed)
+            .into_iter()
+            .map(|u| 2.0 * u - 1.0)
             .collect()
+    }
+
+    /// The portable vectors give the build's vectors' bits (the AVX2 ones on x86-64-v3),
+    /// through each of their operations, at an unaligned address.
+    #[test]
+    fn portable_vectors_equal_the_builds() {
+        let x = noise(17, 5);
+        let (a, b, c) = (&x[1..9], &x[9..17], &x[5..13]);
+        let (mut got, mut want) = ([0.0f32; 9], [0.0f32; 9]);
+        // SAFETY: every pointer is to 8 floats inside `x`, `got` or `want`.
+        unsafe {
+            let (pa, pb, pc) = (a.as_ptr(), b.as_ptr(), c.as_ptr());
+            let v = simd::relu(simd::fma(simd::load(pa), simd::splat(pb), simd::load(pc)));
+            simd::store(want.as_mut_ptr().add(1), v);
+            let p = portable::relu(portable::fma(
+                portable::load(pa),
+                portable::splat(pb),
+                portable::load(pc),
+            ));
+            portable::store(got.as_mut_ptr().add(1), p);
+        }
+        assert_eq!(got.map(f32::to_bits), want.map(f32::to_bits));
+        assert_eq!(got[0], 0.0);
+        assert!(got[1..].iter().any(|&v| v > 0.0) && got[1..].contains(&0.0));
     }
 
     #[test]
