@@ -150,26 +150,25 @@ impl Conv {
         }
     }
 
-    /// Convolves channels `c0..c0+cin` of `src` into a new tensor of `cout` channels,
-    /// with ReLU when `relu`.
-    pub fn run(&self, src: &Tensor, c0: usize, relu: bool) -> Tensor {
+    /// Convolves channels `c0..c0+cin` of `src`, then ReLU (every layer of OIDN's U-Net has
+    /// it), into `dst`, which becomes a tensor of `cout` channels of `src`'s size (its storage
+    /// reused: [`Tensor::reshape_for_conv`]).
+    pub fn run_into(&self, src: &Tensor, c0: usize, dst: &mut Tensor) {
         assert!(c0 + self.cin <= src.c);
-        let mut dst = Tensor::zeros(self.cout, src.h, src.w);
+        dst.reshape_for_conv(self.cout, src.h, src.w);
         match self.ocb {
-            4 => self.run_blocks::<4, 3>(src, c0, relu, &mut dst),
-            3 => self.run_blocks::<3, 4>(src, c0, relu, &mut dst),
+            4 => self.run_blocks::<4, 3>(src, c0, dst),
+            3 => self.run_blocks::<3, 4>(src, c0, dst),
             _ => unreachable!(),
         }
         debug_assert_eq!(vectors_for(self.ocb) * 8, chunk_px(self.ocb));
         dst.clear_side_padding();
-        dst
     }
 
     fn run_blocks<const OCB: usize, const NV: usize>(
         &self,
         src: &Tensor,
         c0: usize,
-        relu: bool,
         dst: &mut Tensor,
     ) {
         let stride = src.stride();
@@ -197,9 +196,10 @@ impl Conv {
                 while p < p1 {
                     let valid = (p1 - p).min(cw);
                     // SAFETY: reads stay within src's planes plus SLACK (p ± stride ± 1,
-                    // + cw - 1 < SLACK past the last plane's end); writes go to flat
-                    // indices p..p+valid of planes b·OCB..b·OCB+nout of dst, which no other
-                    // task writes (tasks own disjoint pixel runs).
+                    // + cw - 1 < SLACK past the last plane's end; a tensor's storage is at
+                    // least its planes + SLACK); writes go to flat indices p..p+valid of
+                    // planes b·OCB..b·OCB+nout of dst, which no other task writes (tasks own
+                    // disjoint pixel runs).
                     unsafe {
                         block::<OCB, NV>(
                             sp.0.add(p),
@@ -212,7 +212,6 @@ impl Conv {
                             dplane,
                             nout,
                             valid,
-                            relu,
                         );
                     }
                     p += cw;
@@ -233,8 +232,8 @@ struct SendPtr(*mut f32);
 unsafe impl Send for SendPtr {}
 unsafe impl Sync for SendPtr {}
 
-/// One register block: `OCB` output channels × `8·NV` pixels from flat index `src`/`dst`.
-/// Stores `nout` channels and the first `valid` pixels.
+/// One register block: `OCB` output channels × `8·NV` pixels from flat index `src`/`dst`,
+/// after ReLU. Stores `nout` channels and the first `valid` pixels.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 unsafe fn block<const OCB: usize, const NV: usize>(
@@ -248,7 +247,6 @@ unsafe fn block<const OCB: usize, const NV: usize>(
     dplane: usize,
     nout: usize,
     valid: usize,
-    relu: bool,
 ) {
     unsafe {
         let mut acc: [[V; NV]; OCB] = [[simd::splat(&0.0); NV]; OCB];
@@ -278,7 +276,7 @@ unsafe fn block<const OCB: usize, const NV: usize>(
         for (o, a) in acc.iter().enumerate().take(nout) {
             let out = dst.add(o * dplane);
             for (v, &av) in a.iter().enumerate() {
-                let av = if relu { simd::relu(av) } else { av };
+                let av = simd::relu(av);
                 if valid >= 8 * (v + 1) {
                     simd::store(out.add(8 * v), av);
                 } else if valid > 8 * v {
@@ -385,7 +383,11 @@ mod tests {
                 }
             }
             let conv = Conv::new(cout, cin, &wt, &b);
-            let out = conv.run(&t, c0, true);
+            // into a reused buffer of another shape, full of stale values
+            let mut out = Tensor::zeros(cout + 2, h + 3, w + 1);
+            out.data.fill(f32::NAN);
+            conv.run_into(&t, c0, &mut out);
+            assert_eq!((out.c, out.h, out.w), (cout, h, w));
             let want = direct(cin, cout, h, w, &img, &wt, &b);
             for o in 0..cout {
                 for y in 0..h {

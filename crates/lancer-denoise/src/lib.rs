@@ -16,7 +16,6 @@ pub mod unet;
 
 use rayon::prelude::*;
 use std::sync::OnceLock;
-use tensor::Tensor;
 use transfer::{Transfer, albedo_in, normal_in};
 use unet::UNet;
 
@@ -53,7 +52,8 @@ pub enum DenoiseError {
 /// Tiling limits.
 #[derive(Clone, Copy, Debug)]
 pub struct Options {
-    /// Largest tile, in pixels (the activations take about 600 bytes per tile pixel).
+    /// Largest tile, in pixels (the activations take about 860 bytes per tile pixel:
+    /// [`unet::Workspace`]).
     pub max_tile_pixels: usize,
     /// Smallest tile side OIDN cuts to (768).
     pub min_tile_dim: usize,
@@ -174,6 +174,26 @@ fn spans(size: usize, tile: usize, count: usize) -> Vec<Span> {
         .collect()
 }
 
+/// Writes channel `k` of `img` (interleaved RGB, `width` pixels a row), mapped by `f`, into
+/// the tile's plane `p` (row stride `stride`) where the spans `(rows, columns)` place it.
+fn fill_plane(
+    p: &mut [f32],
+    stride: usize,
+    img: &[f32],
+    width: usize,
+    k: usize,
+    (sy, sx): (Span, Span),
+    f: impl Fn(f32) -> f32,
+) {
+    for y in 0..sy.len {
+        let row = &mut p[(sy.align + y + 1) * stride + sx.align + 1..][..sx.len];
+        let src = &img[((sy.src + y) * width + sx.src) * 3..][..sx.len * 3];
+        for (o, px) in row.iter_mut().zip(src.chunks_exact(3)) {
+            *o = f(px[k]);
+        }
+    }
+}
+
 /// Denoises an HDR image (interleaved RGB, `width × height`) with OIDN's `rt` network for
 /// the given auxiliary images: autoexposure of the colour, PU transfer, the U-Net on each
 /// tile (with `TILE_OVERLAP` pixels of context), the inverse transfer.
@@ -207,30 +227,28 @@ pub fn denoise_with(
     let transfer = Transfer::new(transfer::autoexposure(color, width, height));
     let (th, tw, nh, nw) = tile_plan(width, height, opts);
     let mut out = vec![0.0f32; n];
+    let mut ws = net.workspace(th, tw);
+    let off = net.skip0_offset();
     for sy in spans(height, th, nh) {
         for sx in spans(width, tw, nw) {
-            let off = net.skip0_offset();
-            let mut x0 = Tensor::zeros(off + net.input_channels, th, tw);
+            let x0 = &mut ws.x0;
             let (plane, stride) = (x0.plane(), x0.stride());
             // Input: transfer each channel into its plane (zeros around the image data).
             x0.data[off * plane..(off + net.input_channels) * plane]
                 .par_chunks_mut(plane)
                 .enumerate()
                 .for_each(|(c, p)| {
-                    let (img, f): (&[f32], &dyn Fn(f32) -> f32) = match c / 3 {
-                        0 => (color, &|v| transfer.forward(v)),
-                        1 => (albedo.unwrap(), &|v| albedo_in(v)),
-                        _ => (normal.unwrap(), &|v| normal_in(v)),
-                    };
-                    for y in 0..sy.len {
-                        let row = &mut p[(sy.align + y + 1) * stride + sx.align + 1..][..sx.len];
-                        let src = &img[((sy.src + y) * width + sx.src) * 3..][..sx.len * 3];
-                        for (o, px) in row.iter_mut().zip(src.chunks_exact(3)) {
-                            *o = f(px[c % 3]);
-                        }
+                    p.fill(0.0);
+                    let k = c % 3;
+                    match c / 3 {
+                        0 => fill_plane(p, stride, color, width, k, (sy, sx), |v| {
+                            transfer.forward(v)
+                        }),
+                        1 => fill_plane(p, stride, albedo.unwrap(), width, k, (sy, sx), albedo_in),
+                        _ => fill_plane(p, stride, normal.unwrap(), width, k, (sy, sx), normal_in),
                     }
                 });
-            let y = net.run(x0);
+            let y = net.run(&mut ws);
             // Output: the tile's inner part, back through the inverse transfer.
             let rows = &mut out[(sy.src + sy.begin) * width * 3..][..sy.out * width * 3];
             rows.par_chunks_mut(width * 3)

@@ -19,7 +19,7 @@ pub struct Tensor {
     pub h: usize,
     /// Columns (without padding).
     pub w: usize,
-    /// The planes, then `SLACK` zeros.
+    /// The planes, then at least `SLACK` floats (zeros, or old values of a reused buffer).
     pub data: Vec<f32>,
 }
 
@@ -32,6 +32,26 @@ impl Tensor {
             h,
             w,
             data: vec![0.0; c * plane + SLACK],
+        }
+    }
+
+    /// Makes this buffer a `c`×`h`×`w` tensor for a convolution to fill, keeping its storage
+    /// (grown only if too small), so that a network's layers reuse a few buffers rather than
+    /// fault in fresh pages for each output. The top and bottom padding rows of each plane are
+    /// zeroed; every other element of the planes is written by the convolution, which zeroes
+    /// the side columns itself ([`Tensor::clear_side_padding`]). Storage past the planes may
+    /// hold old values: only vectors that overhang the last plane read it, and what they
+    /// compute from it is never stored.
+    pub fn reshape_for_conv(&mut self, c: usize, h: usize, w: usize) {
+        (self.c, self.h, self.w) = (c, h, w);
+        let (plane, stride) = (self.plane(), self.stride());
+        let need = c * plane + SLACK;
+        if self.data.len() < need {
+            self.data.resize(need, 0.0);
+        }
+        for p in self.data[..c * plane].chunks_exact_mut(plane) {
+            p[..stride].fill(0.0);
+            p[plane - stride..].fill(0.0);
         }
     }
 
@@ -120,6 +140,25 @@ pub fn upsample_into(src: &Tensor, dst: &mut Tensor) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_reshaped_buffer_has_a_zero_top_and_bottom_ring_and_keeps_its_storage() {
+        let mut t = Tensor::zeros(2, 6, 6);
+        t.data.fill(7.0);
+        let len = t.data.len();
+        t.reshape_for_conv(3, 2, 4);
+        assert_eq!((t.c, t.h, t.w, t.data.len()), (3, 2, 4, len));
+        for c in 0..3 {
+            let p = &t.data[c * t.plane()..(c + 1) * t.plane()];
+            assert!(
+                p[..6].iter().chain(&p[18..]).all(|&v| v == 0.0),
+                "plane {c}"
+            );
+            assert_eq!(p[7], 7.0, "the interior is the convolution's to write");
+        }
+        t.reshape_for_conv(4, 8, 8);
+        assert_eq!(t.data.len(), 4 * 100 + SLACK);
+    }
 
     #[test]
     fn pool_and_upsample() {

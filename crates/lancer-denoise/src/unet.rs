@@ -12,7 +12,8 @@
 //! dec_conv0 (3 channels, ReLU)
 //! ```
 //!
-//! Each concatenation is one tensor whose second half is written when the skip is made.
+//! Each concatenation is one tensor whose second half is written when the skip is made; the
+//! tensors live in a [`Workspace`] reused from tile to tile and layer to layer.
 
 use crate::conv::Conv;
 use crate::tensor::{Tensor, pool_into, upsample_into};
@@ -123,51 +124,84 @@ impl UNet {
         self.dec2b.cout
     }
 
-    /// Runs the network on `x0` (H and W multiples of 16; the input in channels
-    /// `skip0_offset()..`); returns the 3 output channels.
-    pub fn run(&self, mut x0: Tensor) -> Tensor {
-        let (h, w) = (x0.h, x0.w);
+    /// The buffers to run the network on `h`×`w` tiles ([`UNet::run`]), made once per image
+    /// and reused for each tile.
+    pub fn workspace(&self, h: usize, w: usize) -> Workspace {
         assert!(
             h % 16 == 0 && w % 16 == 0,
             "tile {w}x{h} not a multiple of 16"
         );
-        let off0 = self.skip0_offset();
-        assert_eq!(x0.c, off0 + self.input_channels);
-        // The concatenations of levels 1..3: [upsampled decoder | pooled encoder].
-        let mut x1 = Tensor::zeros(self.dec3b.cout + self.enc1.cout, h / 2, w / 2);
-        let mut x2 = Tensor::zeros(self.dec4b.cout + self.enc2.cout, h / 4, w / 4);
-        let mut x3 = Tensor::zeros(self.enc5b.cout + self.enc3.cout, h / 8, w / 8);
-        let mut p4 = Tensor::zeros(self.enc4.cout, h / 16, w / 16);
-
-        let t = self.enc0.run(&x0, off0, true);
-        let t = self.enc1.run(&t, 0, true);
-        pool_into(&t, &mut x1, self.dec3b.cout);
-        drop(t);
-        let t = self.enc2.run(&x1, self.dec3b.cout, true);
-        pool_into(&t, &mut x2, self.dec4b.cout);
-        let t = self.enc3.run(&x2, self.dec4b.cout, true);
-        pool_into(&t, &mut x3, self.enc5b.cout);
-        let t = self.enc4.run(&x3, self.enc5b.cout, true);
-        pool_into(&t, &mut p4, 0);
-
-        let t = self.enc5a.run(&p4, 0, true);
-        let t = self.enc5b.run(&t, 0, true);
-        upsample_into(&t, &mut x3);
-        let t = self.dec4a.run(&x3, 0, true);
-        drop(x3);
-        let t = self.dec4b.run(&t, 0, true);
-        upsample_into(&t, &mut x2);
-        let t = self.dec3a.run(&x2, 0, true);
-        drop(x2);
-        let t = self.dec3b.run(&t, 0, true);
-        upsample_into(&t, &mut x1);
-        let t = self.dec2a.run(&x1, 0, true);
-        drop(x1);
-        let t = self.dec2b.run(&t, 0, true);
-        upsample_into(&t, &mut x0);
-        let t = self.dec1a.run(&x0, 0, true);
-        drop(x0);
-        let t = self.dec1b.run(&t, 0, true);
-        self.dec0.run(&t, 0, true)
+        let full = |c: usize| Tensor::zeros(c, h, w);
+        Workspace {
+            x0: full(self.skip0_offset() + self.input_channels),
+            x1: Tensor::zeros(self.dec3b.cout + self.enc1.cout, h / 2, w / 2),
+            x2: Tensor::zeros(self.dec4b.cout + self.enc2.cout, h / 4, w / 4),
+            x3: Tensor::zeros(self.enc5b.cout + self.enc3.cout, h / 8, w / 8),
+            p4: Tensor::zeros(self.enc4.cout, h / 16, w / 16),
+            // the full-resolution layers each buffer receives (the lower levels' are smaller)
+            a: full(self.enc0.cout.max(self.dec1a.cout).max(self.dec0.cout)),
+            b: full(self.enc1.cout.max(self.dec1b.cout)),
+        }
     }
+
+    /// Runs the network on the workspace's input, `ws.x0`'s channels `skip0_offset()..` (the
+    /// caller fills them; the channels before are the decoder's); returns the 3 output
+    /// channels. The layers' outputs alternate between the buffers `a` and `b`.
+    pub fn run<'w>(&self, ws: &'w mut Workspace) -> &'w Tensor {
+        let off0 = self.skip0_offset();
+        let Workspace {
+            x0,
+            x1,
+            x2,
+            x3,
+            p4,
+            a,
+            b,
+        } = ws;
+        assert_eq!(x0.c, off0 + self.input_channels);
+
+        self.enc0.run_into(x0, off0, a);
+        self.enc1.run_into(a, 0, b);
+        pool_into(b, x1, self.dec3b.cout);
+        self.enc2.run_into(x1, self.dec3b.cout, a);
+        pool_into(a, x2, self.dec4b.cout);
+        self.enc3.run_into(x2, self.dec4b.cout, a);
+        pool_into(a, x3, self.enc5b.cout);
+        self.enc4.run_into(x3, self.enc5b.cout, a);
+        pool_into(a, p4, 0);
+
+        self.enc5a.run_into(p4, 0, a);
+        self.enc5b.run_into(a, 0, b);
+        upsample_into(b, x3);
+        self.dec4a.run_into(x3, 0, a);
+        self.dec4b.run_into(a, 0, b);
+        upsample_into(b, x2);
+        self.dec3a.run_into(x2, 0, a);
+        self.dec3b.run_into(a, 0, b);
+        upsample_into(b, x1);
+        self.dec2a.run_into(x1, 0, a);
+        self.dec2b.run_into(a, 0, b);
+        upsample_into(b, x0);
+        self.dec1a.run_into(x0, 0, a);
+        self.dec1b.run_into(a, 0, b);
+        self.dec0.run_into(b, 0, a);
+        a
+    }
+}
+
+/// The activations of one tile size: the input with the level-0 concatenation around it
+/// (`x0`), the concatenations of levels 1..3 (`[upsampled decoder | pooled encoder]`), the
+/// last pooling (`p4`), and two buffers the layers' outputs alternate between. About
+/// 860 bytes per tile pixel for OIDN's networks (73 + 64 + 32 full-resolution channels and
+/// the lower levels' 45 per pixel, 4 bytes each).
+#[derive(Clone, Debug)]
+pub struct Workspace {
+    /// Level 0: `[upsampled decoder | input]`.
+    pub x0: Tensor,
+    x1: Tensor,
+    x2: Tensor,
+    x3: Tensor,
+    p4: Tensor,
+    a: Tensor,
+    b: Tensor,
 }
