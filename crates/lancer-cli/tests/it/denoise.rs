@@ -34,10 +34,11 @@ Shape "trianglemesh" "point3 P" [-10 -10 -1  10 -10 -1  10 10 -1  -10 10 -1]
     )
 }
 
-#[test]
-fn render_denoise_writes_its_inputs_and_img_denoise_gives_the_same_image() {
-    let dir = ScratchDir::new("denoise-render");
-    std::fs::write(dir.join("s.pbrt"), scene(false)).unwrap();
+/// Renders `scene(mirror)` with `--denoise --denoise-inputs` into `out.exr` of a new scratch
+/// folder `name`, and returns the folder.
+fn render_denoised(name: &str, mirror: bool) -> ScratchDir {
+    let dir = ScratchDir::new(name);
+    std::fs::write(dir.join("s.pbrt"), scene(mirror)).unwrap();
     let o = run_in(
         &dir,
         &[
@@ -51,6 +52,12 @@ fn render_denoise_writes_its_inputs_and_img_denoise_gives_the_same_image() {
         ],
     );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    dir
+}
+
+#[test]
+fn render_denoise_writes_its_inputs_and_img_denoise_gives_the_same_image() {
+    let dir = render_denoised("denoise-render", false);
     let albedo = read_exr(&dir.join("out.albedo.exr"));
     let normal = read_exr(&dir.join("out.normal.exr"));
     for (a, n) in albedo.rgb.iter().zip(&normal.rgb) {
@@ -94,21 +101,7 @@ fn render_denoise_writes_its_inputs_and_img_denoise_gives_the_same_image() {
 
 #[test]
 fn the_albedo_is_the_one_seen_through_a_mirror() {
-    let dir = ScratchDir::new("denoise-mirror");
-    std::fs::write(dir.join("s.pbrt"), scene(true)).unwrap();
-    let o = run_in(
-        &dir,
-        &[
-            "render",
-            "s.pbrt",
-            "-o",
-            "out.exr",
-            "--quiet",
-            "--denoise",
-            "--denoise-inputs",
-        ],
-    );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let dir = render_denoised("denoise-mirror", true);
     let albedo = read_exr(&dir.join("out.albedo.exr"));
     // left column: the mirror shows the grey plane behind the camera (0.9 times silver's
     // reflectance, above 0.8); right column: the coloured plane itself
