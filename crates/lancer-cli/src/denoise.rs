@@ -2,7 +2,8 @@
 //! denoiser's auxiliary images (albedo and shading normal of the first surface that is not
 //! perfectly specular, with the film's pixel filter: [`GbufferConfig::denoiser`]); once the
 //! render is done, Open Image Denoise's network ([`lancer_denoise`]) turns the noisy colour
-//! into the image written.
+//! into the image written. A part of a split render keeps the auxiliary sums instead, and
+//! `lancer merge --denoise` denoises the merged image ([`denoise_film`]).
 
 use crate::cli_error::CliError;
 use crate::img::denoise::denoise_rgb;
@@ -17,7 +18,8 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Refuses what `--denoise` cannot do yet, before the render starts (`is_part`: the render
-/// is a part of a split one), and gives the film its auxiliary sums.
+/// is a part of a split one, whose file keeps the auxiliary sums for `lancer merge
+/// --denoise`), and gives the film its auxiliary sums.
 pub fn prepare(
     args: &RenderArgs,
     desc: &SceneDesc,
@@ -30,11 +32,16 @@ pub fn prepare(
     let refuse = |what: &str| {
         Err(CliError::input(format!(
             "--denoise cannot be used with {what} yet: the film's auxiliary images (albedo, \
-             normal) are not kept in parts or checkpoints; render in one go"
+             normal) are not kept in checkpoints; render in one go (or in parts, --split, \
+             and denoise with lancer merge --denoise)"
         )))
     };
-    if is_part {
-        return refuse("a part of a split render (--split, --samples)");
+    if is_part && args.denoise_inputs {
+        return Err(CliError::input(
+            "--denoise-inputs with a part of a split render (--split, --samples): a part keeps \
+             the denoiser's sums and is not denoised; give --denoise --denoise-inputs to \
+             lancer merge",
+        ));
     }
     if args.resume.is_some() {
         return refuse("--resume");
@@ -70,59 +77,65 @@ pub struct Denoised {
 }
 
 /// Denoises the finished film, its image scaled by `scale` (and writes its inputs beside
-/// `output` with `--denoise-inputs`); `None` without `--denoise`.
+/// `output` with `--denoise-inputs`); `None` without `--denoise` or for a part (`is_part`),
+/// which keeps the sums for `lancer merge --denoise`.
 pub fn run(
     args: &RenderArgs,
     film: &Film,
     scale: f32,
     output: &Path,
+    is_part: bool,
 ) -> Result<Option<Denoised>, CliError> {
-    if !args.denoise {
+    if !args.denoise || is_part {
         return Ok(None);
-    }
-    let b = film.bounds;
-    let noisy = film.image(scale);
-    let (albedo, normal) = film
-        .gbuffer
-        .as_ref()
-        .expect("prepare gave the film its auxiliary sums")
-        .denoiser_images();
-    if args.denoise_inputs {
-        for (kind, img) in [("noisy", &noisy), ("albedo", &albedo), ("normal", &normal)] {
-            let path = input_path(output, kind);
-            write_image(&path, b.width(), b.height(), img)
-                .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))?;
-        }
     }
     let json = args.progress == ProgressMode::Json;
     if !args.quiet && !json {
+        let b = film.bounds;
         eprintln!(
             "denoising {}x{} (colour + albedo + normal)…",
             b.width(),
             b.height()
         );
     }
-    let start = Instant::now();
-    let flat = |v: &[Rgb]| v.iter().flat_map(|c| [c.x, c.y, c.z]).collect::<Vec<f32>>();
-    let out = denoise_rgb(
-        &flat(&noisy),
-        Some(&flat(&albedo)),
-        Some(&flat(&normal)),
-        b.width(),
-        b.height(),
-    )?;
-    let seconds = start.elapsed().as_secs_f64();
+    let denoised = denoise_film(film, scale, output, args.denoise_inputs)?;
     if !args.quiet && json {
         eprintln!(
             "{}",
-            serde_json::json!({ "denoise_s": (seconds * 1000.0).round() / 1000.0 })
+            serde_json::json!({ "denoise_s": (denoised.seconds * 1000.0).round() / 1000.0 })
         );
     }
-    Ok(Some(Denoised {
-        pixels: out
-            .chunks_exact(3)
-            .map(|c| Rgb::new(c[0], c[1], c[2]))
-            .collect(),
-        seconds,
-    }))
+    Ok(Some(denoised))
+}
+
+/// Denoises a film that gathered the denoiser's auxiliary sums (a `--denoise` render's, or
+/// the merge of its parts), its image scaled by `scale`; with `write_inputs`, first writes
+/// the denoiser's inputs beside `output` ([`input_path`]).
+pub fn denoise_film(
+    film: &Film,
+    scale: f32,
+    output: &Path,
+    write_inputs: bool,
+) -> Result<Denoised, CliError> {
+    let b = film.bounds;
+    let noisy = film.image(scale);
+    let (albedo, normal) = film
+        .gbuffer
+        .as_ref()
+        .filter(|g| g.config.for_denoiser)
+        .ok_or_else(|| CliError::runtime("the film has no denoiser's auxiliary images"))?
+        .denoiser_images();
+    if write_inputs {
+        for (kind, img) in [("noisy", &noisy), ("albedo", &albedo), ("normal", &normal)] {
+            let path = input_path(output, kind);
+            write_image(&path, b.width(), b.height(), img)
+                .map_err(|e| CliError::runtime(format!("cannot write {}: {e}", path.display())))?;
+        }
+    }
+    let start = Instant::now();
+    let pixels = denoise_rgb(&noisy, Some(&albedo), Some(&normal), b.width(), b.height())?;
+    Ok(Denoised {
+        pixels,
+        seconds: start.elapsed().as_secs_f64(),
+    })
 }

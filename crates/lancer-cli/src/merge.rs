@@ -1,11 +1,13 @@
-//! `lancer merge PARTS... -o OUT`: adds up the parts of a split render and writes the image,
-//! bit for bit the one a single process would have written.
+//! `lancer merge PARTS... -o OUT [--denoise]`: adds up the parts of a split render and writes
+//! the image, bit for bit the one a single process would have written (with `--denoise`, the
+//! merged image denoised with the parts' auxiliary sums, as `render --denoise` does).
 
 use crate::cli_error::CliError;
 use crate::output::check_output;
 use clap::Args;
 use lancer::film::part::{PartError, PartMeta, read_part};
 use lancer::film::{Film, PixelBounds};
+use lancer::gbuffer::GbufferFilm;
 use lancer::image_io::write_image;
 use std::path::{Path, PathBuf};
 
@@ -18,6 +20,14 @@ pub struct MergeArgs {
     /// The image to write (.png or .exr).
     #[arg(short, long)]
     pub output: PathBuf,
+    /// Denoise the merged image (the parts must have been rendered with --denoise, which
+    /// keeps the denoiser's albedo and normal sums in them).
+    #[arg(long)]
+    pub denoise: bool,
+    /// With --denoise: also write the denoiser's inputs beside the output, as
+    /// OUT.noisy.exr, OUT.albedo.exr and OUT.normal.exr.
+    #[arg(long, requires = "denoise")]
+    pub denoise_inputs: bool,
 }
 
 fn show(b: &PixelBounds) -> String {
@@ -139,15 +149,30 @@ pub fn run(args: MergeArgs) -> Result<(), CliError> {
         let (film, meta) = read_part(p).map_err(|e| CliError::input(part_error(p, e)))?;
         parts.push((p.clone(), film, meta));
     }
+    if args.denoise
+        && let Some((p, _, _)) = parts.iter().find(|(_, f, _)| f.gbuffer.is_none())
+    {
+        return Err(CliError::input(format!(
+            "cannot merge with --denoise: {} has no denoiser's albedo and normal sums (render \
+             the parts with --denoise)",
+            p.display()
+        )));
+    }
     let (film, scale) =
         merge_parts(&parts).map_err(|e| CliError::input(format!("cannot merge: {e}")))?;
+    let image = if args.denoise {
+        crate::denoise::denoise_film(&film, scale, &args.output, args.denoise_inputs)?.pixels
+    } else {
+        film.image(scale)
+    };
     let b = film.bounds;
-    write_image(&args.output, b.width(), b.height(), &film.image(scale))
+    write_image(&args.output, b.width(), b.height(), &image)
         .map_err(|e| CliError::runtime(e.to_string()))
 }
 
 /// Checks the parts ([`check_parts`]) and adds up their exact sums into the whole render's
-/// film; returns it with the film scale its image is made with (`film.image(scale)`).
+/// film (and the denoiser's auxiliary sums, when every part has them); returns it with the
+/// film scale its image is made with (`film.image(scale)`).
 pub fn merge_parts(parts: &[(PathBuf, Film, PartMeta)]) -> Result<(Film, f32), String> {
     if parts.is_empty() {
         return Err("no part to merge".into());
@@ -155,6 +180,15 @@ pub fn merge_parts(parts: &[(PathBuf, Film, PartMeta)]) -> Result<(Film, f32), S
     check_parts(parts)?;
     let (_, f0, m0) = &parts[0];
     let mut film = Film::new(f0.full_width, f0.full_height, m0.render_bounds);
+    // The denoiser's sums, when every part kept them.
+    if let Some(g) = &f0.gbuffer
+        && parts.iter().all(|(_, f, _)| f.gbuffer.is_some())
+    {
+        film.gbuffer = Some(Box::new(GbufferFilm::new(
+            g.config,
+            film.bounds.area() as usize,
+        )));
+    }
     for (_, f, _) in parts {
         film.merge_film(f);
     }

@@ -51,7 +51,13 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     if let Some(h) = &mut plan.gbuffer {
         h.render_time_seconds = Some(rendered.seconds as f32);
     }
-    let denoised = crate::denoise::run(&args, &plan.state.film, plan.meta.scale, &plan.output)?;
+    let denoised = crate::denoise::run(
+        &args,
+        &plan.state.film,
+        plan.meta.scale,
+        &plan.output,
+        is_part,
+    )?;
     let image = denoised.as_ref().map(|d| d.pixels.as_slice());
     let write_s = write(&args, &plan, rendered.live, image)?;
     let finished = Finished {

@@ -123,7 +123,9 @@ pub struct RenderArgs {
     pub rgb: bool,
     /// Denoise the image with Open Image Denoise's network (lancer's own CPU inference), from
     /// the colour, albedo and shading normal rendered in the same pass: for previews and low
-    /// sample counts, not for reference images.
+    /// sample counts, not for reference images. A part of a split render (--split,
+    /// --samples) is not denoised but keeps the albedo and normal sums, for `lancer merge
+    /// --denoise`.
     #[arg(long)]
     pub denoise: bool,
     /// With --denoise: also write the denoiser's inputs beside the output, as OUT.noisy.exr,

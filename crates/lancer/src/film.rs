@@ -310,11 +310,15 @@ impl Film {
     }
 
     /// Adds every pixel of `other` that this film also holds (exact integer sums), as
-    /// `merge_tile` does for one tile, and its splat sums.
+    /// `merge_tile` does for one tile, its splat sums, and its g-buffer sums if both films
+    /// have them.
     pub fn merge_film(&mut self, other: &Film) {
         self.merge_tile(&other.bounds, &other.pixels);
         if let Some(s) = &other.splats {
             self.merge_splats(s);
+        }
+        if let Some(g) = &other.gbuffer {
+            self.merge_gbuffer_tile(&other.bounds, &g.pixels);
         }
     }
 

@@ -28,25 +28,8 @@ pub struct DenoiseArgs {
     pub quiet: bool,
 }
 
-/// An image as the denoiser takes it: interleaved RGB floats.
-pub fn flat(p: &Picture) -> Vec<f32> {
-    p.pixels.iter().flat_map(|c| [c.x, c.y, c.z]).collect()
-}
-
-/// Interleaved RGB floats back into a picture.
-pub fn picture(width: u32, height: u32, rgb: &[f32]) -> Picture {
-    Picture {
-        width,
-        height,
-        pixels: rgb
-            .chunks_exact(3)
-            .map(|c| Rgb::new(c[0], c[1], c[2]))
-            .collect(),
-    }
-}
-
 /// Reads an auxiliary image and checks that its size is the colour's.
-fn read_aux(path: &Path, color: &Picture, color_path: &Path) -> Result<Vec<f32>, CliError> {
+fn read_aux(path: &Path, color: &Picture, color_path: &Path) -> Result<Vec<Rgb>, CliError> {
     let p = read_picture(path)?;
     if (p.width, p.height) != (color.width, color.height) {
         return Err(CliError::input(format!(
@@ -59,20 +42,33 @@ fn read_aux(path: &Path, color: &Picture, color_path: &Path) -> Result<Vec<f32>,
             color.height
         )));
     }
-    Ok(flat(&p))
+    Ok(p.pixels)
 }
 
-/// Denoises interleaved RGB images; a failure (which only corrupted built-in weights could
-/// cause once the sizes are checked) is a runtime error.
+/// Denoises row-major images (the denoiser takes and gives interleaved RGB floats); a
+/// failure (which only corrupted built-in weights could cause once the sizes are checked) is
+/// a runtime error.
 pub fn denoise_rgb(
-    color: &[f32],
-    albedo: Option<&[f32]>,
-    normal: Option<&[f32]>,
+    color: &[Rgb],
+    albedo: Option<&[Rgb]>,
+    normal: Option<&[Rgb]>,
     width: u32,
     height: u32,
-) -> Result<Vec<f32>, CliError> {
-    lancer_denoise::denoise(color, albedo, normal, width as usize, height as usize)
-        .map_err(|e| CliError::runtime(format!("denoiser: {e}")))
+) -> Result<Vec<Rgb>, CliError> {
+    let flat = |v: &[Rgb]| v.iter().flat_map(|c| [c.x, c.y, c.z]).collect::<Vec<f32>>();
+    let (a, n) = (albedo.map(flat), normal.map(flat));
+    let out = lancer_denoise::denoise(
+        &flat(color),
+        a.as_deref(),
+        n.as_deref(),
+        width as usize,
+        height as usize,
+    )
+    .map_err(|e| CliError::runtime(format!("denoiser: {e}")))?;
+    Ok(out
+        .chunks_exact(3)
+        .map(|c| Rgb::new(c[0], c[1], c[2]))
+        .collect())
 }
 
 /// Runs `lancer img denoise`.
@@ -90,15 +86,20 @@ pub fn denoise(args: DenoiseArgs) -> Result<(), CliError> {
         .map(|n| read_aux(n, &color, &args.color))
         .transpose()?;
     let start = Instant::now();
-    let out = denoise_rgb(
-        &flat(&color),
+    let pixels = denoise_rgb(
+        &color.pixels,
         albedo.as_deref(),
         normal.as_deref(),
         color.width,
         color.height,
     )?;
     let secs = start.elapsed().as_secs_f64();
-    write(&args.output, &picture(color.width, color.height, &out))?;
+    let out = Picture {
+        width: color.width,
+        height: color.height,
+        pixels,
+    };
+    write(&args.output, &out)?;
     if !args.quiet {
         let with = match (&albedo, &normal) {
             (None, _) => "colour only",

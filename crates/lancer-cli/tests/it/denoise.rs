@@ -1,6 +1,6 @@
-//! `lancer render --denoise [--denoise-inputs]` and `lancer img denoise`: the auxiliary
-//! images on a hand-checkable scene (through a mirror too), the same image from both
-//! commands, and what `--denoise` refuses.
+//! `lancer render --denoise [--denoise-inputs]`, `lancer img denoise` and `lancer merge
+//! --denoise`: the auxiliary images on a hand-checkable scene (through a mirror too), the
+//! same image from the three commands, and what `--denoise` refuses.
 
 use crate::common::{ScratchDir, read_exr, run_in};
 
@@ -116,6 +116,85 @@ fn the_albedo_is_the_one_seen_through_a_mirror() {
     );
 }
 
+/// The parts of a split render keep the denoiser's sums, and `lancer merge --denoise` gives
+/// `render --denoise`'s image and inputs: bit for bit split by tiles (each pixel's sums come
+/// from one part), up to float rounding split by samples; a part without the sums is
+/// refused.
+#[test]
+fn merge_denoise_gives_the_single_renders_image() {
+    let dir = ScratchDir::new("denoise-merge");
+    std::fs::write(dir.join("s.pbrt"), scene(true)).unwrap();
+    // two rows of 16-pixel tiles, one per part
+    let render = |args: &[&str]| {
+        let mut all = vec!["render", "s.pbrt", "--quiet", "--resolution", "16x32"];
+        all.extend(args);
+        let o = run_in(&dir, &all);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    };
+    render(&["-o", "whole.exr", "--denoise", "--denoise-inputs"]);
+    render(&["-o", "p0.exr", "--denoise", "--split", "0/2"]);
+    render(&["-o", "p1.exr", "--denoise", "--split", "1/2"]);
+    render(&["-o", "plain1.exr", "--split", "1/2"]);
+    let merge = |args: &[&str]| {
+        let mut all = vec!["merge", "p0.exr"];
+        all.extend(args);
+        run_in(&dir, &all)
+    };
+    let o = merge(&["p1.exr", "-o", "m.exr", "--denoise", "--denoise-inputs"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for name in ["", ".noisy", ".albedo", ".normal"] {
+        let (m, w) = (format!("m{name}.exr"), format!("whole{name}.exr"));
+        assert_eq!(read_exr(&dir.join(&m)), read_exr(&dir.join(&w)), "{m}");
+    }
+    // the denoised image is not the noisy one
+    assert_ne!(
+        read_exr(&dir.join("m.exr")),
+        read_exr(&dir.join("m.noisy.exr"))
+    );
+    // Split by samples (1 + 3 of the 4): the colour sums are exact, the auxiliary ones add
+    // in another order (last bits of an f64), so the denoised image agrees to float rounding.
+    render(&["-o", "s0.exr", "--denoise", "--samples", "0..1"]);
+    render(&["-o", "s1.exr", "--denoise", "--samples", "1..4"]);
+    let o = run_in(
+        &dir,
+        &[
+            "merge",
+            "s0.exr",
+            "s1.exr",
+            "-o",
+            "s.exr",
+            "--denoise",
+            "--denoise-inputs",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let noisy = read_exr(&dir.join("s.noisy.exr"));
+    assert_eq!(noisy, read_exr(&dir.join("whole.noisy.exr")));
+    for (name, tol) in [(".albedo", 1e-6), (".normal", 1e-6), ("", 1e-4)] {
+        let (s, w) = (format!("s{name}.exr"), format!("whole{name}.exr"));
+        let (s, w) = (read_exr(&dir.join(&s)), read_exr(&dir.join(&w)));
+        let worst = s
+            .rgb
+            .iter()
+            .flatten()
+            .zip(w.rgb.iter().flatten())
+            .map(|(a, b)| (a - b).abs() / b.abs().max(1e-2))
+            .fold(0.0, f64::max);
+        assert!(
+            worst <= tol,
+            "s{name}.exr: worst relative difference {worst}"
+        );
+    }
+    let o = merge(&["plain1.exr", "-o", "x.exr", "--denoise"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("plain1.exr has no denoiser's albedo and normal sums"),
+        "{err}"
+    );
+    assert!(!dir.join("x.exr").exists());
+}
+
 #[test]
 fn denoise_refuses_what_it_cannot_do_yet() {
     let dir = ScratchDir::new("denoise-refuse");
@@ -129,12 +208,14 @@ fn denoise_refuses_what_it_cannot_do_yet() {
             "p.exr",
             "--quiet",
             "--denoise",
+            "--denoise-inputs",
             "--samples",
             "0..2",
         ],
     );
     assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("--denoise cannot be used with a part"));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("--denoise-inputs with a part"), "{err}");
     let o = run_in(
         &dir,
         &["render", "s.pbrt", "-o", "p.exr", "--denoise-inputs"],

@@ -2,6 +2,7 @@
 //! the exact accumulators: a part written by one process and read by another gives back the
 //! very integers, so parts merge into the image a single process would have written.
 
+use super::gsums::{GPixel, GbufferConfig, GbufferFilm};
 use super::splat::SplatPlane;
 use super::{Film, PixelBounds, PixelSum};
 use crate::image_io::{LayerSize, encode_film_layer, write_atomic};
@@ -54,6 +55,32 @@ const PART_PREFIX: &str = "lancer.";
 /// unsigned channels, `hi = bits >> 32` and `lo = bits & 0xffff_ffff`, so it is stored exactly.
 const PART_SUMS: [&str; 4] = ["R", "G", "B", "W"];
 
+/// Names of the denoiser's auxiliary sums a part keeps when its film gathers them
+/// (`render --split … --denoise`): Σw over every sample, Σw·albedo and Σw·shading normal,
+/// the [`GPixel`] fields [`super::gsums::GbufferFilm::denoiser_images`] reads, each an f64
+/// stored exactly as its 64 bits.
+const PART_AUX: [&str; 7] = [
+    "aux.W", "aux.A.R", "aux.A.G", "aux.A.B", "aux.Ns.X", "aux.Ns.Y", "aux.Ns.Z",
+];
+
+/// A pixel's sum `k` of [`PART_AUX`].
+fn aux_sum(p: &GPixel, k: usize) -> &f64 {
+    match k {
+        0 => &p.weight,
+        1..=3 => &p.albedo[k - 1],
+        _ => &p.ns[k - 4],
+    }
+}
+
+/// A pixel's sum `k` of [`PART_AUX`], to set.
+fn aux_sum_mut(p: &mut GPixel, k: usize) -> &mut f64 {
+    match k {
+        0 => &mut p.weight,
+        1..=3 => &mut p.albedo[k - 1],
+        _ => &mut p.ns[k - 4],
+    }
+}
+
 /// The smallest rectangle holding both.
 fn union(a: &PixelBounds, b: &PixelBounds) -> PixelBounds {
     PixelBounds {
@@ -105,7 +132,8 @@ fn narrow<'v, T: Copy>(
 /// splats ([`super::splat`]) also has its splat sums as `lancer.splat<k>.{hi,lo}`, k = 0 …
 /// `lancer.splatChannels` − 1, over `lancer.splatBounds`; the layer then covers both
 /// rectangles, the sums of each zero outside it. A film without splats is written as before
-/// splats existed.
+/// splats existed. A film that gathers the denoiser's auxiliary images also has their sums as
+/// `lancer.aux.*.{hi,lo}` ([`PART_AUX`]).
 pub fn encode_part(film: &Film, meta: &PartMeta) -> Result<Vec<u8>, String> {
     use exr::prelude::*;
     if film.bounds.is_empty() {
@@ -113,6 +141,7 @@ pub fn encode_part(film: &Film, meta: &PartMeta) -> Result<Vec<u8>, String> {
     }
     let window = part_window(film);
     let wide = |v: Vec<u32>| widen(v, &film.bounds, &window);
+    let wide_u64 = |v: Vec<u64>| widen(v, &film.bounds, &window);
     let mut list: SmallVec<[AnyChannel<FlatSamples>; 4]> = SmallVec::new();
     let image = film.image(meta.scale);
     for (c, name) in ["R", "G", "B"].iter().enumerate() {
@@ -154,6 +183,12 @@ pub fn encode_part(film: &Film, meta: &PartMeta) -> Result<Vec<u8>, String> {
             format!("{},{},{},{}", b.x0, b.x1, b.y0, b.y1),
         ));
         extra.push(("splatChannels", sp.channels.to_string()));
+    }
+    if let Some(g) = film.gbuffer.as_ref().filter(|g| g.config.for_denoiser) {
+        for (k, name) in PART_AUX.iter().enumerate() {
+            let bits = g.pixels.iter().map(|p| aux_sum(p, k).to_bits()).collect();
+            push_u64(name.to_string(), wide_u64(bits), &mut list);
+        }
     }
     let b = &meta.render_bounds;
     let attrs = [
@@ -374,6 +409,24 @@ pub fn decode_part(name: &Path, bytes: Vec<u8>) -> Result<(Film, PartMeta), Part
         }
         film.splats = Some(Box::new(plane));
     }
+    // The denoiser's sums, when the part has them. Its configuration only serves merging:
+    // the normals are already in the camera space the render used.
+    let aux_w = format!("{PART_PREFIX}{}.hi", PART_AUX[0]);
+    if layer
+        .channel_data
+        .list
+        .iter()
+        .any(|c| c.name.eq(aux_w.as_str()))
+    {
+        let config = GbufferConfig::denoiser(crate::math::Transform::IDENTITY, spp);
+        let mut g = GbufferFilm::new(config, bounds.area() as usize);
+        for (k, name) in PART_AUX.iter().enumerate() {
+            for (p, v) in g.pixels.iter_mut().zip(sums(name, &bounds)?) {
+                *aux_sum_mut(p, k) = f64::from_bits(v as u64);
+            }
+        }
+        film.gbuffer = Some(Box::new(g));
+    }
     Ok((film, meta))
 }
 
@@ -418,6 +471,18 @@ mod tests {
         let (f2, m2) = read_part(&path).unwrap();
         assert_eq!(f2, film);
         assert_eq!(m2, meta);
+        // With the denoiser's sums (any f64, sign and all, comes back bit for bit).
+        let config = GbufferConfig::denoiser(crate::math::Transform::IDENTITY, 64);
+        let mut g = GbufferFilm::new(config, film.pixels.len());
+        for (i, p) in g.pixels.iter_mut().enumerate() {
+            for k in 0..PART_AUX.len() {
+                *aux_sum_mut(p, k) = (i * 7 + k) as f64 * -0.1 + 1e-300;
+            }
+        }
+        film.gbuffer = Some(Box::new(g));
+        write_part(&path, &film, &meta).unwrap();
+        let (f3, _) = read_part(&path).unwrap();
+        assert_eq!(f3, film);
         // An ordinary image is refused with a message naming the file.
         let plain = dir.join("plain.exr");
         write_image(&plain, 2, 2, &[Rgb::splat(1.0); 4]).unwrap();
