@@ -19,12 +19,15 @@ use std::time::Instant;
 
 /// Refuses what `--denoise` cannot do yet, before the render starts (`is_part`: the render
 /// is a part of a split one, whose file keeps the auxiliary sums for `lancer merge
-/// --denoise`), and gives the film its auxiliary sums.
+/// --denoise`; `from_checkpoint`: the film is a checkpoint's, continued by `--resume` or
+/// `--resume-if-exists`, which has no auxiliary sums for its finished work), and gives the
+/// film its auxiliary sums.
 pub fn prepare(
     args: &RenderArgs,
     desc: &SceneDesc,
     film: &mut Film,
     is_part: bool,
+    from_checkpoint: bool,
 ) -> Result<(), CliError> {
     if !args.denoise {
         return Ok(());
@@ -43,8 +46,8 @@ pub fn prepare(
              lancer merge",
         ));
     }
-    if args.resume.is_some() {
-        return refuse("--resume");
+    if from_checkpoint {
+        return refuse("a checkpoint (--resume, or --resume-if-exists finding one)");
     }
     if args.checkpoint_every.is_some() {
         return refuse("--checkpoint-every");

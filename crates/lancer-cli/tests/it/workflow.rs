@@ -372,6 +372,25 @@ fn resume_if_exists_starts_afresh_then_continues_its_own_checkpoint_only() {
     );
     assert!(ckpt.exists(), "the refused checkpoint is kept");
 
+    // The same part with --denoise cannot continue it: the checkpoint has no denoiser's sums
+    // for its finished work (the part would carry zero albedo and normal there).
+    let o = run_in(
+        &dir,
+        &[
+            &["render", s(&scene), "-o", "part.exr", "--resume-if-exists"],
+            &opts[..],
+            &["--denoise", "--quiet"],
+        ]
+        .concat(),
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--denoise cannot be used with a checkpoint"),
+        "{err}"
+    );
+    assert!(ckpt.exists() && bytes(&dir.join("part.exr")) == bytes(&reference));
+
     // Without an output or a checkpoint path there is nothing to look for.
     let o = run_in(
         &dir,
