@@ -128,7 +128,7 @@ impl UNet {
     /// and reused for each tile.
     pub fn workspace(&self, h: usize, w: usize) -> Workspace {
         assert!(
-            h % 16 == 0 && w % 16 == 0,
+            h.is_multiple_of(16) && w.is_multiple_of(16),
             "tile {w}x{h} not a multiple of 16"
         );
         let full = |c: usize| Tensor::zeros(c, h, w);
