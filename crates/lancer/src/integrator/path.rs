@@ -4,7 +4,7 @@ use super::path_spectra::PathSpectra;
 use super::{PathVertex, bsdf_at_memo, specular_differentials, subsurface};
 use crate::light::LightSampleContext;
 use crate::material::{Bsdf, TransportMode};
-use crate::math::{Rgb, SampledSpectrum, Vec3, normalize};
+use crate::math::{SampledSpectrum, Vec3, normalize};
 use crate::ray::Ray;
 use crate::sampling::{Sampler, power_heuristic};
 use crate::scene::Scene;
@@ -123,12 +123,7 @@ pub fn li_observed<O: PathObserver>(
             let mut p_b_value = None;
             for &i in scene.infinite_lights() {
                 let (i, light) = (i as usize, &scene.lights()[i as usize]);
-                let le = light.le(ray.d);
-                let le = if le == Rgb::ZERO {
-                    SampledSpectrum::ZERO
-                } else {
-                    scene.light_radiance(i, wavelengths.as_ref(), le, 1.0, ray.d)
-                };
+                let le = scene.environment_radiance(i, wavelengths.as_ref(), ray.d);
                 if le == SampledSpectrum::ZERO {
                     continue;
                 }

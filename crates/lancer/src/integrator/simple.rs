@@ -5,7 +5,7 @@
 use super::{bsdf_at, emitted};
 use crate::light::LightSampleContext;
 use crate::material::TransportMode;
-use crate::math::{Rgb, SampledSpectrum, Vec3};
+use crate::math::{SampledSpectrum, Vec3};
 use crate::ray::Ray;
 use crate::sampling::{
     Sampler, sample_uniform_hemisphere, sample_uniform_sphere, uniform_hemisphere_pdf,
@@ -19,10 +19,7 @@ use crate::spectrum::sampled::SampledWavelengths;
 fn environment(scene: &Scene, d: Vec3, lambda: Option<&SampledWavelengths>) -> SampledSpectrum {
     let mut le = SampledSpectrum::ZERO;
     for &i in scene.infinite_lights() {
-        let c = scene.lights()[i as usize].le(d);
-        if c != Rgb::ZERO {
-            le += scene.light_radiance(i as usize, lambda, c, 1.0, d);
-        }
+        le += scene.environment_radiance(i as usize, lambda, d);
     }
     le
 }

@@ -271,11 +271,10 @@ impl Walk<'_> {
         let scene = self.scene;
         for &i in scene.infinite_lights() {
             let (i, light) = (i as usize, &scene.lights()[i as usize]);
-            let le = light.le(s.ray.d);
-            if le == crate::math::Rgb::ZERO {
+            let le = scene.environment_radiance(i, self.lambda(), s.ray.d);
+            if le == SampledSpectrum::ZERO {
                 continue;
             }
-            let le = scene.light_radiance(i, self.lambda(), le, 1.0, s.ray.d);
             match (s.depth == 0 || s.specular_bounce, s.prev_ctx) {
                 (false, Some(ctx)) => {
                     let p_l = scene.light_sampler().pmf(&ctx, i)

@@ -28,10 +28,7 @@ pub fn li(
         return scene
             .infinite_lights()
             .iter()
-            .map(|&i| {
-                let i = i as usize;
-                scene.light_radiance(i, lambda, scene.lights()[i].le(ray.d), 1.0, ray.d)
-            })
+            .map(|&i| scene.environment_radiance(i as usize, lambda, ray.d))
             .sum();
     };
     let si = &hit.si;

@@ -562,4 +562,26 @@ impl Scene {
             },
         }
     }
+
+    /// Radiance of environment light `i` (one of [`Scene::infinite_lights`]) arriving along a
+    /// ray that leaves the scene in direction `d` (need not be unit), as transport lanes; zero
+    /// where it gives none. [`Light::le`] through [`Scene::light_radiance`], except in
+    /// spectral mode for a light spectral by nature ([`Light::le_spectral`]), whose colour
+    /// would be thrown away.
+    #[inline]
+    pub fn environment_radiance(
+        &self,
+        i: usize,
+        lambda: Option<&SampledWavelengths>,
+        d: Vec3,
+    ) -> SampledSpectrum {
+        if let Some(s) = lambda.and_then(|w| self.lights[i].le_spectral(d, w)) {
+            return s;
+        }
+        let le = self.lights[i].le(d);
+        if le == Rgb::ZERO {
+            return SampledSpectrum::ZERO;
+        }
+        self.light_radiance(i, lambda, le, 1.0, d)
+    }
 }

@@ -152,10 +152,7 @@ impl Vertex {
             // The environment along −w (the direction the camera subpath left in).
             let mut le = SampledSpectrum::ZERO;
             for &i in scene.infinite_lights() {
-                let c = scene.lights()[i as usize].le(-w);
-                if c != crate::math::Rgb::ZERO {
-                    le += scene.light_radiance(i as usize, lambda, c, 1.0, -w);
-                }
+                le += scene.environment_radiance(i as usize, lambda, -w);
             }
             return le;
         }
