@@ -66,21 +66,35 @@ impl PlyMesh {
     /// vertices; `None` for a part without faces.
     pub fn split_quads(self) -> (Option<TriangleMesh>, Option<BilinearMesh>) {
         let mut tris = self.mesh;
+        if self.quads == 0 {
+            return ((!tris.indices.is_empty()).then_some(tris), None);
+        }
         let plain = tris.indices.len() - 6 * self.quads;
-        let patches: Vec<u32> = tris.indices[plain..]
+        let indices: Vec<u32> = tris.indices[plain..]
             .chunks_exact(6)
             .flat_map(|t| [t[0], t[1], t[5], t[2]])
             .collect();
         tris.indices.truncate(plain);
-        let quads = (!patches.is_empty()).then(|| BilinearMesh {
-            positions: tris.positions.clone(),
-            normals: tris.normals.clone(),
-            uvs: tris.uvs.clone(),
-            indices: patches,
-            flip_normal: tris.flip_normal,
-        });
-        let tris = (!tris.indices.is_empty()).then_some(tris);
-        (tris, quads)
+        // Quads only: the patches take the vertices rather than a copy of them.
+        let vertices = if plain == 0 {
+            std::mem::take(&mut tris)
+        } else {
+            TriangleMesh {
+                positions: tris.positions.clone(),
+                normals: tris.normals.clone(),
+                uvs: tris.uvs.clone(),
+                indices: Vec::new(),
+                flip_normal: tris.flip_normal,
+            }
+        };
+        let patches = BilinearMesh {
+            positions: vertices.positions,
+            normals: vertices.normals,
+            uvs: vertices.uvs,
+            indices,
+            flip_normal: vertices.flip_normal,
+        };
+        ((plain > 0).then_some(tris), Some(patches))
     }
 }
 

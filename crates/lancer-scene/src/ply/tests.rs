@@ -78,10 +78,14 @@ fn quads_become_bilinear_patches_in_pbrts_order() {
     assert_eq!(patches.indices, vec![0, 1, 3, 2]);
     assert_eq!(patches.positions, ply.mesh.positions);
     assert_eq!(patches.uvs, ply.mesh.uvs);
-    // Quads only: no triangle mesh.
-    let (tris, patches) = parse_str(SQUARE).unwrap().split_quads();
+    // Quads only: no triangle mesh, and the patches take the vertices read (not a copy).
+    let ply = parse_str(SQUARE).unwrap();
+    let read = ply.mesh.positions.as_ptr();
+    let (tris, patches) = ply.split_quads();
     assert!(tris.is_none());
-    assert_eq!(patches.expect("patches").indices, vec![0, 1, 3, 2]);
+    let patches = patches.expect("patches");
+    assert_eq!(patches.indices, vec![0, 1, 3, 2]);
+    assert_eq!(patches.positions.as_ptr(), read);
     // No quads: no patches.
     let tri = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
                property float z\nelement face 1\nproperty list uchar int vertex_indices\n\
