@@ -587,34 +587,43 @@ impl Builder {
             params.mark_all_used();
             return Ok(());
         };
-        for geometry in std::iter::once(geometry).chain(also) {
-            self.place_shape(geometry, alpha, ty, emits, loc)?;
+        // Moving, flattened by a singular transformation, or placed by the CTM: decided (and
+        // warned about) once for the directive, whose two geometries (a plymesh's triangles
+        // and quads) share their attributes and vertices.
+        let moving = self.moving_shape(emits, alpha.is_some(), loc)?;
+        let singular = moving.is_none() && is_singular(&self.gs.ctm);
+        for (k, geometry) in std::iter::once(geometry).chain(also).enumerate() {
+            let (geometry, object_to_world) = if moving.is_some() {
+                (geometry, Transform::IDENTITY)
+            } else if singular {
+                let flat = flatten(geometry, ty, &self.gs.ctm);
+                let flat = if k == 0 {
+                    self.accept(flat, loc)
+                } else {
+                    flat.value
+                };
+                match flat {
+                    Some(g) => (g, Transform::IDENTITY),
+                    None => continue,
+                }
+            } else {
+                (geometry, self.gs.ctm)
+            };
+            self.place_shape(geometry, object_to_world, moving, alpha, loc)?;
         }
         Ok(())
     }
 
-    /// One geometry of a `Shape` directive, under the current attributes: moving, flattened
-    /// by a singular transformation, or placed by the CTM, in the world or the object being
-    /// defined.
+    /// One geometry of a `Shape` directive, placed by `object_to_world` (or moving by
+    /// `moving`), under the current attributes, in the world or the object being defined.
     fn place_shape(
         &mut self,
         geometry: Geometry,
+        object_to_world: Transform,
+        moving: Option<AnimatedTransform>,
         alpha: Option<FloatTex>,
-        ty: &str,
-        emits: bool,
         loc: &Location,
     ) -> Result<(), SceneError> {
-        let moving = self.moving_shape(emits, alpha.is_some(), loc)?;
-        let (geometry, object_to_world) = if moving.is_some() {
-            (geometry, Transform::IDENTITY)
-        } else if is_singular(&self.gs.ctm) {
-            match self.accept(flatten(geometry, ty, &self.gs.ctm), loc) {
-                Some(g) => (g, Transform::IDENTITY),
-                None => return Ok(()),
-            }
-        } else {
-            (geometry, self.gs.ctm)
-        };
         let (material, pending) = match &self.gs.material {
             MaterialRef::Index(i) => (*i, None),
             MaterialRef::Named(name, nloc) => match self.named_materials.get(name) {

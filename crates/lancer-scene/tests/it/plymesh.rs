@@ -111,6 +111,33 @@ fn plymesh_of_triangles_and_quads_makes_both() {
     assert_eq!(d.shapes[0].object_to_world, d.shapes[1].object_to_world);
 }
 
+/// A plymesh of triangles and quads is one directive: under a transformation that flattens
+/// space, its two geometries are flattened alike, with one warning about the normals dropped
+/// (not one per geometry).
+#[test]
+fn a_flattened_plymesh_of_triangles_and_quads_warns_once() {
+    let dir = ScratchDir::new("mixed-flat");
+    let ply = "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n\
+               property float z\nproperty float nx\nproperty float ny\nproperty float nz\n\
+               element face 2\nproperty list uchar int vertex_indices\nend_header\n\
+               0 0 0 0 0 1\n1 0 0 0 0 1\n1 1 0 0 0 1\n0 1 0 0 0 1\n2 0 0 0 0 1\n\
+               4 0 1 2 3\n3 1 4 2\n";
+    std::fs::write(dir.join("mixed.ply"), ply).unwrap();
+    std::fs::write(
+        dir.join("scene.pbrt"),
+        "WorldBegin\nScale 1 1 0\nShape \"plymesh\" \"string filename\" \"mixed.ply\"\n",
+    )
+    .unwrap();
+    let loaded = load(&dir.join("scene.pbrt")).unwrap_or_else(|e| panic!("{e}"));
+    let d = &loaded.desc;
+    assert_eq!(d.shapes.len(), 2);
+    assert!(matches!(d.shapes[0].geometry, Geometry::TriangleMesh(_)));
+    assert!(matches!(d.shapes[1].geometry, Geometry::BilinearMesh(_)));
+    let w: Vec<_> = loaded.warnings.iter().map(|w| w.message.as_str()).collect();
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(w[0].contains("normals \"N\" cannot follow it"), "{w:?}");
+}
+
 #[test]
 fn plymesh_errors_are_placed_at_the_shape() {
     let dir = ScratchDir::new("errors");
