@@ -1,4 +1,5 @@
 use super::*;
+use crate::math::Frame;
 use crate::sampling::{hash_u64, u32_to_unit_f32};
 
 fn rand2(i: u64, seed: u64) -> Vec2 {
@@ -35,13 +36,13 @@ fn sun_and_horizon_are_where_the_transform_puts_them() {
     let l = reference();
     let sun_world = crate::math::normalize(Vec3::new(-0.45, 0.65, -0.6));
     assert!(l.le(sun_world).x > 10_000.0, "{}", l.le(sun_world));
-    // 0.3° off the sun's centre (half-angle 0.268°): sky only.
-    let off = Frame::from_z(sun_world).from_local(Vec3::new(0.3f32.to_radians().sin(), 0.0, 1.0));
-    let sky = l.le(off);
+    // The disk's rim (half-angle 0.2679°) within 1 %: 1.01 of it off the sun's centre, sky
+    // only; 0.99 of it, the sun.
+    let rim = model::SUN_HALF_APERTURE as f32;
+    let off = |a: f32| Frame::from_z(sun_world).from_local(Vec3::new(a.sin(), 0.0, a.cos()));
+    let sky = l.le(off(1.01 * rim));
     assert!(sky.x > 0.0 && sky.x < 100.0, "{sky}");
-    // 0.25° off: the sun.
-    let on = Frame::from_z(sun_world).from_local(Vec3::new(0.25f32.to_radians().sin(), 0.0, 1.0));
-    assert!(l.le(on).x > 10_000.0);
+    assert!(l.le(off(0.99 * rim)).x > 10_000.0);
     // Below the horizon (world −y): nothing.
     assert_eq!(l.le(Vec3::new(0.3, -0.2, 0.5)), Rgb::ZERO);
     assert_eq!(
@@ -49,8 +50,6 @@ fn sun_and_horizon_are_where_the_transform_puts_them() {
         SampledSpectrum::ZERO
     );
 }
-
-use crate::math::Frame;
 
 fn wavelengths() -> SampledWavelengths {
     SampledWavelengths::sample_uniform(0.1, 300.0, 800.0)
