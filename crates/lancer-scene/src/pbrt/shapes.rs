@@ -419,10 +419,9 @@ fn ply_mesh(r: &Reader) -> Result<Fallback<PlyGeometries>, SceneError> {
         skipped_faces: 0,
     }
     .split_quads();
+    // Both keep the rules `read_ply` checked: the same vertex arrays, and indices from its
+    // triangles' (four to a patch).
     let patches = patches.map(|m| Geometry::BilinearMesh(Arc::new(m)));
-    if let Some(g) = &patches {
-        g.validate().map_err(|e| rule_error(p, e))?;
-    }
     let geometries = match (tris, patches) {
         (Some(t), patches) => Some((Geometry::TriangleMesh(Arc::new(t)), patches)),
         (None, Some(patches)) => Some((patches, None)),
