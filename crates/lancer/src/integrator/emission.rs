@@ -1,17 +1,23 @@
 //! Light given off by the surface a path hits (area lights): its colour there, the radiance
-//! towards the path.
+//! towards the path; and by the environment a path escapes to.
 
 use crate::math::{Rgb, SampledSpectrum, Vec3};
 use crate::scene::{Scene, SceneHit};
 use crate::spectrum::sampled::SampledWavelengths;
 
-/// An image emitter's radiance at `hit` (its light holds the image: pbrt-v4's
-/// `DiffuseAreaLight::L` by uv); out of line, so that other emitters pay only the test.
+/// An image emitter's radiance at surface coordinates `uv` (its light holds the image:
+/// pbrt-v4's `DiffuseAreaLight::L` by uv); out of line, so that other emitters pay only the
+/// test.
 #[cold]
 #[inline(never)]
-fn image_emission(scene: &Scene, light: u32, l: crate::math::PackedRgb, hit: &SceneHit) -> Rgb {
+fn image_emission(
+    scene: &Scene,
+    light: u32,
+    l: crate::math::PackedRgb,
+    uv: crate::math::Vec2,
+) -> Rgb {
     match scene.lights()[light as usize].as_area() {
-        Some(a) if let Some(img) = &a.image => img.le(hit.si.uv),
+        Some(a) if let Some(img) = &a.image => img.le(uv),
         _ => l.into(),
     }
 }
@@ -20,16 +26,7 @@ fn image_emission(scene: &Scene, light: u32, l: crate::math::PackedRgb, hit: &Sc
 /// there (its constant `l`, or with an image the image at the hit's uv).
 #[inline(always)]
 pub(crate) fn emission_towards(scene: &Scene, hit: &SceneHit, wo: Vec3) -> Option<(usize, Rgb)> {
-    let e = scene.prim(hit.prim).emission?;
-    if !(e.two_sided || hit.si.n.dot(wo) > 0.0) {
-        return None;
-    }
-    let l = if e.spectrum == crate::scene::IMAGE_EMISSION {
-        image_emission(scene, e.light, e.l, hit)
-    } else {
-        e.l.into()
-    };
-    Some((e.light as usize, l))
+    emission_at(scene, hit.prim, hit.si.n, hit.si.uv, wo)
 }
 
 /// Radiance emitted by the surface at `hit` towards `wo` (area lights), at the wavelengths
@@ -46,8 +43,10 @@ pub(crate) fn emitted(
 }
 
 /// The light on primitive `prim` (geometric normal `n`, surface coordinates `uv` at the
-/// point) and the colour it gives off towards `w`, if it emits that way: for vertices of
-/// light paths, which keep no [`SceneHit`].
+/// point) and the colour it gives off towards `w`, if it emits that way: what
+/// [`emission_towards`] asks of a hit, and what the vertices of light paths, which keep no
+/// [`SceneHit`], ask directly.
+#[inline(always)]
 pub(crate) fn emission_at(
     scene: &Scene,
     prim: u32,
@@ -59,14 +58,25 @@ pub(crate) fn emission_at(
     if !(e.two_sided || n.dot(w) > 0.0) {
         return None;
     }
-    let l = match scene.lights()[e.light as usize].as_area() {
-        Some(a)
-            if e.spectrum == crate::scene::IMAGE_EMISSION
-                && let Some(img) = &a.image =>
-        {
-            img.le(uv)
-        }
-        _ => e.l.into(),
+    let l = if e.spectrum == crate::scene::IMAGE_EMISSION {
+        image_emission(scene, e.light, e.l, uv)
+    } else {
+        e.l.into()
     };
     Some((e.light as usize, l))
+}
+
+/// Radiance from the environment lights along a ray leaving the scene in direction `d`:
+/// Σ Le(d) over [`Scene::infinite_lights`] ([`Scene::environment_radiance`] each), at the
+/// wavelengths `lambda` in spectral mode.
+pub(crate) fn environment(
+    scene: &Scene,
+    d: Vec3,
+    lambda: Option<&SampledWavelengths>,
+) -> SampledSpectrum {
+    let mut le = SampledSpectrum::ZERO;
+    for &i in scene.infinite_lights() {
+        le += scene.environment_radiance(i as usize, lambda, d);
+    }
+    le
 }

@@ -2,6 +2,7 @@
 //! carries, and the densities with which either subpath would have reached it, per unit area
 //! (the measure in which the strategies' densities compare).
 
+use super::super::emission::{emission_at, environment};
 use crate::light::{LightSampleContext, LightType};
 use crate::material::{Bsdf, TransportMode};
 use crate::math::{PI, SampledSpectrum, Vec2, Vec3, normalize};
@@ -150,13 +151,9 @@ impl Vertex {
         let w = normalize(w);
         if self.is_infinite_light(scene) {
             // The environment along −w (the direction the camera subpath left in).
-            let mut le = SampledSpectrum::ZERO;
-            for &i in scene.infinite_lights() {
-                le += scene.environment_radiance(i as usize, lambda, -w);
-            }
-            return le;
+            return environment(scene, -w, lambda);
         }
-        match super::super::emission::emission_at(scene, self.prim, self.ng, self.uv, w) {
+        match emission_at(scene, self.prim, self.ng, self.uv, w) {
             Some((i, c)) => scene.light_radiance(i, lambda, c, 1.0, -w),
             None => SampledSpectrum::ZERO,
         }
