@@ -8,7 +8,7 @@
 //! with the lens point sampled for it (density p_c per solid angle at x, importance We), the
 //! film receives β·f(x, towards the lens)·|cos θ_x|·We/p_c.
 
-use super::{Splat, bsdf_at};
+use super::{Splat, bsdf_at, keep_hero_only};
 use crate::material::TransportMode;
 use crate::math::{SampledSpectrum, Vec3};
 use crate::ray::Ray;
@@ -62,11 +62,7 @@ pub fn li(
             ray = si.spawn_ray(ray.d);
             continue;
         };
-        if let Some(w) = wavelengths
-            .as_mut()
-            .filter(|w| disperses && !w.secondary_terminated())
-        {
-            w.terminate_secondary();
+        if keep_hero_only(&mut wavelengths, disperses) {
             beta *= HERO_ONLY;
         }
         if depth == max_depth {

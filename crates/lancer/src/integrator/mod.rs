@@ -199,6 +199,24 @@ pub struct PathVertex {
     pub l: SampledSpectrum,
 }
 
+/// At a surface that `disperses`, a spectral path keeps only its hero wavelength (see
+/// [`crate::spectrum::hero`]): terminates the secondary wavelengths of `wavelengths`, once, and
+/// says whether it did so now, when the caller weights what the path carries by
+/// [`crate::spectrum::hero::HERO_ONLY`].
+#[inline]
+pub(crate) fn keep_hero_only(
+    wavelengths: &mut Option<SampledWavelengths>,
+    disperses: bool,
+) -> bool {
+    match wavelengths {
+        Some(w) if disperses && !w.secondary_terminated() => {
+            w.terminate_secondary();
+            true
+        }
+        _ => false,
+    }
+}
+
 /// The BSDF at a hit, with `Mix` materials resolved (the choice is a deterministic hash of the
 /// hit, as pbrt does, so it needs no sampler dimension). `None` for `interface` materials,
 /// which the ray passes straight through. With `lambda` (spectral mode) the material's colours

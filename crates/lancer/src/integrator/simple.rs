@@ -2,7 +2,7 @@
 //! sampling) and `simplepath` (a path tracer without MIS: light sampling or BSDF sampling,
 //! each optional). Both are unbiased and slow; they are here to check the others against.
 
-use super::{bsdf_at, emitted};
+use super::{bsdf_at, emitted, keep_hero_only};
 use crate::light::LightSampleContext;
 use crate::material::TransportMode;
 use crate::math::{SampledSpectrum, Vec3};
@@ -50,11 +50,7 @@ pub fn random_walk(
         let Some((bsdf, disperses)) = bsdf_at(scene, &hit, wavelengths.as_ref()) else {
             break;
         };
-        if let Some(w) = wavelengths
-            .as_mut()
-            .filter(|w| disperses && !w.secondary_terminated())
-        {
-            w.terminate_secondary();
+        if keep_hero_only(&mut wavelengths, disperses) {
             l *= HERO_ONLY;
             beta *= HERO_ONLY;
         }
@@ -109,11 +105,7 @@ pub fn simple_path(
             ray = si.spawn_ray(ray.d);
             continue;
         };
-        if let Some(w) = wavelengths
-            .as_mut()
-            .filter(|w| disperses && !w.secondary_terminated())
-        {
-            w.terminate_secondary();
+        if keep_hero_only(&mut wavelengths, disperses) {
             l *= HERO_ONLY;
             beta *= HERO_ONLY;
         }

@@ -63,7 +63,6 @@ pub fn li(
         let mut walk = Walk {
             scene,
             lambda: lambda.copied(),
-            hero_only: false,
             regularize: options.regularize,
         };
         walk.camera_subpath(ray, sampler, max_depth + 2, camera);

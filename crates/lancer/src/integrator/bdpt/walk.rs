@@ -3,7 +3,7 @@
 //! densities, per unit area, with which its own subpath reached it (`pdf_fwd`) and with which
 //! the other direction would have (`pdf_rev`, filled in as the next vertex is sampled).
 
-use super::super::bsdf_at;
+use super::super::{bsdf_at, keep_hero_only};
 use super::vertex::{Kind, Vertex, infinite_light_density};
 use crate::material::TransportMode;
 use crate::math::{SampledSpectrum, Vec3};
@@ -17,11 +17,9 @@ use crate::spectrum::sampled::SampledWavelengths;
 pub(super) struct Walk<'a> {
     /// The scene.
     pub scene: &'a Scene,
-    /// The sample's wavelengths (spectral mode), which a dispersive surface terminates.
+    /// The sample's wavelengths (spectral mode), which a dispersive surface terminates (every
+    /// contribution is then weighted by [`HERO_ONLY`]).
     pub lambda: Option<SampledWavelengths>,
-    /// Set once a dispersive surface has kept only the hero wavelength: every contribution
-    /// is then weighted by [`HERO_ONLY`].
-    pub hero_only: bool,
     /// Roughen near-specular lobes after a non-specular bounce (pbrt's `regularize`).
     pub regularize: bool,
 }
@@ -159,14 +157,7 @@ impl Walk<'_> {
                 ray = si.spawn_ray(ray.d);
                 continue;
             };
-            if let Some(w) = self
-                .lambda
-                .as_mut()
-                .filter(|w| disperses && !w.secondary_terminated())
-            {
-                w.terminate_secondary();
-                self.hero_only = true;
-            }
+            keep_hero_only(&mut self.lambda, disperses);
             if self.regularize && any_non_specular {
                 bsdf.bxdf.regularize();
             }
@@ -222,7 +213,7 @@ impl Walk<'_> {
     /// The weight of every contribution: [`HERO_ONLY`] once a dispersive surface kept only
     /// the hero wavelength, else 1.
     pub fn spectral_weight(&self) -> SampledSpectrum {
-        if self.hero_only {
+        if self.lambda.is_some_and(|w| w.secondary_terminated()) {
             HERO_ONLY
         } else {
             SampledSpectrum::ONE
