@@ -2,10 +2,11 @@
 //! sampling) and `simplepath` (a path tracer without MIS: light sampling or BSDF sampling,
 //! each optional). Both are unbiased and slow; they are here to check the others against.
 
+use super::emission::environment;
+use super::whitted::light_sample;
 use super::{bsdf_at, emitted, keep_hero_only};
-use crate::light::LightSampleContext;
 use crate::material::TransportMode;
-use crate::math::{SampledSpectrum, Vec3};
+use crate::math::SampledSpectrum;
 use crate::ray::Ray;
 use crate::sampling::{
     Sampler, sample_uniform_hemisphere, sample_uniform_sphere, uniform_hemisphere_pdf,
@@ -14,15 +15,6 @@ use crate::sampling::{
 use crate::scene::Scene;
 use crate::spectrum::hero::HERO_ONLY;
 use crate::spectrum::sampled::SampledWavelengths;
-
-/// The environment's radiance along a ray leaving the scene in direction `d`.
-fn environment(scene: &Scene, d: Vec3, lambda: Option<&SampledWavelengths>) -> SampledSpectrum {
-    let mut le = SampledSpectrum::ZERO;
-    for &i in scene.infinite_lights() {
-        le += scene.environment_radiance(i as usize, lambda, d);
-    }
-    le
-}
 
 /// pbrt-v4's `randomwalk`: at each surface a direction uniform over the sphere, weighted by
 /// f·|cos θ|·4π; emission is counted where the walk meets it. L = Le + f·|cos|·L_next / (1/4π).
@@ -114,22 +106,9 @@ pub fn simple_path(
             // A light chosen uniformly (p = 1/n), a point on it: L += β·f·|cos|·Li / (p·pdf).
             let ul = sampler.get_1d();
             let i = ((ul * n_lights as f32) as usize).min(n_lights - 1);
-            let ctx = LightSampleContext {
-                p: si.p,
-                n: si.n,
-                ns: si.shading.n,
-            };
             let u = sampler.get_2d();
-            if let Some(ls) = scene.lights()[i]
-                .sample_li(&ctx, u, scene.shapes(), scene.meshes())
-                .filter(|ls| ls.pdf > 0.0)
-            {
-                let f = bsdf.f(wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(si.shading.n).abs();
-                if f != SampledSpectrum::ZERO && !scene.intersect_p(&si.spawn_ray_to(ls.p_light)) {
-                    let li = scene.light_radiance(i, wavelengths.as_ref(), ls.l, ls.factor, ls.wi);
-                    l += beta * f * li * (n_lights as f32 / ls.pdf);
-                }
-            }
+            l +=
+                beta * light_sample(scene, si, &bsdf, i, u, wavelengths.as_ref()) * n_lights as f32;
         }
         if sample_bsdf {
             let uc = sampler.get_1d();

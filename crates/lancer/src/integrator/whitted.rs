@@ -1,13 +1,15 @@
 //! The course's ray tracer (Whitted 1980): what is visible, how the lights light it, shadows,
 //! and perfect mirror reflection and refraction.
 
+use super::emission::environment;
 use super::{bsdf_at, emitted};
 use crate::light::LightSampleContext;
-use crate::material::{BxDF, TransportMode, fresnel_complex, fresnel_dielectric, refract};
-use crate::math::{Rgb, SampledSpectrum, Vec3};
+use crate::material::{Bsdf, BxDF, TransportMode, fresnel_complex, fresnel_dielectric, refract};
+use crate::math::{Rgb, SampledSpectrum, Vec2, Vec3};
 use crate::ray::Ray;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
+use crate::shape::SurfaceInteraction;
 use crate::spectrum::hero::HERO_ONLY;
 use crate::spectrum::sampled::SampledWavelengths;
 
@@ -25,11 +27,7 @@ pub fn li(
     max_depth: u32,
 ) -> SampledSpectrum {
     let Some(hit) = scene.intersect(ray) else {
-        return scene
-            .infinite_lights()
-            .iter()
-            .map(|&i| scene.environment_radiance(i as usize, lambda, ray.d))
-            .sum();
+        return environment(scene, ray.d, lambda);
     };
     let si = &hit.si;
     let wo = si.wo;
@@ -52,28 +50,9 @@ pub fn li(
         hero.terminate_secondary();
         return li(scene, ray, sampler, Some(&hero), depth, max_depth) * HERO_ONLY;
     }
-    let ctx = LightSampleContext {
-        p: si.p,
-        n: si.n,
-        ns: si.shading.n,
-    };
     if bsdf.flags().is_non_specular() {
-        for (i, light) in scene.lights().iter().enumerate() {
-            let u = sampler.get_2d();
-            let Some(ls) = scene.sample_li(light, &ctx, u) else {
-                continue;
-            };
-            if ls.pdf == 0.0 || ls.l == Rgb::ZERO {
-                continue;
-            }
-            let f = bsdf.f(wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(si.shading.n).abs();
-            if f == SampledSpectrum::ZERO {
-                continue;
-            }
-            // The shadow ray: is the segment from the point to the light free?
-            if !scene.intersect_p(&si.spawn_ray_to(ls.p_light)) {
-                l += f * scene.light_radiance(i, lambda, ls.l, ls.factor, ls.wi) / ls.pdf;
-            }
+        for i in 0..scene.lights().len() {
+            l += light_sample(scene, si, &bsdf, i, sampler.get_2d(), lambda);
         }
     }
     if depth + 1 < max_depth {
@@ -124,4 +103,34 @@ pub fn li(
         }
     }
     l
+}
+
+/// Light from light `i` that the surface `si` (BSDF `bsdf`) reflects towards `si.wo`, by one
+/// sample `u` of the light and without MIS: f(wo, wi)·Li·|cos θi| / p, zero when the shadow
+/// ray from the point to the light is blocked. Whitted's shading of every light, and
+/// `simplepath`'s of one light chosen at random.
+pub(super) fn light_sample(
+    scene: &Scene,
+    si: &SurfaceInteraction,
+    bsdf: &Bsdf,
+    i: usize,
+    u: Vec2,
+    lambda: Option<&SampledWavelengths>,
+) -> SampledSpectrum {
+    let ctx = LightSampleContext {
+        p: si.p,
+        n: si.n,
+        ns: si.shading.n,
+    };
+    let Some(ls) = scene.sample_li(&scene.lights()[i], &ctx, u) else {
+        return SampledSpectrum::ZERO;
+    };
+    if ls.pdf == 0.0 || ls.l == Rgb::ZERO {
+        return SampledSpectrum::ZERO;
+    }
+    let f = bsdf.f(si.wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(si.shading.n).abs();
+    if f == SampledSpectrum::ZERO || scene.intersect_p(&si.spawn_ray_to(ls.p_light)) {
+        return SampledSpectrum::ZERO;
+    }
+    f * scene.light_radiance(i, lambda, ls.l, ls.factor, ls.wi) / ls.pdf
 }
