@@ -247,6 +247,20 @@ pub struct ShapeDesc {
 }
 
 impl ShapeDesc {
+    /// `geometry` placed as it is (object space = world space) with material `material`: no
+    /// emission, alpha, media or reversed orientation.
+    pub fn new(geometry: Geometry, material: u32) -> ShapeDesc {
+        ShapeDesc {
+            geometry,
+            object_to_world: Transform::IDENTITY,
+            reverse_orientation: false,
+            material,
+            area_light: None,
+            alpha: None,
+            medium_interface: None,
+        }
+    }
+
     /// [`Geometry::validate`], then, when the shape emits, [`Geometry::validate_emitter`].
     pub fn validate(&self) -> Result<(), RuleError> {
         self.geometry.validate()?;

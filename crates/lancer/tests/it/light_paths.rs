@@ -30,9 +30,8 @@ fn desc(integrator: Integrator) -> SceneDesc {
         materials: vec![MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: SpectrumTex::Const(Rgb::new(0.7, 0.5, 0.3)),
         })],
-        shapes: vec![ShapeDesc {
-            medium_interface: None,
-            geometry: Geometry::TriangleMesh(Arc::new(TriangleMesh {
+        shapes: vec![ShapeDesc::new(
+            Geometry::TriangleMesh(Arc::new(TriangleMesh {
                 positions: vec![
                     PackedVec3::new(-2.0, 0.0, 2.0),
                     PackedVec3::new(2.0, 0.0, 2.0),
@@ -44,12 +43,8 @@ fn desc(integrator: Integrator) -> SceneDesc {
                 indices: vec![0, 1, 2, 0, 2, 3],
                 flip_normal: false,
             })),
-            object_to_world: Transform::IDENTITY,
-            reverse_orientation: false,
-            material: 0,
-            area_light: None,
-            alpha: None,
-        }],
+            0,
+        )],
         lights: vec![LightDesc::Point(PointDesc {
             from: Vec3::new(0.3, 1.0, 0.2),
             intensity: Rgb::splat(3.0),

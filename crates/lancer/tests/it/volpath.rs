@@ -8,7 +8,7 @@ use lancer::Scene;
 use lancer::integrator::Integrator;
 use lancer::material::InterfaceMaterial;
 use lancer::material::MaterialDesc;
-use lancer::math::{Rgb, SampledSpectrum, Transform, Vec3, normalize, rgb_lanes};
+use lancer::math::{Rgb, SampledSpectrum, Vec3, normalize, rgb_lanes};
 use lancer::medium::{HomogeneousDesc, MediumDesc, MediumInterface};
 use lancer::ray::Ray;
 use lancer::sampling::{Sampler, SamplerKind};
@@ -25,17 +25,15 @@ fn furnace(medium: MediumDesc) -> Scene {
                 inside: Some(0),
                 outside: None,
             }),
-            geometry: Geometry::Sphere(SphereDesc {
-                radius: 1.0,
-                z_min: -1.0,
-                z_max: 1.0,
-                phi_max: 360.0,
-            }),
-            object_to_world: Transform::IDENTITY,
-            reverse_orientation: false,
-            material: 0,
-            area_light: None,
-            alpha: None,
+            ..ShapeDesc::new(
+                Geometry::Sphere(SphereDesc {
+                    radius: 1.0,
+                    z_min: -1.0,
+                    z_max: 1.0,
+                    phi_max: 360.0,
+                }),
+                0,
+            )
         }],
         lights: vec![LightDesc::UniformInfinite(
             lancer::light::UniformInfiniteDesc { l: Rgb::ONE },

@@ -21,21 +21,17 @@ const W: u32 = 24;
 const H: u32 = 18;
 
 fn quad(p: [[f32; 3]; 4], material: u32, light: Option<f32>) -> ShapeDesc {
+    let mesh = TriangleMesh {
+        positions: p
+            .iter()
+            .map(|v| PackedVec3::new(v[0], v[1], v[2]))
+            .collect(),
+        normals: vec![],
+        uvs: vec![],
+        indices: vec![0, 1, 2, 0, 2, 3],
+        flip_normal: false,
+    };
     ShapeDesc {
-        medium_interface: None,
-        geometry: Geometry::TriangleMesh(Arc::new(TriangleMesh {
-            positions: p
-                .iter()
-                .map(|v| PackedVec3::new(v[0], v[1], v[2]))
-                .collect(),
-            normals: vec![],
-            uvs: vec![],
-            indices: vec![0, 1, 2, 0, 2, 3],
-            flip_normal: false,
-        })),
-        object_to_world: Transform::IDENTITY,
-        reverse_orientation: false,
-        material,
         area_light: light.map(|l| AreaLightDesc {
             l: Rgb::splat(l),
             two_sided: false,
@@ -43,7 +39,27 @@ fn quad(p: [[f32; 3]; 4], material: u32, light: Option<f32>) -> ShapeDesc {
             power: None,
             image: None,
         }),
-        alpha: None,
+        ..ShapeDesc::new(Geometry::TriangleMesh(Arc::new(mesh)), material)
+    }
+}
+
+/// A W × H film with a box filter, seen by a perspective camera at `eye` looking at `target`,
+/// rendered by `integrator`; no shapes, lights or materials yet.
+fn view(eye: Vec3, target: Vec3, fov: f32, integrator: Integrator) -> SceneDesc {
+    SceneDesc {
+        camera: CameraDesc {
+            camera_from_world: Transform::look_at(eye, target, Vec3::Y).unwrap(),
+            projection: Projection::Perspective { fov },
+            ..CameraDesc::default()
+        },
+        film: FilmDesc {
+            xresolution: W,
+            yresolution: H,
+            ..FilmDesc::default()
+        },
+        filter: FilterDesc::Box { radius: [0.5, 0.5] },
+        integrator,
+        ..SceneDesc::default()
     }
 }
 
@@ -51,6 +67,11 @@ fn quad(p: [[f32; 3]; 4], material: u32, light: Option<f32>) -> ShapeDesc {
 /// green right wall, lit by a small quad under the ceiling facing down (`area`) or a point
 /// light (`!area`), which the camera does not see directly.
 fn room(area: bool, integrator: Integrator) -> Scene {
+    Scene::build(&room_desc(area, integrator)).unwrap()
+}
+
+/// The description of [`room`].
+fn room_desc(area: bool, integrator: Integrator) -> SceneDesc {
     let diffuse = |c: Rgb| {
         MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: SpectrumTex::Const(c),
@@ -122,25 +143,7 @@ fn room(area: bool, integrator: Integrator) -> Scene {
             intensity: Rgb::splat(2.0),
         }));
     }
-    let desc = SceneDesc {
-        camera: CameraDesc {
-            camera_from_world: Transform::look_at(
-                Vec3::new(0.0, 1.0, 4.2),
-                Vec3::new(0.0, 0.8, 0.0),
-                Vec3::Y,
-            )
-            .unwrap(),
-            // The image's top edge at 14° − 2.7° above the horizontal, below the light.
-            projection: Projection::Perspective { fov: 28.0 },
-            ..CameraDesc::default()
-        },
-        film: FilmDesc {
-            xresolution: W,
-            yresolution: H,
-            ..FilmDesc::default()
-        },
-        filter: FilterDesc::Box { radius: [0.5, 0.5] },
-        integrator,
+    SceneDesc {
         materials: vec![
             diffuse(Rgb::splat(0.7)),
             diffuse(Rgb::new(0.7, 0.15, 0.1)),
@@ -148,9 +151,14 @@ fn room(area: bool, integrator: Integrator) -> Scene {
         ],
         shapes,
         lights,
-        ..SceneDesc::default()
-    };
-    Scene::build(&desc).unwrap()
+        // The image's top edge at 14° − 2.7° above the horizontal, below the light.
+        ..view(
+            Vec3::new(0.0, 1.0, 4.2),
+            Vec3::new(0.0, 0.8, 0.0),
+            28.0,
+            integrator,
+        )
+    }
 }
 
 /// Renders `scene` with `integrator` at `spp` samples per pixel (box filter, RGB mode):
@@ -471,40 +479,22 @@ fn white_furnace() {
     // A diffuse sphere of albedo 0.8 under a uniform white sky: a convex object reflects the
     // sky once, so the image is 0.8 on the sphere and 1 around it, whatever the strategies.
     let desc = SceneDesc {
-        camera: CameraDesc {
-            camera_from_world: Transform::look_at(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, Vec3::Y)
-                .unwrap(),
-            projection: Projection::Perspective { fov: 40.0 },
-            ..CameraDesc::default()
-        },
-        film: FilmDesc {
-            xresolution: W,
-            yresolution: H,
-            ..FilmDesc::default()
-        },
-        filter: FilterDesc::Box { radius: [0.5, 0.5] },
-        integrator: bdpt(5),
         materials: vec![MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: SpectrumTex::Const(Rgb::splat(0.8)),
         })],
-        shapes: vec![ShapeDesc {
-            medium_interface: None,
-            geometry: Geometry::Sphere(SphereDesc {
+        shapes: vec![ShapeDesc::new(
+            Geometry::Sphere(SphereDesc {
                 radius: 1.0,
                 z_min: -1.0,
                 z_max: 1.0,
                 phi_max: 360.0,
             }),
-            object_to_world: Transform::IDENTITY,
-            reverse_orientation: false,
-            material: 0,
-            area_light: None,
-            alpha: None,
-        }],
+            0,
+        )],
         lights: vec![LightDesc::UniformInfinite(UniformInfiniteDesc {
             l: Rgb::ONE,
         })],
-        ..SceneDesc::default()
+        ..view(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, 40.0, bdpt(5))
     };
     let scene = Scene::build(&desc).unwrap();
     let img = render(&scene, bdpt(5), 64, 9, None);
