@@ -212,6 +212,13 @@ fn remap0(f: f32) -> f32 {
 /// `MISWeight`, β = [`MIS_EXPONENT`]). The connection's vertices (and, for s = 1 or t = 1,
 /// the vertex sampled for it, `sampled`) get their densities for this path for the
 /// computation, and are put back afterwards.
+///
+/// With a crop window the light paths are fewer than the image's camera samples by the
+/// camera's `splat_scale` k (what they splat is scaled up by k): the t = 1 strategy counts
+/// as one of density p₁/k. So a t ≥ 2 strategy's ratio to it is p₁/(k·pₛ), and the t = 1
+/// strategy's ratios to the others are k·pᵢ/p₁: its Σ rᵢ^β is multiplied by k^β. (pbrt-v4
+/// divides it by k instead, and then a path's weights do not sum to 1 under a crop window:
+/// with k = 2 and two strategies of equal density, the balance heuristic gives 2/3 + 2/3.)
 pub(super) fn mis_weight(
     scene: &Scene,
     light: &mut [Vertex],
@@ -290,7 +297,7 @@ pub(super) fn mis_weight(
         }
     }
     if t == 1 {
-        sum /= pow(splat_scale);
+        sum *= pow(splat_scale);
     }
     // Put the vertices back.
     if let Some(v) = saved_qs {

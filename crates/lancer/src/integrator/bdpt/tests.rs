@@ -402,8 +402,18 @@ fn subpaths(
 
 #[test]
 fn mis_weights_of_all_strategies_of_a_path_sum_to_one() {
-    for area in [true, false] {
-        let scene = room(area, bdpt(5));
+    for (area, cropped) in [(true, false), (false, false), (true, true), (false, true)] {
+        // Cropped: the pixels x < 18, y ≥ 3 (which hold the path's last bounce), so that the
+        // light paths are fewer than the full image's samples (splat scale 432/270 = 1.6).
+        let mut desc = room_desc(area, bdpt(5));
+        if cropped {
+            desc.film.pixel_bounds = Some([0, 18, 3, 18]);
+        }
+        let scene = Scene::build(&desc).unwrap();
+        assert_eq!(
+            scene.camera().splat_scale(),
+            if cropped { 1.6 } else { 1.0 }
+        );
         let c = Vec3::new(0.0, 1.0, 0.0);
         let eye = scene.camera().world_from_camera.point(Vec3::ZERO);
         let bounces = [
@@ -462,13 +472,16 @@ fn mis_weights_of_all_strategies_of_a_path_sum_to_one() {
                     None
                 };
                 let w = mis_weight(&scene, &mut light, &mut camera, sampled.as_ref(), s, t);
-                assert!(w > 0.0 && w <= 1.0, "area {area} depth {depth} s {s}: {w}");
+                assert!(
+                    w > 0.0 && w <= 1.0,
+                    "area {area} cropped {cropped} depth {depth} s {s}: {w}"
+                );
                 weights.push(w);
                 sum += w;
             }
             assert!(
                 (sum - 1.0).abs() < 1e-4,
-                "area {area} depth {depth}: weights {weights:?} sum to {sum}"
+                "area {area} cropped {cropped} depth {depth}: weights {weights:?} sum to {sum}"
             );
         }
     }
