@@ -300,21 +300,17 @@ pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, 
         "depth" => Integrator::Depth,
         "lightpath" => Integrator::LightPath { max_depth },
         "bdpt" => {
+            let (visualize_strategies, visualize_weights) = (
+                p.bool("visualizestrategies", false)?,
+                p.bool("visualizeweights", false)?,
+            );
             let i = Integrator::Bdpt {
                 max_depth,
                 regularize: p.bool("regularize", false)?,
-                visualize_strategies: p.bool("visualizestrategies", false)?,
-                visualize_weights: p.bool("visualizeweights", false)?,
+                visualize_strategies,
+                visualize_weights,
             };
-            if let Integrator::Bdpt {
-                visualize_strategies: true,
-                ..
-            }
-            | Integrator::Bdpt {
-                visualize_weights: true,
-                ..
-            } = i
-            {
+            if visualize_strategies || visualize_weights {
                 // The strategies are computed (`lancer::integrator::bdpt::StrategyObserver`),
                 // but no film writes their images yet.
                 return Ok(Fallback::instead(
