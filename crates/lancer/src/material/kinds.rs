@@ -67,9 +67,10 @@ pub trait MaterialKind {
 }
 
 /// Writes the family's two enums and their `match`es from the list of kinds: per kind, its
-/// variant name, its description type and its runtime type.
+/// variant name and its description type (its runtime type is the description's
+/// [`MaterialDescKind::Built`]).
 macro_rules! material_kinds {
-    ($($(#[$doc:meta])* $kind:ident($desc:ty => $built:ty),)*) => {
+    ($($(#[$doc:meta])* $kind:ident($desc:ty),)*) => {
         /// A material as given in a scene (pbrt-v4's names and parameters), plain data; the
         /// scene build turns it into a [`Material`] ([`MaterialDesc::build`]).
         #[derive(Clone, Debug, PartialEq)]
@@ -81,7 +82,7 @@ macro_rules! material_kinds {
         /// hit into a BxDF ([`Material::bxdf`]).
         #[derive(Clone, Debug, PartialEq)]
         pub enum Material {
-            $($(#[$doc])* $kind($built),)*
+            $($(#[$doc])* $kind(<$desc as MaterialDescKind>::Built),)*
         }
 
         impl MaterialDesc {
@@ -101,13 +102,6 @@ macro_rules! material_kinds {
         }
 
         impl Material {
-            /// The pbrt-v4 name of this material (`Material "…"`): `diffuse`, `conductor`, …
-            pub fn pbrt_name(&self) -> &'static str {
-                match self {
-                    $(Material::$kind(_) => <$desc as MaterialDescKind>::PBRT_NAME,)*
-                }
-            }
-
             /// The material's colour parameters, with what each describes, in the order its
             /// kind reads them ([`MaterialKind::colours`]): spectral mode turns the constant
             /// ones into spectra once per scene ([`SpectralColours`]).
@@ -151,41 +145,37 @@ macro_rules! material_kinds {
 
 material_kinds! {
     /// Lambertian reflection: f = ρ/π.
-    Diffuse(diffuse::DiffuseMaterial => diffuse::DiffuseMaterial),
+    Diffuse(diffuse::DiffuseMaterial),
     /// A metal: Fresnel reflection with complex index `eta + i·k`, or an artist's
     /// `reflectance`; smooth or rough (GGX).
-    Conductor(conductor::ConductorMaterial => conductor::ConductorMaterial),
+    Conductor(conductor::ConductorMaterial),
     /// Glass: Fresnel reflection and refraction, smooth or rough.
-    Dielectric(dielectric::DielectricMaterial => dielectric::DielectricMaterial),
+    Dielectric(dielectric::DielectricMaterial),
     /// An infinitely thin dielectric slab (a window pane): no refraction offset.
-    ThinDielectric(thin_dielectric::ThinDielectricMaterial => thin_dielectric::ThinDielectricMaterial),
+    ThinDielectric(thin_dielectric::ThinDielectricMaterial),
     /// Diffuse reflection and diffuse transmission.
-    DiffuseTransmission(
-        diffuse_transmission::DiffuseTransmissionMaterial
-            => diffuse_transmission::DiffuseTransmissionMaterial
-    ),
+    DiffuseTransmission(diffuse_transmission::DiffuseTransmissionMaterial),
     /// A diffuse base under a dielectric coating (varnish, plastic).
-    CoatedDiffuse(coated_diffuse::CoatedDiffuseMaterial => coated_diffuse::CoatedDiffuseMaterial),
+    CoatedDiffuse(coated_diffuse::CoatedDiffuseMaterial),
     /// A conductor under a dielectric coating.
-    CoatedConductor(
-        coated_conductor::CoatedConductorMaterial => coated_conductor::CoatedConductorMaterial
-    ),
+    CoatedConductor(coated_conductor::CoatedConductorMaterial),
     /// Chooses between two materials per hit with probability `amount` for the second.
-    Mix(mix::MixMaterial => mix::MixMaterial),
+    Mix(mix::MixMaterial),
     /// Hair fibres (pbrt-v4's `hair`, [`super::HairBxdf`]), meant for `curve` shapes.
-    Hair(hair::HairMaterial => hair::HairMaterial),
+    Hair(hair::HairMaterial),
     /// A tabulated BRDF read from an RGL `.bsdf` file (pbrt-v4's `measured`,
     /// [`super::MeasuredBxdf`]).
-    Measured(&'static MeasuredData => &'static MeasuredData),
+    Measured(&'static MeasuredData),
     /// A dielectric boundary over a scattering medium, rendered with a BSSRDF (pbrt-v4's
-    /// `subsurface`, [`super::TabulatedBssrdf`]).
-    Subsurface(subsurface::SubsurfaceMaterial => subsurface::BuiltSubsurface),
+    /// `subsurface`, [`super::TabulatedBssrdf`]); built into a
+    /// [`subsurface::BuiltSubsurface`], which adds the profile table.
+    Subsurface(subsurface::SubsurfaceMaterial),
     /// No surface at all: marks the boundary of a participating medium; rays pass through.
-    Interface(interface::InterfaceMaterial => interface::InterfaceMaterial),
+    Interface(interface::InterfaceMaterial),
     /// Material `base` with its shading frame changed by a bump map (`displacement`) or a
     /// normal map (pbrt-v4's `normalmap`, which wins when both are given); see
     /// [`super::bump`].
-    Bumped(bumped::BumpedMaterial => bumped::BumpedMaterial),
+    Bumped(bumped::BumpedMaterial),
 }
 
 impl Default for MaterialDesc {
