@@ -130,8 +130,7 @@ impl BuiltSubsurface {
                 subsurface_from_diffuse(table, r, mfree)
             }
         };
-        let eta = if m.eta == 0.0 { 1.0 } else { m.eta };
-        TabulatedBssrdf::new(po, ns, eta, sigma_a, sigma_s, table)
+        TabulatedBssrdf::new(po, ns, nonzero_eta(m.eta), sigma_a, sigma_s, table)
     }
 }
 
