@@ -31,7 +31,7 @@ mod volpath;
 mod whitted;
 
 use crate::material::{
-    Bsdf, BumpedMaterial, BxDF, DiffuseMaterial, Material, MixMaterial, SpectralColours, rgb_colour,
+    Bsdf, BumpedMaterial, BxDF, DiffuseMaterial, Material, MixMaterial, rgb_colour,
 };
 use crate::math::{Rgb, SampledSpectrum, Vec3, rgb_lanes};
 use crate::ray::Ray;
@@ -257,10 +257,8 @@ pub(crate) fn bsdf_at_memo(
         // per scene for a constant), without the texture look-up.
         let rho = match lambda {
             Some(lambda) => {
-                let eval = || {
-                    let consts = &scene.spectra().materials[m as usize];
-                    DiffuseMaterial::prepared_reflectance(SpectralColours { lambda, consts })
-                };
+                let eval =
+                    || DiffuseMaterial::prepared_reflectance(scene.spectral_colours(m, lambda));
                 match memo {
                     Some(memo) => memo.material(m, eval),
                     None => eval(),
@@ -292,10 +290,7 @@ fn bsdf_at_general(
             // The bump map was applied at the hit (`crate::material::mix::apply_bump`).
             Material::Bumped(BumpedMaterial { base, .. }) => m = *base,
             mat => {
-                let spectral = lambda.map(|lambda| SpectralColours {
-                    lambda,
-                    consts: &scene.spectra().materials[m as usize],
-                });
+                let spectral = lambda.map(|lambda| scene.spectral_colours(m, lambda));
                 let mut bxdf = mat.bxdf(&tex, &tc, spectral)?;
                 // A shape's own colour (voxels) replaces a diffuse material's reflectance.
                 if let (Some(c), Material::Diffuse(_)) = (hit.albedo, mat) {

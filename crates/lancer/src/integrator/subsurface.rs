@@ -13,7 +13,7 @@
 //!    grow, as in pbrt-v4).
 
 use crate::light::LightSampleContext;
-use crate::material::{Bsdf, BxDF, NormalizedFresnelBxdf, SpectralColours, TransportMode};
+use crate::material::{Bsdf, BxDF, NormalizedFresnelBxdf, TransportMode};
 use crate::math::{SampledSpectrum, Vec3};
 use crate::ray::Ray;
 use crate::sampling::{Sampler, hash_u64, power_heuristic, u32_to_unit_f32};
@@ -54,10 +54,7 @@ pub(super) fn exit(
     let material = scene.material(m);
     let tex = scene.textures();
     let tc = Scene::tex_coord_with_footprint(hit);
-    let spectral = lambda.map(|lambda| SpectralColours {
-        lambda,
-        consts: &scene.spectra().materials[m as usize],
-    });
+    let spectral = lambda.map(|lambda| scene.spectral_colours(m, lambda));
     let Some(bssrdf) = material.bssrdf(&tex, &tc, spectral, hit.si.p, hit.si.shading.n) else {
         return Exit::NotSubsurface;
     };

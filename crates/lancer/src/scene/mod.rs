@@ -13,7 +13,7 @@ mod tris;
 
 pub use counts::DescCounts;
 pub use prim::{AreaEmission, BuildError, IMAGE_EMISSION, PrimInfo};
-pub use spectra::SceneSpectra;
+pub(crate) use spectra::SceneSpectra;
 pub use tris::SceneTris;
 
 use crate::accel::{Bvh, Packet, Tri4};
@@ -106,7 +106,7 @@ pub struct Scene {
     /// [`AreaLightDesc::spectrum`](desc::AreaLightDesc::spectrum)).
     light_spectra: Vec<Option<crate::spectrum::dense::Measured>>,
     /// Spectral mode's constant colours as spectra, made on first use.
-    spectra: std::sync::OnceLock<spectra::SceneSpectra>,
+    spectra: std::sync::OnceLock<SceneSpectra>,
     /// What gives texture lookups their footprints, when a texture filters over them (an
     /// image texture with a MIP pyramid) or a bump map steps by them; `None` otherwise.
     footprints: Option<crate::camera::footprint::Footprints>,
@@ -191,22 +191,10 @@ impl Scene {
         &self.tris
     }
 
-    /// Instanced objects and their placements (the two-level part of the scene).
-    #[inline]
-    pub fn instances(&self) -> &instance::Instances {
-        &self.instances
-    }
-
     /// Material `id` (a [`PrimInfo::material`]).
     #[inline]
     pub fn material(&self, id: u32) -> &Material {
         &self.materials[id as usize]
-    }
-
-    /// Every material, indexed by id.
-    #[inline]
-    pub fn materials(&self) -> &[Material] {
-        &self.materials
     }
 
     /// Participating medium `id` (a [`crate::medium::MediumInterface`] side, the camera's).
@@ -531,10 +519,24 @@ fn triangle_frames(shapes: &[Shape]) -> Vec<TriangleFrame> {
 
 impl Scene {
     /// The scene's constant colours as spectra, prepared on the first call.
-    pub fn spectra(&self) -> &spectra::SceneSpectra {
-        self.spectra.get_or_init(|| {
-            spectra::SceneSpectra::new(&self.lights, &self.light_spectra, &self.materials)
-        })
+    pub(crate) fn spectra(&self) -> &SceneSpectra {
+        self.spectra
+            .get_or_init(|| SceneSpectra::new(&self.lights, &self.light_spectra, &self.materials))
+    }
+
+    /// Spectral mode's view of material `m` (a [`PrimInfo::material`]) on a path of
+    /// wavelengths `lambda`: its constant colours prepared by position, which only its kind
+    /// reads back ([`crate::material::MaterialKind::colours`]).
+    #[inline(always)]
+    pub fn spectral_colours<'a>(
+        &'a self,
+        m: u32,
+        lambda: &'a SampledWavelengths,
+    ) -> crate::material::SpectralColours<'a> {
+        crate::material::SpectralColours {
+            lambda,
+            consts: &self.spectra().materials[m as usize],
+        }
     }
 
     /// Emission `l` of light `i`, which is its constant colour times `factor` (see

@@ -11,7 +11,7 @@ use std::mem::size_of;
 /// What a primitive is made of, beside its shape.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PrimInfo {
-    /// Index into [`Scene::materials`](super::Scene::materials).
+    /// The material's id ([`Scene::material`](super::Scene::material)).
     pub material: u32,
     /// Emitted radiance when the primitive is an area light.
     pub emission: Option<AreaEmission>,

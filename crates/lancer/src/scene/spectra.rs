@@ -21,7 +21,7 @@ pub struct SceneSpectra {
     /// Per light, the first light of its run of consecutive lights sharing one preparation
     /// (its own index when it shares none): lights with the same key have the same spectrum.
     pub light_keys: Vec<u32>,
-    /// Per material (the indices of [`super::Scene::materials`]): its constant colours by slot
+    /// Per material (the indices of [`super::Scene::material`]): its constant colours by slot
     /// ([`Material::colour_slots`]); slots without a constant hold black.
     pub materials: Vec<[PreparedSpectrum; COLOUR_SLOTS]>,
 }
