@@ -2,11 +2,11 @@
 
 use super::at_hit::slot_colour;
 use super::*;
-use crate::math::{Rgb, SampledSpectrum, rgb_lanes};
+use crate::math::{Rgb, SampledSpectrum, Vec3, rgb_lanes};
 use crate::spectrum::Ior;
 use crate::spectrum::dense::PreparedSpectrum;
 use crate::spectrum::sampled::{ColourKind, RgbSpectrum, SampledWavelengths};
-use crate::texture::{FloatTex, SpectrumTex, SpectrumTexture, TexCoord, TextureEval};
+use crate::texture::{FloatTex, FloatTexture, SpectrumTex, SpectrumTexture, TexCoord, TextureEval};
 
 fn eval(m: &Material) -> BxDF {
     let tex = TextureEval {
@@ -280,10 +280,24 @@ fn every_material_becomes_its_own_bxdf() {
     );
 }
 
+/// Spectral mode's prepared colours of `m` by position, as a scene prepares them
+/// ([`crate::scene::SceneSpectra`]): each constant RGB colour of its colour list uplifted
+/// as the kind says.
+fn prepared(m: &Material) -> [PreparedSpectrum; COLOUR_SLOTS] {
+    m.colour_slots().map(|slot| match slot {
+        Some((SpectrumTex::Const(c), kind)) => PreparedSpectrum::Rgb(RgbSpectrum::new(c, kind)),
+        Some(_) => panic!("these materials' colours are RGB constants"),
+        None => PreparedSpectrum::BLACK,
+    })
+}
+
+/// Every kind with colours reads each one back from the position its colour list gave it:
+/// each colour once as a constant (prepared by position, as a scene does) and once as a
+/// constant texture (uplifted at the hit) must give identical BxDFs (and, for `subsurface`,
+/// BSSRDFs) in spectral mode. The colours all differ, so a kind that read a colour from
+/// another's position, or listed it as the wrong kind (albedo or unbounded), would fail.
 #[test]
 fn prepared_constant_colours_give_what_an_uplift_per_hit_gives() {
-    // Each colour once as a constant (prepared by slot, as a scene does) and once as a
-    // constant texture (uplifted at the hit): the BxDFs must be identical in spectral mode.
     let colours = [
         Rgb::new(0.8, 0.3, 0.1),
         Rgb::new(0.2, 0.9, 1.4),
@@ -294,11 +308,36 @@ fn prepared_constant_colours_give_what_an_uplift_per_hit_gives() {
         .iter()
         .map(|&c| SpectrumTexture::Constant(c))
         .collect();
+    let floats = [FloatTexture::Constant(1.3), FloatTexture::Constant(0.4)];
     let tex = TextureEval {
-        floats: &[],
+        floats: &floats,
         spectra: &textures,
     };
     let (k, t) = (SpectrumTex::Const, SpectrumTex::Tex);
+    let conductor = |eta, kk, r| {
+        Material::Conductor(ConductorMaterial {
+            eta,
+            k: kk,
+            reflectance: r,
+            uroughness: c(0.2),
+            vroughness: c(0.2),
+            remap_roughness: false,
+        })
+    };
+    let coated_diffuse = |r, a| {
+        Material::CoatedDiffuse(CoatedDiffuseMaterial {
+            reflectance: r,
+            uroughness: c(0.1),
+            vroughness: c(0.1),
+            thickness: c(0.01),
+            eta: Ior::Constant(1.5),
+            albedo: a,
+            g: c(0.0),
+            max_depth: 10,
+            n_samples: 1,
+            remap_roughness: false,
+        })
+    };
     let coated_conductor = |eta, kk, r, a| {
         Material::CoatedConductor(CoatedConductorMaterial {
             interface_uroughness: c(0.1),
@@ -315,6 +354,15 @@ fn prepared_constant_colours_give_what_an_uplift_per_hit_gives() {
             max_depth: 10,
             n_samples: 1,
             remap_roughness: false,
+        })
+    };
+    let hair = |absorption| {
+        Material::Hair(HairMaterial {
+            absorption,
+            eta: c(1.55),
+            beta_m: c(0.3),
+            beta_n: c(0.3),
+            alpha: c(2.0),
         })
     };
     let pairs = [
@@ -337,6 +385,18 @@ fn prepared_constant_colours_give_what_an_uplift_per_hit_gives() {
             }),
         ),
         (
+            conductor(k(colours[1]), k(colours[2]), None),
+            conductor(t(1), t(2), None),
+        ),
+        (
+            conductor(k(colours[1]), k(colours[2]), Some(k(colours[0]))),
+            conductor(t(1), t(2), Some(t(0))),
+        ),
+        (
+            coated_diffuse(k(colours[0]), k(colours[3])),
+            coated_diffuse(t(0), t(3)),
+        ),
+        (
             coated_conductor(k(colours[1]), k(colours[2]), None, k(colours[3])),
             coated_conductor(t(1), t(2), None, t(3)),
         ),
@@ -349,23 +409,89 @@ fn prepared_constant_colours_give_what_an_uplift_per_hit_gives() {
             ),
             coated_conductor(t(1), t(2), Some(t(0)), t(3)),
         ),
+        (
+            hair(HairAbsorption::SigmaA(k(colours[2]))),
+            hair(HairAbsorption::SigmaA(t(2))),
+        ),
+        (
+            hair(HairAbsorption::Reflectance(k(colours[0]))),
+            hair(HairAbsorption::Reflectance(t(0))),
+        ),
+        (
+            hair(HairAbsorption::Melanin {
+                eumelanin: c(1.3),
+                pheomelanin: c(0.4),
+            }),
+            hair(HairAbsorption::Melanin {
+                eumelanin: FloatTex::Tex(0),
+                pheomelanin: FloatTex::Tex(1),
+            }),
+        ),
     ];
     let lambda = SampledWavelengths::sample_visible(0.37);
+    let tc = TexCoord::default();
     for (constant, textured) in pairs {
-        let consts = constant.colour_slots().map(|slot| match slot {
-            Some((SpectrumTex::Const(c), kind)) => PreparedSpectrum::Rgb(RgbSpectrum::new(c, kind)),
-            Some(_) => panic!("these materials' colours are RGB constants"),
-            None => PreparedSpectrum::BLACK,
-        });
+        let consts = prepared(&constant);
         let spectral = Some(SpectralColours {
             lambda: &lambda,
             consts: &consts,
         });
-        let a = constant.bxdf(&tex, &TexCoord::default(), spectral);
-        let b = textured.bxdf(&tex, &TexCoord::default(), spectral);
+        let a = constant.bxdf(&tex, &tc, spectral);
+        let b = textured.bxdf(&tex, &tc, spectral);
         assert_eq!(a, b, "{constant:?}");
         // And they are spectra, not the colours' RGB lanes.
-        assert_ne!(a, constant.bxdf(&tex, &TexCoord::default(), None));
+        assert_ne!(a, constant.bxdf(&tex, &tc, None));
+    }
+
+    // A subsurface material's colours are read by its BSSRDF.
+    let subsurface = |coefficients| {
+        MaterialDesc::Subsurface(SubsurfaceMaterial {
+            coefficients,
+            scale: 2.0,
+            eta: 1.33,
+            uroughness: c(0.0),
+            vroughness: c(0.0),
+            remap_roughness: true,
+            g: 0.0,
+        })
+        .build()
+    };
+    let media = [
+        (
+            SubsurfaceCoefficients::Coefficients {
+                sigma_a: k(colours[1]),
+                sigma_s: k(colours[2]),
+            },
+            SubsurfaceCoefficients::Coefficients {
+                sigma_a: t(1),
+                sigma_s: t(2),
+            },
+        ),
+        (
+            SubsurfaceCoefficients::Reflectance {
+                reflectance: k(colours[0]),
+                mfp: k(colours[2]),
+            },
+            SubsurfaceCoefficients::Reflectance {
+                reflectance: t(0),
+                mfp: t(2),
+            },
+        ),
+    ];
+    for (constant, textured) in media {
+        let (constant, textured) = (subsurface(constant), subsurface(textured));
+        let consts = prepared(&constant);
+        let spectral = Some(SpectralColours {
+            lambda: &lambda,
+            consts: &consts,
+        });
+        let medium = |m: &Material| {
+            let b = m
+                .bssrdf(&tex, &tc, spectral, Vec3::ZERO, Vec3::Z)
+                .expect("a subsurface material");
+            (b.sigma_t, b.rho)
+        };
+        assert_eq!(medium(&constant), medium(&textured), "{constant:?}");
     }
 }
 
