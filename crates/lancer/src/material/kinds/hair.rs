@@ -6,7 +6,7 @@ use crate::material::at_hit::{Colours, HitLookup, NO_COLOURS};
 use crate::material::{
     BxDF, HairBxdf, hair_sigma_a_from_concentration, hair_sigma_a_from_reflectance,
 };
-use crate::math::{SampledSpectrum, rgb_lanes};
+use crate::math::rgb_lanes;
 use crate::spectrum::sampled::{ColourKind, RgbSpectrum};
 use crate::texture::{FloatTex, SpectrumTex};
 
@@ -89,30 +89,29 @@ impl MaterialKind for HairMaterial {
     fn bxdf(&self, at: &HitLookup) -> Option<BxDF> {
         let [eta, beta_m, beta_n, alpha] =
             [self.eta, self.beta_m, self.beta_n, self.alpha].map(|p| at.float(p));
-        let absorption = self.absorption;
         let (bm, bn) = (beta_m.clamp(0.01, 1.0), beta_n.clamp(0.01, 1.0));
-        let sigma_a = match (absorption, absorption.colour()) {
-            (HairAbsorption::Reflectance(_), Some((c, kind))) => {
-                hair_sigma_a_from_reflectance(at.colour(ABSORPTION, c, kind), bn)
+        let sigma_a = match self.absorption {
+            HairAbsorption::SigmaA(s) => at.colour(ABSORPTION, s, ColourKind::Unbounded),
+            HairAbsorption::Reflectance(c) => {
+                hair_sigma_a_from_reflectance(at.albedo(ABSORPTION, c), bn)
             }
-            (_, Some((s, kind))) => at.colour(ABSORPTION, s, kind),
-            (
-                HairAbsorption::Melanin {
-                    eumelanin,
-                    pheomelanin,
-                },
-                None,
-            ) => {
-                let rgb = hair_sigma_a_from_concentration(
-                    at.float(eumelanin).max(0.0),
-                    at.float(pheomelanin).max(0.0),
-                );
-                match at.lambda() {
-                    None => rgb_lanes(rgb),
-                    Some(l) => l.sample(&RgbSpectrum::new(rgb, ColourKind::Unbounded)),
+            HairAbsorption::Melanin {
+                eumelanin,
+                pheomelanin,
+            } => match self.absorption.colour() {
+                // Constant concentrations: σa is a constant colour, listed by `colours`.
+                Some((s, kind)) => at.colour(ABSORPTION, s, kind),
+                None => {
+                    let rgb = hair_sigma_a_from_concentration(
+                        at.float(eumelanin).max(0.0),
+                        at.float(pheomelanin).max(0.0),
+                    );
+                    match at.lambda() {
+                        None => rgb_lanes(rgb),
+                        Some(l) => l.sample(&RgbSpectrum::new(rgb, ColourKind::Unbounded)),
+                    }
                 }
-            }
-            (_, None) => SampledSpectrum::ZERO,
+            },
         };
         Some(BxDF::Hair(HairBxdf::new(
             -1.0 + 2.0 * at.tc.uv.y,
