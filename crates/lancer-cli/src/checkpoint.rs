@@ -21,7 +21,6 @@
 use lancer::film::part::PartError;
 use lancer::film::splat::SplatPlane;
 use lancer::film::{Film, PixelBounds, PixelSum};
-use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -230,27 +229,6 @@ impl Checkpoint {
             film,
         })
     }
-}
-
-/// The arguments of this process's command line after `lancer render`, as [`crate::run`] was
-/// given them (not `std::env::args_os`: under Python's `lancer` command those start with the
-/// interpreter).
-static RENDER_ARGS: OnceLock<Vec<String>> = OnceLock::new();
-
-/// Records the command line (program name first) whose `render` arguments a checkpoint keeps;
-/// the first call wins.
-pub fn set_render_args(args: &[OsString]) {
-    let _ = RENDER_ARGS.set(
-        args.iter()
-            .skip(2)
-            .map(|a| a.to_string_lossy().into_owned())
-            .collect(),
-    );
-}
-
-/// The arguments given after `lancer render` in this process (for a new checkpoint).
-pub fn render_args() -> Vec<String> {
-    RENDER_ARGS.get().cloned().unwrap_or_default()
 }
 
 /// Set by the first SIGINT/SIGTERM.

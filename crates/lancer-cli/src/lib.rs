@@ -97,8 +97,13 @@ pub fn run(args: Vec<OsString>) -> i32 {
 fn run_command(args: Vec<OsString>) -> i32 {
     check_cpu();
     let args = render_args::bare_stats_as_text(args);
-    // The arguments after `lancer render`, for the checkpoint of an interrupted render.
-    checkpoint::set_render_args(&args);
+    // The arguments after `lancer render` (past the program's name and `render`), which a new
+    // checkpoint records.
+    let command_line = args
+        .iter()
+        .skip(2)
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect();
     let cli = match Cli::try_parse_from(args) {
         Ok(cli) => cli,
         Err(e) => {
@@ -107,7 +112,10 @@ fn run_command(args: Vec<OsString>) -> i32 {
         }
     };
     let result = match cli.command {
-        Command::Render(args) => render::run(*args),
+        Command::Render(mut args) => {
+            args.command_line = command_line;
+            render::run(*args)
+        }
         Command::Info(args) => info::run(args),
         Command::Merge(args) => merge::run(args),
         Command::Bench(cmd) => bench::run(cmd),

@@ -248,7 +248,7 @@ pub fn plan(
             film: new_film(desc, &bounds),
             done: vec![false; units.len()],
             cwd: std::env::current_dir().unwrap_or_default(),
-            args: checkpoint::render_args(),
+            args: args.command_line.clone(),
             checkpointed: false,
         },
     };

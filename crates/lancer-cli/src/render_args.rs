@@ -133,6 +133,10 @@ pub struct RenderArgs {
     /// denoiser.
     #[arg(long, requires = "denoise")]
     pub denoise_inputs: bool,
+    /// Not an option: the arguments given after `lancer render` ([`crate::run`] sets them),
+    /// which a new checkpoint records so that `--resume` renders with them again.
+    #[arg(skip)]
+    pub command_line: Vec<String>,
 }
 
 impl RenderArgs {
