@@ -279,9 +279,10 @@ pub fn resumed_args(args: RenderArgs) -> Result<(RenderArgs, Option<Resumed>), C
     Ok((args, None))
 }
 
-/// The options that decide a render's pixels and samples, by name, as the command line gave
-/// them: a checkpoint continued by `--resume-if-exists` must have been started with the same.
-fn pixel_options(a: &RenderArgs) -> [(&'static str, String); 11] {
+/// The options that decide a render's pixels and samples (those `--resume` takes from the
+/// checkpoint and refuses on the command line), by name, as the command line gave them: a
+/// checkpoint continued by `--resume-if-exists` must have been started with the same.
+fn pixel_options(a: &RenderArgs) -> [(&'static str, String); 10] {
     [
         ("--spp", format!("{:?}", a.spp)),
         ("--seed", format!("{:?}", a.seed)),
@@ -293,7 +294,6 @@ fn pixel_options(a: &RenderArgs) -> [(&'static str, String); 11] {
         ("--split", format!("{:?}", a.split)),
         ("--split-by", format!("{:?}", a.split_by)),
         ("--rgb", format!("{:?}", a.rgb)),
-        ("--strict", format!("{:?}", a.strict)),
     ]
 }
 
@@ -424,5 +424,38 @@ mod tests {
         );
         let kept = v(&["render", "--stats", "json", "s.pbrt", "--", "--stats"]);
         assert_eq!(bare_stats_as_text(kept.clone()), kept);
+    }
+
+    #[test]
+    fn resume_if_exists_compares_every_option_that_resume_refuses() {
+        #[derive(clap::Parser)]
+        #[command(no_binary_name = true)]
+        struct Render {
+            #[command(flatten)]
+            args: RenderArgs,
+        }
+        let cmd = <Render as clap::CommandFactory>::command();
+        let args = <Render as clap::Parser>::try_parse_from(Vec::<String>::new())
+            .unwrap()
+            .args;
+        let mut compared: Vec<String> = pixel_options(&args)
+            .iter()
+            .map(|(n, _)| n.to_string())
+            .collect();
+        // `--spectral` is the default mode (given or not, the same render), and
+        // `--resume-if-exists` the other way of resuming.
+        let mut refused: Vec<String> = cmd
+            .get_arguments()
+            .filter(|a| {
+                cmd.get_arg_conflicts_with(a)
+                    .iter()
+                    .any(|c| c.get_id() == "resume")
+            })
+            .map(|a| format!("--{}", a.get_long().unwrap_or_default()))
+            .filter(|n| n != "--spectral" && n != "--resume-if-exists")
+            .collect();
+        compared.sort();
+        refused.sort();
+        assert_eq!(compared, refused);
     }
 }
