@@ -221,14 +221,7 @@ pub fn plan(
     }
     let bounds = pixels.bounds;
     check_film_memory(&bounds, args.max_film_gib)?;
-    let meta = PartMeta {
-        scene_hash: split::scene_hash_in_mode(desc, args.spectral_mode()),
-        seed: desc.sampler.seed,
-        spp: desc.sampler.spp,
-        samples: pixels.samples.clone(),
-        render_bounds,
-        scale: desc.film.scale,
-    };
+    let meta = pixels.part_meta(desc, args.spectral_mode());
     let units = work_units(&bounds, TILE_SIZE, pixels.samples.clone(), SAMPLES_PER_PASS);
     let checkpoint = args
         .checkpoint

@@ -4,6 +4,7 @@
 use crate::cli_error::CliError;
 use lancer::SceneDesc;
 use lancer::film::PixelBounds;
+use lancer::film::part::PartMeta;
 use std::ops::Range;
 
 /// Tile edge in pixels of every render (tile splits are bands of whole tiles).
@@ -159,6 +160,22 @@ pub struct Plan {
     pub samples: Range<u32>,
     /// True when the result is a part to merge (with `--split` or `--samples`), not an image.
     pub is_part: bool,
+}
+
+impl Plan {
+    /// What the part (or checkpoint) of this plan of the render `desc` records, in spectral
+    /// mode or not: the scene hash ([`scene_hash_in_mode`]), seed, spp, this plan's sample
+    /// range, the whole render's pixels and the film's scale.
+    pub fn part_meta(&self, desc: &SceneDesc, spectral: bool) -> PartMeta {
+        PartMeta {
+            scene_hash: scene_hash_in_mode(desc, spectral),
+            seed: desc.sampler.seed,
+            spp: desc.sampler.spp,
+            samples: self.samples.clone(),
+            render_bounds: self.render_bounds,
+            scale: desc.film.scale,
+        }
+    }
 }
 
 /// Works out which pixels and samples to render: `render_bounds` × `0..spp`, narrowed by

@@ -10,7 +10,7 @@
 
 use crate::render::{check_film, image_array, render_film, settings_from_desc, with_overrides};
 use crate::scene::PyScene;
-use lancer::film::part::{PartMeta, decode_part, encode_part};
+use lancer::film::part::{decode_part, encode_part};
 use lancer_cli::split::{self, Split, SplitBy};
 use numpy::PyArray3;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
@@ -66,14 +66,7 @@ pub fn render_part<'py>(
     settings.bounds = plan.bounds;
     settings.samples = plan.samples.clone();
     let film = render_film(py, this, &desc, &settings, threads, false)?;
-    let meta = PartMeta {
-        scene_hash: split::scene_hash_in_mode(&desc, spectral),
-        seed: desc.sampler.seed,
-        spp: desc.sampler.spp,
-        samples: plan.samples,
-        render_bounds,
-        scale: desc.film.scale,
-    };
+    let meta = plan.part_meta(&desc, spectral);
     let bytes = py
         .detach(|| encode_part(&film, &meta))
         .map_err(|e| PyRuntimeError::new_err(format!("cannot encode the part: {e}")))?;
