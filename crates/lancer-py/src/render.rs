@@ -15,14 +15,10 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::time::Duration;
 
-/// Tile edge in pixels, as `lancer render` uses.
-const TILE_SIZE: u32 = 16;
-
-/// Samples per pixel of one unit of work, as `lancer render` uses: a cancelled render stops
-/// after the units in flight, each a tile of at most 16 × 16 pixels × 16 samples, so Ctrl-C
-/// is honoured quickly whatever the sample count. The image does not depend on it (the film's
-/// sums are exact).
-const SAMPLES_PER_PASS: u32 = 16;
+// The tile edge and the samples of one unit of work are `lancer render`'s: a cancelled render
+// stops after the units in flight (a tile × 16 samples), so Ctrl-C is honoured quickly
+// whatever the sample count; the image does not depend on them (the film's sums are exact).
+use lancer_cli::split::{SAMPLES_PER_PASS, TILE_SIZE};
 
 /// Largest image side accepted, as the scene reader's.
 const MAX_RESOLUTION: u32 = lancer_scene::pbrt::convert::MAX_RESOLUTION as u32;
