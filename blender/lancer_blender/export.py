@@ -240,7 +240,7 @@ class Exporter:
             to = p + d
             self.out.append(
                 f'LightSource "spot" "point3 from" {_rgb(p)} "point3 to" {_rgb(to)} '
-                f'"float coneangle" [{_fmt(math.degrees(half))}] "float conedelta" [{_fmt(delta)}] '
+                f'"float coneangle" [{_fmt(math.degrees(half))}] "float conedeltaangle" [{_fmt(delta)}] '
                 f'"rgb I" {_rgb(i)}'
             )
             return 1
