@@ -460,13 +460,13 @@ class Exporter:
         # dielectric does. Against Cycles: within 3.5 % on a floor seen from above or at 70°.
         eta = max(float(ior), 1.0)
         f0 = ((eta - 1.0) / (eta + 1.0)) ** 2
-        f_avg = f0 + (1.0 - f0) * 0.5**5
-        spec = min(1.0, f0 / f_avg)
+        a = f0 + (1.0 - f0) * 0.5**5
+        spec = min(1.0, f0 / a)
         lines = [
             f'MakeNamedMaterial "{name}.b" "string type" "diffuse" "{t} reflectance" {base}',
             f'MakeNamedMaterial "{name}.s" "string type" "conductor" "rgb reflectance" {_rgb([spec] * 3)} {r}',
             f'MakeNamedMaterial "{name}.d" "string type" "mix" "string materials" '
-            f'["{name}.b" "{name}.s"] "float amount" [{_fmt(f_avg)}]',
+            f'["{name}.b" "{name}.s"] "float amount" [{_fmt(a)}]',
         ]
         top = f"{name}.d"
         if transmission > 0:
