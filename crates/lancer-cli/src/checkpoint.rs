@@ -12,13 +12,21 @@
 //! film=x0,x1,y0,y1,width,height
 //! units=<count>
 //! splats=x0,x1,y0,y1,channels      (only for a film with splats)
+//! aux=aux.W,aux.A.R,…,aux.Ns.Z      (only for a `--denoise` render's film)
 //! end
 //! <count bytes: 1 when that unit of work is done, else 0>
 //! <per pixel, row-major: Σw·R, Σw·G, Σw·B, Σw as i64, samples as u32, little-endian>
 //! <with splats: per pixel of their bounds, row-major, `channels` sums as i64>
+//! <with aux: per pixel, row-major, the denoiser's sums named on the `aux` line as the u64
+//!  bits of each f64>
 //! ```
+//!
+//! The `aux` sums are those a split part keeps as its `lancer.aux.*` channels
+//! ([`lancer::film::part::PART_AUX`], [`aux_bits`]): a `--denoise` render interrupted and
+//! resumed gives back the very floating-point sums, so it ends with the uninterrupted
+//! render's bytes.
 
-use lancer::film::part::PartError;
+use lancer::film::part::{PART_AUX, PartError, aux_bits, aux_film, set_aux_bits};
 use lancer::film::splat::SplatPlane;
 use lancer::film::{Film, PixelBounds, PixelSum};
 use std::path::{Path, PathBuf};
@@ -44,6 +52,14 @@ pub struct Checkpoint {
 
 /// Bytes of one pixel's sums in the file.
 const PIXEL_BYTES: usize = 4 * 8 + 4;
+
+/// Bytes of one pixel's denoiser's sums in the file.
+const AUX_BYTES: usize = PART_AUX.len() * 8;
+
+/// The `aux` line's value: the names of the denoiser's sums, in their order in the file.
+fn aux_names() -> String {
+    PART_AUX.join(",")
+}
 
 impl Checkpoint {
     /// Encodes the checkpoint (see the module documentation for the layout).
@@ -73,6 +89,10 @@ impl Checkpoint {
                 b.x0, b.x1, b.y0, b.y1, sp.channels
             ));
         }
+        let aux = self.film.gbuffer.as_ref().filter(|g| g.config.for_denoiser);
+        if aux.is_some() {
+            head.push_str(&format!("aux={}\n", aux_names()));
+        }
         head.push_str("end\n");
         let mut out = head.into_bytes();
         out.extend(self.done.iter().map(|&d| d as u8));
@@ -86,6 +106,14 @@ impl Checkpoint {
         if let Some(sp) = &self.film.splats {
             for v in &sp.sums {
                 out.extend_from_slice(&v.to_le_bytes());
+            }
+        }
+        if let Some(g) = aux {
+            out.reserve(g.pixels.len() * AUX_BYTES);
+            for p in &g.pixels {
+                for v in aux_bits(p) {
+                    out.extend_from_slice(&v.to_le_bytes());
+                }
             }
         }
         out
@@ -131,7 +159,7 @@ impl Checkpoint {
             lines.push(line.to_string());
         }
         let (mut cwd, mut args, mut hash, mut film, mut units) = (None, vec![], None, None, None);
-        let mut splats = None;
+        let (mut splats, mut aux) = (None, false);
         for (n, line) in lines.iter().enumerate().skip(1) {
             let bad = |what: &str| format!("line {}: bad {what} '{line}'", n + 1);
             let (k, v) = line.split_once('=').ok_or_else(|| bad("line"))?;
@@ -181,6 +209,10 @@ impl Checkpoint {
                     }
                     _ => return Err(bad("splats")),
                 },
+                // The denoiser's sums: the part format's, in its order (a file of another
+                // version of lancer with other sums is refused, not misread).
+                "aux" if v == aux_names() => aux = true,
+                "aux" => return Err(bad("aux")),
                 _ => return Err(format!("line {}: unknown key '{k}'", n + 1)),
             }
         }
@@ -191,13 +223,20 @@ impl Checkpoint {
         let splat_bytes = splats.map_or(0, |(b, c): (PixelBounds, usize)| {
             (b.area() as usize).saturating_mul(c).saturating_mul(8)
         });
+        let aux_bytes = if aux {
+            npix.saturating_mul(AUX_BYTES)
+        } else {
+            0
+        };
         let expected = units
             .saturating_add(npix.saturating_mul(PIXEL_BYTES))
-            .saturating_add(splat_bytes);
+            .saturating_add(splat_bytes)
+            .saturating_add(aux_bytes);
         if bytes.len() - pos != expected {
             return Err(format!(
-                "{} bytes of data where {units} units, {npix} pixels and {splat_bytes} bytes \
-                 of splats need {expected}: the file is truncated or damaged",
+                "{} bytes of data where {units} units, {npix} pixels, {splat_bytes} bytes of \
+                 splats and {aux_bytes} of denoiser's sums need {expected}: the file is \
+                 truncated or damaged",
                 bytes.len() - pos
             ));
         }
@@ -220,6 +259,16 @@ impl Checkpoint {
                 pos += 8;
             }
             film.splats = Some(Box::new(sp));
+        }
+        if aux {
+            // The samples per pixel are not known here: the render that continues the film
+            // gives it the scene's configuration (`crate::denoise::prepare`).
+            let mut g = aux_film(npix, 0);
+            for p in g.pixels.iter_mut() {
+                set_aux_bits(p, std::array::from_fn(|k| i64_at(pos + 8 * k) as u64));
+                pos += AUX_BYTES;
+            }
+            film.gbuffer = Some(Box::new(g));
         }
         Ok(Checkpoint {
             cwd: cwd.ok_or_else(|| missing("cwd"))?,
@@ -355,5 +404,34 @@ mod tests {
         assert!(e.contains("truncated or damaged"), "{e}");
         // Without splats, the file is the one written before splats existed.
         assert!(!String::from_utf8_lossy(&bytes).contains("splats="));
+
+        // A `--denoise` render's film keeps the denoiser's sums (the part format's, in its
+        // order), every f64 bit for bit, beside the splats.
+        let mut c3 = c2.clone();
+        let mut g = aux_film(c3.film.pixels.len(), 0);
+        for (i, p) in g.pixels.iter_mut().enumerate() {
+            let v = |k: usize| (i * 7 + k) as f64 * -0.1 + 1e-300;
+            set_aux_bits(p, std::array::from_fn(|k| v(k).to_bits()));
+        }
+        c3.film.gbuffer = Some(Box::new(g));
+        let bytes3 = c3.encode();
+        let back = Checkpoint::decode(&bytes3).unwrap();
+        assert_eq!(back, c3);
+        let bits = |c: &Checkpoint| -> Vec<[u64; 7]> {
+            let g = c.film.gbuffer.as_ref().unwrap();
+            g.pixels.iter().map(aux_bits).collect()
+        };
+        assert_eq!(bits(&back), bits(&c3));
+        assert!(String::from_utf8_lossy(&bytes3).contains(&format!("aux={}\n", aux_names())));
+        let e = Checkpoint::decode(&bytes3[..bytes3.len() - 8]).unwrap_err();
+        assert!(e.contains("truncated"), "{e}");
+        // Sums of another kind are refused, not misread.
+        let mut other = bytes3.clone();
+        let at = other.windows(10).position(|w| w == b"aux=aux.W,").unwrap();
+        other[at + 8] = b'V';
+        let e = Checkpoint::decode(&other).unwrap_err();
+        assert!(e.contains("bad aux"), "{e}");
+        // Without the denoiser's sums, no `aux` line.
+        assert!(!String::from_utf8_lossy(&bytes2).contains("aux="));
     }
 }

@@ -58,8 +58,9 @@ const PART_SUMS: [&str; 4] = ["R", "G", "B", "W"];
 /// Names of the denoiser's auxiliary sums a part keeps when its film gathers them
 /// (`render --split … --denoise`): Σw over every sample, Σw·albedo and Σw·shading normal,
 /// the [`GPixel`] fields [`super::gsums::GbufferFilm::denoiser_images`] reads, each an f64
-/// stored exactly as its 64 bits.
-const PART_AUX: [&str; 7] = [
+/// stored exactly as its 64 bits ([`aux_bits`]). A checkpoint of a `--denoise` render keeps
+/// the same sums, in this order, under these names.
+pub const PART_AUX: [&str; 7] = [
     "aux.W", "aux.A.R", "aux.A.G", "aux.A.B", "aux.Ns.X", "aux.Ns.Y", "aux.Ns.Z",
 ];
 
@@ -79,6 +80,31 @@ fn aux_sum_mut(p: &mut GPixel, k: usize) -> &mut f64 {
         1..=3 => &mut p.albedo[k - 1],
         _ => &mut p.ns[k - 4],
     }
+}
+
+/// A pixel's denoiser's sums ([`PART_AUX`], in its order) as the bits of each f64: what a
+/// part's `lancer.aux.*` channels and a checkpoint keep, exactly.
+pub fn aux_bits(p: &GPixel) -> [u64; PART_AUX.len()] {
+    std::array::from_fn(|k| aux_sum(p, k).to_bits())
+}
+
+/// Sets a pixel's denoiser's sums from [`aux_bits`]' bits (its other sums are left as they
+/// are).
+pub fn set_aux_bits(p: &mut GPixel, bits: [u64; PART_AUX.len()]) {
+    for (k, b) in bits.into_iter().enumerate() {
+        *aux_sum_mut(p, k) = f64::from_bits(b);
+    }
+}
+
+/// A g-buffer of `pixels` pixels for the denoiser's sums read back from a file (a part's or a
+/// checkpoint's), to fill with [`set_aux_bits`]. Its configuration only serves merging (the
+/// normals are already in the camera space the render used); a render that continues it
+/// gives it the scene's ([`GbufferConfig::denoiser`]).
+pub fn aux_film(pixels: usize, spp: u32) -> GbufferFilm {
+    GbufferFilm::new(
+        GbufferConfig::denoiser(crate::math::Transform::IDENTITY, spp),
+        pixels,
+    )
 }
 
 /// The smallest rectangle holding both.
@@ -409,8 +435,7 @@ pub fn decode_part(name: &Path, bytes: Vec<u8>) -> Result<(Film, PartMeta), Part
         }
         film.splats = Some(Box::new(plane));
     }
-    // The denoiser's sums, when the part has them. Its configuration only serves merging:
-    // the normals are already in the camera space the render used.
+    // The denoiser's sums, when the part has them.
     let aux_w = format!("{PART_PREFIX}{}.hi", PART_AUX[0]);
     if layer
         .channel_data
@@ -418,8 +443,7 @@ pub fn decode_part(name: &Path, bytes: Vec<u8>) -> Result<(Film, PartMeta), Part
         .iter()
         .any(|c| c.name.eq(aux_w.as_str()))
     {
-        let config = GbufferConfig::denoiser(crate::math::Transform::IDENTITY, spp);
-        let mut g = GbufferFilm::new(config, bounds.area() as usize);
+        let mut g = aux_film(bounds.area() as usize, spp);
         for (k, name) in PART_AUX.iter().enumerate() {
             for (p, v) in g.pixels.iter_mut().zip(sums(name, &bounds)?) {
                 *aux_sum_mut(p, k) = f64::from_bits(v as u64);
