@@ -8,7 +8,7 @@
 use crate::cli_error::CliError;
 use crate::img::denoise::denoise_rgb;
 use crate::progress::ProgressMode;
-use crate::render_args::RenderArgs;
+use crate::render_args::{RenderArgs, checkpoint_without_sums};
 use lancer::SceneDesc;
 use lancer::film::Film;
 use lancer::gbuffer::{GbufferConfig, GbufferFilm};
@@ -17,40 +17,37 @@ use lancer::math::Rgb;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// Refuses what `--denoise` cannot do yet, before the render starts (`is_part`: the render
-/// is a part of a split one, whose file keeps the auxiliary sums for `lancer merge
-/// --denoise`; `from_checkpoint`: the film is a checkpoint's, continued by `--resume` or
-/// `--resume-if-exists`, which has no auxiliary sums for its finished work), and gives the
-/// film its auxiliary sums.
+/// Refuses what `--denoise` cannot do, before the render starts, and gives the film its
+/// auxiliary sums. `is_part`: the render is a part of a split one, whose file keeps the sums
+/// for `lancer merge --denoise`. `checkpoint`: the film is the checkpoint's at that path,
+/// continued by `--resume` or `--resume-if-exists`; a `--denoise` render's checkpoint keeps
+/// the sums of its finished work (exactly: [`crate::checkpoint`]), which the render goes on
+/// adding to, and one written without `--denoise` cannot be continued with it.
 pub fn prepare(
     args: &RenderArgs,
     desc: &SceneDesc,
     film: &mut Film,
     is_part: bool,
-    from_checkpoint: bool,
+    checkpoint: Option<&Path>,
 ) -> Result<(), CliError> {
+    // The sums a checkpoint kept: the scene's configuration, for the work left.
+    // Without --denoise (a requeued command line that dropped it), they are not needed: the
+    // image is the noisy one.
+    let kept = match checkpoint {
+        Some(_) if film.gbuffer.as_ref().is_some_and(|g| g.config.for_denoiser) => {
+            film.gbuffer.take()
+        }
+        _ => None,
+    };
     if !args.denoise {
         return Ok(());
     }
-    let refuse = |what: &str| {
-        Err(CliError::input(format!(
-            "--denoise cannot be used with {what} yet: the film's auxiliary images (albedo, \
-             normal) are not kept in checkpoints; render in one go (or in parts, --split, \
-             and denoise with lancer merge --denoise)"
-        )))
-    };
     if is_part && args.denoise_inputs {
         return Err(CliError::input(
             "--denoise-inputs with a part of a split render (--split, --samples): a part keeps \
              the denoiser's sums and is not denoised; give --denoise --denoise-inputs to \
              lancer merge",
         ));
-    }
-    if from_checkpoint {
-        return refuse("a checkpoint (--resume, or --resume-if-exists finding one)");
-    }
-    if args.checkpoint_every.is_some() {
-        return refuse("--checkpoint-every");
     }
     if desc.film.gbuffer.is_some() || desc.film.spectral.is_some() {
         return Err(CliError::input(
@@ -59,10 +56,16 @@ pub fn prepare(
         ));
     }
     let config = GbufferConfig::denoiser(desc.camera.camera_from_world, desc.sampler.spp);
-    film.gbuffer = Some(Box::new(GbufferFilm::new(
-        config,
-        film.bounds.area() as usize,
-    )));
+    let n = film.bounds.area() as usize;
+    let g = match (checkpoint, kept) {
+        (None, _) => GbufferFilm::new(config, n),
+        (Some(_), Some(g)) if g.pixels.len() == n => GbufferFilm {
+            config,
+            pixels: g.pixels,
+        },
+        (Some(path), _) => return Err(checkpoint_without_sums(path)),
+    };
+    film.gbuffer = Some(Box::new(g));
     Ok(())
 }
 

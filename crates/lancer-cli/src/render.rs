@@ -31,10 +31,16 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         resumed,
     } = load(args)?;
     let parse_s = t0.elapsed().as_secs_f64();
-    let from_checkpoint = resumed.is_some();
+    let checkpoint = resumed.as_ref().map(|r| r.path.clone());
     let mut plan = plan(&args, &desc, resumed)?;
     let is_part = plan.pixels.is_part;
-    crate::denoise::prepare(&args, &desc, &mut plan.state.film, is_part, from_checkpoint)?;
+    crate::denoise::prepare(
+        &args,
+        &desc,
+        &mut plan.state.film,
+        is_part,
+        checkpoint.as_deref(),
+    )?;
     let t_build = Instant::now();
     let scene = build(&desc)?;
     let build_s = t_build.elapsed().as_secs_f64();

@@ -369,11 +369,29 @@ fn parse_saved(ckpt: &Checkpoint, path: &Path) -> Result<RenderArgs, CliError> {
     Ok(saved.args)
 }
 
+/// The refusal to continue with `--denoise` the checkpoint at `path`, written by a render
+/// without it: the work it holds has no albedo and normal sums (they would be zero there).
+pub fn checkpoint_without_sums(path: &Path) -> CliError {
+    CliError::input(format!(
+        "{}: this checkpoint was written by a render without --denoise, so it has no albedo \
+         and normal sums for the work it holds, which the denoiser needs: continue it without \
+         --denoise (lancer render -o OUT --resume {}), or remove it to render afresh with \
+         --denoise",
+        path.display(),
+        path.display()
+    ))
+}
+
 /// `lancer render --resume FILE`: the checkpoint's options, with this command line's scene
 /// (if given, e.g. after moving it), output, checkpoint settings, threads and quietness.
 pub fn resume_args(args: RenderArgs, path: &Path) -> Result<(RenderArgs, Resumed), CliError> {
     let ckpt = Checkpoint::read(path).map_err(|e| CliError::input(e.to_string()))?;
     let mut a = parse_saved(&ckpt, path)?;
+    // The checkpoint's options win; a --denoise it was not rendered with is refused rather
+    // than dropped in silence.
+    if args.denoise && !a.denoise {
+        return Err(checkpoint_without_sums(path));
+    }
     let in_cwd = |p: PathBuf| {
         if p == Path::new("-") {
             p
