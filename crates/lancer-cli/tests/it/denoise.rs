@@ -1,8 +1,12 @@
 //! `lancer render --denoise [--denoise-inputs]`, `lancer img denoise` and `lancer merge
 //! --denoise`: the auxiliary images on a hand-checkable scene (through a mirror too), the
-//! same image from the three commands, and what `--denoise` refuses.
+//! same image from the three commands, an interrupted render resumed, and what `--denoise`
+//! refuses.
 
-use crate::common::{ScratchDir, read_exr, run_in};
+use crate::common::{
+    ScratchDir, data, lancer, read_exr, render_ok, run_in, signal_after_first_checkpoint,
+};
+use std::process::Stdio;
 
 /// A diffuse plane (reflectance 0.25, 0.5, 0.75) at z = 3 facing a camera at the origin
 /// looking down +z, and a grey one (0.9) at z = −1 behind the camera; with `mirror`, a
@@ -221,4 +225,117 @@ fn denoise_refuses_what_it_cannot_do_yet() {
         &["render", "s.pbrt", "-o", "p.exr", "--denoise-inputs"],
     );
     assert_eq!(o.status.code(), Some(2), "--denoise-inputs needs --denoise");
+}
+
+/// A `--denoise` render interrupted (SIGINT after its first checkpoint; `--checkpoint-every`
+/// keeps writing them) and continued, by `--resume` and by the same command line run again
+/// with `--resume-if-exists` (a requeued job), ends with the uninterrupted render's bytes,
+/// denoised image and denoiser's inputs alike: the checkpoint keeps the albedo and normal sums
+/// of its finished work bit for bit, and the work left adds to them in the same order.
+#[test]
+fn an_interrupted_denoise_render_resumes_to_the_uninterrupted_bytes() {
+    let dir = ScratchDir::new("denoise-resume");
+    let scene = data("pt/cbox.pbrt");
+    let opts = ["--spp", "1024", "--seed", "9", "--resolution", "48x48"];
+    let denoise = ["--denoise", "--denoise-inputs"];
+    let full = dir.join("full.exr");
+    render_ok(&dir, &scene, &full, &[&opts[..], &denoise].concat());
+    let outputs = |stem: &str| -> Vec<Vec<u8>> {
+        ["exr", "noisy.exr", "albedo.exr", "normal.exr"]
+            .iter()
+            .map(|e| std::fs::read(dir.join(format!("{stem}.{e}"))).unwrap())
+            .collect()
+    };
+    let expected = outputs("full");
+
+    // The job's command line: continues its checkpoint if there is one, else starts afresh.
+    let job = |out: &str, extra: &[&str]| {
+        let mut c = lancer();
+        c.current_dir(&dir)
+            .args(["render", scene.to_str().unwrap(), "-o", out])
+            .args(["--resume-if-exists", "--checkpoint-every", "0.001"])
+            .args(opts)
+            .args(extra)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped());
+        c
+    };
+    let ckpt = dir.join("int.exr.ckpt");
+    let job_denoise = [&denoise[..], &["--quiet"]].concat();
+    let o =
+        signal_after_first_checkpoint(job("int.exr", &job_denoise).spawn().unwrap(), &ckpt, "INT");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(130), "{err}");
+    assert!(err.contains("--resume"), "{err}");
+    let saved = std::fs::read(&ckpt).unwrap();
+    let has = |b: &[u8], s: &[u8]| b.windows(s.len()).any(|w| w == s);
+    assert!(
+        has(&saved, b"\naux=aux.W,"),
+        "the checkpoint keeps the sums"
+    );
+    // The image so far (the noisy film, not denoised) is short of the finished one's.
+    assert!(
+        std::fs::read(dir.join("int.exr")).unwrap() != expected[1],
+        "the render was not interrupted mid-way"
+    );
+
+    // --resume with nothing but the output and the checkpoint.
+    let o = run_in(
+        &dir,
+        &[
+            "render",
+            "-o",
+            "int.exr",
+            "--resume",
+            "int.exr.ckpt",
+            "--quiet",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(outputs("int") == expected, "resumed render differs");
+    assert!(!ckpt.exists(), "the checkpoint was not removed");
+
+    // The job run again unchanged finds the checkpoint and continues it.
+    std::fs::write(&ckpt, &saved).unwrap();
+    let o = job("int.exr", &denoise).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("continuing the render saved there"), "{err}");
+    assert!(outputs("int") == expected, "requeued render differs");
+    assert!(!ckpt.exists(), "the checkpoint was not removed");
+
+    // A checkpoint of a render without --denoise has no sums for its finished work: going
+    // on with --denoise is refused either way, naming the file, and the checkpoint is kept.
+    let plain = dir.join("plain.exr.ckpt");
+    let o = signal_after_first_checkpoint(
+        job("plain.exr", &["--quiet"]).spawn().unwrap(),
+        &plain,
+        "INT",
+    );
+    assert_eq!(o.status.code(), Some(130));
+    assert!(!has(&std::fs::read(&plain).unwrap(), b"\naux="));
+    for o in [
+        run_in(
+            &dir,
+            &[
+                "render",
+                "-o",
+                "p2.exr",
+                "--resume",
+                "plain.exr.ckpt",
+                "--denoise",
+            ],
+        ),
+        job("plain.exr", &denoise).output().unwrap(),
+    ] {
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(
+            err.contains(
+                "plain.exr.ckpt: this checkpoint was written by a render without --denoise"
+            ),
+            "{err}"
+        );
+        assert!(plain.exists() && !dir.join("p2.exr").exists());
+    }
 }
