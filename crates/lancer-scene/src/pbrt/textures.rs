@@ -9,8 +9,10 @@ use crate::error::{Location, SceneError};
 use lancer::math::{Rgb, Transform, Vec3};
 use lancer::spectrum::SpectrumKind;
 use lancer::texture::{
-    FloatTex, FloatTexture, ImageFilter, ImageTexture, Mapping2D, Mapping3D, SpectrumTex,
-    SpectrumTexture, UvMapping, WrapMode,
+    BilerpTexture, Checkerboard3DTexture, CheckerboardTexture, DirectionMixTexture, DotsTexture,
+    FbmTexture, FloatTex, FloatTexture, ImageFilter, ImageTexture, Mapping2D, Mapping3D,
+    MarbleTexture, MixTexture, ScaleTexture, SpectrumTex, SpectrumTexture, UvMapping, WindyTexture,
+    WrapMode, WrinkledTexture,
 };
 
 /// The float texture of class `class` at `loc`, with texture space `ctm` (world from texture);
@@ -105,37 +107,37 @@ fn float(r: &Reader, class: &str, ctm: &Transform) -> Result<Fallback<FloatTextu
     let p = r.params;
     let t = match class {
         "constant" => FloatTexture::Constant(p.float("value", 1.0)?),
-        "scale" => FloatTexture::Scale {
+        "scale" => FloatTexture::Scale(ScaleTexture {
             tex: r.float_tex("tex", 1.0)?,
             scale: r.float_tex("scale", 1.0)?,
-        },
-        "mix" => FloatTexture::Mix {
+        }),
+        "mix" => FloatTexture::Mix(MixTexture {
             tex1: r.float_tex("tex1", 0.0)?,
             tex2: r.float_tex("tex2", 1.0)?,
             amount: r.float_tex("amount", 0.5)?,
-        },
-        "directionmix" => FloatTexture::DirectionMix {
+        }),
+        "directionmix" => FloatTexture::DirectionMix(DirectionMixTexture {
             tex1: r.float_tex("tex1", 0.0)?,
             tex2: r.float_tex("tex2", 1.0)?,
             dir: direction(r, ctm)?,
-        },
+        }),
         "checkerboard" => {
             let (tex1, tex2) = (r.float_tex("tex1", 1.0)?, r.float_tex("tex2", 0.0)?);
             if dimension(r)? == 3 {
-                FloatTexture::Checkerboard3D {
+                FloatTexture::Checkerboard3D(Checkerboard3DTexture {
                     mapping: mapping_3d(ctm),
                     tex1,
                     tex2,
-                }
+                })
             } else {
-                FloatTexture::Checkerboard {
+                FloatTexture::Checkerboard(CheckerboardTexture {
                     mapping: mapping_2d(r, ctm)?,
                     tex1,
                     tex2,
-                }
+                })
             }
         }
-        "bilerp" => FloatTexture::Bilerp {
+        "bilerp" => FloatTexture::Bilerp(BilerpTexture {
             mapping: mapping_2d(r, ctm)?,
             v: [
                 p.float("v00", 0.0)?,
@@ -143,33 +145,33 @@ fn float(r: &Reader, class: &str, ctm: &Transform) -> Result<Fallback<FloatTextu
                 p.float("v10", 0.0)?,
                 p.float("v11", 1.0)?,
             ],
-        },
+        }),
         // pbrt-v4's Create passes (inside, outside) to a constructor declared (outsideDot,
         // insideDot): `inside` colours the background, `outside` the dots.
-        "dots" => FloatTexture::Dots {
+        "dots" => FloatTexture::Dots(DotsTexture {
             mapping: mapping_2d(r, ctm)?,
             background: r.float_tex("inside", 1.0)?,
             dot: r.float_tex("outside", 0.0)?,
-        },
+        }),
         "fbm" => {
             let (octaves, omega) = octaves_roughness(r)?;
-            FloatTexture::Fbm {
+            FloatTexture::Fbm(FbmTexture {
                 mapping: mapping_3d(ctm),
                 octaves,
                 omega,
-            }
+            })
         }
         "wrinkled" => {
             let (octaves, omega) = octaves_roughness(r)?;
-            FloatTexture::Wrinkled {
+            FloatTexture::Wrinkled(WrinkledTexture {
                 mapping: mapping_3d(ctm),
                 octaves,
                 omega,
-            }
+            })
         }
-        "windy" => FloatTexture::Windy {
+        "windy" => FloatTexture::Windy(WindyTexture {
             mapping: mapping_3d(ctm),
-        },
+        }),
         "imagemap" => return Ok(image_texture(r, ctm, true)?.map(FloatTexture::Image)),
         _ => {
             return Ok(Fallback::instead(
@@ -194,50 +196,50 @@ fn spectrum(
         // A value given as a spectrum stays one (spectral mode samples its table): lancer's
         // constant texture holds RGB, so it is the spectrum scaled by 1.
         "constant" => match r.params.color_or_texture("value", kind, r.dir)? {
-            Some(ColorParam::Measured(m)) => SpectrumTexture::Scale {
+            Some(ColorParam::Measured(m)) => SpectrumTexture::Scale(ScaleTexture {
                 tex: SpectrumTex::Measured(m),
                 scale: FloatTex::Const(1.0),
-            },
+            }),
             _ => {
                 SpectrumTexture::Constant(r.params.color("value", kind, r.dir)?.unwrap_or(Rgb::ONE))
             }
         },
-        "scale" => SpectrumTexture::Scale {
+        "scale" => SpectrumTexture::Scale(ScaleTexture {
             tex: r.spectrum_tex("tex", Rgb::ONE, kind)?,
             scale: r.float_tex("scale", 1.0)?,
-        },
-        "mix" => SpectrumTexture::Mix {
+        }),
+        "mix" => SpectrumTexture::Mix(MixTexture {
             tex1: r.spectrum_tex("tex1", Rgb::ZERO, kind)?,
             tex2: r.spectrum_tex("tex2", Rgb::ONE, kind)?,
             amount: r.float_tex("amount", 0.5)?,
-        },
-        "directionmix" => SpectrumTexture::DirectionMix {
+        }),
+        "directionmix" => SpectrumTexture::DirectionMix(DirectionMixTexture {
             tex1: r.spectrum_tex("tex1", Rgb::ZERO, kind)?,
             tex2: r.spectrum_tex("tex2", Rgb::ONE, kind)?,
             dir: direction(r, ctm)?,
-        },
+        }),
         "checkerboard" => {
             let tex1 = r.spectrum_tex("tex1", Rgb::ONE, kind)?;
             let tex2 = r.spectrum_tex("tex2", Rgb::ZERO, kind)?;
             if dimension(r)? == 3 {
-                SpectrumTexture::Checkerboard3D {
+                SpectrumTexture::Checkerboard3D(Checkerboard3DTexture {
                     mapping: mapping_3d(ctm),
                     tex1,
                     tex2,
-                }
+                })
             } else {
-                SpectrumTexture::Checkerboard {
+                SpectrumTexture::Checkerboard(CheckerboardTexture {
                     mapping: mapping_2d(r, ctm)?,
                     tex1,
                     tex2,
-                }
+                })
             }
         }
         "bilerp" => {
             let c = |name, default| -> Result<Rgb, SceneError> {
                 Ok(r.params.color(name, kind, r.dir)?.unwrap_or(default))
             };
-            SpectrumTexture::Bilerp {
+            SpectrumTexture::Bilerp(BilerpTexture {
                 mapping: mapping_2d(r, ctm)?,
                 v: [
                     c("v00", Rgb::ZERO)?,
@@ -245,23 +247,23 @@ fn spectrum(
                     c("v10", Rgb::ZERO)?,
                     c("v11", Rgb::ONE)?,
                 ],
-            }
+            })
         }
         // pbrt-v4 swaps them (see the float `dots`).
-        "dots" => SpectrumTexture::Dots {
+        "dots" => SpectrumTexture::Dots(DotsTexture {
             mapping: mapping_2d(r, ctm)?,
             background: r.spectrum_tex("inside", Rgb::ONE, kind)?,
             dot: r.spectrum_tex("outside", Rgb::ZERO, kind)?,
-        },
+        }),
         "marble" => {
             let (octaves, omega) = octaves_roughness(r)?;
-            SpectrumTexture::Marble {
+            SpectrumTexture::Marble(MarbleTexture {
                 mapping: mapping_3d(ctm),
                 octaves,
                 omega,
                 scale: r.params.float("scale", 1.0)?,
                 variation: r.params.float("variation", 0.2)?,
-            }
+            })
         }
         "imagemap" => return Ok(image_texture(r, ctm, false)?.map(SpectrumTexture::Image)),
         _ => {

@@ -9,7 +9,7 @@ use lancer::render::{RenderSettings, render};
 use lancer::scene::Scene;
 use lancer::scene::desc::SceneDesc;
 use lancer::spectrum::Ior;
-use lancer::texture::SpectrumTex;
+use lancer::texture::{CheckerboardTexture, ScaleTexture, SpectrumTex};
 use lancer_scene::load_pbrt_str;
 use std::path::Path;
 
@@ -227,17 +227,17 @@ Shape "sphere"
         let SpectrumTex::Tex(i) = t else {
             panic!("{t:?}")
         };
-        let lancer::texture::SpectrumTexture::Scale {
+        let lancer::texture::SpectrumTexture::Scale(ScaleTexture {
             tex: SpectrumTex::Tex(j),
             ..
-        } = &d.spectrum_textures[i as usize]
+        }) = &d.spectrum_textures[i as usize]
         else {
             panic!()
         };
-        let lancer::texture::SpectrumTexture::Checkerboard {
+        let lancer::texture::SpectrumTexture::Checkerboard(CheckerboardTexture {
             tex1: SpectrumTex::Measured(m),
             ..
-        } = &d.spectrum_textures[*j as usize]
+        }) = &d.spectrum_textures[*j as usize]
         else {
             panic!()
         };

@@ -58,19 +58,22 @@ fn float_textures_take_pbrt_defaults() {
         float(r#"Texture "t" "float" "constant""#),
         FloatTexture::Constant(1.0)
     ));
-    let FloatTexture::Scale { tex, scale } = float(r#"Texture "t" "float" "scale""#) else {
+    let FloatTexture::Scale(ScaleTexture { tex, scale }) = float(r#"Texture "t" "float" "scale""#)
+    else {
         panic!("scale")
     };
     assert_eq!((tex, scale), (c(1.0), c(1.0)));
-    let FloatTexture::Mix { tex1, tex2, amount } = float(r#"Texture "t" "float" "mix""#) else {
+    let FloatTexture::Mix(MixTexture { tex1, tex2, amount }) =
+        float(r#"Texture "t" "float" "mix""#)
+    else {
         panic!("mix")
     };
     assert_eq!((tex1, tex2, amount), (c(0.0), c(1.0), c(0.5)));
-    let FloatTexture::Checkerboard {
+    let FloatTexture::Checkerboard(CheckerboardTexture {
         mapping,
         tex1,
         tex2,
-    } = float(r#"Texture "t" "float" "checkerboard""#)
+    }) = float(r#"Texture "t" "float" "checkerboard""#)
     else {
         panic!("checkerboard")
     };
@@ -88,7 +91,7 @@ fn float_textures_read_every_parameter() {
     ));
     let mut names = TextureNames::default();
     names.floats.insert("a".into(), 3);
-    let FloatTexture::Scale { tex, scale } = clean(float_in(
+    let FloatTexture::Scale(ScaleTexture { tex, scale }) = clean(float_in(
         r#"Texture "t" "float" "scale" "texture tex" "a" "float scale" 2"#,
         Path::new("."),
         &names,
@@ -96,17 +99,17 @@ fn float_textures_read_every_parameter() {
         panic!("scale")
     };
     assert_eq!((tex, scale), (FloatTex::Tex(3), c(2.0)));
-    let FloatTexture::Mix { tex1, tex2, amount } =
+    let FloatTexture::Mix(MixTexture { tex1, tex2, amount }) =
         float(r#"Texture "t" "float" "mix" "float tex1" 0.1 "float tex2" 0.2 "float amount" 0.3"#)
     else {
         panic!("mix")
     };
     assert_eq!((tex1, tex2, amount), (c(0.1), c(0.2), c(0.3)));
-    let FloatTexture::Checkerboard {
+    let FloatTexture::Checkerboard(CheckerboardTexture {
         mapping,
         tex1,
         tex2,
-    } = float(
+    }) = float(
         r#"Texture "t" "float" "checkerboard" "float uscale" 4 "float vscale" 8
            "float udelta" 0.5 "float vdelta" 0.25 "float tex1" 0.7 "float tex2" 0.2
            "integer dimension" 2 "string mapping" "uv""#,
@@ -135,34 +138,36 @@ fn spectrum_textures_take_pbrt_defaults_and_every_parameter() {
         panic!("constant")
     };
     assert_eq!(v, Rgb::new(0.1, 0.2, 0.3));
-    let SpectrumTexture::Scale { tex, scale } = spectrum(r#"Texture "t" "spectrum" "scale""#)
+    let SpectrumTexture::Scale(ScaleTexture { tex, scale }) =
+        spectrum(r#"Texture "t" "spectrum" "scale""#)
     else {
         panic!("scale")
     };
     assert_eq!((tex, scale), (grey(1.0), c(1.0)));
-    let SpectrumTexture::Scale { tex, scale } =
+    let SpectrumTexture::Scale(ScaleTexture { tex, scale }) =
         spectrum(r#"Texture "t" "spectrum" "scale" "rgb tex" [0.5 0.5 0.5] "float scale" 3"#)
     else {
         panic!("scale")
     };
     assert_eq!((tex, scale), (grey(0.5), c(3.0)));
-    let SpectrumTexture::Mix { tex1, tex2, amount } = spectrum(r#"Texture "t" "spectrum" "mix""#)
+    let SpectrumTexture::Mix(MixTexture { tex1, tex2, amount }) =
+        spectrum(r#"Texture "t" "spectrum" "mix""#)
     else {
         panic!("mix")
     };
     assert_eq!((tex1, tex2, amount), (grey(0.0), grey(1.0), c(0.5)));
-    let SpectrumTexture::Mix { tex1, tex2, amount } = spectrum(
+    let SpectrumTexture::Mix(MixTexture { tex1, tex2, amount }) = spectrum(
         r#"Texture "t" "spectrum" "mix" "rgb tex1" [0.2 0.2 0.2] "rgb tex2" [0.4 0.4 0.4]
            "float amount" 0.9"#,
     ) else {
         panic!("mix")
     };
     assert_eq!((tex1, tex2, amount), (grey(0.2), grey(0.4), c(0.9)));
-    let SpectrumTexture::Checkerboard {
+    let SpectrumTexture::Checkerboard(CheckerboardTexture {
         mapping,
         tex1,
         tex2,
-    } = spectrum(r#"Texture "t" "spectrum" "checkerboard" "float uscale" 2"#)
+    }) = spectrum(r#"Texture "t" "spectrum" "checkerboard" "float uscale" 2"#)
     else {
         panic!("checkerboard")
     };
@@ -210,11 +215,11 @@ fn float_at(text: &str, ctm: &Transform) -> FloatTexture {
 #[test]
 fn noise_textures_take_pbrt_defaults_and_texture_space_from_the_ctm() {
     let ctm = Transform::scale(Vec3::splat(0.5)).unwrap();
-    let FloatTexture::Wrinkled {
+    let FloatTexture::Wrinkled(WrinkledTexture {
         mapping,
         octaves,
         omega,
-    } = float_at(r#"Texture "t" "float" "wrinkled""#, &ctm)
+    }) = float_at(r#"Texture "t" "float" "wrinkled""#, &ctm)
     else {
         panic!("wrinkled")
     };
@@ -225,7 +230,7 @@ fn noise_textures_take_pbrt_defaults_and_texture_space_from_the_ctm() {
         ..Default::default()
     };
     assert!((mapping.map(&tc) - Vec3::new(2.0, 0.0, 0.0)).length() < 1e-6);
-    let FloatTexture::Fbm { octaves, omega, .. } = float_at(
+    let FloatTexture::Fbm(FbmTexture { octaves, omega, .. }) = float_at(
         r#"Texture "t" "float" "fbm" "integer octaves" 5 "float roughness" 0.6"#,
         &ctm,
     ) else {
@@ -234,15 +239,15 @@ fn noise_textures_take_pbrt_defaults_and_texture_space_from_the_ctm() {
     assert_eq!((octaves, omega), (5, 0.6));
     assert!(matches!(
         float_at(r#"Texture "t" "float" "windy""#, &ctm),
-        FloatTexture::Windy { .. }
+        FloatTexture::Windy(WindyTexture { .. })
     ));
-    let SpectrumTexture::Marble {
+    let SpectrumTexture::Marble(MarbleTexture {
         octaves,
         omega,
         scale,
         variation,
         ..
-    } = spectrum(
+    }) = spectrum(
         r#"Texture "t" "spectrum" "marble" "float scale" 9 "float variation" 0.8 "integer octaves" 5"#,
     )
     else {
@@ -253,9 +258,9 @@ fn noise_textures_take_pbrt_defaults_and_texture_space_from_the_ctm() {
 
 #[test]
 fn dots_swap_inside_and_outside_as_pbrt_v4_does() {
-    let SpectrumTexture::Dots {
+    let SpectrumTexture::Dots(DotsTexture {
         dot, background, ..
-    } = spectrum(
+    }) = spectrum(
         r#"Texture "t" "spectrum" "dots" "float uscale" 8 "rgb inside" [0.85 0.1 0.1]
            "rgb outside" [0.9 0.9 0.8]"#,
     )
@@ -269,9 +274,9 @@ fn dots_swap_inside_and_outside_as_pbrt_v4_does() {
             SpectrumTex::Const(Rgb::new(0.85, 0.1, 0.1))
         )
     );
-    let FloatTexture::Dots {
+    let FloatTexture::Dots(DotsTexture {
         dot, background, ..
-    } = float(r#"Texture "t" "float" "dots""#)
+    }) = float(r#"Texture "t" "float" "dots""#)
     else {
         panic!("dots")
     };
@@ -281,12 +286,13 @@ fn dots_swap_inside_and_outside_as_pbrt_v4_does() {
 
 #[test]
 fn bilerp_directionmix_and_the_3d_checkerboard() {
-    let FloatTexture::Bilerp { v, .. } = float(r#"Texture "t" "float" "bilerp" "float v01" 0.5"#)
+    let FloatTexture::Bilerp(BilerpTexture { v, .. }) =
+        float(r#"Texture "t" "float" "bilerp" "float v01" 0.5"#)
     else {
         panic!("bilerp")
     };
     assert_eq!(v, [0.0, 0.5, 0.0, 1.0]);
-    let SpectrumTexture::Bilerp { v, .. } =
+    let SpectrumTexture::Bilerp(BilerpTexture { v, .. }) =
         spectrum(r#"Texture "t" "spectrum" "bilerp" "rgb v11" [0.9 0.9 0.1]"#)
     else {
         panic!("bilerp")
@@ -294,7 +300,7 @@ fn bilerp_directionmix_and_the_3d_checkerboard() {
     assert_eq!(v, [Rgb::ZERO, Rgb::ONE, Rgb::ZERO, Rgb::new(0.9, 0.9, 0.1)]);
     // dir is a texture-space vector: rotated 90° about z, +y becomes −x.
     let rot = Transform::rotate(90.0, Vec3::Z).unwrap();
-    let FloatTexture::DirectionMix { dir, tex1, tex2 } = float_at(
+    let FloatTexture::DirectionMix(DirectionMixTexture { dir, tex1, tex2 }) = float_at(
         r#"Texture "t" "float" "directionmix" "vector3 dir" [0 2 0]"#,
         &rot,
     ) else {
@@ -304,7 +310,7 @@ fn bilerp_directionmix_and_the_3d_checkerboard() {
     assert_eq!((tex1, tex2), (c(0.0), c(1.0)));
     assert!(matches!(
         float(r#"Texture "t" "float" "checkerboard" "integer dimension" 3"#),
-        FloatTexture::Checkerboard3D { .. }
+        FloatTexture::Checkerboard3D(Checkerboard3DTexture { .. })
     ));
     // pbrt-v4 reports a 3D checkerboard's "mapping" as unused.
     let (out, unused) = float_in(
@@ -328,7 +334,7 @@ fn bilerp_directionmix_and_the_3d_checkerboard() {
 #[test]
 fn mappings_read_their_parameters_in_texture_space() {
     let ctm = Transform::translate(Vec3::new(0.0, 0.5, 0.0));
-    let FloatTexture::Checkerboard { mapping, .. } = float_at(
+    let FloatTexture::Checkerboard(CheckerboardTexture { mapping, .. }) = float_at(
         r#"Texture "t" "float" "checkerboard" "string mapping" "planar" "vector3 v1" [2 0 0]
            "vector3 v2" [0 0 2] "float udelta" 0.25 "float vdelta" 0.5"#,
         &ctm,
@@ -356,7 +362,7 @@ fn mappings_read_their_parameters_in_texture_space() {
     );
     assert_eq!(texture_from_world, ctm.inverse());
     for (kind, want) in [("spherical", 1), ("cylindrical", 2)] {
-        let FloatTexture::Checkerboard { mapping, .. } = float_at(
+        let FloatTexture::Checkerboard(CheckerboardTexture { mapping, .. }) = float_at(
             &format!(r#"Texture "t" "float" "checkerboard" "string mapping" "{kind}""#),
             &ctm,
         ) else {

@@ -161,7 +161,7 @@ mod tests {
     use crate::spectrum::dense::{Measured, PreparedSpectrum};
     use crate::spectrum::sampled::SampledWavelengths;
     use crate::spectrum::{Spectrum, SpectrumKind};
-    use crate::texture::{FloatTex, SpectrumTexture};
+    use crate::texture::{FloatTex, ScaleTexture, SpectrumTexture};
     use crate::texture::{TexCoord, TextureEval};
 
     /// The build gives the material the profile table of its description's g and η (the
@@ -195,14 +195,14 @@ mod tests {
             lambda: vec![300.0, 800.0],
             values: vec![0.0, 2.0],
         };
-        let spectra = vec![SpectrumTexture::Scale {
+        let spectra = vec![SpectrumTexture::Scale(ScaleTexture {
             tex: SpectrumTex::Measured(Measured::new(
                 &ramp,
                 Rgb::splat(1.0),
                 SpectrumKind::Unbounded,
             )),
             scale: FloatTex::Const(1.0),
-        }];
+        })];
         let tex = TextureEval {
             floats: &[],
             spectra: &spectra,

@@ -1,0 +1,18 @@
+//! The `constant` texture: the same value everywhere.
+
+use super::{At, TextureKind};
+use crate::math::Rgb;
+
+impl TextureKind<f32> for f32 {
+    #[inline(always)]
+    fn evaluate(&self, _: &At) -> f32 {
+        *self
+    }
+}
+
+impl TextureKind<Rgb> for Rgb {
+    #[inline(always)]
+    fn evaluate(&self, _: &At) -> Rgb {
+        *self
+    }
+}
