@@ -1,8 +1,8 @@
 //! Evaluation of texture parameters against the scene's texture lists, as pbrt-v4's textures'
 //! `Evaluate`: a parameter's constant inline, a texture's lookup by its kind (`kinds/`).
 
-use super::kinds::At;
-use super::{FloatTex, SpectrumTex, TexCoord, TextureEval};
+use super::kinds::{At, TextureEval};
+use super::{FloatTex, SpectrumTex, TexCoord};
 use crate::math::Rgb;
 
 impl TextureEval<'_> {

@@ -1,4 +1,4 @@
-//! The texture families: one line per kind in [`texture_family!`]'s two lists below (float
+//! The texture families: one line per kind in `texture_family!`'s two lists below (float
 //! textures, spectrum textures), and each kind in its own file of `kinds/`, which owns its
 //! description (plain data, what the readers make, also what the renderer evaluates) and its
 //! lookups: float, RGB and, for spectrum textures, at the path's wavelengths.
@@ -26,10 +26,20 @@ pub mod scale;
 pub mod windy;
 pub mod wrinkled;
 
-use super::{FloatTex, SpectrumTex, TexCoord, TextureEval};
+use super::{FloatTex, SpectrumTex, TexCoord};
 use crate::math::{Rgb, SampledSpectrum};
 use crate::spectrum::sampled::{ColourKind, SampledWavelengths};
 use std::ops::{Add, Mul};
+
+/// Evaluates texture parameters against the scene's texture lists (the lookups are in
+/// `eval.rs` and `spectral.rs`; the kinds call back into them for their parameters).
+#[derive(Clone, Copy)]
+pub struct TextureEval<'a> {
+    /// The scene's float textures.
+    pub floats: &'a [FloatTexture],
+    /// The scene's spectrum textures.
+    pub spectra: &'a [SpectrumTexture],
+}
 
 /// Where a texture is looked up: the scene's textures and the hit's texture coordinates.
 #[derive(Clone, Copy)]

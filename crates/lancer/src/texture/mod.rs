@@ -14,13 +14,12 @@ mod eval;
 pub mod kinds;
 mod mapping;
 pub mod mipmap;
+mod param;
 mod spectral;
 #[cfg(test)]
 mod tests;
 
 pub use crate::image::WrapMode;
-use crate::math::Rgb;
-use crate::spectrum::dense::Measured;
 pub use kinds::bilerp::BilerpTexture;
 pub use kinds::checkerboard::{Checkerboard3DTexture, CheckerboardTexture};
 pub use kinds::direction_mix::DirectionMixTexture;
@@ -32,37 +31,7 @@ pub use kinds::mix::MixTexture;
 pub use kinds::scale::ScaleTexture;
 pub use kinds::windy::WindyTexture;
 pub use kinds::wrinkled::WrinkledTexture;
-pub use kinds::{FloatTexture, SpectrumTexture};
+pub use kinds::{FloatTexture, SpectrumTexture, TextureEval};
 pub use mapping::{Mapping2D, Mapping3D, TexCoord, UvMapping};
 pub use mipmap::{ImageFilter, MipMap, StFootprint};
-
-/// A float-valued material parameter: a constant, or the index of a float texture.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum FloatTex {
-    /// The same value everywhere.
-    Const(f32),
-    /// Index into the scene's float textures.
-    Tex(u32),
-}
-
-/// A colour-valued material parameter: a constant, or the index of a spectrum texture.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum SpectrumTex {
-    /// The same colour everywhere.
-    Const(Rgb),
-    /// The same spectrum everywhere, given as a spectrum (a named spectrum, `blackbody`, an
-    /// `.spd` file): RGB mode reads its reduction, spectral mode its table.
-    Measured(Measured),
-    /// Index into the scene's spectrum textures.
-    Tex(u32),
-}
-
-/// Evaluates texture parameters against the scene's texture lists (the evaluation itself is
-/// in `eval.rs`).
-#[derive(Clone, Copy)]
-pub struct TextureEval<'a> {
-    /// The scene's float textures.
-    pub floats: &'a [FloatTexture],
-    /// The scene's spectrum textures.
-    pub spectra: &'a [SpectrumTexture],
-}
+pub use param::{FloatTex, SpectrumTex};

@@ -8,8 +8,8 @@
 //! textures (checkerboard, scale, mix, dots, directionmix) combine the sampled values as
 //! pbrt-v4 combines them.
 
-use super::kinds::SampledAt;
-use super::{SpectrumTex, TexCoord, TextureEval};
+use super::kinds::{SampledAt, TextureEval};
+use super::{SpectrumTex, TexCoord};
 use crate::math::SampledSpectrum;
 use crate::spectrum::sampled::{ColourKind, RgbSpectrum, SampledWavelengths};
 
