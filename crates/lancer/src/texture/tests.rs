@@ -2,7 +2,7 @@
 //! wavelengths (a measured leaf sampled, not reduced to RGB).
 
 use super::*;
-use crate::math::{Transform, Vec2, Vec3};
+use crate::math::{Rgb, Transform, Vec2, Vec3};
 use crate::spectrum::dense::Measured;
 use crate::spectrum::sampled::{ColourKind, SampledWavelengths};
 use crate::spectrum::{Spectrum, SpectrumKind};
