@@ -96,6 +96,18 @@ pub struct LightBounds {
 }
 
 impl LightBounds {
+    /// A light at the point `p` emitting power `phi` in every direction (point, goniometric
+    /// and projection lights): normal cone = the whole sphere, cos θ_e = cos(π/2).
+    pub fn point(p: Vec3, phi: f32) -> LightBounds {
+        LightBounds {
+            bounds: Bounds3::from_point(p),
+            phi,
+            normals: DirectionCone::ENTIRE_SPHERE,
+            cos_theta_e: (PI / 2.0).cos(),
+            two_sided: false,
+        }
+    }
+
     /// The bounds of two groups together: boxes and cones united, powers added, the wider
     /// spread.
     pub fn union(&self, o: &LightBounds) -> LightBounds {

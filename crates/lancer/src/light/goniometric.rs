@@ -6,11 +6,11 @@
 //! (pbrt-v4's `swapYZ`), so that the image's pole is the light's +y axis. Emitted power:
 //! Φ = I · 4π · mean(Y).
 
-use super::bounds::{DirectionCone, LightBounds, LightExtent};
+use super::bounds::{LightBounds, LightExtent};
 use super::kind::{LightDescKind, LightKind, LightLePdf, LightLeSample, LightType, SceneSphere};
 use super::sample::{LightLiSample, LightSampleContext};
 use crate::image::Image;
-use crate::math::{Bounds3, PI, Rgb, Transform, Vec2, Vec3};
+use crate::math::{PI, Rgb, Transform, Vec2, Vec3};
 use crate::sampling::{
     PiecewiseConstant2D, equal_area_sphere_to_square, equal_area_square_to_sphere,
 };
@@ -178,14 +178,7 @@ impl LightKind for GoniometricLight {
     /// pbrt-v4's per-light cones, but never zero where it shines, so the choice stays
     /// unbiased).
     fn extent(&self, _: &[Shape], _: &[TriangleMesh]) -> LightExtent {
-        LightBounds {
-            bounds: Bounds3::from_point(self.p),
-            phi: GoniometricLight::power(self),
-            normals: DirectionCone::ENTIRE_SPHERE,
-            cos_theta_e: (PI / 2.0).cos(),
-            two_sided: false,
-        }
-        .extent()
+        LightBounds::point(self.p, GoniometricLight::power(self)).extent()
     }
 
     fn constant_colour(&self) -> Option<Rgb> {

@@ -1,10 +1,10 @@
 //! pbrt-v4's `point` light: an isotropic point light, I the same in every direction, so the
 //! light arriving at a point r away is Li = I / r² and the power Φ = 4π·I.
 
-use super::bounds::{DirectionCone, LightBounds, LightExtent};
+use super::bounds::{LightBounds, LightExtent};
 use super::kind::{LightDescKind, LightKind, LightLePdf, LightLeSample, LightType, SceneSphere};
 use super::sample::{LightLiSample, LightSampleContext};
-use crate::math::{Bounds3, Rgb, Vec2, Vec3};
+use crate::math::{Rgb, Vec2, Vec3};
 use crate::sampling::{sample_uniform_sphere, uniform_sphere_pdf};
 use crate::shape::{Shape, TriangleMesh};
 use std::f32::consts::PI;
@@ -83,14 +83,7 @@ impl LightKind for PointLight {
     /// A point emits everywhere: normal cone = sphere, no spread needed; φ = 4π·max(I).
     fn extent(&self, _: &[Shape], _: &[TriangleMesh]) -> LightExtent {
         let i = self.intensity;
-        LightBounds {
-            bounds: Bounds3::from_point(self.p),
-            phi: 4.0 * PI * i.x.max(i.y).max(i.z),
-            normals: DirectionCone::ENTIRE_SPHERE,
-            cos_theta_e: (PI / 2.0).cos(),
-            two_sided: false,
-        }
-        .extent()
+        LightBounds::point(self.p, 4.0 * PI * i.x.max(i.y).max(i.z)).extent()
     }
 
     fn constant_colour(&self) -> Option<Rgb> {

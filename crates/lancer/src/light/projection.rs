@@ -8,11 +8,11 @@
 //! 1/a) the window's area on the plane z = 1 (each texel's solid angle is its area times
 //! cos³θ).
 
-use super::bounds::{DirectionCone, LightBounds, LightExtent};
+use super::bounds::{LightBounds, LightExtent};
 use super::kind::{LightDescKind, LightKind, LightLePdf, LightLeSample, LightType, SceneSphere};
 use super::sample::{LightLiSample, LightSampleContext};
 use crate::image::Image;
-use crate::math::{Bounds3, PI, Rgb, Transform, Vec2, Vec3, normalize};
+use crate::math::{Rgb, Transform, Vec2, Vec3, normalize};
 use crate::sampling::PiecewiseConstant2D;
 use crate::shape::{Shape, TriangleMesh};
 use std::sync::Arc;
@@ -222,14 +222,7 @@ impl LightKind for ProjectionLight {
     /// Bounded by its total power over the whole sphere of directions (coarser than
     /// pbrt-v4's cone, but never zero where it shines, so the choice stays unbiased).
     fn extent(&self, _: &[Shape], _: &[TriangleMesh]) -> LightExtent {
-        LightBounds {
-            bounds: Bounds3::from_point(self.p),
-            phi: ProjectionLight::power(self),
-            normals: DirectionCone::ENTIRE_SPHERE,
-            cos_theta_e: (PI / 2.0).cos(),
-            two_sided: false,
-        }
-        .extent()
+        LightBounds::point(self.p, ProjectionLight::power(self)).extent()
     }
 
     fn constant_colour(&self) -> Option<Rgb> {
