@@ -10,7 +10,7 @@
 //! with more samples per pixel each sample's footprint shrinks.
 
 use super::Camera;
-use crate::math::{Frame, Transform, Vec2, Vec3, normalize};
+use crate::math::{Frame, Transform, Vec2, Vec3, normalize, rotate_from_to};
 
 /// The camera's minimum differentials and what turns them into a footprint at a hit.
 #[derive(Clone, Debug, PartialEq)]
@@ -43,28 +43,6 @@ struct Pinhole {
 /// pbrt-v4's scale of camera ray differentials for `spp` samples per pixel: max(⅛, 1/√spp).
 pub fn differential_scale(spp: u32) -> f32 {
     (1.0 / (spp.max(1) as f32).sqrt()).max(0.125)
-}
-
-/// The rotation taking unit `from` to unit `to` (pbrt-v4's `RotateFromTo`: two reflections,
-/// through a helper axis chosen away from both), as its three rows.
-fn rotate_from_to(from: Vec3, to: Vec3) -> [Vec3; 3] {
-    let refl = if from.x.abs() < 0.72 && to.x.abs() < 0.72 {
-        Vec3::X
-    } else if from.y.abs() < 0.72 && to.y.abs() < 0.72 {
-        Vec3::Y
-    } else {
-        Vec3::Z
-    };
-    let (u, v) = (refl - from, refl - to);
-    let (uu, vv, uv) = (u.dot(u), v.dot(v), u.dot(v));
-    // r_ij = δ_ij − 2/(u·u)·u_i u_j − 2/(v·v)·v_i v_j + 4(u·v)/((u·u)(v·v))·v_i u_j.
-    let row = |i: usize| {
-        Vec3::from_array(std::array::from_fn(|j| {
-            f32::from(i == j) - 2.0 / uu * u[i] * u[j] - 2.0 / vv * v[i] * v[j]
-                + 4.0 * uv / (uu * vv) * v[i] * u[j]
-        }))
-    };
-    [row(0), row(1), row(2)]
 }
 
 impl Footprints {

@@ -1,4 +1,5 @@
-//! Orthonormal frames: shading coordinates where the normal is +z.
+//! Orthonormal frames: shading coordinates where the normal is +z; the rotation between two
+//! directions.
 
 use super::{Vec3, cross};
 
@@ -53,6 +54,28 @@ impl Frame {
     pub fn from_local(&self, v: Vec3) -> Vec3 {
         self.x * v.x + self.y * v.y + self.z * v.z
     }
+}
+
+/// The rotation taking unit `from` to unit `to` (pbrt-v4's `RotateFromTo`: two reflections,
+/// through a helper axis chosen away from both), as its three rows.
+pub fn rotate_from_to(from: Vec3, to: Vec3) -> [Vec3; 3] {
+    let refl = if from.x.abs() < 0.72 && to.x.abs() < 0.72 {
+        Vec3::X
+    } else if from.y.abs() < 0.72 && to.y.abs() < 0.72 {
+        Vec3::Y
+    } else {
+        Vec3::Z
+    };
+    let (u, v) = (refl - from, refl - to);
+    let (uu, vv, uv) = (u.dot(u), v.dot(v), u.dot(v));
+    // r_ij = δ_ij − 2/(u·u)·u_i u_j − 2/(v·v)·v_i v_j + 4(u·v)/((u·u)(v·v))·v_i u_j.
+    let row = |i: usize| {
+        Vec3::from_array(std::array::from_fn(|j| {
+            f32::from(i == j) - 2.0 / uu * u[i] * u[j] - 2.0 / vv * v[i] * v[j]
+                + 4.0 * uv / (uu * vv) * v[i] * u[j]
+        }))
+    };
+    [row(0), row(1), row(2)]
 }
 
 #[cfg(test)]

@@ -21,7 +21,7 @@ pub use float::{
     next_float_down, next_float_up, safe_acos, safe_asin, safe_sqrt, smooth_step, solve_quadratic,
     sqr,
 };
-pub use frame::Frame;
+pub use frame::{Frame, rotate_from_to};
 pub use glam::{Mat3, Mat4, UVec2, Vec2, Vec4};
 pub use transform::Transform;
 pub use vector::{
