@@ -12,7 +12,8 @@ use crate::accel::{Bvh, MeshBvh};
 use crate::math::{Bounds3, Frame, Transform, normalize};
 use crate::ray::Ray;
 use crate::shape::{
-    Shading, ShapeHit, SurfaceInteraction, Triangle, TriangleMesh, TriangleRay, mesh_triangles,
+    Shading, ShadingDerivatives, ShapeHit, SurfaceInteraction, Triangle, TriangleMesh, TriangleRay,
+    mesh_triangles,
 };
 
 /// An object made only of triangle meshes, with its own BVH (object space).
@@ -127,6 +128,19 @@ impl ObjectAccel {
         };
         let si = t.interaction(ro, hit, m);
         (si, !m.normals.is_empty(), self.prim[mesh as usize])
+    }
+
+    /// pbrt-v4's shading derivatives, object space, of triangle `tri`'s hit by `ro`
+    /// ([`TriangleMesh::shading_derivatives`]), for a bump map.
+    pub(crate) fn local_shading_derivatives(
+        &self,
+        ro: &Ray,
+        tri: u32,
+        hit: &ShapeHit,
+    ) -> ShadingDerivatives {
+        let (si, _, _) = self.local_interaction(ro, tri, hit);
+        let (mesh, index) = self.tris[tri as usize];
+        self.meshes[mesh as usize].shading_derivatives(index, &si)
     }
 
     /// Bytes of the tree, the meshes, the triangle table and the record indices.
@@ -261,6 +275,17 @@ impl Instances {
         let si = tri.interaction(&ro, &h.hit, m);
         let si = to_world(&si, !m.normals.is_empty(), &inst.to_world, ray);
         (si, obj.prim[mesh as usize])
+    }
+
+    /// pbrt-v4's shading derivatives of a hit of `ray` (world space): its object's, moved by
+    /// the instance's M as pbrt-v4 moves an interaction ([`ShadingDerivatives::transformed`]);
+    /// for a bump map.
+    pub fn shading_derivatives(&self, ray: &Ray, h: &InstanceHit) -> ShadingDerivatives {
+        let inst = &self.instances[h.instance as usize];
+        let ro = self.object_ray(h.instance, ray);
+        self.objects[inst.object as usize]
+            .local_shading_derivatives(&ro, h.tri, &h.hit)
+            .transformed(&inst.to_world)
     }
 }
 

@@ -285,6 +285,28 @@ impl Motion {
         };
         (to_world(&si, normals, &h.xf, ray), record, albedo)
     }
+
+    /// pbrt-v4's shading derivatives of a hit of `ray` (world space): the object-space
+    /// shape's or object's, moved by the hit's transform
+    /// ([`crate::shape::ShadingDerivatives::transformed`]); for a bump map.
+    pub fn shading_derivatives(
+        &self,
+        ray: &Ray,
+        h: &MovingHit,
+    ) -> crate::shape::ShadingDerivatives {
+        let ro = h.xf.inverse().ray(ray);
+        let local = match &self.prims[h.prim as usize].what {
+            What::Object(o) => {
+                self.objects[*o as usize].local_shading_derivatives(&ro, h.part, &h.hit)
+            }
+            What::Shapes(_) => {
+                let shape = &self.shapes[h.part as usize].0;
+                let si = shape.interaction(&ro, &h.hit, &self.meshes);
+                shape.shading_derivatives(&ro, &h.hit, &self.meshes, &si)
+            }
+        };
+        local.transformed(&h.xf)
+    }
 }
 
 #[cfg(test)]

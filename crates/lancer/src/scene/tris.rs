@@ -6,7 +6,10 @@
 use crate::accel::IndexedTris;
 use crate::math::{Bounds3, PackedVec3, Vec2, Vec3};
 use crate::ray::Ray;
-use crate::shape::{ShapeHit, SurfaceInteraction, TriangleMesh, TriangleRay, is_degenerate};
+use crate::shape::{
+    ShadingDerivatives, ShapeHit, SurfaceInteraction, TriangleMesh, TriangleRay, is_degenerate,
+    triangle_shading_derivatives,
+};
 
 /// Marks a mesh without per-vertex normals or (u, v).
 const NONE: u32 = u32::MAX;
@@ -167,12 +170,7 @@ impl SceneTris {
     /// The full interaction of a hit on triangle `slot` found by [`SceneTris::intersect`] on
     /// the same ray, and the triangle's primitive record.
     pub fn interaction(&self, ray: &Ray, slot: u32, hit: &ShapeHit) -> (SurfaceInteraction, u32) {
-        let v = self.accel.triangle(slot);
-        let m = self.mesh_of(v[0]);
-        let local = v.map(|i| (i - m.first_vertex) as usize);
-        let normals =
-            (m.normals != NONE).then(|| local.map(|i| self.normals[m.normals as usize + i].into()));
-        let uvs = (m.uvs != NONE).then(|| local.map(|i| self.uvs[m.uvs as usize + i]));
+        let (m, normals, uvs) = self.attributes(slot);
         let si = crate::shape::triangle_interaction(
             ray,
             hit,
@@ -182,5 +180,25 @@ impl SceneTris {
             m.flip_normal,
         );
         (si, m.prim)
+    }
+
+    /// pbrt-v4's shading derivatives of a hit on triangle `slot` whose interaction is `si`
+    /// ([`triangle_shading_derivatives`]), for a bump map.
+    pub fn shading_derivatives(&self, slot: u32, si: &SurfaceInteraction) -> ShadingDerivatives {
+        let (_, normals, uvs) = self.attributes(slot);
+        triangle_shading_derivatives(si, normals, uvs)
+    }
+
+    /// Triangle `slot`'s mesh, and its vertex normals and (u, v) when the mesh has them.
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    fn attributes(&self, slot: u32) -> (&MeshRecord, Option<[Vec3; 3]>, Option<[Vec2; 3]>) {
+        let v = self.accel.triangle(slot);
+        let m = self.mesh_of(v[0]);
+        let local = v.map(|i| (i - m.first_vertex) as usize);
+        let normals =
+            (m.normals != NONE).then(|| local.map(|i| self.normals[m.normals as usize + i].into()));
+        let uvs = (m.uvs != NONE).then(|| local.map(|i| self.uvs[m.uvs as usize + i]));
+        (m, normals, uvs)
     }
 }

@@ -11,12 +11,14 @@
 //!
 //! Patches are kept in world space (the mesh is transformed once when the scene is built).
 
-use super::hit::{Shading, ShapeHit, ShapeSample, SurfaceInteraction};
+use super::hit::{Shading, ShadingDerivatives, ShapeHit, ShapeSample, SurfaceInteraction};
 use super::kind::{GeometryKind, HeldBytes, Placing, ShapeKind};
 use super::mesh::{IndexedMesh, RuleError, TriangleMesh};
+use super::placement::weingarten;
 use super::triangle_ray::TriangleRay;
 use crate::math::{
-    Bounds3, Frame, PackedVec3, Vec2, Vec3, cross, gamma, normalize, solve_quadratic,
+    Bounds3, Frame, PackedVec3, Vec2, Vec3, cross, gamma, normalize, rotate_from_to,
+    solve_quadratic,
 };
 use crate::ray::Ray;
 use glam::DVec3;
@@ -91,6 +93,19 @@ pub fn bilinear_point(p: &[Vec3; 4], u: f32, v: f32) -> Vec3 {
 fn jacobian(p: &[Vec3; 4], u: f32, v: f32) -> f32 {
     let (du, dv) = partials(p, u, v);
     cross(du, dv).length()
+}
+
+/// The texture coordinates (s, t) at (u, v) of a patch whose corners have (s, t) `st`
+/// (bilinearly interpolated), and ∂u/∂s, ∂v/∂s, ∂u/∂t, ∂v/∂t as pbrt-v4 takes them: the
+/// component-wise inverses of ∂(s, t)/∂u and ∂(s, t)/∂v, 0 where a component is below 10⁻⁸.
+#[inline(always)]
+fn st_at(st: [Vec2; 4], u: f32, v: f32) -> (Vec2, [f32; 4]) {
+    let [t00, t10, t01, t11] = st;
+    let at = t00.lerp(t01, v).lerp(t10.lerp(t11, v), u);
+    let dstdu = t10.lerp(t11, v) - t00.lerp(t01, v);
+    let dstdv = t01.lerp(t11, u) - t00.lerp(t10, u);
+    let inv = |x: f32| if x.abs() < 1e-8 { 0.0 } else { 1.0 / x };
+    (at, [inv(dstdu.x), inv(dstdv.x), inv(dstdu.y), inv(dstdv.y)])
 }
 
 /// Nodes and weights of 4-point Gauss–Legendre quadrature on [0, 1].
@@ -176,14 +191,8 @@ impl BilinearPatch {
         let (mut dpdu, mut dpdv) = partials(&corners, u, v);
         let mut uv = Vec2::new(u, v);
         if !mesh.uvs.is_empty() {
-            let [t00, t10, t01, t11] = vi.map(|i| mesh.uvs[i]);
-            uv = t00.lerp(t01, v).lerp(t10.lerp(t11, v), u);
-            // ∂(s,t)/∂u and ∂(s,t)/∂v, inverted component-wise as pbrt does.
-            let dstdu = t10.lerp(t11, v) - t00.lerp(t01, v);
-            let dstdv = t01.lerp(t11, u) - t00.lerp(t10, u);
-            let inv = |x: f32| if x.abs() < 1e-8 { 0.0 } else { 1.0 / x };
-            let (duds, dvds) = (inv(dstdu.x), inv(dstdv.x));
-            let (dudt, dvdt) = (inv(dstdu.y), inv(dstdv.y));
+            let (st, [duds, dvds, dudt, dvdt]) = st_at(vi.map(|i| mesh.uvs[i]), u, v);
+            uv = st;
             let dpds = dpdu * duds + dpdv * dvds;
             let mut dpdt = dpdu * dudt + dpdv * dvdt;
             let n_st = cross(dpds, dpdt);
@@ -237,6 +246,60 @@ impl BilinearPatch {
             wo: -normalize(ray.d),
             t: hit.t,
             time: 0.0,
+        }
+    }
+
+    /// pbrt-v4's shading derivatives of the hit `hit` whose interaction is `si` (its
+    /// `BilinearPatch::InteractionFromIntersection`). Without vertex normals: the geometric
+    /// ∂p/∂u, ∂p/∂v (with respect to (s, t) when the mesh has uvs) and ∂n/∂u, ∂n/∂v by the
+    /// Weingarten equations (`weingarten`) with ∂²p/∂u² = ∂²p/∂v² = 0 and
+    /// ∂²p/∂u∂v = p₀₀ − p₀₁ + p₁₁ − p₁₀. With them: ∂n/∂u = lerp(v, n₁₀, n₁₁) − lerp(v, n₀₀, n₀₁),
+    /// ∂n/∂v = lerp(u, n₀₁, n₁₁) − lerp(u, n₀₀, n₁₀), and ∂p/∂u, ∂p/∂v turned by the rotation
+    /// taking the geometric normal (flipped by the mesh's orientation) to the shading one
+    /// ([`rotate_from_to`]). Either way ∂n/∂s = ∂n/∂u·∂u/∂s + ∂n/∂v·∂v/∂s and
+    /// ∂n/∂t = ∂n/∂u·∂u/∂t + ∂n/∂v·∂v/∂t with uvs.
+    pub fn shading_derivatives(
+        &self,
+        hit: &ShapeHit,
+        si: &SurfaceInteraction,
+    ) -> ShadingDerivatives {
+        let (u, v) = (hit.u, hit.v);
+        let mesh = &*self.mesh;
+        let vi = mesh.vertices(self.index);
+        let [duds, dvds, dudt, dvdt] = if mesh.uvs.is_empty() {
+            [1.0, 0.0, 0.0, 1.0]
+        } else {
+            st_at(vi.map(|i| mesh.uvs[i]), u, v).1
+        };
+        let (dpdu, dpdv) = (si.dpdu, si.dpdv);
+        let shading_normal = self.shading_normal(u, v);
+        let (dndu, dndv) = if shading_normal.is_some() {
+            let [n00, n10, n01, n11] = vi.map(|i| mesh.normal(i));
+            (
+                n10.lerp(n11, v) - n00.lerp(n01, v),
+                n01.lerp(n11, u) - n00.lerp(n10, u),
+            )
+        } else {
+            let [p00, p10, p01, p11] = self.corners();
+            let d2pduv = (p00 - p01) + (p11 - p10);
+            weingarten(dpdu, dpdv, Vec3::ZERO, d2pduv, Vec3::ZERO)
+        };
+        let (dndu, dndv) = (dndu * duds + dndv * dvds, dndu * dudt + dndv * dvdt);
+        let (dpdu, dpdv) = match shading_normal {
+            Some(ns) => {
+                let n = cross(dpdu, dpdv).try_normalize().unwrap_or(si.n);
+                let n = if mesh.flip_normal { -n } else { n };
+                let r = rotate_from_to(n, ns);
+                let turn = |x: Vec3| Vec3::new(r[0].dot(x), r[1].dot(x), r[2].dot(x));
+                (turn(dpdu), turn(dpdv))
+            }
+            None => (dpdu, dpdv),
+        };
+        ShadingDerivatives {
+            dpdu,
+            dpdv,
+            dndu,
+            dndv,
         }
     }
 
@@ -407,6 +470,16 @@ impl ShapeKind for BilinearPatch {
 
     fn interaction(&self, ray: &Ray, hit: &ShapeHit, _: &[TriangleMesh]) -> SurfaceInteraction {
         BilinearPatch::interaction(self, ray, hit)
+    }
+
+    fn shading_derivatives(
+        &self,
+        _: &Ray,
+        hit: &ShapeHit,
+        _: &[TriangleMesh],
+        si: &SurfaceInteraction,
+    ) -> ShadingDerivatives {
+        BilinearPatch::shading_derivatives(self, hit, si)
     }
 
     /// A = ∫∫ |∂p/∂u × ∂p/∂v| du dv ([`BilinearPatch::area`]).

@@ -1,9 +1,11 @@
 //! The cone: x² + y² = (r/h)²·(z − h)² for 0 ≤ z ≤ h (apex at z = h), swept to `phimax`.
 
-use super::hit::{ShapeHit, ShapeSample, SurfaceInteraction};
+use super::hit::{ShadingDerivatives, ShapeHit, ShapeSample, SurfaceInteraction};
 use super::kind::{GeometryKind, Placing, ShapeKind, positive};
 use super::mesh::{RuleError, TriangleMesh};
-use super::placement::{Placement, phi_of, quadric_error, quadric_hit, quadric_t};
+use super::placement::{
+    LocalHit, Placement, phi_of, quadric_error, quadric_hit, quadric_t, weingarten,
+};
 use super::triangle_ray::TriangleRay;
 use crate::math::{Bounds3, Vec2, Vec3, normalize, solve_quadratic};
 use crate::ray::Ray;
@@ -100,9 +102,10 @@ impl Cone {
         None
     }
 
-    /// Full interaction: u = φ/φmax, v = z/h, ∂p/∂u = (−φmax·y, φmax·x, 0),
+    /// The object-space hit: u = φ/φmax, v = z/h, ∂p/∂u = (−φmax·y, φmax·x, 0),
     /// ∂p/∂v = (−x/(1 − v), −y/(1 − v), h); the normal ∂p/∂u × ∂p/∂v points away from the axis.
-    pub fn interaction(&self, ray: &Ray, hit: &ShapeHit) -> SurfaceInteraction {
+    #[inline(always)]
+    fn local(&self, ray: &Ray, hit: &ShapeHit) -> LocalHit {
         let (o, d) = self.placement.object_ray(ray);
         let t = quadric_t(hit);
         let p64 = o + t * d;
@@ -121,17 +124,35 @@ impl Cone {
                 self.height,
             )
         };
-        SurfaceInteraction::from_object(
-            &self.placement.to_world,
+        LocalHit {
             p,
-            quadric_error(o, d, t, p),
-            Vec2::new(u, v),
+            p_error: quadric_error(o, d, t, p),
+            uv: Vec2::new(u, v),
             dpdu,
             dpdv,
-            self.placement.flip_normal,
-            -normalize(ray.d),
-            hit.t,
-        )
+        }
+    }
+
+    /// Full interaction: the object-space hit ((u, v), ∂p/∂u, ∂p/∂v as `local` has them)
+    /// placed in the world.
+    pub fn interaction(&self, ray: &Ray, hit: &ShapeHit) -> SurfaceInteraction {
+        self.placement.interaction(self.local(ray, hit), ray, hit.t)
+    }
+
+    /// ∂n/∂u, ∂n/∂v at the hit, object space, by the Weingarten equations ([`weingarten`])
+    /// with pbrt-v3's `Cone`: ∂²p/∂u² = −φmax²·(x, y, 0), ∂²p/∂u∂v = φmax/(1 − v)·(y, −x, 0),
+    /// ∂²p/∂v² = 0 (zero at the apex, where ∂p/∂v is not that of the parameterisation).
+    pub(crate) fn normal_derivatives(&self, ray: &Ray, hit: &ShapeHit) -> (Vec3, Vec3) {
+        let LocalHit {
+            p, uv, dpdu, dpdv, ..
+        } = self.local(ray, hit);
+        let d2pduu = -self.phi_max * self.phi_max * Vec3::new(p.x, p.y, 0.0);
+        let d2pduv = if uv.y < 1.0 - 1e-6 {
+            self.phi_max / (1.0 - uv.y) * Vec3::new(p.y, -p.x, 0.0)
+        } else {
+            Vec3::ZERO
+        };
+        weingarten(dpdu, dpdv, d2pduu, d2pduv, Vec3::ZERO)
     }
 
     /// Surface area A = φmax/2 · r·√(h² + r²) (a sector of the unrolled cone), object space.
@@ -166,6 +187,17 @@ impl ShapeKind for Cone {
 
     fn interaction(&self, ray: &Ray, hit: &ShapeHit, _: &[TriangleMesh]) -> SurfaceInteraction {
         Cone::interaction(self, ray, hit)
+    }
+
+    fn shading_derivatives(
+        &self,
+        ray: &Ray,
+        hit: &ShapeHit,
+        _: &[TriangleMesh],
+        si: &SurfaceInteraction,
+    ) -> ShadingDerivatives {
+        self.placement
+            .derivatives(si, self.normal_derivatives(ray, hit))
     }
 
     /// The object-space area scaled by the placement.

@@ -1,11 +1,11 @@
 //! The cylinder: x² + y² = r² between `zmin` and `zmax`, swept to `phimax` (open ends).
 
-use super::hit::{ShapeHit, ShapeSample, SurfaceInteraction};
+use super::hit::{ShadingDerivatives, ShapeHit, ShapeSample, SurfaceInteraction};
 use super::kind::{GeometryKind, Placing, ShapeKind, positive};
 use super::mesh::{RuleError, TriangleMesh};
-use super::placement::{Placement, phi_of};
+use super::placement::{LocalHit, Placement, phi_of, weingarten};
 use super::triangle_ray::TriangleRay;
-use crate::math::{Bounds3, Vec2, Vec3, gamma, normalize};
+use crate::math::{Bounds3, Vec2, Vec3, gamma};
 use crate::ray::Ray;
 
 /// pbrt's `cylinder` as a scene gives it.
@@ -142,9 +142,10 @@ impl Cylinder {
         None
     }
 
-    /// Full interaction: u = φ/φmax, v = (z − zmin)/(zmax − zmin), ∂p/∂u = (−φmax·y, φmax·x, 0),
-    /// ∂p/∂v = (0, 0, zmax − zmin).
-    pub fn interaction(&self, ray: &Ray, hit: &ShapeHit) -> SurfaceInteraction {
+    /// The object-space hit: u = φ/φmax, v = (z − zmin)/(zmax − zmin),
+    /// ∂p/∂u = (−φmax·y, φmax·x, 0), ∂p/∂v = (0, 0, zmax − zmin).
+    #[inline(always)]
+    fn local(&self, ray: &Ray, hit: &ShapeHit) -> LocalHit {
         let (o, d) = self.placement.object_ray(ray);
         let mut p = o + hit.t as f64 * d;
         let hit_rad = (p.x * p.x + p.y * p.y).sqrt();
@@ -154,20 +155,27 @@ impl Cylinder {
         let p = p.as_vec3a();
         let u = phi / self.phi_max;
         let v = (p.z - self.z_min) / (self.z_max - self.z_min);
-        let dpdu = Vec3::new(-self.phi_max * p.y, self.phi_max * p.x, 0.0);
-        let dpdv = Vec3::new(0.0, 0.0, self.z_max - self.z_min);
-        let p_err = gamma(3) * Vec3::new(p.x, p.y, 0.0).abs();
-        SurfaceInteraction::from_object(
-            &self.placement.to_world,
+        LocalHit {
             p,
-            p_err,
-            Vec2::new(u, v),
-            dpdu,
-            dpdv,
-            self.placement.flip_normal,
-            -normalize(ray.d),
-            hit.t,
-        )
+            p_error: gamma(3) * Vec3::new(p.x, p.y, 0.0).abs(),
+            uv: Vec2::new(u, v),
+            dpdu: Vec3::new(-self.phi_max * p.y, self.phi_max * p.x, 0.0),
+            dpdv: Vec3::new(0.0, 0.0, self.z_max - self.z_min),
+        }
+    }
+
+    /// Full interaction: the object-space hit ((u, v), ∂p/∂u, ∂p/∂v as `local` has them)
+    /// placed in the world.
+    pub fn interaction(&self, ray: &Ray, hit: &ShapeHit) -> SurfaceInteraction {
+        self.placement.interaction(self.local(ray, hit), ray, hit.t)
+    }
+
+    /// ∂n/∂u, ∂n/∂v at the hit, object space, by the Weingarten equations ([`weingarten`])
+    /// with ∂²p/∂u² = −φmax²·(x, y, 0) and ∂²p/∂u∂v = ∂²p/∂v² = 0 (pbrt-v4's `Cylinder`).
+    pub(crate) fn normal_derivatives(&self, ray: &Ray, hit: &ShapeHit) -> (Vec3, Vec3) {
+        let LocalHit { p, dpdu, dpdv, .. } = self.local(ray, hit);
+        let d2pduu = -self.phi_max * self.phi_max * Vec3::new(p.x, p.y, 0.0);
+        weingarten(dpdu, dpdv, d2pduu, Vec3::ZERO, Vec3::ZERO)
     }
 
     /// Surface area, object space: A = (zmax − zmin)·r·φmax.
@@ -197,6 +205,17 @@ impl ShapeKind for Cylinder {
 
     fn interaction(&self, ray: &Ray, hit: &ShapeHit, _: &[TriangleMesh]) -> SurfaceInteraction {
         Cylinder::interaction(self, ray, hit)
+    }
+
+    fn shading_derivatives(
+        &self,
+        ray: &Ray,
+        hit: &ShapeHit,
+        _: &[TriangleMesh],
+        si: &SurfaceInteraction,
+    ) -> ShadingDerivatives {
+        self.placement
+            .derivatives(si, self.normal_derivatives(ray, hit))
     }
 
     /// The object-space area scaled by the placement.

@@ -110,6 +110,54 @@ impl SurfaceInteraction {
     }
 }
 
+/// pbrt-v4's shading ∂p/∂u, ∂p/∂v and ∂n/∂u, ∂n/∂v at a hit: what its `BumpMap` reads
+/// (`NormalBumpEvalContext::shading`). Worked out only for a hit whose material has a
+/// displacement texture ([`crate::shape::Shape::shading_derivatives`]), never in the
+/// intersection itself.
+///
+/// The ∂p/∂u, ∂p/∂v are pbrt-v4's, which lancer's [`Shading`] need not equal: a triangle with
+/// vertex normals has pbrt's s = (n_s × ∂p/∂u) × n_s and t = n_s × ∂p/∂u, of the length of
+/// ∂p/∂u, where lancer keeps them unit. ∂n/∂u, ∂n/∂v are of the normal as the shape defines
+/// it, before any flip by `ReverseOrientation` or a handedness swap (pbrt-v4 flips n but not
+/// its derivatives).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ShadingDerivatives {
+    /// Shading ∂p/∂u.
+    pub dpdu: Vec3,
+    /// Shading ∂p/∂v.
+    pub dpdv: Vec3,
+    /// Shading ∂n/∂u.
+    pub dndu: Vec3,
+    /// Shading ∂n/∂v.
+    pub dndv: Vec3,
+}
+
+impl ShadingDerivatives {
+    /// The derivatives of a surface whose normal does not turn (∂n/∂u = ∂n/∂v = 0), with
+    /// `si`'s shading tangents: planes, disks, boxes, curves (pbrt-v4 gives curves none).
+    #[inline]
+    pub fn flat(si: &SurfaceInteraction) -> ShadingDerivatives {
+        ShadingDerivatives {
+            dpdu: si.shading.dpdu,
+            dpdv: si.shading.dpdv,
+            dndu: Vec3::ZERO,
+            dndv: Vec3::ZERO,
+        }
+    }
+
+    /// Moved by `xf` as pbrt-v4's `Transform` moves a `SurfaceInteraction`: ∂p/∂u, ∂p/∂v as
+    /// vectors (M·v), ∂n/∂u, ∂n/∂v as normals ((M⁻¹)ᵀ·n, not normalised).
+    #[inline]
+    pub fn transformed(&self, xf: &Transform) -> ShadingDerivatives {
+        ShadingDerivatives {
+            dpdu: xf.vector(self.dpdu),
+            dpdv: xf.vector(self.dpdv),
+            dndu: xf.normal(self.dndu),
+            dndv: xf.normal(self.dndv),
+        }
+    }
+}
+
 /// A point on a shape's surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ShapeSample {

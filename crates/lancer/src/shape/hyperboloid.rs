@@ -1,12 +1,12 @@
 //! The hyperboloid: the surface swept by the segment p₁p₂ turning about the z axis, up to
 //! `phimax`.
 
-use super::hit::{ShapeHit, ShapeSample, SurfaceInteraction};
+use super::hit::{ShadingDerivatives, ShapeHit, ShapeSample, SurfaceInteraction};
 use super::kind::{GeometryKind, Placing, ShapeKind};
 use super::mesh::{RuleError, TriangleMesh};
-use super::placement::{Placement, quadric_error, quadric_hit, quadric_t};
+use super::placement::{LocalHit, Placement, quadric_error, quadric_hit, quadric_t, weingarten};
 use super::triangle_ray::TriangleRay;
-use crate::math::{Bounds3, Vec2, Vec3, normalize, solve_quadratic};
+use crate::math::{Bounds3, Vec2, Vec3, solve_quadratic};
 use crate::ray::Ray;
 use glam::{DVec2, DVec3};
 
@@ -165,9 +165,10 @@ impl Hyperboloid {
         None
     }
 
-    /// Full interaction (pbrt-v3): u = φ/φmax, v = s, ∂p/∂u = (−φmax·y, φmax·x, 0),
+    /// The object-space hit (pbrt-v3): u = φ/φmax, v = s, ∂p/∂u = (−φmax·y, φmax·x, 0),
     /// ∂p/∂v = R_z(φ)·(p₂ − p₁) = (Δx cos φ − Δy sin φ, Δx sin φ + Δy cos φ, Δz).
-    pub fn interaction(&self, ray: &Ray, hit: &ShapeHit) -> SurfaceInteraction {
+    #[inline(always)]
+    fn local(&self, ray: &Ray, hit: &ShapeHit) -> LocalHit {
         let (o, d) = self.placement.object_ray(ray);
         let t = quadric_t(hit);
         let p64 = o + t * d;
@@ -176,19 +177,29 @@ impl Hyperboloid {
         let (sin, cos) = phi.sin_cos();
         let (_, e, dz) = self.segment();
         let p = p64.as_vec3a();
-        let dpdu = Vec3::new(-self.phi_max * p.y, self.phi_max * p.x, 0.0);
-        let dpdv = DVec3::new(e.x * cos - e.y * sin, e.x * sin + e.y * cos, dz).as_vec3a();
-        SurfaceInteraction::from_object(
-            &self.placement.to_world,
+        LocalHit {
             p,
-            quadric_error(o, d, t, p),
-            Vec2::new(phi as f32 / self.phi_max, s as f32),
-            dpdu,
-            dpdv,
-            self.placement.flip_normal,
-            -normalize(ray.d),
-            hit.t,
-        )
+            p_error: quadric_error(o, d, t, p),
+            uv: Vec2::new(phi as f32 / self.phi_max, s as f32),
+            dpdu: Vec3::new(-self.phi_max * p.y, self.phi_max * p.x, 0.0),
+            dpdv: DVec3::new(e.x * cos - e.y * sin, e.x * sin + e.y * cos, dz).as_vec3a(),
+        }
+    }
+
+    /// Full interaction: the object-space hit ((u, v), ∂p/∂u, ∂p/∂v as `local` has them)
+    /// placed in the world.
+    pub fn interaction(&self, ray: &Ray, hit: &ShapeHit) -> SurfaceInteraction {
+        self.placement.interaction(self.local(ray, hit), ray, hit.t)
+    }
+
+    /// ∂n/∂u, ∂n/∂v at the hit, object space, by the Weingarten equations ([`weingarten`])
+    /// with pbrt-v3's `Hyperboloid`: ∂²p/∂u² = −φmax²·(x, y, 0),
+    /// ∂²p/∂u∂v = φmax·(−∂p/∂v_y, ∂p/∂v_x, 0), ∂²p/∂v² = 0 (the generator is a line).
+    pub(crate) fn normal_derivatives(&self, ray: &Ray, hit: &ShapeHit) -> (Vec3, Vec3) {
+        let LocalHit { p, dpdu, dpdv, .. } = self.local(ray, hit);
+        let d2pduu = -self.phi_max * self.phi_max * Vec3::new(p.x, p.y, 0.0);
+        let d2pduv = self.phi_max * Vec3::new(-dpdv.y, dpdv.x, 0.0);
+        weingarten(dpdu, dpdv, d2pduu, d2pduv, Vec3::ZERO)
     }
 
     /// Coefficients (α, β, γ) of |∂p/∂φ × ∂p/∂s|² = α·s² + β·s + γ. With (x′, y′) = q + s·e,
@@ -279,6 +290,17 @@ impl ShapeKind for Hyperboloid {
 
     fn interaction(&self, ray: &Ray, hit: &ShapeHit, _: &[TriangleMesh]) -> SurfaceInteraction {
         Hyperboloid::interaction(self, ray, hit)
+    }
+
+    fn shading_derivatives(
+        &self,
+        ray: &Ray,
+        hit: &ShapeHit,
+        _: &[TriangleMesh],
+        si: &SurfaceInteraction,
+    ) -> ShadingDerivatives {
+        self.placement
+            .derivatives(si, self.normal_derivatives(ray, hit))
     }
 
     /// The object-space area scaled by the placement.
@@ -416,7 +438,7 @@ mod tests {
                 "{p}"
             );
             assert!(p.z.abs() <= 1.0 + 1e-6, "{p}");
-            assert_near(n, -normalize(Vec3::new(p.x, p.y, -p.z)), 1e-5);
+            assert_near(n, -crate::math::normalize(Vec3::new(p.x, p.y, -p.z)), 1e-5);
         }
     }
 }

@@ -8,7 +8,7 @@
 //! A leaf module beside `hit`, `mesh` and `placement`: the shape files use it, it uses no shape
 //! file.
 
-use super::hit::{ShapeHit, ShapeSample, SurfaceInteraction};
+use super::hit::{ShadingDerivatives, ShapeHit, ShapeSample, SurfaceInteraction};
 use super::mesh::{RuleError, TriangleMesh};
 use super::placement::Placement;
 use super::triangle_ray::TriangleRay;
@@ -91,6 +91,20 @@ pub trait ShapeKind {
     fn interaction(&self, ray: &Ray, hit: &ShapeHit, meshes: &[TriangleMesh])
     -> SurfaceInteraction;
 
+    /// pbrt-v4's shading derivatives (∂n/∂u, ∂n/∂v among them) at a hit found by
+    /// [`ShapeKind::intersect`] on the same ray, whose interaction is `si`: asked only by a bump
+    /// map. By default those of a surface whose normal does not turn
+    /// ([`ShadingDerivatives::flat`]).
+    fn shading_derivatives(
+        &self,
+        _ray: &Ray,
+        _hit: &ShapeHit,
+        _meshes: &[TriangleMesh],
+        si: &SurfaceInteraction,
+    ) -> ShadingDerivatives {
+        ShadingDerivatives::flat(si)
+    }
+
     /// Surface area, world space (0 for shapes that cannot emit).
     fn area(&self) -> f32;
 
@@ -146,6 +160,16 @@ impl<T: ShapeKind> ShapeKind for Box<T> {
         meshes: &[TriangleMesh],
     ) -> SurfaceInteraction {
         (**self).interaction(ray, hit, meshes)
+    }
+    #[inline]
+    fn shading_derivatives(
+        &self,
+        ray: &Ray,
+        hit: &ShapeHit,
+        meshes: &[TriangleMesh],
+        si: &SurfaceInteraction,
+    ) -> ShadingDerivatives {
+        (**self).shading_derivatives(ray, hit, meshes, si)
     }
     #[inline]
     fn area(&self) -> f32 {

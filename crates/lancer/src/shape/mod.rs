@@ -9,7 +9,9 @@
 //! Intersection is split in two, as in PBRT: [`Shape::intersect`] finds the nearest parametric
 //! distance `t` (and whatever the shape needs later, such as barycentrics) as cheaply as
 //! possible; [`Shape::interaction`] then computes the full [`SurfaceInteraction`] (point, error
-//! bounds, normals, (u, v), derivatives) once, for the closest hit only.
+//! bounds, normals, (u, v), derivatives) once, for the closest hit only. The normal's
+//! derivatives, which only a bump map reads, come third and only when one asks
+//! ([`Shape::shading_derivatives`]).
 //!
 //! The vocabulary every shape file shares lives in leaf modules, re-exported here: `hit` (the
 //! hit and interaction records, [`ShapeSample`]), `placement` ([`Placement`] and the quadrics'
@@ -50,7 +52,7 @@ pub use cuboid::{BoxDesc, Cuboid};
 pub use curve::{Curve, CurveBasis, CurveCommon, CurveDesc, CurveType, bezier_eval, bezier_piece};
 pub use cylinder::{Cylinder, CylinderDesc};
 pub use disk::{Disk, DiskDesc};
-pub use hit::{Shading, ShapeHit, ShapeSample, SurfaceInteraction};
+pub use hit::{Shading, ShadingDerivatives, ShapeHit, ShapeSample, SurfaceInteraction};
 pub use hyperboloid::{Hyperboloid, HyperboloidDesc};
 pub use kind::{GeometryKind, HeldBytes, Placing, ShapeKind};
 pub use loop_subdiv::loop_subdivide;
@@ -62,7 +64,8 @@ pub use sdf::{Sdf, SdfDesc, SdfFunction};
 pub use sphere::{Sphere, SphereDesc};
 pub use triangle::{
     Triangle, TriangleFrame, intersect_triangle, intersect_triangle_with, is_degenerate,
-    mesh_triangles, triangle_interaction,
+    mesh_triangles, triangle_interaction, triangle_normal_derivatives,
+    triangle_shading_derivatives,
 };
 pub use triangle_ray::TriangleRay;
 pub use voxels::{BRICK, VoxelGrid, Voxels, srgb8_to_linear};
@@ -204,6 +207,20 @@ impl Shape {
         meshes: &[TriangleMesh],
     ) -> SurfaceInteraction {
         shape_dispatch!(self, s => ShapeKind::interaction(s, ray, hit, meshes))
+    }
+
+    /// pbrt-v4's shading ∂p/∂u, ∂p/∂v, ∂n/∂u, ∂n/∂v at a hit found by [`Shape::intersect`] on
+    /// the same ray, whose interaction is `si`: what a bump map reads, computed only when one
+    /// asks (the intersection and the interaction never pay for it).
+    #[inline]
+    pub fn shading_derivatives(
+        &self,
+        ray: &Ray,
+        hit: &ShapeHit,
+        meshes: &[TriangleMesh],
+        si: &SurfaceInteraction,
+    ) -> ShadingDerivatives {
+        shape_dispatch!(self, s => ShapeKind::shading_derivatives(s, ray, hit, meshes, si))
     }
 
     /// The reflectance the shape itself gives a hit found by [`Shape::intersect`], which a

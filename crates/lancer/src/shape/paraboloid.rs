@@ -1,11 +1,13 @@
 //! The paraboloid: z = zmax·(x² + y²)/r² between `zmin` and `zmax`, swept to `phimax`.
 
-use super::hit::{ShapeHit, ShapeSample, SurfaceInteraction};
+use super::hit::{ShadingDerivatives, ShapeHit, ShapeSample, SurfaceInteraction};
 use super::kind::{GeometryKind, Placing, ShapeKind, positive};
 use super::mesh::{RuleError, TriangleMesh};
-use super::placement::{Placement, phi_of, quadric_error, quadric_hit, quadric_t};
+use super::placement::{
+    LocalHit, Placement, phi_of, quadric_error, quadric_hit, quadric_t, weingarten,
+};
 use super::triangle_ray::TriangleRay;
-use crate::math::{Bounds3, Vec2, Vec3, normalize, solve_quadratic};
+use crate::math::{Bounds3, Vec2, Vec3, solve_quadratic};
 use crate::ray::Ray;
 
 /// pbrt's `paraboloid` as a scene gives it: z = zmax·(x² + y²)/radius², cut to [zmin, zmax].
@@ -128,10 +130,11 @@ impl Paraboloid {
         None
     }
 
-    /// Full interaction: u = φ/φmax, v = (z − zmin)/(zmax − zmin), ∂p/∂u = (−φmax·y, φmax·x, 0),
-    /// ∂p/∂v = (zmax − zmin)·(x/2z, y/2z, 1); the normal ∂p/∂u × ∂p/∂v points away from the
-    /// axis (out of the bowl).
-    pub fn interaction(&self, ray: &Ray, hit: &ShapeHit) -> SurfaceInteraction {
+    /// The object-space hit: u = φ/φmax, v = (z − zmin)/(zmax − zmin),
+    /// ∂p/∂u = (−φmax·y, φmax·x, 0), ∂p/∂v = (zmax − zmin)·(x/2z, y/2z, 1); the normal
+    /// ∂p/∂u × ∂p/∂v points away from the axis (out of the bowl).
+    #[inline(always)]
+    fn local(&self, ray: &Ray, hit: &ShapeHit) -> LocalHit {
         let (o, d) = self.placement.object_ray(ray);
         let t = quadric_t(hit);
         let p64 = o + t * d;
@@ -150,17 +153,38 @@ impl Paraboloid {
         } else {
             dz * Vec3::Z
         };
-        SurfaceInteraction::from_object(
-            &self.placement.to_world,
+        LocalHit {
             p,
-            quadric_error(o, d, t, p),
-            Vec2::new(u, v),
+            p_error: quadric_error(o, d, t, p),
+            uv: Vec2::new(u, v),
             dpdu,
             dpdv,
-            self.placement.flip_normal,
-            -normalize(ray.d),
-            hit.t,
-        )
+        }
+    }
+
+    /// Full interaction: the object-space hit ((u, v), ∂p/∂u, ∂p/∂v as `local` has them)
+    /// placed in the world.
+    pub fn interaction(&self, ray: &Ray, hit: &ShapeHit) -> SurfaceInteraction {
+        self.placement.interaction(self.local(ray, hit), ray, hit.t)
+    }
+
+    /// ∂n/∂u, ∂n/∂v at the hit, object space, by the Weingarten equations ([`weingarten`])
+    /// with pbrt-v3's `Paraboloid`, Δz = zmax − zmin: ∂²p/∂u² = −φmax²·(x, y, 0),
+    /// ∂²p/∂u∂v = Δz·φmax·(−y/2z, x/2z, 0), ∂²p/∂v² = −Δz²·(x/4z², y/4z², 0) (zero at the
+    /// apex, where ∂p/∂v is taken along z).
+    pub(crate) fn normal_derivatives(&self, ray: &Ray, hit: &ShapeHit) -> (Vec3, Vec3) {
+        let LocalHit { p, dpdu, dpdv, .. } = self.local(ray, hit);
+        let dz = self.z_max - self.z_min;
+        let d2pduu = -self.phi_max * self.phi_max * Vec3::new(p.x, p.y, 0.0);
+        let (d2pduv, d2pdvv) = if p.x * p.x + p.y * p.y > 0.0 {
+            (
+                dz * self.phi_max * Vec3::new(-p.y / (2.0 * p.z), p.x / (2.0 * p.z), 0.0),
+                -dz * dz * Vec3::new(p.x / (4.0 * p.z * p.z), p.y / (4.0 * p.z * p.z), 0.0),
+            )
+        } else {
+            (Vec3::ZERO, Vec3::ZERO)
+        };
+        weingarten(dpdu, dpdv, d2pduu, d2pduv, d2pdvv)
     }
 
     /// Surface area, object space: with z = kρ², dA = ρ·√(1 + 4k²ρ²) dρ dφ, so
@@ -203,6 +227,17 @@ impl ShapeKind for Paraboloid {
 
     fn interaction(&self, ray: &Ray, hit: &ShapeHit, _: &[TriangleMesh]) -> SurfaceInteraction {
         Paraboloid::interaction(self, ray, hit)
+    }
+
+    fn shading_derivatives(
+        &self,
+        ray: &Ray,
+        hit: &ShapeHit,
+        _: &[TriangleMesh],
+        si: &SurfaceInteraction,
+    ) -> ShadingDerivatives {
+        self.placement
+            .derivatives(si, self.normal_derivatives(ray, hit))
     }
 
     /// The object-space area scaled by the placement.

@@ -1,10 +1,12 @@
 //! Where a shape sits in the world ([`Placement`]), and the helpers the quadrics share: the
 //! azimuth of a point, the double-precision hit distance carried in a [`ShapeHit`], the error
-//! bound of a quadric's hit point, and moving object-space samples to the world. A leaf module
-//! beside `hit`: the shape files use it, it uses no shape.
+//! bound of a quadric's hit point, the object-space hit ([`LocalHit`]) and its interaction,
+//! the normal's derivatives by the Weingarten equations ([`weingarten`], bilinear patches use
+//! it too), and moving object-space samples to the world. A leaf module beside `hit`: the
+//! shape files use it, it uses no shape.
 
-use super::hit::{ShapeHit, ShapeSample};
-use crate::math::{Transform, Vec3, gamma};
+use super::hit::{ShadingDerivatives, ShapeHit, ShapeSample, SurfaceInteraction};
+use crate::math::{Transform, Vec2, Vec3, cross, difference_of_products, gamma, normalize};
 use crate::ray::Ray;
 use glam::{DMat4, DVec3};
 
@@ -50,6 +52,40 @@ impl Placement {
         det.powf(2.0 / 3.0)
     }
 
+    /// The world interaction of the object-space hit `l` of `ray` at distance `t`
+    /// ([`SurfaceInteraction::from_object`], flipped as the placement says).
+    #[inline(always)]
+    pub(crate) fn interaction(&self, l: LocalHit, ray: &Ray, t: f32) -> SurfaceInteraction {
+        SurfaceInteraction::from_object(
+            &self.to_world,
+            l.p,
+            l.p_error,
+            l.uv,
+            l.dpdu,
+            l.dpdv,
+            self.flip_normal,
+            -normalize(ray.d),
+            t,
+        )
+    }
+
+    /// The shading derivatives of a hit `si` on the placed quadric whose object-space normal
+    /// has derivatives `dndu`, `dndv`: ∂p/∂u, ∂p/∂v as `si` has them (the object's moved by M),
+    /// ∂n/∂u, ∂n/∂v moved as normals, by (M⁻¹)ᵀ, as pbrt-v4 moves them (not flipped).
+    #[inline]
+    pub fn derivatives(
+        &self,
+        si: &SurfaceInteraction,
+        (dndu, dndv): (Vec3, Vec3),
+    ) -> ShadingDerivatives {
+        ShadingDerivatives {
+            dpdu: si.shading.dpdu,
+            dpdv: si.shading.dpdv,
+            dndu: self.to_world.normal(dndu),
+            dndv: self.to_world.normal(dndv),
+        }
+    }
+
     /// An object-space point and outward normal moved to the world, the normal flipped as
     /// [`SurfaceInteraction::from_object`](super::SurfaceInteraction::from_object) flips it.
     pub fn place(&self, p: Vec3, n: Vec3) -> ShapeSample {
@@ -59,6 +95,50 @@ impl Placement {
             n: self.to_world.normal(n).normalize_or_zero(),
         }
     }
+}
+
+/// A quadric's hit in object space: the point, its error bound, its (u, v) and ∂p/∂u, ∂p/∂v,
+/// from which its interaction ([`Placement::interaction`]) and, when a bump map asks, its
+/// normal's derivatives are made.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LocalHit {
+    /// The point.
+    pub p: Vec3,
+    /// Bound on the absolute rounding error of `p`, per axis.
+    pub p_error: Vec3,
+    /// Its (u, v).
+    pub uv: Vec2,
+    /// ∂p/∂u.
+    pub dpdu: Vec3,
+    /// ∂p/∂v.
+    pub dpdv: Vec3,
+}
+
+/// ∂n/∂u and ∂n/∂v of the unit normal n = normalize(∂p/∂u × ∂p/∂v) by the Weingarten
+/// equations, as pbrt-v4's quadrics compute them: with the first fundamental form
+/// E = ∂p/∂u·∂p/∂u, F = ∂p/∂u·∂p/∂v, G = ∂p/∂v·∂p/∂v and the second e = n·∂²p/∂u²,
+/// f = n·∂²p/∂u∂v, g = n·∂²p/∂v²,
+///
+///   ∂n/∂u = ((fF − eG)·∂p/∂u + (eF − fE)·∂p/∂v) / (EG − F²),
+///   ∂n/∂v = ((gF − fG)·∂p/∂u + (fF − gE)·∂p/∂v) / (EG − F²),
+///
+/// both zero where EG − F² = 0 (pbrt-v4's guard).
+#[inline]
+pub(crate) fn weingarten(
+    dpdu: Vec3,
+    dpdv: Vec3,
+    d2pduu: Vec3,
+    d2pduv: Vec3,
+    d2pdvv: Vec3,
+) -> (Vec3, Vec3) {
+    let (e1, f1, g1) = (dpdu.dot(dpdu), dpdu.dot(dpdv), dpdv.dot(dpdv));
+    let n = cross(dpdu, dpdv).normalize_or_zero();
+    let (e2, f2, g2) = (n.dot(d2pduu), n.dot(d2pduv), n.dot(d2pdvv));
+    let egf2 = difference_of_products(e1, g1, f1, f1);
+    let inv = if egf2 == 0.0 { 0.0 } else { 1.0 / egf2 };
+    let dndu = (f2 * f1 - e2 * g1) * inv * dpdu + (e2 * f1 - f2 * e1) * inv * dpdv;
+    let dndv = (g2 * f1 - f2 * g1) * inv * dpdu + (f2 * f1 - g2 * e1) * inv * dpdv;
+    (dndu, dndv)
 }
 
 /// The azimuth φ = atan2(y, x) of an object-space point, in [0, 2π).

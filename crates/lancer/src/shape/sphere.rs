@@ -1,11 +1,11 @@
 //! The sphere: x² + y² + z² = r², optionally cut by `zmin`/`zmax` and swept to `phimax`.
 
-use super::hit::{ShapeHit, ShapeSample, SurfaceInteraction};
+use super::hit::{ShadingDerivatives, ShapeHit, ShapeSample, SurfaceInteraction};
 use super::kind::{GeometryKind, Placing, ShapeKind, positive};
 use super::mesh::{RuleError, TriangleMesh};
-use super::placement::{Placement, phi_of};
+use super::placement::{LocalHit, Placement, phi_of, weingarten};
 use super::triangle_ray::TriangleRay;
-use crate::math::{Bounds3, PackedVec3, Vec2, Vec3, gamma, normalize};
+use crate::math::{Bounds3, PackedVec3, Vec2, Vec3, gamma};
 use crate::ray::Ray;
 use glam::DVec3;
 
@@ -169,9 +169,10 @@ impl Sphere {
         None
     }
 
-    /// Full interaction: u = φ/φmax, v = (θ − θ_zmin)/(θ_zmax − θ_zmin),
+    /// The object-space hit: u = φ/φmax, v = (θ − θ_zmin)/(θ_zmax − θ_zmin),
     /// ∂p/∂u = (−φmax·y, φmax·x, 0), ∂p/∂v = (θ_zmax − θ_zmin)(z cos φ, z sin φ, −r sin θ).
-    pub fn interaction(&self, ray: &Ray, hit: &ShapeHit) -> SurfaceInteraction {
+    #[inline(always)]
+    fn local(&self, ray: &Ray, hit: &ShapeHit) -> LocalHit {
         let (o, d) = self.placement.object_ray(ray);
         let (p, phi) = self.point_at(o, d, hit.t as f64);
         let p = p.as_vec3a();
@@ -186,18 +187,33 @@ impl Sphere {
         let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
         let dpdv = (self.theta_z_max - self.theta_z_min)
             * Vec3::new(p.z * cos_phi, p.z * sin_phi, -self.radius * sin_theta);
-        let p_err = gamma(5) * p.abs();
-        SurfaceInteraction::from_object(
-            &self.placement.to_world,
+        LocalHit {
             p,
-            p_err,
-            Vec2::new(u, v),
+            p_error: gamma(5) * p.abs(),
+            uv: Vec2::new(u, v),
             dpdu,
             dpdv,
-            self.placement.flip_normal,
-            -normalize(ray.d),
-            hit.t,
-        )
+        }
+    }
+
+    /// Full interaction: the object-space hit ((u, v), ∂p/∂u, ∂p/∂v as `local` has them)
+    /// placed in the world.
+    pub fn interaction(&self, ray: &Ray, hit: &ShapeHit) -> SurfaceInteraction {
+        self.placement.interaction(self.local(ray, hit), ray, hit.t)
+    }
+
+    /// ∂n/∂u, ∂n/∂v at the hit, object space, by the Weingarten equations ([`weingarten`])
+    /// with ∂²p/∂u² = −φmax²·(x, y, 0), ∂²p/∂u∂v = Δθ·z·φmax·(−sin φ, cos φ, 0) and
+    /// ∂²p/∂v² = −Δθ²·p, Δθ = θ_zmax − θ_zmin (pbrt-v4's `Sphere`).
+    pub(crate) fn normal_derivatives(&self, ray: &Ray, hit: &ShapeHit) -> (Vec3, Vec3) {
+        let LocalHit { p, dpdu, dpdv, .. } = self.local(ray, hit);
+        let z_radius = (p.x * p.x + p.y * p.y).sqrt();
+        let (cos_phi, sin_phi) = (p.x / z_radius, p.y / z_radius);
+        let dtheta = self.theta_z_max - self.theta_z_min;
+        let d2pduu = -self.phi_max * self.phi_max * Vec3::new(p.x, p.y, 0.0);
+        let d2pduv = dtheta * p.z * self.phi_max * Vec3::new(-sin_phi, cos_phi, 0.0);
+        let d2pdvv = -dtheta * dtheta * p;
+        weingarten(dpdu, dpdv, d2pduu, d2pduv, d2pdvv)
     }
 
     /// Surface area, object space: a sphere zone's area depends only on its height,
@@ -229,6 +245,17 @@ impl ShapeKind for Sphere {
 
     fn interaction(&self, ray: &Ray, hit: &ShapeHit, _: &[TriangleMesh]) -> SurfaceInteraction {
         Sphere::interaction(self, ray, hit)
+    }
+
+    fn shading_derivatives(
+        &self,
+        ray: &Ray,
+        hit: &ShapeHit,
+        _: &[TriangleMesh],
+        si: &SurfaceInteraction,
+    ) -> ShadingDerivatives {
+        self.placement
+            .derivatives(si, self.normal_derivatives(ray, hit))
     }
 
     /// The object-space area scaled by the placement.

@@ -8,6 +8,8 @@ use crate::shape::{
 };
 use std::f64::consts::PI;
 
+mod normal_derivatives;
+
 #[test]
 fn world_areas_scale_by_the_placement() {
     // Scaled by 2 about (5, 0, 0): every area ×4.

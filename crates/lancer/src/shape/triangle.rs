@@ -1,6 +1,6 @@
 //! Triangles and triangle meshes: the watertight ray–triangle test.
 
-use super::hit::{Shading, ShapeHit, ShapeSample, SurfaceInteraction};
+use super::hit::{Shading, ShadingDerivatives, ShapeHit, ShapeSample, SurfaceInteraction};
 use super::kind::{GeometryKind, Placing, ShapeKind};
 use super::mesh::{RuleError, TriangleMesh};
 use super::triangle_ray::TriangleRay;
@@ -15,6 +15,17 @@ impl TriangleMesh {
     /// Number of triangles.
     pub fn triangle_count(&self) -> usize {
         self.face_count()
+    }
+
+    /// pbrt-v4's shading derivatives of a hit `si` on triangle `index` of the mesh
+    /// ([`triangle_shading_derivatives`] with its vertex normals and (u, v)).
+    pub fn shading_derivatives(&self, index: u32, si: &SurfaceInteraction) -> ShadingDerivatives {
+        if self.normals.is_empty() {
+            return triangle_shading_derivatives(si, None, None);
+        }
+        let v = self.vertices(index);
+        let uvs = (!self.uvs.is_empty()).then(|| v.map(|i| self.uvs[i]));
+        triangle_shading_derivatives(si, Some(v.map(|i| self.normal(i))), uvs)
     }
 }
 
@@ -246,6 +257,70 @@ fn interaction_with(
     }
 }
 
+/// pbrt-v4's shading derivatives of a triangle's hit `si` (its
+/// `Triangle::InteractionFromIntersection`), given the triangle's vertex `normals` and `uvs`
+/// when its mesh has them. Without normals: the geometric ∂p/∂u, ∂p/∂v, and
+/// ∂n/∂u = ∂n/∂v = 0. With them: s = t × n_s and t = n_s × ∂p/∂u (of the length of ∂p/∂u,
+/// where [`Shading`] keeps unit tangents; lancer's unit frame around n_s where n_s ∥ ∂p/∂u),
+/// and ∂n/∂u, ∂n/∂v of the interpolated normal ([`triangle_normal_derivatives`]).
+pub fn triangle_shading_derivatives(
+    si: &SurfaceInteraction,
+    normals: Option<[Vec3; 3]>,
+    uvs: Option<[Vec2; 3]>,
+) -> ShadingDerivatives {
+    let Some(vn) = normals else {
+        return ShadingDerivatives {
+            dpdu: si.dpdu,
+            dpdv: si.dpdv,
+            dndu: Vec3::ZERO,
+            dndv: Vec3::ZERO,
+        };
+    };
+    let ns = si.shading.n;
+    let t = cross(ns, si.dpdu);
+    let (dpdu, dpdv) = if t.length_squared() > 0.0 {
+        (cross(t, ns), t)
+    } else {
+        (si.shading.dpdu, si.shading.dpdv)
+    };
+    let (dndu, dndv) = triangle_normal_derivatives(vn, uvs);
+    ShadingDerivatives {
+        dpdu,
+        dpdv,
+        dndu,
+        dndv,
+    }
+}
+
+/// ∂n/∂u, ∂n/∂v of the vertex normals n₀, n₁, n₂ interpolated linearly over a triangle whose
+/// vertices have (u, v) `uvs` (pbrt's (0, 0), (1, 0), (1, 1) when none), as pbrt-v4 computes
+/// them: with Δ₀₂ = uv₀ − uv₂, Δ₁₂ = uv₁ − uv₂ and det = Δ₀₂.u·Δ₁₂.v − Δ₀₂.v·Δ₁₂.u,
+///
+///   ∂n/∂u = (Δ₁₂.v·(n₀ − n₂) − Δ₀₂.v·(n₁ − n₂))/det,
+///   ∂n/∂v = (Δ₀₂.u·(n₁ − n₂) − Δ₁₂.u·(n₀ − n₂))/det;
+///
+/// where |det| < 10⁻⁹, the frame ([`Frame::from_z`], pbrt's `CoordinateSystem`) around
+/// (n₂ − n₀) × (n₁ − n₀), or zero when that vanishes.
+pub fn triangle_normal_derivatives(n: [Vec3; 3], uvs: Option<[Vec2; 3]>) -> (Vec3, Vec3) {
+    let uv = uvs.unwrap_or([Vec2::ZERO, Vec2::new(1.0, 0.0), Vec2::ONE]);
+    let (duv02, duv12) = (uv[0] - uv[2], uv[1] - uv[2]);
+    let (dn1, dn2) = (n[0] - n[2], n[1] - n[2]);
+    let det = difference_of_products(duv02.x, duv12.y, duv02.y, duv12.x);
+    if det.abs() < 1e-9 {
+        let dn = cross(n[2] - n[0], n[1] - n[0]);
+        if dn.length_squared() == 0.0 {
+            return (Vec3::ZERO, Vec3::ZERO);
+        }
+        let f = Frame::from_z(dn);
+        return (f.x, f.y);
+    }
+    let inv = 1.0 / det;
+    (
+        (duv12.y * dn1 - duv02.y * dn2) * inv,
+        (duv02.x * dn2 - duv12.x * dn1) * inv,
+    )
+}
+
 /// The watertight ray–triangle test of Woop, Benthin and Wald (2013), as in PBRT-v4 §6.5.3.
 ///
 /// The triangle is moved into a space where the ray starts at the origin and runs along +z
@@ -412,6 +487,16 @@ impl ShapeKind for Triangle {
         meshes: &[TriangleMesh],
     ) -> SurfaceInteraction {
         Triangle::interaction(self, ray, hit, &meshes[self.mesh as usize])
+    }
+
+    fn shading_derivatives(
+        &self,
+        _: &Ray,
+        _: &ShapeHit,
+        meshes: &[TriangleMesh],
+        si: &SurfaceInteraction,
+    ) -> ShadingDerivatives {
+        meshes[self.mesh as usize].shading_derivatives(self.index, si)
     }
 
     /// A = |(p₁ − p₀) × (p₂ − p₀)| / 2.
