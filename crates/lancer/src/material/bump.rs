@@ -2,10 +2,12 @@
 //! `normalmap` image gives, as pbrt-v4's `BumpMap`, `NormalMap` and `SetShadingGeometry`.
 //!
 //! Both replace the shading ∂p/∂u and ∂p/∂v; the shading normal is then
-//! `normalize(∂p/∂u × ∂p/∂v)`, turned to the geometric normal's side.
+//! `normalize(∂p/∂u × ∂p/∂v)`, turned to the geometric normal's side. A bump map reads the
+//! hit's shading derivatives, ∂n/∂u and ∂n/∂v among them, which the shapes compute only for
+//! it ([`crate::shape::Shape::shading_derivatives`]).
 
 use crate::math::{Vec2, Vec3, cross, face_forward, normalize};
-use crate::shape::{Shading, SurfaceInteraction};
+use crate::shape::{Shading, ShadingDerivatives, SurfaceInteraction};
 use crate::texture::{FloatTex, SpectrumTex, TexCoord, TextureEval};
 
 /// The finite-difference step in u and v where the footprint is zero (pbrt-v4's `BumpMap`).
@@ -13,12 +15,17 @@ const DELTA: f32 = 0.0005;
 
 /// The shading frame of the new ∂p/∂u, ∂p/∂v: `ns = normalize(∂p/∂u × ∂p/∂v)` on the side of
 /// the geometric normal `n` (pbrt-v4's `SetShadingGeometry` without authoritative
-/// orientation). `None` when the tangents are degenerate (the old frame is kept).
-fn shading_from(dpdu: Vec3, dpdv: Vec3, n: Vec3) -> Option<Shading> {
+/// orientation, which also divides both tangents by 10⁸ while either's squared length is
+/// over 10¹⁶). `None` when the tangents are degenerate (the old frame is kept).
+fn shading_from(mut dpdu: Vec3, mut dpdv: Vec3, n: Vec3) -> Option<Shading> {
     let c = cross(dpdu, dpdv);
     let len2 = c.length_squared();
     if len2 == 0.0 || !len2.is_finite() {
         return None;
+    }
+    while dpdu.length_squared() > 1e16 || dpdv.length_squared() > 1e16 {
+        dpdu /= 1e8;
+        dpdv /= 1e8;
     }
     Some(Shading {
         n: face_forward(normalize(c), n),
@@ -27,36 +34,41 @@ fn shading_from(dpdu: Vec3, dpdv: Vec3, n: Vec3) -> Option<Shading> {
     })
 }
 
-/// pbrt-v4's `BumpMap`: with d the displacement texture and δ half the footprint's extent in
-/// u, `δ = ½(|∂u/∂x| + |∂u/∂y|)` ([`DELTA`] when that is 0),
-/// `∂p/∂u' = ∂p/∂u + (d(u + δ) − d(u))/δ · ns`, the texture shifted by δ·∂p/∂u in position
-/// and by δ in u (the same in v, with its own δ). `tc` is the hit's lookup point with its
-/// footprint. pbrt-v4 also adds `d · ∂n/∂u`; lancer's hits carry no normal derivatives, so
-/// that term (a relative change of d/radius on curved surfaces) is left out.
+/// pbrt-v4's `BumpMap`: with d the displacement texture and `sd` the hit's shading
+/// derivatives (pbrt-v4's, [`ShadingDerivatives`]), δ half the footprint's extent in u,
+/// `δ = ½(|∂u/∂x| + |∂u/∂y|)` ([`DELTA`] when that is 0), the texture looked up again at the
+/// point moved by δ·∂p/∂u (shading) with u moved by δ,
+///
+///   ∂p/∂u' = ∂p/∂u + (d(u + δ) − d(u))/δ · n_s + d · ∂n/∂u,
+///
+/// and the same in v with its own δ; the new shading normal is
+/// normalize(∂p/∂u' × ∂p/∂v') on the geometric normal's side. `tc` is the hit's lookup point
+/// with its footprint.
 pub fn bump_shading(
     tex: &TextureEval,
     displacement: FloatTex,
     si: &SurfaceInteraction,
     tc: &TexCoord,
+    sd: &ShadingDerivatives,
 ) -> Option<Shading> {
-    let sh = &si.shading;
     let step = |a: f32, b: f32| {
         let d = 0.5 * (a.abs() + b.abs());
         if d == 0.0 { DELTA } else { d }
     };
     let (du, dv) = (step(tc.dudx, tc.dudy), step(tc.dvdx, tc.dvdy));
     let at = |p: Vec3, uv: Vec2| TexCoord { uv, p, ..*tc };
-    let d = tex.float(displacement, tc);
     let d_u = tex.float(
         displacement,
-        &at(si.p + du * sh.dpdu, si.uv + Vec2::new(du, 0.0)),
+        &at(si.p + du * sd.dpdu, si.uv + Vec2::new(du, 0.0)),
     );
     let d_v = tex.float(
         displacement,
-        &at(si.p + dv * sh.dpdv, si.uv + Vec2::new(0.0, dv)),
+        &at(si.p + dv * sd.dpdv, si.uv + Vec2::new(0.0, dv)),
     );
-    let dpdu = sh.dpdu + (d_u - d) / du * sh.n;
-    let dpdv = sh.dpdv + (d_v - d) / dv * sh.n;
+    let d = tex.float(displacement, tc);
+    let ns = si.shading.n;
+    let dpdu = sd.dpdu + (d_u - d) / du * ns + d * sd.dndu;
+    let dpdv = sd.dpdv + (d_v - d) / dv * ns + d * sd.dndv;
     shading_from(dpdu, dpdv, si.n)
 }
 

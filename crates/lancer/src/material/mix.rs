@@ -5,6 +5,7 @@
 
 use super::{BumpedMaterial, Material, MixMaterial, bump_shading, normal_map_shading};
 use crate::math::Vec3;
+use crate::shape::{ShadingDerivatives, SurfaceInteraction};
 use crate::texture::{TexCoord, TextureEval};
 
 /// The uniform number that picks a `mix` material's side at `p`: a hash of the point. Out of
@@ -54,14 +55,16 @@ pub fn resolve_mix(materials: &[Material], tex: &TextureEval, tc: &TexCoord, mut
 /// in `SurfaceInteraction::GetBSDF`, before the BSDF and everything that uses the shading
 /// normal); for a `mix`, the map of the material it chooses at this hit ([`resolve_mix`], the
 /// same choice the BSDF set-up makes). Other materials leave it alone. `tex_coord` gives the
-/// hit's texture lookup point with its footprint.
+/// hit's texture lookup point with its footprint, `derivatives` pbrt-v4's shading derivatives
+/// of the hit (asked only by a bump map, so that other hits never compute them).
 #[inline]
 pub fn apply_bump(
     materials: &[Material],
     tex: &TextureEval,
     mut m: u32,
-    si: &mut crate::shape::SurfaceInteraction,
-    tex_coord: impl Fn(&crate::shape::SurfaceInteraction) -> TexCoord,
+    si: &mut SurfaceInteraction,
+    tex_coord: impl Fn(&SurfaceInteraction) -> TexCoord,
+    derivatives: impl FnOnce(&SurfaceInteraction) -> ShadingDerivatives,
 ) {
     if let Material::Mix(_) = materials[m as usize] {
         m = resolve_mix(materials, tex, &tex_coord(si), m);
@@ -74,7 +77,7 @@ pub fn apply_bump(
     {
         let shading = match (normal_map, displacement) {
             (Some(nm), _) => normal_map_shading(tex, nm, si),
-            (None, Some(d)) => bump_shading(tex, d, si, &tex_coord(si)),
+            (None, Some(d)) => bump_shading(tex, d, si, &tex_coord(si), &derivatives(si)),
             (None, None) => None,
         };
         if let Some(sh) = shading {

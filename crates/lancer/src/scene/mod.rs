@@ -22,7 +22,9 @@ use crate::light::{Light, LightDistribution, LightSampler};
 use crate::material::Material;
 use crate::math::{Bounds3, Rgb, SampledSpectrum, Vec3, rgb_lanes};
 use crate::ray::Ray;
-use crate::shape::{Shape, SurfaceInteraction, TriangleFrame, TriangleMesh, TriangleRay};
+use crate::shape::{
+    ShadingDerivatives, Shape, SurfaceInteraction, TriangleFrame, TriangleMesh, TriangleRay,
+};
 use crate::spectrum::sampled::SampledWavelengths;
 use crate::texture::{FloatTex, FloatTexture, SpectrumTexture, TexCoord, TextureEval};
 
@@ -328,15 +330,20 @@ impl Scene {
         {
             let (si, prim) = self.instances.interaction(ray, &ih);
             // Instanced objects are triangle meshes, which carry no colour of their own.
-            return Some(self.finish_hit(ray, SceneHit::new(si, prim, None)));
+            let hit = SceneHit::new(si, prim, None);
+            return Some(
+                self.finish_hit(ray, hit, |_| self.instances.shading_derivatives(ray, &ih)),
+            );
         }
         if let (Some(m), Some(mh)) = (&self.motion, moving) {
             let (si, prim, albedo) = m.interaction(ray, &mh);
-            return Some(self.finish_hit(ray, SceneHit::new(si, prim, albedo)));
+            let hit = SceneHit::new(si, prim, albedo);
+            return Some(self.finish_hit(ray, hit, |_| m.shading_derivatives(ray, &mh)));
         }
         if let Some((slot, h)) = best_tri {
             let (si, prim) = self.tris.interaction(ray, slot, &h);
-            return Some(self.finish_hit(ray, SceneHit::new(si, prim, None)));
+            let hit = SceneHit::new(si, prim, None);
+            return Some(self.finish_hit(ray, hit, |si| self.tris.shading_derivatives(slot, si)));
         }
         let (h, prim) = best?;
         let shape = &self.shapes[prim as usize];
@@ -376,7 +383,9 @@ impl Scene {
                 shape.hit_albedo(&h),
             ),
         };
-        Some(self.finish_hit(ray, hit))
+        Some(self.finish_hit(ray, hit, |si| {
+            shape.shading_derivatives(ray, &h, &self.meshes, si)
+        }))
     }
 
     /// Whether a hit on primitive `prim` needs [`Scene::finish_hit`]: the scene's textures
@@ -392,20 +401,32 @@ impl Scene {
     }
 
     /// Completes `hit` in place: its footprint, and its shading frame changed by its
-    /// primitive's material's bump or normal map (for a `mix`, the picked material's). The
-    /// interaction is not copied on the way: a copy read back the record its shape had just
-    /// written piece by piece, and stalled every hit (store forwarding).
+    /// primitive's material's bump or normal map (for a `mix`, the picked material's), a bump
+    /// map reading the shading derivatives `derivatives` gives for the hit's interaction
+    /// (called only then). The interaction is not copied on the way: a copy read back the
+    /// record its shape had just written piece by piece, and stalled every hit (store
+    /// forwarding).
     #[inline(always)]
-    fn finish_hit(&self, ray: &Ray, mut hit: SceneHit) -> SceneHit {
+    fn finish_hit(
+        &self,
+        ray: &Ray,
+        mut hit: SceneHit,
+        derivatives: impl FnOnce(&SurfaceInteraction) -> ShadingDerivatives,
+    ) -> SceneHit {
         if let Some(f) = &self.footprints {
             let (dpdx, dpdy) = f.at_hit(ray.o, hit.si.p, hit.si.n);
             hit.footprint = [dpdx, dpdy];
         }
         let footprint = hit.footprint;
         let m = self.prims[hit.prim as usize].material;
-        crate::material::mix::apply_bump(&self.materials, &self.textures(), m, &mut hit.si, |si| {
-            Scene::tex_coord_from(si, footprint)
-        });
+        crate::material::mix::apply_bump(
+            &self.materials,
+            &self.textures(),
+            m,
+            &mut hit.si,
+            |si| Scene::tex_coord_from(si, footprint),
+            derivatives,
+        );
         hit
     }
 

@@ -34,7 +34,7 @@ fn bump(tex: &TextureEval, d: FloatTex, si: &SurfaceInteraction) -> Shading {
         n: si.n,
         ..TexCoord::default()
     };
-    bump_shading(tex, d, si, &tc).unwrap()
+    bump_shading(tex, d, si, &tc, &ShadingDerivatives::flat(si)).unwrap()
 }
 
 #[test]
@@ -67,7 +67,14 @@ fn the_step_is_half_the_footprint_in_u_and_v() {
         dudy: -0.006,
         ..TexCoord::default()
     };
-    let sh = bump_shading(&tex, FloatTex::Tex(0), &si, &tc).unwrap();
+    let sh = bump_shading(
+        &tex,
+        FloatTex::Tex(0),
+        &si,
+        &tc,
+        &ShadingDerivatives::flat(&si),
+    )
+    .unwrap();
     assert!(
         (sh.dpdu - Vec3::new(1.0, 0.0, 125.0)).length() < 1e-3,
         "{}",
@@ -96,6 +103,57 @@ fn bumps_tilt_the_normal_against_the_height_gradient() {
     // A constant height leaves the frame as it was.
     let sh = bump(&tex, FloatTex::Const(0.7), &flat(0.3, 0.6));
     assert_eq!((sh.n, sh.dpdu, sh.dpdv), (Vec3::Z, Vec3::X, Vec3::Y));
+}
+
+#[test]
+fn a_constant_height_moves_the_surface_along_its_turning_normal() {
+    // On a sphere of radius 2 (n = p/2, so ∂n/∂u = ∂p/∂u/2), a constant height d = 0.5 makes
+    // the sphere of radius 2.5: pbrt-v4's d·∂n/∂u term scales ∂p/∂u by 1 + d/r and leaves
+    // the normal alone; a height gradient still tilts it as on a plane.
+    let si = flat(0.3, 0.6);
+    let tc = TexCoord {
+        uv: si.uv,
+        p: si.p,
+        n: si.n,
+        ..TexCoord::default()
+    };
+    let sd = ShadingDerivatives {
+        dpdu: Vec3::X,
+        dpdv: Vec3::Y,
+        dndu: Vec3::X * 0.5,
+        dndv: Vec3::Y * 0.5,
+    };
+    let tex = TextureEval {
+        floats: &[],
+        spectra: &[],
+    };
+    let sh = bump_shading(&tex, FloatTex::Const(0.5), &si, &tc, &sd).unwrap();
+    assert_eq!(
+        (sh.dpdu, sh.dpdv, sh.n),
+        (Vec3::X * 1.25, Vec3::Y * 1.25, Vec3::Z)
+    );
+    // The new tangents start from the derivatives' ∂p/∂u, ∂p/∂v, not the interaction's: with
+    // ∂p/∂u = 2x̂ and h = 0.1·u, ∂p/∂u' = 2x̂ + 0.1·ẑ.
+    let floats = vec![FloatTexture::Bilerp(BilerpTexture {
+        mapping: Mapping2D::default(),
+        v: [0.0, 0.0, 0.1, 0.1],
+    })];
+    let tex = TextureEval {
+        floats: &floats,
+        spectra: &[],
+    };
+    let sd = ShadingDerivatives {
+        dpdu: Vec3::X * 2.0,
+        dpdv: Vec3::Y,
+        dndu: Vec3::ZERO,
+        dndv: Vec3::ZERO,
+    };
+    let sh = bump_shading(&tex, FloatTex::Tex(0), &si, &tc, &sd).unwrap();
+    assert!(
+        (sh.dpdu - Vec3::new(2.0, 0.0, 0.1)).length() < 2e-3,
+        "{}",
+        sh.dpdu
+    );
 }
 
 #[test]

@@ -43,7 +43,9 @@ fn a_mix_applies_the_bump_of_the_material_it_picks() {
     // Amount 1: always the bumped side, directly and under a mix of mixes.
     for m in [1, 2, 3] {
         let mut si = flat(0.3, 0.6);
-        apply_bump(&scene(1.0), &tex, m, &mut si, TexCoord::at);
+        apply_bump(&scene(1.0), &tex, m, &mut si, TexCoord::at, |si| {
+            ShadingDerivatives::flat(si)
+        });
         assert!(
             (si.shading.n - bumped_n).length() < 2e-3,
             "{m}: {}",
@@ -52,7 +54,9 @@ fn a_mix_applies_the_bump_of_the_material_it_picks() {
     }
     // Amount 0: always the plain side, whose frame stays.
     let mut si = flat(0.3, 0.6);
-    apply_bump(&scene(0.0), &tex, 2, &mut si, TexCoord::at);
+    apply_bump(&scene(0.0), &tex, 2, &mut si, TexCoord::at, |si| {
+        ShadingDerivatives::flat(si)
+    });
     assert_eq!(si.shading.n, Vec3::Z);
     // Amount 0.3: per point, the bump is there exactly when the mix picks material 1
     // (the choice the BSDF set-up makes with `mix_pick`), about 30 % of the points.
@@ -62,7 +66,9 @@ fn a_mix_applies_the_bump_of_the_material_it_picks() {
     for i in 0..n {
         let (x, y) = ((i % 50) as f32 / 50.0 + 0.01, (i / 50) as f32 / 40.0 + 0.01);
         let mut si = flat(x, y);
-        apply_bump(&mats, &tex, 2, &mut si, TexCoord::at);
+        apply_bump(&mats, &tex, 2, &mut si, TexCoord::at, |si| {
+            ShadingDerivatives::flat(si)
+        });
         let tc = TexCoord::at(&si);
         let m = resolve_mix(&mats, &tex, &tc, 2);
         assert_eq!(m, mix_pick([0, 1], 0.3, si.p));
