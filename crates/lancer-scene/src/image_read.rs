@@ -14,10 +14,9 @@
 //! The size a header claims is checked against [`MAX_SIDE`] and [`MAX_TEXELS`] before any
 //! buffer is allocated, so a corrupt or hostile file cannot ask for gigabytes.
 
-use lancer::image::{Image, WrapMode};
+use lancer::image::Image;
 use lancer::image_io::srgb_to_linear;
 use lancer::math::PackedRgb;
-use lancer::texture::MipMap;
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::fmt;
@@ -109,7 +108,7 @@ pub struct DecodedImage {
     pub alpha: Option<Vec<f32>>,
     /// The matrix that took the file's own RGB (an EXR's `chromaticities`) to linear sRGB;
     /// `None` for sRGB files. A MIP pyramid clamps its resampled texels in the file's space,
-    /// as pbrt-v4 does.
+    /// as pbrt-v4 does ([`lancer::texture::ImageTextureDesc::to_srgb`]).
     pub to_srgb: Option<lancer::math::Mat3>,
 }
 
@@ -424,7 +423,8 @@ fn read_exr(
 }
 
 /// Images decoded during one scene load, by file and encoding, so that a file many textures
-/// name is decoded once (and its float version made once per filter).
+/// name is decoded once (and its float version made once per filter): the textures share its
+/// texels, and the scene build makes one MIP pyramid per distinct image and settings.
 #[derive(Default)]
 pub struct ImageCache {
     entries: RefCell<HashMap<CacheKey, CacheEntry>>,
@@ -437,9 +437,6 @@ struct CacheEntry {
     decoded: Arc<DecodedImage>,
     /// Float images: [bilinear, point].
     floats: [Option<Arc<Image>>; 2],
-    /// MIP pyramids made of the image: by kind (0 RGB, 1 float averaged, 2 float first
-    /// channel) and wrap mode (which a non-power-of-two image's resampling depends on).
-    mipmaps: Vec<(u8, WrapMode, Arc<MipMap>)>,
 }
 
 impl ImageCache {
@@ -459,7 +456,6 @@ impl ImageCache {
             CacheEntry {
                 decoded: decoded.clone(),
                 floats: [None, None],
-                mipmaps: Vec::new(),
             },
         );
         Ok(decoded)
@@ -485,42 +481,6 @@ impl ImageCache {
         Ok(slot
             .get_or_insert_with(|| Arc::new(decoded.float_image(nearest)))
             .clone())
-    }
-
-    /// The MIP pyramid of `path`'s image for `wrap`: of its RGB image (`float` `None`), or of
-    /// its float image ([`DecodedImage::float_image`] with `nearest` = the flag), made once
-    /// per kind and wrap mode. A power-of-two image's level 0 is the cached image itself.
-    pub fn mipmap(
-        &self,
-        path: &Path,
-        encoding: Encoding,
-        float: Option<bool>,
-        wrap: WrapMode,
-    ) -> Result<Arc<MipMap>, ImageReadError> {
-        let kind = match float {
-            None => 0,
-            Some(first) => 1 + first as u8,
-        };
-        let key = (path.to_path_buf(), encoding.key());
-        if let Some(e) = self.entries.borrow().get(&key)
-            && let Some((_, _, m)) = e.mipmaps.iter().find(|m| m.0 == kind && m.1 == wrap)
-        {
-            return Ok(m.clone());
-        }
-        let image = match float {
-            None => self.rgb(path, encoding)?,
-            Some(first) => self.float(path, encoding, first)?,
-        };
-        let to_srgb = self.decoded(path, encoding)?.to_srgb;
-        let m = Arc::new(MipMap::with_clamp_space(
-            image,
-            wrap,
-            to_srgb.filter(|_| float.is_none()),
-        ));
-        let mut entries = self.entries.borrow_mut();
-        let entry = entries.get_mut(&key).expect("just decoded");
-        entry.mipmaps.push((kind, wrap, m.clone()));
-        Ok(m)
     }
 
     /// How many distinct files (and encodings) were decoded.

@@ -23,7 +23,7 @@ use lancer::scene::desc::{
 };
 use lancer::shape::TriangleMesh;
 use lancer::texture::{
-    ImageFilter, ImageTexture, MipMap, SpectrumTex, SpectrumTexture, UvMapping, WrapMode,
+    ImageFilter, ImageTextureDesc, SpectrumTex, SpectrumTextureDesc, UvMapping, WrapMode,
 };
 use std::path::Path;
 use std::sync::Arc;
@@ -178,7 +178,7 @@ pub fn load_obj_scene(path: &Path) -> Result<LoadedScene, SceneError> {
                         };
                         match texture {
                             Ok(t) => {
-                                textures.push(SpectrumTexture::Image(t));
+                                textures.push(SpectrumTextureDesc::Image(t));
                                 reflectance = SpectrumTex::Tex((textures.len() - 1) as u32);
                             }
                             Err(e) => warnings.push(warning(
@@ -209,12 +209,14 @@ pub fn load_obj_scene(path: &Path) -> Result<LoadedScene, SceneError> {
 
 /// A diffuse texture: the sRGB image at `path`, tiled, looked up bilinearly with the OBJ's
 /// (u, v) as they are (pbrt's convention: v = 0 is the image's bottom row, as in OBJ).
-fn image_texture(images: &ImageCache, path: &Path) -> Result<ImageTexture, String> {
+fn image_texture(images: &ImageCache, path: &Path) -> Result<ImageTextureDesc, String> {
     let image = images
         .rgb(path, Encoding::Srgb)
         .map_err(|e| e.to_string())?;
-    Ok(ImageTexture {
-        mipmap: std::sync::Arc::new(MipMap::single(image)),
+    Ok(ImageTextureDesc {
+        image,
+        to_srgb: None,
+        mip: false,
         mapping: UvMapping::default().into(),
         wrap: WrapMode::Repeat,
         scale: 1.0,

@@ -3,7 +3,7 @@
 use crate::math::{PackedRgb, Rgb, Vec2};
 
 /// How image lookups outside [0, 1] behave (pbrt's `wrap`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Hash)]
 pub enum WrapMode {
     /// Tile the image.
     #[default]

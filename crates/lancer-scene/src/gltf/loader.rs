@@ -8,7 +8,7 @@ use lancer::material::MaterialDesc;
 use lancer::math::{Rgb, Vec3};
 use lancer::scene::desc::{CameraDesc, FilmDesc, LightDesc, ShapeDesc};
 use lancer::shape::TriangleMesh;
-use lancer::texture::{FloatTex, FloatTexture, SpectrumTexture};
+use lancer::texture::{FloatTex, FloatTextureDesc, SpectrumTextureDesc};
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -36,8 +36,8 @@ pub(crate) struct GltfLoader<'a> {
     pub(super) images: HashMap<(usize, bool), Arc<DecodedImage>>,
     pub(super) material_cache: HashMap<Option<usize>, MaterialInfo>,
     pub(super) materials: Vec<MaterialDesc>,
-    pub(super) float_textures: Vec<FloatTexture>,
-    pub(super) spectrum_textures: Vec<SpectrumTexture>,
+    pub(super) float_textures: Vec<FloatTextureDesc>,
+    pub(super) spectrum_textures: Vec<SpectrumTextureDesc>,
     pub(super) warnings: Vec<Warning>,
     /// Triangle meshes by (mesh, primitive); `None` for primitives that were skipped.
     pub(super) meshes: HashMap<(usize, usize), Option<Arc<TriangleMesh>>>,

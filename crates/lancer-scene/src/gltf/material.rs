@@ -24,7 +24,7 @@ use lancer::material::MaterialDesc;
 use lancer::material::{CoatedDiffuseMaterial, ConductorMaterial, DiffuseMaterial, MixMaterial};
 use lancer::math::Rgb;
 use lancer::texture::{
-    FloatTex, FloatTexture, ImageFilter, ImageTexture, MipMap, SpectrumTex, SpectrumTexture,
+    FloatTex, FloatTextureDesc, ImageFilter, ImageTextureDesc, SpectrumTex, SpectrumTextureDesc,
     UvMapping, WrapMode,
 };
 use std::path::PathBuf;
@@ -62,11 +62,13 @@ fn wrap_mode(w: WrappingMode) -> WrapMode {
     }
 }
 
-fn image_texture(image: Image, s: &Sampling) -> ImageTexture {
-    ImageTexture {
+fn image_texture(image: Image, s: &Sampling) -> ImageTextureDesc {
+    ImageTextureDesc {
         // Read without MIP filtering (as before footprints existed), point or bilinear as
         // the sampler asks.
-        mipmap: Arc::new(MipMap::single(Arc::new(image))),
+        image: Arc::new(image),
+        to_srgb: None,
+        mip: false,
         mapping: s.mapping.into(),
         wrap: s.wrap,
         scale: 1.0,
@@ -204,12 +206,12 @@ impl GltfLoader<'_> {
         (self.materials.len() - 1) as u32
     }
 
-    fn push_spectrum(&mut self, t: SpectrumTexture) -> SpectrumTex {
+    fn push_spectrum(&mut self, t: SpectrumTextureDesc) -> SpectrumTex {
         self.spectrum_textures.push(t);
         SpectrumTex::Tex((self.spectrum_textures.len() - 1) as u32)
     }
 
-    fn push_float(&mut self, t: FloatTexture) -> FloatTex {
+    fn push_float(&mut self, t: FloatTextureDesc) -> FloatTex {
         self.float_textures.push(t);
         FloatTex::Tex((self.float_textures.len() - 1) as u32)
     }
@@ -229,7 +231,7 @@ impl GltfLoader<'_> {
                 let what = format!("{label} baseColorTexture");
                 let (img, s) = self.texture(&info, &what, Encoding::Srgb)?;
                 let base = map_texels(&img, |c, _| c * factor);
-                let base = self.push_spectrum(SpectrumTexture::Image(image_texture(base, &s)));
+                let base = self.push_spectrum(SpectrumTextureDesc::Image(image_texture(base, &s)));
                 let alpha = match m.alpha_mode() {
                     AlphaMode::Opaque => None,
                     mode => {
@@ -243,7 +245,7 @@ impl GltfLoader<'_> {
                                 _ => v,
                             })
                         });
-                        Some(self.push_float(FloatTexture::Image(image_texture(img, &s))))
+                        Some(self.push_float(FloatTextureDesc::Image(image_texture(img, &s))))
                     }
                 };
                 (base, alpha)
@@ -274,8 +276,8 @@ impl GltfLoader<'_> {
                         (lo.min(c.x), hi.max(c.x))
                     });
                 let rough = map_texels(&img, |c, _| Rgb::splat((c.y * rf).powi(2)));
-                let metallic = self.push_float(FloatTexture::Image(image_texture(metal, &s)));
-                let alpha_r = self.push_float(FloatTexture::Image(image_texture(rough, &s)));
+                let metallic = self.push_float(FloatTextureDesc::Image(image_texture(metal, &s)));
+                let alpha_r = self.push_float(FloatTextureDesc::Image(image_texture(rough, &s)));
                 (metallic, alpha_r, (lo, hi))
             }
             None => (FloatTex::Const(mf), FloatTex::Const(rf * rf), (mf, mf)),

@@ -14,8 +14,7 @@ use crate::error::{Location, SceneError};
 use lancer::image::WrapMode;
 use lancer::math::{Rgb, luminance};
 use lancer::scene::desc::AreaLightDesc;
-use lancer::texture::{ImageFilter, ImageTexture, Mapping2D, MipMap, SpectrumTexture, UvMapping};
-use std::sync::Arc;
+use lancer::texture::{ImageFilter, ImageTextureDesc, Mapping2D, SpectrumTextureDesc, UvMapping};
 
 /// The image texture of area light `a` when its parameters name a `filename` (`None`
 /// otherwise), with `a.l` turned into the factor of its texels.
@@ -23,7 +22,7 @@ pub fn area_light_image(
     r: &Reader,
     a: &mut AreaLightDesc,
     loc: &Location,
-) -> Result<Option<SpectrumTexture>, SceneError> {
+) -> Result<Option<SpectrumTextureDesc>, SceneError> {
     let params = r.params;
     if !params.has("filename") {
         return Ok(None);
@@ -59,8 +58,10 @@ pub fn area_light_image(
             a.l /= k as f32;
         }
     }
-    Ok(Some(SpectrumTexture::Image(ImageTexture {
-        mipmap: Arc::new(MipMap::single(image)),
+    Ok(Some(SpectrumTextureDesc::Image(ImageTextureDesc {
+        image,
+        to_srgb: None,
+        mip: false,
         mapping: Mapping2D::Uv(UvMapping::default()),
         wrap: WrapMode::Clamp,
         scale: 1.0,

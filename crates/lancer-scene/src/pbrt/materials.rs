@@ -18,7 +18,7 @@ use lancer::math::Rgb;
 use lancer::scene::desc::SceneDesc;
 use lancer::spectrum::{SpectrumKind, named_spectrum, spectrum_to_rgb};
 use lancer::texture::{
-    FloatTex, ImageFilter, ImageTexture, Mapping2D, MipMap, SpectrumTex, SpectrumTexture, WrapMode,
+    FloatTex, ImageFilter, ImageTextureDesc, Mapping2D, SpectrumTex, SpectrumTextureDesc, WrapMode,
 };
 
 /// A material, and for a `mix` the two names it refers to and where they are written.
@@ -50,7 +50,7 @@ pub struct BumpMaps {
     pub displacement: Option<FloatTex>,
     /// The tangent-space normal image as pbrt-v4 reads it: linear, bilinear, repeat, at the
     /// surface's (u, v) (the image's row 0 at v = 1).
-    pub normal_map: Option<ImageTexture>,
+    pub normal_map: Option<ImageTextureDesc>,
 }
 
 impl BumpMaps {
@@ -58,7 +58,7 @@ impl BumpMaps {
     /// then a [`MaterialDesc::Bumped`] referring to both; returns the latter's index.
     pub fn push_around(self, base: u32, desc: &mut SceneDesc) -> u32 {
         let normal_map = self.normal_map.map(|t| {
-            desc.spectrum_textures.push(SpectrumTexture::Image(t));
+            desc.spectrum_textures.push(SpectrumTextureDesc::Image(t));
             desc.spectrum_textures.len() as u32 - 1
         });
         desc.materials.push(MaterialDesc::Bumped(BumpedMaterial {
@@ -85,8 +85,10 @@ fn bump_maps(r: &Reader) -> Result<Option<BumpMaps>, SceneError> {
                 .rgb(&r.dir.resolve(&name), Encoding::Linear)
                 .map_err(|e| r.params.error_at("normalmap", e.to_string()))?;
             // pbrt-v4's NormalMap reads the image itself bilinearly (no MIP filtering).
-            Some(ImageTexture {
-                mipmap: std::sync::Arc::new(MipMap::single(image)),
+            Some(ImageTextureDesc {
+                image,
+                to_srgb: None,
+                mip: false,
                 mapping: Mapping2D::default(),
                 wrap: WrapMode::Repeat,
                 scale: 1.0,

@@ -1,5 +1,5 @@
-//! `Texture`: pbrt-v4's float and spectrum textures as lancer's [`FloatTexture`] and
-//! [`SpectrumTexture`]: `constant`, `scale`, `mix`, `directionmix`, `checkerboard` (2D and 3D),
+//! `Texture`: pbrt-v4's float and spectrum textures as lancer's [`FloatTextureDesc`] and
+//! [`SpectrumTextureDesc`]: `constant`, `scale`, `mix`, `directionmix`, `checkerboard` (2D and 3D),
 //! `bilerp`, `dots`, `imagemap`, `fbm`, `wrinkled`, `windy` and `marble`, with the 2D mappings
 //! `uv`, `spherical`, `cylindrical` and `planar`. Texture space is the CTM at the directive.
 
@@ -10,9 +10,9 @@ use lancer::math::{Rgb, Transform, Vec3};
 use lancer::spectrum::SpectrumKind;
 use lancer::texture::{
     BilerpTexture, Checkerboard3DTexture, CheckerboardTexture, DirectionMixTexture, DotsTexture,
-    FbmTexture, FloatTex, FloatTexture, ImageFilter, ImageTexture, Mapping2D, Mapping3D,
-    MarbleTexture, MixTexture, ScaleTexture, SpectrumTex, SpectrumTexture, UvMapping, WindyTexture,
-    WrapMode, WrinkledTexture,
+    FbmTexture, FloatTex, FloatTextureDesc, ImageFilter, ImageTextureDesc, Mapping2D, Mapping3D,
+    MarbleTexture, MixTexture, ScaleTexture, SpectrumTex, SpectrumTextureDesc, UvMapping,
+    WindyTexture, WrapMode, WrinkledTexture,
 };
 
 /// The float texture of class `class` at `loc`, with texture space `ctm` (world from texture);
@@ -22,7 +22,7 @@ pub fn float_texture(
     class: &str,
     ctm: &Transform,
     loc: &Location,
-) -> Result<Fallback<FloatTexture>, SceneError> {
+) -> Result<Fallback<FloatTextureDesc>, SceneError> {
     float(r, class, ctm).map_err(|e| locate(e, loc))
 }
 
@@ -33,7 +33,7 @@ pub fn spectrum_texture(
     class: &str,
     ctm: &Transform,
     loc: &Location,
-) -> Result<Fallback<SpectrumTexture>, SceneError> {
+) -> Result<Fallback<SpectrumTextureDesc>, SceneError> {
     spectrum_texture_as(r, class, ctm, loc, SpectrumKind::Albedo)
 }
 
@@ -47,7 +47,7 @@ pub fn spectrum_texture_as(
     ctm: &Transform,
     loc: &Location,
     kind: SpectrumKind,
-) -> Result<Fallback<SpectrumTexture>, SceneError> {
+) -> Result<Fallback<SpectrumTextureDesc>, SceneError> {
     spectrum(r, class, ctm, kind).map_err(|e| locate(e, loc))
 }
 
@@ -103,20 +103,24 @@ fn dimension(r: &Reader) -> Result<i32, SceneError> {
     Ok(dim)
 }
 
-fn float(r: &Reader, class: &str, ctm: &Transform) -> Result<Fallback<FloatTexture>, SceneError> {
+fn float(
+    r: &Reader,
+    class: &str,
+    ctm: &Transform,
+) -> Result<Fallback<FloatTextureDesc>, SceneError> {
     let p = r.params;
     let t = match class {
-        "constant" => FloatTexture::Constant(p.float("value", 1.0)?),
-        "scale" => FloatTexture::Scale(ScaleTexture {
+        "constant" => FloatTextureDesc::Constant(p.float("value", 1.0)?),
+        "scale" => FloatTextureDesc::Scale(ScaleTexture {
             tex: r.float_tex("tex", 1.0)?,
             scale: r.float_tex("scale", 1.0)?,
         }),
-        "mix" => FloatTexture::Mix(MixTexture {
+        "mix" => FloatTextureDesc::Mix(MixTexture {
             tex1: r.float_tex("tex1", 0.0)?,
             tex2: r.float_tex("tex2", 1.0)?,
             amount: r.float_tex("amount", 0.5)?,
         }),
-        "directionmix" => FloatTexture::DirectionMix(DirectionMixTexture {
+        "directionmix" => FloatTextureDesc::DirectionMix(DirectionMixTexture {
             tex1: r.float_tex("tex1", 0.0)?,
             tex2: r.float_tex("tex2", 1.0)?,
             dir: direction(r, ctm)?,
@@ -124,20 +128,20 @@ fn float(r: &Reader, class: &str, ctm: &Transform) -> Result<Fallback<FloatTextu
         "checkerboard" => {
             let (tex1, tex2) = (r.float_tex("tex1", 1.0)?, r.float_tex("tex2", 0.0)?);
             if dimension(r)? == 3 {
-                FloatTexture::Checkerboard3D(Checkerboard3DTexture {
+                FloatTextureDesc::Checkerboard3D(Checkerboard3DTexture {
                     mapping: mapping_3d(ctm),
                     tex1,
                     tex2,
                 })
             } else {
-                FloatTexture::Checkerboard(CheckerboardTexture {
+                FloatTextureDesc::Checkerboard(CheckerboardTexture {
                     mapping: mapping_2d(r, ctm)?,
                     tex1,
                     tex2,
                 })
             }
         }
-        "bilerp" => FloatTexture::Bilerp(BilerpTexture {
+        "bilerp" => FloatTextureDesc::Bilerp(BilerpTexture {
             mapping: mapping_2d(r, ctm)?,
             v: [
                 p.float("v00", 0.0)?,
@@ -148,14 +152,14 @@ fn float(r: &Reader, class: &str, ctm: &Transform) -> Result<Fallback<FloatTextu
         }),
         // pbrt-v4's Create passes (inside, outside) to a constructor declared (outsideDot,
         // insideDot): `inside` colours the background, `outside` the dots.
-        "dots" => FloatTexture::Dots(DotsTexture {
+        "dots" => FloatTextureDesc::Dots(DotsTexture {
             mapping: mapping_2d(r, ctm)?,
             background: r.float_tex("inside", 1.0)?,
             dot: r.float_tex("outside", 0.0)?,
         }),
         "fbm" => {
             let (octaves, omega) = octaves_roughness(r)?;
-            FloatTexture::Fbm(FbmTexture {
+            FloatTextureDesc::Fbm(FbmTexture {
                 mapping: mapping_3d(ctm),
                 octaves,
                 omega,
@@ -163,19 +167,19 @@ fn float(r: &Reader, class: &str, ctm: &Transform) -> Result<Fallback<FloatTextu
         }
         "wrinkled" => {
             let (octaves, omega) = octaves_roughness(r)?;
-            FloatTexture::Wrinkled(WrinkledTexture {
+            FloatTextureDesc::Wrinkled(WrinkledTexture {
                 mapping: mapping_3d(ctm),
                 octaves,
                 omega,
             })
         }
-        "windy" => FloatTexture::Windy(WindyTexture {
+        "windy" => FloatTextureDesc::Windy(WindyTexture {
             mapping: mapping_3d(ctm),
         }),
-        "imagemap" => return Ok(image_texture(r, ctm, true)?.map(FloatTexture::Image)),
+        "imagemap" => return Ok(image_texture(r, ctm, true)?.map(FloatTextureDesc::Image)),
         _ => {
             return Ok(Fallback::instead(
-                FloatTexture::Constant(1.0),
+                FloatTextureDesc::Constant(1.0),
                 format!(
                     "float texture \"{class}\" is not supported yet; lancer uses the constant 1"
                 ),
@@ -190,30 +194,30 @@ fn spectrum(
     class: &str,
     ctm: &Transform,
     kind: SpectrumKind,
-) -> Result<Fallback<SpectrumTexture>, SceneError> {
+) -> Result<Fallback<SpectrumTextureDesc>, SceneError> {
     // Every spectrum-valued parameter is read as `kind` (see `spectrum_texture_as`).
     let t = match class {
         // A value given as a spectrum stays one (spectral mode samples its table): lancer's
         // constant texture holds RGB, so it is the spectrum scaled by 1.
         "constant" => match r.params.color_or_texture("value", kind, r.dir)? {
-            Some(ColorParam::Measured(m)) => SpectrumTexture::Scale(ScaleTexture {
+            Some(ColorParam::Measured(m)) => SpectrumTextureDesc::Scale(ScaleTexture {
                 tex: SpectrumTex::Measured(m),
                 scale: FloatTex::Const(1.0),
             }),
-            _ => {
-                SpectrumTexture::Constant(r.params.color("value", kind, r.dir)?.unwrap_or(Rgb::ONE))
-            }
+            _ => SpectrumTextureDesc::Constant(
+                r.params.color("value", kind, r.dir)?.unwrap_or(Rgb::ONE),
+            ),
         },
-        "scale" => SpectrumTexture::Scale(ScaleTexture {
+        "scale" => SpectrumTextureDesc::Scale(ScaleTexture {
             tex: r.spectrum_tex("tex", Rgb::ONE, kind)?,
             scale: r.float_tex("scale", 1.0)?,
         }),
-        "mix" => SpectrumTexture::Mix(MixTexture {
+        "mix" => SpectrumTextureDesc::Mix(MixTexture {
             tex1: r.spectrum_tex("tex1", Rgb::ZERO, kind)?,
             tex2: r.spectrum_tex("tex2", Rgb::ONE, kind)?,
             amount: r.float_tex("amount", 0.5)?,
         }),
-        "directionmix" => SpectrumTexture::DirectionMix(DirectionMixTexture {
+        "directionmix" => SpectrumTextureDesc::DirectionMix(DirectionMixTexture {
             tex1: r.spectrum_tex("tex1", Rgb::ZERO, kind)?,
             tex2: r.spectrum_tex("tex2", Rgb::ONE, kind)?,
             dir: direction(r, ctm)?,
@@ -222,13 +226,13 @@ fn spectrum(
             let tex1 = r.spectrum_tex("tex1", Rgb::ONE, kind)?;
             let tex2 = r.spectrum_tex("tex2", Rgb::ZERO, kind)?;
             if dimension(r)? == 3 {
-                SpectrumTexture::Checkerboard3D(Checkerboard3DTexture {
+                SpectrumTextureDesc::Checkerboard3D(Checkerboard3DTexture {
                     mapping: mapping_3d(ctm),
                     tex1,
                     tex2,
                 })
             } else {
-                SpectrumTexture::Checkerboard(CheckerboardTexture {
+                SpectrumTextureDesc::Checkerboard(CheckerboardTexture {
                     mapping: mapping_2d(r, ctm)?,
                     tex1,
                     tex2,
@@ -239,7 +243,7 @@ fn spectrum(
             let c = |name, default| -> Result<Rgb, SceneError> {
                 Ok(r.params.color(name, kind, r.dir)?.unwrap_or(default))
             };
-            SpectrumTexture::Bilerp(BilerpTexture {
+            SpectrumTextureDesc::Bilerp(BilerpTexture {
                 mapping: mapping_2d(r, ctm)?,
                 v: [
                     c("v00", Rgb::ZERO)?,
@@ -250,14 +254,14 @@ fn spectrum(
             })
         }
         // pbrt-v4 swaps them (see the float `dots`).
-        "dots" => SpectrumTexture::Dots(DotsTexture {
+        "dots" => SpectrumTextureDesc::Dots(DotsTexture {
             mapping: mapping_2d(r, ctm)?,
             background: r.spectrum_tex("inside", Rgb::ONE, kind)?,
             dot: r.spectrum_tex("outside", Rgb::ZERO, kind)?,
         }),
         "marble" => {
             let (octaves, omega) = octaves_roughness(r)?;
-            SpectrumTexture::Marble(MarbleTexture {
+            SpectrumTextureDesc::Marble(MarbleTexture {
                 mapping: mapping_3d(ctm),
                 octaves,
                 omega,
@@ -265,10 +269,10 @@ fn spectrum(
                 variation: r.params.float("variation", 0.2)?,
             })
         }
-        "imagemap" => return Ok(image_texture(r, ctm, false)?.map(SpectrumTexture::Image)),
+        "imagemap" => return Ok(image_texture(r, ctm, false)?.map(SpectrumTextureDesc::Image)),
         _ => {
             return Ok(Fallback::instead(
-                SpectrumTexture::Constant(Rgb::splat(0.5)),
+                SpectrumTextureDesc::Constant(Rgb::splat(0.5)),
                 format!(
                     "spectrum texture \"{class}\" is not supported yet; lancer uses a constant grey 0.5"
                 ),
@@ -311,15 +315,15 @@ fn mapping_2d(r: &Reader, ctm: &Transform) -> Result<Mapping2D, SceneError> {
     })
 }
 
-/// pbrt-v4's `imagemap`: the image's MIP pyramid, its wrap mode and filter (`filter`,
-/// default `bilinear` as in pbrt-v4; `maxanisotropy` for `ewa`), `scale`, `invert` and the 2D
-/// mapping. Float textures read the value pbrt-v4's MIPMap gives (see
+/// pbrt-v4's `imagemap`: the image's texels (which the scene build makes a MIP pyramid of),
+/// its wrap mode and filter (`filter`, default `bilinear` as in pbrt-v4; `maxanisotropy` for
+/// `ewa`), `scale`, `invert` and the 2D mapping. Float textures read the value pbrt-v4's MIPMap gives (see
 /// [`crate::image_read::DecodedImage::float_image`]).
 fn image_texture(
     r: &Reader,
     ctm: &Transform,
     float: bool,
-) -> Result<Fallback<ImageTexture>, SceneError> {
+) -> Result<Fallback<ImageTextureDesc>, SceneError> {
     let p = r.params;
     let (path, encoding) = r.image_file("an \"imagemap\" texture")?;
     let wrap = match p.string("wrap")?.as_deref().unwrap_or("repeat") {
@@ -358,12 +362,24 @@ fn image_texture(
     // channel (`MIPMap::Texel<Float>`), bilinear and trilinear the average of R, G, B (alpha
     // if there is one, `MIPMap::Bilerp<Float>`).
     let first_channel = matches!(filter, ImageFilter::Point | ImageFilter::Ewa { .. });
-    let mipmap = r
-        .images
-        .mipmap(&path, encoding, float.then_some(first_channel), wrap)
-        .map_err(|e| SceneError::general(e.to_string()))?;
-    let t = ImageTexture {
-        mipmap,
+    let read = |e: crate::image_read::ImageReadError| SceneError::general(e.to_string());
+    // The texels the texture reads, shared with every texture of the same file; an RGB
+    // image's colour space goes with them (its pyramid clamps in it), a float image's pyramid
+    // clamps its one value at 0 as it is.
+    let (image, to_srgb) = if float {
+        let image = r
+            .images
+            .float(&path, encoding, first_channel)
+            .map_err(read)?;
+        (image, None)
+    } else {
+        let decoded = r.images.decoded(&path, encoding).map_err(read)?;
+        (decoded.rgb.clone(), decoded.to_srgb)
+    };
+    let t = ImageTextureDesc {
+        image,
+        to_srgb,
+        mip: true,
         mapping: mapping_2d(r, ctm)?,
         wrap,
         scale: p.float("scale", 1.0)?,

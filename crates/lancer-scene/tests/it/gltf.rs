@@ -901,7 +901,7 @@ fn draco_box_textured_has_its_uvs() {
     assert!(
         d.spectrum_textures
             .iter()
-            .any(|t| matches!(t, lancer::texture::SpectrumTexture::Image(_)))
+            .any(|t| matches!(t, lancer::texture::SpectrumTextureDesc::Image(_)))
     );
 }
 

@@ -6,11 +6,12 @@ use crate::common::ScratchDir;
 use lancer::image_io::srgb_to_linear;
 use lancer::math::{Vec2, Vec3};
 use lancer::texture::{
-    FloatTex, FloatTexture, ImageFilter, SpectrumTex, SpectrumTexture, TexCoord, TextureEval,
-    WrapMode,
+    FloatTex, FloatTexture, FloatTextureDesc, ImageFilter, Pyramids, SpectrumTex, SpectrumTexture,
+    SpectrumTextureDesc, TexCoord, TextureEval, WrapMode,
 };
 use lancer_scene::load;
 use std::path::Path;
+use std::sync::Arc;
 
 /// A 2×2 8-bit RGB PNG: top row red, green; bottom row blue, white (values 200 where lit).
 fn quad_png(path: &Path) {
@@ -52,19 +53,47 @@ Shape "sphere"
     let loaded = load(&scene).unwrap_or_else(|e| panic!("{e}"));
     assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
     let d = &loaded.desc;
-    let (SpectrumTexture::Image(c), SpectrumTexture::Image(again)) =
-        (&d.spectrum_textures[0], &d.spectrum_textures[2])
+    let (
+        SpectrumTextureDesc::Image(c),
+        SpectrumTextureDesc::Image(lin),
+        SpectrumTextureDesc::Image(again),
+    ) = (
+        &d.spectrum_textures[0],
+        &d.spectrum_textures[1],
+        &d.spectrum_textures[2],
+    )
     else {
         panic!("not image textures: {:?}", d.spectrum_textures)
     };
     // The file is decoded once for both textures with the same encoding.
-    assert!(std::ptr::eq(c.mipmap.level(0), again.mipmap.level(0)));
+    assert!(Arc::ptr_eq(&c.image, &again.image));
+    assert!(!Arc::ptr_eq(&c.image, &lin.image));
     assert_eq!(c.wrap, WrapMode::Repeat);
     assert!(c.filter == ImageFilter::Bilinear && !c.invert && c.scale == 1.0);
 
+    // Built as the scene build does: the two textures of the same image and settings share
+    // one pyramid.
+    let mut pyramids = Pyramids::default();
+    let floats: Vec<FloatTexture> = d
+        .float_textures
+        .iter()
+        .map(|t| t.build(&mut pyramids))
+        .collect();
+    let spectra: Vec<SpectrumTexture> = d
+        .spectrum_textures
+        .iter()
+        .map(|t| t.build(&mut pyramids))
+        .collect();
+    let (SpectrumTexture::Image(c), SpectrumTexture::Image(again)) = (&spectra[0], &spectra[2])
+    else {
+        panic!("not image textures")
+    };
+    assert!(Arc::ptr_eq(&c.mipmap, &again.mipmap));
+    // Three images (sRGB, linear, the float's first channel), one pyramid each.
+    assert_eq!(pyramids.len(), 3);
     let eval = TextureEval {
-        floats: &d.float_textures,
-        spectra: &d.spectrum_textures,
+        floats: &floats,
+        spectra: &spectra,
     };
     // No footprint: every filter reads the finest level.
     let at = |u: f32, v: f32| TexCoord {
@@ -97,7 +126,7 @@ Shape "sphere"
 
     // The float texture, point-sampled, reads the first channel; u is scaled by 2 and v
     // shifted by ½: (0.125, 0.25) maps to (0.25, 0.75), the red texel.
-    let FloatTexture::Image(f) = &d.float_textures[0] else {
+    let FloatTextureDesc::Image(f) = &d.float_textures[0] else {
         panic!("not an image")
     };
     assert_eq!(f.filter, ImageFilter::Point);
@@ -141,6 +170,6 @@ fn imagemap_errors_name_the_file_and_the_directive() {
     assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
     assert!(matches!(
         loaded.desc.float_textures[0],
-        FloatTexture::Image(_)
+        FloatTextureDesc::Image(_)
     ));
 }

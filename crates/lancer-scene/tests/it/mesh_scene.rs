@@ -245,10 +245,12 @@ fn map_kd_images_become_textures_when_the_faces_have_uvs() {
     let loaded = load(&dir.join("t.obj")).unwrap_or_else(|e| panic!("{e}"));
     let d = &loaded.desc;
     assert_eq!(d.spectrum_textures.len(), 1);
-    let lancer::texture::SpectrumTexture::Image(t) = &d.spectrum_textures[0] else {
+    let lancer::texture::SpectrumTextureDesc::Image(t) = &d.spectrum_textures[0] else {
         panic!("not an image texture")
     };
-    assert_eq!((t.mipmap.level(0).width, t.mipmap.level(0).height), (2, 1));
+    assert_eq!((t.image.width, t.image.height), (2, 1));
+    // Read bilinearly, without a pyramid.
+    assert!(!t.mip);
     assert_eq!(
         d.materials[d.shapes[0].material as usize],
         lancer::material::MaterialDesc::Diffuse(DiffuseMaterial {

@@ -227,14 +227,14 @@ Shape "sphere"
         let SpectrumTex::Tex(i) = t else {
             panic!("{t:?}")
         };
-        let lancer::texture::SpectrumTexture::Scale(ScaleTexture {
+        let lancer::texture::SpectrumTextureDesc::Scale(ScaleTexture {
             tex: SpectrumTex::Tex(j),
             ..
         }) = &d.spectrum_textures[i as usize]
         else {
             panic!()
         };
-        let lancer::texture::SpectrumTexture::Checkerboard(CheckerboardTexture {
+        let lancer::texture::SpectrumTextureDesc::Checkerboard(CheckerboardTexture {
             tex1: SpectrumTex::Measured(m),
             ..
         }) = &d.spectrum_textures[*j as usize]

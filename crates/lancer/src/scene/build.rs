@@ -20,7 +20,7 @@ use crate::material::{Material, MaterialDesc};
 use crate::math::{Bounds3, Transform, Vec3};
 use crate::shape::{Placing, Shape, TriangleMesh};
 use crate::spectrum::dense::Measured;
-use crate::texture::{FloatTex, FloatTexture, ImageTexture, SpectrumTexture};
+use crate::texture::{FloatTex, FloatTexture, ImageTexture, Pyramids, SpectrumTexture};
 
 impl Scene {
     /// Builds a scene: shapes moved to world space and put in a BVH, lights gathered, the
@@ -29,6 +29,7 @@ impl Scene {
     /// `packets`, `lights`, then the camera.
     pub fn build(desc: &SceneDesc) -> Result<Scene, BuildError> {
         let materials = materials(desc);
+        let textures = textures(desc);
         check_media(desc)?;
         let flat = flatten_instances(desc, materials.len())?;
         let made = primitives(&flat.shapes, materials.len())?;
@@ -59,6 +60,7 @@ impl Scene {
             &meshes,
             &mut prims,
             &made.area_spectra,
+            &textures.spectra,
         )?;
         // The plain meshes' entries, then the instanced meshes', renumbered to follow the
         // shapes'.
@@ -104,7 +106,7 @@ impl Scene {
             .collect();
         let light_sampler =
             LightSampler::new(desc.sampler.light_sampler, &extents, &lights.distribution);
-        let footprints = footprints_for(desc, &camera);
+        let footprints = footprints_for(desc, &textures, &camera);
         Ok(Scene {
             footprints,
             light_sampler,
@@ -117,8 +119,8 @@ impl Scene {
             light_distribution: lights.distribution,
             infinite_lights: lights.infinite,
             materials,
-            float_textures: desc.float_textures.clone(),
-            spectrum_textures: desc.spectrum_textures.clone(),
+            float_textures: textures.floats,
+            spectrum_textures: textures.spectra,
             camera,
             media: desc
                 .media
@@ -143,15 +145,40 @@ impl Scene {
     }
 }
 
-/// The footprints for the scene `desc` seen by `camera`, if anything in it uses them: an
-/// image texture with a MIP pyramid, or a material's bump map (its finite-difference step
-/// is half the footprint in (u, v)). Scenes without either skip the work at every hit.
-fn footprints_for(desc: &SceneDesc, camera: &Camera) -> Option<Footprints> {
+/// The scene's textures as the renderer reads them.
+struct Textures {
+    floats: Vec<FloatTexture>,
+    spectra: Vec<SpectrumTexture>,
+}
+
+/// The description's textures built: image textures get their MIP pyramids, one per distinct
+/// image and pyramid settings, shared by every texture that names them.
+fn textures(desc: &SceneDesc) -> Textures {
+    let mut pyramids = Pyramids::default();
+    Textures {
+        floats: desc
+            .float_textures
+            .iter()
+            .map(|t| t.build(&mut pyramids))
+            .collect(),
+        spectra: desc
+            .spectrum_textures
+            .iter()
+            .map(|t| t.build(&mut pyramids))
+            .collect(),
+    }
+}
+
+/// The footprints for the scene `desc` (its textures built, `textures`) seen by `camera`, if
+/// anything in it uses them: an image texture with a MIP pyramid, or a material's bump map
+/// (its finite-difference step is half the footprint in (u, v)). Scenes without either skip
+/// the work at every hit.
+fn footprints_for(desc: &SceneDesc, textures: &Textures, camera: &Camera) -> Option<Footprints> {
     let filtered = |it: &ImageTexture| it.mipmap.levels() > 1;
-    let wanted = desc.float_textures.iter().any(|t| match t {
+    let wanted = textures.floats.iter().any(|t| match t {
         FloatTexture::Image(it) => filtered(it),
         _ => false,
-    }) || desc.spectrum_textures.iter().any(|t| match t {
+    }) || textures.spectra.iter().any(|t| match t {
         SpectrumTexture::Image(it) => filtered(it),
         _ => false,
     }) || desc
@@ -448,7 +475,8 @@ struct Lights {
 
 /// Phase 5. The description's lights (checked by [`crate::light::LightDesc::validate`]),
 /// then every emitting primitive as a light of its own (a mesh light: one per triangle), whose
-/// index is written in its record.
+/// index is written in its record; an image area light reads its image from the built
+/// `spectrum_textures`.
 fn lights(
     desc: &SceneDesc,
     scene: &SceneSphere,
@@ -456,6 +484,7 @@ fn lights(
     meshes: &[TriangleMesh],
     prims: &mut [PrimInfo],
     area_spectra: &[Measured],
+    spectrum_textures: &[SpectrumTexture],
 ) -> Result<Lights, BuildError> {
     let mut lights = desc
         .lights
@@ -471,9 +500,7 @@ fn lights(
         };
         // Until now `light` holds the image's texture index.
         let image = (e.spectrum == IMAGE_EMISSION)
-            .then(|| {
-                AreaImage::from_texture(desc.spectrum_textures.get(e.light as usize), e.l.into())
-            })
+            .then(|| AreaImage::from_texture(spectrum_textures.get(e.light as usize), e.l.into()))
             .flatten();
         let Some(light) = AreaLight::new(i as u32, shape, meshes, e.l, e.two_sided, image) else {
             continue;

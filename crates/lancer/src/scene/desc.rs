@@ -14,7 +14,7 @@ use crate::material::MaterialDesc;
 use crate::math::{AnimatedTransform, Transform};
 pub use crate::shape::Geometry;
 use crate::shape::RuleError;
-use crate::texture::{FloatTex, FloatTexture, SpectrumTexture};
+use crate::texture::{FloatTex, FloatTextureDesc, SpectrumTextureDesc};
 
 /// A whole scene: what to render and how.
 #[derive(Clone, Debug, Default)]
@@ -32,9 +32,9 @@ pub struct SceneDesc {
     /// Materials; shapes refer to them by index.
     pub materials: Vec<MaterialDesc>,
     /// Float textures; material parameters refer to them by index.
-    pub float_textures: Vec<FloatTexture>,
+    pub float_textures: Vec<FloatTextureDesc>,
     /// Colour textures; material parameters refer to them by index.
-    pub spectrum_textures: Vec<SpectrumTexture>,
+    pub spectrum_textures: Vec<SpectrumTextureDesc>,
     /// Shapes placed in the world.
     pub shapes: Vec<ShapeDesc>,
     /// Light sources other than area lights (those belong to their shapes).

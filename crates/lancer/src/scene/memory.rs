@@ -144,7 +144,9 @@ mod tests {
     use crate::math::{PackedRgb, PackedVec3, Transform, Vec3};
     use crate::scene::desc::{Geometry, InstanceDesc, ObjectDesc, SceneDesc, ShapeDesc};
     use crate::shape::TriangleMesh;
-    use crate::texture::{ImageFilter, ImageTexture, MipMap, UvMapping};
+    use crate::texture::{
+        FloatTextureDesc, ImageFilter, ImageTextureDesc, SpectrumTextureDesc, UvMapping,
+    };
 
     /// `n` separate unit triangles along x, none degenerate.
     fn strip(n: u32) -> Arc<TriangleMesh> {
@@ -256,8 +258,10 @@ mod tests {
             height: 2,
             texels: vec![PackedRgb::ONE; 8],
         });
-        let tex = ImageTexture {
-            mipmap: Arc::new(MipMap::single(image.clone())),
+        let tex = ImageTextureDesc {
+            image: image.clone(),
+            to_srgb: None,
+            mip: false,
             mapping: UvMapping::default().into(),
             wrap: WrapMode::Repeat,
             scale: 1.0,
@@ -265,8 +269,8 @@ mod tests {
             filter: ImageFilter::Bilinear,
         };
         let desc = SceneDesc {
-            float_textures: vec![FloatTexture::Image(tex.clone())],
-            spectrum_textures: vec![SpectrumTexture::Image(tex)],
+            float_textures: vec![FloatTextureDesc::Image(tex.clone())],
+            spectrum_textures: vec![SpectrumTextureDesc::Image(tex)],
             ..SceneDesc::default()
         };
         let m = Scene::build(&desc).unwrap().memory();
@@ -276,5 +280,78 @@ mod tests {
             m.textures,
             size_of::<FloatTexture>() + size_of::<SpectrumTexture>()
         );
+    }
+
+    /// An image texture description of `image` with these pyramid settings.
+    fn image_tex(image: &Arc<Image>, wrap: WrapMode, mip: bool) -> SpectrumTextureDesc {
+        SpectrumTextureDesc::Image(ImageTextureDesc {
+            image: image.clone(),
+            to_srgb: None,
+            mip,
+            mapping: UvMapping::default().into(),
+            wrap,
+            scale: 1.0,
+            invert: false,
+            filter: ImageFilter::Bilinear,
+        })
+    }
+
+    /// The pyramid of a built spectrum texture.
+    fn pyramid(t: &SpectrumTexture) -> &Arc<crate::texture::MipMap> {
+        match t {
+            SpectrumTexture::Image(i) => &i.mipmap,
+            _ => panic!("not an image texture"),
+        }
+    }
+
+    #[test]
+    fn textures_of_one_image_share_one_pyramid() {
+        // 3×2 texels: resampled to 4×2 (what lies beyond the edges, the wrap mode, matters),
+        // then 2×1 and 1×1.
+        let odd = Arc::new(Image {
+            width: 3,
+            height: 2,
+            texels: (0..6).map(|i| PackedRgb::splat(i as f32)).collect(),
+        });
+        let build = |textures: Vec<SpectrumTextureDesc>| {
+            Scene::build(&SceneDesc {
+                spectrum_textures: textures,
+                ..SceneDesc::default()
+            })
+            .unwrap()
+        };
+        let scene = build(vec![
+            image_tex(&odd, WrapMode::Repeat, true),
+            image_tex(&odd, WrapMode::Repeat, true),
+            image_tex(&odd, WrapMode::Clamp, true),
+            image_tex(&odd, WrapMode::Repeat, false),
+        ]);
+        let p: Vec<_> = scene.spectrum_textures.iter().map(pyramid).collect();
+        assert!(Arc::ptr_eq(p[0], p[1]));
+        assert!(!Arc::ptr_eq(p[0], p[2]));
+        assert_eq!((p[0].levels(), p[0].level(0).width), (3, 4));
+        // Without a pyramid, the image itself.
+        assert_eq!(p[3].levels(), 1);
+        assert!(std::ptr::eq(p[3].level(0), &*odd));
+        // A hundred textures of the image cost what one does.
+        let one = build(vec![image_tex(&odd, WrapMode::Repeat, true)]).memory();
+        let hundred = build(vec![image_tex(&odd, WrapMode::Repeat, true); 100]).memory();
+        assert_eq!(one.images, hundred.images);
+        assert!(one.images >= (8 + 2 + 1) * 12, "{one:?}");
+        // A power-of-two image is not resampled: one pyramid whatever the wrap modes.
+        let square = Arc::new(Image {
+            width: 2,
+            height: 2,
+            texels: (0..4).map(|i| PackedRgb::splat(i as f32)).collect(),
+        });
+        let scene = build(vec![
+            image_tex(&square, WrapMode::Repeat, true),
+            image_tex(&square, WrapMode::Clamp, true),
+        ]);
+        let (a, b) = (
+            pyramid(&scene.spectrum_textures[0]),
+            pyramid(&scene.spectrum_textures[1]),
+        );
+        assert!(Arc::ptr_eq(a, b) && std::ptr::eq(a.level(0), &*square));
     }
 }

@@ -1,7 +1,9 @@
 //! The texture families: one line per kind in `texture_family!`'s two lists below (float
 //! textures, spectrum textures), and each kind in its own file of `kinds/`, which owns its
-//! description (plain data, what the readers make, also what the renderer evaluates) and its
-//! lookups: float, RGB and, for spectrum textures, at the path's wavelengths.
+//! description (plain data, what the readers make), its build into what the renderer reads
+//! ([`TextureDescKind`]: a copy, [`PlainKind`], for every kind but the image, whose build makes
+//! its MIP pyramid) and its lookups: float, RGB and, for spectrum textures, at the path's
+//! wavelengths.
 //!
 //! A kind that only combines other parameters (checkerboard, scale, mix, dots, directionmix)
 //! writes its formula once, for any value type, as [`Combining::combine`] over its
@@ -9,9 +11,11 @@
 //! [`SampledAt`]. A kind that makes its value (image, bilerp, the noise patterns) implements
 //! [`TextureKind`] for the values it gives.
 //!
-//! The lists make [`FloatTexture`] and [`SpectrumTexture`] and write their `match`es once, each
-//! arm a direct call to the kind's method (static dispatch, inlined into one function as a
-//! hand-written `match` would be; no allocation).
+//! The lists make the description enums [`FloatTextureDesc`] and [`SpectrumTextureDesc`] (of
+//! [`crate::SceneDesc`]), the runtime enums [`FloatTexture`] and [`SpectrumTexture`] (of
+//! [`crate::Scene`]), and write their `match`es once, each arm a direct call to the kind's
+//! method (static dispatch, inlined into one function as a hand-written `match` would be; no
+//! allocation).
 
 pub mod bilerp;
 pub mod checkerboard;
@@ -26,6 +30,7 @@ pub mod scale;
 pub mod windy;
 pub mod wrinkled;
 
+use super::mipmap::Pyramids;
 use super::{FloatTex, SpectrumTex, TexCoord};
 use crate::math::{Rgb, SampledSpectrum};
 use crate::spectrum::sampled::{ColourKind, SampledWavelengths};
@@ -185,17 +190,59 @@ impl<K: Combining<SpectrumTex>> TextureKind<Rgb> for K {
     }
 }
 
-/// Writes a family's enum and its `match`es from its list of kinds: per kind, its variant
-/// name and its description type. `spectrum` families also dispatch the lookups at the path's
-/// wavelengths.
+/// A texture kind's description: plain data (what the readers make), built once per scene
+/// into what the renderer reads.
+pub trait TextureDescKind {
+    /// The kind's runtime form.
+    type Built;
+    /// The runtime form of this description; `pyramids` holds the image pyramids the build
+    /// has made so far.
+    fn build(&self, pyramids: &mut Pyramids) -> Self::Built;
+}
+
+/// A kind whose description is what the renderer reads (every kind but the image): its build
+/// is a copy.
+pub trait PlainKind: Clone {}
+
+impl<K: PlainKind> TextureDescKind for K {
+    type Built = K;
+    #[inline]
+    fn build(&self, _: &mut Pyramids) -> K {
+        self.clone()
+    }
+}
+
+/// Writes a family's two enums (description and runtime) and their `match`es from its list of
+/// kinds: per kind, its variant name and its description type (its runtime type is the
+/// description's [`TextureDescKind::Built`]). `spectrum` families also dispatch the lookups at
+/// the path's wavelengths.
 macro_rules! texture_family {
-    (@enum $(#[$fdoc:meta])* $family:ident => $value:ty {
+    (@enum $(#[$fdoc:meta])* $family:ident, $desc_family:ident => $value:ty {
         $($(#[$doc:meta])* $kind:ident($ty:ty),)*
     }) => {
         $(#[$fdoc])*
+        /// As the scene gives it: plain data, what the readers make; the scene build turns it
+        #[doc = concat!("into a [`", stringify!($family), "`].")]
+        #[derive(Clone, Debug)]
+        pub enum $desc_family {
+            $($(#[$doc])* $kind($ty),)*
+        }
+
+        $(#[$fdoc])*
+        #[doc = concat!("As the renderer reads it, built from a [`", stringify!($desc_family), "`].")]
         #[derive(Clone, Debug)]
         pub enum $family {
-            $($(#[$doc])* $kind($ty),)*
+            $($(#[$doc])* $kind(<$ty as TextureDescKind>::Built),)*
+        }
+
+        impl $desc_family {
+            /// The runtime texture of this description, its image pyramid (if any) taken from
+            /// `pyramids` ([`TextureDescKind::build`]).
+            pub fn build(&self, pyramids: &mut Pyramids) -> $family {
+                match self {
+                    $($desc_family::$kind(k) => $family::$kind(k.build(pyramids)),)*
+                }
+            }
         }
 
         impl $family {
@@ -203,7 +250,9 @@ macro_rules! texture_family {
             #[inline(always)]
             pub fn evaluate(&self, at: &At) -> $value {
                 match self {
-                    $($family::$kind(k) => <$ty as TextureKind<$value>>::evaluate(k, at),)*
+                    $($family::$kind(k) => {
+                        <<$ty as TextureDescKind>::Built as TextureKind<$value>>::evaluate(k, at)
+                    })*
                 }
             }
         }
@@ -211,10 +260,12 @@ macro_rules! texture_family {
     (float $($rest:tt)*) => {
         texture_family!(@enum $($rest)*);
     };
-    (spectrum $(#[$fdoc:meta])* $family:ident => $value:ty {
+    (spectrum $(#[$fdoc:meta])* $family:ident, $desc_family:ident => $value:ty {
         $($(#[$doc:meta])* $kind:ident($ty:ty),)*
     }) => {
-        texture_family!(@enum $(#[$fdoc])* $family => $value { $($(#[$doc])* $kind($ty),)* });
+        texture_family!(@enum $(#[$fdoc])* $family, $desc_family => $value {
+            $($(#[$doc])* $kind($ty),)*
+        });
 
         impl $family {
             /// The texture's value at the path's wavelengths, `None` where that is the uplift
@@ -222,7 +273,9 @@ macro_rules! texture_family {
             #[inline(always)]
             pub fn sampled(&self, at: &SampledAt) -> Option<SampledSpectrum> {
                 match self {
-                    $($family::$kind(k) => <$ty as TextureKind<$value>>::sampled(k, at),)*
+                    $($family::$kind(k) => {
+                        <<$ty as TextureDescKind>::Built as TextureKind<$value>>::sampled(k, at)
+                    })*
                 }
             }
 
@@ -231,7 +284,9 @@ macro_rules! texture_family {
             #[inline(always)]
             pub fn has_measured(&self, ev: &TextureEval) -> bool {
                 match self {
-                    $($family::$kind(k) => <$ty as TextureKind<$value>>::has_measured(k, ev),)*
+                    $($family::$kind(k) => {
+                        <<$ty as TextureDescKind>::Built as TextureKind<$value>>::has_measured(k, ev)
+                    })*
                 }
             }
         }
@@ -240,14 +295,14 @@ macro_rules! texture_family {
 
 texture_family! {
     float
-    /// A float texture (pbrt's float textures), plain data.
-    FloatTexture => f32 {
+    /// A float texture (pbrt's float textures).
+    FloatTexture, FloatTextureDesc => f32 {
         /// A constant.
         Constant(f32),
         /// An image holding the float value in all three channels (the scene reader chooses
         /// it as pbrt-v4 does: alpha, the average of R, G, B, or the first channel); `.x` is
         /// read.
-        Image(image::ImageTexture),
+        Image(image::ImageTextureDesc),
         /// Alternates `tex1` and `tex2` on a grid of the mapped (s, t).
         Checkerboard(checkerboard::CheckerboardTexture<FloatTex>),
         /// `tex · scale`.
@@ -273,12 +328,12 @@ texture_family! {
 
 texture_family! {
     spectrum
-    /// A colour texture (pbrt's spectrum textures), plain data.
-    SpectrumTexture => Rgb {
+    /// A colour texture (pbrt's spectrum textures).
+    SpectrumTexture, SpectrumTextureDesc => Rgb {
         /// A constant.
         Constant(Rgb),
         /// An image.
-        Image(image::ImageTexture),
+        Image(image::ImageTextureDesc),
         /// Alternates `tex1` and `tex2` on a grid of the mapped (s, t).
         Checkerboard(checkerboard::CheckerboardTexture<SpectrumTex>),
         /// `tex · scale`.

@@ -11,6 +11,7 @@
 use crate::image::{Image, WrapMode};
 use crate::math::{Mat3, PackedRgb, Rgb, Vec2};
 use palette::PaletteLevel;
+use std::collections::HashMap;
 use std::sync::{Arc, LazyLock};
 
 mod palette;
@@ -281,6 +282,59 @@ impl MipMap {
         } else {
             self.lookup(level, st, wrap, false)
         }
+    }
+}
+
+/// What a pyramid depends on: the image (by address), whether it is one at all, the wrap mode
+/// when the image is resampled to powers of two (beyond its edges), and the colour space its
+/// resampling clamps in (the matrix's bits).
+type PyramidKey = (usize, bool, Option<WrapMode>, Option<[u32; 9]>);
+
+/// The MIP pyramids a scene build has made, so that textures of the same image and pyramid
+/// settings share one: memory does not grow with the number of textures naming a file.
+#[derive(Default)]
+pub struct Pyramids {
+    made: HashMap<PyramidKey, Arc<MipMap>>,
+}
+
+impl Pyramids {
+    /// The pyramid of `image`, made on first use: with `mip` [`MipMap::with_clamp_space`] for
+    /// `wrap` and `to_srgb`, else [`MipMap::single`].
+    pub fn get(
+        &mut self,
+        image: &Arc<Image>,
+        mip: bool,
+        wrap: WrapMode,
+        to_srgb: Option<Mat3>,
+    ) -> Arc<MipMap> {
+        let resampled = mip && !(image.width.is_power_of_two() && image.height.is_power_of_two());
+        let to_srgb = to_srgb.filter(|_| mip);
+        let key = (
+            Arc::as_ptr(image) as usize,
+            mip,
+            resampled.then_some(wrap),
+            to_srgb.map(|m| m.to_cols_array().map(f32::to_bits)),
+        );
+        self.made
+            .entry(key)
+            .or_insert_with(|| {
+                Arc::new(if mip {
+                    MipMap::with_clamp_space(image.clone(), wrap, to_srgb)
+                } else {
+                    MipMap::single(image.clone())
+                })
+            })
+            .clone()
+    }
+
+    /// How many distinct pyramids were made.
+    pub fn len(&self) -> usize {
+        self.made.len()
+    }
+
+    /// True before any pyramid is made.
+    pub fn is_empty(&self) -> bool {
+        self.made.is_empty()
     }
 }
 

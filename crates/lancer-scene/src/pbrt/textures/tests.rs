@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 type Converted<T> = (Result<Fallback<T>, SceneError>, Vec<String>);
 
 /// The float texture of the one `Texture` of `text`, and its unread parameters.
-fn float_in(text: &str, dir: &Path, textures: &TextureNames) -> Converted<FloatTexture> {
+fn float_in(text: &str, dir: &Path, textures: &TextureNames) -> Converted<FloatTextureDesc> {
     let (class, params, loc) = typed_in(text, dir);
     let out = with_textures(&params, dir, textures, |r| {
         float_texture(r, &class, &Transform::IDENTITY, &loc)
@@ -19,7 +19,7 @@ fn float_in(text: &str, dir: &Path, textures: &TextureNames) -> Converted<FloatT
 }
 
 /// The spectrum texture of the one `Texture` of `text`, and its unread parameters.
-fn spectrum_in(text: &str, dir: &Path, textures: &TextureNames) -> Converted<SpectrumTexture> {
+fn spectrum_in(text: &str, dir: &Path, textures: &TextureNames) -> Converted<SpectrumTextureDesc> {
     let (class, params, loc) = typed_in(text, dir);
     let out = with_textures(&params, dir, textures, |r| {
         spectrum_texture(r, &class, &Transform::IDENTITY, &loc)
@@ -36,11 +36,11 @@ fn clean<T>((out, unused): Converted<T>) -> T {
     f.value
 }
 
-fn float(text: &str) -> FloatTexture {
+fn float(text: &str) -> FloatTextureDesc {
     clean(float_in(text, Path::new("."), &TextureNames::default()))
 }
 
-fn spectrum(text: &str) -> SpectrumTexture {
+fn spectrum(text: &str) -> SpectrumTextureDesc {
     clean(spectrum_in(text, Path::new("."), &TextureNames::default()))
 }
 
@@ -56,20 +56,21 @@ fn grey(v: f32) -> SpectrumTex {
 fn float_textures_take_pbrt_defaults() {
     assert!(matches!(
         float(r#"Texture "t" "float" "constant""#),
-        FloatTexture::Constant(1.0)
+        FloatTextureDesc::Constant(1.0)
     ));
-    let FloatTexture::Scale(ScaleTexture { tex, scale }) = float(r#"Texture "t" "float" "scale""#)
+    let FloatTextureDesc::Scale(ScaleTexture { tex, scale }) =
+        float(r#"Texture "t" "float" "scale""#)
     else {
         panic!("scale")
     };
     assert_eq!((tex, scale), (c(1.0), c(1.0)));
-    let FloatTexture::Mix(MixTexture { tex1, tex2, amount }) =
+    let FloatTextureDesc::Mix(MixTexture { tex1, tex2, amount }) =
         float(r#"Texture "t" "float" "mix""#)
     else {
         panic!("mix")
     };
     assert_eq!((tex1, tex2, amount), (c(0.0), c(1.0), c(0.5)));
-    let FloatTexture::Checkerboard(CheckerboardTexture {
+    let FloatTextureDesc::Checkerboard(CheckerboardTexture {
         mapping,
         tex1,
         tex2,
@@ -87,11 +88,11 @@ fn float_textures_take_pbrt_defaults() {
 fn float_textures_read_every_parameter() {
     assert!(matches!(
         float(r#"Texture "t" "float" "constant" "float value" 0.25"#),
-        FloatTexture::Constant(0.25)
+        FloatTextureDesc::Constant(0.25)
     ));
     let mut names = TextureNames::default();
     names.floats.insert("a".into(), 3);
-    let FloatTexture::Scale(ScaleTexture { tex, scale }) = clean(float_in(
+    let FloatTextureDesc::Scale(ScaleTexture { tex, scale }) = clean(float_in(
         r#"Texture "t" "float" "scale" "texture tex" "a" "float scale" 2"#,
         Path::new("."),
         &names,
@@ -99,13 +100,13 @@ fn float_textures_read_every_parameter() {
         panic!("scale")
     };
     assert_eq!((tex, scale), (FloatTex::Tex(3), c(2.0)));
-    let FloatTexture::Mix(MixTexture { tex1, tex2, amount }) =
+    let FloatTextureDesc::Mix(MixTexture { tex1, tex2, amount }) =
         float(r#"Texture "t" "float" "mix" "float tex1" 0.1 "float tex2" 0.2 "float amount" 0.3"#)
     else {
         panic!("mix")
     };
     assert_eq!((tex1, tex2, amount), (c(0.1), c(0.2), c(0.3)));
-    let FloatTexture::Checkerboard(CheckerboardTexture {
+    let FloatTextureDesc::Checkerboard(CheckerboardTexture {
         mapping,
         tex1,
         tex2,
@@ -128,42 +129,42 @@ fn float_textures_read_every_parameter() {
 
 #[test]
 fn spectrum_textures_take_pbrt_defaults_and_every_parameter() {
-    let SpectrumTexture::Constant(v) = spectrum(r#"Texture "t" "spectrum" "constant""#) else {
+    let SpectrumTextureDesc::Constant(v) = spectrum(r#"Texture "t" "spectrum" "constant""#) else {
         panic!("constant")
     };
     assert_eq!(v, Rgb::ONE);
-    let SpectrumTexture::Constant(v) =
+    let SpectrumTextureDesc::Constant(v) =
         spectrum(r#"Texture "t" "spectrum" "constant" "rgb value" [0.1 0.2 0.3]"#)
     else {
         panic!("constant")
     };
     assert_eq!(v, Rgb::new(0.1, 0.2, 0.3));
-    let SpectrumTexture::Scale(ScaleTexture { tex, scale }) =
+    let SpectrumTextureDesc::Scale(ScaleTexture { tex, scale }) =
         spectrum(r#"Texture "t" "spectrum" "scale""#)
     else {
         panic!("scale")
     };
     assert_eq!((tex, scale), (grey(1.0), c(1.0)));
-    let SpectrumTexture::Scale(ScaleTexture { tex, scale }) =
+    let SpectrumTextureDesc::Scale(ScaleTexture { tex, scale }) =
         spectrum(r#"Texture "t" "spectrum" "scale" "rgb tex" [0.5 0.5 0.5] "float scale" 3"#)
     else {
         panic!("scale")
     };
     assert_eq!((tex, scale), (grey(0.5), c(3.0)));
-    let SpectrumTexture::Mix(MixTexture { tex1, tex2, amount }) =
+    let SpectrumTextureDesc::Mix(MixTexture { tex1, tex2, amount }) =
         spectrum(r#"Texture "t" "spectrum" "mix""#)
     else {
         panic!("mix")
     };
     assert_eq!((tex1, tex2, amount), (grey(0.0), grey(1.0), c(0.5)));
-    let SpectrumTexture::Mix(MixTexture { tex1, tex2, amount }) = spectrum(
+    let SpectrumTextureDesc::Mix(MixTexture { tex1, tex2, amount }) = spectrum(
         r#"Texture "t" "spectrum" "mix" "rgb tex1" [0.2 0.2 0.2] "rgb tex2" [0.4 0.4 0.4]
            "float amount" 0.9"#,
     ) else {
         panic!("mix")
     };
     assert_eq!((tex1, tex2, amount), (grey(0.2), grey(0.4), c(0.9)));
-    let SpectrumTexture::Checkerboard(CheckerboardTexture {
+    let SpectrumTextureDesc::Checkerboard(CheckerboardTexture {
         mapping,
         tex1,
         tex2,
@@ -183,7 +184,7 @@ fn what_lancer_lacks_falls_back_with_a_warning() {
         &TextureNames::default(),
     );
     let f = out.unwrap();
-    assert!(matches!(f.value, FloatTexture::Constant(1.0)));
+    assert!(matches!(f.value, FloatTextureDesc::Constant(1.0)));
     assert_eq!(
         f.warnings,
         ["float texture \"ptex\" is not supported yet; lancer uses the constant 1"]
@@ -195,7 +196,7 @@ fn what_lancer_lacks_falls_back_with_a_warning() {
         &TextureNames::default(),
     );
     let f = out.unwrap();
-    assert!(matches!(f.value, SpectrumTexture::Constant(v) if v == Rgb::splat(0.5)));
+    assert!(matches!(f.value, SpectrumTextureDesc::Constant(v) if v == Rgb::splat(0.5)));
     assert_eq!(
         f.warnings,
         ["spectrum texture \"ptex\" is not supported yet; lancer uses a constant grey 0.5"]
@@ -203,7 +204,7 @@ fn what_lancer_lacks_falls_back_with_a_warning() {
 }
 
 /// The texture of `text` converted with texture space `ctm`, checked clean.
-fn float_at(text: &str, ctm: &Transform) -> FloatTexture {
+fn float_at(text: &str, ctm: &Transform) -> FloatTextureDesc {
     let (class, params, loc) = typed_in(text, Path::new("."));
     let names = TextureNames::default();
     let out = with_textures(&params, Path::new("."), &names, |r| {
@@ -215,7 +216,7 @@ fn float_at(text: &str, ctm: &Transform) -> FloatTexture {
 #[test]
 fn noise_textures_take_pbrt_defaults_and_texture_space_from_the_ctm() {
     let ctm = Transform::scale(Vec3::splat(0.5)).unwrap();
-    let FloatTexture::Wrinkled(WrinkledTexture {
+    let FloatTextureDesc::Wrinkled(WrinkledTexture {
         mapping,
         octaves,
         omega,
@@ -230,7 +231,7 @@ fn noise_textures_take_pbrt_defaults_and_texture_space_from_the_ctm() {
         ..Default::default()
     };
     assert!((mapping.map(&tc) - Vec3::new(2.0, 0.0, 0.0)).length() < 1e-6);
-    let FloatTexture::Fbm(FbmTexture { octaves, omega, .. }) = float_at(
+    let FloatTextureDesc::Fbm(FbmTexture { octaves, omega, .. }) = float_at(
         r#"Texture "t" "float" "fbm" "integer octaves" 5 "float roughness" 0.6"#,
         &ctm,
     ) else {
@@ -239,9 +240,9 @@ fn noise_textures_take_pbrt_defaults_and_texture_space_from_the_ctm() {
     assert_eq!((octaves, omega), (5, 0.6));
     assert!(matches!(
         float_at(r#"Texture "t" "float" "windy""#, &ctm),
-        FloatTexture::Windy(WindyTexture { .. })
+        FloatTextureDesc::Windy(WindyTexture { .. })
     ));
-    let SpectrumTexture::Marble(MarbleTexture {
+    let SpectrumTextureDesc::Marble(MarbleTexture {
         octaves,
         omega,
         scale,
@@ -258,7 +259,7 @@ fn noise_textures_take_pbrt_defaults_and_texture_space_from_the_ctm() {
 
 #[test]
 fn dots_swap_inside_and_outside_as_pbrt_v4_does() {
-    let SpectrumTexture::Dots(DotsTexture {
+    let SpectrumTextureDesc::Dots(DotsTexture {
         dot, background, ..
     }) = spectrum(
         r#"Texture "t" "spectrum" "dots" "float uscale" 8 "rgb inside" [0.85 0.1 0.1]
@@ -274,7 +275,7 @@ fn dots_swap_inside_and_outside_as_pbrt_v4_does() {
             SpectrumTex::Const(Rgb::new(0.85, 0.1, 0.1))
         )
     );
-    let FloatTexture::Dots(DotsTexture {
+    let FloatTextureDesc::Dots(DotsTexture {
         dot, background, ..
     }) = float(r#"Texture "t" "float" "dots""#)
     else {
@@ -286,13 +287,13 @@ fn dots_swap_inside_and_outside_as_pbrt_v4_does() {
 
 #[test]
 fn bilerp_directionmix_and_the_3d_checkerboard() {
-    let FloatTexture::Bilerp(BilerpTexture { v, .. }) =
+    let FloatTextureDesc::Bilerp(BilerpTexture { v, .. }) =
         float(r#"Texture "t" "float" "bilerp" "float v01" 0.5"#)
     else {
         panic!("bilerp")
     };
     assert_eq!(v, [0.0, 0.5, 0.0, 1.0]);
-    let SpectrumTexture::Bilerp(BilerpTexture { v, .. }) =
+    let SpectrumTextureDesc::Bilerp(BilerpTexture { v, .. }) =
         spectrum(r#"Texture "t" "spectrum" "bilerp" "rgb v11" [0.9 0.9 0.1]"#)
     else {
         panic!("bilerp")
@@ -300,7 +301,7 @@ fn bilerp_directionmix_and_the_3d_checkerboard() {
     assert_eq!(v, [Rgb::ZERO, Rgb::ONE, Rgb::ZERO, Rgb::new(0.9, 0.9, 0.1)]);
     // dir is a texture-space vector: rotated 90° about z, +y becomes −x.
     let rot = Transform::rotate(90.0, Vec3::Z).unwrap();
-    let FloatTexture::DirectionMix(DirectionMixTexture { dir, tex1, tex2 }) = float_at(
+    let FloatTextureDesc::DirectionMix(DirectionMixTexture { dir, tex1, tex2 }) = float_at(
         r#"Texture "t" "float" "directionmix" "vector3 dir" [0 2 0]"#,
         &rot,
     ) else {
@@ -310,7 +311,7 @@ fn bilerp_directionmix_and_the_3d_checkerboard() {
     assert_eq!((tex1, tex2), (c(0.0), c(1.0)));
     assert!(matches!(
         float(r#"Texture "t" "float" "checkerboard" "integer dimension" 3"#),
-        FloatTexture::Checkerboard3D(Checkerboard3DTexture { .. })
+        FloatTextureDesc::Checkerboard3D(Checkerboard3DTexture { .. })
     ));
     // pbrt-v4 reports a 3D checkerboard's "mapping" as unused.
     let (out, unused) = float_in(
@@ -334,7 +335,7 @@ fn bilerp_directionmix_and_the_3d_checkerboard() {
 #[test]
 fn mappings_read_their_parameters_in_texture_space() {
     let ctm = Transform::translate(Vec3::new(0.0, 0.5, 0.0));
-    let FloatTexture::Checkerboard(CheckerboardTexture { mapping, .. }) = float_at(
+    let FloatTextureDesc::Checkerboard(CheckerboardTexture { mapping, .. }) = float_at(
         r#"Texture "t" "float" "checkerboard" "string mapping" "planar" "vector3 v1" [2 0 0]
            "vector3 v2" [0 0 2] "float udelta" 0.25 "float vdelta" 0.5"#,
         &ctm,
@@ -362,7 +363,7 @@ fn mappings_read_their_parameters_in_texture_space() {
     );
     assert_eq!(texture_from_world, ctm.inverse());
     for (kind, want) in [("spherical", 1), ("cylindrical", 2)] {
-        let FloatTexture::Checkerboard(CheckerboardTexture { mapping, .. }) = float_at(
+        let FloatTextureDesc::Checkerboard(CheckerboardTexture { mapping, .. }) = float_at(
             &format!(r#"Texture "t" "float" "checkerboard" "string mapping" "{kind}""#),
             &ctm,
         ) else {
@@ -431,7 +432,7 @@ fn imagemaps_read_the_image_and_every_parameter() {
     let dir = folder_with_png("imagemap");
     let names = TextureNames::default();
     let image = |text: &str| {
-        let SpectrumTexture::Image(t) = clean(spectrum_in(text, &dir, &names)) else {
+        let SpectrumTextureDesc::Image(t) = clean(spectrum_in(text, &dir, &names)) else {
             panic!("an image")
         };
         t
@@ -439,15 +440,16 @@ fn imagemaps_read_the_image_and_every_parameter() {
     // PNG defaults to sRGB: 128/255 is decoded to linear.
     let t = image(r#"Texture "t" "spectrum" "imagemap" "string filename" "grey.png""#);
     let srgb = srgb_to_linear(128.0 / 255.0);
-    let texel = t.mipmap.level(0).texels[0];
+    let texel = t.image.texels[0];
     assert!((texel.x - srgb).abs() < 1e-6, "{texel:?}");
     // pbrt-v4's default filter is bilinear (over a MIP pyramid).
     assert_eq!(
         (t.wrap, t.scale, t.invert, t.filter),
         (WrapMode::Repeat, 1.0, false, ImageFilter::Bilinear)
     );
-    // A 1×1 image is its own whole pyramid.
-    assert_eq!(t.mipmap.levels(), 1);
+    // Filtered over a pyramid (the scene build makes it) of the 1×1 image, in sRGB.
+    assert!(t.mip && t.to_srgb.is_none());
+    assert_eq!((t.image.width, t.image.height), (1, 1));
     assert_eq!(t.mapping, Mapping2D::default());
     let t = image(
         r#"Texture "t" "spectrum" "imagemap" "string filename" "grey.png"
@@ -455,13 +457,13 @@ fn imagemaps_read_the_image_and_every_parameter() {
            "float maxanisotropy" 4 "float scale" 2 "bool invert" true "float uscale" 3
            "string mapping" "uv""#,
     );
-    assert!((t.mipmap.level(0).texels[0].x - 128.0 / 255.0).abs() < 1e-6);
+    assert!((t.image.texels[0].x - 128.0 / 255.0).abs() < 1e-6);
     assert_eq!(
         (t.wrap, t.scale, t.invert, t.filter),
         (WrapMode::Clamp, 2.0, true, ImageFilter::Point)
     );
     assert!(matches!(t.mapping, Mapping2D::Uv(m) if m.su == 3.0));
-    let FloatTexture::Image(t) = clean(float_in(
+    let FloatTextureDesc::Image(t) = clean(float_in(
         r#"Texture "t" "float" "imagemap" "string filename" "grey.png" "string wrap" "black""#,
         &dir,
         &names,

@@ -1,6 +1,6 @@
 //! The `bilerp` texture: bilinear interpolation of four corner values.
 
-use super::{At, TextureKind};
+use super::{At, PlainKind, TextureKind};
 use crate::math::Vec2;
 use crate::texture::Mapping2D;
 use std::ops::{Add, Mul};
@@ -33,6 +33,9 @@ impl<V: Copy + Mul<f32, Output = V> + Add<Output = V>> TextureKind<V> for Bilerp
         bilerp(self.mapping.map(at.tc), v[0], v[1], v[2], v[3])
     }
 }
+
+/// Its description is what the renderer reads.
+impl<V: Clone> PlainKind for BilerpTexture<V> {}
 
 #[cfg(test)]
 mod tests {

@@ -1,7 +1,7 @@
 //! The `checkerboard` texture: two parameters alternating on a grid, of the mapped (s, t)
 //! (`dimension` 2) or of texture space (`dimension` 3).
 
-use super::{Combining, Inputs};
+use super::{Combining, Inputs, PlainKind};
 use crate::texture::{Mapping2D, Mapping3D, TexCoord};
 
 /// The 2D checkerboard, plain data; `T` is [`crate::texture::FloatTex`] or
@@ -71,3 +71,9 @@ impl<T: Copy> Combining<T> for Checkerboard3DTexture<T> {
         f(self.tex1) || f(self.tex2)
     }
 }
+
+/// Its description is what the renderer reads.
+impl<T: Clone> PlainKind for CheckerboardTexture<T> {}
+
+/// Its description is what the renderer reads.
+impl<T: Clone> PlainKind for Checkerboard3DTexture<T> {}

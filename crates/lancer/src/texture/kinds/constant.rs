@@ -1,6 +1,6 @@
 //! The `constant` texture: the same value everywhere.
 
-use super::{At, TextureKind};
+use super::{At, PlainKind, TextureKind};
 use crate::math::Rgb;
 
 impl TextureKind<f32> for f32 {
@@ -16,3 +16,9 @@ impl TextureKind<Rgb> for Rgb {
         *self
     }
 }
+
+/// A constant is what the renderer reads.
+impl PlainKind for f32 {}
+
+/// A constant is what the renderer reads.
+impl PlainKind for Rgb {}

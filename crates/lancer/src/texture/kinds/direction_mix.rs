@@ -1,7 +1,7 @@
 //! The `directionmix` texture: two parameters blended by how squarely the surface faces a
 //! direction.
 
-use super::{Combining, Inputs};
+use super::{Combining, Inputs, PlainKind};
 use crate::math::Vec3;
 
 /// `a·tex1 + (1 − a)·tex2` with `a = |n·dir|` (n the geometric normal), plain data; `T` is
@@ -29,3 +29,6 @@ impl<T: Copy> Combining<T> for DirectionMixTexture<T> {
         f(self.tex1) || f(self.tex2)
     }
 }
+
+/// Its description is what the renderer reads.
+impl<T: Clone> PlainKind for DirectionMixTexture<T> {}

@@ -1,6 +1,6 @@
 //! The `dots` texture: polka dots of one parameter on a background of another.
 
-use super::{Combining, Inputs};
+use super::{Combining, Inputs, PlainKind};
 use crate::math::noise::noise;
 use crate::math::{Vec2, Vec3};
 use crate::texture::Mapping2D;
@@ -48,6 +48,9 @@ impl<T: Copy> Combining<T> for DotsTexture<T> {
         f(self.dot) || f(self.background)
     }
 }
+
+/// Its description is what the renderer reads.
+impl<T: Clone> PlainKind for DotsTexture<T> {}
 
 #[cfg(test)]
 mod tests {

@@ -1,6 +1,6 @@
 //! The `fbm` texture: fractional Brownian motion in texture space.
 
-use super::{At, TextureKind};
+use super::{At, PlainKind, TextureKind};
 use crate::math::noise::fbm;
 use crate::texture::Mapping3D;
 
@@ -23,3 +23,6 @@ impl TextureKind<f32> for FbmTexture {
         fbm(p, dpdx, dpdy, self.omega, self.octaves)
     }
 }
+
+/// Its description is what the renderer reads.
+impl PlainKind for FbmTexture {}

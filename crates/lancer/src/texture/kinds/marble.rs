@@ -1,6 +1,6 @@
 //! The `marble` texture: veins of a colour spline perturbed by noise, in texture space.
 
-use super::{At, TextureKind};
+use super::{At, PlainKind, TextureKind};
 use crate::math::noise::fbm;
 use crate::math::{Rgb, Vec3};
 use crate::texture::Mapping3D;
@@ -67,6 +67,9 @@ impl TextureKind<Rgb> for MarbleTexture {
         )
     }
 }
+
+/// Its description is what the renderer reads.
+impl PlainKind for MarbleTexture {}
 
 #[cfg(test)]
 mod tests {

@@ -1,6 +1,6 @@
 //! The `mix` texture: a linear blend of two parameters.
 
-use super::{Combining, Inputs};
+use super::{Combining, Inputs, PlainKind};
 use crate::texture::FloatTex;
 
 /// `(1 − amount)·tex1 + amount·tex2`, plain data; `T` is [`FloatTex`] or
@@ -28,3 +28,6 @@ impl<T: Copy> Combining<T> for MixTexture<T> {
         f(self.tex1) || f(self.tex2)
     }
 }
+
+/// Its description is what the renderer reads.
+impl<T: Clone> PlainKind for MixTexture<T> {}

@@ -1,6 +1,6 @@
 //! The `scale` texture: a parameter times a float parameter.
 
-use super::{Combining, Inputs};
+use super::{Combining, Inputs, PlainKind};
 use crate::texture::FloatTex;
 
 /// `tex · scale`, plain data; `T` is [`FloatTex`] or [`crate::texture::SpectrumTex`].
@@ -29,3 +29,6 @@ impl<T: Copy> Combining<T> for ScaleTexture<T> {
         f(self.tex)
     }
 }
+
+/// Its description is what the renderer reads.
+impl<T: Clone> PlainKind for ScaleTexture<T> {}

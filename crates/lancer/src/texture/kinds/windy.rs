@@ -1,6 +1,6 @@
 //! The `windy` texture: wind-swept waves in texture space.
 
-use super::{At, TextureKind};
+use super::{At, PlainKind, TextureKind};
 use crate::math::Vec3;
 use crate::math::noise::fbm;
 use crate::texture::Mapping3D;
@@ -27,6 +27,9 @@ impl TextureKind<f32> for WindyTexture {
         windy(self.mapping.map(at.tc))
     }
 }
+
+/// Its description is what the renderer reads.
+impl PlainKind for WindyTexture {}
 
 #[cfg(test)]
 mod tests {

@@ -1,6 +1,6 @@
 //! The `wrinkled` texture: turbulence in texture space.
 
-use super::{At, TextureKind};
+use super::{At, PlainKind, TextureKind};
 use crate::math::noise::turbulence;
 use crate::texture::Mapping3D;
 
@@ -23,3 +23,6 @@ impl TextureKind<f32> for WrinkledTexture {
         turbulence(p, dpdx, dpdy, self.omega, self.octaves)
     }
 }
+
+/// Its description is what the renderer reads.
+impl PlainKind for WrinkledTexture {}
