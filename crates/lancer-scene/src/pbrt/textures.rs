@@ -317,8 +317,8 @@ fn mapping_2d(r: &Reader, ctm: &Transform) -> Result<Mapping2D, SceneError> {
 
 /// pbrt-v4's `imagemap`: the image's texels (which the scene build makes a MIP pyramid of),
 /// its wrap mode and filter (`filter`, default `bilinear` as in pbrt-v4; `maxanisotropy` for
-/// `ewa`), `scale`, `invert` and the 2D mapping. Float textures read the value pbrt-v4's MIPMap gives (see
-/// [`crate::image_read::DecodedImage::float_image`]).
+/// `ewa`), `scale`, `invert` and the 2D mapping. Float textures read the value pbrt-v4's
+/// MIPMap gives (see [`crate::image_read::DecodedImage::float_image`]).
 fn image_texture(
     r: &Reader,
     ctm: &Transform,
