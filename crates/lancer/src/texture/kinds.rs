@@ -229,7 +229,9 @@ macro_rules! texture_family {
         }
 
         $(#[$fdoc])*
-        #[doc = concat!("As the renderer reads it, built from a [`", stringify!($desc_family), "`].")]
+        #[doc = concat!(
+            "As the renderer reads it, built from a [`", stringify!($desc_family), "`]."
+        )]
         #[derive(Clone, Debug)]
         pub enum $family {
             $($(#[$doc])* $kind(<$ty as TextureDescKind>::Built),)*
@@ -285,7 +287,8 @@ macro_rules! texture_family {
             pub fn has_measured(&self, ev: &TextureEval) -> bool {
                 match self {
                     $($family::$kind(k) => {
-                        <<$ty as TextureDescKind>::Built as TextureKind<$value>>::has_measured(k, ev)
+                        type Built = <$ty as TextureDescKind>::Built;
+                        <Built as TextureKind<$value>>::has_measured(k, ev)
                     })*
                 }
             }
