@@ -20,6 +20,28 @@ pub use rng::Pcg32;
 pub use sampler::{Sampler, SamplerKind};
 pub use warp::*;
 
+/// Where an estimator takes its random numbers, one dimension after the other: a pixel
+/// sample's [`Sampler`], or the primary-sample vector of a Markov chain (`mlt`), which
+/// bidirectional path tracing's subpaths and connections draw from alike.
+pub trait SampleSource {
+    /// The next dimension, in [0, 1).
+    fn get_1d(&mut self) -> f32;
+    /// The next two dimensions.
+    fn get_2d(&mut self) -> crate::math::Vec2;
+}
+
+impl SampleSource for Sampler {
+    #[inline(always)]
+    fn get_1d(&mut self) -> f32 {
+        Sampler::get_1d(self)
+    }
+
+    #[inline(always)]
+    fn get_2d(&mut self) -> crate::math::Vec2 {
+        Sampler::get_2d(self)
+    }
+}
+
 /// Power heuristic (β = 2) weight of a sample taken with density `f` against another strategy
 /// of density `g`: w = f² / (f² + g²) (Veach 1997). An infinite `f` (a delta strategy) gets
 /// all the weight.

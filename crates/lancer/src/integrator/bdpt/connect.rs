@@ -7,7 +7,7 @@ use crate::light::{AreaLight, Emitter, LightSampleContext};
 use crate::material::TransportMode;
 use crate::math::{SampledSpectrum, Vec2, Vec3};
 use crate::ray::Ray;
-use crate::sampling::Sampler;
+use crate::sampling::SampleSource;
 use crate::scene::Scene;
 use crate::spectrum::sampled::SampledWavelengths;
 
@@ -87,14 +87,14 @@ fn light_normal(scene: &Scene, i: usize, p: Vec3, from: &Vertex) -> Vec3 {
 /// subpath joined to t of the camera subpath (s = 0: the camera subpath alone, ending on a
 /// light; s = 1 or t = 1: a fresh point on a light or the lens sampled for the other side).
 #[allow(clippy::too_many_arguments)]
-pub(super) fn connect(
+pub(super) fn connect<S: SampleSource + ?Sized>(
     scene: &Scene,
     lambda: Option<&SampledWavelengths>,
     light: &mut [Vertex],
     camera: &mut [Vertex],
     s: usize,
     t: usize,
-    sampler: &mut Sampler,
+    sampler: &mut S,
 ) -> Connection {
     let none = Connection {
         l: SampledSpectrum::ZERO,

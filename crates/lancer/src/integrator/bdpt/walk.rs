@@ -8,7 +8,7 @@ use super::vertex::{Kind, Vertex, infinite_light_density};
 use crate::material::TransportMode;
 use crate::math::{SampledSpectrum, Vec3};
 use crate::ray::Ray;
-use crate::sampling::Sampler;
+use crate::sampling::SampleSource;
 use crate::scene::Scene;
 use crate::spectrum::hero::HERO_ONLY;
 use crate::spectrum::sampled::SampledWavelengths;
@@ -27,10 +27,10 @@ pub(super) struct Walk<'a> {
 impl Walk<'_> {
     /// The camera subpath of at most `max_vertices` vertices for camera ray `ray`, into `path`
     /// (cleared first): the lens, then the surfaces the path meets.
-    pub fn camera_subpath(
+    pub fn camera_subpath<S: SampleSource + ?Sized>(
         &mut self,
         ray: &Ray,
-        sampler: &mut Sampler,
+        sampler: &mut S,
         max_vertices: usize,
         path: &mut Vec<Vertex>,
     ) {
@@ -60,9 +60,9 @@ impl Walk<'_> {
 
     /// The light subpath of at most `max_vertices` vertices into `path` (cleared first): a
     /// light chosen by power, a ray leaving it, the surfaces that ray meets.
-    pub fn light_subpath(
+    pub fn light_subpath<S: SampleSource + ?Sized>(
         &mut self,
-        sampler: &mut Sampler,
+        sampler: &mut S,
         max_vertices: usize,
         path: &mut Vec<Vertex>,
     ) {
@@ -119,10 +119,10 @@ impl Walk<'_> {
     /// `pdf` is the density per unit solid angle of the ray's direction. Returns how many
     /// were added. No Russian roulette, as in pbrt-v4's bdpt.
     #[allow(clippy::too_many_arguments)]
-    fn random_walk(
+    fn random_walk<S: SampleSource + ?Sized>(
         &mut self,
         mut ray: Ray,
-        sampler: &mut Sampler,
+        sampler: &mut S,
         mut beta: SampledSpectrum,
         pdf: f32,
         max_vertices: usize,
