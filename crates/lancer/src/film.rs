@@ -219,11 +219,12 @@ impl Film {
 
     /// What the splat sums are divided by: the film's camera samples per pixel n (the most
     /// any of its pixels has taken; every pixel of a finished render has the same), as
-    /// pbrt-v4's `splatScale` = 1/spp. `None` without splats or samples.
+    /// pbrt-v4's `splatScale` = 1/spp; 1 for a film of splats alone (`mlt`'s, which takes no
+    /// camera sample and whose splats carry their own normalisation). `None` without splats.
     pub fn splat_divisor(&self) -> Option<f64> {
         self.splats.as_ref()?;
         let n = self.pixels.iter().map(|p| p.samples).max().unwrap_or(0);
-        (n > 0).then_some(n as f64)
+        Some(n.max(1) as f64)
     }
 
     /// The colour of the film's pixel `i` (row-major over `bounds`), before the film's scale:

@@ -21,6 +21,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 pub use crate::counters::{count_ray, rays_traced};
 
+mod mlt;
+
 /// What to render.
 #[derive(Clone, Debug)]
 pub struct RenderSettings {
@@ -31,7 +33,8 @@ pub struct RenderSettings {
     pub splat_bounds: PixelBounds,
     /// Sample indices to take in each pixel: `[start, end)`.
     pub samples: std::ops::Range<u32>,
-    /// Samples per pixel of the whole render (the sampler's point set depends on it).
+    /// Samples per pixel of the whole render (the sampler's point set depends on it); for
+    /// `mlt`, its chains.
     pub spp: u32,
     /// Seed.
     pub seed: u64,
@@ -61,7 +64,8 @@ pub const DEFAULT_TILE_SIZE: u32 = 16;
 impl RenderSettings {
     /// The settings a scene description asks for: the pixels of its film's pixel bounds or
     /// crop window ([`crate::scene::desc::FilmDesc::render_bounds`]; the whole image by
-    /// default), every sample index `0..spp`, the description's sampler, seed, filter,
+    /// default), every sample index `0..spp` (for `mlt`, every chain:
+    /// [`Integrator::sample_indices`]), the description's sampler, seed, filter,
     /// integrator and `maxcomponentvalue`, tiles of [`DEFAULT_TILE_SIZE`] pixels, spectral
     /// rendering (lancer reads pbrt-v4 scenes, and pbrt-v4 renders spectrally). Callers that
     /// render a part of the image or of the samples, or in RGB mode, change those fields
@@ -70,8 +74,8 @@ impl RenderSettings {
         RenderSettings {
             bounds: desc.film.render_bounds(),
             splat_bounds: desc.film.render_bounds(),
-            samples: 0..desc.sampler.spp,
-            spp: desc.sampler.spp,
+            samples: 0..desc.integrator.sample_indices(desc.sampler.spp),
+            spp: desc.integrator.sample_indices(desc.sampler.spp),
             seed: desc.sampler.seed,
             sampler: desc
                 .sampler
@@ -163,6 +167,12 @@ pub trait SampleIntegrator: Sync {
     /// wavelengths in spectral mode.
     fn computes_radiance(&self) -> bool;
 
+    /// The `mlt` settings when the integrator is Metropolis light transport, which renders
+    /// Markov chains rather than camera samples (its units of work are ranges of chains).
+    fn mlt(&self) -> Option<crate::integrator::mlt::MltOptions> {
+        None
+    }
+
     /// The radiance arriving along the camera ray `ray` (at `lambda` in spectral mode, else
     /// RGB in the first three values), drawing from `sampler` after the camera's dimensions.
     fn li(
@@ -184,6 +194,13 @@ impl SampleIntegrator for Integrator {
     #[inline(always)]
     fn computes_radiance(&self) -> bool {
         Integrator::computes_radiance(self)
+    }
+
+    fn mlt(&self) -> Option<crate::integrator::mlt::MltOptions> {
+        match self {
+            Integrator::Mlt(o) => Some(*o),
+            _ => None,
+        }
     }
 
     #[inline(always)]
@@ -235,6 +252,31 @@ impl Splats<'_> {
             (if m > max { l * (max / m) } else { l }, lambda)
         });
         film.add_splat(p_film, rgb, spectrum);
+    }
+
+    /// [`Splats::add_splat`] of `l` whose film colour is `rgb` (already computed), scaled by
+    /// `scale` after the `maxcomponentvalue` clamp: `mlt` clamps its splats L/c as pbrt-v4
+    /// does and scales them by b/`mutationsperpixel`, which pbrt-v4 applies to the image.
+    pub fn add_splat_scaled(
+        &self,
+        p_film: Vec2,
+        l: SampledSpectrum,
+        rgb: Rgb,
+        lambda: Option<&SampledWavelengths>,
+        scale: f32,
+    ) {
+        let Some(film) = &self.film else { return };
+        if !l.is_finite() || !rgb.is_finite() {
+            return;
+        }
+        let max = self.max_component_value;
+        let m = rgb.max_element();
+        let rgb = if m > max { rgb * (max / m) } else { rgb };
+        let spectrum = lambda.map(|lambda| {
+            let m = l.max_element();
+            (if m > max { l * (max / m) } else { l } * scale, lambda)
+        });
+        film.add_splat(p_film, rgb * scale, spectrum);
     }
 }
 
@@ -529,6 +571,9 @@ pub fn render_units_with<I: SampleIntegrator + ?Sized>(
     on_unit: UnitHook<'_>,
     stop: &(dyn Fn() -> bool + Sync),
 ) -> RenderStats {
+    if let Some(options) = integrator.mlt() {
+        return mlt::render_chains(scene, settings, &options, film, units, done, on_unit, stop);
+    }
     let kind = film.kind();
     // One plane shared by the threads, only for an integrator that splats.
     let plane = integrator

@@ -52,6 +52,9 @@ pub enum Integrator {
         /// pbrt-v4's `visualizeweights`: one image per strategy, weighted.
         visualize_weights: bool,
     },
+    /// Metropolis light transport over bdpt's strategies in primary sample space (pbrt-v4's
+    /// `mlt`): Markov chains instead of pixel samples ([`crate::integrator::mlt`]).
+    Mlt(MltOptions),
     /// pbrt-v4's `simplepath`: path tracing without MIS, light sampling and BSDF sampling
     /// each optional.
     SimplePath {
@@ -85,7 +88,7 @@ impl Default for Integrator {
 
 impl Integrator {
     /// The pbrt-v4 name of this integrator (`Integrator "…"`): `path`, `volpath`, `whitted`,
-    /// `ambientocclusion`, `lightpath`, `bdpt`, `simplepath`, `randomwalk`, and lancer's debug
+    /// `ambientocclusion`, `lightpath`, `bdpt`, `mlt`, `simplepath`, `randomwalk`, and lancer's debug
     /// views `normals` and `depth`.
     pub fn pbrt_name(&self) -> &'static str {
         match self {
@@ -95,6 +98,7 @@ impl Integrator {
             Integrator::AmbientOcclusion { .. } => "ambientocclusion",
             Integrator::LightPath { .. } => "lightpath",
             Integrator::Bdpt { .. } => "bdpt",
+            Integrator::Mlt(_) => "mlt",
             Integrator::SimplePath { .. } => "simplepath",
             Integrator::RandomWalk { .. } => "randomwalk",
             Integrator::Normals => "normals",
@@ -112,15 +116,50 @@ impl Integrator {
                 | Integrator::VolPath { .. }
                 | Integrator::LightPath { .. }
                 | Integrator::Bdpt { .. }
+                | Integrator::Mlt(_)
                 | Integrator::SimplePath { .. }
                 | Integrator::RandomWalk { .. }
         )
     }
 
     /// True for the integrators that trace light paths and splat what they carry anywhere on
-    /// the film ([`Integrator::li_splatting`]): `lightpath` and `bdpt`. They need a
-    /// perspective camera ([`crate::camera::Camera::light_path_support`]).
+    /// the film ([`Integrator::li_splatting`]): `lightpath`, `bdpt` and `mlt` (whose image
+    /// is splats alone). They need a perspective camera
+    /// ([`crate::camera::Camera::light_path_support`]).
     pub fn splats(&self) -> bool {
-        matches!(self, Integrator::LightPath { .. } | Integrator::Bdpt { .. })
+        matches!(
+            self,
+            Integrator::LightPath { .. } | Integrator::Bdpt { .. } | Integrator::Mlt(_)
+        )
     }
+
+    /// The length of a render's axis of sample indices: its samples per pixel `spp`, or for
+    /// `mlt`, whose units of work are Markov chains and not pixel samples, its chains (a
+    /// render's sample range, `--samples a..b` or a split by samples, is then a range of
+    /// chains).
+    pub fn sample_indices(&self, spp: u32) -> u32 {
+        match self {
+            Integrator::Mlt(o) => o.chains,
+            _ => spp,
+        }
+    }
+}
+
+/// The `mlt` settings of a render (pbrt-v4's parameters and defaults).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MltOptions {
+    /// Longest path, in bounces (`maxdepth`, 5).
+    pub max_depth: u32,
+    /// Bootstrap vectors per depth (`bootstrapsamples`, 100000).
+    pub bootstrap_samples: u32,
+    /// Markov chains (`chains`, 1000).
+    pub chains: u32,
+    /// Mutations per pixel of the film's sample bounds (`mutationsperpixel`, 100).
+    pub mutations_per_pixel: u32,
+    /// Probability of a large step (`largestepprobability`, 0.3).
+    pub large_step_probability: f32,
+    /// Deviation of a small step (`sigma`, 0.01).
+    pub sigma: f32,
+    /// As for bdpt (`regularize`, false).
+    pub regularize: bool,
 }

@@ -22,6 +22,7 @@ mod debug;
 mod desc;
 mod emission;
 pub mod lightpath;
+pub mod mlt;
 mod path;
 mod path_spectra;
 mod simple;
@@ -76,6 +77,20 @@ impl Integrator {
                 bdpt::BdptOptions {
                     max_depth,
                     regularize,
+                },
+                splat,
+                None,
+            ),
+            // Outside its chains (which `crate::render` runs over a whole film), mlt's
+            // estimate for one camera ray is the bdpt estimate it samples from.
+            Integrator::Mlt(o) => bdpt::li(
+                scene,
+                ray,
+                sampler,
+                lambda,
+                bdpt::BdptOptions {
+                    max_depth: o.max_depth,
+                    regularize: o.regularize,
                 },
                 splat,
                 None,
@@ -151,7 +166,7 @@ impl Integrator {
             // Without a film to splat into, the light-path integrators give only what reaches
             // the camera ray's own pixel (bdpt's t ≥ 2 strategies, nothing for lightpath): a
             // film renders them through `li_splatting`.
-            Integrator::LightPath { .. } | Integrator::Bdpt { .. } => {
+            Integrator::LightPath { .. } | Integrator::Bdpt { .. } | Integrator::Mlt(_) => {
                 self.li_splatting(scene, ray, sampler, lambda, &mut |_, _| {})
             }
             // The debug views are RGB quantities, as lanes (r, g, b, b).

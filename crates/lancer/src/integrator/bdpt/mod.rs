@@ -18,7 +18,7 @@ mod tests;
 use super::Splat;
 use crate::math::{SampledSpectrum, Vec2};
 use crate::ray::Ray;
-use crate::sampling::Sampler;
+use crate::sampling::{SampleSource, Sampler};
 use crate::scene::Scene;
 use crate::spectrum::sampled::SampledWavelengths;
 use connect::connect;
@@ -97,5 +97,67 @@ pub fn li(
             }
         }
         l
+    })
+}
+
+/// What one strategy of a bidirectional path gives: its contribution, weighted by MIS against
+/// the path's other strategies, and where a t = 1 strategy lands on the film (`None`: the
+/// camera ray's own raster point).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct StrategySample {
+    /// MIS-weighted contribution, in the lanes of the render (times the hero-only weight of a
+    /// path a dispersive surface cut to its hero wavelength).
+    pub l: SampledSpectrum,
+    /// Raster point of a t = 1 strategy.
+    pub p_raster: Option<Vec2>,
+}
+
+/// Strategy (s, t) alone over subpaths of exactly `s` light and `t` camera vertices (the
+/// camera subpath leaving along `ray`), as bdpt computes it in [`li`] (pbrt-v4's MLT `L` once
+/// it has chosen the strategy): the camera subpath draws from `sampler`, then
+/// `next_stream(sampler)` is called, the light subpath draws, `next_stream` again, and the
+/// connection draws. Zero when either subpath ends early.
+#[allow(clippy::too_many_arguments)] // the strategy and what it is evaluated with
+pub(crate) fn strategy<S: SampleSource + ?Sized>(
+    scene: &Scene,
+    ray: &Ray,
+    lambda: Option<&SampledWavelengths>,
+    regularize: bool,
+    s: usize,
+    t: usize,
+    sampler: &mut S,
+    next_stream: &mut dyn FnMut(&mut S),
+) -> StrategySample {
+    let none = StrategySample {
+        l: SampledSpectrum::ZERO,
+        p_raster: None,
+    };
+    if t == 0 || (s == 1 && t == 1) {
+        return none;
+    }
+    PATHS.with(|paths| {
+        let (camera, light) = &mut *paths.borrow_mut();
+        let mut walk = Walk {
+            scene,
+            lambda: lambda.copied(),
+            regularize,
+        };
+        walk.camera_subpath(ray, sampler, t, camera);
+        if camera.len() != t {
+            return none;
+        }
+        next_stream(sampler);
+        walk.light_subpath(sampler, s, light);
+        if light.len() != s {
+            return none;
+        }
+        next_stream(sampler);
+        let weight = walk.spectral_weight();
+        let lambda = walk.lambda;
+        let c = connect(scene, lambda.as_ref(), light, camera, s, t, sampler);
+        StrategySample {
+            l: c.l * weight,
+            p_raster: c.p_raster,
+        }
     })
 }
