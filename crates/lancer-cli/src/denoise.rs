@@ -49,6 +49,13 @@ pub fn prepare(
              lancer merge",
         ));
     }
+    if let lancer::integrator::Integrator::Mlt(_) = desc.integrator {
+        return Err(CliError::input(
+            "--denoise gathers its albedo and normal images from camera samples, which \
+             integrator \"mlt\" does not take (its Markov chains only splat): render it \
+             without --denoise",
+        ));
+    }
     if desc.film.gbuffer.is_some() || desc.film.spectral.is_some() {
         return Err(CliError::input(
             "--denoise writes a denoised RGB image: use it with Film \"rgb\" (this scene's \

@@ -78,6 +78,15 @@ fn integrator_json(i: &Integrator) -> Value {
             v["visualizestrategies"] = json!(visualize_strategies);
             v["visualizeweights"] = json!(visualize_weights);
         }
+        Integrator::Mlt(o) => {
+            v["maxdepth"] = json!(o.max_depth);
+            v["bootstrapsamples"] = json!(o.bootstrap_samples);
+            v["chains"] = json!(o.chains);
+            v["mutationsperpixel"] = json!(o.mutations_per_pixel);
+            v["largestepprobability"] = json!(o.large_step_probability);
+            v["sigma"] = json!(o.sigma);
+            v["regularize"] = json!(o.regularize);
+        }
         Integrator::Normals | Integrator::Depth => {}
     }
     v

@@ -185,11 +185,13 @@ pub fn plan(
     if desc.sampler.spp == 0 {
         return Err(CliError::input("samples per pixel must be at least 1"));
     }
+    let split = args.split.map(|s| (s, args.split_by));
+    split::check_split(desc, split)?;
     let pixels = split::plan(
         render_bounds,
-        desc.sampler.spp,
+        desc.integrator.sample_indices(desc.sampler.spp),
         args.samples.clone(),
-        args.split.map(|s| (s, args.split_by)),
+        split,
     )?;
     if pixels.is_part && ImageFormat::from_path(&output) != Some(ImageFormat::Exr) {
         return Err(CliError::input(format!(

@@ -239,6 +239,10 @@ pub fn apply_overrides(desc: &mut SceneDesc, args: &RenderArgs) -> Result<(), Cl
     let (cropwindow, pixelbounds) = (cropwindow(args)?, pixelbounds(args)?);
     if let Some(spp) = args.spp {
         desc.sampler.spp = spp;
+        // pbrt-v4's --spp sets mlt's mutations per pixel (mlt takes no pixel samples).
+        if let lancer::integrator::Integrator::Mlt(o) = &mut desc.integrator {
+            o.mutations_per_pixel = spp;
+        }
     }
     if let Some(seed) = args.seed {
         desc.sampler.seed = seed;

@@ -164,17 +164,32 @@ pub struct Plan {
 
 impl Plan {
     /// What the part (or checkpoint) of this plan of the render `desc` records, in spectral
-    /// mode or not: the scene hash ([`scene_hash_in_mode`]), seed, spp, this plan's sample
+    /// mode or not: the scene hash ([`scene_hash_in_mode`]), seed, spp (for `mlt`, its
+    /// chains: `Integrator::sample_indices`), this plan's sample
     /// range, the whole render's pixels and the film's scale.
     pub fn part_meta(&self, desc: &SceneDesc, spectral: bool) -> PartMeta {
         PartMeta {
             scene_hash: scene_hash_in_mode(desc, spectral),
             seed: desc.sampler.seed,
-            spp: desc.sampler.spp,
+            spp: desc.integrator.sample_indices(desc.sampler.spp),
             samples: self.samples.clone(),
             render_bounds: self.render_bounds,
             scale: desc.film.scale,
         }
+    }
+}
+
+/// Refuses a split of an `mlt` render by tiles: its chains splat over the whole film, so a
+/// part of it is a range of chains (`--split-by samples`), never a band of pixels.
+pub fn check_split(desc: &SceneDesc, split: Option<(Split, SplitBy)>) -> Result<(), CliError> {
+    match (&desc.integrator, split) {
+        (lancer::integrator::Integrator::Mlt(_), Some((_, SplitBy::Tiles))) => {
+            Err(CliError::input(
+                "integrator \"mlt\" splats every chain over the whole image: split it by chains \
+                 with --split-by samples (its sample indices are its chains), not by tiles",
+            ))
+        }
+        _ => Ok(()),
     }
 }
 
@@ -327,5 +342,34 @@ mod tests {
         e.film.filename = Some("spectral.exr".into());
         assert_eq!(scene_hash_in_mode(&e, true), scene_hash_in_mode(&a, true));
         assert_ne!(scene_hash_in_mode(&b, true), scene_hash_in_mode(&a, true));
+    }
+
+    #[test]
+    fn an_mlt_render_splits_into_ranges_of_chains_only() {
+        use lancer::integrator::Integrator;
+        use lancer::integrator::mlt::MltOptions;
+        let mut d = SceneDesc::default();
+        d.integrator = Integrator::Mlt(MltOptions {
+            max_depth: 5,
+            bootstrap_samples: 100,
+            chains: 40,
+            mutations_per_pixel: 8,
+            large_step_probability: 0.3,
+            sigma: 0.01,
+            regularize: false,
+        });
+        let split = Split { index: 1, count: 4 };
+        let e = check_split(&d, Some((split, SplitBy::Tiles))).unwrap_err();
+        assert!(e.message.contains("--split-by samples"), "{}", e.message);
+        check_split(&d, Some((split, SplitBy::Samples))).unwrap();
+        check_split(&d, None).unwrap();
+        // Its sample indices are its 40 chains: part 1 of 4 takes chains 10..20, and the part
+        // records 40 as its "spp", so that merging checks the chains are all there.
+        let n = d.integrator.sample_indices(d.sampler.spp);
+        let p = plan(B, n, None, Some((split, SplitBy::Samples))).unwrap();
+        assert_eq!(p.samples, 10..20);
+        assert_eq!(p.part_meta(&d, true).spp, 40);
+        d.integrator = Integrator::default();
+        check_split(&d, Some((split, SplitBy::Tiles))).unwrap();
     }
 }

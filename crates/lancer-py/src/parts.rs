@@ -61,8 +61,14 @@ pub fn render_part<'py>(
         index: part,
         count: parts,
     };
-    let plan = split::plan(render_bounds, desc.sampler.spp, None, Some((split, by)))
-        .map_err(|e| PyValueError::new_err(e.message))?;
+    split::check_split(&desc, Some((split, by))).map_err(|e| PyValueError::new_err(e.message))?;
+    let plan = split::plan(
+        render_bounds,
+        desc.integrator.sample_indices(desc.sampler.spp),
+        None,
+        Some((split, by)),
+    )
+    .map_err(|e| PyValueError::new_err(e.message))?;
     settings.bounds = plan.bounds;
     settings.samples = plan.samples.clone();
     let film = render_film(py, this, &desc, &settings, threads, false)?;

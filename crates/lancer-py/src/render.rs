@@ -56,6 +56,10 @@ pub fn with_overrides(
             return Err(PyValueError::new_err("spp must be at least 1"));
         }
         d.sampler.spp = spp;
+        // As `lancer render --spp`: mlt's mutations per pixel.
+        if let lancer::integrator::Integrator::Mlt(o) = &mut d.integrator {
+            o.mutations_per_pixel = spp;
+        }
     }
     if d.sampler.spp == 0 {
         return Err(PyValueError::new_err(

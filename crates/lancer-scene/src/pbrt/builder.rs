@@ -752,7 +752,7 @@ impl Builder {
 }
 
 impl Builder {
-    /// lancer's `bdpt` and `lightpath` do not sample participating media yet: a scene with
+    /// lancer's `bdpt`, `lightpath` and `mlt` do not sample participating media yet: a scene with
     /// media that asks for them is rendered with `volpath` (same depth), with a warning, as
     /// before they existed, rather than as if its media were not there.
     fn volumes_need_volpath(&mut self, end: &Location) {
@@ -767,6 +767,7 @@ impl Builder {
                 ..
             } => ("bdpt", max_depth, regularize),
             Integrator::LightPath { max_depth } => ("lightpath", max_depth, false),
+            Integrator::Mlt(o) => ("mlt", o.max_depth, o.regularize),
             _ => return,
         };
         self.warn(

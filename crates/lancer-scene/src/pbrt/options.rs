@@ -326,7 +326,37 @@ pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, 
             sample_bsdf: p.bool("samplebsdf", true)?,
         },
         "randomwalk" => Integrator::RandomWalk { max_depth },
-        "mlt" | "sppm" | "simplevolpath" | "aov" => {
+        "mlt" => {
+            let o = lancer::integrator::mlt::MltOptions {
+                max_depth,
+                bootstrap_samples: p.int_in("bootstrapsamples", 100_000, 1..=1 << 24)? as u32,
+                chains: p.int_in("chains", 1000, 1..=1 << 24)? as u32,
+                mutations_per_pixel: p.int_in("mutationsperpixel", 100, 1..=1 << 24)? as u32,
+                large_step_probability: p.float_checked(
+                    "largestepprobability",
+                    0.3,
+                    "in [0, 1]",
+                    |v| (0.0..=1.0).contains(&v),
+                )?,
+                sigma: p.float_checked("sigma", 0.01, "finite and not negative", |v| {
+                    v.is_finite() && v >= 0.0
+                })?,
+                regularize: p.bool("regularize", false)?,
+            };
+            // The bootstrap keeps one weight per vector: bootstrapsamples × (maxdepth + 1).
+            let vectors = o.bootstrap_samples as u64 * (o.max_depth as u64 + 1);
+            if vectors > 1 << 28 {
+                return Err(p.error_at(
+                    "bootstrapsamples",
+                    format!(
+                        "integrator \"mlt\": \"bootstrapsamples\" × (\"maxdepth\" + 1) = {vectors} \
+                     bootstrap paths, more than the 268435456 lancer keeps"
+                    ),
+                ));
+            }
+            Integrator::Mlt(o)
+        }
+        "sppm" | "simplevolpath" | "aov" => {
             return Ok(Fallback::instead(
                 path()?,
                 format!(
@@ -864,6 +894,56 @@ mod tests {
         assert_eq!(
             error("Integrator \"path\"\n  \"integer maxdepth\" -1", integrator),
             "t.pbrt:2:3: \"integer maxdepth\" must be between 0 and 100000, not -1"
+        );
+    }
+
+    #[test]
+    fn mlt_reads_pbrts_parameters_and_defaults() {
+        use lancer::integrator::mlt::MltOptions;
+        assert_eq!(
+            clean(r#"Integrator "mlt""#, integrator),
+            Integrator::Mlt(MltOptions {
+                max_depth: 5,
+                bootstrap_samples: 100_000,
+                chains: 1000,
+                mutations_per_pixel: 100,
+                large_step_probability: 0.3,
+                sigma: 0.01,
+                regularize: false,
+            })
+        );
+        assert_eq!(
+            clean(
+                r#"Integrator "mlt" "integer maxdepth" 7 "integer bootstrapsamples" 10 "integer chains" 3 "integer mutationsperpixel" 64 "float largestepprobability" 0.5 "float sigma" 0.02 "bool regularize" true"#,
+                integrator
+            ),
+            Integrator::Mlt(MltOptions {
+                max_depth: 7,
+                bootstrap_samples: 10,
+                chains: 3,
+                mutations_per_pixel: 64,
+                large_step_probability: 0.5,
+                sigma: 0.02,
+                regularize: true,
+            })
+        );
+        assert_eq!(
+            error("Integrator \"mlt\"\n  \"integer chains\" 0", integrator),
+            "t.pbrt:2:3: \"integer chains\" must be between 1 and 16777216, not 0"
+        );
+        assert_eq!(
+            error(
+                "Integrator \"mlt\"\n  \"float largestepprobability\" 1.5",
+                integrator
+            ),
+            "t.pbrt:2:3: \"float largestepprobability\" must be in [0, 1], not 1.5"
+        );
+        assert!(
+            error(
+                "Integrator \"mlt\" \"integer maxdepth\" 10000\n  \"integer bootstrapsamples\" 1000000",
+                integrator
+            )
+            .starts_with("t.pbrt:2:3: integrator \"mlt\": \"bootstrapsamples\" × (\"maxdepth\" + 1)")
         );
     }
 }
