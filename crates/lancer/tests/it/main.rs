@@ -11,6 +11,7 @@ mod curves;
 mod hair_stats;
 mod light_paths;
 mod measured;
+mod mlt;
 mod quadrics;
 mod sampling_stats;
 mod sdf;
