@@ -83,8 +83,10 @@ fn integrator_json(i: &Integrator) -> Value {
             v["bootstrapsamples"] = json!(o.bootstrap_samples);
             v["chains"] = json!(o.chains);
             v["mutationsperpixel"] = json!(o.mutations_per_pixel);
-            v["largestepprobability"] = json!(o.large_step_probability);
-            v["sigma"] = json!(o.sigma);
+            // As written (0.3, not the f32's 0.30000001192092896).
+            let short = |v: f32| v.to_string().parse::<f64>().unwrap_or(f64::NAN);
+            v["largestepprobability"] = json!(short(o.large_step_probability));
+            v["sigma"] = json!(short(o.sigma));
             v["regularize"] = json!(o.regularize);
         }
         Integrator::Normals | Integrator::Depth => {}
@@ -447,5 +449,19 @@ mod tests {
         );
         let v = integrator_json(&Integrator::LightPath { max_depth: 5 });
         assert_eq!(integrator_text(&v), "lightpath (maxdepth 5)");
+        let v = integrator_json(&Integrator::Mlt(lancer::integrator::mlt::MltOptions {
+            max_depth: 7,
+            bootstrap_samples: 100_000,
+            chains: 1000,
+            mutations_per_pixel: 64,
+            large_step_probability: 0.3,
+            sigma: 0.01,
+            regularize: false,
+        }));
+        assert_eq!(
+            integrator_text(&v),
+            "mlt (bootstrapsamples 100000, chains 1000, largestepprobability 0.3, maxdepth 7, \
+             mutationsperpixel 64, regularize false, sigma 0.01)"
+        );
     }
 }

@@ -348,16 +348,18 @@ mod tests {
     fn an_mlt_render_splits_into_ranges_of_chains_only() {
         use lancer::integrator::Integrator;
         use lancer::integrator::mlt::MltOptions;
-        let mut d = SceneDesc::default();
-        d.integrator = Integrator::Mlt(MltOptions {
-            max_depth: 5,
-            bootstrap_samples: 100,
-            chains: 40,
-            mutations_per_pixel: 8,
-            large_step_probability: 0.3,
-            sigma: 0.01,
-            regularize: false,
-        });
+        let mut d = SceneDesc {
+            integrator: Integrator::Mlt(MltOptions {
+                max_depth: 5,
+                bootstrap_samples: 100,
+                chains: 40,
+                mutations_per_pixel: 8,
+                large_step_probability: 0.3,
+                sigma: 0.01,
+                regularize: false,
+            }),
+            ..SceneDesc::default()
+        };
         let split = Split { index: 1, count: 4 };
         let e = check_split(&d, Some((split, SplitBy::Tiles))).unwrap_err();
         assert!(e.message.contains("--split-by samples"), "{}", e.message);

@@ -77,7 +77,8 @@ pub(super) fn chain_mutations(i: u64, chains: u64, total: u64) -> u64 {
 /// Renders the chains of the units of `units` not marked in `done` into `film`'s splat plane
 /// (see the module's documentation). A unit's `samples` are a range of chains; units of the
 /// same range (the tiles of one pass, as [`super::work_units`] makes them) are that range
-/// once, all marked when it is done. `stop()` is asked before each range starts.
+/// once, all marked when it is done. `stop()` is asked before each range but the first
+/// starts.
 #[allow(clippy::too_many_arguments)] // render_units' inputs and the options
 pub(super) fn render_chains(
     scene: &Scene,
@@ -120,8 +121,10 @@ pub(super) fn render_chains(
     };
     let state = Mutex::new((&mut *film, &mut *done));
     let totals_m = Mutex::new(totals);
-    ranges.par_iter().for_each(|range| {
-        if stop() {
+    ranges.par_iter().enumerate().for_each(|(r, range)| {
+        // The first range runs whatever `stop()` says: each call then makes progress, even
+        // when a checkpoint falls due during the bootstrap (which every call computes anew).
+        if r > 0 && stop() {
             totals_m.lock().unwrap().cancelled = true;
             return;
         }
