@@ -326,7 +326,8 @@ pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, 
             sample_bsdf: p.bool("samplebsdf", true)?,
         },
         "randomwalk" => Integrator::RandomWalk { max_depth },
-        "mlt" | "sppm" | "simplevolpath" | "aov" => {
+        "simplevolpath" => Integrator::SimpleVolPath { max_depth },
+        "mlt" | "sppm" | "aov" => {
             return Ok(Fallback::instead(
                 path()?,
                 format!(
@@ -832,6 +833,17 @@ mod tests {
         assert_eq!(
             clean(r#"Integrator "lightpath" "integer maxdepth" 3"#, integrator),
             Integrator::LightPath { max_depth: 3 }
+        );
+        assert_eq!(
+            clean(r#"Integrator "simplevolpath""#, integrator),
+            Integrator::SimpleVolPath { max_depth: 5 }
+        );
+        assert_eq!(
+            clean(
+                r#"Integrator "simplevolpath" "integer maxdepth" 9"#,
+                integrator
+            ),
+            Integrator::SimpleVolPath { max_depth: 9 }
         );
         let (out, _) = convert(
             r#"Integrator "bdpt" "bool visualizestrategies" true"#,
