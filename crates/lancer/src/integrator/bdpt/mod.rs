@@ -29,7 +29,7 @@ mod media_tests;
 mod tests;
 
 use super::Splat;
-use super::volpath::{avg, hero_lane};
+use super::volpath::hero_lane;
 use crate::math::{SampledSpectrum, Vec2};
 use crate::ray::Ray;
 use crate::sampling::Sampler;
@@ -37,7 +37,8 @@ use crate::scene::Scene;
 use crate::spectrum::sampled::SampledWavelengths;
 use connect::{Segment, connect};
 use vertex::Vertex;
-use walk::Walk;
+use vertex::lane_balance;
+use walk::{PATHS, Walk};
 
 /// What `visualizestrategies` and `visualizeweights` see of each strategy (pbrt-v4 writes
 /// one image per (s, t)): called with s, t, where the strategy lands on the film (`None`:
@@ -51,13 +52,6 @@ pub struct BdptOptions {
     pub max_depth: u32,
     /// Roughen near-specular lobes after a non-specular bounce.
     pub regularize: bool,
-}
-
-thread_local! {
-    /// The subpaths' vertices, kept from one sample to the next on each thread (no
-    /// allocation per sample once they have grown).
-    static PATHS: std::cell::RefCell<(Vec<Vertex>, Vec<Vertex>)> =
-        const { std::cell::RefCell::new((Vec::new(), Vec::new())) };
 }
 
 /// Radiance along the camera ray `ray` by every strategy with t ≥ 2; the t = 1 strategies'
@@ -131,18 +125,4 @@ pub fn li(
 fn strategy_ratio(light: &[Vertex], camera: &[Vertex], s: usize, t: usize) -> SampledSpectrum {
     let r = camera[t - 1].r;
     if s > 0 { r * light[s - 1].r } else { r }
-}
-
-/// `l`, a contribution whose lanes' density ratios are `r`, over their average: the one-sample
-/// balance heuristic across lanes. Untouched when r is 1 (no medium).
-fn lane_balance(l: SampledSpectrum, r: SampledSpectrum) -> SampledSpectrum {
-    if r == SampledSpectrum::ONE {
-        return l;
-    }
-    let a = avg(r);
-    if a > 0.0 && a.is_finite() {
-        l / a
-    } else {
-        SampledSpectrum::ZERO
-    }
 }

@@ -8,9 +8,8 @@
 use super::super::Splat;
 use super::super::volpath::hero_lane;
 use super::connect::{Segment, to_camera};
-use super::vertex::Vertex;
-use super::walk::Walk;
-use super::{PATHS, lane_balance};
+use super::vertex::{Vertex, lane_balance};
+use super::walk::{PATHS, Walk};
 use crate::math::SampledSpectrum;
 use crate::ray::Ray;
 use crate::sampling::Sampler;

@@ -9,6 +9,7 @@
 //! unbiased.
 
 use super::super::emission::{emission_at, environment};
+use super::super::volpath::avg;
 use crate::light::{LightSampleContext, LightType};
 use crate::material::{Bsdf, TransportMode};
 use crate::math::{PI, SampledSpectrum, Vec2, Vec3, normalize};
@@ -326,4 +327,18 @@ pub(super) fn infinite_light_density(scene: &Scene, w: Vec3) -> f32 {
                 * scene.lights()[i as usize].pdf_li(&ctx, -w, None)
         })
         .sum()
+}
+
+/// `l`, a contribution whose lanes' density ratios are `r`, over their average: the one-sample
+/// balance heuristic across lanes. Untouched when r is 1 (no medium).
+pub(super) fn lane_balance(l: SampledSpectrum, r: SampledSpectrum) -> SampledSpectrum {
+    if r == SampledSpectrum::ONE {
+        return l;
+    }
+    let a = avg(r);
+    if a > 0.0 && a.is_finite() {
+        l / a
+    } else {
+        SampledSpectrum::ZERO
+    }
 }

@@ -20,6 +20,13 @@ use crate::scene::Scene;
 use crate::spectrum::hero::HERO_ONLY;
 use crate::spectrum::sampled::SampledWavelengths;
 
+thread_local! {
+    /// The subpaths' vertices, kept from one sample to the next on each thread (no
+    /// allocation per sample once they have grown).
+    pub(super) static PATHS: std::cell::RefCell<(Vec<Vertex>, Vec<Vertex>)> =
+        const { std::cell::RefCell::new((Vec::new(), Vec::new())) };
+}
+
 /// What both subpaths share as they are traced.
 pub(super) struct Walk<'a> {
     /// The scene.
