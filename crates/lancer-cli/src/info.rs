@@ -55,9 +55,9 @@ fn integrator_json(i: &Integrator) -> Value {
             v["cossample"] = json!(cos_sample);
             v["maxdistance"] = json!(max_distance);
         }
-        Integrator::LightPath { max_depth } | Integrator::RandomWalk { max_depth } => {
-            v["maxdepth"] = json!(max_depth)
-        }
+        Integrator::LightPath { max_depth }
+        | Integrator::RandomWalk { max_depth }
+        | Integrator::SimpleVolPath { max_depth } => v["maxdepth"] = json!(max_depth),
         Integrator::SimplePath {
             max_depth,
             sample_lights,

@@ -444,11 +444,35 @@ impl Builder {
                              keeps lights at their start pose, and so does lancer",
                         );
                     }
+                    if matches!(
+                        b.desc.integrator,
+                        lancer::integrator::Integrator::SimpleVolPath { .. }
+                    ) && matches!(
+                        ty.as_str(),
+                        "point" | "spot" | "goniometric" | "projection" | "distant"
+                    ) {
+                        // pbrt-v4's SimpleVolPathIntegrator refuses them too: no walk can
+                        // hit a light at a point or in one direction.
+                        return Err(SceneError::at(
+                            loc.clone(),
+                            format!(
+                                "integrator \"simplevolpath\" supports only area and infinite \
+                                 lights, not a \"{ty}\" light"
+                            ),
+                        ));
+                    }
                     let l = light(&b.reader(p, dir), &ty, b.gs.ctm, loc)?;
                     if let Some(l) = b.accept(l, loc) {
                         let spectrum = light_spectra::light_spectrum(&l, p, dir)?;
+                        let medium = b.media.outside(&b.gs.media, loc)?;
                         b.desc.lights.push(l);
                         light_spectra::record(&mut b.desc, spectrum);
+                        if let Some(m) = medium {
+                            // Vacuum for the lights before it (the list may be shorter).
+                            let i = b.desc.lights.len() - 1;
+                            b.desc.light_media.resize(i, None);
+                            b.desc.light_media.push(Some(m));
+                        }
                     }
                     Ok(())
                 })
@@ -752,21 +776,15 @@ impl Builder {
 }
 
 impl Builder {
-    /// lancer's `bdpt`, `lightpath` and `mlt` do not sample participating media yet: a scene with
-    /// media that asks for them is rendered with `volpath` (same depth), with a warning, as
-    /// before they existed, rather than as if its media were not there.
+    /// lancer's `mlt` does not sample participating media yet: a scene with media that asks for
+    /// it is rendered with `volpath` (same depth), with a warning, rather than as if its media
+    /// were not there.
     fn volumes_need_volpath(&mut self, end: &Location) {
         use lancer::integrator::Integrator;
         if self.desc.media.is_empty() {
             return;
         }
         let (name, max_depth, regularize) = match self.desc.integrator {
-            Integrator::Bdpt {
-                max_depth,
-                regularize,
-                ..
-            } => ("bdpt", max_depth, regularize),
-            Integrator::LightPath { max_depth } => ("lightpath", max_depth, false),
             Integrator::Mlt(o) => ("mlt", o.max_depth, o.regularize),
             _ => return,
         };

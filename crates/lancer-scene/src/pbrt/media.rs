@@ -110,6 +110,16 @@ impl Media {
         Ok((mi != MediumInterface::default()).then_some(mi))
     }
 
+    /// The medium a light made under `current` sits in: the current `outside` one (pbrt-v4's
+    /// `CurrentOutsideMedium`).
+    pub fn outside(
+        &self,
+        current: &CurrentMedia,
+        loc: &Location,
+    ) -> Result<Option<u32>, SceneError> {
+        self.index(&current.outside, loc)
+    }
+
     /// Records the camera's medium at `Camera`: the current `outside` one.
     pub fn set_camera(&mut self, current: &CurrentMedia, loc: &Location) {
         self.camera = Some((current.outside.clone(), loc.clone()));

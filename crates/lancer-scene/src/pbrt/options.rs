@@ -356,7 +356,8 @@ pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, 
             }
             Integrator::Mlt(o)
         }
-        "sppm" | "simplevolpath" | "aov" => {
+        "simplevolpath" => Integrator::SimpleVolPath { max_depth },
+        "sppm" | "aov" => {
             return Ok(Fallback::instead(
                 path()?,
                 format!(
@@ -862,6 +863,17 @@ mod tests {
         assert_eq!(
             clean(r#"Integrator "lightpath" "integer maxdepth" 3"#, integrator),
             Integrator::LightPath { max_depth: 3 }
+        );
+        assert_eq!(
+            clean(r#"Integrator "simplevolpath""#, integrator),
+            Integrator::SimpleVolPath { max_depth: 5 }
+        );
+        assert_eq!(
+            clean(
+                r#"Integrator "simplevolpath" "integer maxdepth" 9"#,
+                integrator
+            ),
+            Integrator::SimpleVolPath { max_depth: 9 }
         );
         let (out, _) = convert(
             r#"Integrator "bdpt" "bool visualizestrategies" true"#,

@@ -70,6 +70,13 @@ pub enum Integrator {
         /// Maximum number of bounces.
         max_depth: u32,
     },
+    /// pbrt-v4's `simplevolpath`: delta tracking through media at one wavelength, emission
+    /// gathered where the walk meets it, no light sampling; surfaces only pass rays between
+    /// media (`interface`) or end the path.
+    SimpleVolPath {
+        /// Maximum number of scattering events in media.
+        max_depth: u32,
+    },
     /// Debug view: shading normals mapped to colours, (n + 1)/2.
     Normals,
     /// Debug view: distance to the first hit.
@@ -88,7 +95,8 @@ impl Default for Integrator {
 
 impl Integrator {
     /// The pbrt-v4 name of this integrator (`Integrator "…"`): `path`, `volpath`, `whitted`,
-    /// `ambientocclusion`, `lightpath`, `bdpt`, `mlt`, `simplepath`, `randomwalk`, and lancer's debug
+    /// `ambientocclusion`, `lightpath`, `bdpt`, `mlt`, `simplepath`, `randomwalk`,
+    /// `simplevolpath`, and lancer's debug
     /// views `normals` and `depth`.
     pub fn pbrt_name(&self) -> &'static str {
         match self {
@@ -101,6 +109,7 @@ impl Integrator {
             Integrator::Mlt(_) => "mlt",
             Integrator::SimplePath { .. } => "simplepath",
             Integrator::RandomWalk { .. } => "randomwalk",
+            Integrator::SimpleVolPath { .. } => "simplevolpath",
             Integrator::Normals => "normals",
             Integrator::Depth => "depth",
         }
@@ -119,6 +128,7 @@ impl Integrator {
                 | Integrator::Mlt(_)
                 | Integrator::SimplePath { .. }
                 | Integrator::RandomWalk { .. }
+                | Integrator::SimpleVolPath { .. }
         )
     }
 

@@ -18,14 +18,20 @@ use crate::spectrum::hero::HERO_ONLY;
 use crate::spectrum::sampled::SampledWavelengths;
 
 /// Traces one light path of at most `max_depth` bounces, splatting what each vertex sends to
-/// the camera into `splat`; returns the (zero) radiance of the camera ray.
+/// the camera into `splat`; returns the (zero) radiance of the camera ray. A scene with media
+/// is traced by [`super::bdpt::light_trace`] (delta tracking, transmittance to the lens),
+/// which `ray` gives its hero lane.
 pub fn li(
     scene: &Scene,
+    ray: &Ray,
     sampler: &mut Sampler,
     lambda: Option<&SampledWavelengths>,
     max_depth: u32,
     splat: Splat<'_>,
 ) -> SampledSpectrum {
+    if !scene.media().is_empty() {
+        return super::bdpt::light_trace(scene, ray, sampler, lambda, max_depth, splat);
+    }
     let camera = &scene.camera();
     let scale = camera.splat_scale();
     let mut wavelengths = lambda.copied();

@@ -63,7 +63,7 @@ impl Integrator {
     ) -> SampledSpectrum {
         match *self {
             Integrator::LightPath { max_depth } => {
-                lightpath::li(scene, sampler, lambda, max_depth, splat)
+                lightpath::li(scene, ray, sampler, lambda, max_depth, splat)
             }
             Integrator::Bdpt {
                 max_depth,
@@ -162,6 +162,9 @@ impl Integrator {
             ),
             Integrator::RandomWalk { max_depth } => {
                 simple::random_walk(scene, ray, sampler, lambda, max_depth)
+            }
+            Integrator::SimpleVolPath { max_depth } => {
+                simple::simple_vol_path(scene, ray, sampler, lambda, max_depth)
             }
             // Without a film to splat into, the light-path integrators give only what reaches
             // the camera ray's own pixel (bdpt's t ≥ 2 strategies, nothing for lightpath): a

@@ -1,12 +1,15 @@
 //! pbrt-v4's teaching integrators: `randomwalk` (directions uniform over the sphere, no light
-//! sampling) and `simplepath` (a path tracer without MIS: light sampling or BSDF sampling,
-//! each optional). Both are unbiased and slow; they are here to check the others against.
+//! sampling), `simplepath` (a path tracer without MIS: light sampling or BSDF sampling, each
+//! optional) and `simplevolpath` (delta tracking through media, no light sampling). All are
+//! unbiased and slow; they are here to check the others against.
 
 use super::emission::environment;
+use super::volpath::{hero_lane, medium_after, sample_discrete3, seeded_rng};
 use super::whitted::light_sample;
 use super::{bsdf_at, emitted, keep_hero_only};
 use crate::material::TransportMode;
-use crate::math::SampledSpectrum;
+use crate::math::{SampledSpectrum, Vec2, normalize};
+use crate::medium::sample_t_maj;
 use crate::ray::Ray;
 use crate::sampling::{
     Sampler, sample_uniform_hemisphere, sample_uniform_sphere, uniform_hemisphere_pdf,
@@ -142,4 +145,107 @@ pub fn simple_path(
         }
     }
     l
+}
+
+/// pbrt-v4's `simplevolpath`: one wavelength (spectral mode's hero λ₀, the others terminated;
+/// in RGB mode one lane chosen per camera ray), carried by delta tracking through media at that
+/// wavelength's coefficients. At each tentative collision, with probabilities σ_a/σ_maj,
+/// σ_s/σ_maj and the rest: absorption ends the path and adds the medium's emission, L += β·Le;
+/// scattering (at most `max_depth` times) samples the phase function, β ← β·p/pdf (= β); a
+/// null collision goes on. Emission is added where the walk meets an emitter or leaves the
+/// scene. Surfaces only pass rays between media (`interface`): a surface that scatters ends
+/// the path (pbrt-v4 stops with an error there). The lane's radiance is returned times 4 in
+/// its lane, 0 in the others (an unbiased estimate of every lane's, as [`HERO_ONLY`]).
+pub fn simple_vol_path(
+    scene: &Scene,
+    ray: &Ray,
+    sampler: &mut Sampler,
+    lambda: Option<&SampledWavelengths>,
+    max_depth: u32,
+) -> SampledSpectrum {
+    let h = hero_lane(ray, lambda);
+    let wavelengths = lambda.map(|w| {
+        let mut w = *w;
+        w.terminate_secondary();
+        w
+    });
+    let lambda = wavelengths.as_ref();
+    let (mut l, mut beta) = (0.0f32, 1.0f32);
+    let mut depth = 0;
+    let mut ray = *ray;
+    let mut medium = scene.camera_medium();
+    loop {
+        let hit = scene.intersect(&ray);
+        let (mut scattered, mut terminated) = (None, false);
+        if let Some(m) = medium {
+            let mut rng = seeded_rng(sampler.get_1d(), sampler.get_1d());
+            let t_max = hit.as_ref().map_or(f32::INFINITY, |h| h.si.t);
+            let u = sampler.get_1d();
+            let mut u_mode = sampler.get_1d();
+            let wo = -normalize(ray.d);
+            sample_t_maj(
+                scene.medium(m),
+                ray.o,
+                ray.d,
+                t_max,
+                u,
+                &mut rng,
+                lambda,
+                h,
+                |p, mp, sigma_maj, _, rng| {
+                    let p_absorb = mp.sigma_a[h] / sigma_maj[h];
+                    let p_scatter = mp.sigma_s[h] / sigma_maj[h];
+                    let p_null = (1.0 - p_absorb - p_scatter).max(0.0);
+                    match sample_discrete3([p_absorb, p_scatter, p_null], u_mode) {
+                        0 => {
+                            l += beta * mp.le[h];
+                            terminated = true;
+                            false
+                        }
+                        1 => {
+                            if depth >= max_depth {
+                                terminated = true;
+                                return false;
+                            }
+                            depth += 1;
+                            let u = Vec2::new(rng.uniform(), rng.uniform());
+                            match mp.phase.sample(wo, u) {
+                                Some(ps) => {
+                                    beta *= ps.p / ps.pdf;
+                                    scattered = Some(Ray::new(p, ps.wi).at_time(ray.time));
+                                }
+                                None => terminated = true,
+                            }
+                            false
+                        }
+                        _ => {
+                            u_mode = rng.uniform();
+                            true
+                        }
+                    }
+                },
+            );
+        }
+        if terminated {
+            break;
+        }
+        if let Some(next) = scattered {
+            ray = next;
+            continue;
+        }
+        let Some(hit) = hit else {
+            l += beta * environment(scene, ray.d, lambda)[h];
+            break;
+        };
+        let si = &hit.si;
+        l += beta * emitted(scene, &hit, si.wo, lambda)[h];
+        if bsdf_at(scene, &hit, lambda).is_some() {
+            break;
+        }
+        medium = medium_after(scene, &hit, ray.d, medium);
+        ray = si.spawn_ray(ray.d);
+    }
+    let mut out = SampledSpectrum::ZERO;
+    out[h] = HERO_ONLY[0] * l;
+    out
 }

@@ -32,7 +32,7 @@ use crate::spectrum::sampled::SampledWavelengths;
 
 /// The average of the lanes (the spectral-MIS denominator).
 #[inline]
-fn avg(s: SampledSpectrum) -> f32 {
+pub(super) fn avg(s: SampledSpectrum) -> f32 {
     s.element_sum() * 0.25
 }
 
@@ -45,16 +45,21 @@ fn nonzero(s: SampledSpectrum) -> bool {
 /// The medium a ray leaving `hit` in direction `d` travels in: the far side of a medium
 /// boundary, else the medium it was already in.
 #[inline]
-fn medium_after(scene: &Scene, hit: &SceneHit, d: Vec3, current: Option<u32>) -> Option<u32> {
+pub(super) fn medium_after(
+    scene: &Scene,
+    hit: &SceneHit,
+    d: Vec3,
+    current: Option<u32>,
+) -> Option<u32> {
     match scene.prim(hit.prim).media {
-        Some(mi) => mi.towards(hit.si.n, d),
-        None => current,
+        Some(mi) if mi.is_transition() => mi.towards(hit.si.n, d),
+        _ => current,
     }
 }
 
 /// A generator seeded by a hash of two sampler values (pbrt-v4 seeds the collision stream the
 /// same way: deterministic per sample, independent of the sampler's dimensions beyond these).
-fn seeded_rng(a: f32, b: f32) -> Pcg32 {
+pub(super) fn seeded_rng(a: f32, b: f32) -> Pcg32 {
     Pcg32::new(
         hash_u64(&[a.to_bits() as u64]),
         hash_u64(&[b.to_bits() as u64]),
@@ -63,7 +68,7 @@ fn seeded_rng(a: f32, b: f32) -> Pcg32 {
 
 /// The lane whose densities drive sampling: 0 in spectral mode, one of the four chosen by a
 /// hash of the camera ray in RGB mode.
-fn hero_lane(ray: &Ray, lambda: Option<&SampledWavelengths>) -> usize {
+pub(super) fn hero_lane(ray: &Ray, lambda: Option<&SampledWavelengths>) -> usize {
     if lambda.is_some() {
         return 0;
     }
@@ -449,9 +454,14 @@ impl Walk<'_> {
         if !nonzero(f_hat) {
             return SampledSpectrum::ZERO;
         }
-        let Some((t_ray, mut r_l, mut r_u)) =
-            self.transmittance(origin(ls.p_light), ls.p_light, medium)
-        else {
+        let Some((t_ray, mut r_l, mut r_u)) = transmittance(
+            scene,
+            origin(ls.p_light),
+            ls.p_light,
+            medium,
+            self.lambda(),
+            self.hero,
+        ) else {
             return SampledSpectrum::ZERO;
         };
         let l = scene.light_radiance(i, self.lambda(), ls.l, ls.factor, ls.wi);
@@ -464,102 +474,98 @@ impl Walk<'_> {
             beta * f_hat * t_ray * l / avg(r_l + r_u)
         }
     }
+}
 
-    /// The transmittance of the shadow ray `ray` towards `target`, starting in `medium`, with
-    /// its lane ratios (T_ray, r_l, r_u): `None` when an opaque surface blocks it. Surfaces
-    /// with an `interface` material let it through (changing its medium); media attenuate it
-    /// by ratio tracking (homogeneous ones by their closed form), with Russian roulette once it
-    /// carries little.
-    fn transmittance(
-        &self,
-        mut ray: Ray,
-        target: Vec3,
-        mut medium: Option<u32>,
-    ) -> Option<(SampledSpectrum, SampledSpectrum, SampledSpectrum)> {
-        let scene = self.scene;
-        let h = self.hero;
-        let mut t_ray = SampledSpectrum::ONE;
-        let mut r_l = SampledSpectrum::ONE;
-        let mut r_u = SampledSpectrum::ONE;
-        let mut rng = Pcg32::new(
-            hash_u64(&[
-                ray.o.x.to_bits() as u64,
-                ray.o.y.to_bits() as u64,
-                ray.o.z.to_bits() as u64,
-            ]),
-            hash_u64(&[
-                ray.d.x.to_bits() as u64,
-                ray.d.y.to_bits() as u64,
-                ray.d.z.to_bits() as u64,
-            ]),
-        );
-        loop {
-            if ray.d == Vec3::ZERO {
-                break;
-            }
-            let hit = scene.intersect(&ray);
-            if let Some(hit) = &hit
-                && !is_interface(scene, hit)
-            {
-                return None;
-            }
-            let t_max = hit.as_ref().map_or(ray.t_max, |h| h.si.t);
-            let uniform = medium.and_then(|m| {
-                scene
-                    .medium(m)
-                    .uniform_transmittance(ray.d, t_max, self.lambda())
-            });
-            if let Some(tr) = uniform {
-                // A homogeneous stretch: its transmittance in closed form (ratio tracking's
-                // expectation, without its noise).
-                t_ray *= tr;
-            } else if let Some(m) = medium {
-                let u = rng.uniform();
-                let t_maj = sample_t_maj(
-                    scene.medium(m),
-                    ray.o,
-                    ray.d,
-                    t_max,
-                    u,
-                    &mut rng,
-                    self.lambda(),
-                    h,
-                    |_, mp, sigma_maj, t_maj, rng| {
-                        // Ratio tracking: weight by σ_n/σ_maj at every tentative collision.
-                        let sigma_n =
-                            (sigma_maj - mp.sigma_a - mp.sigma_s).max(SampledSpectrum::ZERO);
-                        let pdf = t_maj[h] * sigma_maj[h];
-                        t_ray *= t_maj * sigma_n / pdf;
-                        r_l *= t_maj * sigma_maj / pdf;
-                        r_u *= t_maj * sigma_n / pdf;
-                        let tr = t_ray / avg(r_l + r_u);
-                        if tr.max_element() < 0.05 {
-                            let q = 0.75;
-                            if rng.uniform() < q {
-                                t_ray = SampledSpectrum::ZERO;
-                            } else {
-                                t_ray /= 1.0 - q;
-                            }
-                        }
-                        nonzero(t_ray)
-                    },
-                );
-                let w = t_maj / t_maj[h];
-                t_ray *= w;
-                r_l *= w;
-                r_u *= w;
-            }
-            if !nonzero(t_ray) || !t_ray.is_finite() {
-                return None;
-            }
-            let Some(hit) = hit else {
-                break;
-            };
-            medium = medium_after(scene, &hit, ray.d, medium);
-            ray = hit.si.spawn_ray_to(target);
+/// The transmittance of the shadow ray `ray` towards `target`, starting in `medium`, with
+/// its lane ratios (T_ray, r_l, r_u): `None` when an opaque surface blocks it. Surfaces
+/// with an `interface` material let it through (changing its medium); media attenuate it
+/// by ratio tracking (homogeneous ones by their closed form), with Russian roulette once it
+/// carries little. `lambda` and the hero lane `h` are the path's.
+pub(super) fn transmittance(
+    scene: &Scene,
+    mut ray: Ray,
+    target: Vec3,
+    mut medium: Option<u32>,
+    lambda: Option<&SampledWavelengths>,
+    h: usize,
+) -> Option<(SampledSpectrum, SampledSpectrum, SampledSpectrum)> {
+    let mut t_ray = SampledSpectrum::ONE;
+    let mut r_l = SampledSpectrum::ONE;
+    let mut r_u = SampledSpectrum::ONE;
+    let mut rng = Pcg32::new(
+        hash_u64(&[
+            ray.o.x.to_bits() as u64,
+            ray.o.y.to_bits() as u64,
+            ray.o.z.to_bits() as u64,
+        ]),
+        hash_u64(&[
+            ray.d.x.to_bits() as u64,
+            ray.d.y.to_bits() as u64,
+            ray.d.z.to_bits() as u64,
+        ]),
+    );
+    loop {
+        if ray.d == Vec3::ZERO {
+            break;
         }
-        Some((t_ray, r_l, r_u))
+        let hit = scene.intersect(&ray);
+        if let Some(hit) = &hit
+            && !is_interface(scene, hit)
+        {
+            return None;
+        }
+        let t_max = hit.as_ref().map_or(ray.t_max, |h| h.si.t);
+        let uniform =
+            medium.and_then(|m| scene.medium(m).uniform_transmittance(ray.d, t_max, lambda));
+        if let Some(tr) = uniform {
+            // A homogeneous stretch: its transmittance in closed form (ratio tracking's
+            // expectation, without its noise).
+            t_ray *= tr;
+        } else if let Some(m) = medium {
+            let u = rng.uniform();
+            let t_maj = sample_t_maj(
+                scene.medium(m),
+                ray.o,
+                ray.d,
+                t_max,
+                u,
+                &mut rng,
+                lambda,
+                h,
+                |_, mp, sigma_maj, t_maj, rng| {
+                    // Ratio tracking: weight by σ_n/σ_maj at every tentative collision.
+                    let sigma_n = (sigma_maj - mp.sigma_a - mp.sigma_s).max(SampledSpectrum::ZERO);
+                    let pdf = t_maj[h] * sigma_maj[h];
+                    t_ray *= t_maj * sigma_n / pdf;
+                    r_l *= t_maj * sigma_maj / pdf;
+                    r_u *= t_maj * sigma_n / pdf;
+                    let tr = t_ray / avg(r_l + r_u);
+                    if tr.max_element() < 0.05 {
+                        let q = 0.75;
+                        if rng.uniform() < q {
+                            t_ray = SampledSpectrum::ZERO;
+                        } else {
+                            t_ray /= 1.0 - q;
+                        }
+                    }
+                    nonzero(t_ray)
+                },
+            );
+            let w = t_maj / t_maj[h];
+            t_ray *= w;
+            r_l *= w;
+            r_u *= w;
+        }
+        if !nonzero(t_ray) || !t_ray.is_finite() {
+            return None;
+        }
+        let Some(hit) = hit else {
+            break;
+        };
+        medium = medium_after(scene, &hit, ray.d, medium);
+        ray = hit.si.spawn_ray_to(target);
     }
+    Some((t_ray, r_l, r_u))
 }
 
 /// True for an area light whose surface has a constant alpha of 0: rays never meet it, so
@@ -579,7 +585,7 @@ fn is_interface(scene: &Scene, hit: &SceneHit) -> bool {
 
 /// Picks 0, 1 or 2 with probabilities proportional to `w` (pbrt-v4's `SampleDiscrete`):
 /// the first index whose running sum exceeds u·Σw.
-fn sample_discrete3(w: [f32; 3], u: f32) -> usize {
+pub(super) fn sample_discrete3(w: [f32; 3], u: f32) -> usize {
     let sum = w[0] + w[1] + w[2];
     let up = u * sum;
     if up < w[0] {

@@ -128,6 +128,7 @@ impl Scene {
                 .map(crate::medium::Medium::from_desc)
                 .collect(),
             camera_medium: desc.camera_medium,
+            light_media: desc.light_media.clone(),
             bvh,
             packets,
             frames,

@@ -42,6 +42,9 @@ pub struct SceneDesc {
     /// Per light of `lights` (missing at the end: none): the spectrum its colour is a multiple
     /// of, when the scene gave one (spectral mode emits it).
     pub light_spectra: Vec<Option<crate::spectrum::dense::Measured>>,
+    /// Per light of `lights` (missing at the end: vacuum): the medium it sits in (pbrt-v4's
+    /// current outside medium at `LightSource`), where its light paths start.
+    pub light_media: Vec<Option<u32>>,
     /// Object definitions (pbrt's `ObjectBegin`/`ObjectEnd`), for instancing.
     pub objects: Vec<ObjectDesc>,
     /// Placements of objects (pbrt's `ObjectInstance`).

@@ -89,6 +89,9 @@ pub struct Scene {
     media: Vec<crate::medium::Medium>,
     /// The medium the camera sits in (`None`: vacuum).
     camera_medium: Option<u32>,
+    /// Per light of the description (the first of [`Scene::lights`]; missing at the end:
+    /// vacuum): the medium it sits in.
+    light_media: Vec<Option<u32>>,
     bvh: Bvh,
     /// Per leaf of `bvh`: its triangles as a packet, or an empty packet when the leaf holds
     /// other shapes or alpha-tested triangles (those go through [`Shape::intersect_with`]).
@@ -128,6 +131,16 @@ impl Scene {
     #[inline]
     pub fn camera_medium(&self) -> Option<u32> {
         self.camera_medium
+    }
+
+    /// The medium a ray leaving light `i` from a point with geometric normal `n` in direction
+    /// `w` starts in: for an area light, the side of its shape's interface `w` points to; for
+    /// the others, the medium they sit in (`None`: vacuum).
+    pub fn light_medium(&self, i: usize, n: Vec3, w: Vec3) -> Option<u32> {
+        match self.lights[i].as_area() {
+            Some(a) => self.prim(a.prim).media.and_then(|mi| mi.towards(n, w)),
+            None => self.light_media.get(i).copied().flatten(),
+        }
     }
 
     /// Lights, area lights included; a light's index here is its id everywhere else

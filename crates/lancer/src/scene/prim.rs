@@ -17,7 +17,11 @@ pub struct PrimInfo {
     pub emission: Option<AreaEmission>,
     /// Alpha cut-out: where it is below 1 the surface is (partly) absent.
     pub alpha: Option<FloatTex>,
-    /// The media on its two sides, when they differ (a ray crossing it changes medium).
+    /// The media on its two sides, when they differ (a ray crossing it changes medium), or
+    /// when it emits (a light path leaving it starts in one of them); a ray crossing a
+    /// surface changes medium only where [`MediumInterface::is_transition`].
+    ///
+    /// [`MediumInterface::is_transition`]: crate::medium::MediumInterface::is_transition
     pub media: Option<crate::medium::MediumInterface>,
 }
 
@@ -100,12 +104,15 @@ pub(crate) fn check_shape(
         .map_err(|e| invalid_shape(sd, index, e.message))
 }
 
-/// The interface a primitive keeps: the shape's, when crossing it changes medium.
+/// The interface a primitive keeps: the shape's, when crossing it changes medium or when the
+/// shape emits (the medium its light paths start in; pbrt-v4's area lights keep their shape's
+/// interface).
 pub(crate) fn prim_media(sd: &ShapeDesc) -> Option<crate::medium::MediumInterface> {
-    sd.medium_interface.filter(|mi| mi.is_transition())
+    sd.medium_interface
+        .filter(|mi| mi.is_transition() || (sd.area_light.is_some() && mi.outside.is_some()))
 }
 
-/// Checks that every medium the shapes and the camera name exists.
+/// Checks that every medium the shapes, the lights and the camera name exists.
 pub(crate) fn check_media(desc: &super::desc::SceneDesc) -> Result<(), BuildError> {
     let n = desc.media.len();
     let bad = |m: Option<u32>| m.filter(|&m| m as usize >= n);
@@ -113,6 +120,13 @@ pub(crate) fn check_media(desc: &super::desc::SceneDesc) -> Result<(), BuildErro
         return Err(BuildError::Invalid(format!(
             "the camera's medium {m} does not exist"
         )));
+    }
+    for (index, &m) in desc.light_media.iter().enumerate() {
+        if let Some(m) = bad(m) {
+            return Err(BuildError::Invalid(format!(
+                "light {index}: medium {m} does not exist"
+            )));
+        }
     }
     let shapes = desc
         .shapes

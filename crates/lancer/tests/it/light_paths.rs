@@ -1,6 +1,6 @@
 //! bdpt and light tracing through the film: the same film bits whatever the thread count, and
 //! a render split by samples merges into the whole render exactly (their light paths splat
-//! anywhere in the image).
+//! anywhere in the image), with and without a medium around the floor.
 
 use crate::common::units::render_units_on;
 use lancer::Scene;
@@ -9,6 +9,7 @@ use lancer::integrator::Integrator;
 use lancer::light::PointDesc;
 use lancer::material::{DiffuseMaterial, MaterialDesc};
 use lancer::math::{PackedVec3, Rgb, Transform, Vec3};
+use lancer::medium::{HomogeneousDesc, MediumDesc};
 use lancer::render::{RenderSettings, work_units};
 use lancer::scene::desc::{FilterDesc, Geometry, LightDesc, SceneDesc, ShapeDesc};
 use lancer::shape::TriangleMesh;
@@ -59,6 +60,22 @@ fn desc(integrator: Integrator) -> SceneDesc {
     d
 }
 
+/// [`desc`] in a homogeneous fog (camera and light in it).
+fn foggy(integrator: Integrator) -> SceneDesc {
+    let mut d = desc(integrator);
+    d.media = vec![MediumDesc::Homogeneous(HomogeneousDesc {
+        sigma_a: Rgb::new(0.1, 0.2, 0.3),
+        sigma_s: Rgb::new(0.5, 0.4, 0.3),
+        scale: 1.0,
+        le: Rgb::ZERO,
+        le_scale: 0.0,
+        g: 0.2,
+    })];
+    d.camera_medium = Some(0);
+    d.light_media = vec![Some(0)];
+    d
+}
+
 /// Renders sample indices `samples` of the whole image on `threads` threads, in 8-pixel tiles
 /// and 2-sample passes, spectral or RGB.
 fn render(d: &SceneDesc, samples: std::ops::Range<u32>, threads: usize, spectral: bool) -> Film {
@@ -86,18 +103,26 @@ fn light_path_renders_are_exact_across_threads_and_sample_splits() {
         },
         Integrator::LightPath { max_depth: 4 },
     ] {
-        for spectral in [false, true] {
-            let d = desc(integrator);
+        for (spectral, fog) in [(false, false), (true, false), (false, true), (true, true)] {
+            let d = if fog {
+                foggy(integrator)
+            } else {
+                desc(integrator)
+            };
             let whole = render(&d, 0..SPP, 1, spectral);
             let splats = whole.splats.as_ref().expect("light paths splat");
             assert!(splats.sums.iter().any(|&s| s != 0));
             assert!(whole.image(1.0).iter().any(|p| p.x > 0.0));
-            assert_eq!(render(&d, 0..SPP, 2, spectral), whole, "{integrator:?}");
+            assert_eq!(
+                render(&d, 0..SPP, 2, spectral),
+                whole,
+                "{integrator:?}, fog {fog}"
+            );
             let mut merged = Film::new(W, H, d.film.render_bounds());
             for r in [0..2, 2..5, 5..SPP] {
                 merged.merge_film(&render(&d, r, 2, spectral));
             }
-            assert_eq!(merged, whole, "{integrator:?} split by samples");
+            assert_eq!(merged, whole, "{integrator:?}, fog {fog}: split by samples");
         }
     }
 }

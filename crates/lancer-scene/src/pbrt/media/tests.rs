@@ -145,3 +145,41 @@ fn volpath_is_the_default_integrator() {
         }
     );
 }
+
+#[test]
+fn lights_sit_in_the_current_outside_medium() {
+    // pbrt-v4 gives a light the outside medium current at `LightSource`: bdpt's and
+    // lightpath's light paths start in it. Lights in vacuum before it are padded with `None`.
+    let text = "Integrator \"bdpt\"\n\
+                WorldBegin\n\
+                MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n\
+                LightSource \"point\"\n\
+                MediumInterface \"fog\" \"fog\"\n\
+                LightSource \"spot\"\n\
+                MediumInterface \"\" \"\"\n\
+                LightSource \"point\"\n";
+    let l = load(text).unwrap();
+    // bdpt renders the media itself: no warning, no fallback to volpath.
+    assert_eq!(warnings(&l), Vec::<String>::new());
+    assert!(matches!(
+        l.desc.integrator,
+        lancer::integrator::Integrator::Bdpt { .. }
+    ));
+    assert_eq!(l.desc.lights.len(), 3);
+    assert_eq!(l.desc.light_media, [None, Some(0)]);
+}
+
+#[test]
+fn simplevolpath_refuses_delta_lights_as_pbrt_does() {
+    let e = load("Integrator \"simplevolpath\"\nWorldBegin\nLightSource \"point\"\n").unwrap_err();
+    assert!(
+        e.starts_with("t.pbrt:3:1:") && e.contains("\"simplevolpath\" supports only area"),
+        "{e}"
+    );
+    let l = load(
+        "Integrator \"simplevolpath\" \"integer maxdepth\" 3\nWorldBegin\n\
+         LightSource \"infinite\"\nAreaLightSource \"diffuse\"\nShape \"sphere\"\n",
+    )
+    .unwrap();
+    assert_eq!(warnings(&l), Vec::<String>::new());
+}

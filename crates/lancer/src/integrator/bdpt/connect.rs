@@ -2,6 +2,7 @@
 //! `ConnectBDPT`), and the multiple-importance weight of that strategy among all the ones
 //! that could have made the same path (pbrt-v4's `MISWeight`).
 
+use super::super::volpath::{avg, transmittance};
 use super::vertex::{Kind, Vertex};
 use crate::light::{AreaLight, Emitter, LightSampleContext};
 use crate::material::TransportMode;
@@ -28,31 +29,85 @@ pub(super) struct Connection {
     pub weight: f32,
 }
 
-/// True when nothing blocks the segment between `a` and `b`.
-fn visible(scene: &Scene, a: &Vertex, b: &Vertex) -> bool {
-    !scene.intersect_p(&a.shadow_ray(b.p))
+/// What reaches one end of a connection from the other.
+#[derive(Clone, Copy)]
+pub(super) struct Segment<'a> {
+    /// The scene.
+    pub scene: &'a Scene,
+    /// The sample's wavelengths (spectral mode).
+    pub lambda: Option<&'a SampledWavelengths>,
+    /// The lane that drives ratio tracking ([`super::walk::Walk::hero`]).
+    pub hero: usize,
 }
 
-/// The geometry term between two vertices, 1/d² times the cosines at those on surfaces
-/// (shading normals), times the segment's visibility.
-fn g(scene: &Scene, a: &Vertex, b: &Vertex) -> f32 {
-    let d = a.p - b.p;
-    let d2 = d.length_squared();
-    if d2 == 0.0 {
-        return 0.0;
+impl Segment<'_> {
+    /// The transmittance from `a` to `b` (pbrt-v4's `Integrator::Tr`): zero when an opaque
+    /// surface blocks the segment. Without media, 1 when nothing blocks it; with media, ratio
+    /// tracking (closed form through homogeneous media) from `a`'s medium on the segment's
+    /// side, through `interface` surfaces: T_ray / avg(r_l), the lanes' one-sample balance
+    /// heuristic over the majorant's densities.
+    pub fn tr(&self, a: &Vertex, b: &Vertex) -> SampledSpectrum {
+        let scene = self.scene;
+        let ray = a.shadow_ray(b.p);
+        if scene.media().is_empty() {
+            return if scene.intersect_p(&ray) {
+                SampledSpectrum::ZERO
+            } else {
+                SampledSpectrum::ONE
+            };
+        }
+        let medium = a.medium_towards(scene, ray.d);
+        match transmittance(scene, ray, b.p, medium, self.lambda, self.hero) {
+            Some((t_ray, r_l, _)) => {
+                let tr = t_ray / avg(r_l);
+                if tr.is_finite() {
+                    tr
+                } else {
+                    SampledSpectrum::ZERO
+                }
+            }
+            None => SampledSpectrum::ZERO,
+        }
     }
-    let mut g = 1.0 / d2;
-    let d = d * g.sqrt();
-    if a.is_on_surface() {
-        g *= a.ns.dot(d).abs();
+
+    /// The geometry term between two vertices, 1/d² times the cosines at those on surfaces
+    /// (shading normals), times the segment's transmittance ([`Segment::tr`]).
+    fn g(&self, a: &Vertex, b: &Vertex) -> SampledSpectrum {
+        let d = a.p - b.p;
+        let d2 = d.length_squared();
+        if d2 == 0.0 {
+            return SampledSpectrum::ZERO;
+        }
+        let mut g = 1.0 / d2;
+        let d = d * g.sqrt();
+        if a.is_on_surface() {
+            g *= a.ns.dot(d).abs();
+        }
+        if b.is_on_surface() {
+            g *= b.ns.dot(d).abs();
+        }
+        if g == 0.0 {
+            return SampledSpectrum::ZERO;
+        }
+        let tr = self.tr(a, b);
+        if tr == SampledSpectrum::ONE {
+            // No medium on the way: the plain geometry term, bit for bit.
+            SampledSpectrum::splat(g)
+        } else {
+            tr * g
+        }
     }
-    if b.is_on_surface() {
-        g *= b.ns.dot(d).abs();
+}
+
+/// `l` times the transmittance `tr`, untouched when `tr` is 1 (no medium on the way).
+fn attenuate(l: SampledSpectrum, tr: SampledSpectrum) -> SampledSpectrum {
+    if tr == SampledSpectrum::ONE {
+        l
+    } else if tr == SampledSpectrum::ZERO {
+        SampledSpectrum::ZERO
+    } else {
+        l * tr
     }
-    if g == 0.0 || !visible(scene, a, b) {
-        return 0.0;
-    }
-    g
 }
 
 /// The normal of area light `i` at `p`, a point its `sample_li` chose (zero for the other
@@ -86,16 +141,15 @@ fn light_normal(scene: &Scene, i: usize, p: Vec3, from: &Vertex) -> Vec3 {
 /// The (s, t) strategy over the subpaths `light` and `camera`: s vertices of the light
 /// subpath joined to t of the camera subpath (s = 0: the camera subpath alone, ending on a
 /// light; s = 1 or t = 1: a fresh point on a light or the lens sampled for the other side).
-#[allow(clippy::too_many_arguments)]
 pub(super) fn connect<S: SampleSource + ?Sized>(
-    scene: &Scene,
-    lambda: Option<&SampledWavelengths>,
+    seg: Segment<'_>,
     light: &mut [Vertex],
     camera: &mut [Vertex],
     s: usize,
     t: usize,
     sampler: &mut S,
 ) -> Connection {
+    let (scene, lambda) = (seg.scene, seg.lambda);
     let none = Connection {
         l: SampledSpectrum::ZERO,
         p_raster: None,
@@ -114,31 +168,9 @@ pub(super) fn connect<S: SampleSource + ?Sized>(
             l = pt.le(scene, &camera[t - 2], lambda) * pt.beta;
         }
     } else if t == 1 {
-        let qs = &light[s - 1];
-        if qs.is_connectible(scene)
-            && let Some(cs) = scene.camera().sample_wi(qs.p, sampler.get_2d())
-        {
-            p_raster = Some(cs.p_raster);
-            let v = Vertex::endpoint(
-                Kind::Camera,
-                cs.p_lens,
-                Vec3::ZERO,
-                cs.n_lens,
-                SampledSpectrum::splat(cs.wi_importance / cs.pdf),
-            );
-            l = qs.beta * qs.f(&v, TransportMode::Importance) * v.beta;
-            if qs.is_on_surface() {
-                l *= cs.wi.dot(qs.ns).abs();
-            }
-            if l != SampledSpectrum::ZERO {
-                if visible(scene, qs, &v) {
-                    // Light paths are traced per rendered pixel but land on the whole
-                    // image (pbrt-v4 #347).
-                    l *= scene.camera().splat_scale();
-                } else {
-                    l = SampledSpectrum::ZERO;
-                }
-            }
+        if let Some((v, p, c)) = to_camera(seg, &light[s - 1], sampler) {
+            p_raster = Some(p);
+            l = c;
             sampled = Some(v);
         }
     } else if s == 1 {
@@ -171,8 +203,8 @@ pub(super) fn connect<S: SampleSource + ?Sized>(
                     if pt.is_on_surface() {
                         l *= ls.wi.dot(pt.ns).abs();
                     }
-                    if l != SampledSpectrum::ZERO && !visible(scene, pt, &v) {
-                        l = SampledSpectrum::ZERO;
+                    if l != SampledSpectrum::ZERO {
+                        l = attenuate(l, seg.tr(pt, &v));
                     }
                     sampled = Some(v);
                 }
@@ -186,7 +218,12 @@ pub(super) fn connect<S: SampleSource + ?Sized>(
                 * pt.f(qs, TransportMode::Radiance)
                 * pt.beta;
             if l != SampledSpectrum::ZERO {
-                l *= g(scene, qs, pt);
+                let g = seg.g(qs, pt);
+                l = if g == SampledSpectrum::ZERO {
+                    SampledSpectrum::ZERO
+                } else {
+                    l * g
+                };
             }
         }
     }
@@ -199,6 +236,43 @@ pub(super) fn connect<S: SampleSource + ?Sized>(
         p_raster,
         weight,
     }
+}
+
+/// The t = 1 join of light subpath vertex `qs` to a point sampled on the lens (one 2D sample):
+/// that point as a camera vertex, where the join lands on the film, and what it brings there,
+/// β·f·|cos θ|·We/p_c·Tr times the camera's splat scale; `None` when `qs` cannot be joined or
+/// the camera does not see it.
+pub(super) fn to_camera<S: SampleSource + ?Sized>(
+    seg: Segment<'_>,
+    qs: &Vertex,
+    sampler: &mut S,
+) -> Option<(Vertex, Vec2, SampledSpectrum)> {
+    let scene = seg.scene;
+    if !qs.is_connectible(scene) {
+        return None;
+    }
+    let cs = scene.camera().sample_wi(qs.p, sampler.get_2d())?;
+    let mut v = Vertex::endpoint(
+        Kind::Camera,
+        cs.p_lens,
+        Vec3::ZERO,
+        cs.n_lens,
+        SampledSpectrum::splat(cs.wi_importance / cs.pdf),
+    );
+    v.medium = scene.camera_medium();
+    let mut l = qs.beta * qs.f(&v, TransportMode::Importance) * v.beta;
+    if qs.is_on_surface() {
+        l *= cs.wi.dot(qs.ns).abs();
+    }
+    if l != SampledSpectrum::ZERO {
+        l = attenuate(l, seg.tr(qs, &v));
+        if l != SampledSpectrum::ZERO {
+            // Light paths are traced per rendered pixel but land on the whole image (pbrt-v4
+            // #347).
+            l *= scene.camera().splat_scale();
+        }
+    }
+    Some((v, cs.p_raster, l))
 }
 
 /// Replaces 0 by 1: a delta density (stored as 0) cancels in the ratios of densities.

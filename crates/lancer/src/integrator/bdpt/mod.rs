@@ -6,24 +6,39 @@
 //! vertices from the light subpath, t from the camera subpath, s + t = d + 2. The strategies
 //! with t ≥ 2 give the radiance of the camera ray; those with t = 1 join a light subpath
 //! vertex to a fresh point on the lens and land anywhere on the film, so they are splatted.
-//! Surfaces only: participating media are not sampled (the reader warns).
+//!
+//! Both subpaths go through participating media as pbrt-v4's do: distances by delta tracking
+//! at one lane's coefficients (the hero), medium vertices that scatter by their phase
+//! function, and every connection attenuated by the transmittance of its segment. Unlike
+//! pbrt-v4 (which weights by the hero lane alone), a contribution is divided by the lanes'
+//! average density ratio ([`vertex::Vertex::r`]), so chromatic media do not make fireflies
+//! in the other lanes, and RGB mode can pick its hero per sample without bias. Without media
+//! every ratio is 1 and nothing changes. (Emission from media is not gathered, as in pbrt-v4's
+//! bdpt.)
 
 mod connect;
+mod trace;
 mod vertex;
 mod walk;
 
+pub use trace::li as light_trace;
+
+#[cfg(test)]
+mod media_tests;
 #[cfg(test)]
 mod tests;
 
 use super::Splat;
+use super::volpath::hero_lane;
 use crate::math::{SampledSpectrum, Vec2};
 use crate::ray::Ray;
 use crate::sampling::{SampleSource, Sampler};
 use crate::scene::Scene;
 use crate::spectrum::sampled::SampledWavelengths;
-use connect::connect;
+use connect::{Segment, connect};
 use vertex::Vertex;
-use walk::Walk;
+use vertex::lane_balance;
+use walk::{PATHS, Walk};
 
 /// What `visualizestrategies` and `visualizeweights` see of each strategy (pbrt-v4 writes
 /// one image per (s, t)): called with s, t, where the strategy lands on the film (`None`:
@@ -37,13 +52,6 @@ pub struct BdptOptions {
     pub max_depth: u32,
     /// Roughen near-specular lobes after a non-specular bounce.
     pub regularize: bool,
-}
-
-thread_local! {
-    /// The subpaths' vertices, kept from one sample to the next on each thread (no
-    /// allocation per sample once they have grown).
-    static PATHS: std::cell::RefCell<(Vec<Vertex>, Vec<Vertex>)> =
-        const { std::cell::RefCell::new((Vec::new(), Vec::new())) };
 }
 
 /// Radiance along the camera ray `ray` by every strategy with t ≥ 2; the t = 1 strategies'
@@ -64,11 +72,22 @@ pub fn li(
             scene,
             lambda: lambda.copied(),
             regularize: options.regularize,
+            // Only media use it (no hash per sample without them).
+            hero: if scene.media().is_empty() {
+                0
+            } else {
+                hero_lane(ray, lambda)
+            },
         };
         walk.camera_subpath(ray, sampler, max_depth + 2, camera);
         walk.light_subpath(sampler, max_depth + 1, light);
         let weight = walk.spectral_weight();
         let lambda = walk.lambda;
+        let seg = Segment {
+            scene,
+            lambda: lambda.as_ref(),
+            hero: walk.hero,
+        };
         let mut l = SampledSpectrum::ZERO;
         for t in 1..=camera.len() {
             for s in 0..=light.len() {
@@ -76,11 +95,12 @@ pub fn li(
                 if (s == 1 && t == 1) || depth < 0 || depth > max_depth as isize {
                     continue;
                 }
-                let c = connect(scene, lambda.as_ref(), light, camera, s, t, sampler);
+                let c = connect(seg, light, camera, s, t, sampler);
                 if c.l == SampledSpectrum::ZERO {
                     continue;
                 }
-                let contribution = c.l * weight;
+                let r = strategy_ratio(light, camera, s, t);
+                let contribution = lane_balance(c.l, r) * weight;
                 if let Some(observe) = observe.as_mut() {
                     let unweighted = if c.weight > 0.0 {
                         contribution / c.weight
@@ -141,6 +161,11 @@ pub(crate) fn strategy<S: SampleSource + ?Sized>(
             scene,
             lambda: lambda.copied(),
             regularize,
+            hero: if scene.media().is_empty() {
+                0
+            } else {
+                hero_lane(ray, lambda)
+            },
         };
         walk.camera_subpath(ray, sampler, t, camera);
         if camera.len() != t {
@@ -154,10 +179,22 @@ pub(crate) fn strategy<S: SampleSource + ?Sized>(
         next_stream(sampler);
         let weight = walk.spectral_weight();
         let lambda = walk.lambda;
-        let c = connect(scene, lambda.as_ref(), light, camera, s, t, sampler);
+        let seg = Segment {
+            scene,
+            lambda: lambda.as_ref(),
+            hero: walk.hero,
+        };
+        let c = connect(seg, light, camera, s, t, sampler);
         StrategySample {
-            l: c.l * weight,
+            l: lane_balance(c.l, strategy_ratio(light, camera, s, t)) * weight,
             p_raster: c.p_raster,
         }
     })
+}
+
+/// The lanes' density ratio of strategy (s, t): r_light[s−1]·r_camera[t−1] (the vertices
+/// sampled for s = 1 or t = 1 have none: 1).
+fn strategy_ratio(light: &[Vertex], camera: &[Vertex], s: usize, t: usize) -> SampledSpectrum {
+    let r = camera[t - 1].r;
+    if s > 0 { r * light[s - 1].r } else { r }
 }

@@ -18,8 +18,8 @@ use crate::shape::{SphereDesc, TriangleMesh};
 use crate::texture::SpectrumTex;
 use std::sync::Arc;
 
-const W: u32 = 24;
-const H: u32 = 18;
+pub(super) const W: u32 = 24;
+pub(super) const H: u32 = 18;
 
 fn quad(p: [[f32; 3]; 4], material: u32, light: Option<f32>) -> ShapeDesc {
     let mesh = TriangleMesh {
@@ -67,12 +67,12 @@ fn view(eye: Vec3, target: Vec3, fov: f32, integrator: Integrator) -> SceneDesc 
 /// A room open towards the camera: grey floor, back wall and ceiling, a red left wall, a
 /// green right wall, lit by a small quad under the ceiling facing down (`area`) or a point
 /// light (`!area`), which the camera does not see directly.
-fn room(area: bool, integrator: Integrator) -> Scene {
+pub(super) fn room(area: bool, integrator: Integrator) -> Scene {
     Scene::build(&room_desc(area, integrator)).unwrap()
 }
 
 /// The description of [`room`].
-fn room_desc(area: bool, integrator: Integrator) -> SceneDesc {
+pub(super) fn room_desc(area: bool, integrator: Integrator) -> SceneDesc {
     let diffuse = |c: Rgb| {
         MaterialDesc::Diffuse(DiffuseMaterial {
             reflectance: SpectrumTex::Const(c),
@@ -165,7 +165,7 @@ fn room_desc(area: bool, integrator: Integrator) -> SceneDesc {
 /// Renders `scene` with `integrator` at `spp` samples per pixel (box filter, RGB mode):
 /// camera samples and splats into the pixel they land in, over `spp`. `per_strategy` also
 /// gathers each (s, t) strategy's unweighted contributions into images of their own.
-fn render(
+pub(super) fn render(
     scene: &Scene,
     integrator: Integrator,
     spp: u32,
@@ -262,7 +262,7 @@ fn blocks(img: &[Rgb]) -> Vec<Rgb> {
 /// Relative difference of block means, |a − b| / max(b, m/4) with m the mean of `b` over the
 /// image (dim blocks are compared against a quarter of it), worst block and channel; and the
 /// ratio of the images' means.
-fn compare(a: &[Rgb], b: &[Rgb]) -> (f32, f32) {
+pub(super) fn compare(a: &[Rgb], b: &[Rgb]) -> (f32, f32) {
     let (ba, bb) = (blocks(a), blocks(b));
     let mean = |v: &[Rgb]| v.iter().map(|c| c.x + c.y + c.z).sum::<f32>() / (3 * v.len()) as f32;
     let m = mean(&bb);
@@ -274,7 +274,7 @@ fn compare(a: &[Rgb], b: &[Rgb]) -> (f32, f32) {
     (worst, mean(&ba) / m)
 }
 
-fn bdpt(max_depth: u32) -> Integrator {
+pub(super) fn bdpt(max_depth: u32) -> Integrator {
     Integrator::Bdpt {
         max_depth,
         regularize: false,
@@ -283,7 +283,7 @@ fn bdpt(max_depth: u32) -> Integrator {
     }
 }
 
-fn path(max_depth: u32) -> Integrator {
+pub(super) fn path(max_depth: u32) -> Integrator {
     Integrator::Path {
         max_depth,
         regularize: false,
@@ -347,7 +347,7 @@ fn each_strategy_alone_gives_the_image_of_its_depth() {
 }
 
 /// A surface vertex where the ray from `from` towards `to` first meets the room.
-fn surface_vertex(scene: &Scene, from: Vec3, to: Vec3) -> Vertex {
+pub(super) fn surface_vertex(scene: &Scene, from: Vec3, to: Vec3) -> Vertex {
     let hit = scene
         .intersect(&Ray::new(from, normalize(to - from)))
         .unwrap();
@@ -362,7 +362,10 @@ fn surface_vertex(scene: &Scene, from: Vec3, to: Vec3) -> Vertex {
         uv: hit.si.uv,
         prim: hit.prim,
         bsdf: Some(bsdf),
+        phase: crate::medium::HgPhaseFunction { g: 0.0 },
+        medium: None,
         beta: SampledSpectrum::ONE,
+        r: SampledSpectrum::ONE,
         delta: false,
         pdf_fwd: 0.0,
         pdf_rev: 0.0,
@@ -372,7 +375,7 @@ fn surface_vertex(scene: &Scene, from: Vec3, to: Vec3) -> Vertex {
 /// The subpaths strategy s makes of the path `x` (light end first, camera last): the light
 /// subpath's first s vertices and the camera subpath's first t, with their densities as the
 /// random walks compute them.
-fn subpaths(
+pub(super) fn subpaths(
     scene: &Scene,
     x: &[Vertex],
     light_vertex: Vertex,
@@ -488,6 +491,104 @@ fn mis_weights_of_all_strategies_of_a_path_sum_to_one() {
     }
 }
 
+/// The densities the walks of `scene` stored against the ones [`Vertex::pdf`] recomputes, 64
+/// camera and light subpaths of up to 7 and 6 vertices: `check(what, stored, recomputed)`
+/// for each. Returns how many vertices of each kind the subpaths held (surface, medium).
+pub(super) fn check_walk_densities(
+    scene: &Scene,
+    check: &mut dyn FnMut(String, f32, f32),
+    what: &str,
+) -> (usize, usize) {
+    let mut sampler = Sampler::new(SamplerKind::Independent, 64, 11);
+    let (mut camera, mut light) = (Vec::new(), Vec::new());
+    let mut kinds = (0, 0);
+    for k in 0..64 {
+        sampler.start_pixel_sample(5 + (k % 14) as i32, 3 + (k % 11) as i32, k);
+        let p = Vec2::new(5.5 + (k % 14) as f32, 3.5 + (k % 11) as f32);
+        let ray = scene.camera().generate_ray(p, Vec2::ZERO).unwrap().ray;
+        let mut walk = Walk {
+            scene,
+            lambda: None,
+            regularize: false,
+            hero: (k % 4) as usize,
+        };
+        walk.camera_subpath(&ray, &mut sampler, 7, &mut camera);
+        walk.light_subpath(&mut sampler, 6, &mut light);
+        for (name, path) in [("camera", &camera), ("light", &light)] {
+            for v in path.iter() {
+                match v.kind {
+                    Kind::Surface => kinds.0 += 1,
+                    Kind::Medium => kinds.1 += 1,
+                    _ => {}
+                }
+            }
+            for i in 1..path.len() {
+                let at = format!("{what}, {name} subpath {k}, vertex {i}");
+                let prev2 = (i >= 2).then(|| path[i - 2]);
+                let want = path[i - 1].pdf(scene, prev2.as_ref(), &path[i]);
+                check(format!("{at}: pdf_fwd"), path[i].pdf_fwd, want);
+                // pdf_rev is known once the vertex after next has been reached.
+                if i + 2 < path.len() {
+                    let want = path[i + 1].pdf(scene, Some(&path[i + 2]), &path[i]);
+                    check(format!("{at}: pdf_rev"), path[i].pdf_rev, want);
+                }
+            }
+        }
+        // The light's own vertex: the density of its position (a point light's is a delta,
+        // which no other strategy can reach).
+        if light.len() > 1 && light[0].is_on_surface() {
+            let want = light[0].pdf_light_origin(scene, &light[1]);
+            check(
+                format!("{what}, light subpath {k}: origin"),
+                light[0].pdf_fwd,
+                want,
+            );
+        }
+    }
+    kinds
+}
+
+/// Collects [`check_walk_densities`]'s comparisons: how many, how many off by more than
+/// 10⁻⁴, and those off by more than 2 %.
+#[derive(Default)]
+pub(super) struct DensityChecks {
+    pub checked: usize,
+    pub loose: usize,
+    pub off: Vec<String>,
+}
+
+impl DensityChecks {
+    /// Records one comparison.
+    pub fn check(&mut self, what: String, got: f32, want: f32) {
+        let rel = (got - want).abs() / want.abs().max(1e-6);
+        self.checked += 1;
+        self.loose += usize::from(rel > 1e-4);
+        if rel > 2e-2 {
+            self.off.push(format!("{what}: {got} vs {want}"));
+        }
+    }
+
+    /// All within 2 %, and 99 % within 10⁻⁴, of at least `min` checked.
+    pub fn assert_agree(&self, min: usize) {
+        assert!(
+            self.checked > min,
+            "only {} densities checked",
+            self.checked
+        );
+        assert!(
+            self.off.is_empty(),
+            "densities that disagree:\n{}",
+            self.off.join("\n")
+        );
+        assert!(
+            self.loose * 100 <= self.checked,
+            "{} of {} densities differ by more than 1e-4",
+            self.loose,
+            self.checked
+        );
+    }
+}
+
 #[test]
 fn the_walks_store_the_densities_the_weights_recompute() {
     // The MIS weights mix the densities the random walks stored (pdf_fwd as each vertex was
@@ -498,61 +599,17 @@ fn the_walks_store_the_densities_the_weights_recompute() {
     // then shift the direction or distance measurably: up to 0.7 % seen), so: all within
     // 2 %, and 99 % within 10⁻⁴. A wrong measure or a missing cosine is off by far more,
     // and a systematic error of 0.1 % on every vertex fails the second bound.
-    let (mut checked, mut loose, mut off) = (0, 0, Vec::new());
-    let mut check = |what: String, got: f32, want: f32| {
-        let rel = (got - want).abs() / want.abs().max(1e-6);
-        checked += 1;
-        loose += usize::from(rel > 1e-4);
-        if rel > 2e-2 {
-            off.push(format!("{what}: {got} vs {want}"));
-        }
-    };
+    let mut checks = DensityChecks::default();
     for area in [true, false] {
         let scene = room(area, bdpt(5));
-        let mut sampler = Sampler::new(SamplerKind::Independent, 64, 11);
-        let (mut camera, mut light) = (Vec::new(), Vec::new());
-        for k in 0..64 {
-            sampler.start_pixel_sample(5 + (k % 14) as i32, 3 + (k % 11) as i32, k);
-            let p = Vec2::new(5.5 + (k % 14) as f32, 3.5 + (k % 11) as f32);
-            let ray = scene.camera().generate_ray(p, Vec2::ZERO).unwrap().ray;
-            let mut walk = Walk {
-                scene: &scene,
-                lambda: None,
-                regularize: false,
-            };
-            walk.camera_subpath(&ray, &mut sampler, 7, &mut camera);
-            walk.light_subpath(&mut sampler, 6, &mut light);
-            for (name, path) in [("camera", &camera), ("light", &light)] {
-                for i in 1..path.len() {
-                    let what = format!("area {area}, {name} subpath {k}, vertex {i}");
-                    let prev2 = (i >= 2).then(|| path[i - 2]);
-                    let want = path[i - 1].pdf(&scene, prev2.as_ref(), &path[i]);
-                    check(format!("{what}: pdf_fwd"), path[i].pdf_fwd, want);
-                    // pdf_rev is known once the vertex after next has been reached.
-                    if i + 2 < path.len() {
-                        let want = path[i + 1].pdf(&scene, Some(&path[i + 2]), &path[i]);
-                        check(format!("{what}: pdf_rev"), path[i].pdf_rev, want);
-                    }
-                }
-            }
-            // The light's own vertex: the density of its position (a point light's is a
-            // delta, which no other strategy can reach).
-            if area && light.len() > 1 {
-                let want = light[0].pdf_light_origin(&scene, &light[1]);
-                check(format!("light subpath {k}: origin"), light[0].pdf_fwd, want);
-            }
-        }
+        let what = format!("area {area}");
+        check_walk_densities(
+            &scene,
+            &mut |w, got, want| checks.check(w, got, want),
+            &what,
+        );
     }
-    assert!(checked > 1000, "only {checked} densities checked");
-    assert!(
-        off.is_empty(),
-        "densities that disagree:\n{}",
-        off.join("\n")
-    );
-    assert!(
-        loose * 100 <= checked,
-        "{loose} of {checked} densities differ by more than 1e-4"
-    );
+    checks.assert_agree(1000);
 }
 
 #[test]

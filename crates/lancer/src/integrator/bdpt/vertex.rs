@@ -1,11 +1,19 @@
 //! A vertex of a bidirectional subpath (pbrt-v4's BDPT `Vertex`): where it is, what it
 //! carries, and the densities with which either subpath would have reached it, per unit area
 //! (the measure in which the strategies' densities compare).
+//!
+//! A vertex in a medium scatters by its phase function; as in pbrt-v4, its densities count
+//! only the direction (the phase function's), converted to area by 1/d² (no cosine: it has no
+//! surface), not the density of the distance at which delta tracking stopped there: the MIS
+//! weights are still a partition of unity over a path's strategies, so every estimate stays
+//! unbiased.
 
 use super::super::emission::{emission_at, environment};
+use super::super::volpath::avg;
 use crate::light::{LightSampleContext, LightType};
 use crate::material::{Bsdf, TransportMode};
 use crate::math::{PI, SampledSpectrum, Vec2, Vec3, normalize};
+use crate::medium::HgPhaseFunction;
 use crate::ray::Ray;
 use crate::scene::Scene;
 use crate::spectrum::sampled::SampledWavelengths;
@@ -22,6 +30,8 @@ pub(super) enum Kind {
     Escaped,
     /// A surface point with a BSDF (it may emit too).
     Surface,
+    /// A point where the subpath scattered in a medium (by [`Vertex::phase`]).
+    Medium,
 }
 
 /// One vertex of a camera or light subpath.
@@ -45,8 +55,20 @@ pub(super) struct Vertex {
     pub prim: u32,
     /// The BSDF (surfaces).
     pub bsdf: Option<Bsdf>,
+    /// The phase function (medium vertices).
+    pub phase: HgPhaseFunction,
+    /// The medium the vertex is in: the camera's, a light's (for the lights other than area
+    /// lights), the one a medium vertex scattered in, the one the ray reaching a surface
+    /// travelled in (`None`: vacuum).
+    pub medium: Option<u32>,
     /// The subpath's throughput up to this vertex.
     pub beta: SampledSpectrum,
+    /// Per lane, the density with which the subpath's distances through media were sampled
+    /// at that lane's coefficients over the density at the hero lane's (which sampled them):
+    /// Π σ(λ)·T_maj(λ) / (σ(h)·T_maj(h)) over its collisions and crossings (1 everywhere
+    /// without media). A strategy's contribution is divided by the lanes' average of its two
+    /// subpaths' product: the one-sample balance heuristic across lanes, as `volpath`'s r_u.
+    pub r: SampledSpectrum,
     /// Scattered by a specular lobe (no connection can reach it).
     pub delta: bool,
     /// Density of this vertex per unit area, sampled from its subpath's previous vertex.
@@ -68,7 +90,10 @@ impl Vertex {
             uv: Vec2::ZERO,
             prim: 0,
             bsdf: None,
+            phase: HgPhaseFunction { g: 0.0 },
+            medium: None,
             beta,
+            r: SampledSpectrum::ONE,
             delta: false,
             pdf_fwd: 0.0,
             pdf_rev: 0.0,
@@ -94,7 +119,7 @@ impl Vertex {
         match self.kind {
             Kind::Light(_) | Kind::Escaped => true,
             Kind::Surface => self.light(scene).is_some(),
-            Kind::Camera => false,
+            Kind::Camera | Kind::Medium => false,
         }
     }
 
@@ -120,20 +145,38 @@ impl Vertex {
     /// light (whose single direction no other vertex can aim at).
     pub fn is_connectible(&self, scene: &Scene) -> bool {
         match self.kind {
-            Kind::Camera | Kind::Escaped => true,
+            Kind::Camera | Kind::Escaped | Kind::Medium => true,
             Kind::Light(i) => scene.lights()[i as usize].light_type() != LightType::DeltaDirection,
             Kind::Surface => self.bsdf.is_some_and(|b| b.flags().is_non_specular()),
         }
     }
 
-    /// The BSDF's value from this vertex towards `next` (surfaces; zero elsewhere).
+    /// The BSDF's value from this vertex towards `next` (surfaces), the phase function's
+    /// (medium vertices); zero elsewhere.
     pub fn f(&self, next: &Vertex, mode: TransportMode) -> SampledSpectrum {
         let w = next.p - self.p;
         match (self.kind, &self.bsdf) {
             (Kind::Surface, Some(bsdf)) if w.length_squared() > 0.0 => {
                 bsdf.f(self.wo, normalize(w), mode)
             }
+            (Kind::Medium, _) if w.length_squared() > 0.0 => {
+                SampledSpectrum::splat(self.phase.p(self.wo, normalize(w)))
+            }
             _ => SampledSpectrum::ZERO,
+        }
+    }
+
+    /// The medium a ray leaving this vertex in direction `w` starts in: a surface's far side
+    /// when its interface is a transition, else the vertex's own medium; an area light's side
+    /// of its interface.
+    pub fn medium_towards(&self, scene: &Scene, w: Vec3) -> Option<u32> {
+        match self.kind {
+            Kind::Light(i) => scene.light_medium(i as usize, self.ng, w),
+            Kind::Surface => match scene.prim(self.prim).media {
+                Some(mi) if mi.is_transition() => mi.towards(self.ng, w),
+                _ => self.medium,
+            },
+            Kind::Camera | Kind::Medium | Kind::Escaped => self.medium,
         }
     }
 
@@ -197,6 +240,13 @@ impl Vertex {
                     return 0.0;
                 }
                 bsdf.pdf(normalize(wp), wn, TransportMode::Radiance)
+            }
+            (Kind::Medium, _, Some(prev)) => {
+                let wp = prev.p - self.p;
+                if wp.length_squared() == 0.0 {
+                    return 0.0;
+                }
+                self.phase.pdf(normalize(wp), wn)
             }
             _ => 0.0,
         };
@@ -277,4 +327,18 @@ pub(super) fn infinite_light_density(scene: &Scene, w: Vec3) -> f32 {
                 * scene.lights()[i as usize].pdf_li(&ctx, -w, None)
         })
         .sum()
+}
+
+/// `l`, a contribution whose lanes' density ratios are `r`, over their average: the one-sample
+/// balance heuristic across lanes. Untouched when r is 1 (no medium).
+pub(super) fn lane_balance(l: SampledSpectrum, r: SampledSpectrum) -> SampledSpectrum {
+    if r == SampledSpectrum::ONE {
+        return l;
+    }
+    let a = avg(r);
+    if a > 0.0 && a.is_finite() {
+        l / a
+    } else {
+        SampledSpectrum::ZERO
+    }
 }
