@@ -1,0 +1,37 @@
+//! The integrators that cannot go through participating media yet, replaced by `volpath`.
+
+use super::Builder;
+use crate::error::Location;
+
+impl Builder {
+    /// lancer's `bdpt`, `lightpath` and `mlt` do not sample participating media yet: a scene with
+    /// media that asks for them is rendered with `volpath` (same depth), with a warning, as
+    /// before they existed, rather than as if its media were not there.
+    pub(super) fn volumes_need_volpath(&mut self, end: &Location) {
+        use lancer::integrator::Integrator;
+        if self.desc.media.is_empty() {
+            return;
+        }
+        let (name, max_depth, regularize) = match self.desc.integrator {
+            Integrator::Bdpt {
+                max_depth,
+                regularize,
+                ..
+            } => ("bdpt", max_depth, regularize),
+            Integrator::LightPath { max_depth } => ("lightpath", max_depth, false),
+            Integrator::Mlt(o) => ("mlt", o.max_depth, o.regularize),
+            _ => return,
+        };
+        self.warn(
+            end,
+            format!(
+                "integrator \"{name}\" through participating media is not supported yet; lancer \
+                 uses \"volpath\" with maxdepth {max_depth}"
+            ),
+        );
+        self.desc.integrator = Integrator::VolPath {
+            max_depth,
+            regularize,
+        };
+    }
+}
