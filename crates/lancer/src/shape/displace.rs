@@ -23,7 +23,7 @@
 //! in the order of its recursion); only the vertex numbering differs.
 
 use super::mesh::TriangleMesh;
-use crate::math::{PackedVec3, Transform, Vec2, Vec3, cross};
+use crate::math::{PackedVec3, Transform, Vec2, Vec3, cross, normalize};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -105,7 +105,7 @@ fn midpoint(a: &Vtx, b: &Vtx) -> Vtx {
     Vtx {
         p: (a.p + b.p) / 2.0,
         n: if n.length_squared() > 0.0 {
-            n.normalize()
+            normalize(n)
         } else {
             n
         },
@@ -153,7 +153,7 @@ impl Rule {
     /// Whether edge (a, b) is split: it is not shorter than the edge length (NaN is split, and
     /// stopped by the depth limit).
     fn splits(&self, a: Vec3, b: Vec3) -> bool {
-        !(self.distance(a, b) < self.edge_length)
+        self.distance(a, b).partial_cmp(&self.edge_length) != Some(std::cmp::Ordering::Less)
     }
 
     /// How many vertices cutting the edge (a, b) makes: each piece not shorter than the edge
@@ -403,7 +403,7 @@ pub fn vertex_normals(positions: &[PackedVec3], indices: &[u32]) -> Vec<PackedVe
         let p = |k: usize| Vec3::from(positions[t[k] as usize]);
         let c = cross(p(1) - p(0), p(2) - p(1));
         if c.length_squared() > 0.0 {
-            let c = PackedVec3::from(c.normalize());
+            let c = PackedVec3::from(normalize(c));
             for &v in t {
                 n[v as usize] += c;
             }
@@ -411,7 +411,7 @@ pub fn vertex_normals(positions: &[PackedVec3], indices: &[u32]) -> Vec<PackedVe
     }
     n.par_iter_mut().for_each(|v| {
         if v.length_squared() > 0.0 {
-            *v = v.normalize();
+            *v = normalize(Vec3::from(*v)).into();
         }
     });
     n
@@ -424,7 +424,7 @@ pub fn refine(mesh: &TriangleMesh, r: &Refinement) -> Result<TriangleMesh, Displ
     if mesh.uvs.is_empty() && !mesh.positions.is_empty() {
         return Err(DisplaceError::NoUvs);
     }
-    if !(r.edge_length > 0.0) {
+    if r.edge_length.is_nan() || r.edge_length <= 0.0 {
         return Err(DisplaceError::BadEdgeLength);
     }
     let rule = Rule {

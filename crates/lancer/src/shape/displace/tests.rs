@@ -246,7 +246,7 @@ fn zero_displacement_keeps_a_flat_mesh_and_a_constant_one_lifts_it() {
         assert_eq!((p.x, p.y), (uv.x, uv.y));
     }
     // The recomputed normals lean against the slope: n ∝ (−1/4, 0, 1).
-    let want = Vec3::new(-0.25, 0.0, 1.0).normalize();
+    let want = crate::math::normalize(Vec3::new(-0.25, 0.0, 1.0));
     assert!(
         r.normals
             .iter()
