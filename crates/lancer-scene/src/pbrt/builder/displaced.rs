@@ -15,7 +15,7 @@ use crate::pbrt::shapes::Displacement;
 use lancer::math::{Vec2, Vec3};
 use lancer::scene::desc::Geometry;
 use lancer::shape::{DisplaceError, Refinement, displace, refine};
-use lancer::texture::{TexCoord, TextureEval};
+use lancer::texture::{FloatTexture, Pyramids, SpectrumTexture, TexCoord, TextureEval};
 use std::sync::Arc;
 
 /// What displacing meshes keeps across a scene: the options, the triangles made so far (the
@@ -66,9 +66,17 @@ impl Builder {
             SceneError::at(at, refinement_error(&what, &e, max, self.displacer.made))
         })?;
         let eye = self.camera_position();
+        // The textures as the renderer builds them (image textures with their pyramids).
+        let mut pyramids = Pyramids::default();
+        let floats: Vec<FloatTexture> = (self.desc.float_textures.iter())
+            .map(|t| t.build(&mut pyramids))
+            .collect();
+        let spectra: Vec<SpectrumTexture> = (self.desc.spectrum_textures.iter())
+            .map(|t| t.build(&mut pyramids))
+            .collect();
         let ev = TextureEval {
-            floats: &self.desc.float_textures,
-            spectra: &self.desc.spectrum_textures,
+            floats: &floats,
+            spectra: &spectra,
         };
         let lookup = |p: Vec3, uv: Vec2| TexCoord {
             p: p + eye,
