@@ -1,6 +1,7 @@
 //! `lancer info SCENE`: what a scene holds, without rendering it — camera, film, sampler,
 //! integrator, shapes and lights by kind, materials, triangles, world bounds, the loader's
-//! warnings, memory (mesh + BVH, bytes per triangle) and, with `--files`, every file read.
+//! warnings, what the reader made (displaced meshes), memory (mesh + BVH, bytes per triangle)
+//! and, with `--files`, every file read.
 
 use crate::cli_error::CliError;
 use crate::input;
@@ -29,6 +30,9 @@ pub struct InfoArgs {
     /// parameters it does not use.
     #[arg(long)]
     pub strict: bool,
+    /// What the reader makes of displaced meshes.
+    #[command(flatten)]
+    pub read: input::ReadArgs,
 }
 
 /// The integrator as pbrt-v4 names it and its parameters under pbrt-v4's names:
@@ -98,7 +102,7 @@ fn integrator_json(i: &Integrator) -> Value {
 pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
     let t0 = Instant::now();
     // The warnings are part of the report: read quietly, not to print them twice.
-    let loaded = input::read(Some(&args.scene))?;
+    let loaded = input::read(Some(&args.scene), &args.read.options())?;
     if args.strict {
         input::refuse_warnings(&loaded)?;
     }
@@ -196,6 +200,7 @@ pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
         "media": { "count": scene.media().len(), "by_kind": media_json },
         "world_bounds": bounds,
         "warnings": loaded.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>(),
+        "notes": loaded.notes.iter().map(|w| w.to_string()).collect::<Vec<_>>(),
         "memory": mem.to_json(),
         "bvh": { "nodes": mem.bvh_nodes, "bytes": mem.bvh_bytes },
         "time_s": { "parse": parse_s, "build": build_s },
@@ -390,6 +395,9 @@ pub fn text(v: &Value) -> String {
             "--denoise: not with this film (gbuffer or spectral); use Film \"rgb\"".to_string()
         },
     );
+    for n in v["notes"].as_array().into_iter().flatten() {
+        line("made", n.as_str().unwrap_or("").to_string());
+    }
     let warnings = v["warnings"].as_array().cloned().unwrap_or_default();
     line("warnings", warnings.len().to_string());
     for w in &warnings {

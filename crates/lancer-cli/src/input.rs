@@ -2,7 +2,7 @@
 //! the built-in default scene.
 
 use crate::cli_error::CliError;
-use lancer_scene::LoadedScene;
+use lancer_scene::{LoadOptions, LoadedScene};
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
@@ -20,10 +20,41 @@ pub fn is_stdin(path: &Path) -> bool {
     path == Path::new("-")
 }
 
+/// The options that change what the scene reader makes (`lancer render` and `lancer info`).
+#[derive(clap::Args, Clone, Copy, Debug)]
+pub struct ReadArgs {
+    /// Multiplies every displaced plymesh's "edgelength" (pbrt-v4's
+    /// --displacementedgescale): larger makes fewer, larger triangles.
+    #[arg(long, value_name = "SCALE", default_value_t = 1.0, value_parser = parse_edge_scale)]
+    pub displacement_edge_scale: f32,
+    /// The most triangles the scene's displaced plymeshes may have in all (a scene that would
+    /// make more is refused before it takes the memory; at most 2^30).
+    #[arg(long, value_name = "N", default_value_t = lancer_scene::DEFAULT_MAX_DISPLACED_TRIANGLES,
+          value_parser = clap::value_parser!(u64).range(1..=lancer::shape::MAX_DISPLACED_TRIANGLES))]
+    pub max_displaced_triangles: u64,
+}
+
+impl ReadArgs {
+    /// The reader's options.
+    pub fn options(&self) -> LoadOptions {
+        LoadOptions {
+            displacement_edge_scale: self.displacement_edge_scale,
+            max_displaced_triangles: self.max_displaced_triangles,
+        }
+    }
+}
+
+fn parse_edge_scale(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(v) if v > 0.0 && v.is_finite() => Ok(v),
+        _ => Err(format!("'{s}' is not a positive number")),
+    }
+}
+
 /// Reads `path` (a file, or pbrt text on standard input when it is `-`; relative file names in
-/// that text are relative to the current folder), or the built-in default scene when `None`.
-/// Prints nothing: the caller decides what to do with the warnings.
-pub fn read(path: Option<&Path>) -> Result<LoadedScene, CliError> {
+/// that text are relative to the current folder), or the built-in default scene when `None`,
+/// with `options`. Prints nothing: the caller decides what to do with the warnings and notes.
+pub fn read(path: Option<&Path>, options: &LoadOptions) -> Result<LoadedScene, CliError> {
     match path {
         Some(p) if is_stdin(p) => {
             // Gzip-compressed text is accepted, as in files (`zcat`-free pipes).
@@ -35,21 +66,33 @@ pub fn read(path: Option<&Path>) -> Result<LoadedScene, CliError> {
             let text = lancer_scene::pbrt::lexer::decode_utf8(&bytes, &STDIN_NAME.into())
                 .map_err(|e| CliError::input(e.to_string()).with_detail(e.excerpt_lines()))?;
             let dir = std::env::current_dir().unwrap_or_else(|_| PathBuf::from("."));
-            lancer_scene::load_pbrt_str(&text, STDIN_NAME, &dir)
+            lancer_scene::load_pbrt_str_with(&text, STDIN_NAME, &dir, options)
         }
-        Some(p) => lancer_scene::load(p),
-        None => lancer_scene::load_pbrt_str(DEFAULT_SCENE, DEFAULT_SCENE_NAME, Path::new(".")),
+        Some(p) => lancer_scene::load_with(p, options),
+        None => lancer_scene::load_pbrt_str_with(
+            DEFAULT_SCENE,
+            DEFAULT_SCENE_NAME,
+            Path::new("."),
+            options,
+        ),
     }
     .map_err(|e| CliError::input(e.to_string()).with_detail(e.excerpt_lines()))
 }
 
 /// [`read`], then prints the warnings on stderr.
-pub fn load(path: Option<&Path>) -> Result<LoadedScene, CliError> {
-    let loaded = read(path)?;
+pub fn load(path: Option<&Path>, options: &LoadOptions) -> Result<LoadedScene, CliError> {
+    let loaded = read(path, options)?;
     for w in &loaded.warnings {
         eprintln!("warning: {w}");
     }
     Ok(loaded)
+}
+
+/// Prints the reader's notes on stderr (what it made: the displaced meshes' triangles).
+pub fn print_notes(loaded: &LoadedScene) {
+    for n in &loaded.notes {
+        eprintln!("note: {n}");
+    }
 }
 
 /// `--strict`: the first of the reader's warnings as an error (`file:line:column: message`),

@@ -97,13 +97,18 @@ pub struct Loaded {
 /// applies the overrides.
 pub fn load(args: RenderArgs) -> Result<Loaded, CliError> {
     let (args, resumed) = resumed_args(args)?;
-    let mut desc = if args.strict {
-        let loaded = input::read(args.scene.as_deref())?;
+    let options = args.read.options();
+    let loaded = if args.strict {
+        let loaded = input::read(args.scene.as_deref(), &options)?;
         input::refuse_warnings(&loaded)?;
-        loaded.desc
+        loaded
     } else {
-        input::load(args.scene.as_deref())?.desc
+        input::load(args.scene.as_deref(), &options)?
     };
+    if !args.quiet {
+        input::print_notes(&loaded);
+    }
+    let mut desc = loaded.desc;
     apply_overrides(&mut desc, &args)?;
     Ok(Loaded {
         args,

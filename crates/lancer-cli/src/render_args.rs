@@ -76,6 +76,9 @@ pub struct RenderArgs {
     /// parameters it does not use.
     #[arg(long)]
     pub strict: bool,
+    /// What the reader makes of displaced meshes.
+    #[command(flatten)]
+    pub read: crate::input::ReadArgs,
     /// How progress is shown on stderr: `auto` (a bar on a terminal, plain lines in a log
     /// file), `bar`, `lines`, or `json` (one JSON object per line, for programs).
     #[arg(long, value_enum, value_name = "MODE", default_value_t)]

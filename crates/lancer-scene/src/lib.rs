@@ -33,17 +33,49 @@ pub struct LoadedScene {
     /// Every file read (scene, includes, meshes, textures, spectra), absolute, in first-read
     /// order; filled by [`load`] and [`load_pbrt_str`] (see [`files_read`]).
     pub files: Vec<PathBuf>,
+    /// What the reader made that is worth printing (each displaced mesh's triangle count and
+    /// memory), in file order.
+    pub notes: Vec<Warning>,
+}
+
+/// The most triangles a scene's displaced meshes may have in all, unless
+/// [`LoadOptions::max_displaced_triangles`] says otherwise (about 3 GiB of meshes).
+pub const DEFAULT_MAX_DISPLACED_TRIANGLES: u64 = 100_000_000;
+
+/// The command line's say in what the reader makes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LoadOptions {
+    /// Multiplies every displaced `plymesh`'s `edgelength` (pbrt-v4's
+    /// `--displacementedgescale`; 1 by default).
+    pub displacement_edge_scale: f32,
+    /// The most triangles the scene's displaced meshes may have in all (an error names the
+    /// mesh that would pass it); at most [`lancer::shape::MAX_DISPLACED_TRIANGLES`].
+    pub max_displaced_triangles: u64,
+}
+
+impl Default for LoadOptions {
+    fn default() -> Self {
+        LoadOptions {
+            displacement_edge_scale: 1.0,
+            max_displaced_triangles: DEFAULT_MAX_DISPLACED_TRIANGLES,
+        }
+    }
 }
 
 /// Reads a scene file, its format chosen by the extension: `.pbrt`, `.pbrt.gz` (or none) a
 /// pbrt-v4 scene; `.gltf` or `.glb` a glTF 2.0 model ([`gltf`]); `.obj`, `.ply` or `.ply.gz` a bare mesh, with the camera, lights and film of
 /// [`mesh_scene::defaults`] around it.
 pub fn load(path: &Path) -> Result<LoadedScene, SceneError> {
-    let (result, files) = files_read::recording(|| load_unrecorded(path));
+    load_with(path, &LoadOptions::default())
+}
+
+/// [`load`] with `options`.
+pub fn load_with(path: &Path, options: &LoadOptions) -> Result<LoadedScene, SceneError> {
+    let (result, files) = files_read::recording(|| load_unrecorded(path, options));
     result.map(|loaded| LoadedScene { files, ..loaded })
 }
 
-fn load_unrecorded(path: &Path) -> Result<LoadedScene, SceneError> {
+fn load_unrecorded(path: &Path, options: &LoadOptions) -> Result<LoadedScene, SceneError> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -58,11 +90,11 @@ fn load_unrecorded(path: &Path) -> Result<LoadedScene, SceneError> {
     match ext.as_deref() {
         Some("gz") if gzipped("pbrt") => {
             let mut parser = Parser::from_file(path)?;
-            finish(pbrt::builder::build(&mut parser), &parser)
+            finish(pbrt::builder::build(&mut parser, options), &parser)
         }
         Some("pbrt") | None => {
             let mut parser = Parser::from_file(path)?;
-            finish(pbrt::builder::build(&mut parser), &parser)
+            finish(pbrt::builder::build(&mut parser, options), &parser)
         }
         Some("obj") => mesh_scene::load_obj_scene(path).map(fold),
         Some("ply") => mesh_scene::load_ply_scene(path).map(fold),
@@ -85,22 +117,33 @@ fn fold(loaded: LoadedScene) -> LoadedScene {
 /// Reads pbrt-v4 scene text held in memory; `name` names it in messages and `dir` is where its
 /// relative file names point.
 pub fn load_pbrt_str(text: &str, name: &str, dir: &Path) -> Result<LoadedScene, SceneError> {
+    load_pbrt_str_with(text, name, dir, &LoadOptions::default())
+}
+
+/// [`load_pbrt_str`] with `options`.
+pub fn load_pbrt_str_with(
+    text: &str,
+    name: &str,
+    dir: &Path,
+    options: &LoadOptions,
+) -> Result<LoadedScene, SceneError> {
     let (result, files) = files_read::recording(|| {
         let mut parser = Parser::from_str(text, name, dir);
-        finish(pbrt::builder::build(&mut parser), &parser)
+        finish(pbrt::builder::build(&mut parser, options), &parser)
     });
     result.map(|loaded| LoadedScene { files, ..loaded })
 }
 
 fn finish(
-    result: Result<(SceneDesc, Vec<Warning>), SceneError>,
+    result: Result<pbrt::builder::Built, SceneError>,
     parser: &Parser,
 ) -> Result<LoadedScene, SceneError> {
     match result {
-        Ok((desc, warnings)) => Ok(LoadedScene {
-            desc,
-            warnings: fold_repeats(warnings),
+        Ok(built) => Ok(LoadedScene {
+            desc: built.desc,
+            warnings: fold_repeats(built.warnings),
             files: Vec::new(),
+            notes: built.notes,
         }),
         Err(mut e) => {
             if e.source_line.is_none()

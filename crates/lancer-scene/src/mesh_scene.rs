@@ -83,6 +83,7 @@ pub fn load_ply_scene(path: &Path) -> Result<LoadedScene, SceneError> {
         desc: scene_around(&name, parts, vec![material])?,
         warnings,
         files: Vec::new(),
+        notes: Vec::new(),
     })
 }
 
@@ -204,6 +205,7 @@ pub fn load_obj_scene(path: &Path) -> Result<LoadedScene, SceneError> {
         desc,
         warnings,
         files: Vec::new(),
+        notes: Vec::new(),
     })
 }
 

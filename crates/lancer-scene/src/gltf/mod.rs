@@ -155,6 +155,7 @@ pub fn load_gltf_scene(path: &Path) -> Result<LoadedScene, SceneError> {
         desc,
         warnings: loader.warnings,
         files: Vec::new(),
+        notes: Vec::new(),
     })
 }
 

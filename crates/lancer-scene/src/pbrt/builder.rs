@@ -11,13 +11,14 @@ use super::materials::{MaterialWithNames, material};
 use super::media::{CurrentMedia, Media};
 use super::options::{film, filter, imaging_ratio, integrator, light_sampler, sampler, seed};
 use super::params::{Param, ParamList};
-use super::parser::{Directive, Located, Parser};
+use super::parser::{Directive, Located};
 use super::search_path::SearchPath;
 use super::shapes::{ShapeGeometry, shape};
 use super::singular::{flatten, is_singular, unplaced};
 use super::textures::{
     float_texture, needs_unbounded_variant, spectrum_texture, spectrum_texture_as,
 };
+use crate::LoadOptions;
 use crate::error::{Location, SceneError, Warning};
 use crate::image_read::ImageCache;
 use lancer::material::MaterialDesc;
@@ -45,8 +46,13 @@ enum MaterialRef {
 pub const MAX_NESTING: usize = 10_000;
 
 mod blocks;
+mod displaced;
+mod entry;
 mod object_motion;
 mod transforms;
+mod volpath;
+
+pub use entry::{Built, build};
 
 /// What `AttributeBegin` saves.
 #[derive(Clone, Debug)]
@@ -136,10 +142,11 @@ pub struct Builder {
     iso: f32,
     option_seed: Option<u64>,
     sampler_seed: Option<u64>,
+    displacer: displaced::Displacer,
 }
 
 impl Builder {
-    fn new() -> Builder {
+    fn new(options: &LoadOptions) -> Builder {
         let desc = SceneDesc {
             materials: vec![MaterialDesc::default()],
             ..SceneDesc::default()
@@ -176,6 +183,7 @@ impl Builder {
             iso: 100.0,
             option_seed: None,
             sampler_seed: None,
+            displacer: displaced::Displacer::new(options),
         }
     }
 
@@ -605,6 +613,7 @@ impl Builder {
             geometry,
             also,
             alpha,
+            displacement,
         }) = self.accept(converted, loc)
         else {
             // Skipped whole: its warning says so; its parameters need no warnings of their own.
@@ -614,6 +623,10 @@ impl Builder {
         // Moving, flattened by a singular transformation, or placed by the CTM: decided (and
         // warned about) once for the directive, whose two geometries (a plymesh's triangles
         // and quads) share their attributes and vertices.
+        let geometry = match displacement {
+            Some(d) => self.displaced(geometry, d, loc)?,
+            None => geometry,
+        };
         let moving = self.moving_shape(emits, alpha.is_some(), loc)?;
         let singular = moving.is_none() && is_singular(&self.gs.ctm);
         for (k, geometry) in std::iter::once(geometry).chain(also).enumerate() {
@@ -710,7 +723,7 @@ impl Builder {
 
     /// Resolves what could be named before its definition, checks every block is closed, and
     /// applies the options that depend on several directives.
-    fn finish(mut self, end: Location) -> Result<(SceneDesc, Vec<Warning>), SceneError> {
+    fn finish(mut self, end: Location) -> Result<Built, SceneError> {
         if let Some((b, _, open)) = self.stack.last() {
             let (begin, end) = b.names();
             return Err(SceneError::at(
@@ -771,45 +784,10 @@ impl Builder {
         camera.screen_window = camera.screen_window.or(self.frame_aspect.map(frame_window));
         self.desc.film.scale = imaging_ratio(camera.shutter, self.iso);
         self.desc.sampler.seed = self.sampler_seed.or(self.option_seed).unwrap_or(0);
-        Ok((self.desc, self.warnings))
+        Ok(Built {
+            desc: self.desc,
+            warnings: self.warnings,
+            notes: self.displacer.notes,
+        })
     }
-}
-
-impl Builder {
-    /// lancer's `mlt` does not sample participating media yet: a scene with media that asks for
-    /// it is rendered with `volpath` (same depth), with a warning, rather than as if its media
-    /// were not there.
-    fn volumes_need_volpath(&mut self, end: &Location) {
-        use lancer::integrator::Integrator;
-        if self.desc.media.is_empty() {
-            return;
-        }
-        let (name, max_depth, regularize) = match self.desc.integrator {
-            Integrator::Mlt(o) => ("mlt", o.max_depth, o.regularize),
-            _ => return,
-        };
-        self.warn(
-            end,
-            format!(
-                "integrator \"{name}\" through participating media is not supported yet; lancer \
-                 uses \"volpath\" with maxdepth {max_depth}"
-            ),
-        );
-        self.desc.integrator = Integrator::VolPath {
-            max_depth,
-            regularize,
-        };
-    }
-}
-
-/// Reads every directive of `parser` into a scene description and its warnings.
-pub fn build(parser: &mut Parser) -> Result<(SceneDesc, Vec<Warning>), SceneError> {
-    let mut b = Builder::new();
-    let mut last = None;
-    while let Some(d) = parser.next_directive()? {
-        last = Some(d.loc.clone());
-        b.directive(d)?;
-    }
-    let end = last.unwrap_or_else(|| parser.start_location());
-    b.finish(end)
 }

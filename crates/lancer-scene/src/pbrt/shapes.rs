@@ -27,6 +27,23 @@ pub struct ShapeGeometry {
     pub also: Option<Geometry>,
     /// The alpha cut-out, when not 1.
     pub alpha: Option<FloatTex>,
+    /// The displacement of a `plymesh`'s triangles (`geometry`), to apply where the texture
+    /// list and the transformation are known.
+    pub displacement: Option<Displacement>,
+}
+
+/// A `plymesh`'s `displacement` and `edgelength` (pbrt-v4 applies them when it makes the
+/// shape: see `builder/displaced.rs`).
+#[derive(Clone, Debug)]
+pub struct Displacement {
+    /// The texture (or constant) moving each vertex along its normal.
+    pub texture: FloatTex,
+    /// `edgelength`, before `--displacement-edge-scale`.
+    pub edge_length: f32,
+    /// Where `edgelength` is, when given.
+    pub edge_loc: Option<Location>,
+    /// The PLY file, for messages.
+    pub file: String,
 }
 
 /// The shape `ty` at `loc`; `emits` when the current area light would make it glow. The value
@@ -39,10 +56,10 @@ pub fn shape(
 ) -> Result<Fallback<Option<ShapeGeometry>>, SceneError> {
     let converted = match ty {
         "plymesh" => ply_mesh(r),
-        _ => geometry(r, ty).map(|g| g.map(|g| g.map(|g| (g, None)))),
+        _ => geometry(r, ty).map(|g| g.map(|g| g.map(|g| (g, None, None)))),
     }
     .map_err(|e| locate(e, loc))?;
-    let Some((geometry, also)) = converted.value else {
+    let Some((geometry, also, displacement)) = converted.value else {
         return Ok(Fallback {
             value: None,
             warnings: converted.warnings,
@@ -64,6 +81,7 @@ pub fn shape(
             geometry,
             also,
             alpha,
+            displacement,
         }),
         warnings: converted.warnings,
     })
@@ -379,13 +397,14 @@ fn obj_mesh(r: &Reader) -> Result<Fallback<Option<TriangleMesh>>, SceneError> {
     Ok(Fallback::noted(mesh, notes))
 }
 
-/// A `plymesh`'s geometries: its triangles, its quads as bilinear patches, or both.
-type PlyGeometries = Option<(Geometry, Option<Geometry>)>;
+/// A `plymesh`'s geometries: its triangles, its quads as bilinear patches, or both; and its
+/// displacement.
+type PlyGeometries = Option<(Geometry, Option<Geometry>, Option<Displacement>)>;
 
 /// pbrt's `plymesh`: the faces of the PLY file `filename` (gzipped when it ends in `.gz`) as
 /// pbrt-v4 makes them: triangles, and each quad a bilinear patch (its `BilinearPatchMesh`).
-/// Displacement is not supported: the mesh is used as it is (its quads as triangles, as
-/// pbrt-v4 displaces them), with a warning.
+/// With `displacement` (a float texture, or a constant), the quads are triangles too (as
+/// pbrt-v4 displaces them) and the mesh is refined and displaced by the builder.
 fn ply_mesh(r: &Reader) -> Result<Fallback<PlyGeometries>, SceneError> {
     let p = r.params;
     let path = r.file("a \"plymesh\" needs the name of its PLY file")?;
@@ -395,24 +414,25 @@ fn ply_mesh(r: &Reader) -> Result<Fallback<PlyGeometries>, SceneError> {
     let Some(mesh) = mesh else {
         return Ok(Fallback::noted(None, notes));
     };
-    // Read (so that they are not also reported as unused) but not applied.
-    let displaced = p.float_or_texture("displacement")?.is_some();
-    let edge_length = p.has("edgelength");
-    p.float("edgelength", 1.0)?;
-    if displaced {
-        notes.push(
-            "displacement of a \"plymesh\" is not supported yet; the mesh is used undisplaced"
-                .into(),
-        );
-    } else if edge_length {
-        notes.push(
-            "\"edgelength\" only matters with \"displacement\", which lancer does not support yet; ignored"
-                .into(),
-        );
+    let texture = match p.float_or_texture("displacement")? {
+        None => None,
+        Some(FloatParam::Const(d)) => Some(FloatTex::Const(d)),
+        Some(FloatParam::Texture(t, tloc)) => Some(r.textures.float(&t, &tloc)?),
+    };
+    let edge_loc = p.location("edgelength").cloned();
+    let edge_length = p.float("edgelength", 1.0)?;
+    let displacement = texture.map(|texture| Displacement {
+        texture,
+        edge_length,
+        edge_loc,
+        file: path.display().to_string(),
+    });
+    if displacement.is_none() && p.has("edgelength") {
+        notes.push("\"edgelength\" only matters with \"displacement\"; ignored".into());
     }
     // pbrt-v4 displaces triangles (its `Displace` splits quads as the mesh holds them), so a
     // mesh with displacement keeps its quads' triangles.
-    let quads = if displaced { 0 } else { quads };
+    let quads = if displacement.is_some() { 0 } else { quads };
     let (tris, patches) = crate::ply::PlyMesh {
         mesh,
         quads,
@@ -423,8 +443,8 @@ fn ply_mesh(r: &Reader) -> Result<Fallback<PlyGeometries>, SceneError> {
     // triangles' (four to a patch).
     let patches = patches.map(|m| Geometry::BilinearMesh(Arc::new(m)));
     let geometries = match (tris, patches) {
-        (Some(t), patches) => Some((Geometry::TriangleMesh(Arc::new(t)), patches)),
-        (None, Some(patches)) => Some((patches, None)),
+        (Some(t), patches) => Some((Geometry::TriangleMesh(Arc::new(t)), patches, displacement)),
+        (None, Some(patches)) => Some((patches, None, None)),
         (None, None) => None,
     };
     Ok(Fallback::noted(geometries, notes))

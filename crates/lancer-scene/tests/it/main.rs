@@ -7,6 +7,7 @@ mod alpha;
 mod area_image;
 mod coverage_table;
 mod curves_bilinear;
+mod displaced;
 mod envmap;
 mod gltf;
 mod imagemap;

@@ -184,29 +184,43 @@ fn plymesh_errors_are_placed_at_the_shape() {
 }
 
 #[test]
-fn displacement_is_warned_about_and_the_mesh_kept() {
+fn displacement_needs_uvs_as_in_pbrt_v4_and_edgelength_alone_is_warned_about() {
     let dir = ScratchDir::new("displacement");
     std::fs::write(dir.join("q.ply"), quads_ply(1)).unwrap();
-    std::fs::write(
-        dir.join("scene.pbrt"),
-        "WorldBegin\nTexture \"bump\" \"float\" \"constant\" \"float value\" 0.1\n\
-         Shape \"plymesh\" \"string filename\" \"q.ply\" \"texture displacement\" \"bump\" \
-         \"float edgelength\" 0.5\n\
-         Shape \"plymesh\" \"string filename\" \"q.ply\" \"float edgelength\" 0.5\n",
+    let scene = |shape: &str| {
+        std::fs::write(
+            dir.join("scene.pbrt"),
+            format!(
+                "WorldBegin\nTexture \"bump\" \"float\" \"constant\" \"float value\" 0.1\n{shape}"
+            ),
+        )
+        .unwrap();
+        load(&dir.join("scene.pbrt"))
+    };
+    // pbrt-v4's `Displace` refuses a mesh without (u, v) too.
+    let e = scene(
+        "Shape \"plymesh\" \"string filename\" \"q.ply\" \"texture displacement\" \"bump\" \
+         \"float edgelength\" 0.5\n",
     )
-    .unwrap();
-    let loaded = load(&dir.join("scene.pbrt")).unwrap_or_else(|e| panic!("{e}"));
-    // The displaced mesh keeps its quads' triangles (as pbrt-v4 displaces them), the other
-    // makes patches.
-    assert_eq!(meshes(&loaded.desc).len(), 1);
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains(":3:") && e.contains("has no per-vertex (u, v), which displacement needs"),
+        "{e}"
+    );
+    // Without a displacement the quad is a bilinear patch, and `edgelength` does nothing.
+    let loaded =
+        scene("Shape \"plymesh\" \"string filename\" \"q.ply\" \"float edgelength\" 0.5\n")
+            .unwrap_or_else(|e| panic!("{e}"));
     assert!(matches!(
-        loaded.desc.shapes[1].geometry,
+        loaded.desc.shapes[0].geometry,
         Geometry::BilinearMesh(_)
     ));
     let w: Vec<_> = loaded.warnings.iter().map(|w| w.message.as_str()).collect();
-    assert_eq!(w.len(), 2, "{w:?}");
-    assert!(w[0].contains("displacement of a \"plymesh\" is not supported yet"));
-    assert!(w[1].contains("\"edgelength\" only matters with \"displacement\""));
+    assert_eq!(
+        w,
+        ["\"edgelength\" only matters with \"displacement\"; ignored"]
+    );
     assert_eq!(loaded.warnings[0].location.line, 3);
 }
 

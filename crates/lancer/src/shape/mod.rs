@@ -28,6 +28,7 @@ mod cuboid;
 mod curve;
 mod cylinder;
 mod disk;
+mod displace;
 mod hit;
 mod hyperboloid;
 mod kind;
@@ -52,6 +53,9 @@ pub use cuboid::{BoxDesc, Cuboid};
 pub use curve::{Curve, CurveBasis, CurveCommon, CurveDesc, CurveType, bezier_eval, bezier_piece};
 pub use cylinder::{Cylinder, CylinderDesc};
 pub use disk::{Disk, DiskDesc};
+pub use displace::{
+    DisplaceError, MAX_DISPLACED_TRIANGLES, Refinement, displace, refine, vertex_normals,
+};
 pub use hit::{Shading, ShadingDerivatives, ShapeHit, ShapeSample, SurfaceInteraction};
 pub use hyperboloid::{Hyperboloid, HyperboloidDesc};
 pub use kind::{GeometryKind, HeldBytes, Placing, ShapeKind};

@@ -637,17 +637,19 @@ fn mesh_files_are_read_with_their_warnings() {
     assert!(f.warnings.is_empty() && unused.is_empty());
     let m = mesh(f.value.expect("kept").geometry);
     assert_eq!(m.indices, [0, 1, 2]);
-    let (f, _) = read(r#"Shape "plymesh" "string filename" "t.ply" "float displacement" 0.1"#);
-    assert_eq!(
-        f.warnings,
-        ["displacement of a \"plymesh\" is not supported yet; the mesh is used undisplaced"]
+    // A displacement is passed on to the builder with its edge length (read where given).
+    let (f, unused) = read(
+        r#"Shape "plymesh" "string filename" "t.ply" "float displacement" 0.1 "float edgelength" 0.5"#,
     );
+    assert!(f.warnings.is_empty() && unused.is_empty());
+    let d = f.value.expect("kept").displacement.expect("displaced");
+    assert_eq!((d.texture, d.edge_length), (FloatTex::Const(0.1), 0.5));
+    assert!(d.edge_loc.is_some());
     let (f, unused) = read(r#"Shape "plymesh" "string filename" "t.ply" "float edgelength" 2"#);
+    assert!(f.value.expect("kept").displacement.is_none());
     assert_eq!(
         f.warnings,
-        [
-            "\"edgelength\" only matters with \"displacement\", which lancer does not support yet; ignored"
-        ]
+        ["\"edgelength\" only matters with \"displacement\"; ignored"]
     );
     assert!(unused.is_empty());
     let empty = dir.join("empty.ply");

@@ -1,0 +1,32 @@
+//! The integrator that cannot go through participating media yet (`mlt`), replaced by
+//! `volpath`.
+
+use super::Builder;
+use crate::error::Location;
+
+impl Builder {
+    /// lancer's `mlt` does not sample participating media yet: a scene with media that asks for
+    /// it is rendered with `volpath` (same depth), with a warning, rather than as if its media
+    /// were not there.
+    pub(super) fn volumes_need_volpath(&mut self, end: &Location) {
+        use lancer::integrator::Integrator;
+        if self.desc.media.is_empty() {
+            return;
+        }
+        let (name, max_depth, regularize) = match self.desc.integrator {
+            Integrator::Mlt(o) => ("mlt", o.max_depth, o.regularize),
+            _ => return,
+        };
+        self.warn(
+            end,
+            format!(
+                "integrator \"{name}\" through participating media is not supported yet; lancer \
+                 uses \"volpath\" with maxdepth {max_depth}"
+            ),
+        );
+        self.desc.integrator = Integrator::VolPath {
+            max_depth,
+            regularize,
+        };
+    }
+}
