@@ -78,6 +78,18 @@ fn integrator_json(i: &Integrator) -> Value {
             v["visualizestrategies"] = json!(visualize_strategies);
             v["visualizeweights"] = json!(visualize_weights);
         }
+        Integrator::Sppm {
+            max_depth,
+            photons_per_iteration,
+            radius,
+            seed,
+        } => {
+            v["maxdepth"] = json!(max_depth);
+            // pbrt-v4's −1: one photon per pixel.
+            v["photonsperiteration"] = json!(photons_per_iteration.map_or(-1, i64::from));
+            v["radius"] = json!(radius);
+            v["seed"] = json!(seed);
+        }
         Integrator::Normals | Integrator::Depth => {}
     }
     v
@@ -438,5 +450,16 @@ mod tests {
         );
         let v = integrator_json(&Integrator::LightPath { max_depth: 5 });
         assert_eq!(integrator_text(&v), "lightpath (maxdepth 5)");
+        let v = integrator_json(&Integrator::Sppm {
+            max_depth: 8,
+            photons_per_iteration: None,
+            radius: 0.25,
+            seed: Some(3),
+        });
+        assert_eq!(
+            v,
+            json!({ "name": "sppm", "maxdepth": 8, "photonsperiteration": -1,
+                    "radius": 0.25, "seed": 3 })
+        );
     }
 }

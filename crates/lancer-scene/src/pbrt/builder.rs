@@ -45,6 +45,7 @@ enum MaterialRef {
 pub const MAX_NESTING: usize = 10_000;
 
 mod blocks;
+mod integrator;
 mod object_motion;
 mod transforms;
 
@@ -743,43 +744,12 @@ impl Builder {
         }
         self.desc.camera_medium = self.media.camera_medium()?;
         self.volumes_need_volpath(&end);
+        self.sppm_writes_rgb(&end);
         let camera = &mut self.desc.camera;
         camera.screen_window = camera.screen_window.or(self.frame_aspect.map(frame_window));
         self.desc.film.scale = imaging_ratio(camera.shutter, self.iso);
         self.desc.sampler.seed = self.sampler_seed.or(self.option_seed).unwrap_or(0);
         Ok((self.desc, self.warnings))
-    }
-}
-
-impl Builder {
-    /// lancer's `bdpt` and `lightpath` do not sample participating media yet: a scene with
-    /// media that asks for them is rendered with `volpath` (same depth), with a warning, as
-    /// before they existed, rather than as if its media were not there.
-    fn volumes_need_volpath(&mut self, end: &Location) {
-        use lancer::integrator::Integrator;
-        if self.desc.media.is_empty() {
-            return;
-        }
-        let (name, max_depth, regularize) = match self.desc.integrator {
-            Integrator::Bdpt {
-                max_depth,
-                regularize,
-                ..
-            } => ("bdpt", max_depth, regularize),
-            Integrator::LightPath { max_depth } => ("lightpath", max_depth, false),
-            _ => return,
-        };
-        self.warn(
-            end,
-            format!(
-                "integrator \"{name}\" through participating media is not supported yet; lancer \
-                 uses \"volpath\" with maxdepth {max_depth}"
-            ),
-        );
-        self.desc.integrator = Integrator::VolPath {
-            max_depth,
-            regularize,
-        };
     }
 }
 

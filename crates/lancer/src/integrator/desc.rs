@@ -52,6 +52,19 @@ pub enum Integrator {
         /// pbrt-v4's `visualizeweights`: one image per strategy, weighted.
         visualize_weights: bool,
     },
+    /// Stochastic progressive photon mapping (pbrt-v4's `sppm`): per iteration (one per
+    /// sample per pixel), a visible point per pixel and photons from the lights gathered at
+    /// them within a radius that shrinks from iteration to iteration.
+    Sppm {
+        /// Maximum number of bounces, of camera paths and of photons (`maxdepth`).
+        max_depth: u32,
+        /// Photons per iteration (`photonsperiteration`); `None`: one per pixel.
+        photons_per_iteration: Option<u32>,
+        /// Initial search radius, world units (`radius`).
+        radius: f32,
+        /// Seed of the photons' points (`seed`); `None`: the render's seed.
+        seed: Option<u64>,
+    },
     /// pbrt-v4's `simplepath`: path tracing without MIS, light sampling and BSDF sampling
     /// each optional.
     SimplePath {
@@ -85,7 +98,7 @@ impl Default for Integrator {
 
 impl Integrator {
     /// The pbrt-v4 name of this integrator (`Integrator "…"`): `path`, `volpath`, `whitted`,
-    /// `ambientocclusion`, `lightpath`, `bdpt`, `simplepath`, `randomwalk`, and lancer's debug
+    /// `ambientocclusion`, `lightpath`, `bdpt`, `sppm`, `simplepath`, `randomwalk`, and lancer's debug
     /// views `normals` and `depth`.
     pub fn pbrt_name(&self) -> &'static str {
         match self {
@@ -95,6 +108,7 @@ impl Integrator {
             Integrator::AmbientOcclusion { .. } => "ambientocclusion",
             Integrator::LightPath { .. } => "lightpath",
             Integrator::Bdpt { .. } => "bdpt",
+            Integrator::Sppm { .. } => "sppm",
             Integrator::SimplePath { .. } => "simplepath",
             Integrator::RandomWalk { .. } => "randomwalk",
             Integrator::Normals => "normals",
@@ -112,6 +126,7 @@ impl Integrator {
                 | Integrator::VolPath { .. }
                 | Integrator::LightPath { .. }
                 | Integrator::Bdpt { .. }
+                | Integrator::Sppm { .. }
                 | Integrator::SimplePath { .. }
                 | Integrator::RandomWalk { .. }
         )
