@@ -93,6 +93,18 @@ fn integrator_json(i: &Integrator) -> Value {
             v["sigma"] = json!(short(o.sigma));
             v["regularize"] = json!(o.regularize);
         }
+        Integrator::Sppm {
+            max_depth,
+            photons_per_iteration,
+            radius,
+            seed,
+        } => {
+            v["maxdepth"] = json!(max_depth);
+            // pbrt-v4's −1: one photon per pixel.
+            v["photonsperiteration"] = json!(photons_per_iteration.map_or(-1, i64::from));
+            v["radius"] = json!(radius);
+            v["seed"] = json!(seed);
+        }
         Integrator::Normals | Integrator::Depth => {}
     }
     v
@@ -470,6 +482,17 @@ mod tests {
             integrator_text(&v),
             "mlt (bootstrapsamples 100000, chains 1000, largestepprobability 0.3, maxdepth 7, \
              mutationsperpixel 64, regularize false, sigma 0.01)"
+        );
+        let v = integrator_json(&Integrator::Sppm {
+            max_depth: 8,
+            photons_per_iteration: None,
+            radius: 0.25,
+            seed: Some(3),
+        });
+        assert_eq!(
+            v,
+            json!({ "name": "sppm", "maxdepth": 8, "photonsperiteration": -1,
+                    "radius": 0.25, "seed": 3 })
         );
     }
 }

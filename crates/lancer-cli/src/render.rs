@@ -198,6 +198,9 @@ pub fn plan(
         args.samples.clone(),
         split,
     )?;
+    if desc.integrator.sppm_options().is_some() {
+        check_sppm(args, &pixels, desc.sampler.spp)?;
+    }
     if pixels.is_part && ImageFormat::from_path(&output) != Some(ImageFormat::Exr) {
         return Err(CliError::input(format!(
             "{}: a part of a split render (--split, --samples) is written as .exr",
@@ -319,6 +322,39 @@ fn check_gbuffer(
         Some(what) => Err(CliError::input(format!(
             "a {kind} film cannot be rendered as {what} yet: parts and checkpoints keep the \
              colour sums only, not the {extra} channels; render it in one go"
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// Refuses what `sppm` cannot do: its iterations are not independent samples (each shrinks
+/// the radii of the next), so a range of them (`--samples`, `--split-by samples`) and a
+/// checkpoint between them (`--checkpoint-every`) have no meaning yet, and it gathers no
+/// albedo and normal images for `--denoise`. A split by tiles is exact (every part traces the
+/// same photons), and an interrupted render resumed with `--resume` starts again from its
+/// first iteration (its checkpoint holds the image so far, not the photon state).
+fn check_sppm(args: &RenderArgs, pixels: &split::Plan, spp: u32) -> Result<(), CliError> {
+    let refused = if pixels.samples != (0..spp) {
+        Some(format!(
+            "a range of samples ({}..{} of {spp}; --samples, --split-by samples): each \
+             iteration depends on those before it; split it by tiles (--split-by tiles)",
+            pixels.samples.start, pixels.samples.end
+        ))
+    } else if args.checkpoint_every.is_some() {
+        Some(
+            "checkpoints at intervals (--checkpoint-every): the photon state between \
+             iterations is not saved (an interrupted sppm render resumed with --resume starts \
+             again from its first iteration)"
+                .to_string(),
+        )
+    } else if args.denoise {
+        Some("--denoise: sppm gathers no albedo and normal images for the denoiser".to_string())
+    } else {
+        None
+    };
+    match refused {
+        Some(what) => Err(CliError::input(format!(
+            "integrator \"sppm\" cannot render {what}"
         ))),
         None => Ok(()),
     }
@@ -697,6 +733,8 @@ pub fn report(
             nonfinite: done.stats.nonfinite,
             rays: done.stats.rays,
             spectral: args.spectral_mode(),
+            integrator: settings.integrator.pbrt_name(),
+            photons: done.stats.photons,
         };
         let mem = stats::SceneMemory::of(scene);
         match format {

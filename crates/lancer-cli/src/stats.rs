@@ -126,6 +126,10 @@ pub struct RenderSummary {
     pub rays: u64,
     /// Rendered spectrally (`--spectral`) rather than in RGB.
     pub spectral: bool,
+    /// The integrator, as pbrt-v4 names it.
+    pub integrator: &'static str,
+    /// Photons traced (`sppm`; zero for the other integrators).
+    pub photons: u64,
 }
 
 /// The `--stats json` object.
@@ -158,6 +162,8 @@ pub fn render_json(r: &RenderSummary, t: &Phases, mem: &SceneMemory) -> Value {
         "samples_per_s": per_s(r.samples),
         "rays": { "total": r.rays },
         "rays_per_s": per_s(r.rays),
+        "integrator": r.integrator,
+        "photons": r.photons,
         "primitives": mem.primitives,
         "triangles": mem.triangles,
         "bvh": { "nodes": mem.bvh_nodes, "bytes": mem.bvh_bytes },
@@ -222,7 +228,19 @@ pub fn render_text(r: &RenderSummary, t: &Phases, mem: &SceneMemory) -> String {
                 r.nonfinite
             ),
         ),
-        ("rays", format!("{} ({:.2} M/s)", r.rays, per_s(r.rays))),
+        (
+            "rays",
+            format!(
+                "{} ({:.2} M/s){}",
+                r.rays,
+                per_s(r.rays),
+                if r.photons > 0 {
+                    format!("; {} photons ({})", r.photons, r.integrator)
+                } else {
+                    String::new()
+                }
+            ),
+        ),
         (
             "geometry",
             format!(

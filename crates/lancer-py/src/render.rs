@@ -195,6 +195,21 @@ pub fn render_film(
     threads: Option<usize>,
     denoise: bool,
 ) -> PyResult<Film> {
+    // sppm's iterations depend on those before them: all of them, in one render (a part by
+    // tiles is exact), and no denoiser images (lancer render refuses the same).
+    if settings.integrator.sppm_options().is_some() {
+        if settings.samples != (0..settings.spp) {
+            return Err(PyValueError::new_err(
+                "integrator \"sppm\" cannot render a range of samples: each iteration depends \
+                 on those before it; split it by tiles",
+            ));
+        }
+        if denoise {
+            return Err(PyValueError::new_err(
+                "integrator \"sppm\" gathers no albedo and normal images for the denoiser",
+            ));
+        }
+    }
     let bounds = settings.bounds;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads.unwrap_or(0))

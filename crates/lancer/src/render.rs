@@ -22,6 +22,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 pub use crate::counters::{count_ray, rays_traced};
 
 mod mlt;
+pub mod sppm;
 
 /// What to render.
 #[derive(Clone, Debug)]
@@ -105,6 +106,8 @@ pub struct RenderStats {
     /// The first of them in (row, column, sample index) order, whatever the thread count or
     /// tiling, for `lancer render --check-nan` to replay.
     pub first_nonfinite: Option<SampleId>,
+    /// Photons traced (`sppm`; zero for the other integrators).
+    pub photons: u64,
 }
 
 impl RenderStats {
@@ -114,6 +117,7 @@ impl RenderStats {
         self.rays += o.rays;
         self.cancelled |= o.cancelled;
         self.nonfinite += o.nonfinite;
+        self.photons += o.photons;
         self.first_nonfinite = match (self.first_nonfinite, o.first_nonfinite) {
             (Some(a), Some(b)) => Some(a.min(b)),
             (a, b) => a.or(b),
@@ -173,6 +177,12 @@ pub trait SampleIntegrator: Sync {
         None
     }
 
+    /// The settings of `sppm`, which is not a sum of camera samples: a render then runs
+    /// [`sppm::render`]'s iterations instead of the tile loop. `None` for the others.
+    fn sppm(&self) -> Option<crate::integrator::sppm::SppmOptions> {
+        None
+    }
+
     /// The radiance arriving along the camera ray `ray` (at `lambda` in spectral mode, else
     /// RGB in the first three values), drawing from `sampler` after the camera's dimensions.
     fn li(
@@ -201,6 +211,10 @@ impl SampleIntegrator for Integrator {
             Integrator::Mlt(o) => Some(*o),
             _ => None,
         }
+    }
+
+    fn sppm(&self) -> Option<crate::integrator::sppm::SppmOptions> {
+        Integrator::sppm_options(self)
     }
 
     #[inline(always)]
@@ -559,7 +573,10 @@ pub fn render_units(
 }
 
 /// [`render_units`] with another integrator than the settings' (one that splats, say). The
-/// splats of the units rendered are added into `film`'s splat plane before it returns.
+/// splats of the units rendered are added into `film`'s splat plane before it returns. An
+/// `sppm` integrator ([`SampleIntegrator::sppm`]) is not a sum of units: its iterations run
+/// over the whole of `settings.bounds` ([`sppm::render`]), which marks every unit done when
+/// they are all finished.
 #[allow(clippy::too_many_arguments)] // render_units' inputs and the integrator
 pub fn render_units_with<I: SampleIntegrator + ?Sized>(
     scene: &Scene,
@@ -573,6 +590,9 @@ pub fn render_units_with<I: SampleIntegrator + ?Sized>(
 ) -> RenderStats {
     if let Some(options) = integrator.mlt() {
         return mlt::render_chains(scene, settings, &options, film, units, done, on_unit, stop);
+    }
+    if let Some(options) = integrator.sppm() {
+        return sppm::render(scene, settings, options, film, done, on_unit, stop);
     }
     let kind = film.kind();
     // One plane shared by the threads, only for an integrator that splats.

@@ -20,4 +20,5 @@ mod pbrt_habits;
 mod preview;
 mod sdf_shapes;
 mod spectral_film;
+mod sppm;
 mod workflow;

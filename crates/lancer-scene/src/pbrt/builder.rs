@@ -48,6 +48,7 @@ pub const MAX_NESTING: usize = 10_000;
 mod blocks;
 mod displaced;
 mod entry;
+mod integrator;
 mod object_motion;
 mod transforms;
 mod volpath;
@@ -780,6 +781,8 @@ impl Builder {
         }
         self.desc.camera_medium = self.media.camera_medium()?;
         self.volumes_need_volpath(&end);
+        self.sppm_writes_rgb(&end);
+        self.sppm_writes_rgb(&end);
         let camera = &mut self.desc.camera;
         camera.screen_window = camera.screen_window.or(self.frame_aspect.map(frame_window));
         self.desc.film.scale = imaging_ratio(camera.shutter, self.iso);

@@ -264,7 +264,8 @@ pub fn filter(params: &ParamList, ty: &str) -> Result<Fallback<FilterDesc>, Scen
 }
 
 /// The integrator `ty`, with pbrt-v4's defaults (`maxdepth` 5, `regularize`,
-/// `visualizestrategies` and `visualizeweights` false); the others fall back to `path`.
+/// `visualizestrategies` and `visualizeweights` false; sppm's `photonsperiteration` −1 (one
+/// per pixel), `radius` 1, `seed` the render's); the others fall back to `path`.
 pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, SceneError> {
     let p = params;
     let max_depth = p.int_in("maxdepth", 5, 0..=100_000)? as u32;
@@ -357,7 +358,18 @@ pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, 
             Integrator::Mlt(o)
         }
         "simplevolpath" => Integrator::SimpleVolPath { max_depth },
-        "sppm" | "aov" => {
+        "sppm" => Integrator::Sppm {
+            max_depth,
+            // pbrt-v4: −1 (the default) or any value ≤ 0 means one photon per pixel.
+            photons_per_iteration: Some(p.int("photonsperiteration", -1)?)
+                .filter(|&n| n > 0)
+                .map(|n| n as u32),
+            radius: p.float_checked("radius", 1.0, "positive and finite", |r| {
+                r > 0.0 && r.is_finite()
+            })?,
+            seed: seed(p)?,
+        },
+        "aov" => {
             return Ok(Fallback::instead(
                 path()?,
                 format!(
@@ -892,12 +904,51 @@ mod tests {
             "{:?}",
             f.warnings
         );
-        let (out, _) = convert(r#"Integrator "sppm" "integer maxdepth" 7"#, integrator);
+        // sppm: pbrt-v4's defaults, every parameter read, a non-positive photon count meaning
+        // one per pixel, and a radius that is not positive refused where it is written.
+        assert_eq!(
+            clean(r#"Integrator "sppm""#, integrator),
+            Integrator::Sppm {
+                max_depth: 5,
+                photons_per_iteration: None,
+                radius: 1.0,
+                seed: None,
+            }
+        );
+        assert_eq!(
+            clean(
+                r#"Integrator "sppm" "integer maxdepth" 8 "integer photonsperiteration" 200000 "float radius" 0.03 "integer seed" 7"#,
+                integrator
+            ),
+            Integrator::Sppm {
+                max_depth: 8,
+                photons_per_iteration: Some(200_000),
+                radius: 0.03,
+                seed: Some(7),
+            }
+        );
+        assert_eq!(
+            clean(
+                r#"Integrator "sppm" "integer photonsperiteration" 0"#,
+                integrator
+            ),
+            Integrator::Sppm {
+                max_depth: 5,
+                photons_per_iteration: None,
+                radius: 1.0,
+                seed: None,
+            }
+        );
+        assert_eq!(
+            error("Integrator \"sppm\"\n  \"float radius\" 0", integrator),
+            "t.pbrt:2:3: \"float radius\" must be positive and finite, not 0"
+        );
+        let (out, _) = convert(r#"Integrator "mlt" "integer maxdepth" 7"#, integrator);
         let f = out.unwrap();
         assert_eq!(f.value, path(7, false));
         assert_eq!(
             f.warnings,
-            ["integrator \"sppm\" is not supported yet; lancer uses \"path\" with maxdepth 7"]
+            ["integrator \"mlt\" is not supported yet; lancer uses \"path\" with maxdepth 7"]
         );
         assert_eq!(
             warnings(r#"Integrator "photonmap""#, integrator),

@@ -55,6 +55,19 @@ pub enum Integrator {
     /// Metropolis light transport over bdpt's strategies in primary sample space (pbrt-v4's
     /// `mlt`): Markov chains instead of pixel samples ([`crate::integrator::mlt`]).
     Mlt(MltOptions),
+    /// Stochastic progressive photon mapping (pbrt-v4's `sppm`): per iteration (one per
+    /// sample per pixel), a visible point per pixel and photons from the lights gathered at
+    /// them within a radius that shrinks from iteration to iteration.
+    Sppm {
+        /// Maximum number of bounces, of camera paths and of photons (`maxdepth`).
+        max_depth: u32,
+        /// Photons per iteration (`photonsperiteration`); `None`: one per pixel.
+        photons_per_iteration: Option<u32>,
+        /// Initial search radius, world units (`radius`).
+        radius: f32,
+        /// Seed of the photons' points (`seed`); `None`: the render's seed.
+        seed: Option<u64>,
+    },
     /// pbrt-v4's `simplepath`: path tracing without MIS, light sampling and BSDF sampling
     /// each optional.
     SimplePath {
@@ -95,7 +108,7 @@ impl Default for Integrator {
 
 impl Integrator {
     /// The pbrt-v4 name of this integrator (`Integrator "…"`): `path`, `volpath`, `whitted`,
-    /// `ambientocclusion`, `lightpath`, `bdpt`, `mlt`, `simplepath`, `randomwalk`,
+    /// `ambientocclusion`, `lightpath`, `bdpt`, `mlt`, `sppm`, `simplepath`, `randomwalk`,
     /// `simplevolpath`, and lancer's debug
     /// views `normals` and `depth`.
     pub fn pbrt_name(&self) -> &'static str {
@@ -107,6 +120,7 @@ impl Integrator {
             Integrator::LightPath { .. } => "lightpath",
             Integrator::Bdpt { .. } => "bdpt",
             Integrator::Mlt(_) => "mlt",
+            Integrator::Sppm { .. } => "sppm",
             Integrator::SimplePath { .. } => "simplepath",
             Integrator::RandomWalk { .. } => "randomwalk",
             Integrator::SimpleVolPath { .. } => "simplevolpath",
@@ -126,6 +140,7 @@ impl Integrator {
                 | Integrator::LightPath { .. }
                 | Integrator::Bdpt { .. }
                 | Integrator::Mlt(_)
+                | Integrator::Sppm { .. }
                 | Integrator::SimplePath { .. }
                 | Integrator::RandomWalk { .. }
                 | Integrator::SimpleVolPath { .. }
