@@ -943,12 +943,12 @@ mod tests {
             error("Integrator \"sppm\"\n  \"float radius\" 0", integrator),
             "t.pbrt:2:3: \"float radius\" must be positive and finite, not 0"
         );
-        let (out, _) = convert(r#"Integrator "mlt" "integer maxdepth" 7"#, integrator);
+        let (out, _) = convert(r#"Integrator "aov" "integer maxdepth" 7"#, integrator);
         let f = out.unwrap();
         assert_eq!(f.value, path(7, false));
         assert_eq!(
             f.warnings,
-            ["integrator \"mlt\" is not supported yet; lancer uses \"path\" with maxdepth 7"]
+            ["integrator \"aov\" is not supported yet; lancer uses \"path\" with maxdepth 7"]
         );
         assert_eq!(
             warnings(r#"Integrator "photonmap""#, integrator),
