@@ -1,6 +1,7 @@
 //! NanoVDB files (`.nvdb`): the float grids pbrt-v4's `nanovdb` medium reads (`density`,
 //! `temperature`), uncompressed or ZIP (zlib) compressed, read from the format's published
-//! layout into lancer's sparse [`VdbGrid`].
+//! layout into lancer's sparse grid parts, checked ([`VdbGridDesc`]; the scene build makes the
+//! [`lancer::medium::vdb::VdbGrid`]).
 //!
 //! A file is a sequence of *segments*. Each starts with a 16-byte header — the magic
 //! `"NanoVDB0"` (u64), the format version, the number of grids (u16) and the codec (u16: 0 none,
@@ -18,7 +19,7 @@
 
 mod tree;
 
-use lancer::medium::vdb::VdbGrid;
+use lancer::medium::vdb::VdbGridDesc;
 use std::io::Read;
 
 /// "NanoVDB0" as a little-endian u64.
@@ -203,7 +204,7 @@ fn grid_buffer(data: &[u8], g: &GridInfo) -> Result<Vec<u8>, String> {
 
 /// The float grid called `name` in the NanoVDB file `data`, or `None` if the file has no grid
 /// of that name. Like pbrt-v4, only fog-volume (or unclassified) float grids are accepted.
-pub fn read_float_grid(data: &[u8], name: &str) -> Result<Option<VdbGrid>, String> {
+pub fn read_float_grid(data: &[u8], name: &str) -> Result<Option<VdbGridDesc>, String> {
     let grids = list_grids(data)?;
     let Some(g) = grids.iter().find(|g| g.name == name) else {
         return Ok(None);
@@ -219,7 +220,8 @@ pub fn read_float_grid(data: &[u8], name: &str) -> Result<Option<VdbGrid>, Strin
     }
     let buf = grid_buffer(data, g)?;
     let parts = tree::read(&buf, g.version).map_err(|e| format!("grid \"{name}\": {e}"))?;
-    VdbGrid::new(parts)
+    parts
+        .check()
         .map(Some)
         .map_err(|e| format!("grid \"{name}\": {e}"))
 }

@@ -3,6 +3,7 @@
 
 use super::*;
 use lancer::math::Vec3;
+use lancer::medium::vdb::VdbGrid;
 
 const SPHERE: &str = "../../../shared/scenes/real/houdini-media-tests/tests/resources/sphere.nvdb";
 
@@ -21,7 +22,7 @@ fn reads_houdinis_zip_compressed_sphere() {
         ("density", 1, 2, 1)
     );
     assert_eq!((g.voxel_count, g.grid_size), (18656, 277_632));
-    let grid = read_float_grid(&data, "density").unwrap().unwrap();
+    let grid = VdbGrid::new(read_float_grid(&data, "density").unwrap().unwrap());
     assert!(read_float_grid(&data, "temperature").unwrap().is_none());
     // Its bounds, from the metadata: index [0, 31]³, world ±1.08984375, voxel 0.0703125.
     assert_eq!(grid.index_bounds(), [[0, 0, 0], [31, 31, 31]]);
@@ -203,7 +204,7 @@ fn reads_its_own_files_uncompressed_and_zipped() {
     for (zip, v32) in [(false, false), (true, false), (false, true), (true, true)] {
         let f = write_grid("density", &leaves, ([16, 16, 16], 5.0), zip, v32);
         assert!(read_float_grid(&f, "temperature").unwrap().is_none());
-        let g = read_float_grid(&f, "density").unwrap().unwrap();
+        let g = VdbGrid::new(read_float_grid(&f, "density").unwrap().unwrap());
         assert_eq!(g.leaf_count(), 2);
         // Voxel (9, 2, 19) of leaf (8, 0, 16): local (1, 2, 3) → 1·64 + 2·8 + 3 = 83.
         assert_eq!(g.value(9, 2, 19), 83.0);

@@ -23,7 +23,7 @@ pub mod subsurface;
 pub mod thin_dielectric;
 
 use super::at_hit::{Colours, HitLookup, NO_COLOURS, SpectralColours};
-use super::{BxDF, MeasuredData};
+use super::{BxDF, MeasuredFile};
 use crate::texture::{TexCoord, TextureEval};
 
 /// A material kind's description: plain data, built once per scene into what the renderer
@@ -164,8 +164,9 @@ material_kinds! {
     /// Hair fibres (pbrt-v4's `hair`, [`super::HairBxdf`]), meant for `curve` shapes.
     Hair(hair::HairMaterial),
     /// A tabulated BRDF read from an RGL `.bsdf` file (pbrt-v4's `measured`,
-    /// [`super::MeasuredBxdf`]).
-    Measured(&'static MeasuredData),
+    /// [`super::MeasuredBxdf`]): the file's tables, shared by the materials naming it; built
+    /// into its sampling tables ([`super::MeasuredData`]).
+    Measured(std::sync::Arc<MeasuredFile>),
     /// A dielectric boundary over a scattering medium, rendered with a BSSRDF (pbrt-v4's
     /// `subsurface`, [`super::TabulatedBssrdf`]); built into a
     /// [`subsurface::BuiltSubsurface`], which adds the profile table.

@@ -51,7 +51,7 @@ pub use kinds::subsurface::{BuiltSubsurface, SubsurfaceCoefficients, SubsurfaceM
 pub use kinds::thin_dielectric::ThinDielectricMaterial;
 pub use kinds::{Material, MaterialDesc, MaterialDescKind, MaterialKind};
 pub use layered::{CoatedConductorBxdf, CoatedDiffuseBxdf, LayeredBxdf};
-pub use measured::{MeasuredBxdf, MeasuredData};
+pub use measured::{MeasuredBxdf, MeasuredData, MeasuredFile};
 pub use microfacet::TrowbridgeReitz;
 pub use scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode};
 

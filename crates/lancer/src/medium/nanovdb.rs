@@ -7,7 +7,7 @@
 
 use super::coeff::{Coefficient, PointProperties, blackbody_at};
 use super::majorant::{DdaMajorantIterator, MajorantGrid, grid_majorants};
-use super::vdb::VdbGrid;
+use super::vdb::{VdbGrid, VdbGridDesc};
 use crate::math::{Bounds3, Rgb, SampledSpectrum, Transform, Vec3};
 use crate::ray::Ray;
 use crate::spectrum::sampled::SampledWavelengths;
@@ -15,7 +15,8 @@ use crate::spectrum::sampled::SampledWavelengths;
 /// pbrt-v4's majorant resolution for NanoVDB media.
 pub const NANOVDB_MAJORANT_RES: i32 = 64;
 
-/// A `nanovdb` medium as the scene describes it (grids already read).
+/// A `nanovdb` medium as the scene describes it: its grids as read and checked, plain data
+/// ([`VdbGridDesc`]); [`NanoVdbMedium::new`] makes them ready for lookups.
 #[derive(Clone, Debug, PartialEq)]
 pub struct NanoVdbDesc {
     /// Medium space → render space (the CTM at `MakeNamedMedium`).
@@ -29,9 +30,9 @@ pub struct NanoVdbDesc {
     /// Henyey–Greenstein asymmetry `g`.
     pub g: f32,
     /// The `density` grid (or the one `gridname` names).
-    pub density: VdbGrid,
+    pub density: VdbGridDesc,
     /// The `temperature` grid, if the file has one.
-    pub temperature: Option<VdbGrid>,
+    pub temperature: Option<VdbGridDesc>,
     /// `Lescale`.
     pub le_scale: f32,
     /// `temperatureoffset` (or `temperaturecutoff`).
@@ -58,15 +59,18 @@ pub struct NanoVdbMedium {
 }
 
 impl NanoVdbMedium {
-    /// Prepares the medium: its box (the union of the grids' world bounds) and the 64³
-    /// majorant grid, each cell the largest density over the voxels its box reaches
-    /// (widened by one voxel for the trilinear filter, as pbrt-v4).
+    /// Prepares the medium: its grids ready for lookups ([`VdbGrid::new`]), its box (the
+    /// union of the grids' world bounds) and the 64³ majorant grid, each cell the largest
+    /// density over the voxels its box reaches (widened by one voxel for the trilinear
+    /// filter, as pbrt-v4).
     pub fn new(desc: NanoVdbDesc) -> NanoVdbMedium {
-        let mut bounds = desc.density.world_bounds();
-        if let Some(t) = &desc.temperature {
+        let density = VdbGrid::new(desc.density);
+        let temperature = desc.temperature.map(VdbGrid::new);
+        let mut bounds = density.world_bounds();
+        if let Some(t) = &temperature {
             bounds = bounds.union(&t.world_bounds());
         }
-        let d = &desc.density;
+        let d = &density;
         let diag = bounds.diagonal();
         let majorant = MajorantGrid::build(bounds, [NANOVDB_MAJORANT_RES; 3], |lo, hi| {
             let i0 = d.world_to_index(bounds.min + lo * diag);
@@ -85,8 +89,8 @@ impl NanoVdbMedium {
             sigma_s: Coefficient::new(desc.sigma_s),
             scale: desc.scale,
             g: desc.g,
-            density: desc.density,
-            temperature: desc.temperature,
+            density,
+            temperature,
             le_scale: desc.le_scale,
             temperature_offset: desc.temperature_offset,
             temperature_scale: desc.temperature_scale,
@@ -161,7 +165,7 @@ mod tests {
     use crate::medium::vdb::VdbParts;
 
     /// A ball of density 1 − r/8 (voxels within radius 8 of index (8, 8, 8)), voxel size ¼.
-    fn ball() -> VdbGrid {
+    fn ball() -> VdbGridDesc {
         let mut origins = Vec::new();
         let mut values = Vec::new();
         for bx in 0..3 {
@@ -184,7 +188,7 @@ mod tests {
                 }
             }
         }
-        VdbGrid::new(VdbParts {
+        VdbParts {
             world_to_index: Mat3::from_diagonal(glam::Vec3::splat(4.0)),
             translation: Vec3::ZERO,
             world_bounds: Bounds3::new(Vec3::ZERO, Vec3::splat(4.0)),
@@ -193,11 +197,12 @@ mod tests {
             leaf_origins: origins,
             leaf_values: values,
             tiles: Vec::new(),
-        })
+        }
+        .check()
         .unwrap()
     }
 
-    fn medium(temperature: Option<VdbGrid>) -> NanoVdbMedium {
+    fn medium(temperature: Option<VdbGridDesc>) -> NanoVdbMedium {
         NanoVdbMedium::new(NanoVdbDesc {
             medium_to_render: Transform::IDENTITY,
             sigma_a: Rgb::splat(0.5),

@@ -29,7 +29,7 @@ pub struct VdbTile {
     pub value: f32,
 }
 
-/// What a reader gathers before a [`VdbGrid`] is assembled.
+/// What a reader gathers from a file: checked ([`VdbParts::check`]) it describes a grid.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct VdbParts {
     /// World-space → index-space matrix and translation: index = m·(world − t).
@@ -50,34 +50,29 @@ pub struct VdbParts {
     pub tiles: Vec<VdbTile>,
 }
 
-/// A sparse VDB float grid, ready for lookups.
+/// A grid's parts checked by [`VdbParts::check`] (every size consistent, the block span within
+/// [`MAX_BLOCKS`]): plain data, what a scene description holds; [`VdbGrid::new`] makes the grid
+/// ready for lookups.
 #[derive(Clone, Debug, PartialEq)]
-pub struct VdbGrid {
-    world_to_index: Mat3,
-    translation: Vec3,
-    world_bounds: Bounds3,
-    index_bounds: [[i32; 3]; 2],
-    background: f32,
-    /// First block (voxel ≫ 3) of the block array, and its size in blocks.
+pub struct VdbGridDesc {
+    parts: VdbParts,
+    /// First block (voxel ≫ 3) spanned by the leaves and tiles, and the span in blocks.
     block_min: [i32; 3],
     block_dims: [i32; 3],
-    blocks: Vec<u32>,
-    leaf_values: Vec<f32>,
-    tile_values: Vec<f32>,
 }
 
-impl VdbGrid {
-    /// Assembles a grid, checking sizes before allocating: an error names what is too large
-    /// or inconsistent.
-    pub fn new(parts: VdbParts) -> Result<VdbGrid, String> {
-        let n_leaves = parts.leaf_origins.len() as u64;
+impl VdbParts {
+    /// Checks the parts before anything is allocated: an error names what is too large or
+    /// inconsistent.
+    pub fn check(self) -> Result<VdbGridDesc, String> {
+        let n_leaves = self.leaf_origins.len() as u64;
         if n_leaves > MAX_LEAVES {
             return Err(format!("{n_leaves} leaf nodes (at most {MAX_LEAVES})"));
         }
-        if parts.leaf_values.len() as u64 != n_leaves * 512 {
+        if self.leaf_values.len() as u64 != n_leaves * 512 {
             return Err("leaf values do not match the leaf count".into());
         }
-        if !parts.world_to_index.is_finite() || !parts.translation.is_finite() {
+        if !self.world_to_index.is_finite() || !self.translation.is_finite() {
             return Err("its transform is not finite".into());
         }
         // The blocks spanned by leaves and tiles.
@@ -89,10 +84,10 @@ impl VdbGrid {
                 hi[a] = hi[a].max(((o[a] as i64 + dim as i64 - 1) >> 3) as i32);
             }
         };
-        for &o in &parts.leaf_origins {
+        for &o in &self.leaf_origins {
             include(o, 8);
         }
-        for t in &parts.tiles {
+        for t in &self.tiles {
             if t.dim < 1 {
                 return Err(format!("a tile of size {}", t.dim));
             }
@@ -111,6 +106,52 @@ impl VdbGrid {
             }
             (lo, dims.map(|d| d as i32))
         };
+        Ok(VdbGridDesc {
+            parts: self,
+            block_min,
+            block_dims,
+        })
+    }
+}
+
+impl VdbGridDesc {
+    /// The parts as read.
+    pub fn parts(&self) -> &VdbParts {
+        &self.parts
+    }
+
+    /// World-space bounds of the active voxels.
+    pub fn world_bounds(&self) -> Bounds3 {
+        self.parts.world_bounds
+    }
+}
+
+/// A sparse VDB float grid, ready for lookups.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VdbGrid {
+    world_to_index: Mat3,
+    translation: Vec3,
+    world_bounds: Bounds3,
+    index_bounds: [[i32; 3]; 2],
+    background: f32,
+    /// First block (voxel ≫ 3) of the block array, and its size in blocks.
+    block_min: [i32; 3],
+    block_dims: [i32; 3],
+    blocks: Vec<u32>,
+    leaf_values: Vec<f32>,
+    tile_values: Vec<f32>,
+}
+
+impl VdbGrid {
+    /// The grid of checked parts: the block array over their span, each slot the leaf or the
+    /// tile that covers it (a leaf wins over a tile, a smaller tile over a larger one), or
+    /// empty (the background).
+    pub fn new(desc: VdbGridDesc) -> VdbGrid {
+        let VdbGridDesc {
+            parts,
+            block_min,
+            block_dims,
+        } = desc;
         let n_blocks = block_dims.iter().map(|&d| d as usize).product::<usize>();
         let mut g = VdbGrid {
             world_to_index: parts.world_to_index,
@@ -148,7 +189,7 @@ impl VdbGrid {
                 g.blocks[s] = n as u32;
             }
         }
-        Ok(g)
+        g
     }
 
     /// The index in `blocks` of block b, if inside the array.
@@ -288,7 +329,7 @@ mod tests {
 
     #[test]
     fn values_come_from_leaves_tiles_and_background() {
-        let g = VdbGrid::new(parts()).unwrap();
+        let g = VdbGrid::new(parts().check().unwrap());
         assert_eq!(g.value(8, 0, -8), 0.0);
         assert_eq!(g.value(9, 2, -5), 1.0 + 20.0 + 300.0);
         assert_eq!(g.value(3, 3, 3), 7.0);
@@ -299,7 +340,7 @@ mod tests {
 
     #[test]
     fn trilinear_between_voxels() {
-        let g = VdbGrid::new(parts()).unwrap();
+        let g = VdbGrid::new(parts().check().unwrap());
         // Index (9.5, 2, −5) blends voxels 9 and 10 on x: 321.5.
         assert!((g.sample_index(Vec3::new(9.5, 2.0, -5.0)) - 321.5).abs() < 1e-4);
         // World (19, 4, −10) is index (9.5, 2, −5).
@@ -312,7 +353,7 @@ mod tests {
 
     #[test]
     fn max_in_covers_the_box() {
-        let g = VdbGrid::new(parts()).unwrap();
+        let g = VdbGrid::new(parts().check().unwrap());
         assert_eq!(g.max_in([8, 0, -8], [8, 0, -8]), 0.0);
         assert_eq!(
             g.max_in([-100, -100, -100], [100, 100, 100]),
@@ -329,10 +370,10 @@ mod tests {
             dim: 4096,
             value: 1.0,
         });
-        let e = VdbGrid::new(p).unwrap_err();
+        let e = p.check().unwrap_err();
         assert!(e.contains("blocks"), "{e}");
         let mut p = parts();
         p.leaf_values.pop();
-        assert!(VdbGrid::new(p).is_err());
+        assert!(p.check().is_err());
     }
 }

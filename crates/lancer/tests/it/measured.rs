@@ -5,7 +5,7 @@
 use crate::common::bsdf_file::{bsdf_file, ggx_d, ggx_g1};
 use crate::common::chi2::*;
 use lancer::material::measured::tensor::Tensor;
-use lancer::material::{BxDF, MeasuredBxdf, MeasuredData, TransportMode};
+use lancer::material::{BxDF, MeasuredBxdf, MeasuredData, MeasuredFile, TransportMode};
 use lancer::math::{INV_PI, SampledSpectrum, Vec2, Vec3, normalize};
 use lancer::sampling::Pcg32;
 use lancer::spectrum::sampled::SampledWavelengths;
@@ -42,14 +42,14 @@ fn ggx(wo: Vec3, wi: Vec3, lambda: f32) -> f32 {
 
 fn ggx_data() -> &'static MeasuredData {
     let bytes = bsdf_file(ALPHA, ggx, N, &theta_nodes(), &WAVELENGTHS);
-    MeasuredData::shared(&bytes, "ggx.bsdf").unwrap()
+    MeasuredData::shared(&MeasuredFile::from_bytes(&bytes, "ggx.bsdf").unwrap())
 }
 
 /// Lambert with albedo 0.9 (grey), tabulated with GGX(0.5)'s parameterisation.
 fn lambert_data() -> &'static MeasuredData {
     let f = |_: Vec3, wi: Vec3, _: f32| if wi.z > 0.0 { 0.9 * INV_PI } else { 0.0 };
     let bytes = bsdf_file(ALPHA, f, N, &theta_nodes(), &WAVELENGTHS);
-    MeasuredData::shared(&bytes, "lambert.bsdf").unwrap()
+    MeasuredData::shared(&MeasuredFile::from_bytes(&bytes, "lambert.bsdf").unwrap())
 }
 
 fn wavelengths() -> SampledWavelengths {
@@ -83,16 +83,26 @@ fn the_reader_finds_every_field() {
     assert_eq!(shape("spectra"), [1, 10, 6, 8, 8]);
     assert_eq!(shape("ndf"), [8, 8]);
     assert_eq!(t.fields["wavelengths"].to_f32().unwrap(), WAVELENGTHS);
-    let d = MeasuredData::from_bytes(&bytes, "g.bsdf").unwrap();
+    let d = MeasuredFile::from_bytes(&bytes, "g.bsdf").unwrap();
     assert!(d.isotropic);
     assert_eq!(d.wavelengths, WAVELENGTHS);
     assert_eq!(d.description, "generated");
     assert_eq!(d.name, "g.bsdf");
-    // The same bytes are the same shared tables; other bytes are others.
-    let a = MeasuredData::shared(&bytes, "a").unwrap();
-    assert!(std::ptr::eq(a, MeasuredData::shared(&bytes, "b").unwrap()));
-    let other = bsdf_file(0.3, ggx, 8, &theta_nodes(), &WAVELENGTHS);
-    assert!(!std::ptr::eq(a, MeasuredData::shared(&other, "a").unwrap()));
+    assert_eq!(d.vndf.shape, [1, 10, 8, 8]);
+    // The same bytes are the same shared description while it is held, and the same built
+    // tables; other bytes are others.
+    let a = MeasuredFile::shared(&bytes, "a").unwrap();
+    assert!(std::sync::Arc::ptr_eq(
+        &a,
+        &MeasuredFile::shared(&bytes, "b").unwrap()
+    ));
+    let other =
+        MeasuredFile::shared(&bsdf_file(0.3, ggx, 8, &theta_nodes(), &WAVELENGTHS), "a").unwrap();
+    assert!(!std::sync::Arc::ptr_eq(&a, &other));
+    let built = MeasuredData::shared(&a);
+    assert!(std::ptr::eq(built, MeasuredData::shared(&d)));
+    assert!(!std::ptr::eq(built, MeasuredData::shared(&other)));
+    assert_eq!(built.name, "a");
 }
 
 /// Relative errors of f against `want` over random (wo at the θ nodes, wi) pairs: returns
@@ -226,7 +236,9 @@ fn white_furnace_never_gains_energy() {
         ggx_g1(ALPHA, wo) * ggx_g1(ALPHA, wi) * ggx_d(ALPHA, wm) / (4.0 * wo.z * wi.z)
     };
     let bytes = bsdf_file(ALPHA, white, N, &theta_nodes(), &WAVELENGTHS);
-    let b = spectral(MeasuredData::shared(&bytes, "white.bsdf").unwrap());
+    let b = spectral(MeasuredData::shared(
+        &MeasuredFile::from_bytes(&bytes, "white.bsdf").unwrap(),
+    ));
     let lambert = spectral(lambert_data());
     for theta in [0.0, 20.0, 45.0, 70.0, 85.0] {
         let wo = at(theta, 0.7);

@@ -1,12 +1,12 @@
 //! `Material "measured"` as pbrt-v4's `MeasuredMaterial::Create` reads it: `string filename`,
-//! an RGL `.bsdf` file (a tabulated BRDF, [`MeasuredData`]), required. The file is read whole
+//! an RGL `.bsdf` file (a tabulated BRDF, [`MeasuredFile`]), required. The file is read whole
 //! (at most [`MAX_FILE_BYTES`]); what is wrong with a bad one is reported with the file's
 //! name at the parameter's place.
 
 use super::MaterialWithNames;
 use crate::error::SceneError;
 use crate::pbrt::convert::{Fallback, Reader};
-use lancer::material::{MaterialDesc, MeasuredData};
+use lancer::material::{MaterialDesc, MeasuredFile};
 
 /// The largest `.bsdf` file read (RGL's are a few MB; the largest anisotropic ones ~100 MB).
 pub const MAX_FILE_BYTES: u64 = 1 << 30;
@@ -31,7 +31,7 @@ pub(super) fn measured(r: &Reader) -> Result<Fallback<MaterialWithNames>, SceneE
     }
     crate::files_read::record(&path);
     let bytes = std::fs::read(&path).map_err(|e| fail(format!("cannot read the file: {e}")))?;
-    let data = MeasuredData::shared(&bytes, &path.display().to_string())
+    let data = MeasuredFile::shared(&bytes, &path.display().to_string())
         .map_err(|e| fail(format!("not a valid .bsdf file: {e}")))?;
     Ok(Fallback::done(MaterialDesc::Measured(data).into()))
 }

@@ -168,7 +168,13 @@ fn nanovdb_reads_the_named_grids() {
     let GridMediumDesc::NanoVdb(n) = d else {
         panic!()
     };
-    assert_eq!(n.density.value(1, 2, 3), 83.0);
+    // The description holds the grid as read (voxel (1, 2, 3) of the leaf at the origin is
+    // sample 1·64 + 2·8 + 3); the scene build makes it ready for lookups.
+    let parts = n.density.parts();
+    assert_eq!(parts.leaf_origins, [[0, 0, 0]]);
+    assert_eq!(parts.leaf_values[64 + 2 * 8 + 3], 83.0);
+    let grid = lancer::medium::vdb::VdbGrid::new(n.density.clone());
+    assert_eq!(grid.value(1, 2, 3), 83.0);
     assert!(n.temperature.is_none());
     assert_eq!(n.sigma_s, Rgb::new(0.9, 1.2, 1.5));
     let e = convert_in(

@@ -1,15 +1,18 @@
 //! The `measured` material: a tabulated BRDF read from an RGL `.bsdf` file
-//! ([`crate::material::MeasuredBxdf`]); the data is read once by the reader and shared.
+//! ([`crate::material::MeasuredBxdf`]). Its description is the file's tables as read
+//! ([`MeasuredFile`], shared by the materials that name one file); the build makes their
+//! sampling tables ([`MeasuredData`]), once per distinct file ([`MeasuredData::shared`]).
 
 use super::{MaterialDescKind, MaterialKind};
 use crate::material::at_hit::HitLookup;
-use crate::material::{BxDF, MeasuredBxdf, MeasuredData};
+use crate::material::{BxDF, MeasuredBxdf, MeasuredData, MeasuredFile};
+use std::sync::Arc;
 
-impl MaterialDescKind for &'static MeasuredData {
+impl MaterialDescKind for Arc<MeasuredFile> {
     type Built = &'static MeasuredData;
     const PBRT_NAME: &'static str = "measured";
     fn build(&self) -> &'static MeasuredData {
-        self
+        MeasuredData::shared(self)
     }
 }
 

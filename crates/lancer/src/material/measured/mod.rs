@@ -19,6 +19,7 @@
 //! (For a microfacet model with Fresnel F and Smith masking G₁, σ = cos θo / G₁(ωo), so
 //! S = F · G₁(ωi) gives f = F G₁(ωo) G₁(ωi) D / (4 cos θo cos θi).)
 
+pub mod file;
 pub mod tensor;
 
 use super::scatter::{BsdfSample, BxdfFlags, ReflTrans, Scatter, TransportMode, same_hemisphere};
@@ -26,22 +27,17 @@ use crate::math::{PI, SampledSpectrum, Vec2, Vec3, normalize, rgb_lanes, spheric
 use crate::sampling::Linear2D;
 use crate::spectrum::cie;
 use crate::spectrum::sampled::{ColourKind, RgbSpectrum, SampledWavelengths};
+pub use file::{MAX_ENTRIES, MeasuredFile, Table};
 use std::collections::HashMap;
 use std::sync::{Mutex, OnceLock};
-use tensor::{Field, Tensor};
-
-/// Largest number of table entries a file may hold (each table together), 2²⁸ (1 GiB of f32).
-pub const MAX_ENTRIES: usize = 1 << 28;
 
 /// A measured BRDF's tables, ready to evaluate and sample (see the module documentation).
 #[derive(Clone, PartialEq)]
 pub struct MeasuredData {
     /// Where it was read from (for messages).
     pub name: String,
-    /// The file's `description` text, if any.
-    pub description: String,
-    /// A hash of the file's bytes: two files with the same tables are the same BRDF.
-    pub content_hash: u64,
+    /// Its file's [`MeasuredFile::content_key`].
+    pub content_key: (u64, usize),
     /// At most two φᵢ nodes: the tables depend on φm − φo only.
     pub isotropic: bool,
     /// The wavelengths of `spectra`, nm (empty for an RGB-only file).
@@ -61,8 +57,8 @@ impl std::fmt::Debug for MeasuredData {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "MeasuredData {{ name: {:?}, content_hash: {:#018x} }}",
-            self.name, self.content_hash
+            "MeasuredData {{ name: {:?}, content_key: ({:#018x}, {}) }}",
+            self.name, self.content_key.0, self.content_key.1
         )
     }
 }
@@ -89,13 +85,6 @@ pub fn u_to_theta(u: f32) -> f32 {
 #[inline]
 pub fn u_to_phi(v: f32) -> f32 {
     (2.0 * v - 1.0) * PI
-}
-
-/// FNV-1a of a byte string.
-fn fnv1a(b: &[u8]) -> u64 {
-    b.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &x| {
-        (h ^ x as u64).wrapping_mul(0x100_0000_01b3)
-    })
 }
 
 /// The linear-sRGB weights of each of `lambda`'s nodes: the reduction (under D65, as
@@ -143,199 +132,82 @@ fn rgb_weights(lambda: &[f32]) -> Vec<[f64; 3]> {
         .collect()
 }
 
-/// Reads a field's floats, checking its rank and that every value is finite (and ≥ 0 when
-/// `nonnegative`).
-fn floats(
-    t: &Tensor,
-    name: &str,
-    rank: usize,
-    nonnegative: bool,
-) -> Result<(Vec<f32>, Vec<usize>), String> {
-    let f = t
-        .fields
-        .get(name)
-        .ok_or_else(|| format!("the file has no \"{name}\" field"))?;
-    floats_of(f, name, rank, nonnegative)
-}
-
-fn floats_of(
-    f: &Field,
-    name: &str,
-    rank: usize,
-    nonnegative: bool,
-) -> Result<(Vec<f32>, Vec<usize>), String> {
-    if f.shape.len() != rank {
-        return Err(format!(
-            "field \"{name}\" has shape {:?}; it needs {rank} dimensions",
-            f.shape
-        ));
-    }
-    let v = f.to_f32().ok_or_else(|| {
-        format!(
-            "field \"{name}\" holds {:?} values; it needs 32- or 64-bit floats",
-            f.dtype
-        )
-    })?;
-    if let Some(i) = v
-        .iter()
-        .position(|x| !x.is_finite() || (nonnegative && *x < 0.0))
-    {
-        return Err(format!("field \"{name}\" holds {} at index {i}", v[i]));
-    }
-    Ok((v, f.shape.clone()))
-}
-
-/// Checks that a 1D parameter field's nodes ascend strictly.
-fn ascending(name: &str, v: &[f32]) -> Result<(), String> {
-    if v.is_empty() {
-        return Err(format!("field \"{name}\" is empty"));
-    }
-    if v.windows(2).any(|w| w[1] <= w[0]) {
-        return Err(format!("field \"{name}\" does not increase: {v:?}"));
-    }
-    Ok(())
-}
-
-/// Checks `shape` against what is `want`ed (`None` = any size ≥ 2), naming the field.
-fn check_shape(name: &str, shape: &[usize], want: &[Option<usize>]) -> Result<(), String> {
-    let ok = shape.len() == want.len()
-        && shape.iter().zip(want).all(|(&s, w)| match w {
-            Some(n) => s == *n,
-            None => s >= 2,
-        });
-    if ok {
-        return Ok(());
-    }
-    let want: Vec<String> = want
-        .iter()
-        .map(|w| w.map_or("n ≥ 2".to_string(), |n| n.to_string()))
-        .collect();
-    Err(format!(
-        "field \"{name}\" has shape {shape:?}; [{}] is needed",
-        want.join(", ")
-    ))
-}
-
 impl MeasuredData {
-    /// The BRDF in the bytes of a `.bsdf` file; `name` names it in messages. Errors say what
-    /// is wrong with the file.
-    pub fn from_bytes(bytes: &[u8], name: &str) -> Result<MeasuredData, String> {
-        let t = Tensor::parse(bytes)?;
-        let total: usize = t
-            .fields
-            .values()
-            .map(|f| f.shape.iter().product::<usize>())
-            .sum();
-        if total > MAX_ENTRIES {
-            return Err(format!(
-                "the tables hold {total} values (at most {MAX_ENTRIES} are read)"
-            ));
-        }
-        let (theta_i, _) = floats(&t, "theta_i", 1, false)?;
-        let (phi_i, _) = floats(&t, "phi_i", 1, false)?;
-        ascending("theta_i", &theta_i)?;
-        ascending("phi_i", &phi_i)?;
-        let (np, nt) = (Some(phi_i.len()), Some(theta_i.len()));
-        let isotropic = phi_i.len() <= 2;
-        if !isotropic {
-            let span = phi_i[phi_i.len() - 1] - phi_i[0];
-            let reduction = (2.0 * PI / span).round();
-            if reduction != 1.0 {
-                return Err(format!(
-                    "phi_i spans {span} rad, a symmetry reduction of {reduction}; only full \
-                     circles (reduction 1) are supported, as in pbrt-v4"
-                ));
-            }
-        }
-        let (ndf, ns) = floats(&t, "ndf", 2, true)?;
-        check_shape("ndf", &ns, &[None, None])?;
-        let (sigma, ss) = floats(&t, "sigma", 2, true)?;
-        check_shape("sigma", &ss, &[None, None])?;
-        let (vndf, vs) = floats(&t, "vndf", 4, true)?;
-        check_shape("vndf", &vs, &[np, nt, None, None])?;
-        let (lum, ls) = floats(&t, "luminance", 4, true)?;
-        check_shape("luminance", &ls, &[np, nt, None, None])?;
-        let n = ls[3];
-        if ls[2] != n {
-            return Err(format!(
-                "field \"luminance\" has shape {ls:?}; its last two sizes must be equal"
-            ));
-        }
-        let params = || vec![phi_i.clone(), theta_i.clone()];
-        let table = |v: &[f32], s: &[usize], p: Vec<Vec<f32>>, sampled| {
-            Linear2D::new(v, s[s.len() - 1], s[s.len() - 2], p, sampled)
+    /// The sampling tables of `file` (its `rgb` table, when the file gives only spectra, the
+    /// spectra reduced to linear sRGB under D65, as reflectances are reduced).
+    pub fn new(file: &MeasuredFile) -> MeasuredData {
+        let params = || vec![file.phi_i.clone(), file.theta_i.clone()];
+        let table = |t: &Table, p: Vec<Vec<f32>>, sampled| {
+            let s = &t.shape;
+            Linear2D::new(&t.values, s[s.len() - 1], s[s.len() - 2], p, sampled)
         };
-        let mut spectra = None;
-        let mut wavelengths = Vec::new();
-        if t.fields.contains_key("spectra") {
-            let (w, _) = floats(&t, "wavelengths", 1, false)?;
-            ascending("wavelengths", &w)?;
-            let (sp, s) = floats(&t, "spectra", 5, false)?;
-            check_shape("spectra", &s, &[np, nt, Some(w.len()), Some(n), Some(n)])?;
-            let mut p = params();
-            p.push(w.clone());
-            spectra = Some((sp, s, p));
-            wavelengths = w;
-        }
-        let rgb = if t.fields.contains_key("rgb") {
-            let (v, s) = floats(&t, "rgb", 5, false)?;
-            check_shape("rgb", &s, &[np, nt, Some(3), Some(n), Some(n)])?;
-            v
-        } else if let Some((sp, s, _)) = &spectra {
-            // Each node's spectrum reduced to linear sRGB (under D65, as a reflectance).
-            let w = rgb_weights(&wavelengths);
-            let (nl, nn) = (s[2], n * n);
-            let mut out = Vec::with_capacity(sp.len() / nl * 3);
-            for slice in sp.chunks_exact(nl * nn) {
-                for c in [0, 1, 2] {
-                    for i in 0..nn {
-                        let v: f64 = (0..nl).map(|k| slice[k * nn + i] as f64 * w[k][c]).sum();
-                        out.push(v.max(0.0) as f32);
+        let n = file.luminance.shape[3];
+        let rgb = match (&file.rgb, &file.spectra) {
+            (Some(rgb), _) => rgb.values.clone(),
+            (
+                None,
+                Some(Table {
+                    values: sp,
+                    shape: s,
+                }),
+            ) => {
+                // Each node's spectrum reduced to linear sRGB: Σ_k s_k W_k.
+                let w = rgb_weights(&file.wavelengths);
+                let (nl, nn) = (s[2], n * n);
+                let mut out = Vec::with_capacity(sp.len() / nl * 3);
+                for slice in sp.chunks_exact(nl * nn) {
+                    for c in [0, 1, 2] {
+                        for i in 0..nn {
+                            let v: f64 = (0..nl).map(|k| slice[k * nn + i] as f64 * w[k][c]).sum();
+                            out.push(v.max(0.0) as f32);
+                        }
                     }
                 }
+                out
             }
-            out
-        } else {
-            return Err("the file has neither a \"spectra\" nor an \"rgb\" field".into());
+            // Neither (the reader refuses such a file): black.
+            (None, None) => vec![0.0; file.phi_i.len() * file.theta_i.len() * 3 * n * n],
         };
         let mut rgb_params = params();
         rgb_params.push(vec![0.0, 1.0, 2.0]);
-        let rgb_shape = [phi_i.len(), theta_i.len(), 3, n, n];
-        Ok(MeasuredData {
-            name: name.to_string(),
-            description: t
-                .fields
-                .get("description")
-                .map(|f| String::from_utf8_lossy(&f.bytes).into_owned())
-                .unwrap_or_default(),
-            content_hash: fnv1a(bytes),
-            isotropic,
-            ndf: table(&ndf, &ns, vec![], false),
-            sigma: table(&sigma, &ss, vec![], false),
-            vndf: table(&vndf, &vs, params(), true),
-            luminance: table(&lum, &ls, params(), true),
-            spectra: spectra.map(|(v, s, p)| table(&v, &s, p, false)),
-            rgb: table(&rgb, &rgb_shape, rgb_params, false),
-            wavelengths,
-        })
+        let rgb = Table {
+            values: rgb,
+            shape: vec![file.phi_i.len(), file.theta_i.len(), 3, n, n],
+        };
+        MeasuredData {
+            name: file.name.clone(),
+            content_key: file.content_key,
+            isotropic: file.isotropic,
+            ndf: table(&file.ndf, vec![], false),
+            sigma: table(&file.sigma, vec![], false),
+            vndf: table(&file.vndf, params(), true),
+            luminance: table(&file.luminance, params(), true),
+            spectra: file.spectra.as_ref().map(|s| {
+                let mut p = params();
+                p.push(file.wavelengths.clone());
+                table(s, p, false)
+            }),
+            rgb: table(&rgb, rgb_params, false),
+            wavelengths: file.wavelengths.clone(),
+        }
     }
 
-    /// [`MeasuredData::from_bytes`], kept for the life of the process and shared: a file's
-    /// BRDF is built once per content (as pbrt-v4 keeps one per file name), and BxDFs refer
-    /// to it by a plain reference.
-    pub fn shared(bytes: &[u8], name: &str) -> Result<&'static MeasuredData, String> {
-        static CACHE: OnceLock<Mutex<HashMap<(u64, usize), &'static MeasuredData>>> =
-            OnceLock::new();
-        let key = (fnv1a(bytes), bytes.len());
+    /// The BRDF in the bytes of a `.bsdf` file, read ([`MeasuredFile::from_bytes`]) and built;
+    /// `name` names it in messages. Errors say what is wrong with the file.
+    pub fn from_bytes(bytes: &[u8], name: &str) -> Result<MeasuredData, String> {
+        MeasuredFile::from_bytes(bytes, name).map(|f| MeasuredData::new(&f))
+    }
+
+    /// [`MeasuredData::new`], kept for the life of the process and shared: a file's tables
+    /// are built once per content (as pbrt-v4 keeps one BRDF per file name), however many
+    /// materials and scene builds name it, and BxDFs refer to them by a plain reference.
+    pub fn shared(file: &MeasuredFile) -> &'static MeasuredData {
+        type Cache = Mutex<HashMap<(u64, usize), &'static MeasuredData>>;
+        static CACHE: OnceLock<Cache> = OnceLock::new();
         let cache = CACHE.get_or_init(Default::default);
-        if let Some(d) = cache.lock().ok().and_then(|c| c.get(&key).copied()) {
-            return Ok(d);
-        }
-        let d: &'static MeasuredData = Box::leak(Box::new(Self::from_bytes(bytes, name)?));
-        if let Ok(mut c) = cache.lock() {
-            c.insert(key, d);
-        }
-        Ok(d)
+        let mut c = cache.lock().unwrap_or_else(|e| e.into_inner());
+        c.entry(file.content_key)
+            .or_insert_with(|| Box::leak(Box::new(MeasuredData::new(file))))
     }
 
     /// Bytes of the tables.
@@ -526,6 +398,7 @@ impl Scatter for MeasuredBxdf {
 
 #[cfg(test)]
 mod tests {
+    use super::tensor::{Field, Tensor};
     use super::*;
     use crate::math::Vec2;
 
