@@ -90,11 +90,11 @@ fn load_unrecorded(path: &Path, options: &LoadOptions) -> Result<LoadedScene, Sc
     match ext.as_deref() {
         Some("gz") if gzipped("pbrt") => {
             let mut parser = Parser::from_file(path)?;
-            finish(pbrt::builder::build(&mut parser, options), &parser)
+            finish(pbrt::builder::entry::build(&mut parser, options), &parser)
         }
         Some("pbrt") | None => {
             let mut parser = Parser::from_file(path)?;
-            finish(pbrt::builder::build(&mut parser, options), &parser)
+            finish(pbrt::builder::entry::build(&mut parser, options), &parser)
         }
         Some("obj") => mesh_scene::load_obj_scene(path).map(fold),
         Some("ply") => mesh_scene::load_ply_scene(path).map(fold),
@@ -129,7 +129,7 @@ pub fn load_pbrt_str_with(
 ) -> Result<LoadedScene, SceneError> {
     let (result, files) = files_read::recording(|| {
         let mut parser = Parser::from_str(text, name, dir);
-        finish(pbrt::builder::build(&mut parser, options), &parser)
+        finish(pbrt::builder::entry::build(&mut parser, options), &parser)
     });
     result.map(|loaded| LoadedScene { files, ..loaded })
 }

@@ -46,14 +46,15 @@ enum MaterialRef {
 pub const MAX_NESTING: usize = 10_000;
 
 mod blocks;
+mod built;
 mod displaced;
-mod entry;
+pub mod entry;
 mod integrator;
 mod object_motion;
 mod transforms;
 mod volpath;
 
-pub use entry::{Built, build};
+pub use built::Built;
 
 /// What `AttributeBegin` saves.
 #[derive(Clone, Debug)]
