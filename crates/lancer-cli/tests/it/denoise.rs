@@ -4,7 +4,7 @@
 //! refuses.
 
 use crate::common::{
-    ScratchDir, data, lancer, read_exr, render_ok, run_in, signal_after_first_checkpoint,
+    ScratchDir, data, lancer, read_exr, render_ok, resume_ok, run_in, signal_after_first_checkpoint,
 };
 use std::process::Stdio;
 
@@ -280,18 +280,7 @@ fn an_interrupted_denoise_render_resumes_to_the_uninterrupted_bytes() {
     );
 
     // --resume with nothing but the output and the checkpoint.
-    let o = run_in(
-        &dir,
-        &[
-            "render",
-            "-o",
-            "int.exr",
-            "--resume",
-            "int.exr.ckpt",
-            "--quiet",
-        ],
-    );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    resume_ok(&dir, "int.exr");
     assert!(outputs("int") == expected, "resumed render differs");
     assert!(!ckpt.exists(), "the checkpoint was not removed");
 

@@ -4,7 +4,9 @@
 //! spectral and in RGB mode. Each camera sample's time is a pure function of (seed, pixel,
 //! sample index), like its other dimensions.
 
-use crate::common::{ScratchDir, data, render_ok, run_in, signal_after_first_checkpoint};
+use crate::common::{
+    ScratchDir, data, render_ok, resume_ok, run_in, signal_after_first_checkpoint,
+};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
@@ -109,18 +111,7 @@ fn an_interrupted_motion_blurred_render_resumes_to_the_same_bytes() {
         "the render was not interrupted"
     );
 
-    let o = run_in(
-        &dir,
-        &[
-            "render",
-            "-o",
-            "int.exr",
-            "--resume",
-            "int.exr.ckpt",
-            "--quiet",
-        ],
-    );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    resume_ok(&dir, "int.exr");
     assert!(
         bytes(&out) == bytes(&full),
         "the resumed motion-blurred render differs from the uninterrupted one"

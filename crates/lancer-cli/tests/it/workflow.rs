@@ -4,7 +4,9 @@
 //! `--resume-if-exists` (a requeued batch job); `lancer merge` refuses parts that do not belong
 //! together.
 
-use crate::common::{ScratchDir, data, read_exr, render_ok, run_in, signal_after_first_checkpoint};
+use crate::common::{
+    ScratchDir, data, read_exr, render_ok, resume_ok, run_in, signal_after_first_checkpoint,
+};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
@@ -220,18 +222,7 @@ fn an_interrupted_render_resumes_to_the_uninterrupted_pixels() {
     std::fs::copy(&ckpt, &saved).unwrap();
 
     // Resume with nothing but the output and the checkpoint.
-    let o = run_in(
-        &dir,
-        &[
-            "render",
-            "-o",
-            "int.exr",
-            "--resume",
-            "int.exr.ckpt",
-            "--quiet",
-        ],
-    );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    resume_ok(&dir, "int.exr");
     assert!(
         bytes(&out) == bytes(&full),
         "resumed render differs from uninterrupted"

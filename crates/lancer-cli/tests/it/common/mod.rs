@@ -23,6 +23,14 @@ pub fn run_in(dir: &Path, args: &[&str]) -> Output {
         .expect("lancer runs")
 }
 
+/// Resumes, in `dir`, the render to `out` from the checkpoint `out.ckpt` with nothing but
+/// those two (quietly), and panics with lancer's message if it fails.
+pub fn resume_ok(dir: &Path, out: &str) {
+    let ckpt = format!("{out}.ckpt");
+    let o = run_in(dir, &["render", "-o", out, "--resume", &ckpt, "--quiet"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
 /// Renders `scene` to `out` quietly with `extra` flags, in `dir`; panics with lancer's
 /// message if it fails.
 pub fn render_ok(dir: &Path, scene: &Path, out: &Path, extra: &[&str]) {
