@@ -128,3 +128,21 @@ fn too_many_triangles_is_an_error_at_the_edge_length_naming_the_option() {
         "{e}"
     );
 }
+
+#[test]
+fn each_displaced_mesh_sees_the_textures_defined_before_it() {
+    // The textures are built once for the scene's displaced meshes and extended as the file
+    // defines more: the second mesh's "h", defined again after the first mesh, is the new one.
+    let dir = ScratchDir::new("displaced-two");
+    let shape = "Shape \"plymesh\" \"string filename\" \"square.ply\" \"texture displacement\" \"h\" \"float edgelength\" 2\n";
+    let body = format!(
+        "Texture \"h\" \"float\" \"constant\" \"float value\" 0.25\n{shape}\
+         Texture \"h\" \"float\" \"constant\" \"float value\" 0.5\n{shape}"
+    );
+    let l = scene(&dir, &body, &LoadOptions::default()).unwrap();
+    let z = |i: usize| match &l.desc.shapes[i].geometry {
+        Geometry::TriangleMesh(m) => m.positions.iter().map(|p| p.z).collect::<Vec<_>>(),
+        g => panic!("{g:?}"),
+    };
+    assert_eq!((z(0), z(1)), (vec![0.25; 4], vec![0.5; 4]));
+}

@@ -15,16 +15,26 @@ use crate::pbrt::shapes::Displacement;
 use lancer::math::{Vec2, Vec3};
 use lancer::scene::desc::Geometry;
 use lancer::shape::{DisplaceError, Refinement, displace, refine};
-use lancer::texture::{FloatTexture, Pyramids, SpectrumTexture, TexCoord, TextureEval};
+use lancer::texture::{
+    FloatTexture, FloatTextureDesc, Pyramids, SpectrumTexture, SpectrumTextureDesc, TexCoord,
+    TextureEval,
+};
 use std::sync::Arc;
 
 /// What displacing meshes keeps across a scene: the options, the triangles made so far (the
-/// limit is on them all), and a note per mesh.
+/// limit is on them all), a note per mesh, and the scene's textures built so far.
 pub(super) struct Displacer {
     options: LoadOptions,
     made: u64,
     /// One per displaced mesh: its file, triangle counts and memory.
     pub(super) notes: Vec<Warning>,
+    /// The scene's float and spectrum textures as the renderer builds them (image textures
+    /// with their pyramids), the first so many of the description's, and the pyramids made
+    /// for them: built once and extended by the textures defined since ([`Displacer::textures`]),
+    /// not built again for every displaced mesh.
+    floats: Vec<FloatTexture>,
+    spectra: Vec<SpectrumTexture>,
+    pyramids: Pyramids,
 }
 
 impl Displacer {
@@ -33,6 +43,28 @@ impl Displacer {
             options: *options,
             made: 0,
             notes: Vec::new(),
+            floats: Vec::new(),
+            spectra: Vec::new(),
+            pyramids: Pyramids::default(),
+        }
+    }
+
+    /// The scene's textures, whose descriptions so far are `floats` and `spectra`, as the
+    /// renderer builds them: those defined since the last call are built now (the readers only
+    /// append textures, so the ones built before are still the same).
+    fn textures(
+        &mut self,
+        floats: &[FloatTextureDesc],
+        spectra: &[SpectrumTextureDesc],
+    ) -> TextureEval<'_> {
+        let pyramids = &mut self.pyramids;
+        let new_floats = floats[self.floats.len()..].iter();
+        self.floats.extend(new_floats.map(|t| t.build(pyramids)));
+        let new_spectra = spectra[self.spectra.len()..].iter();
+        self.spectra.extend(new_spectra.map(|t| t.build(pyramids)));
+        TextureEval {
+            floats: &self.floats,
+            spectra: &self.spectra,
         }
     }
 }
@@ -66,18 +98,7 @@ impl Builder {
             SceneError::at(at, refinement_error(&what, &e, max, self.displacer.made))
         })?;
         let eye = self.camera_position();
-        // The textures as the renderer builds them (image textures with their pyramids).
-        let mut pyramids = Pyramids::default();
-        let floats: Vec<FloatTexture> = (self.desc.float_textures.iter())
-            .map(|t| t.build(&mut pyramids))
-            .collect();
-        let spectra: Vec<SpectrumTexture> = (self.desc.spectrum_textures.iter())
-            .map(|t| t.build(&mut pyramids))
-            .collect();
-        let ev = TextureEval {
-            floats: &floats,
-            spectra: &spectra,
-        };
+        let ev = (self.displacer).textures(&self.desc.float_textures, &self.desc.spectrum_textures);
         let lookup = |p: Vec3, uv: Vec2| TexCoord {
             p: p + eye,
             uv,
