@@ -3,9 +3,7 @@
 use super::hit::{ShadingDerivatives, ShapeHit, ShapeSample, SurfaceInteraction};
 use super::kind::{GeometryKind, Placing, ShapeKind, positive};
 use super::mesh::{RuleError, TriangleMesh};
-use super::placement::{
-    LocalHit, Placement, phi_of, quadric_error, quadric_hit, quadric_t, weingarten,
-};
+use super::placement::{LocalHit, Placement, phi_of, quadric_error, quadric_hit, quadric_t};
 use super::triangle_ray::TriangleRay;
 use crate::math::{Bounds3, Vec2, Vec3, normalize, solve_quadratic};
 use crate::ray::Ray;
@@ -139,20 +137,19 @@ impl Cone {
         self.placement.interaction(self.local(ray, hit), ray, hit.t)
     }
 
-    /// ∂n/∂u, ∂n/∂v at the hit, object space, by the Weingarten equations ([`weingarten`])
+    /// ∂n/∂u, ∂n/∂v at the hit, object space, by the Weingarten equations
+    /// ([`LocalHit::swept_normal_derivatives`])
     /// with pbrt-v3's `Cone`: ∂²p/∂u² = −φmax²·(x, y, 0), ∂²p/∂u∂v = φmax/(1 − v)·(y, −x, 0),
     /// ∂²p/∂v² = 0 (zero at the apex, where ∂p/∂v is not that of the parameterisation).
     pub(crate) fn normal_derivatives(&self, ray: &Ray, hit: &ShapeHit) -> (Vec3, Vec3) {
-        let LocalHit {
-            p, uv, dpdu, dpdv, ..
-        } = self.local(ray, hit);
-        let d2pduu = -self.phi_max * self.phi_max * Vec3::new(p.x, p.y, 0.0);
+        let l = self.local(ray, hit);
+        let (p, uv) = (l.p, l.uv);
         let d2pduv = if uv.y < 1.0 - 1e-6 {
             self.phi_max / (1.0 - uv.y) * Vec3::new(p.y, -p.x, 0.0)
         } else {
             Vec3::ZERO
         };
-        weingarten(dpdu, dpdv, d2pduu, d2pduv, Vec3::ZERO)
+        l.swept_normal_derivatives(self.phi_max, d2pduv, Vec3::ZERO)
     }
 
     /// Surface area A = φmax/2 · r·√(h² + r²) (a sector of the unrolled cone), object space.

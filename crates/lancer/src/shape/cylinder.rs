@@ -3,7 +3,7 @@
 use super::hit::{ShadingDerivatives, ShapeHit, ShapeSample, SurfaceInteraction};
 use super::kind::{GeometryKind, Placing, ShapeKind, positive};
 use super::mesh::{RuleError, TriangleMesh};
-use super::placement::{LocalHit, Placement, phi_of, weingarten};
+use super::placement::{LocalHit, Placement, phi_of};
 use super::triangle_ray::TriangleRay;
 use crate::math::{Bounds3, Vec2, Vec3, gamma};
 use crate::ray::Ray;
@@ -170,12 +170,12 @@ impl Cylinder {
         self.placement.interaction(self.local(ray, hit), ray, hit.t)
     }
 
-    /// ∂n/∂u, ∂n/∂v at the hit, object space, by the Weingarten equations ([`weingarten`])
+    /// ∂n/∂u, ∂n/∂v at the hit, object space, by the Weingarten equations
+    /// ([`LocalHit::swept_normal_derivatives`])
     /// with ∂²p/∂u² = −φmax²·(x, y, 0) and ∂²p/∂u∂v = ∂²p/∂v² = 0 (pbrt-v4's `Cylinder`).
     pub(crate) fn normal_derivatives(&self, ray: &Ray, hit: &ShapeHit) -> (Vec3, Vec3) {
-        let LocalHit { p, dpdu, dpdv, .. } = self.local(ray, hit);
-        let d2pduu = -self.phi_max * self.phi_max * Vec3::new(p.x, p.y, 0.0);
-        weingarten(dpdu, dpdv, d2pduu, Vec3::ZERO, Vec3::ZERO)
+        self.local(ray, hit)
+            .swept_normal_derivatives(self.phi_max, Vec3::ZERO, Vec3::ZERO)
     }
 
     /// Surface area, object space: A = (zmax − zmin)·r·φmax.

@@ -4,7 +4,7 @@
 use super::hit::{ShadingDerivatives, ShapeHit, ShapeSample, SurfaceInteraction};
 use super::kind::{GeometryKind, Placing, ShapeKind};
 use super::mesh::{RuleError, TriangleMesh};
-use super::placement::{LocalHit, Placement, quadric_error, quadric_hit, quadric_t, weingarten};
+use super::placement::{LocalHit, Placement, quadric_error, quadric_hit, quadric_t};
 use super::triangle_ray::TriangleRay;
 use crate::math::{Bounds3, Vec2, Vec3, solve_quadratic};
 use crate::ray::Ray;
@@ -192,14 +192,14 @@ impl Hyperboloid {
         self.placement.interaction(self.local(ray, hit), ray, hit.t)
     }
 
-    /// ∂n/∂u, ∂n/∂v at the hit, object space, by the Weingarten equations ([`weingarten`])
+    /// ∂n/∂u, ∂n/∂v at the hit, object space, by the Weingarten equations
+    /// ([`LocalHit::swept_normal_derivatives`])
     /// with pbrt-v3's `Hyperboloid`: ∂²p/∂u² = −φmax²·(x, y, 0),
     /// ∂²p/∂u∂v = φmax·(−∂p/∂v_y, ∂p/∂v_x, 0), ∂²p/∂v² = 0 (the generator is a line).
     pub(crate) fn normal_derivatives(&self, ray: &Ray, hit: &ShapeHit) -> (Vec3, Vec3) {
-        let LocalHit { p, dpdu, dpdv, .. } = self.local(ray, hit);
-        let d2pduu = -self.phi_max * self.phi_max * Vec3::new(p.x, p.y, 0.0);
-        let d2pduv = self.phi_max * Vec3::new(-dpdv.y, dpdv.x, 0.0);
-        weingarten(dpdu, dpdv, d2pduu, d2pduv, Vec3::ZERO)
+        let l = self.local(ray, hit);
+        let d2pduv = self.phi_max * Vec3::new(-l.dpdv.y, l.dpdv.x, 0.0);
+        l.swept_normal_derivatives(self.phi_max, d2pduv, Vec3::ZERO)
     }
 
     /// Coefficients (α, β, γ) of |∂p/∂φ × ∂p/∂s|² = α·s² + β·s + γ. With (x′, y′) = q + s·e,

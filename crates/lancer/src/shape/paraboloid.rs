@@ -3,9 +3,7 @@
 use super::hit::{ShadingDerivatives, ShapeHit, ShapeSample, SurfaceInteraction};
 use super::kind::{GeometryKind, Placing, ShapeKind, positive};
 use super::mesh::{RuleError, TriangleMesh};
-use super::placement::{
-    LocalHit, Placement, phi_of, quadric_error, quadric_hit, quadric_t, weingarten,
-};
+use super::placement::{LocalHit, Placement, phi_of, quadric_error, quadric_hit, quadric_t};
 use super::triangle_ray::TriangleRay;
 use crate::math::{Bounds3, Vec2, Vec3, solve_quadratic};
 use crate::ray::Ray;
@@ -168,14 +166,15 @@ impl Paraboloid {
         self.placement.interaction(self.local(ray, hit), ray, hit.t)
     }
 
-    /// ∂n/∂u, ∂n/∂v at the hit, object space, by the Weingarten equations ([`weingarten`])
+    /// ∂n/∂u, ∂n/∂v at the hit, object space, by the Weingarten equations
+    /// ([`LocalHit::swept_normal_derivatives`])
     /// with pbrt-v3's `Paraboloid`, Δz = zmax − zmin: ∂²p/∂u² = −φmax²·(x, y, 0),
     /// ∂²p/∂u∂v = Δz·φmax·(−y/2z, x/2z, 0), ∂²p/∂v² = −Δz²·(x/4z², y/4z², 0) (zero at the
     /// apex, where ∂p/∂v is taken along z).
     pub(crate) fn normal_derivatives(&self, ray: &Ray, hit: &ShapeHit) -> (Vec3, Vec3) {
-        let LocalHit { p, dpdu, dpdv, .. } = self.local(ray, hit);
+        let l = self.local(ray, hit);
+        let p = l.p;
         let dz = self.z_max - self.z_min;
-        let d2pduu = -self.phi_max * self.phi_max * Vec3::new(p.x, p.y, 0.0);
         let (d2pduv, d2pdvv) = if p.x * p.x + p.y * p.y > 0.0 {
             (
                 dz * self.phi_max * Vec3::new(-p.y / (2.0 * p.z), p.x / (2.0 * p.z), 0.0),
@@ -184,7 +183,7 @@ impl Paraboloid {
         } else {
             (Vec3::ZERO, Vec3::ZERO)
         };
-        weingarten(dpdu, dpdv, d2pduu, d2pduv, d2pdvv)
+        l.swept_normal_derivatives(self.phi_max, d2pduv, d2pdvv)
     }
 
     /// Surface area, object space: with z = kρ², dA = ρ·√(1 + 4k²ρ²) dρ dφ, so

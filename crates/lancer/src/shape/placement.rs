@@ -114,6 +114,22 @@ pub(crate) struct LocalHit {
     pub dpdv: Vec3,
 }
 
+impl LocalHit {
+    /// ∂n/∂u, ∂n/∂v by the Weingarten equations ([`weingarten`]) on a quadric swept about z
+    /// up to φmax with u = φ/φmax, whose ∂p/∂u = φmax·(−y, x, 0) gives them all
+    /// ∂²p/∂u² = −φmax²·(x, y, 0); `d2pduv` and `d2pdvv` are the shape's own.
+    #[inline]
+    pub(crate) fn swept_normal_derivatives(
+        &self,
+        phi_max: f32,
+        d2pduv: Vec3,
+        d2pdvv: Vec3,
+    ) -> (Vec3, Vec3) {
+        let d2pduu = -phi_max * phi_max * Vec3::new(self.p.x, self.p.y, 0.0);
+        weingarten(self.dpdu, self.dpdv, d2pduu, d2pduv, d2pdvv)
+    }
+}
+
 /// ∂n/∂u and ∂n/∂v of the unit normal n = normalize(∂p/∂u × ∂p/∂v) by the Weingarten
 /// equations, as pbrt-v4's quadrics compute them: with the first fundamental form
 /// E = ∂p/∂u·∂p/∂u, F = ∂p/∂u·∂p/∂v, G = ∂p/∂v·∂p/∂v and the second e = n·∂²p/∂u²,

@@ -3,7 +3,7 @@
 use super::hit::{ShadingDerivatives, ShapeHit, ShapeSample, SurfaceInteraction};
 use super::kind::{GeometryKind, Placing, ShapeKind, positive};
 use super::mesh::{RuleError, TriangleMesh};
-use super::placement::{LocalHit, Placement, phi_of, weingarten};
+use super::placement::{LocalHit, Placement, phi_of};
 use super::triangle_ray::TriangleRay;
 use crate::math::{Bounds3, PackedVec3, Vec2, Vec3, gamma};
 use crate::ray::Ray;
@@ -202,18 +202,19 @@ impl Sphere {
         self.placement.interaction(self.local(ray, hit), ray, hit.t)
     }
 
-    /// ∂n/∂u, ∂n/∂v at the hit, object space, by the Weingarten equations ([`weingarten`])
+    /// ∂n/∂u, ∂n/∂v at the hit, object space, by the Weingarten equations
+    /// ([`LocalHit::swept_normal_derivatives`])
     /// with ∂²p/∂u² = −φmax²·(x, y, 0), ∂²p/∂u∂v = Δθ·z·φmax·(−sin φ, cos φ, 0) and
     /// ∂²p/∂v² = −Δθ²·p, Δθ = θ_zmax − θ_zmin (pbrt-v4's `Sphere`).
     pub(crate) fn normal_derivatives(&self, ray: &Ray, hit: &ShapeHit) -> (Vec3, Vec3) {
-        let LocalHit { p, dpdu, dpdv, .. } = self.local(ray, hit);
+        let l = self.local(ray, hit);
+        let p = l.p;
         let z_radius = (p.x * p.x + p.y * p.y).sqrt();
         let (cos_phi, sin_phi) = (p.x / z_radius, p.y / z_radius);
         let dtheta = self.theta_z_max - self.theta_z_min;
-        let d2pduu = -self.phi_max * self.phi_max * Vec3::new(p.x, p.y, 0.0);
         let d2pduv = dtheta * p.z * self.phi_max * Vec3::new(-sin_phi, cos_phi, 0.0);
         let d2pdvv = -dtheta * dtheta * p;
-        weingarten(dpdu, dpdv, d2pduu, d2pduv, d2pdvv)
+        l.swept_normal_derivatives(self.phi_max, d2pduv, d2pdvv)
     }
 
     /// Surface area, object space: a sphere zone's area depends only on its height,
