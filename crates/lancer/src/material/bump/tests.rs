@@ -26,6 +26,23 @@ pub(crate) fn flat(x: f32, y: f32) -> SurfaceInteraction {
     }
 }
 
+/// One `bilerp` float texture over (u, v) with corner values `v` (as [`BilerpTexture`] takes
+/// them): a height whose slope is the same everywhere.
+pub(crate) fn bilerp(v: [f32; 4]) -> Vec<FloatTexture> {
+    vec![FloatTexture::Bilerp(BilerpTexture {
+        mapping: Mapping2D::default(),
+        v,
+    })]
+}
+
+/// The lookups of the float textures `floats`, with no spectrum textures.
+pub(crate) fn floats_only(floats: &[FloatTexture]) -> TextureEval<'_> {
+    TextureEval {
+        floats,
+        spectra: &[],
+    }
+}
+
 /// The bump frame at `si` with no footprint (steps of [`DELTA`]).
 fn bump(tex: &TextureEval, d: FloatTex, si: &SurfaceInteraction) -> Shading {
     let tc = TexCoord {
@@ -53,10 +70,7 @@ fn the_step_is_half_the_footprint_in_u_and_v() {
         tex1: FloatTex::Const(0.0),
         tex2: FloatTex::Const(1.0),
     })];
-    let tex = TextureEval {
-        floats: &floats,
-        spectra: &[],
-    };
+    let tex = floats_only(&floats);
     let si = flat(0.004, 0.5);
     assert_eq!(bump(&tex, FloatTex::Tex(0), &si).dpdu, Vec3::X);
     let tc = TexCoord {
@@ -88,14 +102,8 @@ fn the_step_is_half_the_footprint_in_u_and_v() {
 fn bumps_tilt_the_normal_against_the_height_gradient() {
     // Height h(u, v) = 0.1·u + 0.2·v (bilerp 0, 0.2, 0.1, 0.3): the displaced surface
     // (u, v, h) has normal ∝ (−0.1, −0.2, 1).
-    let floats = vec![FloatTexture::Bilerp(BilerpTexture {
-        mapping: Mapping2D::default(),
-        v: [0.0, 0.2, 0.1, 0.3],
-    })];
-    let tex = TextureEval {
-        floats: &floats,
-        spectra: &[],
-    };
+    let floats = bilerp([0.0, 0.2, 0.1, 0.3]);
+    let tex = floats_only(&floats);
     let sh = bump(&tex, FloatTex::Tex(0), &flat(0.3, 0.6));
     let want = normalize(Vec3::new(-0.1, -0.2, 1.0));
     assert!((sh.n - want).length() < 2e-3, "{} vs {want}", sh.n);
@@ -123,10 +131,7 @@ fn a_constant_height_moves_the_surface_along_its_turning_normal() {
         dndu: Vec3::X * 0.5,
         dndv: Vec3::Y * 0.5,
     };
-    let tex = TextureEval {
-        floats: &[],
-        spectra: &[],
-    };
+    let tex = floats_only(&[]);
     let sh = bump_shading(&tex, FloatTex::Const(0.5), &si, &tc, &sd).unwrap();
     assert_eq!(
         (sh.dpdu, sh.dpdv, sh.n),
@@ -134,14 +139,8 @@ fn a_constant_height_moves_the_surface_along_its_turning_normal() {
     );
     // The new tangents start from the derivatives' ∂p/∂u, ∂p/∂v, not the interaction's: with
     // ∂p/∂u = 2x̂ and h = 0.1·u, ∂p/∂u' = 2x̂ + 0.1·ẑ.
-    let floats = vec![FloatTexture::Bilerp(BilerpTexture {
-        mapping: Mapping2D::default(),
-        v: [0.0, 0.0, 0.1, 0.1],
-    })];
-    let tex = TextureEval {
-        floats: &floats,
-        spectra: &[],
-    };
+    let floats = bilerp([0.0, 0.0, 0.1, 0.1]);
+    let tex = floats_only(&floats);
     let sd = ShadingDerivatives {
         dpdu: Vec3::X * 2.0,
         dpdv: Vec3::Y,
@@ -159,14 +158,8 @@ fn a_constant_height_moves_the_surface_along_its_turning_normal() {
 #[test]
 fn bumped_normals_stay_on_the_geometric_side() {
     // The same slope seen from a surface whose normal is −z: ns is flipped to −z's side.
-    let floats = vec![FloatTexture::Bilerp(BilerpTexture {
-        mapping: Mapping2D::default(),
-        v: [0.0, 0.0, 0.5, 0.5],
-    })];
-    let tex = TextureEval {
-        floats: &floats,
-        spectra: &[],
-    };
+    let floats = bilerp([0.0, 0.0, 0.5, 0.5]);
+    let tex = floats_only(&floats);
     let mut si = flat(0.5, 0.5);
     si.n = -Vec3::Z;
     si.shading.n = -Vec3::Z;

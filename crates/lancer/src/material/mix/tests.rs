@@ -2,9 +2,9 @@
 
 use super::*;
 use crate::material::DiffuseMaterial;
-use crate::material::bump::tests::flat;
+use crate::material::bump::tests::{bilerp, flat, floats_only};
 use crate::math::{Rgb, normalize};
-use crate::texture::{BilerpTexture, FloatTex, FloatTexture, Mapping2D, SpectrumTex};
+use crate::texture::{FloatTex, SpectrumTex};
 
 /// Materials: 0 diffuse, 1 diffuse bumped by h(u, v) = 0.1·u + 0.2·v (normal
 /// ∝ (−0.1, −0.2, 1)), 2 a mix of 0 and 1 with `amount`, 3 a mix of 2 and 2.
@@ -31,14 +31,8 @@ fn scene(amount: f32) -> Vec<Material> {
 
 #[test]
 fn a_mix_applies_the_bump_of_the_material_it_picks() {
-    let floats = vec![FloatTexture::Bilerp(BilerpTexture {
-        mapping: Mapping2D::default(),
-        v: [0.0, 0.2, 0.1, 0.3],
-    })];
-    let tex = TextureEval {
-        floats: &floats,
-        spectra: &[],
-    };
+    let floats = bilerp([0.0, 0.2, 0.1, 0.3]);
+    let tex = floats_only(&floats);
     let bumped_n = normalize(Vec3::new(-0.1, -0.2, 1.0));
     // Amount 1: always the bumped side, directly and under a mix of mixes.
     for m in [1, 2, 3] {
