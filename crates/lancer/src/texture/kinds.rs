@@ -92,24 +92,16 @@ pub trait TextureKind<V> {
     }
 }
 
-/// How a combining kind reads its parameters of type `T` ([`FloatTex`] or [`SpectrumTex`]):
-/// as floats, RGB or sampled spectra.
-pub trait Inputs<T> {
-    /// The values combined.
-    type Value: Copy + Mul<f32, Output = Self::Value> + Add<Output = Self::Value>;
-    /// Zero of [`Inputs::Value`].
-    const ZERO: Self::Value;
+/// What every combining kind reads, whatever the type of its parameters: the hit and its
+/// float parameters (a blend factor, a scale).
+pub trait Lookup {
     /// The hit.
     fn tc(&self) -> &TexCoord;
-    /// A float parameter's value (a blend factor, a scale).
+    /// A float parameter's value.
     fn float(&self, t: FloatTex) -> f32;
-    /// A parameter's value.
-    fn input(&self, t: T) -> Self::Value;
 }
 
-impl Inputs<FloatTex> for At<'_> {
-    type Value = f32;
-    const ZERO: f32 = 0.0;
+impl Lookup for At<'_> {
     #[inline(always)]
     fn tc(&self) -> &TexCoord {
         self.tc
@@ -118,6 +110,33 @@ impl Inputs<FloatTex> for At<'_> {
     fn float(&self, t: FloatTex) -> f32 {
         self.ev.float(t, self.tc)
     }
+}
+
+impl Lookup for SampledAt<'_> {
+    #[inline(always)]
+    fn tc(&self) -> &TexCoord {
+        self.tc
+    }
+    #[inline(always)]
+    fn float(&self, t: FloatTex) -> f32 {
+        self.ev.float(t, self.tc)
+    }
+}
+
+/// How a combining kind reads its parameters of type `T` ([`FloatTex`] or [`SpectrumTex`]):
+/// as floats, RGB or sampled spectra.
+pub trait Inputs<T>: Lookup {
+    /// The values combined.
+    type Value: Copy + Mul<f32, Output = Self::Value> + Add<Output = Self::Value>;
+    /// Zero of [`Inputs::Value`].
+    const ZERO: Self::Value;
+    /// A parameter's value.
+    fn input(&self, t: T) -> Self::Value;
+}
+
+impl Inputs<FloatTex> for At<'_> {
+    type Value = f32;
+    const ZERO: f32 = 0.0;
     #[inline(always)]
     fn input(&self, t: FloatTex) -> f32 {
         self.ev.float(t, self.tc)
@@ -128,14 +147,6 @@ impl Inputs<SpectrumTex> for At<'_> {
     type Value = Rgb;
     const ZERO: Rgb = Rgb::ZERO;
     #[inline(always)]
-    fn tc(&self) -> &TexCoord {
-        self.tc
-    }
-    #[inline(always)]
-    fn float(&self, t: FloatTex) -> f32 {
-        self.ev.float(t, self.tc)
-    }
-    #[inline(always)]
     fn input(&self, t: SpectrumTex) -> Rgb {
         self.ev.spectrum(t, self.tc)
     }
@@ -144,14 +155,6 @@ impl Inputs<SpectrumTex> for At<'_> {
 impl Inputs<SpectrumTex> for SampledAt<'_> {
     type Value = SampledSpectrum;
     const ZERO: SampledSpectrum = SampledSpectrum::ZERO;
-    #[inline(always)]
-    fn tc(&self) -> &TexCoord {
-        self.tc
-    }
-    #[inline(always)]
-    fn float(&self, t: FloatTex) -> f32 {
-        self.ev.float(t, self.tc)
-    }
     #[inline(always)]
     fn input(&self, t: SpectrumTex) -> SampledSpectrum {
         self.ev.sampled(t, self.tc, self.lambda, self.kind)

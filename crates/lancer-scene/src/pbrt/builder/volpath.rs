@@ -13,20 +13,20 @@ impl Builder {
         if self.desc.media.is_empty() {
             return;
         }
-        let (name, max_depth, regularize) = match self.desc.integrator {
-            Integrator::Mlt(o) => ("mlt", o.max_depth, o.regularize),
-            _ => return,
+        let Integrator::Mlt(o) = self.desc.integrator else {
+            return;
         };
         self.warn(
             end,
             format!(
-                "integrator \"{name}\" through participating media is not supported yet; lancer \
-                 uses \"volpath\" with maxdepth {max_depth}"
+                "integrator \"mlt\" through participating media is not supported yet; lancer \
+                 uses \"volpath\" with maxdepth {}",
+                o.max_depth
             ),
         );
         self.desc.integrator = Integrator::VolPath {
-            max_depth,
-            regularize,
+            max_depth: o.max_depth,
+            regularize: o.regularize,
         };
     }
 }

@@ -147,6 +147,33 @@ fn volpath_is_the_default_integrator() {
 }
 
 #[test]
+fn mlt_through_media_falls_back_to_volpath() {
+    // lancer's mlt does not sample media: the scene is rendered with volpath at mlt's depth.
+    let text = "Integrator \"mlt\" \"integer maxdepth\" 7 \"bool regularize\" true\n\
+                WorldBegin\n\
+                MakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n";
+    let l = load(text).unwrap();
+    assert_eq!(
+        l.desc.integrator,
+        lancer::integrator::Integrator::VolPath {
+            max_depth: 7,
+            regularize: true
+        }
+    );
+    let w = warnings(&l);
+    assert!(
+        w.len() == 1 && w[0].contains("\"mlt\" through participating media"),
+        "{w:?}"
+    );
+    // Without media mlt stays.
+    let l = load("Integrator \"mlt\"\nWorldBegin\n").unwrap();
+    assert!(matches!(
+        l.desc.integrator,
+        lancer::integrator::Integrator::Mlt(_)
+    ));
+}
+
+#[test]
 fn lights_sit_in_the_current_outside_medium() {
     // pbrt-v4 gives a light the outside medium current at `LightSource`: bdpt's and
     // lightpath's light paths start in it. Lights in vacuum before it are padded with `None`.
