@@ -29,7 +29,6 @@ mod media_tests;
 mod tests;
 
 use super::Splat;
-use super::volpath::hero_lane;
 use crate::math::{SampledSpectrum, Vec2};
 use crate::ray::Ray;
 use crate::sampling::{SampleSource, Sampler};
@@ -68,17 +67,7 @@ pub fn li(
     PATHS.with(|paths| {
         let (camera, light) = &mut *paths.borrow_mut();
         let max_depth = options.max_depth as usize;
-        let mut walk = Walk {
-            scene,
-            lambda: lambda.copied(),
-            regularize: options.regularize,
-            // Only media use it (no hash per sample without them).
-            hero: if scene.media().is_empty() {
-                0
-            } else {
-                hero_lane(ray, lambda)
-            },
-        };
+        let mut walk = Walk::new(scene, ray, lambda, options.regularize);
         walk.camera_subpath(ray, sampler, max_depth + 2, camera);
         walk.light_subpath(sampler, max_depth + 1, light);
         let weight = walk.spectral_weight();
@@ -157,16 +146,7 @@ pub(crate) fn strategy<S: SampleSource + ?Sized>(
     }
     PATHS.with(|paths| {
         let (camera, light) = &mut *paths.borrow_mut();
-        let mut walk = Walk {
-            scene,
-            lambda: lambda.copied(),
-            regularize,
-            hero: if scene.media().is_empty() {
-                0
-            } else {
-                hero_lane(ray, lambda)
-            },
-        };
+        let mut walk = Walk::new(scene, ray, lambda, regularize);
         walk.camera_subpath(ray, sampler, t, camera);
         if camera.len() != t {
             return none;

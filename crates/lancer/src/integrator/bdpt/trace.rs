@@ -6,7 +6,6 @@
 //! the lens.
 
 use super::super::Splat;
-use super::super::volpath::hero_lane;
 use super::connect::{Segment, to_camera};
 use super::vertex::{Vertex, lane_balance};
 use super::walk::{PATHS, Walk};
@@ -29,12 +28,7 @@ pub fn li(
 ) -> SampledSpectrum {
     PATHS.with(|paths| {
         let (_, light) = &mut *paths.borrow_mut();
-        let mut walk = Walk {
-            scene,
-            lambda: lambda.copied(),
-            regularize: false,
-            hero: hero_lane(ray, lambda),
-        };
+        let mut walk = Walk::new(scene, ray, lambda, false);
         walk.light_subpath(sampler, max_depth as usize + 1, light);
         let weight = walk.spectral_weight();
         let seg = Segment {

@@ -8,7 +8,7 @@
 //! path is absorbed, scatters (a medium vertex, then a direction from the phase function) or
 //! goes on (a null collision), with probabilities σ_a/σ_maj, σ_s/σ_maj and the rest.
 
-use super::super::volpath::{medium_after, sample_discrete3, seeded_rng};
+use super::super::volpath::{hero_lane, medium_after, sample_discrete3, seeded_rng};
 use super::super::{bsdf_at, keep_hero_only};
 use super::vertex::{Kind, Vertex, infinite_light_density};
 use crate::material::TransportMode;
@@ -51,7 +51,28 @@ enum Crossing {
     Ended,
 }
 
-impl Walk<'_> {
+impl<'a> Walk<'a> {
+    /// The walk of the camera sample whose camera ray is `ray`: its hero lane is `volpath`'s
+    /// for that ray, or 0 in a scene without media (which has no use for it, and then no
+    /// hash per sample).
+    pub fn new(
+        scene: &'a Scene,
+        ray: &Ray,
+        lambda: Option<&SampledWavelengths>,
+        regularize: bool,
+    ) -> Self {
+        Walk {
+            scene,
+            lambda: lambda.copied(),
+            regularize,
+            hero: if scene.media().is_empty() {
+                0
+            } else {
+                hero_lane(ray, lambda)
+            },
+        }
+    }
+
     /// The camera subpath of at most `max_vertices` vertices for camera ray `ray`, into `path`
     /// (cleared first): the lens, then the surfaces the path meets.
     pub fn camera_subpath<S: SampleSource + ?Sized>(
