@@ -51,10 +51,7 @@ pub(super) fn medium_after(
     d: Vec3,
     current: Option<u32>,
 ) -> Option<u32> {
-    match scene.prim(hit.prim).media {
-        Some(mi) if mi.is_transition() => mi.towards(hit.si.n, d),
-        _ => current,
-    }
+    scene.medium_past(hit.prim, hit.si.n, d, current)
 }
 
 /// A generator seeded by a hash of two sampler values (pbrt-v4 seeds the collision stream the

@@ -133,6 +133,17 @@ impl Scene {
         self.camera_medium
     }
 
+    /// The medium a ray leaving primitive `prim` (geometric normal `n`) in direction `w`
+    /// travels in: the side of its interface `w` points to when crossing it changes medium,
+    /// else `current`, the medium the ray was already in.
+    #[inline]
+    pub fn medium_past(&self, prim: u32, n: Vec3, w: Vec3, current: Option<u32>) -> Option<u32> {
+        match self.prim(prim).media {
+            Some(mi) if mi.is_transition() => mi.towards(n, w),
+            _ => current,
+        }
+    }
+
     /// The medium a ray leaving light `i` from a point with geometric normal `n` in direction
     /// `w` starts in: for an area light, the side of its shape's interface `w` points to; for
     /// the others, the medium they sit in (`None`: vacuum).

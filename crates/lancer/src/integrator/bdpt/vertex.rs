@@ -172,10 +172,7 @@ impl Vertex {
     pub fn medium_towards(&self, scene: &Scene, w: Vec3) -> Option<u32> {
         match self.kind {
             Kind::Light(i) => scene.light_medium(i as usize, self.ng, w),
-            Kind::Surface => match scene.prim(self.prim).media {
-                Some(mi) if mi.is_transition() => mi.towards(self.ng, w),
-                _ => self.medium,
-            },
+            Kind::Surface => scene.medium_past(self.prim, self.ng, w, self.medium),
             Kind::Camera | Kind::Medium | Kind::Escaped => self.medium,
         }
     }
