@@ -89,21 +89,15 @@ impl Segment<'_> {
         if g == 0.0 {
             return SampledSpectrum::ZERO;
         }
-        let tr = self.tr(a, b);
-        if tr == SampledSpectrum::ONE {
-            // No medium on the way: the plain geometry term, bit for bit.
-            SampledSpectrum::splat(g)
-        } else {
-            tr * g
-        }
+        // Without a medium on the way T = 1, and 1·g is g to the bit.
+        self.tr(a, b) * g
     }
 }
 
-/// `l` times the transmittance `tr`, untouched when `tr` is 1 (no medium on the way).
+/// `l` times the transmittance `tr`; zero when the segment is blocked, whatever `l` (no
+/// NaN from an infinite `l`). (Unblocked without media, T = 1: `l` to the bit.)
 fn attenuate(l: SampledSpectrum, tr: SampledSpectrum) -> SampledSpectrum {
-    if tr == SampledSpectrum::ONE {
-        l
-    } else if tr == SampledSpectrum::ZERO {
+    if tr == SampledSpectrum::ZERO {
         SampledSpectrum::ZERO
     } else {
         l * tr
