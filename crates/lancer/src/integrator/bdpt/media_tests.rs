@@ -2,9 +2,9 @@
 //! with a chromatic fog against `volpath`, the densities the walks store at medium vertices,
 //! the MIS weights of paths with medium vertices, and `simplevolpath`.
 
-use super::connect::mis_weight;
 use super::tests::{
-    DensityChecks, bdpt, check_walk_densities, compare, render, room_desc, subpaths, surface_vertex,
+    DensityChecks, assert_mis_weights_sum_to_one, bdpt, check_walk_densities, compare, render,
+    room_desc, surface_vertex,
 };
 use super::vertex::{Kind, Vertex};
 use crate::integrator::Integrator;
@@ -137,66 +137,13 @@ fn mis_weights_of_paths_through_a_medium_sum_to_one() {
     for area in [true, false] {
         let scene = Scene::build(&foggy_room_desc(area, bdpt(6), fog(1.0))).unwrap();
         let c = Vec3::new(0.0, 1.0, 0.0);
-        let eye = scene.camera().world_from_camera.point(Vec3::ZERO);
         // Light → floor → fog → back wall → fog → fog → camera, every prefix of it.
         let floor = surface_vertex(&scene, c, Vec3::new(0.3, 0.0, 0.2));
         let wall = surface_vertex(&scene, c, Vec3::new(-0.5, 0.6, -1.0));
         let m1 = medium_vertex(Vec3::new(0.1, 0.7, 0.3), floor.p);
         let m2 = medium_vertex(Vec3::new(-0.3, 1.4, 0.1), wall.p);
         let m3 = medium_vertex(Vec3::new(0.2, 1.1, 1.5), m2.p);
-        let bounces = [floor, m1, wall, m2, m3];
-        let (on_light, light_vertex) = if area {
-            let v = surface_vertex(&scene, c, Vec3::new(0.1, 2.0, 0.05));
-            let i = scene.prim(v.prim).emission.unwrap().light;
-            let lv = Vertex::endpoint(Kind::Light(i), v.p, v.p_error, v.ng, SampledSpectrum::ONE);
-            (v, lv)
-        } else {
-            let p = Vec3::new(0.2, 1.7, 0.1);
-            let v = Vertex::endpoint(
-                Kind::Light(0),
-                p,
-                Vec3::ZERO,
-                Vec3::ZERO,
-                SampledSpectrum::ONE,
-            );
-            (v, v)
-        };
-        let camera_vertex = Vertex::endpoint(
-            Kind::Camera,
-            eye,
-            Vec3::ZERO,
-            Vec3::ZERO,
-            SampledSpectrum::ONE,
-        );
-        for depth in 1..=bounces.len() {
-            let mut x = vec![on_light];
-            x.extend_from_slice(&bounces[..depth]);
-            x.push(camera_vertex);
-            let n = x.len();
-            let mut weights = vec![];
-            for s in usize::from(!area)..n {
-                let t = n - s;
-                let (mut light, mut camera) = subpaths(&scene, &x, light_vertex, s);
-                let sampled = if s == 1 {
-                    Some(light[0])
-                } else if t == 1 {
-                    let mut v = camera[0];
-                    v.ng = normalize(scene.camera().world_from_camera.vector(Vec3::Z));
-                    v.ns = v.ng;
-                    Some(v)
-                } else {
-                    None
-                };
-                let w = mis_weight(&scene, &mut light, &mut camera, sampled.as_ref(), s, t);
-                assert!(w > 0.0 && w <= 1.0, "area {area} depth {depth} s {s}: {w}");
-                weights.push(w);
-            }
-            let sum: f32 = weights.iter().sum();
-            assert!(
-                (sum - 1.0).abs() < 1e-4,
-                "area {area} depth {depth}: weights {weights:?} sum to {sum}"
-            );
-        }
+        assert_mis_weights_sum_to_one(&scene, area, &[floor, m1, wall, m2, m3], "fog");
     }
 }
 

@@ -419,75 +419,84 @@ fn mis_weights_of_all_strategies_of_a_path_sum_to_one() {
             if cropped { 1.6 } else { 1.0 }
         );
         let c = Vec3::new(0.0, 1.0, 0.0);
-        let eye = scene.camera().world_from_camera.point(Vec3::ZERO);
         let bounces = [
             surface_vertex(&scene, c, Vec3::new(0.3, 0.0, 0.2)),
             surface_vertex(&scene, c, Vec3::new(-0.5, 0.6, -1.0)),
             surface_vertex(&scene, c, Vec3::new(-1.0, 1.2, 0.3)),
         ];
-        // The light's end: a point on the quad (a surface vertex for the camera side, a light
-        // vertex for the light side), or the point light.
-        let (on_light, light_vertex) = if area {
-            let v = surface_vertex(&scene, c, Vec3::new(0.1, 2.0, 0.05));
-            let i = scene.prim(v.prim).emission.unwrap().light;
-            (
-                v,
-                Vertex::endpoint(Kind::Light(i), v.p, v.p_error, v.ng, SampledSpectrum::ONE),
-            )
-        } else {
-            let p = Vec3::new(0.2, 1.7, 0.1);
-            let v = Vertex::endpoint(
-                Kind::Light(0),
-                p,
-                Vec3::ZERO,
-                Vec3::ZERO,
-                SampledSpectrum::ONE,
-            );
-            (v, v)
-        };
-        let camera_vertex = Vertex::endpoint(
-            Kind::Camera,
-            eye,
+        assert_mis_weights_sum_to_one(&scene, area, &bounces, &format!("cropped {cropped}"));
+    }
+}
+
+/// Checks that every strategy's MIS weight is in (0, 1] and that they sum to 1 over each
+/// path light → `bounces[..d]` → camera, d = 1 … `bounces.len()`, in the room of [`room`]:
+/// the light's end a point on the quad (a surface vertex for the camera side, a light vertex
+/// for the light side) when `area`, else the point light.
+pub(super) fn assert_mis_weights_sum_to_one(
+    scene: &Scene,
+    area: bool,
+    bounces: &[Vertex],
+    what: &str,
+) {
+    let c = Vec3::new(0.0, 1.0, 0.0);
+    let eye = scene.camera().world_from_camera.point(Vec3::ZERO);
+    let (on_light, light_vertex) = if area {
+        let v = surface_vertex(scene, c, Vec3::new(0.1, 2.0, 0.05));
+        let i = scene.prim(v.prim).emission.unwrap().light;
+        let lv = Vertex::endpoint(Kind::Light(i), v.p, v.p_error, v.ng, SampledSpectrum::ONE);
+        (v, lv)
+    } else {
+        let p = Vec3::new(0.2, 1.7, 0.1);
+        let v = Vertex::endpoint(
+            Kind::Light(0),
+            p,
             Vec3::ZERO,
             Vec3::ZERO,
             SampledSpectrum::ONE,
         );
-        for depth in 1..=3 {
-            let mut x = vec![on_light];
-            x.extend_from_slice(&bounces[..depth]);
-            x.push(camera_vertex);
-            let n = x.len();
-            let mut sum = 0.0;
-            let mut weights = vec![];
-            // A point light cannot be hit: no s = 0.
-            for s in usize::from(!area)..n {
-                let t = n - s;
-                let (mut light, mut camera) = subpaths(&scene, &x, light_vertex, s);
-                // s = 1 and t = 1 connect to a vertex sampled for the purpose: the light's or
-                // the lens' (with the lens' normal, as the camera samples it).
-                let sampled = if s == 1 {
-                    Some(light[0])
-                } else if t == 1 {
-                    let mut v = camera[0];
-                    v.ng = normalize(scene.camera().world_from_camera.vector(Vec3::Z));
-                    v.ns = v.ng;
-                    Some(v)
-                } else {
-                    None
-                };
-                let w = mis_weight(&scene, &mut light, &mut camera, sampled.as_ref(), s, t);
-                assert!(
-                    w > 0.0 && w <= 1.0,
-                    "area {area} cropped {cropped} depth {depth} s {s}: {w}"
-                );
-                weights.push(w);
-                sum += w;
-            }
+        (v, v)
+    };
+    let camera_vertex = Vertex::endpoint(
+        Kind::Camera,
+        eye,
+        Vec3::ZERO,
+        Vec3::ZERO,
+        SampledSpectrum::ONE,
+    );
+    for depth in 1..=bounces.len() {
+        let mut x = vec![on_light];
+        x.extend_from_slice(&bounces[..depth]);
+        x.push(camera_vertex);
+        let n = x.len();
+        let mut weights = vec![];
+        // A point light cannot be hit: no s = 0.
+        for s in usize::from(!area)..n {
+            let t = n - s;
+            let (mut light, mut camera) = subpaths(scene, &x, light_vertex, s);
+            // s = 1 and t = 1 connect to a vertex sampled for the purpose: the light's or the
+            // lens' (with the lens' normal, as the camera samples it).
+            let sampled = if s == 1 {
+                Some(light[0])
+            } else if t == 1 {
+                let mut v = camera[0];
+                v.ng = normalize(scene.camera().world_from_camera.vector(Vec3::Z));
+                v.ns = v.ng;
+                Some(v)
+            } else {
+                None
+            };
+            let w = mis_weight(scene, &mut light, &mut camera, sampled.as_ref(), s, t);
             assert!(
-                (sum - 1.0).abs() < 1e-4,
-                "area {area} cropped {cropped} depth {depth}: weights {weights:?} sum to {sum}"
+                w > 0.0 && w <= 1.0,
+                "{what}, area {area} depth {depth} s {s}: {w}"
             );
+            weights.push(w);
         }
+        let sum: f32 = weights.iter().sum();
+        assert!(
+            (sum - 1.0).abs() < 1e-4,
+            "{what}, area {area} depth {depth}: weights {weights:?} sum to {sum}"
+        );
     }
 }
 
