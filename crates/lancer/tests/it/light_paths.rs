@@ -2,19 +2,12 @@
 //! a render split by samples merges into the whole render exactly (their light paths splat
 //! anywhere in the image), with and without a medium around the floor.
 
-use crate::common::units::render_units_on;
-use lancer::Scene;
+use crate::common::lit_floor::{lit_floor, render_film as render};
 use lancer::film::Film;
 use lancer::integrator::Integrator;
-use lancer::light::PointDesc;
-use lancer::material::{DiffuseMaterial, MaterialDesc};
-use lancer::math::{PackedVec3, Rgb, Transform, Vec3};
+use lancer::math::{Rgb, Vec3};
 use lancer::medium::{HomogeneousDesc, MediumDesc};
-use lancer::render::{RenderSettings, work_units};
-use lancer::scene::desc::{FilterDesc, Geometry, LightDesc, SceneDesc, ShapeDesc};
-use lancer::shape::TriangleMesh;
-use lancer::texture::SpectrumTex;
-use std::sync::Arc;
+use lancer::scene::desc::SceneDesc;
 
 const W: u32 = 20;
 const H: u32 = 14;
@@ -22,40 +15,14 @@ const SPP: u32 = 6;
 
 /// A diffuse floor under a point light, seen from above at an angle.
 fn desc(integrator: Integrator) -> SceneDesc {
-    let mut d = SceneDesc {
-        filter: FilterDesc::Gaussian {
-            radius: [1.5, 1.5],
-            sigma: 0.5,
-        },
+    let mut d = lit_floor(
         integrator,
-        materials: vec![MaterialDesc::Diffuse(DiffuseMaterial {
-            reflectance: SpectrumTex::Const(Rgb::new(0.7, 0.5, 0.3)),
-        })],
-        shapes: vec![ShapeDesc::new(
-            Geometry::TriangleMesh(Arc::new(TriangleMesh {
-                positions: vec![
-                    PackedVec3::new(-2.0, 0.0, 2.0),
-                    PackedVec3::new(2.0, 0.0, 2.0),
-                    PackedVec3::new(2.0, 0.0, -2.0),
-                    PackedVec3::new(-2.0, 0.0, -2.0),
-                ],
-                normals: vec![],
-                uvs: vec![],
-                indices: vec![0, 1, 2, 0, 2, 3],
-                flip_normal: false,
-            })),
-            0,
-        )],
-        lights: vec![LightDesc::Point(PointDesc {
-            from: Vec3::new(0.3, 1.0, 0.2),
-            intensity: Rgb::splat(3.0),
-        })],
-        ..SceneDesc::default()
-    };
-    d.camera.camera_from_world =
-        Transform::look_at(Vec3::new(0.0, 2.0, 3.0), Vec3::ZERO, Vec3::Y).unwrap();
-    d.film.xresolution = W;
-    d.film.yresolution = H;
+        Vec3::new(0.3, 1.0, 0.2),
+        Vec3::new(0.0, 2.0, 3.0),
+        Vec3::ZERO,
+        W,
+        H,
+    );
     d.sampler.spp = SPP;
     d
 }
@@ -74,22 +41,6 @@ fn foggy(integrator: Integrator) -> SceneDesc {
     d.camera_medium = Some(0);
     d.light_media = vec![Some(0)];
     d
-}
-
-/// Renders sample indices `samples` of the whole image on `threads` threads, in 8-pixel tiles
-/// and 2-sample passes, spectral or RGB.
-fn render(d: &SceneDesc, samples: std::ops::Range<u32>, threads: usize, spectral: bool) -> Film {
-    let scene = Scene::build(d).unwrap();
-    let settings = RenderSettings {
-        samples: samples.clone(),
-        spectral,
-        ..RenderSettings::from_desc(d)
-    };
-    let full = d.film.render_bounds();
-    let mut film = Film::new(W, H, full);
-    let units = work_units(&full, 8, samples, 2);
-    render_units_on(threads, &scene, &settings, &d.integrator, &mut film, &units);
-    film
 }
 
 #[test]

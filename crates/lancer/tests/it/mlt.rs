@@ -2,72 +2,30 @@
 //! thread count, a render split into ranges of chains merges into the whole render exactly,
 //! and on a diffuse scene its image agrees with path tracing's.
 
-use crate::common::units::render_units_on;
-use lancer::Scene;
+use crate::common::lit_floor::{lit_floor, quad, render_film as render};
 use lancer::film::Film;
 use lancer::integrator::Integrator;
 use lancer::integrator::mlt::MltOptions;
-use lancer::light::PointDesc;
-use lancer::material::{DiffuseMaterial, MaterialDesc};
-use lancer::math::{PackedVec3, Rgb, Transform, Vec3};
-use lancer::render::{RenderSettings, work_units};
-use lancer::scene::desc::{FilterDesc, Geometry, LightDesc, SceneDesc, ShapeDesc};
-use lancer::shape::TriangleMesh;
-use lancer::texture::SpectrumTex;
-use std::sync::Arc;
-
-/// A quad of corners `p` (counter-clockwise seen from its lit side).
-fn quad(p: [[f32; 3]; 4]) -> ShapeDesc {
-    ShapeDesc::new(
-        Geometry::TriangleMesh(Arc::new(TriangleMesh {
-            positions: p
-                .iter()
-                .map(|&[x, y, z]| PackedVec3::new(x, y, z))
-                .collect(),
-            normals: vec![],
-            uvs: vec![],
-            indices: vec![0, 1, 2, 0, 2, 3],
-            flip_normal: false,
-        })),
-        0,
-    )
-}
+use lancer::math::{Rgb, Vec3};
+use lancer::render::RenderSettings;
+use lancer::scene::desc::SceneDesc;
 
 /// A diffuse floor and back wall under a point light, `w × h` pixels.
 fn desc(integrator: Integrator, w: u32, h: u32) -> SceneDesc {
-    let mut d = SceneDesc {
-        filter: FilterDesc::Gaussian {
-            radius: [1.5, 1.5],
-            sigma: 0.5,
-        },
+    let mut d = lit_floor(
         integrator,
-        materials: vec![MaterialDesc::Diffuse(DiffuseMaterial {
-            reflectance: SpectrumTex::Const(Rgb::new(0.7, 0.5, 0.3)),
-        })],
-        shapes: vec![
-            quad([
-                [-2.0, 0.0, 2.0],
-                [2.0, 0.0, 2.0],
-                [2.0, 0.0, -2.0],
-                [-2.0, 0.0, -2.0],
-            ]),
-            quad([
-                [-2.0, 0.0, -1.0],
-                [2.0, 0.0, -1.0],
-                [2.0, 3.0, -1.0],
-                [-2.0, 3.0, -1.0],
-            ]),
-        ],
-        lights: vec![LightDesc::Point(PointDesc {
-            from: Vec3::new(0.6, 1.0, 0.2),
-            intensity: Rgb::splat(3.0),
-        })],
-        ..SceneDesc::default()
-    };
-    d.camera.camera_from_world =
-        Transform::look_at(Vec3::new(0.0, 1.5, 3.0), Vec3::new(0.0, 0.6, 0.0), Vec3::Y).unwrap();
-    d.film.xresolution = w;
-    d.film.yresolution = h;
+        Vec3::new(0.6, 1.0, 0.2),
+        Vec3::new(0.0, 1.5, 3.0),
+        Vec3::new(0.0, 0.6, 0.0),
+        w,
+        h,
+    );
+    d.shapes.push(quad([
+        [-2.0, 0.0, -1.0],
+        [2.0, 0.0, -1.0],
+        [2.0, 3.0, -1.0],
+        [-2.0, 3.0, -1.0],
+    ]));
     d
 }
 
@@ -81,22 +39,6 @@ fn mlt(chains: u32, mutations_per_pixel: u32, bootstrap_samples: u32) -> Integra
         sigma: 0.01,
         regularize: false,
     })
-}
-
-/// Renders sample indices (for mlt, chains) `samples` of the whole image on `threads`
-/// threads, in 8-pixel tiles and 2-index passes, spectral or RGB.
-fn render(d: &SceneDesc, samples: std::ops::Range<u32>, threads: usize, spectral: bool) -> Film {
-    let scene = Scene::build(d).unwrap();
-    let settings = RenderSettings {
-        samples: samples.clone(),
-        spectral,
-        ..RenderSettings::from_desc(d)
-    };
-    let full = d.film.render_bounds();
-    let mut film = Film::new(d.film.xresolution, d.film.yresolution, full);
-    let units = work_units(&full, 8, samples, 2);
-    render_units_on(threads, &scene, &settings, &d.integrator, &mut film, &units);
-    film
 }
 
 #[test]

@@ -6,5 +6,6 @@
 
 pub mod bsdf_file;
 pub mod chi2;
+pub mod lit_floor;
 pub mod shapes;
 pub mod units;
