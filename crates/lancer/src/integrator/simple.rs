@@ -4,7 +4,7 @@
 //! unbiased and slow; they are here to check the others against.
 
 use super::emission::environment;
-use super::volpath::{hero_lane, medium_after, sample_discrete3, seeded_rng};
+use super::volpath::{Collision, collision, hero_lane, medium_after, seeded_rng};
 use super::whitted::light_sample;
 use super::{bsdf_at, emitted, keep_hero_only};
 use crate::material::TransportMode;
@@ -192,36 +192,31 @@ pub fn simple_vol_path(
                 &mut rng,
                 lambda,
                 h,
-                |p, mp, sigma_maj, _, rng| {
-                    let p_absorb = mp.sigma_a[h] / sigma_maj[h];
-                    let p_scatter = mp.sigma_s[h] / sigma_maj[h];
-                    let p_null = (1.0 - p_absorb - p_scatter).max(0.0);
-                    match sample_discrete3([p_absorb, p_scatter, p_null], u_mode) {
-                        0 => {
-                            l += beta * mp.le[h];
+                |p, mp, sigma_maj, _, rng| match collision(mp, sigma_maj, h, u_mode) {
+                    Collision::Absorb => {
+                        l += beta * mp.le[h];
+                        terminated = true;
+                        false
+                    }
+                    Collision::Scatter => {
+                        if depth >= max_depth {
                             terminated = true;
-                            false
+                            return false;
                         }
-                        1 => {
-                            if depth >= max_depth {
-                                terminated = true;
-                                return false;
+                        depth += 1;
+                        let u = Vec2::new(rng.uniform(), rng.uniform());
+                        match mp.phase.sample(wo, u) {
+                            Some(ps) => {
+                                beta *= ps.p / ps.pdf;
+                                scattered = Some(Ray::new(p, ps.wi).at_time(ray.time));
                             }
-                            depth += 1;
-                            let u = Vec2::new(rng.uniform(), rng.uniform());
-                            match mp.phase.sample(wo, u) {
-                                Some(ps) => {
-                                    beta *= ps.p / ps.pdf;
-                                    scattered = Some(Ray::new(p, ps.wi).at_time(ray.time));
-                                }
-                                None => terminated = true,
-                            }
-                            false
+                            None => terminated = true,
                         }
-                        _ => {
-                            u_mode = rng.uniform();
-                            true
-                        }
+                        false
+                    }
+                    Collision::Null => {
+                        u_mode = rng.uniform();
+                        true
                     }
                 },
             );

@@ -329,15 +329,12 @@ impl Walk<'_> {
                         s.l += betap * mp.sigma_a * mp.le / avg(r_e);
                     }
                 }
-                let p_absorb = mp.sigma_a[h] / sigma_maj[h];
-                let p_scatter = mp.sigma_s[h] / sigma_maj[h];
-                let p_null = (1.0 - p_absorb - p_scatter).max(0.0);
-                match sample_discrete3([p_absorb, p_scatter, p_null], rng.uniform()) {
-                    0 => {
+                match collision(mp, sigma_maj, h, rng.uniform()) {
+                    Collision::Absorb => {
                         terminated = true;
                         false
                     }
-                    1 => {
+                    Collision::Scatter => {
                         // Real scattering.
                         if s.depth >= self.max_depth {
                             terminated = true;
@@ -383,7 +380,7 @@ impl Walk<'_> {
                         }
                         false
                     }
-                    _ => {
+                    Collision::Null => {
                         // Null collision: the path goes on, reweighted.
                         let sigma_n =
                             (sigma_maj - mp.sigma_a - mp.sigma_s).max(SampledSpectrum::ZERO);
@@ -580,9 +577,39 @@ fn is_interface(scene: &Scene, hit: &SceneHit) -> bool {
     matches!(scene.material(m), Material::Interface(_))
 }
 
+/// What a tentative collision of delta tracking turns out to be.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Collision {
+    /// The path is absorbed.
+    Absorb,
+    /// The path scatters (a real collision).
+    Scatter,
+    /// A null collision: the path goes on.
+    Null,
+}
+
+/// The event at a tentative collision with properties `mp` under majorant `sigma_maj`, at hero
+/// lane `h`: absorption, scattering or a null collision with probabilities σ_a/σ_maj, σ_s/σ_maj
+/// and the rest, chosen by `u` (pbrt-v4's `SampleDiscrete` over the three).
+pub(super) fn collision(
+    mp: &MediumProperties,
+    sigma_maj: SampledSpectrum,
+    h: usize,
+    u: f32,
+) -> Collision {
+    let p_absorb = mp.sigma_a[h] / sigma_maj[h];
+    let p_scatter = mp.sigma_s[h] / sigma_maj[h];
+    let p_null = (1.0 - p_absorb - p_scatter).max(0.0);
+    match sample_discrete3([p_absorb, p_scatter, p_null], u) {
+        0 => Collision::Absorb,
+        1 => Collision::Scatter,
+        _ => Collision::Null,
+    }
+}
+
 /// Picks 0, 1 or 2 with probabilities proportional to `w` (pbrt-v4's `SampleDiscrete`):
 /// the first index whose running sum exceeds u·Σw.
-pub(super) fn sample_discrete3(w: [f32; 3], u: f32) -> usize {
+fn sample_discrete3(w: [f32; 3], u: f32) -> usize {
     let sum = w[0] + w[1] + w[2];
     let up = u * sum;
     if up < w[0] {

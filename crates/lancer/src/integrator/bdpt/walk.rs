@@ -8,7 +8,7 @@
 //! path is absorbed, scatters (a medium vertex, then a direction from the phase function) or
 //! goes on (a null collision), with probabilities σ_a/σ_maj, σ_s/σ_maj and the rest.
 
-use super::super::volpath::{hero_lane, medium_after, sample_discrete3, seeded_rng};
+use super::super::volpath::{Collision, collision, hero_lane, medium_after, seeded_rng};
 use super::super::{bsdf_at, keep_hero_only};
 use super::vertex::{Kind, Vertex, infinite_light_density};
 use crate::material::TransportMode;
@@ -316,15 +316,12 @@ impl<'a> Walk<'a> {
             self.lambda.as_ref(),
             h,
             |p, mp: &MediumProperties, sigma_maj, t_maj, rng| {
-                let p_absorb = mp.sigma_a[h] / sigma_maj[h];
-                let p_scatter = mp.sigma_s[h] / sigma_maj[h];
-                let p_null = (1.0 - p_absorb - p_scatter).max(0.0);
-                match sample_discrete3([p_absorb, p_scatter, p_null], rng.uniform()) {
-                    0 => {
+                match collision(mp, sigma_maj, h, rng.uniform()) {
+                    Collision::Absorb => {
                         ended = true;
                         false
                     }
-                    1 => {
+                    Collision::Scatter => {
                         let weight = t_maj * mp.sigma_s / (t_maj[h] * mp.sigma_s[h]);
                         *w.beta *= weight;
                         *w.r *= weight;
@@ -356,7 +353,7 @@ impl<'a> Walk<'a> {
                         scattered = Some(Ray::new(p, ps.wi).at_time(ray.time));
                         false
                     }
-                    _ => {
+                    Collision::Null => {
                         let sigma_n =
                             (sigma_maj - mp.sigma_a - mp.sigma_s).max(SampledSpectrum::ZERO);
                         let pdf = t_maj[h] * sigma_n[h];
