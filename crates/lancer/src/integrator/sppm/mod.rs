@@ -28,7 +28,7 @@ pub mod grid;
 #[cfg(test)]
 mod tests;
 
-use super::{bsdf_at, emitted};
+use super::{bsdf_at, direct_light, emitted};
 use crate::light::LightSampleContext;
 use crate::material::{Bsdf, BxdfFlags, TransportMode};
 use crate::math::{Rgb, SampledSpectrum, Vec2, Vec3, normalize};
@@ -37,7 +37,6 @@ use crate::sampling::halton::{DigitPermutations, PRIME_TABLE_SIZE, scrambled_rad
 use crate::sampling::{Sampler, power_heuristic};
 use crate::sampling::{hash_u64, u32_to_unit_f32};
 use crate::scene::Scene;
-use crate::shape::SurfaceInteraction;
 use crate::spectrum::hero::HERO_ONLY;
 use crate::spectrum::sampled::SampledWavelengths;
 use std::sync::Arc;
@@ -255,7 +254,7 @@ pub fn camera_path(
         };
         let flags = bsdf.flags();
         ld += beta
-            * sample_ld(scene, &hit.si, &bsdf, &ctx, wavelengths.as_ref(), sampler)
+            * direct_light(scene, si, &bsdf, wo, &ctx, sampler, wavelengths.as_ref())
             * hero_weight(hero_only);
         if flags.has(BxdfFlags::DIFFUSE) || (flags.has(BxdfFlags::GLOSSY) && depth == max_depth) {
             vp = Some(VisiblePoint {
@@ -297,43 +296,6 @@ pub fn camera_path(
         prev_ctx = Some(ctx);
     }
     CameraPath { ld, vp }
-}
-
-/// Direct light at a surface by one light sample (the scene's light sampler, then a point on
-/// the light), weighted by the power heuristic against BSDF sampling unless the light is a
-/// delta light: f·|cos θ|·Le·w/(p_light·pdf). The sampler's dimensions are drawn whatever
-/// the BSDF, so that the path's layout does not depend on it.
-fn sample_ld(
-    scene: &Scene,
-    si: &SurfaceInteraction,
-    bsdf: &Bsdf,
-    ctx: &LightSampleContext,
-    lambda: Option<&SampledWavelengths>,
-    sampler: &mut Sampler,
-) -> SampledSpectrum {
-    let ul = sampler.get_1d();
-    let u = sampler.get_2d();
-    if !bsdf.flags().is_non_specular() {
-        return SampledSpectrum::ZERO;
-    }
-    let Some((i, pmf)) = scene.light_sampler().sample(ctx, ul) else {
-        return SampledSpectrum::ZERO;
-    };
-    let light = &scene.lights()[i];
-    let Some(ls) = scene.sample_li(light, ctx, u).filter(|ls| ls.pdf > 0.0) else {
-        return SampledSpectrum::ZERO;
-    };
-    let f = bsdf.f(si.wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(si.shading.n).abs();
-    if f == SampledSpectrum::ZERO || scene.intersect_p(&si.spawn_ray_to(ls.p_light)) {
-        return SampledSpectrum::ZERO;
-    }
-    let p_l = pmf * ls.pdf;
-    let w = if light.is_delta() {
-        1.0
-    } else {
-        power_heuristic(p_l, bsdf.pdf(si.wo, ls.wi, TransportMode::Radiance))
-    };
-    f * scene.light_radiance(i, lambda, ls.l, ls.factor, ls.wi) * (w / p_l)
 }
 
 /// The random numbers of one photon: dimension d of photon i of iteration k is the scrambled
