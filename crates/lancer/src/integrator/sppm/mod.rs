@@ -28,7 +28,7 @@ pub mod grid;
 #[cfg(test)]
 mod tests;
 
-use super::{bsdf_at, direct_light, emitted};
+use super::{bsdf_at, direct_light, emitted, keep_hero_only};
 use crate::light::LightSampleContext;
 use crate::material::{Bsdf, BxdfFlags, TransportMode};
 use crate::math::{Rgb, SampledSpectrum, Vec2, Vec3, normalize};
@@ -218,13 +218,7 @@ pub fn camera_path(
         };
         // A dispersive surface: the path keeps its hero wavelength from here on (pbrt-v4
         // terminates the secondary wavelengths as it builds the BSDF, before the emission).
-        if disperses
-            && let Some(w) = wavelengths.as_mut()
-            && !w.secondary_terminated()
-        {
-            w.terminate_secondary();
-            hero_only = true;
-        }
+        hero_only |= keep_hero_only(&mut wavelengths, disperses);
         let wo = si.wo;
         let le = emitted(scene, &hit, wo, wavelengths.as_ref());
         if le != SampledSpectrum::ZERO {
@@ -412,13 +406,7 @@ pub fn trace_photon(
             ray = si.spawn_ray(ray.d);
             continue;
         };
-        if disperses
-            && let Some(w) = wavelengths.as_mut()
-            && !w.secondary_terminated()
-        {
-            w.terminate_secondary();
-            hero_only = true;
-        }
+        hero_only |= keep_hero_only(&mut wavelengths, disperses);
         let uc = u.get_1d();
         let u2 = u.get_2d();
         let Some(bs) = bsdf.sample_f(si.wo, uc, u2, TransportMode::Importance) else {
