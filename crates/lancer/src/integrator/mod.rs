@@ -102,26 +102,6 @@ impl Integrator {
         }
     }
 
-    /// The settings of an `sppm` integrator (`None` for the others): it renders a film by
-    /// iterations of a camera pass and a photon pass ([`crate::render::sppm`]), not one
-    /// camera ray at a time.
-    pub fn sppm_options(&self) -> Option<sppm::SppmOptions> {
-        match *self {
-            Integrator::Sppm {
-                max_depth,
-                photons_per_iteration,
-                radius,
-                seed,
-            } => Some(sppm::SppmOptions {
-                max_depth,
-                photons_per_iteration,
-                radius,
-                seed,
-            }),
-            _ => None,
-        }
-    }
-
     /// [`Integrator::li`], recording the path's vertices in `path` (path tracing only; the
     /// other integrators record nothing).
     pub fn li_traced(
@@ -193,9 +173,7 @@ impl Integrator {
             // (`crate::render::sppm`); a caller asking for one ray alone (`--check-nan`'s
             // replay of a camera sample) gets that ray's path-traced radiance, the same
             // light that sppm's Ld and photons estimate together.
-            Integrator::Sppm { max_depth, .. } => {
-                path::li(scene, ray, sampler, lambda, max_depth, false)
-            }
+            Integrator::Sppm(o) => path::li(scene, ray, sampler, lambda, o.max_depth, false),
             // Without a film to splat into, the light-path integrators give only what reaches
             // the camera ray's own pixel (bdpt's t ≥ 2 strategies, nothing for lightpath): a
             // film renders them through `li_splatting`.

@@ -294,12 +294,12 @@ mod tests {
     }
 
     fn sppm(max_depth: u32, photons: u32, radius: f32) -> Integrator {
-        Integrator::Sppm {
+        Integrator::Sppm(SppmOptions {
             max_depth,
             photons_per_iteration: Some(photons),
             radius,
             seed: None,
-        }
+        })
     }
 
     /// A W × H view from `eye` to `target` (box filter), rendered by `integrator` at `spp`.

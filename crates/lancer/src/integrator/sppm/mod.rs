@@ -25,6 +25,8 @@
 
 pub mod grid;
 
+pub use super::desc::SppmOptions;
+
 #[cfg(test)]
 mod tests;
 
@@ -44,32 +46,6 @@ use std::sync::Arc;
 /// How fast the radius shrinks: the fraction γ of each iteration's photons a pixel keeps
 /// (pbrt-v4's 2/3).
 pub const GAMMA: f64 = 2.0 / 3.0;
-
-/// The sppm settings of a render (pbrt-v4's parameters).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SppmOptions {
-    /// Longest camera path and longest photon path, in bounces (`maxdepth`, default 5).
-    pub max_depth: u32,
-    /// Photons traced per iteration (`photonsperiteration`); `None` (pbrt-v4's −1, or any
-    /// value ≤ 0): as many as the render has pixels.
-    pub photons_per_iteration: Option<u32>,
-    /// Every pixel's initial search radius, in world units (`radius`, default 1).
-    pub radius: f32,
-    /// Seed of the photons' scrambled Halton points (`seed`); `None`: the render's seed.
-    pub seed: Option<u64>,
-}
-
-impl Default for SppmOptions {
-    /// pbrt-v4's defaults: `maxdepth` 5, a photon per pixel per iteration, `radius` 1.
-    fn default() -> Self {
-        SppmOptions {
-            max_depth: 5,
-            photons_per_iteration: None,
-            radius: 1.0,
-            seed: None,
-        }
-    }
-}
 
 /// One pixel's progressive estimate: its radius R, photon count N, the flux τ gathered within
 /// R (film RGB), and the sum of its direct light Ld over the iterations so far.
