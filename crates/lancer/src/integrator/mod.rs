@@ -29,6 +29,8 @@ mod simple;
 pub mod specular_differentials;
 pub mod sppm;
 mod subsurface;
+#[cfg(test)]
+pub(crate) mod test_scenes;
 mod volpath;
 mod whitted;
 
