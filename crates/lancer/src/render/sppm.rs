@@ -58,7 +58,6 @@ pub fn photons_per_iteration(settings: &RenderSettings, options: &SppmOptions) -
 /// overwrites the film, so it ends with the same bits). Otherwise every unit is marked done.
 /// `on_unit` is called after each iteration, with a unit of the whole bounds and that
 /// iteration's index, and the estimate so far.
-#[allow(clippy::too_many_arguments)] // render_units' inputs and the integrator's settings
 pub(super) fn render(
     scene: &Scene,
     settings: &RenderSettings,
