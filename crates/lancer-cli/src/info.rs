@@ -93,17 +93,12 @@ fn integrator_json(i: &Integrator) -> Value {
             v["sigma"] = json!(short(o.sigma));
             v["regularize"] = json!(o.regularize);
         }
-        Integrator::Sppm {
-            max_depth,
-            photons_per_iteration,
-            radius,
-            seed,
-        } => {
-            v["maxdepth"] = json!(max_depth);
+        Integrator::Sppm(o) => {
+            v["maxdepth"] = json!(o.max_depth);
             // pbrt-v4's −1: one photon per pixel.
-            v["photonsperiteration"] = json!(photons_per_iteration.map_or(-1, i64::from));
-            v["radius"] = json!(radius);
-            v["seed"] = json!(seed);
+            v["photonsperiteration"] = json!(o.photons_per_iteration.map_or(-1, i64::from));
+            v["radius"] = json!(o.radius);
+            v["seed"] = json!(o.seed);
         }
         Integrator::Normals | Integrator::Depth => {}
     }
@@ -438,6 +433,7 @@ pub fn run(args: InfoArgs) -> Result<(), CliError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use lancer::integrator::sppm::SppmOptions;
 
     #[test]
     fn integrators_are_named_as_pbrt_names_them() {
@@ -483,12 +479,12 @@ mod tests {
             "mlt (bootstrapsamples 100000, chains 1000, largestepprobability 0.3, maxdepth 7, \
              mutationsperpixel 64, regularize false, sigma 0.01)"
         );
-        let v = integrator_json(&Integrator::Sppm {
+        let v = integrator_json(&Integrator::Sppm(SppmOptions {
             max_depth: 8,
             photons_per_iteration: None,
             radius: 0.25,
             seed: Some(3),
-        });
+        }));
         assert_eq!(
             v,
             json!({ "name": "sppm", "maxdepth": 8, "photonsperiteration": -1,

@@ -198,7 +198,7 @@ pub fn plan(
         args.samples.clone(),
         split,
     )?;
-    if desc.integrator.sppm_options().is_some() {
+    if matches!(desc.integrator, lancer::integrator::Integrator::Sppm(_)) {
         check_sppm(args, &pixels, desc.sampler.spp)?;
     }
     if pixels.is_part && ImageFormat::from_path(&output) != Some(ImageFormat::Exr) {

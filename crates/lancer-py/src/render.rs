@@ -197,7 +197,7 @@ pub fn render_film(
 ) -> PyResult<Film> {
     // sppm's iterations depend on those before them: all of them, in one render (a part by
     // tiles is exact), and no denoiser images (lancer render refuses the same).
-    if settings.integrator.sppm_options().is_some() {
+    if matches!(settings.integrator, lancer::integrator::Integrator::Sppm(_)) {
         if settings.samples != (0..settings.spp) {
             return Err(PyValueError::new_err(
                 "integrator \"sppm\" cannot render a range of samples: each iteration depends \

@@ -214,7 +214,10 @@ impl SampleIntegrator for Integrator {
     }
 
     fn sppm(&self) -> Option<crate::integrator::sppm::SppmOptions> {
-        Integrator::sppm_options(self)
+        match self {
+            Integrator::Sppm(o) => Some(*o),
+            _ => None,
+        }
     }
 
     #[inline(always)]

@@ -7,6 +7,7 @@ use super::convert::{Fallback, MAX_RESOLUTION};
 use super::params::ParamList;
 use crate::error::SceneError;
 use lancer::integrator::Integrator;
+use lancer::integrator::sppm::SppmOptions;
 use lancer::light::LightSamplerKind;
 use lancer::sampling::{Randomization, SamplerKind};
 use lancer::scene::desc::{FilmDesc, FilterDesc};
@@ -358,7 +359,7 @@ pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, 
             Integrator::Mlt(o)
         }
         "simplevolpath" => Integrator::SimpleVolPath { max_depth },
-        "sppm" => Integrator::Sppm {
+        "sppm" => Integrator::Sppm(SppmOptions {
             max_depth,
             // pbrt-v4: −1 (the default) or any value ≤ 0 means one photon per pixel.
             photons_per_iteration: Some(p.int("photonsperiteration", -1)?)
@@ -368,7 +369,7 @@ pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, 
                 r > 0.0 && r.is_finite()
             })?,
             seed: seed(p)?,
-        },
+        }),
         "aov" => {
             return Ok(Fallback::instead(
                 path()?,
@@ -908,36 +909,36 @@ mod tests {
         // one per pixel, and a radius that is not positive refused where it is written.
         assert_eq!(
             clean(r#"Integrator "sppm""#, integrator),
-            Integrator::Sppm {
+            Integrator::Sppm(SppmOptions {
                 max_depth: 5,
                 photons_per_iteration: None,
                 radius: 1.0,
                 seed: None,
-            }
+            })
         );
         assert_eq!(
             clean(
                 r#"Integrator "sppm" "integer maxdepth" 8 "integer photonsperiteration" 200000 "float radius" 0.03 "integer seed" 7"#,
                 integrator
             ),
-            Integrator::Sppm {
+            Integrator::Sppm(SppmOptions {
                 max_depth: 8,
                 photons_per_iteration: Some(200_000),
                 radius: 0.03,
                 seed: Some(7),
-            }
+            })
         );
         assert_eq!(
             clean(
                 r#"Integrator "sppm" "integer photonsperiteration" 0"#,
                 integrator
             ),
-            Integrator::Sppm {
+            Integrator::Sppm(SppmOptions {
                 max_depth: 5,
                 photons_per_iteration: None,
                 radius: 1.0,
                 seed: None,
-            }
+            })
         );
         assert_eq!(
             error("Integrator \"sppm\"\n  \"float radius\" 0", integrator),

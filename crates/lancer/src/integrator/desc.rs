@@ -58,16 +58,7 @@ pub enum Integrator {
     /// Stochastic progressive photon mapping (pbrt-v4's `sppm`): per iteration (one per
     /// sample per pixel), a visible point per pixel and photons from the lights gathered at
     /// them within a radius that shrinks from iteration to iteration.
-    Sppm {
-        /// Maximum number of bounces, of camera paths and of photons (`maxdepth`).
-        max_depth: u32,
-        /// Photons per iteration (`photonsperiteration`); `None`: one per pixel.
-        photons_per_iteration: Option<u32>,
-        /// Initial search radius, world units (`radius`).
-        radius: f32,
-        /// Seed of the photons' points (`seed`); `None`: the render's seed.
-        seed: Option<u64>,
-    },
+    Sppm(SppmOptions),
     /// pbrt-v4's `simplepath`: path tracing without MIS, light sampling and BSDF sampling
     /// each optional.
     SimplePath {
@@ -120,7 +111,7 @@ impl Integrator {
             Integrator::LightPath { .. } => "lightpath",
             Integrator::Bdpt { .. } => "bdpt",
             Integrator::Mlt(_) => "mlt",
-            Integrator::Sppm { .. } => "sppm",
+            Integrator::Sppm(_) => "sppm",
             Integrator::SimplePath { .. } => "simplepath",
             Integrator::RandomWalk { .. } => "randomwalk",
             Integrator::SimpleVolPath { .. } => "simplevolpath",
@@ -140,7 +131,7 @@ impl Integrator {
                 | Integrator::LightPath { .. }
                 | Integrator::Bdpt { .. }
                 | Integrator::Mlt(_)
-                | Integrator::Sppm { .. }
+                | Integrator::Sppm(_)
                 | Integrator::SimplePath { .. }
                 | Integrator::RandomWalk { .. }
                 | Integrator::SimpleVolPath { .. }
@@ -187,4 +178,18 @@ pub struct MltOptions {
     pub sigma: f32,
     /// As for bdpt (`regularize`, false).
     pub regularize: bool,
+}
+
+/// The `sppm` settings of a render (pbrt-v4's parameters).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SppmOptions {
+    /// Longest camera path and longest photon path, in bounces (`maxdepth`, default 5).
+    pub max_depth: u32,
+    /// Photons traced per iteration (`photonsperiteration`); `None` (pbrt-v4's −1, or any
+    /// value ≤ 0): as many as the render has pixels.
+    pub photons_per_iteration: Option<u32>,
+    /// Every pixel's initial search radius, in world units (`radius`, default 1).
+    pub radius: f32,
+    /// Seed of the photons' scrambled Halton points (`seed`); `None`: the render's seed.
+    pub seed: Option<u64>,
 }

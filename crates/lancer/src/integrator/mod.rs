@@ -29,16 +29,20 @@ mod simple;
 pub mod specular_differentials;
 pub mod sppm;
 mod subsurface;
+#[cfg(test)]
+pub(crate) mod test_scenes;
 mod volpath;
 mod whitted;
 
+use crate::light::LightSampleContext;
 use crate::material::{
-    Bsdf, BumpedMaterial, BxDF, DiffuseMaterial, Material, MixMaterial, rgb_colour,
+    Bsdf, BumpedMaterial, BxDF, DiffuseMaterial, Material, MixMaterial, TransportMode, rgb_colour,
 };
 use crate::math::{Rgb, SampledSpectrum, Vec3, rgb_lanes};
 use crate::ray::Ray;
-use crate::sampling::Sampler;
+use crate::sampling::{Sampler, power_heuristic};
 use crate::scene::{Scene, SceneHit};
+use crate::shape::SurfaceInteraction;
 use crate::spectrum::sampled::{ColourKind, SampledWavelengths, albedo_at};
 use crate::texture::SpectrumTex;
 pub use desc::Integrator;
@@ -97,26 +101,6 @@ impl Integrator {
                 None,
             ),
             _ => self.li(scene, ray, sampler, lambda),
-        }
-    }
-
-    /// The settings of an `sppm` integrator (`None` for the others): it renders a film by
-    /// iterations of a camera pass and a photon pass ([`crate::render::sppm`]), not one
-    /// camera ray at a time.
-    pub fn sppm_options(&self) -> Option<sppm::SppmOptions> {
-        match *self {
-            Integrator::Sppm {
-                max_depth,
-                photons_per_iteration,
-                radius,
-                seed,
-            } => Some(sppm::SppmOptions {
-                max_depth,
-                photons_per_iteration,
-                radius,
-                seed,
-            }),
-            _ => None,
         }
     }
 
@@ -191,9 +175,7 @@ impl Integrator {
             // (`crate::render::sppm`); a caller asking for one ray alone (`--check-nan`'s
             // replay of a camera sample) gets that ray's path-traced radiance, the same
             // light that sppm's Ld and photons estimate together.
-            Integrator::Sppm { max_depth, .. } => {
-                path::li(scene, ray, sampler, lambda, max_depth, false)
-            }
+            Integrator::Sppm(o) => path::li(scene, ray, sampler, lambda, o.max_depth, false),
             // Without a film to splat into, the light-path integrators give only what reaches
             // the camera ray's own pixel (bdpt's t ≥ 2 strategies, nothing for lightpath): a
             // film renders them through `li_splatting`.
@@ -261,6 +243,51 @@ pub(crate) fn keep_hero_only(
         }
         _ => false,
     }
+}
+
+/// Next-event estimation at a surface `si` seen from `wo`, as the path tracer does: one light
+/// chosen by the scene's light sampler (p_l), one point on it (pdf), weighted against BSDF
+/// sampling by the power heuristic unless the light is a delta light:
+/// f(wo, wi)·|cos θi|·Le·w/(p_l·pdf), zero when the shadow ray is blocked. The sampler's
+/// dimensions (1 + 2) are drawn whatever the BSDF, so that a path's layout does not depend on
+/// it; a BSDF without a non-specular lobe gets nothing (a light sample cannot find its delta
+/// lobes). `sppm`'s camera paths and a subsurface path's exit point.
+pub(crate) fn direct_light(
+    scene: &Scene,
+    si: &SurfaceInteraction,
+    bsdf: &Bsdf,
+    wo: Vec3,
+    ctx: &LightSampleContext,
+    sampler: &mut Sampler,
+    lambda: Option<&SampledWavelengths>,
+) -> SampledSpectrum {
+    let ul = sampler.get_1d();
+    let u = sampler.get_2d();
+    if scene.lights().is_empty() || !bsdf.flags().is_non_specular() {
+        return SampledSpectrum::ZERO;
+    }
+    let Some((i, pmf)) = scene.light_sampler().sample(ctx, ul) else {
+        return SampledSpectrum::ZERO;
+    };
+    let light = &scene.lights()[i];
+    let Some(ls) = scene.sample_li(light, ctx, u) else {
+        return SampledSpectrum::ZERO;
+    };
+    let f = bsdf.f(wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(si.shading.n).abs();
+    if ls.pdf.is_nan()
+        || ls.pdf <= 0.0
+        || f == SampledSpectrum::ZERO
+        || scene.intersect_p(&si.spawn_ray_to(ls.p_light))
+    {
+        return SampledSpectrum::ZERO;
+    }
+    let p_l = pmf * ls.pdf;
+    let w = if light.is_delta() {
+        1.0
+    } else {
+        power_heuristic(p_l, bsdf.pdf(wo, ls.wi, TransportMode::Radiance))
+    };
+    f * scene.light_radiance(i, lambda, ls.l, ls.factor, ls.wi) * (w / p_l)
 }
 
 /// The BSDF at a hit, with `Mix` materials resolved (the choice is a deterministic hash of the

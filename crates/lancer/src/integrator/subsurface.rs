@@ -12,11 +12,12 @@
 //!    next-event estimation and sampled for the path's next direction (the depth does not
 //!    grow, as in pbrt-v4).
 
+use super::direct_light;
 use crate::light::LightSampleContext;
 use crate::material::{Bsdf, BxDF, NormalizedFresnelBxdf, TransportMode};
 use crate::math::{SampledSpectrum, Vec3};
 use crate::ray::Ray;
-use crate::sampling::{Sampler, hash_u64, power_heuristic, u32_to_unit_f32};
+use crate::sampling::{Sampler, hash_u64, u32_to_unit_f32};
 use crate::scene::{Scene, SceneHit};
 use crate::spectrum::sampled::SampledWavelengths;
 
@@ -111,7 +112,7 @@ pub(super) fn exit(
         n: si.n,
         ns: si.shading.n,
     };
-    *l += *beta * direct_light(scene, &pi, &sw, wo, &ctx, sampler, lambda);
+    *l += *beta * direct_light(scene, &pi.si, &sw, wo, &ctx, sampler, lambda);
     let uc = sampler.get_1d();
     let u = sampler.get_2d();
     let Some(bs) = sw.sample_f(wo, uc, u, TransportMode::Radiance) else {
@@ -123,45 +124,4 @@ pub(super) fn exit(
         p_b: bs.pdf,
         ctx,
     }
-}
-
-/// Next-event estimation at the exit point, as the path tracer does at a surface: one light
-/// chosen by the scene's light sampler, one point on it, weighted against BSDF sampling by the power heuristic.
-fn direct_light(
-    scene: &Scene,
-    hit: &SceneHit,
-    bsdf: &Bsdf,
-    wo: Vec3,
-    ctx: &LightSampleContext,
-    sampler: &mut Sampler,
-    lambda: Option<&SampledWavelengths>,
-) -> SampledSpectrum {
-    let ul = sampler.get_1d();
-    let u = sampler.get_2d();
-    if scene.lights().is_empty() {
-        return SampledSpectrum::ZERO;
-    }
-    let si = &hit.si;
-    let Some((i, pmf)) = scene.light_sampler().sample(ctx, ul) else {
-        return SampledSpectrum::ZERO;
-    };
-    let light = &scene.lights()[i];
-    let Some(ls) = scene.sample_li(light, ctx, u) else {
-        return SampledSpectrum::ZERO;
-    };
-    let f = bsdf.f(wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(si.shading.n).abs();
-    if ls.pdf.is_nan()
-        || ls.pdf <= 0.0
-        || f == SampledSpectrum::ZERO
-        || scene.intersect_p(&si.spawn_ray_to(ls.p_light))
-    {
-        return SampledSpectrum::ZERO;
-    }
-    let p_l = pmf * ls.pdf;
-    let w = if light.is_delta() {
-        1.0
-    } else {
-        power_heuristic(p_l, bsdf.pdf(wo, ls.wi, TransportMode::Radiance))
-    };
-    f * scene.light_radiance(i, lambda, ls.l, ls.factor, ls.wi) * (w / p_l)
 }

@@ -58,7 +58,6 @@ pub fn photons_per_iteration(settings: &RenderSettings, options: &SppmOptions) -
 /// overwrites the film, so it ends with the same bits). Otherwise every unit is marked done.
 /// `on_unit` is called after each iteration, with a unit of the whole bounds and that
 /// iteration's index, and the estimate so far.
-#[allow(clippy::too_many_arguments)] // render_units' inputs and the integrator's settings
 pub(super) fn render(
     scene: &Scene,
     settings: &RenderSettings,
@@ -264,69 +263,32 @@ fn write_estimates(
 mod tests {
     use super::*;
     use crate::integrator::Integrator;
+    use crate::integrator::test_scenes::{self, H, W, diffuse, quad};
     use crate::light::PointDesc;
-    use crate::material::{DielectricMaterial, DiffuseMaterial, MaterialDesc};
-    use crate::math::{PackedVec3, Transform};
+    use crate::material::{DielectricMaterial, MaterialDesc};
+    use crate::math::Transform;
     use crate::render::{render_units, work_units};
-    use crate::scene::desc::{
-        CameraDesc, FilmDesc, FilterDesc, Geometry, LightDesc, Projection, SceneDesc, ShapeDesc,
-    };
-    use crate::shape::{SphereDesc, TriangleMesh};
+    use crate::scene::desc::{Geometry, LightDesc, SceneDesc, ShapeDesc};
+    use crate::shape::SphereDesc;
     use crate::spectrum::Ior;
-    use crate::texture::{FloatTex, SpectrumTex};
-    use std::sync::Arc;
+    use crate::texture::FloatTex;
 
-    const W: u32 = 24;
-    const H: u32 = 18;
-
-    fn quad(p: [[f32; 3]; 4], material: u32) -> ShapeDesc {
-        let mesh = TriangleMesh {
-            positions: p
-                .iter()
-                .map(|v| PackedVec3::new(v[0], v[1], v[2]))
-                .collect(),
-            normals: vec![],
-            uvs: vec![],
-            indices: vec![0, 1, 2, 0, 2, 3],
-            flip_normal: false,
-        };
-        ShapeDesc::new(Geometry::TriangleMesh(Arc::new(mesh)), material)
-    }
-
+    /// An sppm integrator of `max_depth` bounces, `photons` photons per iteration, initial
+    /// radius `radius`.
     fn sppm(max_depth: u32, photons: u32, radius: f32) -> Integrator {
-        Integrator::Sppm {
+        Integrator::Sppm(SppmOptions {
             max_depth,
             photons_per_iteration: Some(photons),
             radius,
             seed: None,
-        }
+        })
     }
 
-    /// A W × H view from `eye` to `target` (box filter), rendered by `integrator` at `spp`.
+    /// [`test_scenes::view`] at 30°, rendered at `spp`.
     fn view(eye: Vec3, target: Vec3, up: Vec3, integrator: Integrator, spp: u32) -> SceneDesc {
-        let mut d = SceneDesc {
-            camera: CameraDesc {
-                camera_from_world: Transform::look_at(eye, target, up).unwrap(),
-                projection: Projection::Perspective { fov: 30.0 },
-                ..CameraDesc::default()
-            },
-            film: FilmDesc {
-                xresolution: W,
-                yresolution: H,
-                ..FilmDesc::default()
-            },
-            filter: FilterDesc::Box { radius: [0.5, 0.5] },
-            integrator,
-            ..SceneDesc::default()
-        };
+        let mut d = test_scenes::view(eye, target, up, 30.0, integrator);
         d.sampler.spp = spp;
         d
-    }
-
-    fn diffuse(c: Rgb) -> MaterialDesc {
-        MaterialDesc::Diffuse(DiffuseMaterial {
-            reflectance: SpectrumTex::Const(c),
-        })
     }
 
     /// A corner of a room (floor, back wall, red left wall) under a point light, and a glass

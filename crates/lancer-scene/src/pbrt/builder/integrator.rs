@@ -10,7 +10,7 @@ impl Builder {
     /// channels would hold nothing).
     pub(super) fn sppm_writes_rgb(&mut self, end: &Location) {
         use lancer::integrator::Integrator;
-        if !matches!(self.desc.integrator, Integrator::Sppm { .. }) {
+        if !matches!(self.desc.integrator, Integrator::Sppm(_)) {
             return;
         }
         let film = &mut self.desc.film;

@@ -5,33 +5,18 @@ use super::connect::mis_weight;
 use super::vertex::{Kind, Vertex};
 use super::walk::Walk;
 use super::*;
+use crate::integrator::test_scenes::{self, diffuse};
 use crate::integrator::{Integrator, bsdf_at};
 use crate::light::{PointDesc, UniformInfiniteDesc};
-use crate::material::{DiffuseMaterial, MaterialDesc};
-use crate::math::{PackedVec3, Rgb, Transform, Vec3, normalize};
+use crate::math::{Rgb, Vec3, normalize};
 use crate::sampling::SamplerKind;
-use crate::scene::desc::{
-    AreaLightDesc, CameraDesc, FilmDesc, FilterDesc, Geometry, LightDesc, Projection, SceneDesc,
-    ShapeDesc,
-};
-use crate::shape::{SphereDesc, TriangleMesh};
-use crate::texture::SpectrumTex;
-use std::sync::Arc;
+use crate::scene::desc::{AreaLightDesc, Geometry, LightDesc, SceneDesc, ShapeDesc};
+use crate::shape::SphereDesc;
 
-pub(super) const W: u32 = 24;
-pub(super) const H: u32 = 18;
+pub(super) use crate::integrator::test_scenes::{H, W};
 
+/// [`test_scenes::quad`], emitting `light` (one-sided) when given.
 fn quad(p: [[f32; 3]; 4], material: u32, light: Option<f32>) -> ShapeDesc {
-    let mesh = TriangleMesh {
-        positions: p
-            .iter()
-            .map(|v| PackedVec3::new(v[0], v[1], v[2]))
-            .collect(),
-        normals: vec![],
-        uvs: vec![],
-        indices: vec![0, 1, 2, 0, 2, 3],
-        flip_normal: false,
-    };
     ShapeDesc {
         area_light: light.map(|l| AreaLightDesc {
             l: Rgb::splat(l),
@@ -40,28 +25,13 @@ fn quad(p: [[f32; 3]; 4], material: u32, light: Option<f32>) -> ShapeDesc {
             power: None,
             image: None,
         }),
-        ..ShapeDesc::new(Geometry::TriangleMesh(Arc::new(mesh)), material)
+        ..test_scenes::quad(p, material)
     }
 }
 
-/// A W × H film with a box filter, seen by a perspective camera at `eye` looking at `target`,
-/// rendered by `integrator`; no shapes, lights or materials yet.
+/// [`test_scenes::view`] with the y axis up.
 fn view(eye: Vec3, target: Vec3, fov: f32, integrator: Integrator) -> SceneDesc {
-    SceneDesc {
-        camera: CameraDesc {
-            camera_from_world: Transform::look_at(eye, target, Vec3::Y).unwrap(),
-            projection: Projection::Perspective { fov },
-            ..CameraDesc::default()
-        },
-        film: FilmDesc {
-            xresolution: W,
-            yresolution: H,
-            ..FilmDesc::default()
-        },
-        filter: FilterDesc::Box { radius: [0.5, 0.5] },
-        integrator,
-        ..SceneDesc::default()
-    }
+    test_scenes::view(eye, target, Vec3::Y, fov, integrator)
 }
 
 /// A room open towards the camera: grey floor, back wall and ceiling, a red left wall, a
@@ -73,11 +43,6 @@ pub(super) fn room(area: bool, integrator: Integrator) -> Scene {
 
 /// The description of [`room`].
 pub(super) fn room_desc(area: bool, integrator: Integrator) -> SceneDesc {
-    let diffuse = |c: Rgb| {
-        MaterialDesc::Diffuse(DiffuseMaterial {
-            reflectance: SpectrumTex::Const(c),
-        })
-    };
     let mut shapes = vec![
         quad(
             [
@@ -626,9 +591,7 @@ fn white_furnace() {
     // A diffuse sphere of albedo 0.8 under a uniform white sky: a convex object reflects the
     // sky once, so the image is 0.8 on the sphere and 1 around it, whatever the strategies.
     let desc = SceneDesc {
-        materials: vec![MaterialDesc::Diffuse(DiffuseMaterial {
-            reflectance: SpectrumTex::Const(Rgb::splat(0.8)),
-        })],
+        materials: vec![diffuse(Rgb::splat(0.8))],
         shapes: vec![ShapeDesc::new(
             Geometry::Sphere(SphereDesc {
                 radius: 1.0,

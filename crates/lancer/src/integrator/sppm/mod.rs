@@ -25,10 +25,12 @@
 
 pub mod grid;
 
+pub use super::desc::SppmOptions;
+
 #[cfg(test)]
 mod tests;
 
-use super::{bsdf_at, emitted};
+use super::{bsdf_at, direct_light, emitted, keep_hero_only};
 use crate::light::LightSampleContext;
 use crate::material::{Bsdf, BxdfFlags, TransportMode};
 use crate::math::{Rgb, SampledSpectrum, Vec2, Vec3, normalize};
@@ -37,7 +39,6 @@ use crate::sampling::halton::{DigitPermutations, PRIME_TABLE_SIZE, scrambled_rad
 use crate::sampling::{Sampler, power_heuristic};
 use crate::sampling::{hash_u64, u32_to_unit_f32};
 use crate::scene::Scene;
-use crate::shape::SurfaceInteraction;
 use crate::spectrum::hero::HERO_ONLY;
 use crate::spectrum::sampled::SampledWavelengths;
 use std::sync::Arc;
@@ -45,32 +46,6 @@ use std::sync::Arc;
 /// How fast the radius shrinks: the fraction γ of each iteration's photons a pixel keeps
 /// (pbrt-v4's 2/3).
 pub const GAMMA: f64 = 2.0 / 3.0;
-
-/// The sppm settings of a render (pbrt-v4's parameters).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SppmOptions {
-    /// Longest camera path and longest photon path, in bounces (`maxdepth`, default 5).
-    pub max_depth: u32,
-    /// Photons traced per iteration (`photonsperiteration`); `None` (pbrt-v4's −1, or any
-    /// value ≤ 0): as many as the render has pixels.
-    pub photons_per_iteration: Option<u32>,
-    /// Every pixel's initial search radius, in world units (`radius`, default 1).
-    pub radius: f32,
-    /// Seed of the photons' scrambled Halton points (`seed`); `None`: the render's seed.
-    pub seed: Option<u64>,
-}
-
-impl Default for SppmOptions {
-    /// pbrt-v4's defaults: `maxdepth` 5, a photon per pixel per iteration, `radius` 1.
-    fn default() -> Self {
-        SppmOptions {
-            max_depth: 5,
-            photons_per_iteration: None,
-            radius: 1.0,
-            seed: None,
-        }
-    }
-}
 
 /// One pixel's progressive estimate: its radius R, photon count N, the flux τ gathered within
 /// R (film RGB), and the sum of its direct light Ld over the iterations so far.
@@ -219,13 +194,7 @@ pub fn camera_path(
         };
         // A dispersive surface: the path keeps its hero wavelength from here on (pbrt-v4
         // terminates the secondary wavelengths as it builds the BSDF, before the emission).
-        if disperses
-            && let Some(w) = wavelengths.as_mut()
-            && !w.secondary_terminated()
-        {
-            w.terminate_secondary();
-            hero_only = true;
-        }
+        hero_only |= keep_hero_only(&mut wavelengths, disperses);
         let wo = si.wo;
         let le = emitted(scene, &hit, wo, wavelengths.as_ref());
         if le != SampledSpectrum::ZERO {
@@ -255,7 +224,7 @@ pub fn camera_path(
         };
         let flags = bsdf.flags();
         ld += beta
-            * sample_ld(scene, &hit.si, &bsdf, &ctx, wavelengths.as_ref(), sampler)
+            * direct_light(scene, si, &bsdf, wo, &ctx, sampler, wavelengths.as_ref())
             * hero_weight(hero_only);
         if flags.has(BxdfFlags::DIFFUSE) || (flags.has(BxdfFlags::GLOSSY) && depth == max_depth) {
             vp = Some(VisiblePoint {
@@ -297,43 +266,6 @@ pub fn camera_path(
         prev_ctx = Some(ctx);
     }
     CameraPath { ld, vp }
-}
-
-/// Direct light at a surface by one light sample (the scene's light sampler, then a point on
-/// the light), weighted by the power heuristic against BSDF sampling unless the light is a
-/// delta light: f·|cos θ|·Le·w/(p_light·pdf). The sampler's dimensions are drawn whatever
-/// the BSDF, so that the path's layout does not depend on it.
-fn sample_ld(
-    scene: &Scene,
-    si: &SurfaceInteraction,
-    bsdf: &Bsdf,
-    ctx: &LightSampleContext,
-    lambda: Option<&SampledWavelengths>,
-    sampler: &mut Sampler,
-) -> SampledSpectrum {
-    let ul = sampler.get_1d();
-    let u = sampler.get_2d();
-    if !bsdf.flags().is_non_specular() {
-        return SampledSpectrum::ZERO;
-    }
-    let Some((i, pmf)) = scene.light_sampler().sample(ctx, ul) else {
-        return SampledSpectrum::ZERO;
-    };
-    let light = &scene.lights()[i];
-    let Some(ls) = scene.sample_li(light, ctx, u).filter(|ls| ls.pdf > 0.0) else {
-        return SampledSpectrum::ZERO;
-    };
-    let f = bsdf.f(si.wo, ls.wi, TransportMode::Radiance) * ls.wi.dot(si.shading.n).abs();
-    if f == SampledSpectrum::ZERO || scene.intersect_p(&si.spawn_ray_to(ls.p_light)) {
-        return SampledSpectrum::ZERO;
-    }
-    let p_l = pmf * ls.pdf;
-    let w = if light.is_delta() {
-        1.0
-    } else {
-        power_heuristic(p_l, bsdf.pdf(si.wo, ls.wi, TransportMode::Radiance))
-    };
-    f * scene.light_radiance(i, lambda, ls.l, ls.factor, ls.wi) * (w / p_l)
 }
 
 /// The random numbers of one photon: dimension d of photon i of iteration k is the scrambled
@@ -450,13 +382,7 @@ pub fn trace_photon(
             ray = si.spawn_ray(ray.d);
             continue;
         };
-        if disperses
-            && let Some(w) = wavelengths.as_mut()
-            && !w.secondary_terminated()
-        {
-            w.terminate_secondary();
-            hero_only = true;
-        }
+        hero_only |= keep_hero_only(&mut wavelengths, disperses);
         let uc = u.get_1d();
         let u2 = u.get_2d();
         let Some(bs) = bsdf.sample_f(si.wo, uc, u2, TransportMode::Importance) else {

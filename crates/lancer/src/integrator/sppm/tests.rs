@@ -5,12 +5,10 @@
 use super::grid::VisibleGrid;
 use super::*;
 use crate::integrator::bsdf_at;
+use crate::integrator::test_scenes::{diffuse, quad};
 use crate::light::PointDesc;
-use crate::material::{DiffuseMaterial, MaterialDesc};
-use crate::math::{PackedVec3, Rgb};
-use crate::scene::desc::{Geometry, LightDesc, SceneDesc, ShapeDesc};
-use crate::shape::TriangleMesh;
-use crate::texture::SpectrumTex;
+use crate::math::Rgb;
+use crate::scene::desc::{LightDesc, SceneDesc};
 
 #[test]
 fn update_follows_the_progressive_formulas() {
@@ -96,21 +94,12 @@ fn grid_lists_every_point_whose_sphere_holds_the_query() {
 /// `i` at height 1 above the origin.
 fn lit_floor(rho: f32, i: f32) -> Scene {
     let s = 50.0;
-    let mesh = TriangleMesh {
-        positions: [[-s, 0.0, s], [s, 0.0, s], [s, 0.0, -s], [-s, 0.0, -s]]
-            .iter()
-            .map(|v| PackedVec3::new(v[0], v[1], v[2]))
-            .collect(),
-        normals: vec![],
-        uvs: vec![],
-        indices: vec![0, 1, 2, 0, 2, 3],
-        flip_normal: false,
-    };
     let desc = SceneDesc {
-        materials: vec![MaterialDesc::Diffuse(DiffuseMaterial {
-            reflectance: SpectrumTex::Const(Rgb::splat(rho)),
-        })],
-        shapes: vec![ShapeDesc::new(Geometry::TriangleMesh(Arc::new(mesh)), 0)],
+        materials: vec![diffuse(Rgb::splat(rho))],
+        shapes: vec![quad(
+            [[-s, 0.0, s], [s, 0.0, s], [s, 0.0, -s], [-s, 0.0, -s]],
+            0,
+        )],
         lights: vec![LightDesc::Point(PointDesc {
             from: Vec3::new(0.0, 1.0, 0.0),
             intensity: Rgb::splat(i),
