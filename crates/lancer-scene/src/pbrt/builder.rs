@@ -52,7 +52,6 @@ pub mod entry;
 mod integrator;
 mod object_motion;
 mod transforms;
-mod volpath;
 
 pub use built::Built;
 
@@ -781,8 +780,6 @@ impl Builder {
             }
         }
         self.desc.camera_medium = self.media.camera_medium()?;
-        self.volumes_need_volpath(&end);
-        self.sppm_writes_rgb(&end);
         self.sppm_writes_rgb(&end);
         let camera = &mut self.desc.camera;
         camera.screen_window = camera.screen_window.or(self.frame_aspect.map(frame_window));

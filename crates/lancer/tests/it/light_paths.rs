@@ -2,11 +2,10 @@
 //! a render split by samples merges into the whole render exactly (their light paths splat
 //! anywhere in the image), with and without a medium around the floor.
 
-use crate::common::lit_floor::{lit_floor, render_film as render};
+use crate::common::lit_floor::{in_fog, lit_floor, render_film as render};
 use lancer::film::Film;
 use lancer::integrator::Integrator;
-use lancer::math::{Rgb, Vec3};
-use lancer::medium::{HomogeneousDesc, MediumDesc};
+use lancer::math::Vec3;
 use lancer::scene::desc::SceneDesc;
 
 const W: u32 = 20;
@@ -27,22 +26,6 @@ fn desc(integrator: Integrator) -> SceneDesc {
     d
 }
 
-/// [`desc`] in a homogeneous fog (camera and light in it).
-fn foggy(integrator: Integrator) -> SceneDesc {
-    let mut d = desc(integrator);
-    d.media = vec![MediumDesc::Homogeneous(HomogeneousDesc {
-        sigma_a: Rgb::new(0.1, 0.2, 0.3),
-        sigma_s: Rgb::new(0.5, 0.4, 0.3),
-        scale: 1.0,
-        le: Rgb::ZERO,
-        le_scale: 0.0,
-        g: 0.2,
-    })];
-    d.camera_medium = Some(0);
-    d.light_media = vec![Some(0)];
-    d
-}
-
 #[test]
 fn light_path_renders_are_exact_across_threads_and_sample_splits() {
     for integrator in [
@@ -56,7 +39,7 @@ fn light_path_renders_are_exact_across_threads_and_sample_splits() {
     ] {
         for (spectral, fog) in [(false, false), (true, false), (false, true), (true, true)] {
             let d = if fog {
-                foggy(integrator)
+                in_fog(desc(integrator))
             } else {
                 desc(integrator)
             };

@@ -9,6 +9,7 @@ use lancer::integrator::Integrator;
 use lancer::light::PointDesc;
 use lancer::material::{DiffuseMaterial, MaterialDesc};
 use lancer::math::{PackedVec3, Rgb, Transform, Vec3};
+use lancer::medium::{HomogeneousDesc, MediumDesc};
 use lancer::render::{RenderSettings, work_units};
 use lancer::scene::desc::{FilterDesc, Geometry, LightDesc, SceneDesc, ShapeDesc};
 use lancer::shape::TriangleMesh;
@@ -88,4 +89,20 @@ pub fn render_film(
     let units = work_units(&full, 8, samples, 2);
     render_units_on(threads, &scene, &settings, &d.integrator, &mut film, &units);
     film
+}
+
+/// `d` in a homogeneous fog that fills the scene, its coefficients different per channel (so
+/// that the wavelengths' densities differ): the camera and every light are in it.
+pub fn in_fog(mut d: SceneDesc) -> SceneDesc {
+    d.media = vec![MediumDesc::Homogeneous(HomogeneousDesc {
+        sigma_a: Rgb::new(0.1, 0.2, 0.3),
+        sigma_s: Rgb::new(0.5, 0.4, 0.3),
+        scale: 1.0,
+        le: Rgb::ZERO,
+        le_scale: 0.0,
+        g: 0.2,
+    })];
+    d.camera_medium = Some(0);
+    d.light_media = vec![Some(0); d.lights.len()];
+    d
 }
