@@ -735,6 +735,8 @@ pub fn report(
             spectral: args.spectral_mode(),
             integrator: settings.integrator.pbrt_name(),
             photons: done.stats.photons,
+            light_paths: done.stats.light_paths,
+            connections: done.stats.connections,
         };
         let mem = stats::SceneMemory::of(scene);
         match format {

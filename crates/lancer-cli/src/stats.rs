@@ -130,6 +130,10 @@ pub struct RenderSummary {
     pub integrator: &'static str,
     /// Photons traced (`sppm`; zero for the other integrators).
     pub photons: u64,
+    /// Light subpaths started (`bdpt`, `lightpath`, `mlt`; zero for the others).
+    pub light_paths: u64,
+    /// Connections tried between light and camera subpaths (`bdpt`, `lightpath`, `mlt`).
+    pub connections: u64,
 }
 
 /// The `--stats json` object.
@@ -164,6 +168,8 @@ pub fn render_json(r: &RenderSummary, t: &Phases, mem: &SceneMemory) -> Value {
         "rays_per_s": per_s(r.rays),
         "integrator": r.integrator,
         "photons": r.photons,
+        "light_paths": r.light_paths,
+        "connections": r.connections,
         "primitives": mem.primitives,
         "triangles": mem.triangles,
         "bvh": { "nodes": mem.bvh_nodes, "bytes": mem.bvh_bytes },
@@ -234,10 +240,13 @@ pub fn render_text(r: &RenderSummary, t: &Phases, mem: &SceneMemory) -> String {
                 "{} ({:.2} M/s){}",
                 r.rays,
                 per_s(r.rays),
-                if r.photons > 0 {
-                    format!("; {} photons ({})", r.photons, r.integrator)
-                } else {
-                    String::new()
+                match (r.photons, r.light_paths) {
+                    (0, 0) => String::new(),
+                    (0, l) => format!(
+                        "; {l} light paths, {} connections ({})",
+                        r.connections, r.integrator
+                    ),
+                    (p, _) => format!("; {p} photons ({})", r.integrator),
                 }
             ),
         ),

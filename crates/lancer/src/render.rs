@@ -19,7 +19,7 @@ use rayon::prelude::*;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-pub use crate::counters::{count_ray, rays_traced};
+pub use crate::counters::{Counts, count_ray, counts, rays_traced};
 
 mod mlt;
 pub mod sppm;
@@ -108,9 +108,21 @@ pub struct RenderStats {
     pub first_nonfinite: Option<SampleId>,
     /// Photons traced (`sppm`; zero for the other integrators).
     pub photons: u64,
+    /// Light subpaths started (`bdpt`, `lightpath`, `mlt`; zero for the others).
+    pub light_paths: u64,
+    /// Connections tried between light and camera subpaths (`bdpt`, `lightpath`, `mlt`).
+    pub connections: u64,
 }
 
 impl RenderStats {
+    /// Adds what the thread counted since `before` ([`counts`]).
+    pub fn add_counts_since(&mut self, before: Counts) {
+        let c = counts().since(before);
+        self.rays += c.rays;
+        self.light_paths += c.light_paths;
+        self.connections += c.connections;
+    }
+
     /// Adds the totals of another part of the render.
     pub fn add(&mut self, o: &RenderStats) {
         self.samples += o.samples;
@@ -118,6 +130,8 @@ impl RenderStats {
         self.cancelled |= o.cancelled;
         self.nonfinite += o.nonfinite;
         self.photons += o.photons;
+        self.light_paths += o.light_paths;
+        self.connections += o.connections;
         self.first_nonfinite = match (self.first_nonfinite, o.first_nonfinite) {
             (Some(a), Some(b)) => Some(a.min(b)),
             (a, b) => a.or(b),
@@ -313,7 +327,7 @@ pub fn render_tile<T: FilmTile, I: SampleIntegrator + ?Sized>(
     tile: &PixelBounds,
     samples: std::ops::Range<u32>,
 ) -> RenderStats {
-    let rays0 = rays_traced();
+    let counts0 = counts();
     let mut stats = RenderStats::default();
     let mut sampler = Sampler::new(settings.sampler, settings.spp, settings.seed);
     let w = tile.width() as usize;
@@ -370,7 +384,7 @@ pub fn render_tile<T: FilmTile, I: SampleIntegrator + ?Sized>(
         }
     }
     stats.samples = tile.area() * samples.len() as u64;
-    stats.rays = rays_traced() - rays0;
+    stats.add_counts_since(counts0);
     stats
 }
 

@@ -10,6 +10,7 @@ mod gbuffer;
 mod gltf;
 mod hostile;
 mod img;
+mod light_stats;
 mod malformed;
 mod meshes;
 mod motion_workflow;

@@ -6,7 +6,7 @@ use crate::common::{ScratchDir, read_exr, run_in};
 use std::path::Path;
 
 /// A glass sphere on a grey floor under a distant light, 16 × 40 pixels (three tile rows).
-const SCENE: &str = r#"LookAt 0 2 3  0 0.3 0  0 1 0
+pub const SCENE: &str = r#"LookAt 0 2 3  0 0.3 0  0 1 0
 Camera "perspective" "float fov" [40]
 Film "rgb" "integer xresolution" [16] "integer yresolution" [40]
 Sampler "zsobol" "integer pixelsamples" [4]
@@ -23,15 +23,20 @@ AttributeEnd
 "#;
 
 fn render(dir: &Path, extra: &[&str]) -> std::process::Output {
+    render_scene(dir, SCENE, extra)
+}
+
+/// Renders `scene` (written to `dir`/s.pbrt) quietly with the options `extra`.
+pub fn render_scene(dir: &Path, scene: &str, extra: &[&str]) -> std::process::Output {
     let path = dir.join("s.pbrt");
-    std::fs::write(&path, SCENE).unwrap();
+    std::fs::write(&path, scene).unwrap();
     let mut args = vec!["render", path.to_str().unwrap(), "--quiet"];
     args.extend_from_slice(extra);
     run_in(dir, &args)
 }
 
 #[track_caller]
-fn ok(o: &std::process::Output) -> String {
+pub fn ok(o: &std::process::Output) -> String {
     let e = String::from_utf8_lossy(&o.stderr).to_string();
     assert!(o.status.success(), "{e}");
     e

@@ -43,19 +43,21 @@ pub fn li(
     let Some(les) = emitter.sample_le(u1, u2, scene.shapes(), scene.meshes()) else {
         return SampledSpectrum::ZERO;
     };
+    crate::counters::count_light_path();
     let le = scene.light_radiance(light, wavelengths.as_ref(), les.l, les.factor, -les.w);
     // The light's own surface, seen directly: Le·We·|cos θ_light| / (p_l·p_pos·p_c), with
     // p_pos = 1/A the density of the point on the light.
-    if les.n != Vec3::ZERO
-        && let Some(cs) = camera.sample_wi(les.p, sampler.get_2d())
-    {
-        let cos = les.n.dot(cs.wi);
-        let two_sided = emitter.as_area().is_some_and(|a| a.two_sided);
-        if (cos > 0.0 || two_sided)
-            && !scene.intersect_p(&Ray::spawn_to(les.p, les.p_error, les.n, cs.p_lens))
-        {
-            let l = le * (cs.wi_importance * cos.abs() / (p_l * les.pdf_pos * cs.pdf));
-            splat(cs.p_raster, l * scale);
+    if les.n != Vec3::ZERO {
+        crate::counters::count_connection();
+        if let Some(cs) = camera.sample_wi(les.p, sampler.get_2d()) {
+            let cos = les.n.dot(cs.wi);
+            let two_sided = emitter.as_area().is_some_and(|a| a.two_sided);
+            if (cos > 0.0 || two_sided)
+                && !scene.intersect_p(&Ray::spawn_to(les.p, les.p_error, les.n, cs.p_lens))
+            {
+                let l = le * (cs.wi_importance * cos.abs() / (p_l * les.pdf_pos * cs.pdf));
+                splat(cs.p_raster, l * scale);
+            }
         }
     }
     let mut beta = le * (les.abs_cos() / (p_l * les.pdf_pos * les.pdf_dir));
@@ -76,6 +78,7 @@ pub fn li(
         }
         depth += 1;
         // Connect to the camera.
+        crate::counters::count_connection();
         if let Some(cs) = camera.sample_wi(si.p, sampler.get_2d()) {
             let f = bsdf.f(si.wo, cs.wi, TransportMode::Importance);
             let l = beta * f * (cs.wi.dot(si.shading.n).abs() * cs.wi_importance / cs.pdf);

@@ -9,7 +9,7 @@
 //! chains (its "samples", [`crate::integrator::Integrator::sample_indices`]), or interrupted
 //! and resumed between chains, adds up to the same bits.
 
-use super::{RenderSettings, RenderStats, Splats, UnitHook, WorkUnit, rays_traced, scene_film_rgb};
+use super::{RenderSettings, RenderStats, Splats, UnitHook, WorkUnit, counts, scene_film_rgb};
 use crate::film::Film;
 use crate::film::splat::AtomicSplats;
 use crate::film::tile::FilmSplats;
@@ -128,14 +128,14 @@ pub(super) fn render_chains(
             totals_m.lock().unwrap().cancelled = true;
             return;
         }
-        let rays0 = rays_traced();
+        let counts0 = counts();
         let mut stats = RenderStats::default();
         if let Some(b) = &bootstrap {
             for i in range.clone() {
                 run_chain(&chains, b, i, &splats, &mut stats);
             }
         }
-        stats.rays = rays_traced() - rays0;
+        stats.add_counts_since(counts0);
         let finished: Vec<(usize, Vec<crate::film::PixelSum>)> = {
             let mut st = state.lock().unwrap();
             let marked: Vec<usize> = (0..units.len())

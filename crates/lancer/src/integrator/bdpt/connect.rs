@@ -153,6 +153,9 @@ pub(super) fn connect<S: SampleSource + ?Sized>(
     if t > 1 && s != 0 && camera[t - 1].kind == Kind::Escaped {
         return none;
     }
+    if s != 0 && t > 1 {
+        crate::counters::count_connection();
+    }
     let mut sampled = None;
     let mut p_raster = None;
     let mut l = SampledSpectrum::ZERO;
@@ -245,6 +248,7 @@ pub(super) fn to_camera<S: SampleSource + ?Sized>(
     if !qs.is_connectible(scene) {
         return None;
     }
+    crate::counters::count_connection();
     let cs = scene.camera().sample_wi(qs.p, sampler.get_2d())?;
     let mut v = Vertex::endpoint(
         Kind::Camera,

@@ -68,6 +68,7 @@ fn seen_directly(
     let super::vertex::Kind::Light(i) = v0.kind else {
         return None;
     };
+    crate::counters::count_connection();
     let camera = scene.camera();
     let cs = camera.sample_wi(v0.p, sampler.get_2d())?;
     let cos = v0.ng.dot(cs.wi);

@@ -123,6 +123,7 @@ impl<'a> Walk<'a> {
         else {
             return;
         };
+        crate::counters::count_light_path();
         let le = scene.light_radiance(light, self.lambda.as_ref(), les.l, les.factor, -les.w);
         if le == SampledSpectrum::ZERO {
             return;
