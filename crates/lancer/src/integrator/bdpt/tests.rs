@@ -11,7 +11,7 @@ use crate::light::{PointDesc, UniformInfiniteDesc};
 use crate::math::{Rgb, Vec3, normalize};
 use crate::sampling::SamplerKind;
 use crate::scene::desc::{AreaLightDesc, Geometry, LightDesc, SceneDesc, ShapeDesc};
-use crate::shape::SphereDesc;
+use crate::shape::{PlaneDesc, SphereDesc};
 
 pub(super) use crate::integrator::test_scenes::{H, W};
 
@@ -619,6 +619,52 @@ fn white_furnace() {
         assert!((centre[c] - 0.8).abs() < 0.03, "sphere {centre}");
         assert!((corner[c] - 1.0).abs() < 0.02, "sky {corner}");
     }
+}
+
+#[test]
+fn an_infinite_plane_is_lit_by_the_sky_beyond_the_scene_bounds() {
+    // lancer's infinite plane reaches past the scene's bounds (a small sphere here), where no
+    // light subpath from the sky's disk arrives: its points' light sampling must then weigh
+    // all (it weighed almost nothing against the impossible light paths: a black horizon).
+    let desc = SceneDesc {
+        materials: vec![diffuse(Rgb::splat(0.5))],
+        shapes: vec![
+            ShapeDesc::new(
+                Geometry::Sphere(SphereDesc {
+                    radius: 0.5,
+                    z_min: -0.5,
+                    z_max: 0.5,
+                    phi_max: 360.0,
+                }),
+                0,
+            ),
+            ShapeDesc::new(
+                Geometry::Plane(PlaneDesc {
+                    p: Vec3::new(0.0, -0.5, 0.0),
+                    n: Vec3::Y,
+                }),
+                0,
+            ),
+        ],
+        lights: vec![LightDesc::UniformInfinite(UniformInfiniteDesc {
+            l: Rgb::ONE,
+        })],
+        // Most of the image is the plane up to its horizon, far past the sphere.
+        ..view(
+            Vec3::new(0.0, 0.3, 4.0),
+            Vec3::new(0.0, 0.0, -20.0),
+            40.0,
+            bdpt(3),
+        )
+    };
+    let scene = Scene::build(&desc).unwrap();
+    let reference = render(&scene, path(3), 64, 3, None);
+    let b = render(&scene, bdpt(3), 64, 4, None);
+    let (worst, ratio) = compare(&b, &reference);
+    assert!(
+        worst < 0.1 && (ratio - 1.0).abs() < 0.02,
+        "worst block {worst}, mean ratio {ratio}"
+    );
 }
 
 #[test]
