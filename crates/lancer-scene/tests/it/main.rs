@@ -5,6 +5,7 @@ mod common;
 
 mod alpha;
 mod area_image;
+mod coincident_media;
 mod coverage_table;
 mod curves_bilinear;
 mod displaced;

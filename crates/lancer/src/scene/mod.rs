@@ -28,6 +28,10 @@ use crate::shape::{
 use crate::spectrum::sampled::SampledWavelengths;
 use crate::texture::{FloatTex, FloatTexture, SpectrumTexture, TexCoord, TextureEval};
 
+/// How many times one ray's search on one alpha-tested primitive goes on past a cut-out
+/// ([`Scene::alpha_test`]): a quadric needs two, any real surface a few.
+const MAX_ALPHA_PASSES: usize = 64;
+
 /// A ray's nearest hit in the scene.
 #[derive(Clone, Copy, Debug)]
 pub struct SceneHit {
@@ -467,6 +471,12 @@ impl Scene {
     /// The alpha test, out of the hot loop: alpha 0 is a hole, alpha 1 solid, and in between
     /// the surface is there for a fraction alpha of the rays, chosen by a hash of the ray
     /// (pbrt-v4's stochastic alpha).
+    ///
+    /// Where the surface is cut away the search goes on past the cut on this primitive alone,
+    /// as pbrt-v4's `GeometricPrimitive::Intersect` does: a ray spawned from the cut-away point
+    /// in the same direction, up to what is left of `t_max`, meets the primitive again (a
+    /// quadric's far side, seen through a hole in its near side), and that hit is tested in
+    /// turn. The hit kept is given as one of `ray` ([`Shape::hit_after`]).
     #[cold]
     #[inline(never)]
     fn alpha_test(
@@ -476,20 +486,45 @@ impl Scene {
         h: crate::shape::ShapeHit,
         alpha: FloatTex,
     ) -> Option<crate::shape::ShapeHit> {
-        let si = self.shapes[i as usize].interaction(ray, &h, &self.meshes);
-        let a = self.textures().float(alpha, &Scene::tex_coord(&si));
+        let shape = &self.shapes[i as usize];
+        // The ray tested, its hit, and where that ray starts on `ray` (`None`: it is `ray`).
+        let (mut r, mut hit, mut before) = (*ray, h, None);
+        // A bound on the searches past cuts, which only a surface folded on itself many
+        // times over along one ray could reach.
+        for _ in 0..MAX_ALPHA_PASSES {
+            let si = shape.interaction(&r, &hit, &self.meshes);
+            let on_ray = match &before {
+                None => hit,
+                Some(b) => shape.hit_after(b, &hit),
+            };
+            if self.alpha_keeps(alpha, &r, &si) {
+                return Some(on_ray);
+            }
+            let mut next = si.spawn_ray(r.d).at_time(ray.time);
+            next.t_max = r.t_max - hit.t;
+            hit = shape.intersect_with(&next, &TriangleRay::new(&next))?;
+            (r, before) = (next, Some(on_ray));
+        }
+        None
+    }
+
+    /// Whether the surface is there at `si`, met by `ray`: alpha a = 1 keeps it, a = 0 cuts it
+    /// away, and in between it is kept when a hash of the ray, uniform in [0, 1), is below a.
+    #[inline]
+    fn alpha_keeps(&self, alpha: FloatTex, ray: &Ray, si: &SurfaceInteraction) -> bool {
+        let a = self.textures().float(alpha, &Scene::tex_coord(si));
         if a >= 1.0 {
-            return Some(h);
+            return true;
         }
         if a <= 0.0 {
-            return None;
+            return false;
         }
         let u = crate::sampling::u32_to_unit_f32(crate::sampling::hash_u64(&[
             ray.o.x.to_bits() as u64 | (ray.o.y.to_bits() as u64) << 32,
             ray.o.z.to_bits() as u64 | (ray.d.x.to_bits() as u64) << 32,
             ray.d.y.to_bits() as u64 | (ray.d.z.to_bits() as u64) << 32,
         ]) as u32);
-        (u < a).then_some(h)
+        u < a
     }
 
     /// True if anything blocks the ray before `t_max` (shadow rays).

@@ -173,6 +173,11 @@ impl Cone {
 }
 
 impl ShapeKind for Cone {
+    /// The two distances added in double precision ([`quadric_t`]).
+    fn hit_after(&self, first: &ShapeHit, next: &ShapeHit) -> ShapeHit {
+        quadric_hit(quadric_t(first) + quadric_t(next))
+    }
+
     fn bounds(&self) -> Bounds3 {
         Cone::bounds(self)
     }

@@ -279,6 +279,11 @@ impl Hyperboloid {
 }
 
 impl ShapeKind for Hyperboloid {
+    /// The two distances added in double precision ([`quadric_t`]).
+    fn hit_after(&self, first: &ShapeHit, next: &ShapeHit) -> ShapeHit {
+        quadric_hit(quadric_t(first) + quadric_t(next))
+    }
+
     fn bounds(&self) -> Bounds3 {
         Hyperboloid::bounds(self)
     }

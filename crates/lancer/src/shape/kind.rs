@@ -91,6 +91,19 @@ pub trait ShapeKind {
     fn interaction(&self, ray: &Ray, hit: &ShapeHit, meshes: &[TriangleMesh])
     -> SurfaceInteraction;
 
+    /// The hit `next`, found on a ray spawned from the hit `first` in the same direction (the
+    /// search past an alpha cut-out), as a hit of `first`'s ray: at distance
+    /// `first.t + next.t`, with `next`'s shape-specific values, which by default do not
+    /// depend on the ray (barycentrics, patch or curve coordinates, a face). Kinds that keep
+    /// the rounding residual of a double-precision distance there ([`super::placement`]'s
+    /// `quadric_hit`) add the two distances in double precision instead.
+    fn hit_after(&self, first: &ShapeHit, next: &ShapeHit) -> ShapeHit {
+        ShapeHit {
+            t: first.t + next.t,
+            ..*next
+        }
+    }
+
     /// pbrt-v4's shading derivatives (∂n/∂u, ∂n/∂v among them) at a hit found by
     /// [`ShapeKind::intersect`] on the same ray, whose interaction is `si`: asked only by a bump
     /// map. By default those of a surface whose normal does not turn
@@ -170,6 +183,10 @@ impl<T: ShapeKind> ShapeKind for Box<T> {
         si: &SurfaceInteraction,
     ) -> ShadingDerivatives {
         (**self).shading_derivatives(ray, hit, meshes, si)
+    }
+    #[inline]
+    fn hit_after(&self, first: &ShapeHit, next: &ShapeHit) -> ShapeHit {
+        (**self).hit_after(first, next)
     }
     #[inline]
     fn area(&self) -> f32 {

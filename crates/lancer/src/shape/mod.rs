@@ -213,6 +213,13 @@ impl Shape {
         shape_dispatch!(self, s => ShapeKind::interaction(s, ray, hit, meshes))
     }
 
+    /// The hit `next` of a ray spawned from the hit `first` in the same direction, as a hit of
+    /// `first`'s ray ([`ShapeKind::hit_after`]).
+    #[inline]
+    pub fn hit_after(&self, first: &ShapeHit, next: &ShapeHit) -> ShapeHit {
+        shape_dispatch!(self, s => ShapeKind::hit_after(s, first, next))
+    }
+
     /// pbrt-v4's shading ∂p/∂u, ∂p/∂v, ∂n/∂u, ∂n/∂v at a hit found by [`Shape::intersect`] on
     /// the same ray, whose interaction is `si`: what a bump map reads, computed only when one
     /// asks (the intersection and the interaction never pay for it).

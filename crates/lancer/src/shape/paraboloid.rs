@@ -215,6 +215,11 @@ impl Paraboloid {
 }
 
 impl ShapeKind for Paraboloid {
+    /// The two distances added in double precision ([`quadric_t`]).
+    fn hit_after(&self, first: &ShapeHit, next: &ShapeHit) -> ShapeHit {
+        quadric_hit(quadric_t(first) + quadric_t(next))
+    }
+
     fn bounds(&self) -> Bounds3 {
         Paraboloid::bounds(self)
     }

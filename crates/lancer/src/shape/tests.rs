@@ -3,6 +3,7 @@
 use super::*;
 use crate::math::Vec2;
 use crate::math::{PackedVec3, Transform, Vec3};
+use crate::ray::Ray;
 use crate::shape::{
     Cone, Cuboid, Cylinder, Disk, Hyperboloid, Paraboloid, Placement, Plane, Sphere, Triangle,
 };
@@ -121,5 +122,56 @@ fn triangle_area_and_samples() {
             assert!(s.p.z == 0.0 && s.p.x >= 0.0 && s.p.y >= 0.0 && s.p.x + s.p.y <= 2.0);
             assert_eq!(s.n, if flip { -Vec3::Z } else { Vec3::Z });
         }
+    }
+}
+
+#[test]
+fn a_hit_past_the_first_is_given_on_the_first_ray() {
+    // A ray through the axis of each hollow shape meets it twice. The second hit, found on a
+    // ray spawned from the first (the search past an alpha cut-out), given back on the first
+    // ray by `hit_after`, is where the first ray's own far hit is: same distance, same point.
+    let pl = Placement::new(
+        Transform::translate(Vec3::new(0.25, -0.5, 0.125))
+            * Transform::rotate(30.0, Vec3::X).unwrap(),
+        false,
+    );
+    let shapes = [
+        Shape::Sphere(Box::new(Sphere::new(pl, 1.0, -1.0, 1.0, 360.0))),
+        Shape::Cylinder(Box::new(Cylinder::new(pl, 1.0, -1.0, 1.0, 360.0))),
+        Shape::Paraboloid(Box::new(Paraboloid::new(pl, 1.0, 0.0, 1.0, 360.0))),
+        Shape::Hyperboloid(Box::new(
+            Hyperboloid::new(
+                pl,
+                Vec3::new(0.5, -0.5, -1.0),
+                Vec3::new(0.5, 0.5, 1.0),
+                360.0,
+            )
+            .unwrap(),
+        )),
+    ];
+    for s in &shapes {
+        // Across the shape, through a point just off its axis at mid-height.
+        let centre = pl.to_world.point(Vec3::new(0.01, 0.02, 0.5));
+        let o = centre + Vec3::new(-5.0, 0.3, 0.2);
+        let ray = Ray::new(o, crate::math::normalize(centre - o));
+        let pre = TriangleRay::new(&ray);
+        let first = s.intersect_with(&ray, &pre).expect("near hit");
+        let si = s.interaction(&ray, &first, &[]);
+        let next_ray = si.spawn_ray(ray.d);
+        let next = s
+            .intersect_with(&next_ray, &TriangleRay::new(&next_ray))
+            .expect("far hit");
+        let on_ray = s.hit_after(&first, &next);
+        let far = s.interaction(&ray, &on_ray, &[]);
+        let direct = s.interaction(&next_ray, &next, &[]);
+        assert!(
+            (far.p - direct.p).length() < 1e-5 && (far.uv - direct.uv).length() < 1e-5,
+            "{s:?}: {} {} vs {} {}",
+            far.p,
+            far.uv,
+            direct.p,
+            direct.uv
+        );
+        assert!(on_ray.t > first.t + 0.1, "{s:?}");
     }
 }

@@ -359,6 +359,11 @@ impl Sdf {
 
 /// An SDF object: no closed-form area, so it cannot emit.
 impl ShapeKind for Sdf {
+    /// The two distances added in double precision ([`quadric_t`]).
+    fn hit_after(&self, first: &ShapeHit, next: &ShapeHit) -> ShapeHit {
+        quadric_hit(quadric_t(first) + quadric_t(next))
+    }
+
     fn bounds(&self) -> Bounds3 {
         Sdf::bounds(self)
     }
