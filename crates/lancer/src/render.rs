@@ -23,6 +23,7 @@ pub use crate::counters::{Counts, count_ray, counts, rays_traced};
 
 mod mlt;
 pub mod sppm;
+pub mod strategies;
 
 /// What to render.
 #[derive(Clone, Debug)]
@@ -207,6 +208,33 @@ pub trait SampleIntegrator: Sync {
         lambda: Option<&SampledWavelengths>,
         splats: &Splats<'_>,
     ) -> SampledSpectrum;
+
+    /// [`SampleIntegrator::li`] for the camera sample `at` (the tile loop's call): the same
+    /// unless the integrator puts something per pixel elsewhere (bdpt's strategy images).
+    #[inline(always)]
+    fn li_at(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        sampler: &mut Sampler,
+        lambda: Option<&SampledWavelengths>,
+        splats: &Splats<'_>,
+        _at: SampleAt,
+    ) -> SampledSpectrum {
+        self.li(scene, ray, sampler, lambda, splats)
+    }
+}
+
+/// Where a camera sample goes on the film: its pixel, and the weight its radiance gets there
+/// (the filter's weight times the camera ray's).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SampleAt {
+    /// Pixel column (full image).
+    pub x: i32,
+    /// Pixel row (full image).
+    pub y: i32,
+    /// Filter weight w of the sample (the pixel is Σw·L/Σw) times the camera ray's weight.
+    pub weight: f32,
 }
 
 impl SampleIntegrator for Integrator {
@@ -347,7 +375,12 @@ pub fn render_tile<T: FilmTile, I: SampleIntegrator + ?Sized>(
                 // counts (as pbrt-v4 adds it to the film with its filter weight).
                 let l = match &ray {
                     Some(r) => {
-                        integrator.li(scene, &r.ray, &mut sampler, lambda.as_ref(), splats)
+                        let at = SampleAt {
+                            x,
+                            y,
+                            weight: weight * r.weight,
+                        };
+                        integrator.li_at(scene, &r.ray, &mut sampler, lambda.as_ref(), splats, at)
                             * r.weight
                     }
                     None => SampledSpectrum::ZERO,
@@ -413,7 +446,11 @@ fn film_sample(settings: &RenderSettings, stats: &mut RenderStats, l: Rgb, id: S
 /// The film colour of a camera sample's radiance: the scene's film response (sensor, white
 /// balance, output space) when it has one, else the CIE 1931 observer's linear sRGB.
 #[inline]
-fn scene_film_rgb(scene: &Scene, lambda: Option<&SampledWavelengths>, l: SampledSpectrum) -> Rgb {
+pub(crate) fn scene_film_rgb(
+    scene: &Scene,
+    lambda: Option<&SampledWavelengths>,
+    l: SampledSpectrum,
+) -> Rgb {
     match scene.film_response() {
         None => film_rgb(lambda, l),
         Some(r) => r.film_rgb(lambda, l),

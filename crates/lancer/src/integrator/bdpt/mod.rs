@@ -27,6 +27,8 @@ pub use trace::li as light_trace;
 mod media_tests;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod visualize_tests;
 
 use super::Splat;
 use crate::math::{SampledSpectrum, Vec2};
@@ -41,7 +43,9 @@ use walk::{PATHS, Walk};
 
 /// What `visualizestrategies` and `visualizeweights` see of each strategy (pbrt-v4 writes
 /// one image per (s, t)): called with s, t, where the strategy lands on the film (`None`:
-/// the camera ray's own pixel), its contribution without its MIS weight, and the weight.
+/// the camera ray's own pixel), its contribution as it enters the image (MIS-weighted: what
+/// [`li`] adds or splats, to the bit), and its MIS weight w > 0 (the unweighted contribution
+/// is the first over the second). Only strategies that bring something are reported.
 pub type StrategyObserver<'a> = &'a mut dyn FnMut(usize, usize, Option<Vec2>, SampledSpectrum, f32);
 
 /// The bdpt settings of a render.
@@ -90,13 +94,10 @@ pub fn li(
                 }
                 let r = strategy_ratio(light, camera, s, t);
                 let contribution = lane_balance(c.l, r) * weight;
-                if let Some(observe) = observe.as_mut() {
-                    let unweighted = if c.weight > 0.0 {
-                        contribution / c.weight
-                    } else {
-                        SampledSpectrum::ZERO
-                    };
-                    observe(s, t, c.p_raster, unweighted, c.weight);
+                if let Some(observe) = observe.as_mut()
+                    && c.weight > 0.0
+                {
+                    observe(s, t, c.p_raster, contribution, c.weight);
                 }
                 if t != 1 {
                     l += contribution;

@@ -171,10 +171,10 @@ pub(super) fn render(
                         },
                         Some(images),
                     ) => {
-                        let mut observe = |s: usize, t: usize, p: Option<Vec2>, v, _w| {
+                        let mut observe = |s: usize, t: usize, p: Option<Vec2>, v, w| {
                             let img = images.entry((s, t)).or_insert_with(|| vec![Rgb::ZERO; n]);
                             if let Some(j) = p.map_or(Some(i), pixel) {
-                                img[j] += rgb(v);
+                                img[j] += rgb(v) / w;
                             }
                         };
                         super::li(
