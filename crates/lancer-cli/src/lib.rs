@@ -14,6 +14,7 @@ mod checkpoint;
 pub mod cli_error;
 mod completions;
 mod denoise;
+mod film_memory;
 mod img;
 mod info;
 mod input;
@@ -26,6 +27,7 @@ mod render;
 mod render_args;
 pub mod split;
 mod stats;
+mod strategy_images;
 mod tev;
 
 use clap::{CommandFactory, Parser, Subcommand};

@@ -4,12 +4,13 @@
 
 use crate::checkpoint::{self, Checkpoint};
 use crate::cli_error::CliError;
+use crate::film_memory::check_film_memory;
 use crate::output::{check_output, default_checkpoint_path, write_with_fallback};
 use crate::preview::LiveOutputs;
 use crate::progress::Progress;
 use crate::render_args::{RenderArgs, Resumed, apply_overrides, resumed_args};
 use crate::split::{self, SAMPLES_PER_PASS, TILE_SIZE};
-use crate::{input, stats};
+use crate::{input, stats, strategy_images};
 use lancer::film::part::{PartMeta, write_part};
 use lancer::film::spectral::SpectralSums;
 use lancer::film::spectral_write::write_spectral_exr;
@@ -17,7 +18,8 @@ use lancer::film::{Film, PixelBounds, PixelSum};
 use lancer::gbuffer::write::HALF_MAX;
 use lancer::gbuffer::{GbufferConfig, GbufferFilm, GbufferHeader, write_gbuffer_exr};
 use lancer::image_io::{ImageFormat, write_image};
-use lancer::render::{RenderSettings, RenderStats, WorkUnit, render_units, work_units};
+use lancer::render::strategies::StrategyImages;
+use lancer::render::{RenderSettings, RenderStats, WorkUnit, work_units};
 use lancer::{Scene, SceneDesc};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -67,6 +69,9 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     )?;
     let image = denoised.as_ref().map(|d| d.pixels.as_slice());
     let write_s = write(&args, &plan, rendered.live, image)?;
+    if let Some(images) = rendered.strategies {
+        strategy_images::write(images, &plan.state.film, plan.meta.scale, &plan.output)?;
+    }
     let finished = Finished {
         stats: rendered.stats,
         threads: rendered.threads,
@@ -380,28 +385,6 @@ fn check_preview(args: &RenderArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// Memory a film over `bounds` needs: the accumulators and the finished image.
-pub fn film_bytes(bounds: &PixelBounds) -> u64 {
-    let per_pixel =
-        std::mem::size_of::<lancer::film::PixelSum>() + std::mem::size_of::<lancer::math::Rgb>();
-    bounds.area() * per_pixel as u64
-}
-
-/// Refuses a film over `bounds` bigger than `max_gib` GiB.
-fn check_film_memory(bounds: &PixelBounds, max_gib: u64) -> Result<(), CliError> {
-    if film_bytes(bounds) <= max_gib.saturating_mul(1 << 30) {
-        return Ok(());
-    }
-    Err(CliError::input(format!(
-        "a {}x{} image would need {:.1} GiB of memory for its film (the limit is {} GiB, \
-         --max-film-gib to change it); render it in parts with --split or --crop",
-        bounds.width(),
-        bounds.height(),
-        film_bytes(bounds) as f64 / (1u64 << 30) as f64,
-        max_gib
-    )))
-}
-
 /// The state saved in a checkpoint, if it is one of this very render: the same scene hash,
 /// film and units of work.
 fn resumed_state(
@@ -471,6 +454,8 @@ pub struct Rendered {
     pub seconds: f64,
     /// The live outputs, still waiting for the final image.
     pub live: LiveOutputs,
+    /// bdpt's strategy images, when the scene asks for them ([`strategy_images`]).
+    pub strategies: Option<StrategyImages>,
 }
 
 /// How step [`render`] ends.
@@ -528,12 +513,15 @@ pub fn render(
         progress.inc(unit.tile.area() * unit.samples.len() as u64);
         live.tile(&unit.tile, sums);
     };
+    let resumed = state.done.iter().any(|&d| d);
+    let strategies = strategy_images::start(settings, plan.pixels.is_part, resumed);
     let mut stats = RenderStats::default();
     loop {
         let deadline = every.map(|d| Instant::now() + d);
         let stop = || checkpoint::interrupted() || deadline.is_some_and(|d| Instant::now() >= d);
         let s = pool.install(|| {
-            render_units(
+            strategy_images::render_units(
+                strategies.as_ref(),
                 scene,
                 settings,
                 &mut state.film,
@@ -573,6 +561,7 @@ pub fn render(
         threads: pool.current_num_threads(),
         seconds: t1.elapsed().as_secs_f64(),
         live,
+        strategies,
     }))
 }
 

@@ -3,6 +3,7 @@
 
 mod common;
 
+mod bdpt_strategies;
 mod bench_scene;
 mod course_scenes;
 mod denoise;

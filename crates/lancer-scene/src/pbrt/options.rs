@@ -306,18 +306,22 @@ pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, 
                 p.bool("visualizestrategies", false)?,
                 p.bool("visualizeweights", false)?,
             );
+            let visualize = visualize_strategies || visualize_weights;
             let i = Integrator::Bdpt {
-                max_depth,
+                // As pbrt-v4: with the strategy images, paths of at most 5 bounces.
+                max_depth: if visualize {
+                    max_depth.min(5)
+                } else {
+                    max_depth
+                },
                 regularize: p.bool("regularize", false)?,
                 visualize_strategies,
                 visualize_weights,
             };
-            if visualize_strategies || visualize_weights {
-                // The strategies are computed (`lancer::integrator::bdpt::StrategyObserver`),
-                // but no film writes their images yet.
+            if visualize && max_depth > 5 {
                 return Ok(Fallback::instead(
                     i,
-                    "integrator \"bdpt\": the per-strategy images of \"visualizestrategies\" and \"visualizeweights\" are not written yet; lancer renders the plain image".to_string(),
+                    "integrator \"bdpt\": visualizestrategies/visualizeweights limit maxdepth to 5, as in pbrt-v4".to_string(),
                 ));
             }
             i
@@ -888,20 +892,35 @@ mod tests {
             ),
             Integrator::SimpleVolPath { max_depth: 9 }
         );
+        // The strategy images are written; with them, paths of at most 5 bounces (pbrt-v4).
+        assert_eq!(
+            clean(
+                r#"Integrator "bdpt" "bool visualizestrategies" true"#,
+                integrator
+            ),
+            Integrator::Bdpt {
+                max_depth: 5,
+                regularize: false,
+                visualize_strategies: true,
+                visualize_weights: false
+            }
+        );
         let (out, _) = convert(
-            r#"Integrator "bdpt" "bool visualizestrategies" true"#,
+            r#"Integrator "bdpt" "bool visualizeweights" true "integer maxdepth" 9"#,
             integrator,
         );
         let f = out.unwrap();
-        assert!(matches!(
+        assert_eq!(
             f.value,
             Integrator::Bdpt {
-                visualize_strategies: true,
-                ..
+                max_depth: 5,
+                regularize: false,
+                visualize_strategies: false,
+                visualize_weights: true
             }
-        ));
+        );
         assert!(
-            f.warnings[0].contains("not written yet"),
+            f.warnings[0].contains("limit maxdepth to 5"),
             "{:?}",
             f.warnings
         );

@@ -47,9 +47,11 @@ pub enum Integrator {
         max_depth: u32,
         /// As for [`Integrator::Path`].
         regularize: bool,
-        /// pbrt-v4's `visualizestrategies`: one image per strategy (s, t), unweighted.
+        /// pbrt-v4's `visualizestrategies`: one image per strategy (s, t), unweighted
+        /// ([`crate::render::strategies`]).
         visualize_strategies: bool,
-        /// pbrt-v4's `visualizeweights`: one image per strategy, weighted.
+        /// pbrt-v4's `visualizeweights`: one image per strategy, weighted (these add up to
+        /// the image).
         visualize_weights: bool,
     },
     /// Metropolis light transport over bdpt's strategies in primary sample space (pbrt-v4's
