@@ -100,6 +100,13 @@ fn integrator_json(i: &Integrator) -> Value {
             v["radius"] = json!(o.radius);
             v["seed"] = json!(o.seed);
         }
+        Integrator::Vcm(o) => {
+            v["maxdepth"] = json!(o.max_depth);
+            // null: the default, a fraction of the scene's bounding sphere.
+            let short = |v: f32| v.to_string().parse::<f64>().unwrap_or(f64::NAN);
+            v["radius"] = json!(o.radius.map(short));
+            v["alpha"] = json!(short(o.alpha));
+        }
         Integrator::Normals | Integrator::Depth => {}
     }
     v
@@ -489,6 +496,19 @@ mod tests {
             v,
             json!({ "name": "sppm", "maxdepth": 8, "photonsperiteration": -1,
                     "radius": 0.25, "seed": 3 })
+        );
+        let v = integrator_json(&Integrator::Vcm(lancer::integrator::vcm::VcmOptions {
+            max_depth: 6,
+            radius: None,
+            alpha: 0.75,
+        }));
+        assert_eq!(
+            v,
+            json!({ "name": "vcm", "maxdepth": 6, "radius": null, "alpha": 0.75 })
+        );
+        assert_eq!(
+            integrator_text(&v),
+            "vcm (alpha 0.75, maxdepth 6, radius null)"
         );
     }
 }

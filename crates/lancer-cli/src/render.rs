@@ -726,6 +726,7 @@ pub fn report(
             photons: done.stats.photons,
             light_paths: done.stats.light_paths,
             connections: done.stats.connections,
+            merges: done.stats.merges,
         };
         let mem = stats::SceneMemory::of(scene);
         match format {

@@ -128,12 +128,15 @@ pub struct RenderSummary {
     pub spectral: bool,
     /// The integrator, as pbrt-v4 names it.
     pub integrator: &'static str,
-    /// Photons traced (`sppm`; zero for the other integrators).
+    /// Photons traced (`sppm`), light vertices stored for merging (`vcm`); zero for the
+    /// other integrators.
     pub photons: u64,
     /// Light subpaths started (`bdpt`, `lightpath`, `mlt`; zero for the others).
     pub light_paths: u64,
     /// Connections tried between light and camera subpaths (`bdpt`, `lightpath`, `mlt`).
     pub connections: u64,
+    /// Merges of a camera vertex with a light vertex (`vcm`).
+    pub merges: u64,
 }
 
 /// The `--stats json` object.
@@ -170,6 +173,7 @@ pub fn render_json(r: &RenderSummary, t: &Phases, mem: &SceneMemory) -> Value {
         "photons": r.photons,
         "light_paths": r.light_paths,
         "connections": r.connections,
+        "merges": r.merges,
         "primitives": mem.primitives,
         "triangles": mem.triangles,
         "bvh": { "nodes": mem.bvh_nodes, "bytes": mem.bvh_bytes },
@@ -246,7 +250,11 @@ pub fn render_text(r: &RenderSummary, t: &Phases, mem: &SceneMemory) -> String {
                         "; {l} light paths, {} connections ({})",
                         r.connections, r.integrator
                     ),
-                    (p, _) => format!("; {p} photons ({})", r.integrator),
+                    (p, 0) => format!("; {p} photons ({})", r.integrator),
+                    (p, l) => format!(
+                        "; {l} light paths, {} connections, {p} light vertices, {} merges ({})",
+                        r.connections, r.merges, r.integrator
+                    ),
                 }
             ),
         ),

@@ -24,6 +24,7 @@ pub use crate::counters::{Counts, count_ray, counts, rays_traced};
 mod mlt;
 pub mod sppm;
 pub mod strategies;
+mod vcm;
 
 /// What to render.
 #[derive(Clone, Debug)]
@@ -107,12 +108,15 @@ pub struct RenderStats {
     /// The first of them in (row, column, sample index) order, whatever the thread count or
     /// tiling, for `lancer render --check-nan` to replay.
     pub first_nonfinite: Option<SampleId>,
-    /// Photons traced (`sppm`; zero for the other integrators).
+    /// Photons traced (`sppm`), light vertices stored for merging (`vcm`); zero for the other
+    /// integrators.
     pub photons: u64,
     /// Light subpaths started (`bdpt`, `lightpath`, `mlt`; zero for the others).
     pub light_paths: u64,
     /// Connections tried between light and camera subpaths (`bdpt`, `lightpath`, `mlt`).
     pub connections: u64,
+    /// Merges of a camera vertex with a light vertex within the radius (`vcm`).
+    pub merges: u64,
 }
 
 impl RenderStats {
@@ -133,6 +137,7 @@ impl RenderStats {
         self.photons += o.photons;
         self.light_paths += o.light_paths;
         self.connections += o.connections;
+        self.merges += o.merges;
         self.first_nonfinite = match (self.first_nonfinite, o.first_nonfinite) {
             (Some(a), Some(b)) => Some(a.min(b)),
             (a, b) => a.or(b),
@@ -198,6 +203,13 @@ pub trait SampleIntegrator: Sync {
         None
     }
 
+    /// The settings of `vcm`, whose iterations are passes over the whole film (light
+    /// subpaths, then camera samples): a render then runs [`vcm::render`] instead of the tile
+    /// loop. `None` for the others.
+    fn vcm(&self) -> Option<crate::integrator::vcm::VcmOptions> {
+        None
+    }
+
     /// The radiance arriving along the camera ray `ray` (at `lambda` in spectral mode, else
     /// RGB in the first three values), drawing from `sampler` after the camera's dimensions.
     fn li(
@@ -258,6 +270,13 @@ impl SampleIntegrator for Integrator {
     fn sppm(&self) -> Option<crate::integrator::sppm::SppmOptions> {
         match self {
             Integrator::Sppm(o) => Some(*o),
+            _ => None,
+        }
+    }
+
+    fn vcm(&self) -> Option<crate::integrator::vcm::VcmOptions> {
+        match self {
+            Integrator::Vcm(o) => Some(*o),
             _ => None,
         }
     }
@@ -385,40 +404,84 @@ pub fn render_tile<T: FilmTile, I: SampleIntegrator + ?Sized>(
                     }
                     None => SampledSpectrum::ZERO,
                 };
-                let rgb = scene_film_rgb(scene, lambda.as_ref(), l);
-                let sensor_rgb = if T::NEEDS_SENSOR_RGB {
-                    crate::gbuffer::variance_rgb(scene, rgb, settings.max_component_value)
-                } else {
-                    Rgb::ZERO
-                };
-                let rgb = film_sample(settings, &mut stats, rgb, SampleId { y, x, sample: s });
-                let surface = if T::NEEDS_SURFACE {
-                    ray.and_then(|r| {
-                        // The denoiser's surface (through specular surfaces) needs no footprint.
-                        let follow = film.follows_specular();
-                        let scale = film.differential_scale();
-                        let diff = (!follow)
-                            .then(|| RayDifferentials::of(scene, &r.ray, p_film, p_lens, scale))
-                            .flatten();
-                        visible_surface(scene, &r.ray, diff.as_ref(), follow)
-                    })
-                } else {
-                    None
-                };
-                let sample = FilmSample {
-                    rgb,
-                    sensor_rgb,
+                let sample = CameraSample {
+                    id: SampleId { y, x, sample: s },
+                    ray: ray.as_ref(),
+                    p_film,
+                    p_lens,
                     l,
                     lambda: lambda.as_ref(),
-                    surface: surface.as_ref(),
+                    weight,
                 };
-                film.add_sample(i, &sample, weight);
+                add_camera_sample(scene, settings, film, &mut stats, i, &sample);
             }
         }
     }
     stats.samples = tile.area() * samples.len() as u64;
     stats.add_counts_since(counts0);
     stats
+}
+
+/// One camera sample as the film takes it: which it is, its camera ray (`None`: the lens
+/// blocked it), the film and lens points it was made from, its radiance (camera weight
+/// included) at its wavelengths, and its filter weight.
+pub(crate) struct CameraSample<'a> {
+    /// Pixel and sample index.
+    pub id: SampleId,
+    /// The camera ray.
+    pub ray: Option<&'a crate::camera::CameraRay>,
+    /// Film point (raster space).
+    pub p_film: Vec2,
+    /// Lens sample.
+    pub p_lens: Vec2,
+    /// Radiance, the camera's weight included.
+    pub l: SampledSpectrum,
+    /// Wavelengths (spectral mode).
+    pub lambda: Option<&'a SampledWavelengths>,
+    /// Filter weight.
+    pub weight: f32,
+}
+
+/// Adds camera sample `c` to pixel `i` of `film` (a tile's sums): its film colour (black if
+/// not finite, counted in `stats`; scaled down to `maxcomponentvalue`), its sensor colour and
+/// visible surface when the tile reads them. The tile loop's, and `vcm`'s.
+#[inline(always)]
+fn add_camera_sample<T: FilmTile>(
+    scene: &Scene,
+    settings: &RenderSettings,
+    film: &mut T,
+    stats: &mut RenderStats,
+    i: usize,
+    c: &CameraSample<'_>,
+) {
+    let rgb = scene_film_rgb(scene, c.lambda, c.l);
+    let sensor_rgb = if T::NEEDS_SENSOR_RGB {
+        crate::gbuffer::variance_rgb(scene, rgb, settings.max_component_value)
+    } else {
+        Rgb::ZERO
+    };
+    let rgb = film_sample(settings, stats, rgb, c.id);
+    let surface = if T::NEEDS_SURFACE {
+        c.ray.and_then(|r| {
+            // The denoiser's surface (through specular surfaces) needs no footprint.
+            let follow = film.follows_specular();
+            let scale = film.differential_scale();
+            let diff = (!follow)
+                .then(|| RayDifferentials::of(scene, &r.ray, c.p_film, c.p_lens, scale))
+                .flatten();
+            visible_surface(scene, &r.ray, diff.as_ref(), follow)
+        })
+    } else {
+        None
+    };
+    let sample = FilmSample {
+        rgb,
+        sensor_rgb,
+        l: c.l,
+        lambda: c.lambda,
+        surface: surface.as_ref(),
+    };
+    film.add_sample(i, &sample, c.weight);
 }
 
 /// What a camera sample's colour adds to the film: black for a non-finite sample (a bug
@@ -647,6 +710,9 @@ pub fn render_units_with<I: SampleIntegrator + ?Sized>(
     }
     if let Some(options) = integrator.sppm() {
         return sppm::render(scene, settings, options, film, done, on_unit, stop);
+    }
+    if let Some(options) = integrator.vcm() {
+        return vcm::render(scene, settings, options, film, units, done, on_unit, stop);
     }
     let kind = film.kind();
     // One plane shared by the threads, only for an integrator that splats.

@@ -52,6 +52,7 @@ pub mod entry;
 mod integrator;
 mod object_motion;
 mod transforms;
+mod volpath;
 
 pub use built::Built;
 
@@ -781,6 +782,7 @@ impl Builder {
         }
         self.desc.camera_medium = self.media.camera_medium()?;
         self.sppm_writes_rgb(&end);
+        self.volumes_need_volpath(&end);
         let camera = &mut self.desc.camera;
         camera.screen_window = camera.screen_window.or(self.frame_aspect.map(frame_window));
         self.desc.film.scale = imaging_ratio(camera.shutter, self.iso);

@@ -8,6 +8,7 @@ use super::params::ParamList;
 use crate::error::SceneError;
 use lancer::integrator::Integrator;
 use lancer::integrator::sppm::SppmOptions;
+use lancer::integrator::vcm::VcmOptions;
 use lancer::light::LightSamplerKind;
 use lancer::sampling::{Randomization, SamplerKind};
 use lancer::scene::desc::{FilmDesc, FilterDesc};
@@ -266,7 +267,8 @@ pub fn filter(params: &ParamList, ty: &str) -> Result<Fallback<FilterDesc>, Scen
 
 /// The integrator `ty`, with pbrt-v4's defaults (`maxdepth` 5, `regularize`,
 /// `visualizestrategies` and `visualizeweights` false; sppm's `photonsperiteration` −1 (one
-/// per pixel), `radius` 1, `seed` the render's); the others fall back to `path`.
+/// per pixel), `radius` 1, `seed` the render's; lancer's `vcm`: `radius` from the scene's
+/// size, `alpha` 0.75); the others fall back to `path`.
 pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, SceneError> {
     let p = params;
     let max_depth = p.int_in("maxdepth", 5, 0..=100_000)? as u32;
@@ -373,6 +375,18 @@ pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, 
                 r > 0.0 && r.is_finite()
             })?,
             seed: seed(p)?,
+        }),
+        // lancer's extension: the first iteration's merge radius (absent: a fraction of the
+        // scene's size, chosen once the scene is built) and its shrink exponent α ∈ (0, 1].
+        "vcm" => Integrator::Vcm(VcmOptions {
+            max_depth,
+            radius: Some(
+                p.float_checked("radius", f32::NAN, "positive and finite", |r| {
+                    r > 0.0 && r.is_finite()
+                })?,
+            )
+            .filter(|r| !r.is_nan()),
+            alpha: p.float_checked("alpha", 0.75, "in (0, 1]", |a| a > 0.0 && a <= 1.0)?,
         }),
         "aov" => {
             return Ok(Fallback::instead(
@@ -962,6 +976,35 @@ mod tests {
         assert_eq!(
             error("Integrator \"sppm\"\n  \"float radius\" 0", integrator),
             "t.pbrt:2:3: \"float radius\" must be positive and finite, not 0"
+        );
+        // vcm: its defaults (the radius left to the scene), every parameter read, and the
+        // values that mean nothing refused where they are written.
+        assert_eq!(
+            clean(r#"Integrator "vcm""#, integrator),
+            Integrator::Vcm(VcmOptions {
+                max_depth: 5,
+                radius: None,
+                alpha: 0.75,
+            })
+        );
+        assert_eq!(
+            clean(
+                r#"Integrator "vcm" "integer maxdepth" 9 "float radius" 0.01 "float alpha" 1"#,
+                integrator
+            ),
+            Integrator::Vcm(VcmOptions {
+                max_depth: 9,
+                radius: Some(0.01),
+                alpha: 1.0,
+            })
+        );
+        assert_eq!(
+            error("Integrator \"vcm\"\n  \"float radius\" -0.5", integrator),
+            "t.pbrt:2:3: \"float radius\" must be positive and finite, not -0.5"
+        );
+        assert_eq!(
+            error("Integrator \"vcm\" \"float alpha\" 0", integrator),
+            "t.pbrt:1:16: \"float alpha\" must be in (0, 1], not 0"
         );
         let (out, _) = convert(r#"Integrator "aov" "integer maxdepth" 7"#, integrator);
         let f = out.unwrap();

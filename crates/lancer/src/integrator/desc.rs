@@ -61,6 +61,12 @@ pub enum Integrator {
     /// sample per pixel), a visible point per pixel and photons from the lights gathered at
     /// them within a radius that shrinks from iteration to iteration.
     Sppm(SppmOptions),
+    /// Vertex connection and merging (lancer's extension; Georgiev et al. 2012): per
+    /// iteration (one per sample per pixel), one light subpath per pixel, and per pixel a
+    /// camera subpath joined to them by every bidirectional connection and by merging with
+    /// the light vertices within a radius that shrinks from iteration to iteration, all
+    /// weighted by multiple importance sampling ([`crate::integrator::vcm`]).
+    Vcm(VcmOptions),
     /// pbrt-v4's `simplepath`: path tracing without MIS, light sampling and BSDF sampling
     /// each optional.
     SimplePath {
@@ -102,7 +108,7 @@ impl Default for Integrator {
 impl Integrator {
     /// The pbrt-v4 name of this integrator (`Integrator "…"`): `path`, `volpath`, `whitted`,
     /// `ambientocclusion`, `lightpath`, `bdpt`, `mlt`, `sppm`, `simplepath`, `randomwalk`,
-    /// `simplevolpath`, and lancer's debug
+    /// `simplevolpath`, lancer's `vcm`, and lancer's debug
     /// views `normals` and `depth`.
     pub fn pbrt_name(&self) -> &'static str {
         match self {
@@ -114,6 +120,7 @@ impl Integrator {
             Integrator::Bdpt { .. } => "bdpt",
             Integrator::Mlt(_) => "mlt",
             Integrator::Sppm(_) => "sppm",
+            Integrator::Vcm(_) => "vcm",
             Integrator::SimplePath { .. } => "simplepath",
             Integrator::RandomWalk { .. } => "randomwalk",
             Integrator::SimpleVolPath { .. } => "simplevolpath",
@@ -134,6 +141,7 @@ impl Integrator {
                 | Integrator::Bdpt { .. }
                 | Integrator::Mlt(_)
                 | Integrator::Sppm(_)
+                | Integrator::Vcm(_)
                 | Integrator::SimplePath { .. }
                 | Integrator::RandomWalk { .. }
                 | Integrator::SimpleVolPath { .. }
@@ -141,13 +149,16 @@ impl Integrator {
     }
 
     /// True for the integrators that trace light paths and splat what they carry anywhere on
-    /// the film ([`Integrator::li_splatting`]): `lightpath`, `bdpt` and `mlt` (whose image
-    /// is splats alone). They need a perspective camera
+    /// the film ([`Integrator::li_splatting`]): `lightpath`, `bdpt`, `mlt` (whose image
+    /// is splats alone) and `vcm`. They need a perspective camera
     /// ([`crate::camera::Camera::light_path_support`]).
     pub fn splats(&self) -> bool {
         matches!(
             self,
-            Integrator::LightPath { .. } | Integrator::Bdpt { .. } | Integrator::Mlt(_)
+            Integrator::LightPath { .. }
+                | Integrator::Bdpt { .. }
+                | Integrator::Mlt(_)
+                | Integrator::Vcm(_)
         )
     }
 
@@ -194,4 +205,18 @@ pub struct SppmOptions {
     pub radius: f32,
     /// Seed of the photons' scrambled Halton points (`seed`); `None`: the render's seed.
     pub seed: Option<u64>,
+}
+
+/// The `vcm` settings of a render (lancer's extension).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VcmOptions {
+    /// Longest path, in bounces (`maxdepth`, default 5).
+    pub max_depth: u32,
+    /// The merge radius of the first iteration, in world units (`radius`); `None`: 0.003 ×
+    /// the radius of the scene's bounding sphere, as the paper's reference implementation
+    /// (SmallVCM) chooses ([`crate::integrator::vcm::DEFAULT_RADIUS_FRACTION`]).
+    pub radius: Option<f32>,
+    /// How fast the radius shrinks (`alpha`, in (0, 1], default 0.75): iteration i (from 1)
+    /// merges within r_i = r_1 · i^((α − 1)/2).
+    pub alpha: f32,
 }

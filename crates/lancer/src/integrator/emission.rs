@@ -2,6 +2,7 @@
 //! towards the path; and by the environment a path escapes to.
 
 use crate::math::{Rgb, SampledSpectrum, Vec3};
+use crate::ray::Ray;
 use crate::scene::{Scene, SceneHit};
 use crate::spectrum::sampled::SampledWavelengths;
 
@@ -79,4 +80,33 @@ pub(crate) fn environment(
         le += scene.environment_radiance(i as usize, lambda, d);
     }
     le
+}
+
+/// The normal of area light `i` at `p`, a point its `sample_li` chose (zero for the other
+/// lights). Triangles and spheres know it; other shapes are asked by a ray from `from`, the
+/// lit point (position, rounding error, geometric normal).
+pub(crate) fn light_normal(scene: &Scene, i: usize, p: Vec3, from: (Vec3, Vec3, Vec3)) -> Vec3 {
+    match scene.lights()[i].as_area() {
+        Some(crate::light::AreaLight { emitter, prim, .. }) => match emitter {
+            crate::light::Emitter::Triangle { n, .. } => Vec3::from(*n),
+            crate::light::Emitter::Sphere {
+                centre,
+                radius,
+                flip,
+                ..
+            } => {
+                let n = (p - Vec3::from(*centre)) / *radius;
+                if *flip { -n } else { n }
+            }
+            crate::light::Emitter::Shape => {
+                let d = p - from.0;
+                let ray = Ray::spawn(from.0, from.1, from.2, d * 1.001);
+                scene
+                    .intersect(&ray)
+                    .filter(|h| h.prim == *prim)
+                    .map_or(Vec3::ZERO, |h| h.si.n)
+            }
+        },
+        _ => Vec3::ZERO,
+    }
 }

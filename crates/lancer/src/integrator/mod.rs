@@ -31,6 +31,7 @@ pub mod sppm;
 mod subsurface;
 #[cfg(test)]
 pub(crate) mod test_scenes;
+pub mod vcm;
 mod volpath;
 mod whitted;
 
@@ -176,6 +177,9 @@ impl Integrator {
             // replay of a camera sample) gets that ray's path-traced radiance, the same
             // light that sppm's Ld and photons estimate together.
             Integrator::Sppm(o) => path::li(scene, ray, sampler, lambda, o.max_depth, false),
+            // vcm likewise: its light subpaths and merges are an iteration's, over a film
+            // (`crate::render::vcm`); one camera ray alone is path traced.
+            Integrator::Vcm(o) => path::li(scene, ray, sampler, lambda, o.max_depth, false),
             // Without a film to splat into, the light-path integrators give only what reaches
             // the camera ray's own pixel (bdpt's t ≥ 2 strategies, nothing for lightpath): a
             // film renders them through `li_splatting`.

@@ -1,5 +1,5 @@
 //! What the integrator asks of the rest of the scene, checked once the whole file is read:
-//! the films `sppm` cannot write (the media `mlt` cannot sample: `volpath.rs`).
+//! the films `sppm` cannot write (the media `vcm` cannot sample: `volpath.rs`).
 
 use super::Builder;
 use crate::error::Location;

@@ -2,12 +2,12 @@
 //! `ConnectBDPT`), and the multiple-importance weight of that strategy among all the ones
 //! that could have made the same path (pbrt-v4's `MISWeight`).
 
+use super::super::emission::light_normal;
 use super::super::volpath::{avg, transmittance};
 use super::vertex::{Kind, Vertex};
-use crate::light::{AreaLight, Emitter, LightSampleContext};
+use crate::light::LightSampleContext;
 use crate::material::TransportMode;
 use crate::math::{SampledSpectrum, Vec2, Vec3};
-use crate::ray::Ray;
 use crate::sampling::SampleSource;
 use crate::scene::Scene;
 use crate::spectrum::sampled::SampledWavelengths;
@@ -104,34 +104,6 @@ fn attenuate(l: SampledSpectrum, tr: SampledSpectrum) -> SampledSpectrum {
     }
 }
 
-/// The normal of area light `i` at `p`, a point its `sample_li` chose (zero for the other
-/// lights). Triangles and spheres know it; other shapes are asked by a ray from `from`.
-fn light_normal(scene: &Scene, i: usize, p: Vec3, from: &Vertex) -> Vec3 {
-    match scene.lights()[i].as_area() {
-        Some(AreaLight { emitter, prim, .. }) => match emitter {
-            Emitter::Triangle { n, .. } => Vec3::from(*n),
-            Emitter::Sphere {
-                centre,
-                radius,
-                flip,
-                ..
-            } => {
-                let n = (p - Vec3::from(*centre)) / *radius;
-                if *flip { -n } else { n }
-            }
-            Emitter::Shape => {
-                let d = p - from.p;
-                let ray = Ray::spawn(from.p, from.p_error, from.ng, d * 1.001);
-                scene
-                    .intersect(&ray)
-                    .filter(|h| h.prim == *prim)
-                    .map_or(Vec3::ZERO, |h| h.si.n)
-            }
-        },
-        _ => Vec3::ZERO,
-    }
-}
-
 /// The (s, t) strategy over the subpaths `light` and `camera`: s vertices of the light
 /// subpath joined to t of the camera subpath (s = 0: the camera subpath alone, ending on a
 /// light; s = 1 or t = 1: a fresh point on a light or the lens sampled for the other side).
@@ -187,7 +159,7 @@ pub(super) fn connect<S: SampleSource + ?Sized>(
             if let Some(ls) = ls {
                 let le = scene.light_radiance(i, lambda, ls.l, ls.factor, ls.wi);
                 if le != SampledSpectrum::ZERO {
-                    let n = light_normal(scene, i, ls.p_light, pt);
+                    let n = light_normal(scene, i, ls.p_light, (pt.p, pt.p_error, pt.ng));
                     let mut v = Vertex::endpoint(
                         Kind::Light(i as u32),
                         ls.p_light,

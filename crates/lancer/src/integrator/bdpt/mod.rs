@@ -26,7 +26,7 @@ pub use trace::li as light_trace;
 #[cfg(test)]
 mod media_tests;
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;
 #[cfg(test)]
 mod visualize_tests;
 

@@ -45,7 +45,7 @@ pub(super) fn room(area: bool, integrator: Integrator) -> Scene {
 }
 
 /// The description of [`room`].
-pub(super) fn room_desc(area: bool, integrator: Integrator) -> SceneDesc {
+pub(crate) fn room_desc(area: bool, integrator: Integrator) -> SceneDesc {
     let mut shapes = vec![
         quad(
             [
@@ -230,7 +230,7 @@ fn blocks(img: &[Rgb]) -> Vec<Rgb> {
 /// Relative difference of block means, |a − b| / max(b, m/4) with m the mean of `b` over the
 /// image (dim blocks are compared against a quarter of it), worst block and channel; and the
 /// ratio of the images' means.
-pub(super) fn compare(a: &[Rgb], b: &[Rgb]) -> (f32, f32) {
+pub(crate) fn compare(a: &[Rgb], b: &[Rgb]) -> (f32, f32) {
     let (ba, bb) = (blocks(a), blocks(b));
     let mean = |v: &[Rgb]| v.iter().map(|c| c.x + c.y + c.z).sum::<f32>() / (3 * v.len()) as f32;
     let m = mean(&bb);

@@ -315,6 +315,18 @@ impl PhotonSampler {
     }
 }
 
+impl crate::sampling::SampleSource for PhotonSampler {
+    #[inline]
+    fn get_1d(&mut self) -> f32 {
+        PhotonSampler::get_1d(self)
+    }
+
+    #[inline]
+    fn get_2d(&mut self) -> Vec2 {
+        PhotonSampler::get_2d(self)
+    }
+}
+
 /// A photon's flux arriving at a surface point: deposited into the visible points near `p`.
 #[derive(Clone, Copy, Debug)]
 pub struct PhotonHit {

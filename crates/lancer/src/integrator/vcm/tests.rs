@@ -1,0 +1,220 @@
+//! vcm through its film loop: a white furnace, agreement with the path tracer on bdpt's small
+//! diffuse room (area and point light), the shrinking radius, and the same bits whatever the
+//! thread count, the split by samples or by tiles.
+
+use super::*;
+use crate::film::Film;
+use crate::integrator::Integrator;
+use crate::integrator::bdpt::tests::{compare, room_desc};
+use crate::integrator::test_scenes::{H, W, diffuse};
+use crate::light::UniformInfiniteDesc;
+use crate::material::{DielectricMaterial, MaterialDesc};
+use crate::math::{Rgb, Transform};
+use crate::render::{RenderSettings, RenderStats, render_units, work_units};
+use crate::scene::desc::{Geometry, LightDesc, SceneDesc, ShapeDesc};
+use crate::shape::SphereDesc;
+use crate::spectrum::Ior;
+use crate::texture::FloatTex;
+
+/// vcm of `max_depth` bounces, default radius and α.
+fn vcm(max_depth: u32) -> Integrator {
+    Integrator::Vcm(VcmOptions {
+        max_depth,
+        radius: None,
+        alpha: 0.75,
+    })
+}
+
+/// Renders `settings` of `desc` on `threads` threads into a fresh film over `settings.bounds`.
+fn render_on(desc: &SceneDesc, settings: &RenderSettings, threads: usize) -> (Film, RenderStats) {
+    let scene = Scene::build(desc).unwrap();
+    let mut film = Film::new(
+        desc.film.xresolution,
+        desc.film.yresolution,
+        settings.bounds,
+    );
+    let units = work_units(&settings.bounds, 8, settings.samples.clone(), 4);
+    let mut done = vec![false; units.len()];
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    let stats = pool.install(|| {
+        render_units(
+            &scene,
+            settings,
+            &mut film,
+            &units,
+            &mut done,
+            &|_, _| {},
+            &|| false,
+        )
+    });
+    assert!(done.iter().all(|&d| d));
+    (film, stats)
+}
+
+/// `desc` at `spp` samples and `seed`, RGB mode.
+fn rgb(desc: &SceneDesc, spp: u32, seed: u64) -> RenderSettings {
+    let mut d = desc.clone();
+    d.sampler.spp = spp;
+    d.sampler.seed = seed;
+    RenderSettings {
+        spectral: false,
+        ..RenderSettings::from_desc(&d)
+    }
+}
+
+#[test]
+fn radius_shrinks_by_alpha() {
+    assert_eq!(radius_at(0.5, 0.75, 0), 0.5);
+    // r_i = r_1 · i^((α − 1)/2): the 16th iteration at α = 0.75 has r_1 · 16^(−1/8) = r_1/√2.
+    assert!((radius_at(0.5, 0.75, 15) - 0.5 / 2f32.sqrt()).abs() < 1e-6);
+    // α = 1 keeps it.
+    assert_eq!(radius_at(0.5, 1.0, 99), 0.5);
+}
+
+#[test]
+fn white_furnace() {
+    // A diffuse sphere of albedo 0.8 under a uniform white sky: a convex object reflects the
+    // sky once, so the image is 0.8 on the sphere and 1 around it, whatever the strategies
+    // (here emission hits, light sampling, connections to the sky's light paths, merges).
+    let mut desc = SceneDesc {
+        materials: vec![diffuse(Rgb::splat(0.8))],
+        shapes: vec![ShapeDesc::new(
+            Geometry::Sphere(SphereDesc {
+                radius: 1.0,
+                z_min: -1.0,
+                z_max: 1.0,
+                phi_max: 360.0,
+            }),
+            0,
+        )],
+        lights: vec![LightDesc::UniformInfinite(UniformInfiniteDesc {
+            l: Rgb::ONE,
+        })],
+        ..crate::integrator::test_scenes::view(
+            Vec3::new(0.0, 0.0, 4.0),
+            Vec3::ZERO,
+            Vec3::Y,
+            40.0,
+            vcm(5),
+        )
+    };
+    // A radius the 432 light paths of a 24 × 18 image fill: merges carry weight too.
+    desc.integrator = Integrator::Vcm(VcmOptions {
+        max_depth: 5,
+        radius: Some(0.05),
+        alpha: 0.75,
+    });
+    let (film, stats) = render_on(&desc, &rgb(&desc, 64, 9), 2);
+    assert_eq!(stats.light_paths, 64 * (W * H) as u64);
+    assert!(stats.merges > 0);
+    let img = film.image(1.0);
+    let centre: Rgb = [(11, 8), (12, 8), (11, 9), (12, 9)]
+        .iter()
+        .map(|&(x, y)| img[(y * W + x) as usize])
+        .fold(Rgb::ZERO, |a, b| a + b)
+        / 4.0;
+    let corner = img[0];
+    for c in 0..3 {
+        assert!((centre[c] - 0.8).abs() < 0.03, "sphere {centre}");
+        assert!((corner[c] - 1.0).abs() < 0.02, "sky {corner}");
+    }
+}
+
+#[test]
+fn agrees_with_path_tracing_on_a_diffuse_room() {
+    for area in [true, false] {
+        let reference = room_desc(area, vcm(5));
+        let path = Integrator::Path {
+            max_depth: 5,
+            regularize: false,
+        };
+        let mut p = reference.clone();
+        p.integrator = path;
+        let (want, _) = render_on(&p, &rgb(&p, 1024, 1), 2);
+        // Spectral mode, with a radius large enough for merges to matter.
+        for radius in [None, Some(0.05)] {
+            let mut d = reference.clone();
+            d.integrator = Integrator::Vcm(VcmOptions {
+                max_depth: 5,
+                radius,
+                alpha: 0.75,
+            });
+            d.sampler.spp = 256;
+            let settings = RenderSettings::from_desc(&d);
+            let (got, stats) = render_on(&d, &settings, 2);
+            let (worst, ratio) = compare(&got.image(1.0), &want.image(1.0));
+            assert!(
+                worst < 0.06 && (ratio - 1.0).abs() < 0.015,
+                "area light {area}, radius {radius:?}: worst block {worst}, mean ratio {ratio}"
+            );
+            assert!(stats.photons > 0);
+        }
+    }
+}
+
+/// bdpt's room (area light) with a flint glass sphere on the floor: caustics that only
+/// merges and light paths find.
+fn room_with_glass() -> SceneDesc {
+    let mut d = room_desc(true, vcm(6));
+    d.materials
+        .push(MaterialDesc::Dielectric(DielectricMaterial {
+            eta: Ior::named_glass("glass-F11").unwrap(),
+            uroughness: FloatTex::Const(0.0),
+            vroughness: FloatTex::Const(0.0),
+            remap_roughness: false,
+        }));
+    let glass = d.materials.len() as u32 - 1;
+    d.shapes.push(ShapeDesc {
+        object_to_world: Transform::translate(Vec3::new(0.2, 0.35, 0.0)),
+        ..ShapeDesc::new(
+            Geometry::Sphere(SphereDesc {
+                radius: 0.35,
+                z_min: -0.35,
+                z_max: 0.35,
+                phi_max: 360.0,
+            }),
+            glass,
+        )
+    });
+    d.integrator = Integrator::Vcm(VcmOptions {
+        max_depth: 6,
+        radius: Some(0.03),
+        alpha: 0.75,
+    });
+    d.sampler.spp = 6;
+    d
+}
+
+#[test]
+fn bits_do_not_depend_on_threads_sample_ranges_or_tiles() {
+    let d = room_with_glass();
+    let settings = RenderSettings::from_desc(&d);
+    assert!(settings.spectral);
+    let (one, s1) = render_on(&d, &settings, 1);
+    let (three, s3) = render_on(&d, &settings, 3);
+    assert_eq!(one, three);
+    assert_eq!(s1, s3);
+    assert!(s1.merges > 0 && one.pixels.iter().any(|p| p.value()[0] > 0.0));
+    // Split by samples (0..2, 2..6), each part a film of its own, merged.
+    let mut merged = Film::new(W, H, settings.bounds);
+    for samples in [0..2, 2..6] {
+        let part = RenderSettings {
+            samples,
+            ..settings.clone()
+        };
+        merged.merge_film(&render_on(&d, &part, 2).0);
+    }
+    assert_eq!(merged, one);
+    // Split by tiles (left and right), each part splatting its own pixels' light paths.
+    let mut merged = Film::new(W, H, settings.bounds);
+    for (x0, x1) in [(0, 10), (10, W as i32)] {
+        let mut part = settings.clone();
+        part.bounds.x0 = x0;
+        part.bounds.x1 = x1;
+        merged.merge_film(&render_on(&d, &part, 2).0);
+    }
+    assert_eq!(merged, one);
+}

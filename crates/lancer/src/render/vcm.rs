@@ -1,0 +1,287 @@
+//! The film loop of `vcm` ([`crate::integrator::vcm`]): iterations, one per sample index,
+//! each a pass over the whole film: one light subpath per pixel of the whole render
+//! (`settings.splat_bounds`), their vertices hashed into a grid of the iteration's radius,
+//! then one camera sample per rendered pixel.
+//!
+//! Unlike sppm's, vcm's iterations are independent samples: iteration k's radius depends on
+//! k alone, its wavelengths on (seed, k), its light subpath j on (seed, k, j) (a scrambled
+//! Halton point, as sppm's photons), its camera sample of a pixel on (seed, pixel, k) (the
+//! sampler's sample k). A pixel's image is the filter-weighted average of its iterations'
+//! camera samples plus the splats of the t = 1 connections over the iterations, both
+//! fixed-point sums: any thread count, any range of sample indices (`--samples`, a split by
+//! samples), and an interruption resumed between ranges add up to the same bits.
+//!
+//! A part of the image (a split by tiles) traces every light subpath of the iteration (its
+//! pixels merge with all of them, and connect to those of their own pixels), but splats only
+//! the light subpaths of its own pixels: the parts' splats add up to the whole render's.
+
+use super::{
+    CameraSample, RenderSettings, RenderStats, SampleId, Splats, UnitHook, WorkUnit,
+    add_camera_sample, camera_ray_at, rays_traced, sppm::wavelength_sample,
+};
+use crate::film::splat::AtomicSplats;
+use crate::film::tile::{FilmKind, FilmSplats, FilmTile, GbufferTile, RgbTile, SpectralTile};
+use crate::film::{Film, PixelBounds};
+use crate::integrator::sppm::PhotonSampler;
+use crate::integrator::sppm::grid::VisibleGrid;
+use crate::integrator::vcm::{
+    Iteration, LightVertex, Merging, VcmOptions, camera_path, initial_radius, light_path, radius_at,
+};
+use crate::math::Vec3;
+use crate::sampling::Sampler;
+use crate::sampling::halton::DigitPermutations;
+use crate::scene::Scene;
+use rayon::prelude::*;
+
+/// Light subpaths per block: the light pass's unit of parallel work; blocks' vertices are
+/// concatenated in block order.
+const LIGHT_BLOCK: u64 = 1024;
+
+/// Light subpaths of an iteration: their stored vertices, path after path, and where each
+/// path's run starts (one more entry than there are paths).
+struct LightPaths {
+    vertices: Vec<LightVertex>,
+    starts: Vec<u32>,
+    /// Rays the light pass traced.
+    rays: u64,
+}
+
+/// What the passes of a render share.
+struct Pass<'a> {
+    scene: &'a Scene,
+    settings: &'a RenderSettings,
+    options: VcmOptions,
+    perms: std::sync::Arc<DigitPermutations>,
+    kind: FilmKind,
+    splats: &'a Splats<'a>,
+}
+
+impl Pass<'_> {
+    /// Iteration `k`'s shared state.
+    fn iteration(&self, k: u32) -> Iteration<'_> {
+        let s = self.settings;
+        let lambda = (s.spectral && s.integrator.computes_radiance())
+            .then(|| self.kind.sample_wavelengths(wavelength_sample(s.seed, k)));
+        let r = radius_at(
+            initial_radius(self.scene, &self.options),
+            self.options.alpha,
+            k,
+        );
+        Iteration::new(
+            self.scene,
+            lambda,
+            self.options.max_depth,
+            r,
+            s.splat_bounds.area(),
+        )
+    }
+
+    /// Traces iteration `it`'s (index `k`) light subpaths, splatting those of the pixels in
+    /// `splat_tiles`.
+    fn light_pass(&self, it: &Iteration<'_>, k: u32, splat_tiles: &[PixelBounds]) -> LightPaths {
+        let sb = self.settings.splat_bounds;
+        let n = sb.area();
+        let w = sb.width().max(1) as u64;
+        let lambda = it.lambda;
+        let blocks: Vec<(Vec<LightVertex>, Vec<u32>, u64)> = (0..n.div_ceil(LIGHT_BLOCK))
+            .into_par_iter()
+            .map(|b| {
+                let r0 = rays_traced();
+                let mut u = PhotonSampler::new(self.perms.clone(), self.settings.seed, 0);
+                let mut vertices = Vec::new();
+                let mut lens = Vec::new();
+                for j in b * LIGHT_BLOCK..((b + 1) * LIGHT_BLOCK).min(n) {
+                    u.start(k as u64 * n + j);
+                    let (x, y) = (sb.x0 + (j % w) as i32, sb.y0 + (j / w) as i32);
+                    let mine = splat_tiles.iter().any(|t| t.index(x, y).is_some());
+                    let before = vertices.len();
+                    let mut splat = |(p, l)| self.splats.add_splat(p, l, lambda.as_ref());
+                    let splat: Option<&mut dyn FnMut(_)> =
+                        if mine { Some(&mut splat) } else { None };
+                    light_path(it, &mut u, &mut vertices, splat);
+                    lens.push((vertices.len() - before) as u32);
+                }
+                (vertices, lens, rays_traced() - r0)
+            })
+            .collect();
+        let mut vertices = Vec::with_capacity(blocks.iter().map(|b| b.0.len()).sum());
+        let mut starts = Vec::with_capacity(n as usize + 1);
+        starts.push(0u32);
+        let mut rays = 0;
+        for (v, lens, r) in blocks {
+            rays += r;
+            vertices.extend_from_slice(&v);
+            for l in lens {
+                starts.push(starts.last().unwrap() + l);
+            }
+        }
+        LightPaths {
+            vertices,
+            starts,
+            rays,
+        }
+    }
+
+    /// Iteration `k`'s camera samples of the pixels of `tile`, added to `sums`; the merges
+    /// made are counted into `merges`.
+    fn camera_pass<T: FilmTile>(
+        &self,
+        it: &Iteration<'_>,
+        k: u32,
+        paths: &LightPaths,
+        grid: Option<&VisibleGrid>,
+        tile: &PixelBounds,
+        sums: &mut T,
+        stats: &mut RenderStats,
+    ) {
+        let (scene, settings) = (self.scene, self.settings);
+        let sb = settings.splat_bounds;
+        let mut sampler = Sampler::new(settings.sampler, settings.spp, settings.seed);
+        let merging = Merging {
+            vertices: &paths.vertices,
+            grid,
+        };
+        let w = tile.width() as usize;
+        for y in tile.y0..tile.y1 {
+            for x in tile.x0..tile.x1 {
+                let i = (y - tile.y0) as usize * w + (x - tile.x0) as usize;
+                let (ray, weight, p_film, p_lens) =
+                    camera_ray_at(scene, settings, &mut sampler, x, y, k);
+                let own = match sb.index(x, y) {
+                    Some(j) => {
+                        &paths.vertices[paths.starts[j] as usize..paths.starts[j + 1] as usize]
+                    }
+                    None => &[],
+                };
+                let l = match &ray {
+                    Some(r) => {
+                        camera_path(it, &r.ray, &mut sampler, own, merging, &mut stats.merges)
+                            * r.weight
+                    }
+                    None => crate::math::SampledSpectrum::ZERO,
+                };
+                let sample = CameraSample {
+                    id: SampleId { y, x, sample: k },
+                    ray: ray.as_ref(),
+                    p_film,
+                    p_lens,
+                    l,
+                    lambda: it.lambda.as_ref(),
+                    weight,
+                };
+                add_camera_sample(scene, settings, sums, stats, i, &sample);
+            }
+        }
+    }
+
+    /// Iterations `range` over `tiles`, into fresh tile sums made by `new_tile`.
+    fn run<T: FilmTile + Send>(
+        &self,
+        range: std::ops::Range<u32>,
+        tiles: &[PixelBounds],
+        new_tile: impl Fn(&PixelBounds) -> T,
+        stats: &mut RenderStats,
+    ) -> Vec<T> {
+        let mut sums: Vec<T> = tiles.iter().map(new_tile).collect();
+        for k in range {
+            let it = self.iteration(k);
+            let paths = self.light_pass(&it, k, tiles);
+            let points: Vec<(Vec3, f32)> =
+                paths.vertices.iter().map(|v| (v.p, it.radius)).collect();
+            let grid = VisibleGrid::build(&points);
+            let parts: Vec<RenderStats> = sums
+                .par_iter_mut()
+                .zip(tiles)
+                .map(|(s, t)| {
+                    let r0 = rays_traced();
+                    let mut st = RenderStats::default();
+                    self.camera_pass(&it, k, &paths, grid.as_ref(), t, s, &mut st);
+                    st.rays = rays_traced() - r0;
+                    st.samples = t.area();
+                    st
+                })
+                .collect();
+            for p in &parts {
+                stats.add(p);
+            }
+            stats.light_paths += paths.starts.len() as u64 - 1;
+            stats.photons += paths.vertices.len() as u64;
+            stats.rays += paths.rays;
+        }
+        sums
+    }
+}
+
+/// Renders the units of `units` not marked in `done` into `film` by vcm with `options` (see
+/// the module's documentation). Units of the same sample range (the tiles of one pass, as
+/// [`super::work_units`] makes them) run together: the iterations of the range, each over
+/// all their tiles; they are marked done (and `on_unit` called) when the range is finished.
+/// `stop()` is asked before each range.
+#[allow(clippy::too_many_arguments)] // render_units' inputs and the options
+pub(super) fn render(
+    scene: &Scene,
+    settings: &RenderSettings,
+    options: VcmOptions,
+    film: &mut Film,
+    units: &[WorkUnit],
+    done: &mut [bool],
+    on_unit: UnitHook<'_>,
+    stop: &(dyn Fn() -> bool + Sync),
+) -> RenderStats {
+    let kind = film.kind();
+    let mut ranges: Vec<std::ops::Range<u32>> = Vec::new();
+    for (u, d) in units.iter().zip(done.iter()) {
+        if !*d && !ranges.contains(&u.samples) {
+            ranges.push(u.samples.clone());
+        }
+    }
+    let mut stats = RenderStats::default();
+    let plane = AtomicSplats::new(settings.splat_bounds, kind.splat_channels());
+    let splats = Splats {
+        scene,
+        max_component_value: settings.max_component_value,
+        film: Some(FilmSplats::new(&plane, &settings.filter, kind)),
+    };
+    let pass = Pass {
+        scene,
+        settings,
+        options,
+        perms: DigitPermutations::for_seed(settings.seed),
+        kind,
+        splats: &splats,
+    };
+    for range in ranges {
+        if stop() {
+            stats.cancelled = true;
+            break;
+        }
+        let todo: Vec<usize> = (0..units.len())
+            .filter(|&i| !done[i] && units[i].samples == range)
+            .collect();
+        let tiles: Vec<PixelBounds> = todo.iter().map(|&i| units[i].tile).collect();
+        let mut add = |merge: &mut dyn FnMut(usize, &mut Film)| {
+            for (n, &i) in todo.iter().enumerate() {
+                merge(n, film);
+                done[i] = true;
+                on_unit(&units[i], &super::tile_sums(film, &units[i].tile));
+            }
+        };
+        match kind {
+            FilmKind::Rgb => {
+                let sums = pass.run(range, &tiles, RgbTile::new, &mut stats);
+                add(&mut |n, f| sums[n].merge_into(f, &tiles[n]));
+            }
+            FilmKind::Gbuffer(c) => {
+                let sums = pass.run(range, &tiles, |t| GbufferTile::new(c, t), &mut stats);
+                add(&mut |n, f| sums[n].merge_into(f, &tiles[n]));
+            }
+            FilmKind::Spectral(d) => {
+                let max = settings.max_component_value;
+                let sums = pass.run(range, &tiles, |t| SpectralTile::new(d, t, max), &mut stats);
+                add(&mut |n, f| sums[n].merge_into(f, &tiles[n]));
+            }
+        }
+    }
+    film.merge_splats(&plane.into_plane());
+    stats
+}
