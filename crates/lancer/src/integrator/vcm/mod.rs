@@ -316,12 +316,15 @@ pub fn light_path<S: SampleSource + ?Sized>(
             };
             if length < it.max_length {
                 out.push(v);
-            }
-            if let Some(splat) = splat.as_deref_mut()
-                && length < it.max_length
-                && let Some(s) = to_camera(it, &v, u)
-            {
-                splat(s);
+                // The lens sample is drawn whether or not this path splats (a part of a
+                // split render splats only its own pixels' paths), so that the path's
+                // next dimensions do not depend on it.
+                let u_lens = u.get_2d();
+                if let Some(splat) = splat.as_deref_mut()
+                    && let Some(s) = to_camera(it, &v, u_lens)
+                {
+                    splat(s);
+                }
             }
         }
         if length + 2 > it.max_length {
@@ -362,19 +365,16 @@ pub fn light_path<S: SampleSource + ?Sized>(
     }
 }
 
-/// The t = 1 connection of light vertex `v` to a point sampled on the lens: where it lands
+/// The t = 1 connection of light vertex `v` to a point sampled on the lens (from `u_lens`):
+/// where it lands
 /// and β·f·|cos θ|·We/p_lens times the splat scale, weighted by
 /// 1/(1 + k·p_cam · (η + dVCM + dVC·p⃖)) with p_cam the density with which a camera ray
 /// would have reached `v` (per unit area) and k the splat scale (light subpaths are fewer
 /// than camera samples by k); `None` when the camera does not see `v`.
-fn to_camera<S: SampleSource + ?Sized>(
-    it: &Iteration<'_>,
-    v: &LightVertex,
-    u: &mut S,
-) -> Option<CameraSplat> {
+fn to_camera(it: &Iteration<'_>, v: &LightVertex, u_lens: Vec2) -> Option<CameraSplat> {
     let scene = it.scene;
     let camera = scene.camera();
-    let cs = camera.sample_wi(v.p, u.get_2d())?;
+    let cs = camera.sample_wi(v.p, u_lens)?;
     let f = v.bsdf.f(v.wo, cs.wi, TransportMode::Importance);
     let cos = cs.wi.dot(v.ns).abs();
     if f == SampledSpectrum::ZERO || cos == 0.0 {
