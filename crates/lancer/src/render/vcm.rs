@@ -46,6 +46,15 @@ struct LightPaths {
     rays: u64,
 }
 
+/// One iteration as its camera pass reads it: its index, its shared state, its light
+/// subpaths and their grid.
+struct Current<'a> {
+    k: u32,
+    it: Iteration<'a>,
+    paths: LightPaths,
+    grid: Option<VisibleGrid>,
+}
+
 /// What the passes of a render share.
 struct Pass<'a> {
     scene: &'a Scene,
@@ -122,18 +131,17 @@ impl Pass<'_> {
         }
     }
 
-    /// Iteration `k`'s camera samples of the pixels of `tile`, added to `sums`; the merges
-    /// made are counted into `merges`.
+    /// Iteration `c`'s camera samples of the pixels of `tile`, added to `sums`, counted (and
+    /// their merges) into `stats`.
     fn camera_pass<T: FilmTile>(
         &self,
-        it: &Iteration<'_>,
-        k: u32,
-        paths: &LightPaths,
-        grid: Option<&VisibleGrid>,
+        c: &Current<'_>,
         tile: &PixelBounds,
         sums: &mut T,
         stats: &mut RenderStats,
     ) {
+        let (it, k, paths) = (&c.it, c.k, &c.paths);
+        let grid = c.grid.as_ref();
         let (scene, settings) = (self.scene, self.settings);
         let sb = settings.splat_bounds;
         let mut sampler = Sampler::new(settings.sampler, settings.spp, settings.seed);
@@ -189,13 +197,14 @@ impl Pass<'_> {
             let points: Vec<(Vec3, f32)> =
                 paths.vertices.iter().map(|v| (v.p, it.radius)).collect();
             let grid = VisibleGrid::build(&points);
+            let c = Current { k, it, paths, grid };
             let parts: Vec<RenderStats> = sums
                 .par_iter_mut()
                 .zip(tiles)
                 .map(|(s, t)| {
                     let r0 = rays_traced();
                     let mut st = RenderStats::default();
-                    self.camera_pass(&it, k, &paths, grid.as_ref(), t, s, &mut st);
+                    self.camera_pass(&c, t, s, &mut st);
                     st.rays = rays_traced() - r0;
                     st.samples = t.area();
                     st
@@ -204,9 +213,9 @@ impl Pass<'_> {
             for p in &parts {
                 stats.add(p);
             }
-            stats.light_paths += paths.starts.len() as u64 - 1;
-            stats.photons += paths.vertices.len() as u64;
-            stats.rays += paths.rays;
+            stats.light_paths += c.paths.starts.len() as u64 - 1;
+            stats.photons += c.paths.vertices.len() as u64;
+            stats.rays += c.paths.rays;
         }
         sums
     }

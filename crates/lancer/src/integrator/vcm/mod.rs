@@ -287,10 +287,7 @@ pub fn light_path<S: SampleSource + ?Sized>(
     // The previous vertex (an interface between media is not one).
     let mut from = ray.o;
     let mut length = 1u32;
-    loop {
-        let Some(hit) = scene.intersect(&ray) else {
-            break;
-        };
+    while let Some(hit) = scene.intersect(&ray) {
         let si = &hit.si;
         let Some((bsdf, disperses)) = bsdf_at(scene, &hit, lambda.as_ref()) else {
             // An interface between media: the ray goes on.
