@@ -23,7 +23,7 @@ use crate::film::splat::AtomicSplats;
 use crate::film::tile::{FilmKind, FilmSplats, FilmTile, GbufferTile, RgbTile, SpectralTile};
 use crate::film::{Film, PixelBounds};
 use crate::integrator::sppm::PhotonSampler;
-use crate::integrator::sppm::grid::VisibleGrid;
+use crate::integrator::vcm::grid::MergeGrid;
 use crate::integrator::vcm::{
     Iteration, LightVertex, Merging, VcmOptions, camera_path, initial_radius, light_path, radius_at,
 };
@@ -39,7 +39,10 @@ const LIGHT_BLOCK: u64 = 1024;
 
 /// Light subpaths of an iteration: their stored vertices, path after path, and where each
 /// path's run starts (one more entry than there are paths).
+#[derive(Default)]
 struct LightPaths {
+    /// Each block's vertices and its paths' vertex counts, as traced.
+    blocks: Vec<(Vec<LightVertex>, Vec<u32>)>,
     vertices: Vec<LightVertex>,
     starts: Vec<u32>,
     /// Rays the light pass traced.
@@ -51,8 +54,8 @@ struct LightPaths {
 struct Current<'a> {
     k: u32,
     it: Iteration<'a>,
-    paths: LightPaths,
-    grid: Option<VisibleGrid>,
+    paths: &'a LightPaths,
+    grid: Option<MergeGrid>,
 }
 
 /// What the passes of a render share.
@@ -85,20 +88,33 @@ impl Pass<'_> {
         )
     }
 
-    /// Traces iteration `it`'s (index `k`) light subpaths, splatting those of the pixels in
+    /// Traces iteration `it`'s (index `k`) light subpaths into `paths` (whose buffers are
+    /// reused from one iteration to the next), splatting those of the pixels in
     /// `splat_tiles`.
-    fn light_pass(&self, it: &Iteration<'_>, k: u32, splat_tiles: &[PixelBounds]) -> LightPaths {
+    fn light_pass(
+        &self,
+        it: &Iteration<'_>,
+        k: u32,
+        splat_tiles: &[PixelBounds],
+        paths: &mut LightPaths,
+    ) {
         let sb = self.settings.splat_bounds;
         let n = sb.area();
         let w = sb.width().max(1) as u64;
         let lambda = it.lambda;
-        let blocks: Vec<(Vec<LightVertex>, Vec<u32>, u64)> = (0..n.div_ceil(LIGHT_BLOCK))
-            .into_par_iter()
-            .map(|b| {
+        paths
+            .blocks
+            .resize_with(n.div_ceil(LIGHT_BLOCK) as usize, Default::default);
+        let rays: u64 = paths
+            .blocks
+            .par_iter_mut()
+            .enumerate()
+            .map(|(b, (vertices, lens))| {
+                let b = b as u64;
                 let r0 = rays_traced();
                 let mut u = PhotonSampler::new(self.perms.clone(), self.settings.seed, 0);
-                let mut vertices = Vec::new();
-                let mut lens = Vec::new();
+                vertices.clear();
+                lens.clear();
                 for j in b * LIGHT_BLOCK..((b + 1) * LIGHT_BLOCK).min(n) {
                     u.start(k as u64 * n + j);
                     let (x, y) = (sb.x0 + (j % w) as i32, sb.y0 + (j / w) as i32);
@@ -107,28 +123,23 @@ impl Pass<'_> {
                     let mut splat = |(p, l)| self.splats.add_splat(p, l, lambda.as_ref());
                     let splat: Option<&mut dyn FnMut(_)> =
                         if mine { Some(&mut splat) } else { None };
-                    light_path(it, &mut u, &mut vertices, splat);
+                    light_path(it, &mut u, vertices, splat);
                     lens.push((vertices.len() - before) as u32);
                 }
-                (vertices, lens, rays_traced() - r0)
+                rays_traced() - r0
             })
-            .collect();
-        let mut vertices = Vec::with_capacity(blocks.iter().map(|b| b.0.len()).sum());
-        let mut starts = Vec::with_capacity(n as usize + 1);
-        starts.push(0u32);
-        let mut rays = 0;
-        for (v, lens, r) in blocks {
-            rays += r;
-            vertices.extend_from_slice(&v);
+            .sum();
+        paths.vertices.clear();
+        paths.starts.clear();
+        paths.starts.push(0u32);
+        for (v, lens) in &paths.blocks {
+            paths.vertices.extend_from_slice(v);
             for l in lens {
-                starts.push(starts.last().unwrap() + l);
+                let s = paths.starts.last().unwrap() + l;
+                paths.starts.push(s);
             }
         }
-        LightPaths {
-            vertices,
-            starts,
-            rays,
-        }
+        paths.rays = rays;
     }
 
     /// Iteration `c`'s camera samples of the pixels of `tile`, added to `sums`, counted (and
@@ -140,7 +151,7 @@ impl Pass<'_> {
         sums: &mut T,
         stats: &mut RenderStats,
     ) {
-        let (it, k, paths) = (&c.it, c.k, &c.paths);
+        let (it, k, paths) = (&c.it, c.k, c.paths);
         let grid = c.grid.as_ref();
         let (scene, settings) = (self.scene, self.settings);
         let sb = settings.splat_bounds;
@@ -191,13 +202,18 @@ impl Pass<'_> {
         stats: &mut RenderStats,
     ) -> Vec<T> {
         let mut sums: Vec<T> = tiles.iter().map(new_tile).collect();
+        let mut paths = LightPaths::default();
         for k in range {
             let it = self.iteration(k);
-            let paths = self.light_pass(&it, k, tiles);
-            let points: Vec<(Vec3, f32)> =
-                paths.vertices.iter().map(|v| (v.p, it.radius)).collect();
-            let grid = VisibleGrid::build(&points);
-            let c = Current { k, it, paths, grid };
+            self.light_pass(&it, k, tiles, &mut paths);
+            let points: Vec<Vec3> = paths.vertices.par_iter().map(|v| v.p).collect();
+            let grid = MergeGrid::build(&points, it.radius);
+            let c = Current {
+                k,
+                it,
+                paths: &paths,
+                grid,
+            };
             let parts: Vec<RenderStats> = sums
                 .par_iter_mut()
                 .zip(tiles)

@@ -5,8 +5,8 @@
 
 use super::super::emission::light_normal;
 use super::super::{bsdf_at, emitted, keep_hero_only};
+use super::grid::MergeGrid;
 use super::{Iteration, LightVertex, Mis, hero_weight, light_densities};
-use crate::integrator::sppm::grid::VisibleGrid;
 use crate::light::{LightSampleContext, LightType};
 use crate::material::{Bsdf, TransportMode};
 use crate::math::{SampledSpectrum, Vec3, normalize};
@@ -19,8 +19,8 @@ use crate::shape::SurfaceInteraction;
 pub struct Merging<'a> {
     /// Every stored light vertex of the iteration.
     pub vertices: &'a [LightVertex],
-    /// Their grid (spheres of the iteration's radius); `None` when there is none.
-    pub grid: Option<&'a VisibleGrid>,
+    /// Their grid for the iteration's radius; `None` when there is none.
+    pub grid: Option<&'a MergeGrid>,
 }
 
 /// What the camera subpath knows at a non-specular vertex.
@@ -311,16 +311,15 @@ fn merge(
         return SampledSpectrum::ZERO;
     };
     let p = at.si.p;
-    let r2 = it.radius * it.radius;
     let mut sum = SampledSpectrum::ZERO;
-    for &i in grid.candidates(p) {
+    grid.for_each_near(p, |i| {
         let v = &merging.vertices[i as usize];
-        if v.length + at.length > it.max_length || (v.p - p).length_squared() > r2 {
-            continue;
+        if v.length + at.length > it.max_length {
+            return;
         }
         let f = at.bsdf.f(at.wo, v.wo, TransportMode::Radiance);
         if f == SampledSpectrum::ZERO {
-            continue;
+            return;
         }
         *merges += 1;
         let p_fwd = at.bsdf.pdf(at.wo, v.wo, TransportMode::Radiance);
@@ -332,6 +331,6 @@ fn merge(
         if c.is_finite() {
             sum += c;
         }
-    }
+    });
     at.beta * sum * it.merge_norm()
 }

@@ -31,6 +31,7 @@
 //! reader warns).
 
 mod camera;
+pub mod grid;
 #[cfg(test)]
 mod tests;
 
