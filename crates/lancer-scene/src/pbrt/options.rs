@@ -1004,7 +1004,7 @@ mod tests {
         );
         assert_eq!(
             error("Integrator \"vcm\" \"float alpha\" 0", integrator),
-            "t.pbrt:1:16: \"float alpha\" must be in (0, 1], not 0"
+            "t.pbrt:1:18: \"float alpha\" must be in (0, 1], not 0"
         );
         let (out, _) = convert(r#"Integrator "aov" "integer maxdepth" 7"#, integrator);
         let f = out.unwrap();
