@@ -23,4 +23,5 @@ mod preview;
 mod sdf_shapes;
 mod spectral_film;
 mod sppm;
+mod vcm;
 mod workflow;

@@ -1,0 +1,83 @@
+//! lancer's `vcm` through `lancer render`: read without a warning, `--stats json` counts its
+//! light paths, light vertices and merges, and a split by samples and a split by tiles each
+//! merge to the single render's exact pixels.
+
+use crate::common::{ScratchDir, read_exr, run_in};
+use std::path::Path;
+
+/// A glass sphere on a grey floor under a distant light, 16 × 40 pixels (three tile rows):
+/// a caustic that merging renders.
+const SCENE: &str = r#"LookAt 0 2 3  0 0.3 0  0 1 0
+Camera "perspective" "float fov" [40]
+Film "rgb" "integer xresolution" [16] "integer yresolution" [40]
+Sampler "zsobol" "integer pixelsamples" [4]
+Integrator "vcm" "integer maxdepth" [6] "float radius" [0.05]
+WorldBegin
+LightSource "distant" "point3 from" [1 4 1] "point3 to" [0 0 0] "rgb L" [3 3 3]
+Material "diffuse" "rgb reflectance" [0.5 0.5 0.5]
+Shape "trianglemesh" "point3 P" [-4 0 4  4 0 4  4 0 -4  -4 0 -4] "integer indices" [0 1 2 0 2 3]
+Material "dielectric" "float eta" [1.5]
+AttributeBegin
+  Translate 0 0.4 0
+  Shape "sphere" "float radius" [0.4]
+AttributeEnd
+"#;
+
+fn render(dir: &Path, extra: &[&str]) -> std::process::Output {
+    let path = dir.join("s.pbrt");
+    std::fs::write(&path, SCENE).unwrap();
+    let mut args = vec!["render", path.to_str().unwrap(), "--quiet"];
+    args.extend_from_slice(extra);
+    run_in(dir, &args)
+}
+
+#[track_caller]
+fn ok(o: &std::process::Output) -> String {
+    let e = String::from_utf8_lossy(&o.stderr).to_string();
+    assert!(o.status.success(), "{e}");
+    e
+}
+
+#[test]
+fn vcm_counts_its_paths_and_splits_by_samples_and_tiles_exactly() {
+    let dir = ScratchDir::new("vcm-split");
+    let o = render(
+        &dir,
+        &["-o", "whole.exr", "--threads", "2", "--stats", "json"],
+    );
+    let e = ok(&o);
+    assert!(!e.contains("warning"), "{e}");
+    let stats: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(stats["integrator"], "vcm");
+    assert_eq!(stats["samples"], 16 * 40 * 4);
+    assert_eq!(stats["light_paths"], 16 * 40 * 4);
+    assert!(stats["photons"].as_u64().unwrap() > 0, "{stats}");
+    assert!(stats["merges"].as_u64().unwrap() > 0, "{stats}");
+    let whole = read_exr(&dir.join("whole.exr"));
+    assert!(whole.rgb.iter().any(|p| p[0] > 0.0));
+    for by in ["samples", "tiles"] {
+        for i in 0..2 {
+            let (split, out, threads) = (format!("{i}/2"), format!("{by}{i}.exr"), ["1", "2"][i]);
+            ok(&render(
+                &dir,
+                &[
+                    "-o",
+                    &out,
+                    "--threads",
+                    threads,
+                    "--split",
+                    &split,
+                    "--split-by",
+                    by,
+                ],
+            ));
+        }
+        let (a, b, m) = (
+            format!("{by}0.exr"),
+            format!("{by}1.exr"),
+            format!("{by}.exr"),
+        );
+        ok(&run_in(&dir, &["merge", &a, &b, "-o", &m]));
+        assert_eq!(read_exr(&dir.join(&m)), whole, "split by {by}");
+    }
+}
