@@ -4,8 +4,8 @@
 //! then one camera sample per rendered pixel.
 //!
 //! Unlike sppm's, vcm's iterations are independent samples: iteration k's radius depends on
-//! k alone, its wavelengths on (seed, k), its light subpath j on (seed, k, j) (a scrambled
-//! Halton point, as sppm's photons), its camera sample of a pixel on (seed, pixel, k) (the
+//! k alone, its wavelengths on (seed, k), its light subpath j on (seed, k, j) (its first
+//! dimensions a scrambled Halton point, as sppm's photons), its camera sample of a pixel on (seed, pixel, k) (the
 //! sampler's sample k). A pixel's image is the filter-weighted average of its iterations'
 //! camera samples plus the splats of the t = 1 connections over the iterations, both
 //! fixed-point sums: any thread count, any range of sample indices (`--samples`, a split by
@@ -28,14 +28,56 @@ use crate::integrator::vcm::{
     Iteration, LightVertex, Merging, VcmOptions, camera_path, initial_radius, light_path, radius_at,
 };
 use crate::math::Vec3;
-use crate::sampling::Sampler;
 use crate::sampling::halton::DigitPermutations;
+use crate::sampling::{Pcg32, SampleSource, Sampler, hash_u64};
 use crate::scene::Scene;
 use rayon::prelude::*;
 
 /// Light subpaths per block: the light pass's unit of parallel work; blocks' vertices are
 /// concatenated in block order.
 const LIGHT_BLOCK: u64 = 1024;
+
+/// Dimensions of a light subpath drawn from the scrambled Halton sequence over the render's
+/// light subpaths (the light, the point on it, the direction: stratified over the paths);
+/// the others from a PCG stream of the path's own, far cheaper than a radical inverse.
+const HALTON_DIMS: u32 = 5;
+
+/// The random numbers of light subpath j of iteration k: the first [`HALTON_DIMS`] from
+/// sppm's photon sampler at index k·N + j (N subpaths per iteration), the rest from a
+/// generator seeded by (seed, k·N + j): a pure function of (seed, iteration, index).
+struct LightPathSampler {
+    halton: PhotonSampler,
+    rng: Pcg32,
+    dim: u32,
+    seed: u64,
+}
+
+impl LightPathSampler {
+    /// Moves to light subpath `index` (k·N + j), dimension 0.
+    fn start(&mut self, index: u64) {
+        self.halton.start(index);
+        self.rng = Pcg32::new(hash_u64(&[self.seed, 0x7663_6d6c, index]), 0);
+        self.dim = 0;
+    }
+}
+
+impl SampleSource for LightPathSampler {
+    #[inline]
+    fn get_1d(&mut self) -> f32 {
+        self.dim += 1;
+        if self.dim <= HALTON_DIMS {
+            self.halton.get_1d()
+        } else {
+            self.rng.uniform()
+        }
+    }
+
+    #[inline]
+    fn get_2d(&mut self) -> crate::math::Vec2 {
+        let x = self.get_1d();
+        crate::math::Vec2::new(x, self.get_1d())
+    }
+}
 
 /// Light subpaths of an iteration: their stored vertices, path after path, and where each
 /// path's run starts (one more entry than there are paths).
@@ -112,7 +154,13 @@ impl Pass<'_> {
             .map(|(b, (vertices, lens))| {
                 let b = b as u64;
                 let r0 = rays_traced();
-                let mut u = PhotonSampler::new(self.perms.clone(), self.settings.seed, 0);
+                let seed = self.settings.seed;
+                let mut u = LightPathSampler {
+                    halton: PhotonSampler::new(self.perms.clone(), seed, 0),
+                    rng: Pcg32::new(0, 0),
+                    dim: 0,
+                    seed,
+                };
                 vertices.clear();
                 lens.clear();
                 for j in b * LIGHT_BLOCK..((b + 1) * LIGHT_BLOCK).min(n) {

@@ -1,7 +1,7 @@
 //! The light vertices of an iteration hashed for merging (as the paper's SmallVCM): cells
 //! 2r wide, each vertex in the one cell holding it, cells hashed into a table of about one
-//! bucket per vertex; a query at p visits the 2 × 2 × 2 cells nearest p, which cover the
-//! sphere of radius r around it.
+//! bucket per vertex (cells along x in consecutive buckets); a query at p visits the
+//! 2 × 2 × 2 cells nearest p, which cover the sphere of radius r around it.
 //!
 //! The buckets are filled by a stable counting sort (each vertex's bucket computed in
 //! parallel), so a bucket lists its vertices in their order, and a query visits each distinct
@@ -28,12 +28,14 @@ pub struct MergeGrid {
     r2: f32,
 }
 
-/// The bucket of cell (`x`, `y`, `z`) in a table of `mask` + 1 buckets.
+/// The bucket of cell (`x`, `y`, `z`) in a table of `mask` + 1 buckets: x + y·P₁ + z·P₂, so
+/// that cells next to each other along x are in consecutive buckets, whose vertices a query
+/// reads in one run.
 #[inline]
 fn bucket(x: i32, y: i32, z: i32, mask: u32) -> u32 {
-    ((x as u32).wrapping_mul(73_856_093)
-        ^ (y as u32).wrapping_mul(19_349_663)
-        ^ (z as u32).wrapping_mul(83_492_791))
+    (x as u32)
+        .wrapping_add((y as u32).wrapping_mul(73_856_093))
+        .wrapping_add((z as u32).wrapping_mul(19_349_663))
         & mask
 }
 
@@ -97,22 +99,43 @@ impl MergeGrid {
             return;
         }
         let (x, y, z) = (c.x.floor() as i32, c.y.floor() as i32, c.z.floor() as i32);
+        // The pairs of cells along x are consecutive buckets: one run each (unless the pair
+        // wraps around the table, or a bucket was visited already by a colliding pair).
         let mut seen = [u32::MAX; 8];
-        for k in 0..8usize {
-            let d = k as i32;
-            let h = bucket(x + (d & 1), y + ((d >> 1) & 1), z + (d >> 2), self.mask);
-            if seen[..k].contains(&h) {
-                continue;
+        let mut n = 0;
+        for k in 0..4 {
+            let h0 = bucket(x, y + (k & 1), z + (k >> 1), self.mask);
+            let h1 = (h0 + 1) & self.mask;
+            let new0 = !seen[..n].contains(&h0);
+            if new0 {
+                seen[n] = h0;
+                n += 1;
             }
-            seen[k] = h;
-            let (a, b) = (
-                self.starts[h as usize] as usize,
-                self.starts[h as usize + 1] as usize,
-            );
-            for (&i, &q) in self.items[a..b].iter().zip(&self.positions[a..b]) {
-                if (q - p).length_squared() <= self.r2 {
-                    f(i);
+            let new1 = !seen[..n].contains(&h1);
+            if new1 {
+                seen[n] = h1;
+                n += 1;
+            }
+            if new0 && new1 && h1 == h0 + 1 {
+                self.scan(h0 as usize, h0 as usize + 2, p, &mut f);
+            } else {
+                if new0 {
+                    self.scan(h0 as usize, h0 as usize + 1, p, &mut f);
                 }
+                if new1 {
+                    self.scan(h1 as usize, h1 as usize + 1, p, &mut f);
+                }
+            }
+        }
+    }
+
+    /// Calls `f` with the points of buckets `b0..b1` within the radius of `p`.
+    #[inline]
+    fn scan(&self, b0: usize, b1: usize, p: Vec3, f: &mut impl FnMut(u32)) {
+        let (a, b) = (self.starts[b0] as usize, self.starts[b1] as usize);
+        for (&i, &q) in self.items[a..b].iter().zip(&self.positions[a..b]) {
+            if (q - p).length_squared() <= self.r2 {
+                f(i);
             }
         }
     }
@@ -136,14 +159,27 @@ mod tests {
             pts.push(Vec3::new(rnd(), rnd(), rnd() * 0.3));
         }
         let r = 0.07;
-        let grid = MergeGrid::build(&pts, r).unwrap();
-        for q in 0..200 {
-            let p = Vec3::new(rnd(), rnd(), rnd() * 0.3);
-            let mut found = vec![0u32; pts.len()];
-            grid.for_each_near(p, |i| found[i as usize] += 1);
-            for (i, v) in pts.iter().enumerate() {
-                let inside = (*v - p).length_squared() <= r * r;
-                assert_eq!(found[i], u32::from(inside), "query {q}: point {i}");
+        // 500 points (a table of 512 buckets), and 3 (4 buckets: pairs wrap around).
+        for count in [500, 3] {
+            let pts = &pts[..count];
+            let grid = MergeGrid::build(pts, r).unwrap();
+            for q in 0..300 {
+                let p = Vec3::new(rnd(), rnd(), rnd() * 0.3);
+                let p = if count == 3 {
+                    pts[q % 3] + (p - pts[q % 3]) * 0.1
+                } else {
+                    p
+                };
+                let mut found = vec![0u32; pts.len()];
+                grid.for_each_near(p, |i| found[i as usize] += 1);
+                for (i, v) in pts.iter().enumerate() {
+                    let inside = (*v - p).length_squared() <= r * r;
+                    assert_eq!(
+                        found[i],
+                        u32::from(inside),
+                        "{count} points, query {q}: point {i}"
+                    );
+                }
             }
         }
         assert!(MergeGrid::build(&[], 1.0).is_none());
