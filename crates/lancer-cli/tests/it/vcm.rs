@@ -53,6 +53,7 @@ fn vcm_counts_its_paths_and_splits_by_samples_and_tiles_exactly() {
     assert_eq!(stats["light_paths"], 16 * 40 * 4);
     assert!(stats["photons"].as_u64().unwrap() > 0, "{stats}");
     assert!(stats["merges"].as_u64().unwrap() > 0, "{stats}");
+    assert!(stats["connections"].as_u64().unwrap() > 0, "{stats}");
     let whole = read_exr(&dir.join("whole.exr"));
     assert!(whole.rgb.iter().any(|p| p[0] > 0.0));
     for by in ["samples", "tiles"] {

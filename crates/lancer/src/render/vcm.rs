@@ -17,7 +17,7 @@
 
 use super::{
     CameraSample, RenderSettings, RenderStats, SampleId, Splats, UnitHook, WorkUnit,
-    add_camera_sample, camera_ray_at, rays_traced, sppm::wavelength_sample,
+    add_camera_sample, camera_ray_at, counts, sppm::wavelength_sample,
 };
 use crate::film::splat::AtomicSplats;
 use crate::film::tile::{FilmKind, FilmSplats, FilmTile, GbufferTile, RgbTile, SpectralTile};
@@ -87,8 +87,8 @@ struct LightPaths {
     blocks: Vec<(Vec<LightVertex>, Vec<u32>)>,
     vertices: Vec<LightVertex>,
     starts: Vec<u32>,
-    /// Rays the light pass traced.
-    rays: u64,
+    /// What the light pass counted (rays, light paths, connections to the lens).
+    counted: RenderStats,
 }
 
 /// One iteration as its camera pass reads it: its index, its shared state, its light
@@ -147,13 +147,13 @@ impl Pass<'_> {
         paths
             .blocks
             .resize_with(n.div_ceil(LIGHT_BLOCK) as usize, Default::default);
-        let rays: u64 = paths
+        let counted: Vec<RenderStats> = paths
             .blocks
             .par_iter_mut()
             .enumerate()
             .map(|(b, (vertices, lens))| {
                 let b = b as u64;
-                let r0 = rays_traced();
+                let c0 = counts();
                 let seed = self.settings.seed;
                 let mut u = LightPathSampler {
                     halton: PhotonSampler::new(self.perms.clone(), seed, 0),
@@ -174,9 +174,11 @@ impl Pass<'_> {
                     light_path(it, &mut u, vertices, splat);
                     lens.push((vertices.len() - before) as u32);
                 }
-                rays_traced() - r0
+                let mut st = RenderStats::default();
+                st.add_counts_since(c0);
+                st
             })
-            .sum();
+            .collect();
         paths.vertices.clear();
         paths.starts.clear();
         paths.starts.push(0u32);
@@ -187,7 +189,10 @@ impl Pass<'_> {
                 paths.starts.push(s);
             }
         }
-        paths.rays = rays;
+        paths.counted = RenderStats::default();
+        for c in &counted {
+            paths.counted.add(c);
+        }
     }
 
     /// Iteration `c`'s camera samples of the pixels of `tile`, added to `sums`, counted (and
@@ -266,10 +271,10 @@ impl Pass<'_> {
                 .par_iter_mut()
                 .zip(tiles)
                 .map(|(s, t)| {
-                    let r0 = rays_traced();
+                    let c0 = counts();
                     let mut st = RenderStats::default();
                     self.camera_pass(&c, t, s, &mut st);
-                    st.rays = rays_traced() - r0;
+                    st.add_counts_since(c0);
                     st.samples = t.area();
                     st
                 })
@@ -277,9 +282,8 @@ impl Pass<'_> {
             for p in &parts {
                 stats.add(p);
             }
-            stats.light_paths += c.paths.starts.len() as u64 - 1;
+            stats.add(&c.paths.counted);
             stats.photons += c.paths.vertices.len() as u64;
-            stats.rays += c.paths.rays;
         }
         sums
     }

@@ -268,6 +268,7 @@ fn next_event<S: SampleSource + ?Sized>(
 /// p⃗_l→c · (η + dVCM_c + dVC_c·p⃖_c) (the p⃗ turned into densities per area at the other
 /// end).
 fn connect(it: &Iteration<'_>, at: &At<'_>, v: &LightVertex) -> SampledSpectrum {
+    crate::counters::count_connection();
     let si = at.si;
     let d = v.p - si.p;
     let dist2 = d.length_squared();

@@ -245,6 +245,7 @@ pub fn light_path<S: SampleSource + ?Sized>(
     mut splat: Option<&mut dyn FnMut(CameraSplat)>,
 ) {
     let scene = it.scene;
+    crate::counters::count_light_path();
     let Some((light, pick)) = scene.light_distribution().sample(u.get_1d()) else {
         return;
     };
@@ -371,6 +372,7 @@ pub fn light_path<S: SampleSource + ?Sized>(
 /// than camera samples by k); `None` when the camera does not see `v`.
 fn to_camera(it: &Iteration<'_>, v: &LightVertex, u_lens: Vec2) -> Option<CameraSplat> {
     let scene = it.scene;
+    crate::counters::count_connection();
     let camera = scene.camera();
     let cs = camera.sample_wi(v.p, u_lens)?;
     let f = v.bsdf.f(v.wo, cs.wi, TransportMode::Importance);
