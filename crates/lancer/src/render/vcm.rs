@@ -23,9 +23,10 @@ use crate::film::splat::AtomicSplats;
 use crate::film::tile::{FilmKind, FilmSplats, FilmTile, GbufferTile, RgbTile, SpectralTile};
 use crate::film::{Film, PixelBounds};
 use crate::integrator::sppm::PhotonSampler;
+use crate::integrator::vcm::camera::{Merging, camera_path};
 use crate::integrator::vcm::grid::MergeGrid;
 use crate::integrator::vcm::{
-    Iteration, LightVertex, Merging, VcmOptions, camera_path, initial_radius, light_path, radius_at,
+    Iteration, LightVertex, VcmOptions, initial_radius, light_path, radius_at,
 };
 use crate::math::Vec3;
 use crate::sampling::halton::DigitPermutations;

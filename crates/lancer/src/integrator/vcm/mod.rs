@@ -30,13 +30,12 @@
 //! Surfaces only: a scene with participating media is rendered with `volpath` (the scene
 //! reader warns).
 
-mod camera;
+pub mod camera;
 pub mod grid;
 #[cfg(test)]
 mod tests;
 
 pub use super::desc::VcmOptions;
-pub use camera::{Merging, camera_path};
 
 use super::{bsdf_at, keep_hero_only};
 use crate::light::LightType;
