@@ -1,12 +1,9 @@
 //! Rendering: tiles of pixels, each pixel's samples taken in order, on all cores.
 
 use crate::film::splat::AtomicSplats;
-use crate::film::tile::{
-    FilmKind, FilmSample, FilmSplats, FilmTile, GbufferTile, RgbTile, SpectralTile,
-};
+use crate::film::tile::{FilmKind, FilmSplats, FilmTile, GbufferTile, RgbTile, SpectralTile};
 use crate::film::{Film, PixelBounds, PixelSum};
 use crate::filter::Filter;
-use crate::gbuffer::{RayDifferentials, visible_surface};
 use crate::integrator::Integrator;
 use crate::math::{Rgb, SampledSpectrum, Vec2};
 use crate::ray::Ray;
@@ -21,6 +18,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 pub use crate::counters::{Counts, count_ray, counts, rays_traced};
 
+mod camera_sample;
 mod mlt;
 pub mod sppm;
 pub mod strategies;
@@ -404,7 +402,7 @@ pub fn render_tile<T: FilmTile, I: SampleIntegrator + ?Sized>(
                     }
                     None => SampledSpectrum::ZERO,
                 };
-                let sample = CameraSample {
+                let sample = camera_sample::CameraSample {
                     id: SampleId { y, x, sample: s },
                     ray: ray.as_ref(),
                     p_film,
@@ -413,97 +411,13 @@ pub fn render_tile<T: FilmTile, I: SampleIntegrator + ?Sized>(
                     lambda: lambda.as_ref(),
                     weight,
                 };
-                add_camera_sample(scene, settings, film, &mut stats, i, &sample);
+                camera_sample::add(scene, settings, film, &mut stats, i, &sample);
             }
         }
     }
     stats.samples = tile.area() * samples.len() as u64;
     stats.add_counts_since(counts0);
     stats
-}
-
-/// One camera sample as the film takes it: which it is, its camera ray (`None`: the lens
-/// blocked it), the film and lens points it was made from, its radiance (camera weight
-/// included) at its wavelengths, and its filter weight.
-pub(crate) struct CameraSample<'a> {
-    /// Pixel and sample index.
-    pub id: SampleId,
-    /// The camera ray.
-    pub ray: Option<&'a crate::camera::CameraRay>,
-    /// Film point (raster space).
-    pub p_film: Vec2,
-    /// Lens sample.
-    pub p_lens: Vec2,
-    /// Radiance, the camera's weight included.
-    pub l: SampledSpectrum,
-    /// Wavelengths (spectral mode).
-    pub lambda: Option<&'a SampledWavelengths>,
-    /// Filter weight.
-    pub weight: f32,
-}
-
-/// Adds camera sample `c` to pixel `i` of `film` (a tile's sums): its film colour (black if
-/// not finite, counted in `stats`; scaled down to `maxcomponentvalue`), its sensor colour and
-/// visible surface when the tile reads them. The tile loop's, and `vcm`'s.
-#[inline(always)]
-fn add_camera_sample<T: FilmTile>(
-    scene: &Scene,
-    settings: &RenderSettings,
-    film: &mut T,
-    stats: &mut RenderStats,
-    i: usize,
-    c: &CameraSample<'_>,
-) {
-    let rgb = scene_film_rgb(scene, c.lambda, c.l);
-    let sensor_rgb = if T::NEEDS_SENSOR_RGB {
-        crate::gbuffer::variance_rgb(scene, rgb, settings.max_component_value)
-    } else {
-        Rgb::ZERO
-    };
-    let rgb = film_sample(settings, stats, rgb, c.id);
-    let surface = if T::NEEDS_SURFACE {
-        c.ray.and_then(|r| {
-            // The denoiser's surface (through specular surfaces) needs no footprint.
-            let follow = film.follows_specular();
-            let scale = film.differential_scale();
-            let diff = (!follow)
-                .then(|| RayDifferentials::of(scene, &r.ray, c.p_film, c.p_lens, scale))
-                .flatten();
-            visible_surface(scene, &r.ray, diff.as_ref(), follow)
-        })
-    } else {
-        None
-    };
-    let sample = FilmSample {
-        rgb,
-        sensor_rgb,
-        l: c.l,
-        lambda: c.lambda,
-        surface: surface.as_ref(),
-    };
-    film.add_sample(i, &sample, c.weight);
-}
-
-/// What a camera sample's colour adds to the film: black for a non-finite sample (a bug
-/// upstream, counted in `stats`; it must not poison the pixel), and scaled down to
-/// `maxcomponentvalue` when brighter.
-#[inline(always)]
-fn film_sample(settings: &RenderSettings, stats: &mut RenderStats, l: Rgb, id: SampleId) -> Rgb {
-    let l = if l.is_finite() {
-        l
-    } else {
-        stats.nonfinite += 1;
-        if stats.first_nonfinite.is_none() {
-            stats.first_nonfinite = Some(id);
-        }
-        Rgb::ZERO
-    };
-    let m = l.max_element();
-    if m > settings.max_component_value {
-        l * (settings.max_component_value / m)
-    } else {
-        l
-    }
 }
 
 /// The film colour of a camera sample's radiance: the scene's film response (sensor, white

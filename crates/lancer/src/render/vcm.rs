@@ -16,8 +16,8 @@
 //! the light subpaths of its own pixels: the parts' splats add up to the whole render's.
 
 use super::{
-    CameraSample, RenderSettings, RenderStats, SampleId, Splats, UnitHook, WorkUnit,
-    add_camera_sample, camera_ray_at, counts, sppm::wavelength_sample,
+    RenderSettings, RenderStats, SampleId, Splats, UnitHook, WorkUnit, camera_ray_at, counts,
+    sppm::wavelength_sample,
 };
 use crate::film::splat::AtomicSplats;
 use crate::film::tile::{FilmKind, FilmSplats, FilmTile, GbufferTile, RgbTile, SpectralTile};
@@ -233,7 +233,7 @@ impl Pass<'_> {
                     }
                     None => crate::math::SampledSpectrum::ZERO,
                 };
-                let sample = CameraSample {
+                let sample = super::camera_sample::CameraSample {
                     id: SampleId { y, x, sample: k },
                     ray: ray.as_ref(),
                     p_film,
@@ -242,7 +242,7 @@ impl Pass<'_> {
                     lambda: it.lambda.as_ref(),
                     weight,
                 };
-                add_camera_sample(scene, settings, sums, stats, i, &sample);
+                super::camera_sample::add(scene, settings, sums, stats, i, &sample);
             }
         }
     }
