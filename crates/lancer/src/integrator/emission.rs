@@ -110,3 +110,14 @@ pub(crate) fn light_normal(scene: &Scene, i: usize, p: Vec3, from: (Vec3, Vec3, 
         _ => Vec3::ZERO,
     }
 }
+
+/// Whether the rays of a light at infinity arriving along ±`w` can reach `p`: they start on
+/// the scene's disk (the bounding sphere's radius r, centre c, facing w), so they pass only
+/// through the cylinder that disk sweeps, |(p − c) − ((p − c)·w)·w| ≤ r (`w` of unit length).
+/// pbrt-v4's surfaces all lie within it; lancer's infinite planes reach past it, where the
+/// light subpaths' strategies must weigh nothing in MIS (bdpt, vcm).
+pub(crate) fn reached_from_infinity(scene: &Scene, p: Vec3, w: Vec3) -> bool {
+    let (c, r) = scene.bounds().bounding_sphere();
+    let d = p - c;
+    (d - w * d.dot(w)).length_squared() <= r * r
+}

@@ -702,12 +702,11 @@ fn white_furnace() {
     }
 }
 
-#[test]
-fn an_infinite_plane_is_lit_by_the_sky_beyond_the_scene_bounds() {
-    // lancer's infinite plane reaches past the scene's bounds (a small sphere here), where no
-    // light subpath from the sky's disk arrives: its points' light sampling must then weigh
-    // all (it weighed almost nothing against the impossible light paths: a black horizon).
-    let desc = SceneDesc {
+/// A grey sphere of radius ½ on lancer's infinite plane under a white sky, seen towards the
+/// horizon: most of the image is the plane far past the scene's bounds (the sphere's), where
+/// no light subpath from the sky's disk arrives.
+pub(crate) fn plane_under_sky(integrator: Integrator) -> SceneDesc {
+    SceneDesc {
         materials: vec![diffuse(Rgb::splat(0.5))],
         shapes: vec![
             ShapeDesc::new(
@@ -730,15 +729,20 @@ fn an_infinite_plane_is_lit_by_the_sky_beyond_the_scene_bounds() {
         lights: vec![LightDesc::UniformInfinite(UniformInfiniteDesc {
             l: Rgb::ONE,
         })],
-        // Most of the image is the plane up to its horizon, far past the sphere.
         ..view(
             Vec3::new(0.0, 0.3, 4.0),
             Vec3::new(0.0, 0.0, -20.0),
             40.0,
-            bdpt(3),
+            integrator,
         )
-    };
-    let scene = Scene::build(&desc).unwrap();
+    }
+}
+
+#[test]
+fn an_infinite_plane_is_lit_by_the_sky_beyond_the_scene_bounds() {
+    // There a point's light sampling must weigh all (it weighed almost nothing against the
+    // impossible light paths: a black horizon).
+    let scene = Scene::build(&plane_under_sky(bdpt(3))).unwrap();
     let reference = render(&scene, path(3), 64, 3, None);
     let b = render(&scene, bdpt(3), 64, 4, None);
     let (worst, ratio) = compare(&b, &reference);

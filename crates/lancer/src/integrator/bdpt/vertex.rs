@@ -8,7 +8,7 @@
 //! weights are still a partition of unity over a path's strategies, so every estimate stays
 //! unbiased.
 
-use super::super::emission::{emission_at, environment};
+use super::super::emission::{emission_at, environment, reached_from_infinity};
 use super::super::volpath::avg;
 use crate::light::{LightSampleContext, LightType};
 use crate::material::{Bsdf, TransportMode};
@@ -262,13 +262,13 @@ impl Vertex {
         let inv_d2 = 1.0 / d2;
         let w = w * inv_d2.sqrt();
         let mut pdf = if self.is_infinite_light(scene) {
-            match scene_disk_density(scene, v.p, w) {
+            if !reached_from_infinity(scene, v.p, w) {
                 // The MIS ratios read a density of 0 as a delta vertex's (remapped to 1, as
                 // pbrt-v4 does); this one is a path no light subpath makes: the smallest
                 // positive density, so that its strategies weigh nothing.
-                0.0 => return f32::MIN_POSITIVE,
-                d => d,
+                return f32::MIN_POSITIVE;
             }
+            scene_disk_density(scene)
         } else {
             let Some(i) = self.light(scene) else {
                 return 0.0;
@@ -306,20 +306,13 @@ impl Vertex {
     }
 }
 
-/// Density per unit area with which a light at infinity starts its rays along `w` on the
-/// scene's disk so that they reach `p`, whichever light it is (pbrt-v4's `PDFLight` for
-/// them): 1/(π r²), r the radius of the scene's bounding sphere (centre c), as the lights'
-/// own `pdf_le` gives it, when p lies within the cylinder the disk sweeps along `w`,
-/// |(p − c) − ((p − c)·w)·w| ≤ r; zero beyond it, where no such ray passes. pbrt-v4 needs no
-/// such test, as every surface it hits lies within the bounds; lancer's infinite planes
-/// reach past them, and with the disk's density there a far point's light sampling got an
-/// MIS weight of almost 0 for a light path that never comes (a black horizon).
-fn scene_disk_density(scene: &Scene, p: Vec3, w: Vec3) -> f32 {
-    let (c, r) = scene.bounds().bounding_sphere();
-    let d = p - c;
-    if (d - w * d.dot(w)).length_squared() > r * r {
-        return 0.0;
-    }
+/// Density per unit area with which a light at infinity starts its rays on the scene's disk,
+/// whichever light it is (pbrt-v4's `PDFLight` for them): 1/(π r²), r the radius of the
+/// scene's bounding sphere, as the lights' own `pdf_le` gives it. (Only for points its rays
+/// reach: beyond, on lancer's infinite planes, a far point's light sampling got an MIS weight
+/// of almost 0 against light paths that never come: a black horizon.)
+fn scene_disk_density(scene: &Scene) -> f32 {
+    let (_, r) = scene.bounds().bounding_sphere();
     1.0 / (PI * r * r)
 }
 

@@ -3,10 +3,10 @@
 //! (s ≥ 2) and merges with the iteration's light vertices, each weighted by the balance
 //! heuristic from the subpaths' running sums ([`Mis`]).
 
-use super::super::emission::light_normal;
+use super::super::emission::{light_normal, reached_from_infinity};
 use super::super::{bsdf_at, emitted, keep_hero_only};
 use super::grid::MergeGrid;
-use super::{Iteration, LightVertex, Mis, hero_weight, light_densities};
+use super::{Iteration, LightVertex, Mis, from_infinity, hero_weight, light_densities};
 use crate::light::{LightSampleContext, LightType};
 use crate::material::{Bsdf, TransportMode};
 use crate::math::{SampledSpectrum, Vec3, normalize};
@@ -70,7 +70,7 @@ pub fn camera_path<S: SampleSource + ?Sized>(
     loop {
         let Some(hit) = scene.intersect(&ray) else {
             l += beta
-                * environment(it, lambda.as_ref(), ray.d, &mis, length)
+                * environment(it, lambda.as_ref(), from, ray.d, &mis, length)
                 * hero_weight(hero_only);
             break;
         };
@@ -159,12 +159,14 @@ pub fn camera_path<S: SampleSource + ?Sized>(
     l
 }
 
-/// The environment seen along `d` by a camera subpath of `length` segments, each light's
-/// radiance weighted against the strategies that sample it (s = 0 as [`camera_path`]'s
-/// emission hits).
+/// The environment seen along `d` from `from` by a camera subpath of `length` segments, each
+/// light's radiance weighted against the strategies that sample it (s = 0 as
+/// [`camera_path`]'s emission hits; those of light subpaths only where their rays reach
+/// `from`).
 fn environment(
     it: &Iteration<'_>,
     lambda: Option<&crate::spectrum::sampled::SampledWavelengths>,
+    from: Vec3,
     d: Vec3,
     mis: &Mis,
     length: u32,
@@ -180,7 +182,11 @@ fn environment(
         let w = if length > 1 {
             let pick = scene.light_distribution().pmf(i);
             let w_out = -normalize(d);
-            let (direct, emission) = light_densities(scene, i, pick, Vec3::ZERO, Vec3::ZERO, w_out);
+            let (direct, mut emission) =
+                light_densities(scene, i, pick, Vec3::ZERO, Vec3::ZERO, w_out);
+            if !reached_from_infinity(scene, from, w_out) {
+                emission = 0.0;
+            }
             1.0 / (1.0 + direct * mis.vcm + emission * mis.vc)
         } else {
             1.0
@@ -240,7 +246,12 @@ fn next_event<S: SampleSource + ?Sized>(
     if cos_light == 0.0 {
         return SampledSpectrum::ZERO;
     }
-    let (direct_a, emission) = light_densities(scene, i, pick, ls.p_light, n_light, -ls.wi);
+    let (direct_a, mut emission) = light_densities(scene, i, pick, ls.p_light, n_light, -ls.wi);
+    // Light subpaths from infinity never reach a point beyond the scene's disk (lancer's
+    // infinite planes): no strategy of theirs to weigh against.
+    if from_infinity(kind) && !reached_from_infinity(scene, si.p, ls.wi) {
+        emission = 0.0;
+    }
     let direct = direct_a * dist2 / cos_light;
     let pdf_fwd = if kind.is_delta() {
         0.0

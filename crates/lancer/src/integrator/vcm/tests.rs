@@ -5,7 +5,7 @@
 use super::*;
 use crate::film::Film;
 use crate::integrator::Integrator;
-use crate::integrator::bdpt::tests::{compare, room_desc};
+use crate::integrator::bdpt::tests::{compare, plane_under_sky, room_desc};
 use crate::integrator::test_scenes::{H, W, diffuse};
 use crate::light::UniformInfiniteDesc;
 use crate::material::{DielectricMaterial, MaterialDesc};
@@ -121,6 +121,25 @@ fn white_furnace() {
         assert!((centre[c] - 0.8).abs() < 0.03, "sphere {centre}");
         assert!((corner[c] - 1.0).abs() < 0.02, "sky {corner}");
     }
+}
+
+#[test]
+fn an_infinite_plane_is_lit_by_the_sky_beyond_the_scene_bounds() {
+    // Past the scene's disk no light subpath arrives: light sampling and the sky's emission
+    // hits must weigh all there (vcm's horizon was black as bdpt's was).
+    let desc = plane_under_sky(vcm(3));
+    let mut p = desc.clone();
+    p.integrator = Integrator::Path {
+        max_depth: 3,
+        regularize: false,
+    };
+    let (want, _) = render_on(&p, &rgb(&p, 64, 1), 2);
+    let (got, _) = render_on(&desc, &rgb(&desc, 64, 2), 2);
+    let (worst, ratio) = compare(&got.image(1.0), &want.image(1.0));
+    assert!(
+        worst < 0.1 && (ratio - 1.0).abs() < 0.02,
+        "worst block {worst}, mean ratio {ratio}"
+    );
 }
 
 #[test]
