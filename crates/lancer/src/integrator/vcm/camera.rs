@@ -6,7 +6,7 @@
 use super::super::emission::{light_normal, reached_from_infinity};
 use super::super::{bsdf_at, emitted, keep_hero_only};
 use super::grid::MergeGrid;
-use super::{Iteration, LightVertex, Mis, from_infinity, hero_weight, light_densities};
+use super::{Iteration, LightVertex, Mis, from_infinity, hero_weight, light_densities, scatter};
 use crate::light::{LightSampleContext, LightType};
 use crate::material::{Bsdf, TransportMode};
 use crate::math::{SampledSpectrum, Vec3, normalize};
@@ -120,23 +120,17 @@ pub fn camera_path<S: SampleSource + ?Sized>(
             }
             l += merge(it, &at, merging, merges);
         }
-        let uc = u.get_1d();
-        let Some(bs) = bsdf.sample_f(wo, uc, u.get_2d(), TransportMode::Radiance) else {
+        let Some((bs, cos_out)) = scatter(
+            &bsdf,
+            wo,
+            si.shading.n,
+            u,
+            TransportMode::Radiance,
+            &mut mis,
+            it.eta,
+        ) else {
             break;
         };
-        let cos_out = bs.wi.dot(si.shading.n).abs();
-        let pdf_fwd = if bs.pdf_is_proportional {
-            bsdf.pdf(wo, bs.wi, TransportMode::Radiance)
-        } else {
-            bs.pdf
-        };
-        let specular = bs.is_specular();
-        let pdf_rev = if specular {
-            pdf_fwd
-        } else {
-            bsdf.pdf(bs.wi, wo, TransportMode::Importance)
-        };
-        mis.scatter(cos_out, pdf_fwd, pdf_rev, specular, it.eta);
         beta *= bs.f * (cos_out / bs.pdf);
         if bs.is_transmission() {
             eta_scale *= bs.eta * bs.eta;

@@ -39,7 +39,7 @@ pub use super::desc::VcmOptions;
 
 use super::{bsdf_at, keep_hero_only};
 use crate::light::LightType;
-use crate::material::{Bsdf, TransportMode};
+use crate::material::{Bsdf, BsdfSample, TransportMode};
 use crate::math::{PI, SampledSpectrum, Vec2, Vec3};
 use crate::ray::Ray;
 use crate::sampling::SampleSource;
@@ -185,6 +185,38 @@ impl Mis {
     }
 }
 
+/// A subpath's next direction at a surface of shading normal `ns`, by BSDF sampling in
+/// `mode`, with the running MIS quantities updated for it ([`Mis::scatter`], p⃗ the
+/// sampled direction's density, p⃖ the reverse one, in the adjoint mode): the sample and
+/// |cos θ_out|.
+#[allow(clippy::too_many_arguments)] // the surface, the sampler, and what the walk carries
+pub(super) fn scatter<S: SampleSource + ?Sized>(
+    bsdf: &Bsdf,
+    wo: Vec3,
+    ns: Vec3,
+    u: &mut S,
+    mode: TransportMode,
+    mis: &mut Mis,
+    eta: f32,
+) -> Option<(BsdfSample, f32)> {
+    let uc = u.get_1d();
+    let bs = bsdf.sample_f(wo, uc, u.get_2d(), mode)?;
+    let cos_out = bs.wi.dot(ns).abs();
+    let pdf_fwd = if bs.pdf_is_proportional {
+        bsdf.pdf(wo, bs.wi, mode)
+    } else {
+        bs.pdf
+    };
+    let specular = bs.is_specular();
+    let pdf_rev = if specular {
+        pdf_fwd
+    } else {
+        bsdf.pdf(bs.wi, wo, mode.flip())
+    };
+    mis.scatter(cos_out, pdf_fwd, pdf_rev, specular, eta);
+    Some((bs, cos_out))
+}
+
 /// The densities, for the MIS weights, of light `i` (chosen with probability `pick`) emitting
 /// from `p` (geometric normal `n`) in unit direction `w`: that of choosing the point as next
 /// event estimation compares it (per unit area: the light's position density; per unit solid
@@ -328,23 +360,17 @@ pub fn light_path<S: SampleSource + ?Sized>(
         if length + 2 > it.max_length {
             break;
         }
-        let uc = u.get_1d();
-        let Some(bs) = bsdf.sample_f(wo, uc, u.get_2d(), TransportMode::Importance) else {
+        let Some((bs, cos_out)) = scatter(
+            &bsdf,
+            wo,
+            si.shading.n,
+            u,
+            TransportMode::Importance,
+            &mut mis,
+            it.eta,
+        ) else {
             break;
         };
-        let cos_out = bs.wi.dot(si.shading.n).abs();
-        let pdf_fwd = if bs.pdf_is_proportional {
-            bsdf.pdf(wo, bs.wi, TransportMode::Importance)
-        } else {
-            bs.pdf
-        };
-        let specular = bs.is_specular();
-        let pdf_rev = if specular {
-            pdf_fwd
-        } else {
-            bsdf.pdf(bs.wi, wo, TransportMode::Radiance)
-        };
-        mis.scatter(cos_out, pdf_fwd, pdf_rev, specular, it.eta);
         beta *= bs.f * (cos_out / bs.pdf);
         // Russian roulette on the throughput relative to the light's emission.
         if length > super::RR_AFTER_DEPTH {
