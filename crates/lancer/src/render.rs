@@ -23,6 +23,8 @@ mod mlt;
 pub mod sppm;
 pub mod strategies;
 mod vcm;
+#[cfg(test)]
+pub(crate) mod testing;
 
 /// What to render.
 #[derive(Clone, Debug)]

@@ -3,39 +3,18 @@
 //! merge to the single render's exact pixels.
 
 use crate::common::{ScratchDir, read_exr, run_in};
+use crate::sppm::{SCENE, ok, render_scene};
 use std::path::Path;
 
-/// A glass sphere on a grey floor under a distant light, 16 × 40 pixels (three tile rows):
-/// a caustic that merging renders.
-const SCENE: &str = r#"LookAt 0 2 3  0 0.3 0  0 1 0
-Camera "perspective" "float fov" [40]
-Film "rgb" "integer xresolution" [16] "integer yresolution" [40]
-Sampler "zsobol" "integer pixelsamples" [4]
-Integrator "vcm" "integer maxdepth" [6] "float radius" [0.05]
-WorldBegin
-LightSource "distant" "point3 from" [1 4 1] "point3 to" [0 0 0] "rgb L" [3 3 3]
-Material "diffuse" "rgb reflectance" [0.5 0.5 0.5]
-Shape "trianglemesh" "point3 P" [-4 0 4  4 0 4  4 0 -4  -4 0 -4] "integer indices" [0 1 2 0 2 3]
-Material "dielectric" "float eta" [1.5]
-AttributeBegin
-  Translate 0 0.4 0
-  Shape "sphere" "float radius" [0.4]
-AttributeEnd
-"#;
-
+/// sppm's test scene (a glass sphere on a grey floor under a distant light, 16 × 40 pixels,
+/// three tile rows) rendered by vcm: a caustic that merging renders.
 fn render(dir: &Path, extra: &[&str]) -> std::process::Output {
-    let path = dir.join("s.pbrt");
-    std::fs::write(&path, SCENE).unwrap();
-    let mut args = vec!["render", path.to_str().unwrap(), "--quiet"];
-    args.extend_from_slice(extra);
-    run_in(dir, &args)
-}
-
-#[track_caller]
-fn ok(o: &std::process::Output) -> String {
-    let e = String::from_utf8_lossy(&o.stderr).to_string();
-    assert!(o.status.success(), "{e}");
-    e
+    let scene = SCENE.replace(
+        r#"Integrator "sppm" "integer maxdepth" [6] "integer photonsperiteration" [4000] "float radius" [0.1]"#,
+        r#"Integrator "vcm" "integer maxdepth" [6] "float radius" [0.05]"#,
+    );
+    assert!(scene.contains("\"vcm\""));
+    render_scene(dir, &scene, extra)
 }
 
 #[test]

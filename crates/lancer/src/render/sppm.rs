@@ -355,31 +355,7 @@ mod tests {
         settings: &RenderSettings,
         threads: usize,
     ) -> (Film, RenderStats) {
-        let scene = Scene::build(desc).unwrap();
-        let mut film = Film::new(
-            desc.film.xresolution,
-            desc.film.yresolution,
-            settings.bounds,
-        );
-        let units = work_units(&settings.bounds, 16, settings.samples.clone(), 4);
-        let mut done = vec![false; units.len()];
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        let stats = pool.install(|| {
-            render_units(
-                &scene,
-                settings,
-                &mut film,
-                &units,
-                &mut done,
-                &|_, _| {},
-                &|| false,
-            )
-        });
-        assert!(done.iter().all(|&d| d));
-        (film, stats)
+        crate::render::testing::render_on(desc, settings, threads, 16)
     }
 
     fn rgb_settings(desc: &SceneDesc) -> RenderSettings {

@@ -10,7 +10,7 @@ use crate::integrator::test_scenes::{H, W, diffuse};
 use crate::light::UniformInfiniteDesc;
 use crate::material::{DielectricMaterial, MaterialDesc};
 use crate::math::{Rgb, Transform};
-use crate::render::{RenderSettings, RenderStats, render_units, work_units};
+use crate::render::{RenderSettings, RenderStats};
 use crate::scene::desc::{Geometry, LightDesc, SceneDesc, ShapeDesc};
 use crate::shape::SphereDesc;
 use crate::spectrum::Ior;
@@ -27,31 +27,7 @@ fn vcm(max_depth: u32) -> Integrator {
 
 /// Renders `settings` of `desc` on `threads` threads into a fresh film over `settings.bounds`.
 fn render_on(desc: &SceneDesc, settings: &RenderSettings, threads: usize) -> (Film, RenderStats) {
-    let scene = Scene::build(desc).unwrap();
-    let mut film = Film::new(
-        desc.film.xresolution,
-        desc.film.yresolution,
-        settings.bounds,
-    );
-    let units = work_units(&settings.bounds, 8, settings.samples.clone(), 4);
-    let mut done = vec![false; units.len()];
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap();
-    let stats = pool.install(|| {
-        render_units(
-            &scene,
-            settings,
-            &mut film,
-            &units,
-            &mut done,
-            &|_, _| {},
-            &|| false,
-        )
-    });
-    assert!(done.iter().all(|&d| d));
-    (film, stats)
+    crate::render::testing::render_on(desc, settings, threads, 8)
 }
 
 /// `desc` at `spp` samples and `seed`, RGB mode.
