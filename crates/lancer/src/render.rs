@@ -22,9 +22,9 @@ mod camera_sample;
 mod mlt;
 pub mod sppm;
 pub mod strategies;
-mod vcm;
 #[cfg(test)]
 pub(crate) mod testing;
+mod vcm;
 
 /// What to render.
 #[derive(Clone, Debug)]
