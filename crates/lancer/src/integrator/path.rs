@@ -183,11 +183,7 @@ pub fn li_observed<O: PathObserver>(
             break;
         }
         depth += 1;
-        let ctx = LightSampleContext {
-            p: si.p,
-            n: si.n,
-            ns: si.shading.n,
-        };
+        let ctx = LightSampleContext::at(si);
         let flags = bsdf.flags();
         // wo in the shading frame, once for f, pdf and the sample.
         let wo_l = bsdf.frame.to_local(wo);

@@ -107,11 +107,7 @@ pub(super) fn exit(
         si.shading.dpdu,
     );
     let wo = si.shading.n;
-    let ctx = LightSampleContext {
-        p: si.p,
-        n: si.n,
-        ns: si.shading.n,
-    };
+    let ctx = LightSampleContext::at(si);
     *l += *beta * direct_light(scene, &pi.si, &sw, wo, &ctx, sampler, lambda);
     let uc = sampler.get_1d();
     let u = sampler.get_2d();

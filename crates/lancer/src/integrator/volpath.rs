@@ -212,11 +212,7 @@ impl Walk<'_> {
             if self.regularize && s.any_non_specular {
                 bsdf.bxdf.regularize();
             }
-            let ctx = LightSampleContext {
-                p: si.p,
-                n: si.n,
-                ns: si.shading.n,
-            };
+            let ctx = LightSampleContext::at(si);
             if bsdf.flags().is_non_specular() {
                 let ul = sampler.get_1d();
                 let u = sampler.get_2d();
@@ -346,11 +342,7 @@ impl Walk<'_> {
                         s.r_u *= t_maj * mp.sigma_s / pdf;
                         if nonzero(s.beta) && nonzero(s.r_u) {
                             let wo = -normalize(d);
-                            let ctx = LightSampleContext {
-                                p,
-                                n: Vec3::ZERO,
-                                ns: Vec3::ZERO,
-                            };
+                            let ctx = LightSampleContext::in_medium(p);
                             let phase = mp.phase;
                             let ul = sampler.get_1d();
                             let u = sampler.get_2d();

@@ -117,11 +117,7 @@ pub(super) fn light_sample(
     u: Vec2,
     lambda: Option<&SampledWavelengths>,
 ) -> SampledSpectrum {
-    let ctx = LightSampleContext {
-        p: si.p,
-        n: si.n,
-        ns: si.shading.n,
-    };
+    let ctx = LightSampleContext::at(si);
     let Some(ls) = scene.sample_li(&scene.lights()[i], &ctx, u) else {
         return SampledSpectrum::ZERO;
     };

@@ -232,11 +232,7 @@ mod tests {
     use crate::sampling::equal_area_square_to_sphere;
 
     fn ctx(p: Vec3) -> LightSampleContext {
-        LightSampleContext {
-            p,
-            n: Vec3::ZERO,
-            ns: Vec3::ZERO,
-        }
+        LightSampleContext::in_medium(p)
     }
 
     #[test]

@@ -306,11 +306,7 @@ mod tests {
     use crate::math::{PI, PackedRgb};
 
     fn ctx(p: Vec3) -> LightSampleContext {
-        LightSampleContext {
-            p,
-            n: Vec3::ZERO,
-            ns: Vec3::ZERO,
-        }
+        LightSampleContext::in_medium(p)
     }
 
     #[test]

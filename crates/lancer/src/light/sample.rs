@@ -14,6 +14,29 @@ pub struct LightSampleContext {
     pub ns: Vec3,
 }
 
+impl LightSampleContext {
+    /// The surface point of `si`: its position, geometric and shading normals.
+    #[inline]
+    pub fn at(si: &crate::shape::SurfaceInteraction) -> Self {
+        LightSampleContext {
+            p: si.p,
+            n: si.n,
+            ns: si.shading.n,
+        }
+    }
+
+    /// A point `p` in a medium (or anywhere, for a light that ignores the receiver): no
+    /// normals.
+    #[inline]
+    pub fn in_medium(p: Vec3) -> Self {
+        LightSampleContext {
+            p,
+            n: Vec3::ZERO,
+            ns: Vec3::ZERO,
+        }
+    }
+}
+
 /// Incident light from a sampled point on a light.
 #[derive(Clone, Copy, Debug)]
 pub struct LightLiSample {

@@ -293,11 +293,7 @@ mod tests {
     #[test]
     fn falloff_follows_the_axis() {
         let light = spot(30.0, 10.0);
-        let ctx = |p: Vec3| LightSampleContext {
-            p,
-            n: Vec3::ZERO,
-            ns: Vec3::ZERO,
-        };
+        let ctx = |p: Vec3| LightSampleContext::in_medium(p);
         let on_axis = light.sample_li(&ctx(light.p + 2.0 * light.axis), Vec2::ZERO, &[], &[]);
         let s = on_axis.expect("lit on the axis");
         assert!((s.l - light.intensity / 4.0).abs().max_element() < 1e-6);

@@ -319,11 +319,7 @@ fn scene_disk_density(scene: &Scene) -> f32 {
 /// Density, per unit solid angle, with which the environment lights (chosen by power) emit
 /// light paths arriving along −`w`: Σ pmf(light)·pdf(light, −w).
 pub(super) fn infinite_light_density(scene: &Scene, w: Vec3) -> f32 {
-    let ctx = LightSampleContext {
-        p: Vec3::ZERO,
-        n: Vec3::ZERO,
-        ns: Vec3::ZERO,
-    };
+    let ctx = LightSampleContext::in_medium(Vec3::ZERO);
     scene
         .infinite_lights()
         .iter()

@@ -217,11 +217,7 @@ pub fn camera_path(
             break;
         }
         depth += 1;
-        let ctx = LightSampleContext {
-            p: si.p,
-            n: si.n,
-            ns: si.shading.n,
-        };
+        let ctx = LightSampleContext::at(si);
         let flags = bsdf.flags();
         ld += beta
             * direct_light(scene, si, &bsdf, wo, &ctx, sampler, wavelengths.as_ref())

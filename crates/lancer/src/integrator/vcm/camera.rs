@@ -6,7 +6,9 @@
 use super::super::emission::{light_normal, reached_from_infinity};
 use super::super::{bsdf_at, emitted, keep_hero_only};
 use super::grid::MergeGrid;
-use super::{Iteration, LightVertex, Mis, from_infinity, hero_weight, light_densities, scatter};
+use super::{
+    Iteration, LightVertex, Mis, from_infinity, hero_weight, light_densities, scatter, survives,
+};
 use crate::light::{LightSampleContext, LightType};
 use crate::material::{Bsdf, TransportMode};
 use crate::math::{SampledSpectrum, Vec3, normalize};
@@ -136,12 +138,10 @@ pub fn camera_path<S: SampleSource + ?Sized>(
             eta_scale *= bs.eta * bs.eta;
         }
         // Russian roulette as the path tracer's.
-        if length > super::super::RR_AFTER_DEPTH {
-            let q = (1.0 - (beta * eta_scale).max_element()).max(0.0);
-            if u.get_1d() < q {
-                break;
-            }
-            beta /= 1.0 - q;
+        if length > super::super::RR_AFTER_DEPTH
+            && !survives(u, (beta * eta_scale).max_element(), &mut beta)
+        {
+            break;
         }
         if beta == SampledSpectrum::ZERO || !beta.is_finite() {
             break;
@@ -204,11 +204,7 @@ fn next_event<S: SampleSource + ?Sized>(
     let Some((i, pick)) = scene.light_distribution().sample(u.get_1d()) else {
         return SampledSpectrum::ZERO;
     };
-    let ctx = LightSampleContext {
-        p: si.p,
-        n: si.n,
-        ns: si.shading.n,
-    };
+    let ctx = LightSampleContext::at(si);
     let u2 = u.get_2d();
     let light = &scene.lights()[i];
     let Some(ls) = light

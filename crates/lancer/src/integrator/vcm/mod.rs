@@ -185,6 +185,21 @@ impl Mis {
     }
 }
 
+/// Russian roulette: the path ends with probability q = max(0, 1 − `level`) (false), else
+/// `beta` is divided by 1 − q (true), so that the estimate keeps its expectation.
+pub(super) fn survives<S: SampleSource + ?Sized>(
+    u: &mut S,
+    level: f32,
+    beta: &mut SampledSpectrum,
+) -> bool {
+    let q = (1.0 - level).max(0.0);
+    if u.get_1d() < q {
+        return false;
+    }
+    *beta /= 1.0 - q;
+    true
+}
+
 /// A subpath's next direction at a surface of shading normal `ns`, by BSDF sampling in
 /// `mode`, with the running MIS quantities updated for it ([`Mis::scatter`], p⃗ the
 /// sampled direction's density, p⃖ the reverse one, in the adjoint mode): the sample and
@@ -373,12 +388,8 @@ pub fn light_path<S: SampleSource + ?Sized>(
         };
         beta *= bs.f * (cos_out / bs.pdf);
         // Russian roulette on the throughput relative to the light's emission.
-        if length > super::RR_AFTER_DEPTH {
-            let q = (1.0 - beta.max_element() / beta0).max(0.0);
-            if u.get_1d() < q {
-                break;
-            }
-            beta /= 1.0 - q;
+        if length > super::RR_AFTER_DEPTH && !survives(u, beta.max_element() / beta0, &mut beta) {
+            break;
         }
         if beta == SampledSpectrum::ZERO || !beta.is_finite() {
             break;
