@@ -667,11 +667,11 @@ fn the_walks_store_the_densities_the_weights_recompute() {
     checks.assert_agree(1000);
 }
 
-#[test]
-fn white_furnace() {
-    // A diffuse sphere of albedo 0.8 under a uniform white sky: a convex object reflects the
-    // sky once, so the image is 0.8 on the sphere and 1 around it, whatever the strategies.
-    let desc = SceneDesc {
+/// A white furnace: a diffuse sphere of albedo 0.8 under a uniform white sky. A convex
+/// object reflects the sky once, so the image is 0.8 on the sphere and 1 around it, whatever
+/// the strategies.
+pub(crate) fn furnace_desc(integrator: Integrator) -> SceneDesc {
+    SceneDesc {
         materials: vec![diffuse(Rgb::splat(0.8))],
         shapes: vec![ShapeDesc::new(
             Geometry::Sphere(SphereDesc {
@@ -685,11 +685,14 @@ fn white_furnace() {
         lights: vec![LightDesc::UniformInfinite(UniformInfiniteDesc {
             l: Rgb::ONE,
         })],
-        ..view(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, 40.0, bdpt(5))
-    };
-    let scene = Scene::build(&desc).unwrap();
-    let img = render(&scene, bdpt(5), 64, 9, None);
-    // The centre block is all sphere, the corners all sky.
+        ..view(Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO, 40.0, integrator)
+    }
+}
+
+/// Asserts that `img`, a render of [`furnace_desc`], is 0.8 on its centre block (all sphere)
+/// and 1 in its corner (all sky).
+#[track_caller]
+pub(crate) fn assert_furnace(img: &[Rgb]) {
     let centre: Rgb = [(11, 8), (12, 8), (11, 9), (12, 9)]
         .iter()
         .map(|&(x, y)| img[(y * W + x) as usize])
@@ -700,6 +703,12 @@ fn white_furnace() {
         assert!((centre[c] - 0.8).abs() < 0.03, "sphere {centre}");
         assert!((corner[c] - 1.0).abs() < 0.02, "sky {corner}");
     }
+}
+
+#[test]
+fn white_furnace() {
+    let scene = Scene::build(&furnace_desc(bdpt(5))).unwrap();
+    assert_furnace(&render(&scene, bdpt(5), 64, 9, None));
 }
 
 /// A grey sphere of radius ½ on lancer's infinite plane under a white sky, seen towards the
