@@ -9,6 +9,7 @@ use crate::stats::{SceneMemory, human_bytes};
 use clap::Args;
 use lancer::Scene;
 use lancer::integrator::Integrator;
+use lancer::render::RenderSettings;
 use lancer::scene::desc::Projection;
 use serde_json::{Value, json};
 use std::collections::BTreeMap;
@@ -36,9 +37,16 @@ pub struct InfoArgs {
 }
 
 /// The integrator as pbrt-v4 names it and its parameters under pbrt-v4's names:
-/// `{"name": "path", "maxdepth": 5, "regularize": false}`.
-fn integrator_json(i: &Integrator) -> Value {
+/// `{"name": "path", "maxdepth": 5, "regularize": false}`. A parameter the scene leaves to a
+/// default that depends on the scene (sppm's `photonsperiteration`, one photon per pixel of
+/// `settings`, and `seed`, the sampler's; vcm's `radius`, a fraction of `scene`'s bounding
+/// sphere) is given as the value the render uses, and named in `"defaults"`: `{"name":
+/// "vcm", "radius": 0.0052, …, "defaults": ["radius"]}`.
+fn integrator_json(i: &Integrator, scene: &Scene, settings: &RenderSettings) -> Value {
     let mut v = json!({ "name": i.pbrt_name() });
+    let mut defaults: Vec<&str> = Vec::new();
+    // As written (0.3, not the f32's 0.30000001192092896).
+    let short = |v: f32| v.to_string().parse::<f64>().unwrap_or(f64::NAN);
     match *i {
         Integrator::Whitted { max_depth } => v["maxdepth"] = json!(max_depth),
         Integrator::Path {
@@ -87,27 +95,38 @@ fn integrator_json(i: &Integrator) -> Value {
             v["bootstrapsamples"] = json!(o.bootstrap_samples);
             v["chains"] = json!(o.chains);
             v["mutationsperpixel"] = json!(o.mutations_per_pixel);
-            // As written (0.3, not the f32's 0.30000001192092896).
-            let short = |v: f32| v.to_string().parse::<f64>().unwrap_or(f64::NAN);
             v["largestepprobability"] = json!(short(o.large_step_probability));
             v["sigma"] = json!(short(o.sigma));
             v["regularize"] = json!(o.regularize);
         }
         Integrator::Sppm(o) => {
             v["maxdepth"] = json!(o.max_depth);
-            // pbrt-v4's −1: one photon per pixel.
-            v["photonsperiteration"] = json!(o.photons_per_iteration.map_or(-1, i64::from));
-            v["radius"] = json!(o.radius);
-            v["seed"] = json!(o.seed);
+            // pbrt-v4's −1 (absent): one photon per pixel of the whole render.
+            v["photonsperiteration"] =
+                json!(lancer::render::sppm::photons_per_iteration(settings, &o));
+            if o.photons_per_iteration.is_none() {
+                defaults.push("photonsperiteration");
+            }
+            v["radius"] = json!(short(o.radius));
+            // Absent: the sampler's seed.
+            v["seed"] = json!(o.seed.unwrap_or(settings.seed));
+            if o.seed.is_none() {
+                defaults.push("seed");
+            }
         }
         Integrator::Vcm(o) => {
             v["maxdepth"] = json!(o.max_depth);
-            // null: the default, a fraction of the scene's bounding sphere.
-            let short = |v: f32| v.to_string().parse::<f64>().unwrap_or(f64::NAN);
-            v["radius"] = json!(o.radius.map(short));
+            // Absent: DEFAULT_RADIUS_FRACTION × the scene's bounding-sphere radius.
+            v["radius"] = json!(short(lancer::integrator::vcm::initial_radius(scene, &o)));
+            if o.radius.is_none() {
+                defaults.push("radius");
+            }
             v["alpha"] = json!(short(o.alpha));
         }
         Integrator::Normals | Integrator::Depth => {}
+    }
+    if !defaults.is_empty() {
+        v["defaults"] = json!(defaults);
     }
     v
 }
@@ -190,10 +209,10 @@ pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
             "spp": desc.sampler.spp,
             "seed": desc.sampler.seed,
         },
-        "integrator": integrator_json(&desc.integrator),
+        "integrator": integrator_json(&desc.integrator, &scene, &RenderSettings::from_desc(desc)),
         // The mode `lancer render` uses by default (spectral, as pbrt-v4; `--rgb` for RGB);
         // the debug integrators output RGB quantities in either.
-        "mode": if lancer::render::RenderSettings::from_desc(desc).spectral
+        "mode": if RenderSettings::from_desc(desc).spectral
             && desc.integrator.computes_radiance()
         {
             "spectral"
@@ -237,15 +256,23 @@ pub fn describe(args: &InfoArgs) -> Result<Value, CliError> {
     Ok(v)
 }
 
-/// `path (maxdepth 5, regularize false)` from [`integrator_json`]'s object.
+/// `path (maxdepth 5, regularize false)` from [`integrator_json`]'s object; a parameter named
+/// in its `"defaults"` is followed by `(default)`: `radius 0.0052 (default)`.
 fn integrator_text(v: &Value) -> String {
     let name = v["name"].as_str().unwrap_or("");
+    let defaults = v["defaults"].as_array().cloned().unwrap_or_default();
     let params: Vec<String> = v
         .as_object()
         .into_iter()
         .flatten()
-        .filter(|(k, _)| *k != "name")
-        .map(|(k, x)| format!("{k} {x}"))
+        .filter(|(k, _)| *k != "name" && *k != "defaults")
+        .map(|(k, x)| {
+            if defaults.iter().any(|d| d.as_str() == Some(k)) {
+                format!("{k} {x} (default)")
+            } else {
+                format!("{k} {x}")
+            }
+        })
         .collect();
     if params.is_empty() {
         name.to_string()
@@ -441,9 +468,15 @@ pub fn run(args: InfoArgs) -> Result<(), CliError> {
 mod tests {
     use super::*;
     use lancer::integrator::sppm::SppmOptions;
+    use lancer::scene::desc::SceneDesc;
 
     #[test]
     fn integrators_are_named_as_pbrt_names_them() {
+        // An empty scene: its bounding sphere has radius 0.
+        let desc = SceneDesc::default();
+        let scene = Scene::build(&desc).unwrap();
+        let settings = RenderSettings::from_desc(&desc);
+        let integrator_json = |i: &Integrator| integrator_json(i, &scene, &settings);
         let v = integrator_json(&Integrator::Path {
             max_depth: 5,
             regularize: false,
@@ -488,27 +521,47 @@ mod tests {
         );
         let v = integrator_json(&Integrator::Sppm(SppmOptions {
             max_depth: 8,
-            photons_per_iteration: None,
+            photons_per_iteration: Some(1000),
             radius: 0.25,
             seed: Some(3),
         }));
         assert_eq!(
             v,
-            json!({ "name": "sppm", "maxdepth": 8, "photonsperiteration": -1,
+            json!({ "name": "sppm", "maxdepth": 8, "photonsperiteration": 1000,
                     "radius": 0.25, "seed": 3 })
+        );
+        // One photon per pixel of the film when the scene leaves photonsperiteration out.
+        let v = integrator_json(&Integrator::Sppm(SppmOptions {
+            max_depth: 8,
+            photons_per_iteration: None,
+            radius: 0.25,
+            seed: None,
+        }));
+        let pixels = settings.splat_bounds.area();
+        assert!(pixels > 1);
+        assert_eq!(v["photonsperiteration"], json!(pixels));
+        assert_eq!(v["seed"], json!(settings.seed));
+        assert_eq!(v["defaults"], json!(["photonsperiteration", "seed"]));
+        assert_eq!(
+            integrator_text(&v),
+            format!(
+                "sppm (maxdepth 8, photonsperiteration {pixels} (default), radius 0.25, seed {} \
+                 (default))",
+                settings.seed
+            )
         );
         let v = integrator_json(&Integrator::Vcm(lancer::integrator::vcm::VcmOptions {
             max_depth: 6,
-            radius: None,
+            radius: Some(0.05),
             alpha: 0.75,
         }));
         assert_eq!(
             v,
-            json!({ "name": "vcm", "maxdepth": 6, "radius": null, "alpha": 0.75 })
+            json!({ "name": "vcm", "maxdepth": 6, "radius": 0.05, "alpha": 0.75 })
         );
         assert_eq!(
             integrator_text(&v),
-            "vcm (alpha 0.75, maxdepth 6, radius null)"
+            "vcm (alpha 0.75, maxdepth 6, radius 0.05)"
         );
     }
 }
