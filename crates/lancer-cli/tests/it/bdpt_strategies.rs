@@ -1,6 +1,7 @@
 //! bdpt's `visualizeweights` and `visualizestrategies` through `lancer render`: one EXR per
 //! strategy beside the output under pbrt-v4's names, the weighted ones adding up to the
-//! image, and none for a part of a split render.
+//! image, and none for a part of a split render; the film's `maxcomponentvalue` does not clamp
+//! them, as pbrt-v4's.
 
 use crate::common::{Img, ScratchDir, read_exr, run_in};
 use std::path::Path;
@@ -103,4 +104,59 @@ fn a_part_of_a_split_render_writes_no_strategy_images() {
     for name in NAMES {
         assert!(!dir.join(name).exists(), "{name}");
     }
+}
+
+/// pbrt-v4 makes its strategy films without the scene film's `maxcomponentvalue` (their
+/// `RGBFilm`s keep its default, infinity): the scene film's clamp changes the image, not the
+/// strategy images, which then add up to more than the clamped image.
+#[test]
+fn maxcomponentvalue_clamps_the_image_not_the_strategy_images() {
+    let dir = ScratchDir::new("bdpt-strategies-clamp");
+    std::fs::create_dir_all(dir.join("free")).unwrap();
+    std::fs::create_dir_all(dir.join("clamped")).unwrap();
+    render(&dir, "visualizeweights", &["-o", "free/img.exr"]);
+    let clamped = scene("visualizeweights").replace(
+        r#""integer yresolution" [8]"#,
+        r#""integer yresolution" [8] "float maxcomponentvalue" [0.05]"#,
+    );
+    assert!(clamped.contains("maxcomponentvalue"));
+    std::fs::write(dir.join("c.pbrt"), clamped).unwrap();
+    let o = run_in(
+        &dir,
+        &[
+            "render",
+            "c.pbrt",
+            "--quiet",
+            "--threads",
+            "2",
+            "-o",
+            "clamped/img.exr",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let total = |v: &[[f64; 3]]| v.iter().map(|p| p[1]).sum::<f64>();
+    let free = read_exr(&dir.join("free/img.exr"));
+    let image = read_exr(&dir.join("clamped/img.exr"));
+    // The clamp bites: the clamped image holds clearly less light.
+    assert!(
+        total(&image.rgb) < 0.9 * total(&free.rgb),
+        "clamped {} vs free {}",
+        total(&image.rgb),
+        total(&free.rgb)
+    );
+    let mut sum = vec![[0.0f64; 3]; image.rgb.len()];
+    for name in NAMES {
+        let a = read_exr(&dir.join("free").join(name));
+        let b = read_exr(&dir.join("clamped").join(name));
+        assert_eq!(a, b, "{name} changed by maxcomponentvalue");
+        add(&mut sum, &b);
+    }
+    // They still add up to the unclamped image.
+    for (s, p) in sum.iter().zip(&free.rgb) {
+        assert!(
+            (s[1] - p[1]).abs() <= 1e-4 * p[1].abs() + 1e-6,
+            "{s:?} vs {p:?}"
+        );
+    }
+    assert!(total(&sum) > total(&image.rgb) / 0.9);
 }
