@@ -19,7 +19,7 @@ use lancer::gbuffer::write::HALF_MAX;
 use lancer::gbuffer::{GbufferConfig, GbufferFilm, GbufferHeader, write_gbuffer_exr};
 use lancer::image_io::{ImageFormat, write_image};
 use lancer::render::strategies::StrategyImages;
-use lancer::render::{RenderSettings, RenderStats, WorkUnit, work_units};
+use lancer::render::{RenderJob, RenderSettings, RenderStats, WorkUnit, work_units};
 use lancer::{Scene, SceneDesc};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -522,13 +522,15 @@ pub fn render(
         let s = pool.install(|| {
             strategy_images::render_units(
                 strategies.as_ref(),
-                scene,
-                settings,
-                &mut state.film,
-                &plan.units,
-                &mut state.done,
-                &on_unit,
-                &stop,
+                RenderJob {
+                    scene,
+                    settings,
+                    film: &mut state.film,
+                    units: &plan.units,
+                    done: &mut state.done,
+                    on_unit: &on_unit,
+                    stop: &stop,
+                },
             )
         });
         stats.add(&s);

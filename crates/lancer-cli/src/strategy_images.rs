@@ -8,13 +8,12 @@
 //! writes them.
 
 use crate::cli_error::CliError;
-use lancer::Scene;
 use lancer::film::Film;
 use lancer::image_io::write_image;
 use lancer::integrator::Integrator;
 use lancer::integrator::bdpt::BdptOptions;
 use lancer::render::strategies::{ObservedBdpt, StrategyImages};
-use lancer::render::{RenderSettings, RenderStats, UnitHook, WorkUnit, render_units_with};
+use lancer::render::{RenderJob, RenderSettings, RenderStats, render_units_with};
 use std::path::Path;
 
 /// The strategy images the render of `settings` fills, when its integrator asks for them and
@@ -54,17 +53,8 @@ pub fn start(settings: &RenderSettings, is_part: bool, resumed: bool) -> Option<
 }
 
 /// [`lancer::render::render_units`], with bdpt observed into `images` when given.
-#[allow(clippy::too_many_arguments)] // render_units' inputs and the images
-pub fn render_units(
-    images: Option<&StrategyImages>,
-    scene: &Scene,
-    settings: &RenderSettings,
-    film: &mut Film,
-    units: &[WorkUnit],
-    done: &mut [bool],
-    on_unit: UnitHook<'_>,
-    stop: &(dyn Fn() -> bool + Sync),
-) -> RenderStats {
+pub fn render_units(images: Option<&StrategyImages>, job: RenderJob<'_>) -> RenderStats {
+    let settings = job.settings;
     match (images, settings.integrator) {
         (
             Some(images),
@@ -82,18 +72,9 @@ pub fn render_units(
                 images,
                 filter: &settings.filter,
             };
-            render_units_with(scene, settings, &observed, film, units, done, on_unit, stop)
+            render_units_with(job, &observed)
         }
-        _ => render_units_with(
-            scene,
-            settings,
-            &settings.integrator,
-            film,
-            units,
-            done,
-            on_unit,
-            stop,
-        ),
+        _ => render_units_with(job, &settings.integrator),
     }
 }
 

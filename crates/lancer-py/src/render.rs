@@ -6,7 +6,7 @@ use crate::scene::PyScene;
 use lancer::SceneDesc;
 use lancer::film::{Film, PixelBounds};
 use lancer::gbuffer::{GbufferConfig, GbufferFilm};
-use lancer::render::{RenderSettings, RenderStats, render_units, work_units};
+use lancer::render::{RenderJob, RenderSettings, RenderStats, render_units, work_units};
 use numpy::PyArray3;
 use numpy::ndarray::Array3;
 use pyo3::exceptions::{PyRuntimeError, PyRuntimeWarning, PyValueError};
@@ -247,15 +247,15 @@ pub fn render_film(
             );
             let mut done = vec![false; units.len()];
             let stats = pool.install(|| {
-                render_units(
-                    built,
+                render_units(RenderJob {
+                    scene: built,
                     settings,
                     film,
-                    &units,
-                    &mut done,
-                    &|_, _| {},
-                    &|| cancel.load(Ordering::Relaxed),
-                )
+                    units: &units,
+                    done: &mut done,
+                    on_unit: &|_, _| {},
+                    stop: &|| cancel.load(Ordering::Relaxed),
+                })
             });
             let _ = done_tx.send(stats);
         });

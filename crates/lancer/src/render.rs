@@ -527,15 +527,15 @@ pub fn render(
         u32::MAX,
     );
     let mut done = vec![false; units.len()];
-    render_units(
+    render_units(RenderJob {
         scene,
         settings,
         film,
-        &units,
-        &mut done,
-        &|unit, _| progress(unit.tile.area()),
-        &|| cancel.load(Ordering::Relaxed),
-    )
+        units: &units,
+        done: &mut done,
+        on_unit: &|unit, _| progress(unit.tile.area()),
+        stop: &|| cancel.load(Ordering::Relaxed),
+    })
 }
 
 /// Called as each unit of work finishes, with the unit and the film's sums over its tile after
@@ -578,58 +578,66 @@ pub fn work_units(
     out
 }
 
-/// Renders the units of `units` not yet marked in `done` into `film`, marking each one as
-/// its sums are added (under the same lock, so `film` and `done` always agree). Units run in
-/// parallel within a pass (a run of units with the same sample range), passes one after the
-/// other. `stop()` is asked before each unit starts: once it says yes, no new unit starts and
-/// the call returns when the units in flight have been added (the result's `cancelled` is
-/// then true). `on_unit` is called with each finished unit and the film's sums over its tile.
-pub fn render_units(
-    scene: &Scene,
-    settings: &RenderSettings,
-    film: &mut Film,
-    units: &[WorkUnit],
-    done: &mut [bool],
-    on_unit: UnitHook<'_>,
-    stop: &(dyn Fn() -> bool + Sync),
+/// One call's work, as [`render_units`] (and the renders of mlt, sppm and vcm it hands the
+/// work to) take it: the scene and its settings, the film the units are added into, the
+/// units and which of them are done, and the two hooks.
+pub struct RenderJob<'a> {
+    /// The scene.
+    pub scene: &'a Scene,
+    /// What to render.
+    pub settings: &'a RenderSettings,
+    /// The film the units' sums (and splats) are added into.
+    pub film: &'a mut Film,
+    /// The units of work (see [`work_units`]).
+    pub units: &'a [WorkUnit],
+    /// One flag per unit of `units`: true once its sums are in `film`. Units already marked
+    /// are skipped (a resumed render).
+    pub done: &'a mut [bool],
+    /// Called as each unit finishes, with the film's sums over its tile.
+    pub on_unit: UnitHook<'a>,
+    /// Asked before work starts: once it says yes, no new work starts.
+    pub stop: &'a (dyn Fn() -> bool + Sync),
+}
+
+/// Renders the units of `job.units` not yet marked in `job.done` into `job.film`, marking
+/// each one as its sums are added (under the same lock, so the film and `done` always agree).
+/// Units run in parallel within a pass (a run of units with the same sample range), passes
+/// one after the other. `stop()` is asked before each unit starts: once it says yes, no new
+/// unit starts and the call returns when the units in flight have been added (the result's
+/// `cancelled` is then true). `on_unit` is called with each finished unit and the film's sums
+/// over its tile.
+pub fn render_units(job: RenderJob<'_>) -> RenderStats {
+    let integrator = &job.settings.integrator;
+    render_units_with(job, integrator)
+}
+
+/// [`render_units`] with another integrator than the settings' (one that splats, say). The
+/// splats of the units rendered are added into the film's splat plane before it returns. An
+/// `sppm` integrator ([`SampleIntegrator::sppm`]) is not a sum of units: its iterations run
+/// over the whole of `settings.bounds` ([`sppm::render`]), which marks every unit done when
+/// they are all finished.
+pub fn render_units_with<I: SampleIntegrator + ?Sized>(
+    job: RenderJob<'_>,
+    integrator: &I,
 ) -> RenderStats {
-    render_units_with(
+    if let Some(options) = integrator.mlt() {
+        return mlt::render_chains(job, &options);
+    }
+    if let Some(options) = integrator.sppm() {
+        return sppm::render(job, options);
+    }
+    if let Some(options) = integrator.vcm() {
+        return vcm::render(job, options);
+    }
+    let RenderJob {
         scene,
         settings,
-        &settings.integrator,
         film,
         units,
         done,
         on_unit,
         stop,
-    )
-}
-
-/// [`render_units`] with another integrator than the settings' (one that splats, say). The
-/// splats of the units rendered are added into `film`'s splat plane before it returns. An
-/// `sppm` integrator ([`SampleIntegrator::sppm`]) is not a sum of units: its iterations run
-/// over the whole of `settings.bounds` ([`sppm::render`]), which marks every unit done when
-/// they are all finished.
-#[allow(clippy::too_many_arguments)] // render_units' inputs and the integrator
-pub fn render_units_with<I: SampleIntegrator + ?Sized>(
-    scene: &Scene,
-    settings: &RenderSettings,
-    integrator: &I,
-    film: &mut Film,
-    units: &[WorkUnit],
-    done: &mut [bool],
-    on_unit: UnitHook<'_>,
-    stop: &(dyn Fn() -> bool + Sync),
-) -> RenderStats {
-    if let Some(options) = integrator.mlt() {
-        return mlt::render_chains(scene, settings, &options, film, units, done, on_unit, stop);
-    }
-    if let Some(options) = integrator.sppm() {
-        return sppm::render(scene, settings, options, film, done, on_unit, stop);
-    }
-    if let Some(options) = integrator.vcm() {
-        return vcm::render(scene, settings, options, film, units, done, on_unit, stop);
-    }
+    } = job;
     let kind = film.kind();
     // One plane shared by the threads, only for an integrator that splats.
     let plane = integrator
@@ -766,15 +774,15 @@ mod tests {
                     assert_eq!(film.kind(), kind);
                     let units = work_units(&pixel, 1, s..s + 1, 1);
                     let mut done = vec![false; units.len()];
-                    render_units(
-                        &scene,
-                        &settings,
-                        &mut film,
-                        &units,
-                        &mut done,
-                        &|_, _| {},
-                        &|| false,
-                    );
+                    render_units(RenderJob {
+                        scene: &scene,
+                        settings: &settings,
+                        film: &mut film,
+                        units: &units,
+                        done: &mut done,
+                        on_unit: &|_, _| {},
+                        stop: &|| false,
+                    });
                     let rendered = film.pixels[0].value();
                     let id = SampleId { y: 0, x, sample: s };
                     let (replayed, _) = trace_sample(&scene, &settings, kind, id);

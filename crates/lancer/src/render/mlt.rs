@@ -9,8 +9,7 @@
 //! chains (its "samples", [`crate::integrator::Integrator::sample_indices`]), or interrupted
 //! and resumed between chains, adds up to the same bits.
 
-use super::{RenderSettings, RenderStats, Splats, UnitHook, WorkUnit, counts, scene_film_rgb};
-use crate::film::Film;
+use super::{RenderJob, RenderSettings, RenderStats, Splats, counts, scene_film_rgb};
 use crate::film::splat::AtomicSplats;
 use crate::film::tile::FilmSplats;
 use crate::integrator::mlt::sampler::PssSampler;
@@ -79,17 +78,16 @@ pub(super) fn chain_mutations(i: u64, chains: u64, total: u64) -> u64 {
 /// same range (the tiles of one pass, as [`super::work_units`] makes them) are that range
 /// once, all marked when it is done. `stop()` is asked before each range but the first
 /// starts.
-#[allow(clippy::too_many_arguments)] // render_units' inputs and the options
-pub(super) fn render_chains(
-    scene: &Scene,
-    settings: &RenderSettings,
-    options: &MltOptions,
-    film: &mut Film,
-    units: &[WorkUnit],
-    done: &mut [bool],
-    on_unit: UnitHook<'_>,
-    stop: &(dyn Fn() -> bool + Sync),
-) -> RenderStats {
+pub(super) fn render_chains(job: RenderJob<'_>, options: &MltOptions) -> RenderStats {
+    let RenderJob {
+        scene,
+        settings,
+        film,
+        units,
+        done,
+        on_unit,
+        stop,
+    } = job;
     let kind = film.kind();
     let chains = Chains {
         scene,

@@ -12,7 +12,7 @@
 //! into pixel ranges, gives the same bits.
 
 use super::{
-    RenderSettings, RenderStats, SampleId, UnitHook, WorkUnit, camera_ray_at, rays_traced,
+    RenderJob, RenderSettings, RenderStats, SampleId, WorkUnit, camera_ray_at, rays_traced,
     scene_film_rgb,
 };
 use crate::film::{Film, PixelBounds, PixelSum, to_fixed};
@@ -23,7 +23,6 @@ use crate::integrator::sppm::{
 use crate::math::{Rgb, SampledSpectrum, Vec3};
 use crate::sampling::halton::{DigitPermutations, radical_inverse};
 use crate::sampling::{Sampler, hash_u64, u32_to_unit_f32};
-use crate::scene::Scene;
 use crate::spectrum::sampled::SampledWavelengths;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -58,15 +57,18 @@ pub fn photons_per_iteration(settings: &RenderSettings, options: &SppmOptions) -
 /// overwrites the film, so it ends with the same bits). Otherwise every unit is marked done.
 /// `on_unit` is called after each iteration, with a unit of the whole bounds and that
 /// iteration's index, and the estimate so far.
-pub(super) fn render(
-    scene: &Scene,
-    settings: &RenderSettings,
-    options: SppmOptions,
-    film: &mut Film,
-    done: &mut [bool],
-    on_unit: UnitHook<'_>,
-    stop: &(dyn Fn() -> bool + Sync),
-) -> RenderStats {
+pub(super) fn render(job: RenderJob<'_>, options: SppmOptions) -> RenderStats {
+    // Not unit by unit: iterations 0..settings.samples.end over all of settings.bounds,
+    // every flag of `done` marked at the end.
+    let RenderJob {
+        scene,
+        settings,
+        film,
+        units: _,
+        done,
+        on_unit,
+        stop,
+    } = job;
     let bounds = settings.bounds.intersect(&film.bounds);
     let mut stats = RenderStats::default();
     let iterations = settings.samples.end;
@@ -268,6 +270,7 @@ mod tests {
     use crate::material::{DielectricMaterial, MaterialDesc};
     use crate::math::Transform;
     use crate::render::{render_units, work_units};
+    use crate::scene::Scene;
     use crate::scene::desc::{Geometry, LightDesc, SceneDesc, ShapeDesc};
     use crate::shape::SphereDesc;
     use crate::spectrum::Ior;
@@ -489,27 +492,27 @@ mod tests {
         let mut done = vec![false; units.len()];
         let calls = std::sync::atomic::AtomicU32::new(0);
         let stop = || calls.fetch_add(1, Ordering::Relaxed) >= 2;
-        let stats = render_units(
-            &scene,
-            &settings,
-            &mut film,
-            &units,
-            &mut done,
-            &|_, _| {},
-            &stop,
-        );
+        let stats = render_units(RenderJob {
+            scene: &scene,
+            settings: &settings,
+            film: &mut film,
+            units: &units,
+            done: &mut done,
+            on_unit: &|_, _| {},
+            stop: &stop,
+        });
         assert!(stats.cancelled && !done.iter().any(|&d| d));
         assert_eq!(film.pixels[0].samples, 2);
         assert_ne!(film.pixels, one.pixels);
-        render_units(
-            &scene,
-            &settings,
-            &mut film,
-            &units,
-            &mut done,
-            &|_, _| {},
-            &|| false,
-        );
+        render_units(RenderJob {
+            scene: &scene,
+            settings: &settings,
+            film: &mut film,
+            units: &units,
+            done: &mut done,
+            on_unit: &|_, _| {},
+            stop: &|| false,
+        });
         assert_eq!(film.pixels, one.pixels);
     }
 

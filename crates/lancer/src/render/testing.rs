@@ -1,6 +1,6 @@
 //! Test helpers of the film loops: a whole render of a scene description into a fresh film.
 
-use super::{RenderSettings, RenderStats, render_units, work_units};
+use super::{RenderJob, RenderSettings, RenderStats, render_units, work_units};
 use crate::film::Film;
 use crate::scene::Scene;
 use crate::scene::desc::SceneDesc;
@@ -26,15 +26,15 @@ pub(crate) fn render_on(
         .build()
         .unwrap();
     let stats = pool.install(|| {
-        render_units(
-            &scene,
+        render_units(RenderJob {
+            scene: &scene,
             settings,
-            &mut film,
-            &units,
-            &mut done,
-            &|_, _| {},
-            &|| false,
-        )
+            film: &mut film,
+            units: &units,
+            done: &mut done,
+            on_unit: &|_, _| {},
+            stop: &|| false,
+        })
     });
     assert!(done.iter().all(|&d| d));
     (film, stats)

@@ -16,7 +16,7 @@
 //! the light subpaths of its own pixels: the parts' splats add up to the whole render's.
 
 use super::{
-    RenderSettings, RenderStats, SampleId, Splats, UnitHook, WorkUnit, camera_ray_at, counts,
+    RenderJob, RenderSettings, RenderStats, SampleId, Splats, camera_ray_at, counts,
     sppm::wavelength_sample,
 };
 use crate::film::splat::AtomicSplats;
@@ -295,17 +295,16 @@ impl Pass<'_> {
 /// [`super::work_units`] makes them) run together: the iterations of the range, each over
 /// all their tiles; they are marked done (and `on_unit` called) when the range is finished.
 /// `stop()` is asked before each range.
-#[allow(clippy::too_many_arguments)] // render_units' inputs and the options
-pub(super) fn render(
-    scene: &Scene,
-    settings: &RenderSettings,
-    options: VcmOptions,
-    film: &mut Film,
-    units: &[WorkUnit],
-    done: &mut [bool],
-    on_unit: UnitHook<'_>,
-    stop: &(dyn Fn() -> bool + Sync),
-) -> RenderStats {
+pub(super) fn render(job: RenderJob<'_>, options: VcmOptions) -> RenderStats {
+    let RenderJob {
+        scene,
+        settings,
+        film,
+        units,
+        done,
+        on_unit,
+        stop,
+    } = job;
     let kind = film.kind();
     let mut ranges: Vec<std::ops::Range<u32>> = Vec::new();
     for (u, d) in units.iter().zip(done.iter()) {

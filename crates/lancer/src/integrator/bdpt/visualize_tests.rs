@@ -8,7 +8,7 @@ use crate::film::Film;
 use crate::integrator::Integrator;
 use crate::math::Rgb;
 use crate::render::strategies::{ObservedBdpt, Strategy, StrategyImages, strategies};
-use crate::render::{RenderSettings, render_units_with, work_units};
+use crate::render::{RenderJob, RenderSettings, render_units_with, work_units};
 use crate::scene::Scene;
 use crate::scene::desc::{FilterDesc, SceneDesc};
 
@@ -58,25 +58,29 @@ fn render_film(
             };
             let f = &mut film;
             render_units_with(
-                &scene,
-                &settings,
+                RenderJob {
+                    scene: &scene,
+                    settings: &settings,
+                    film: f,
+                    units: &units,
+                    done: &mut done,
+                    on_unit: &|_, _| {},
+                    stop: &|| false,
+                },
                 &observed,
-                f,
-                &units,
-                &mut done,
-                &|_, _| {},
-                &|| false,
             )
         }
         None => render_units_with(
-            &scene,
-            &settings,
+            RenderJob {
+                scene: &scene,
+                settings: &settings,
+                film: &mut film,
+                units: &units,
+                done: &mut done,
+                on_unit: &|_, _| {},
+                stop: &|| false,
+            },
             &settings.integrator,
-            &mut film,
-            &units,
-            &mut done,
-            &|_, _| {},
-            &|| false,
         ),
     });
     let images = images.map_or_else(Vec::new, |i| i.images(&film, 1.0));

@@ -3,7 +3,9 @@
 
 use lancer::Scene;
 use lancer::film::Film;
-use lancer::render::{RenderSettings, RenderStats, SampleIntegrator, WorkUnit, render_units_with};
+use lancer::render::{
+    RenderJob, RenderSettings, RenderStats, SampleIntegrator, WorkUnit, render_units_with,
+};
 
 /// Renders `units` into `film` with `integrator` on a rayon pool of `threads` threads, with
 /// no progress hook and no stop; returns the render's totals.
@@ -22,14 +24,16 @@ pub fn render_units_on<I: SampleIntegrator + ?Sized>(
         .unwrap();
     pool.install(|| {
         render_units_with(
-            scene,
-            settings,
+            RenderJob {
+                scene,
+                settings,
+                film,
+                units,
+                done: &mut done,
+                on_unit: &|_, _| {},
+                stop: &|| false,
+            },
             integrator,
-            film,
-            units,
-            &mut done,
-            &|_, _| {},
-            &|| false,
         )
     })
 }
