@@ -60,6 +60,11 @@ fn integrator_json(i: &Integrator, scene: &Scene, settings: &RenderSettings) -> 
             v["maxdepth"] = json!(max_depth);
             v["regularize"] = json!(regularize);
         }
+        Integrator::PathCaustics { max_depth, paths } => {
+            v["maxdepth"] = json!(max_depth);
+            v["caustics"] = json!(true);
+            v["causticpaths"] = json!(paths);
+        }
         Integrator::AmbientOcclusion {
             cos_sample,
             max_distance,

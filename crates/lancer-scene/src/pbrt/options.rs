@@ -280,6 +280,25 @@ pub fn integrator(params: &ParamList, ty: &str) -> Result<Fallback<Integrator>, 
     };
     let i = match ty {
         "whitted" => Integrator::Whitted { max_depth },
+        // lancer's extension: caustics seen directly by light tracing (no regularisation).
+        "path" if p.bool("caustics", false)? => {
+            let i = Integrator::PathCaustics {
+                max_depth,
+                paths: p.float_checked(
+                    "causticpaths",
+                    lancer::integrator::caustics::DEFAULT_PATHS,
+                    "in (0, 1]",
+                    |v| v > 0.0 && v <= 1.0,
+                )?,
+            };
+            if p.bool("regularize", false)? {
+                return Ok(Fallback::instead(
+                    i,
+                    "\"regularize\" is ignored by \"path\" with \"caustics\"".to_string(),
+                ));
+            }
+            i
+        }
         "path" | "volpath" => {
             // Their `lightsampler` is read by [`light_sampler`].
             match (ty, path()?) {
@@ -795,6 +814,35 @@ mod tests {
             regularize,
         };
         assert_eq!(clean(r#"Integrator "path""#, integrator), path(5, false));
+        // lancer's caustics by light tracing.
+        assert_eq!(
+            clean(r#"Integrator "path" "bool caustics" true"#, integrator),
+            Integrator::PathCaustics {
+                max_depth: 5,
+                paths: 0.125
+            }
+        );
+        assert_eq!(
+            clean(
+                r#"Integrator "path" "bool caustics" false "integer maxdepth" 7"#,
+                integrator
+            ),
+            path(7, false)
+        );
+        assert_eq!(
+            warnings(
+                r#"Integrator "path" "bool caustics" true "float causticpaths" 0.5 "bool regularize" true"#,
+                integrator
+            ),
+            ["\"regularize\" is ignored by \"path\" with \"caustics\""]
+        );
+        assert_eq!(
+            error(
+                "Integrator \"path\" \"bool caustics\" true\n  \"float causticpaths\" 2",
+                integrator
+            ),
+            "t.pbrt:2:3: \"float causticpaths\" must be in (0, 1], not 2"
+        );
         assert_eq!(
             clean(
                 r#"Integrator "volpath" "integer maxdepth" 8 "bool regularize" true"#,

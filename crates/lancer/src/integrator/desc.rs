@@ -19,6 +19,17 @@ pub enum Integrator {
         /// `regularize`).
         regularize: bool,
     },
+    /// Path tracing with the caustics the camera sees directly rendered by light tracing
+    /// (lancer's `Integrator "path" "bool caustics" [true]`; [`crate::integrator::caustics`]):
+    /// one light path per camera sample, through specular bounces only, joined to the lens.
+    PathCaustics {
+        /// Maximum number of bounces.
+        max_depth: u32,
+        /// Light paths per camera sample (`causticpaths`, in (0, 1], default
+        /// [`crate::integrator::caustics::DEFAULT_PATHS`]): each camera sample traces one with
+        /// this probability, its splats weighted by its inverse.
+        paths: f32,
+    },
     /// Ambient occlusion.
     AmbientOcclusion {
         /// Cosine-weighted sampling.
@@ -113,7 +124,7 @@ impl Integrator {
     pub fn pbrt_name(&self) -> &'static str {
         match self {
             Integrator::Whitted { .. } => "whitted",
-            Integrator::Path { .. } => "path",
+            Integrator::Path { .. } | Integrator::PathCaustics { .. } => "path",
             Integrator::VolPath { .. } => "volpath",
             Integrator::AmbientOcclusion { .. } => "ambientocclusion",
             Integrator::LightPath { .. } => "lightpath",
@@ -136,6 +147,7 @@ impl Integrator {
             self,
             Integrator::Whitted { .. }
                 | Integrator::Path { .. }
+                | Integrator::PathCaustics { .. }
                 | Integrator::VolPath { .. }
                 | Integrator::LightPath { .. }
                 | Integrator::Bdpt { .. }
@@ -150,12 +162,13 @@ impl Integrator {
 
     /// True for the integrators that trace light paths and splat what they carry anywhere on
     /// the film ([`Integrator::li_splatting`]): `lightpath`, `bdpt`, `mlt` (whose image
-    /// is splats alone) and `vcm`. They need a perspective camera
+    /// is splats alone), `vcm` and `path` with `caustics`. They need a perspective camera
     /// ([`crate::camera::Camera::light_path_support`]).
     pub fn splats(&self) -> bool {
         matches!(
             self,
             Integrator::LightPath { .. }
+                | Integrator::PathCaustics { .. }
                 | Integrator::Bdpt { .. }
                 | Integrator::Mlt(_)
                 | Integrator::Vcm(_)

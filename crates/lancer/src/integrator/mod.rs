@@ -18,6 +18,7 @@
 pub const RR_AFTER_DEPTH: u32 = 2;
 
 pub mod bdpt;
+pub mod caustics;
 mod debug;
 mod desc;
 mod emission;
@@ -71,6 +72,9 @@ impl Integrator {
             Integrator::LightPath { max_depth } => {
                 lightpath::li(scene, ray, sampler, lambda, max_depth, splat)
             }
+            Integrator::PathCaustics { max_depth, paths } => {
+                caustics::li(scene, ray, sampler, lambda, max_depth, paths, splat)
+            }
             Integrator::Bdpt {
                 max_depth,
                 regularize,
@@ -119,14 +123,16 @@ impl Integrator {
             Integrator::Path {
                 max_depth,
                 regularize,
-            } => path::li_observed(scene, ray, sampler, lambda, max_depth, regularize, path),
+            } => path::li_observed::<_, false>(
+                scene, ray, sampler, lambda, max_depth, regularize, path,
+            ),
             // Without media, volpath is the path tracer (see `volpath`), vertices included.
             Integrator::VolPath {
                 max_depth,
                 regularize,
-            } if scene.media().is_empty() => {
-                path::li_observed(scene, ray, sampler, lambda, max_depth, regularize, path)
-            }
+            } if scene.media().is_empty() => path::li_observed::<_, false>(
+                scene, ray, sampler, lambda, max_depth, regularize, path,
+            ),
             _ => self.li(scene, ray, sampler, lambda),
         }
     }
@@ -183,9 +189,10 @@ impl Integrator {
             // Without a film to splat into, the light-path integrators give only what reaches
             // the camera ray's own pixel (bdpt's t ≥ 2 strategies, nothing for lightpath): a
             // film renders them through `li_splatting`.
-            Integrator::LightPath { .. } | Integrator::Bdpt { .. } | Integrator::Mlt(_) => {
-                self.li_splatting(scene, ray, sampler, lambda, &mut |_, _| {})
-            }
+            Integrator::LightPath { .. }
+            | Integrator::PathCaustics { .. }
+            | Integrator::Bdpt { .. }
+            | Integrator::Mlt(_) => self.li_splatting(scene, ray, sampler, lambda, &mut |_, _| {}),
             // The debug views are RGB quantities, as lanes (r, g, b, b).
             Integrator::Normals => rgb_lanes(debug::normals(scene, ray)),
             Integrator::Depth => rgb_lanes(debug::depth(scene, ray)),

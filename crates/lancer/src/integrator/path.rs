@@ -24,7 +24,23 @@ pub fn li(
     max_depth: u32,
     regularize: bool,
 ) -> SampledSpectrum {
-    li_observed(scene, ray, sampler, lambda, max_depth, regularize, &mut ())
+    li_observed::<_, false>(scene, ray, sampler, lambda, max_depth, regularize, &mut ())
+}
+
+/// Path tracing that leaves out the paths light tracing renders better, for
+/// [`super::caustics`]: those whose first vertex (the surface the camera sees) scattered
+/// by a non-specular lobe and every later one by a specular lobe, on to a light (E D S⁺ L,
+/// caustics seen directly) when the light is a caustic source
+/// ([`crate::light::Light::caustic_source`]). Everything else is [`li`]'s estimate,
+/// unregularised.
+pub fn li_without_caustics(
+    scene: &Scene,
+    ray: &Ray,
+    sampler: &mut Sampler,
+    lambda: Option<&SampledWavelengths>,
+    max_depth: u32,
+) -> SampledSpectrum {
+    li_observed::<_, true>(scene, ray, sampler, lambda, max_depth, false, &mut ())
 }
 
 /// The density with which the last bounce chose the ray's direction, as MIS against light
@@ -84,8 +100,9 @@ impl PathObserver for Vec<PathVertex> {
     }
 }
 
-/// [`li`], reporting each vertex of the path to `obs`.
-pub fn li_observed<O: PathObserver>(
+/// [`li`], reporting each vertex of the path to `obs`; with `NO_CAUSTICS`,
+/// [`li_without_caustics`] (compiled away otherwise).
+pub fn li_observed<O: PathObserver, const NO_CAUSTICS: bool>(
     scene: &Scene,
     ray: &Ray,
     sampler: &mut Sampler,
@@ -106,6 +123,9 @@ pub fn li_observed<O: PathObserver>(
     let mut prev_ctx: Option<LightSampleContext> = None;
     let mut eta_scale = 1.0f32;
     let mut any_non_specular = false;
+    // NO_CAUSTICS: the path so far is E D S* (its first bounce non-specular, every later one
+    // specular); a light met after at least one S is light tracing's (E D S⁺ L).
+    let mut caustic_chain = false;
     // Constant spectra at the path's wavelengths, evaluated once (spectral mode).
     let mut memo = PathSpectra::new();
     let mut diff = None; // the ray's differentials after specular bounces (filtered textures)
@@ -117,6 +137,8 @@ pub fn li_observed<O: PathObserver>(
         if diff.is_some() {
             specular_differentials::apply(&mut found, diff.as_ref());
         }
+        // E D S⁺ met a light: its caustic sources are light tracing's.
+        let caustic = NO_CAUSTICS && caustic_chain && depth >= 2;
         let Some(hit) = &found else {
             // Environment light: counted in full where no light sampling could have found it
             // (camera rays, specular bounces), otherwise weighted against light sampling.
@@ -124,7 +146,9 @@ pub fn li_observed<O: PathObserver>(
             for &i in scene.infinite_lights() {
                 let (i, light) = (i as usize, &scene.lights()[i as usize]);
                 let le = scene.environment_radiance(i, wavelengths.as_ref(), ray.d);
-                if le == SampledSpectrum::ZERO {
+                if le == SampledSpectrum::ZERO
+                    || (caustic && light.caustic_source(-normalize(ray.d)))
+                {
                     continue;
                 }
                 match (depth == 0 || specular_bounce, prev_ctx) {
@@ -144,6 +168,12 @@ pub fn li_observed<O: PathObserver>(
         // An area light hit by a BSDF-sampled ray: weighted against the chance that light
         // sampling picked the same point.
         let le = memo.emitted(scene, hit, wo, wavelengths.as_ref());
+        let le = match scene.prim(hit.prim).emission {
+            Some(e) if caustic && scene.lights()[e.light as usize].caustic_source(-wo) => {
+                SampledSpectrum::ZERO
+            }
+            _ => le,
+        };
         if le != SampledSpectrum::ZERO {
             match (
                 depth == 0 || specular_bounce,
@@ -261,6 +291,13 @@ pub fn li_observed<O: PathObserver>(
         };
         specular_bounce = bs.flags.is_specular();
         any_non_specular |= !specular_bounce;
+        if NO_CAUSTICS {
+            caustic_chain = if depth == 1 {
+                !specular_bounce
+            } else {
+                caustic_chain && specular_bounce
+            };
+        }
         if bs.flags.has(crate::material::BxdfFlags::TRANSMISSION) {
             eta_scale *= bs.eta * bs.eta;
         }
@@ -286,6 +323,7 @@ pub fn li_observed<O: PathObserver>(
                     prev_ctx = Some(exit_ctx);
                     specular_bounce = false;
                     any_non_specular = true;
+                    caustic_chain = false;
                 }
             }
         }

@@ -180,6 +180,16 @@ pub trait LightKind {
         meshes: &[TriangleMesh],
     ) -> Option<LightLeSample>;
 
+    /// True when light leaving along unit world direction `w` (the way it travels) is
+    /// concentrated enough that a path from the camera cannot find it by BSDF sampling
+    /// through a specular surface, so that `path` with `caustics`
+    /// ([`crate::integrator::caustics`]) renders its caustics by light tracing: all of a
+    /// delta light's light (the default), the sun of a sky; no area or environment light.
+    fn caustic_source(&self, w: Vec3) -> bool {
+        let _ = w;
+        self.light_type().is_delta()
+    }
+
     /// The densities with which [`LightKind::sample_le`] emits the ray leaving `p` in unit
     /// direction `w` (the way the light travels). For an area light `p` is the point on its
     /// surface and `n` the geometric normal there (as the hit gives it); the other kinds

@@ -204,6 +204,13 @@ impl Light {
         self.light_type().is_delta()
     }
 
+    /// [`LightKind::caustic_source`]: light leaving along `w` is light tracing's in `path`
+    /// with `caustics`.
+    #[inline]
+    pub fn caustic_source(&self, w: Vec3) -> bool {
+        dispatch!(self, l => LightKind::caustic_source(l, w))
+    }
+
     /// Samples incident light at `ctx`; `None` when the light contributes nothing there.
     /// `shapes` and `meshes` are the scene's, where area lights find their surface.
     ///

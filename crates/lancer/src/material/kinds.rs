@@ -56,6 +56,15 @@ pub trait MaterialKind {
         None
     }
 
+    /// Whether a hit on it may scatter by a specular (delta) lobe; true unless the kind
+    /// knows better (a diffuse surface, a rough surface of constant roughness): `path` with
+    /// `caustics` aims its light paths at the surfaces that may
+    /// ([`crate::integrator::caustics`]).
+    #[inline(always)]
+    fn may_be_specular(&self) -> bool {
+        true
+    }
+
     /// Whether its index varies with wavelength (a dielectric, or a coating, of a named
     /// glass): in spectral mode a path that meets it keeps only its hero wavelength, as
     /// pbrt-v4's dielectric and coated materials call `TerminateSecondary` whenever their
@@ -108,6 +117,13 @@ macro_rules! material_kinds {
             pub fn colour_slots(&self) -> Colours {
                 match self {
                     $(Material::$kind(m) => m.colours(),)*
+                }
+            }
+
+            /// Whether a hit on it may scatter specularly ([`MaterialKind::may_be_specular`]).
+            pub fn may_be_specular(&self) -> bool {
+                match self {
+                    $(Material::$kind(m) => m.may_be_specular(),)*
                 }
             }
 
@@ -183,5 +199,29 @@ impl Default for MaterialDesc {
     /// pbrt's default: diffuse with reflectance 0.5.
     fn default() -> Self {
         MaterialDesc::Diffuse(diffuse::DiffuseMaterial::default())
+    }
+}
+
+/// Whether a microfacet lobe of roughness (`u`, `v`) may be specular: false only when both are
+/// constants whose α (remapped as pbrt-v4 does with `remap`) is not effectively smooth.
+pub(crate) fn may_be_smooth(
+    u: crate::texture::FloatTex,
+    v: crate::texture::FloatTex,
+    remap: bool,
+) -> bool {
+    use super::microfacet::TrowbridgeReitz;
+    use crate::texture::FloatTex;
+    match (u, v) {
+        (FloatTex::Const(a), FloatTex::Const(b)) => {
+            let alpha = |r: f32| {
+                if remap {
+                    TrowbridgeReitz::roughness_to_alpha(r)
+                } else {
+                    r
+                }
+            };
+            TrowbridgeReitz::new(alpha(a), alpha(b)).effectively_smooth()
+        }
+        _ => true,
     }
 }

@@ -137,6 +137,7 @@ impl Scene {
             unbounded,
             bounds,
             spectra: std::sync::OnceLock::new(),
+            casters: std::sync::OnceLock::new(),
             film_response: crate::spectrum::FilmResponse::new(
                 desc.film.sensor,
                 desc.film.white_balance,

@@ -1,6 +1,7 @@
 //! The built scene: immutable, shared by all render threads.
 
 mod build;
+mod casters;
 mod counts;
 pub mod desc;
 pub mod instance;
@@ -11,6 +12,7 @@ mod prim;
 mod spectra;
 mod tris;
 
+pub use casters::Casters;
 pub use counts::DescCounts;
 pub use prim::{AreaEmission, BuildError, IMAGE_EMISSION, PrimInfo};
 pub(crate) use spectra::SceneSpectra;
@@ -116,6 +118,9 @@ pub struct Scene {
     light_spectra: Vec<Option<crate::spectrum::dense::Measured>>,
     /// Spectral mode's constant colours as spectra, made on first use.
     spectra: std::sync::OnceLock<SceneSpectra>,
+    /// Where the surfaces that may scatter specularly are, found when first asked
+    /// ([`Scene::caustic_casters`]).
+    casters: std::sync::OnceLock<casters::Casters>,
     /// What gives texture lookups their footprints, when a texture filters over them (an
     /// image texture with a MIP pyramid) or a bump map steps by them; `None` otherwise.
     footprints: Option<crate::camera::footprint::Footprints>,

@@ -217,7 +217,7 @@ pub(super) fn render(
 }
 
 /// Means over 6 × 6-pixel blocks (4 × 3 of them), channel by channel.
-fn blocks(img: &[Rgb]) -> Vec<Rgb> {
+pub(crate) fn blocks(img: &[Rgb]) -> Vec<Rgb> {
     let mut out = vec![Rgb::ZERO; 12];
     for y in 0..H {
         for x in 0..W {
@@ -242,7 +242,7 @@ pub(crate) fn compare(a: &[Rgb], b: &[Rgb]) -> (f32, f32) {
     (worst, mean(&ba) / m)
 }
 
-pub(super) fn bdpt(max_depth: u32) -> Integrator {
+pub(crate) fn bdpt(max_depth: u32) -> Integrator {
     Integrator::Bdpt {
         max_depth,
         regularize: false,
@@ -251,7 +251,7 @@ pub(super) fn bdpt(max_depth: u32) -> Integrator {
     }
 }
 
-pub(super) fn path(max_depth: u32) -> Integrator {
+pub(crate) fn path(max_depth: u32) -> Integrator {
     Integrator::Path {
         max_depth,
         regularize: false,

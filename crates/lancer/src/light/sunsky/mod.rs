@@ -501,6 +501,11 @@ impl LightKind for SunskyLight {
         })
     }
 
+    /// The sun's disk: light travelling along `w` came from it.
+    fn caustic_source(&self, w: Vec3) -> bool {
+        self.p_sun > 0.0 && self.in_sun(self.to_light(-w))
+    }
+
     fn pdf_le(&self, _: Vec3, _: Vec3, w: Vec3) -> LightLePdf {
         LightLePdf {
             pos: disk_pdf(&self.scene),

@@ -60,6 +60,19 @@ impl MaterialDescKind for CoatedConductorMaterial {
 }
 
 impl MaterialKind for CoatedConductorMaterial {
+    /// Specular when its coating or its conductor is smooth.
+    fn may_be_specular(&self) -> bool {
+        super::may_be_smooth(
+            self.interface_uroughness,
+            self.interface_vroughness,
+            self.remap_roughness,
+        ) || super::may_be_smooth(
+            self.conductor_uroughness,
+            self.conductor_vroughness,
+            self.remap_roughness,
+        )
+    }
+
     #[inline(always)]
     fn colours(&self) -> Colours {
         let mut c = NO_COLOURS;

@@ -48,6 +48,11 @@ impl MaterialDescKind for CoatedDiffuseMaterial {
 }
 
 impl MaterialKind for CoatedDiffuseMaterial {
+    /// Specular when its coating is smooth.
+    fn may_be_specular(&self) -> bool {
+        super::may_be_smooth(self.uroughness, self.vroughness, self.remap_roughness)
+    }
+
     #[inline(always)]
     fn colours(&self) -> Colours {
         let mut c = NO_COLOURS;

@@ -101,6 +101,11 @@ impl MaterialDescKind for ConductorMaterial {
 }
 
 impl MaterialKind for ConductorMaterial {
+    /// Specular when smooth.
+    fn may_be_specular(&self) -> bool {
+        super::may_be_smooth(self.uroughness, self.vroughness, self.remap_roughness)
+    }
+
     #[inline(always)]
     fn colours(&self) -> Colours {
         let mut c = NO_COLOURS;

@@ -29,6 +29,11 @@ impl MaterialDescKind for DielectricMaterial {
 }
 
 impl MaterialKind for DielectricMaterial {
+    /// Specular when smooth.
+    fn may_be_specular(&self) -> bool {
+        super::may_be_smooth(self.uroughness, self.vroughness, self.remap_roughness)
+    }
+
     #[inline(always)]
     fn bxdf(&self, at: &HitLookup) -> Option<BxDF> {
         Some(BxDF::Dielectric(DielectricBxdf {

@@ -44,6 +44,12 @@ impl MaterialDescKind for DiffuseMaterial {
 }
 
 impl MaterialKind for DiffuseMaterial {
+    /// Never specular.
+    #[inline(always)]
+    fn may_be_specular(&self) -> bool {
+        false
+    }
+
     #[inline(always)]
     fn colours(&self) -> Colours {
         let mut c = NO_COLOURS;

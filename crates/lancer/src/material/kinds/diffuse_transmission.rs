@@ -32,6 +32,12 @@ impl MaterialDescKind for DiffuseTransmissionMaterial {
 }
 
 impl MaterialKind for DiffuseTransmissionMaterial {
+    /// Never specular.
+    #[inline(always)]
+    fn may_be_specular(&self) -> bool {
+        false
+    }
+
     #[inline(always)]
     fn colours(&self) -> Colours {
         let mut c = NO_COLOURS;

@@ -75,6 +75,12 @@ impl MaterialDescKind for HairMaterial {
 }
 
 impl MaterialKind for HairMaterial {
+    /// Never specular.
+    #[inline(always)]
+    fn may_be_specular(&self) -> bool {
+        false
+    }
+
     #[inline(always)]
     fn colours(&self) -> Colours {
         let mut c = NO_COLOURS;

@@ -15,4 +15,10 @@ impl MaterialDescKind for InterfaceMaterial {
     }
 }
 
-impl MaterialKind for InterfaceMaterial {}
+impl MaterialKind for InterfaceMaterial {
+    /// No surface of its own: rays pass through.
+    #[inline(always)]
+    fn may_be_specular(&self) -> bool {
+        false
+    }
+}

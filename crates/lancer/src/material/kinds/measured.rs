@@ -17,6 +17,12 @@ impl MaterialDescKind for Arc<MeasuredFile> {
 }
 
 impl MaterialKind for &'static MeasuredData {
+    /// Never specular.
+    #[inline(always)]
+    fn may_be_specular(&self) -> bool {
+        false
+    }
+
     #[inline(always)]
     fn bxdf(&self, at: &HitLookup) -> Option<BxDF> {
         Some(BxDF::Measured(MeasuredBxdf::new(self, at.lambda())))
