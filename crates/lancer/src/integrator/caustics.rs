@@ -29,6 +29,7 @@
 //! nothing. At most `max_depth` bounces in both; surfaces only, as `path` (media are
 //! ignored); no regularisation (it would change which bounces are specular on one side only).
 
+use super::lightpath::to_camera;
 use super::{Splat, bsdf_at, keep_hero_only, path};
 use crate::light::LightType;
 use crate::material::TransportMode;
@@ -74,7 +75,6 @@ fn caustic_light_path(
     max_depth: u32,
     splat: Splat<'_>,
 ) {
-    let camera = scene.camera();
     let casters = scene.caustic_casters();
     let (ul, u1, u2) = (sampler.get_1d(), sampler.get_2d(), sampler.get_2d());
     if casters == Casters::None {
@@ -134,14 +134,7 @@ fn caustic_light_path(
         // The surface the camera sees, lit through at least one specular bounce: its
         // non-specular lobes (f has no delta part) joined to the lens.
         if bounces > 0 && bsdf.flags().is_non_specular() {
-            crate::counters::count_connection();
-            if let Some(cs) = camera.sample_wi(si.p, sampler.get_2d()) {
-                let f = bsdf.f(si.wo, cs.wi, TransportMode::Importance);
-                let l = beta * f * (cs.wi.dot(si.shading.n).abs() * cs.wi_importance / cs.pdf);
-                if l != SampledSpectrum::ZERO && !scene.intersect_p(&si.spawn_ray_to(cs.p_lens)) {
-                    splat(cs.p_raster, l * camera.splat_scale());
-                }
-            }
+            to_camera(scene, si, &bsdf, beta, sampler.get_2d(), splat);
         }
         let uc = sampler.get_1d();
         let Some(bs) = bsdf.sample_f(si.wo, uc, sampler.get_2d(), TransportMode::Importance) else {
@@ -163,14 +156,13 @@ mod tests {
     use crate::film::Film;
     use crate::integrator::Integrator;
     use crate::integrator::bdpt::tests::{bdpt, blocks, compare, path, room_desc};
-    use crate::integrator::test_scenes::{diffuse, quad, view};
+    use crate::integrator::test_scenes::{diffuse, quad, sphere, view};
     use crate::light::{LightDesc, SunskyDesc, SunskyParams};
     use crate::material::{DielectricMaterial, MaterialDesc};
     use crate::math::Rgb;
     use crate::math::Transform;
     use crate::render::{RenderSettings, RenderStats};
-    use crate::scene::desc::{Geometry, SceneDesc, ShapeDesc};
-    use crate::shape::SphereDesc;
+    use crate::scene::desc::SceneDesc;
     use crate::spectrum::Ior;
     use crate::texture::FloatTex;
 
@@ -216,18 +208,8 @@ mod tests {
         let mut d = room_desc(false, path(5));
         d.materials.push(smooth_glass());
         let glass = d.materials.len() as u32 - 1;
-        d.shapes.push(ShapeDesc {
-            object_to_world: Transform::translate(Vec3::new(-0.4, 0.7, 0.3)),
-            ..ShapeDesc::new(
-                Geometry::Sphere(SphereDesc {
-                    radius: 0.35,
-                    z_min: -0.35,
-                    z_max: 0.35,
-                    phi_max: 360.0,
-                }),
-                glass,
-            )
-        });
+        d.shapes
+            .push(sphere(Vec3::new(-0.4, 0.7, 0.3), 0.35, glass));
         d
     }
 
@@ -281,18 +263,7 @@ mod tests {
             ],
             0,
         );
-        let glass = ShapeDesc {
-            object_to_world: Transform::translate(Vec3::new(-0.2, 0.0, 0.6)),
-            ..ShapeDesc::new(
-                Geometry::Sphere(SphereDesc {
-                    radius: 0.4,
-                    z_min: -0.4,
-                    z_max: 0.4,
-                    phi_max: 360.0,
-                }),
-                1,
-            )
-        };
+        let glass = sphere(Vec3::new(-0.2, 0.0, 0.6), 0.4, 1);
         SceneDesc {
             materials: vec![diffuse(Rgb::splat(0.6)), smooth_glass()],
             shapes: vec![floor, glass],

@@ -9,11 +9,12 @@
 //! film receives β·f(x, towards the lens)·|cos θ_x|·We/p_c.
 
 use super::{Splat, bsdf_at, keep_hero_only};
-use crate::material::TransportMode;
-use crate::math::{SampledSpectrum, Vec3};
+use crate::material::{Bsdf, TransportMode};
+use crate::math::{SampledSpectrum, Vec2, Vec3};
 use crate::ray::Ray;
 use crate::sampling::Sampler;
 use crate::scene::Scene;
+use crate::shape::SurfaceInteraction;
 use crate::spectrum::hero::HERO_ONLY;
 use crate::spectrum::sampled::SampledWavelengths;
 
@@ -77,15 +78,7 @@ pub fn li(
             break;
         }
         depth += 1;
-        // Connect to the camera.
-        crate::counters::count_connection();
-        if let Some(cs) = camera.sample_wi(si.p, sampler.get_2d()) {
-            let f = bsdf.f(si.wo, cs.wi, TransportMode::Importance);
-            let l = beta * f * (cs.wi.dot(si.shading.n).abs() * cs.wi_importance / cs.pdf);
-            if l != SampledSpectrum::ZERO && !scene.intersect_p(&si.spawn_ray_to(cs.p_lens)) {
-                splat(cs.p_raster, l * scale);
-            }
-        }
+        to_camera(scene, si, &bsdf, beta, sampler.get_2d(), splat);
         let uc = sampler.get_1d();
         let Some(bs) = bsdf.sample_f(si.wo, uc, sampler.get_2d(), TransportMode::Importance) else {
             break;
@@ -97,4 +90,26 @@ pub fn li(
         ray = si.spawn_ray(bs.wi);
     }
     SampledSpectrum::ZERO
+}
+
+/// Joins surface point `si` (BSDF `bsdf`), reached by a light path carrying `beta`, to a lens
+/// point sampled from `u`: unless the lens is hidden, splats β·f·|cos θ|·We/p_c (times the
+/// camera's splat scale) where the ray lands.
+pub(crate) fn to_camera(
+    scene: &Scene,
+    si: &SurfaceInteraction,
+    bsdf: &Bsdf,
+    beta: SampledSpectrum,
+    u: Vec2,
+    splat: Splat<'_>,
+) {
+    crate::counters::count_connection();
+    let camera = scene.camera();
+    if let Some(cs) = camera.sample_wi(si.p, u) {
+        let f = bsdf.f(si.wo, cs.wi, TransportMode::Importance);
+        let l = beta * f * (cs.wi.dot(si.shading.n).abs() * cs.wi_importance / cs.pdf);
+        if l != SampledSpectrum::ZERO && !scene.intersect_p(&si.spawn_ray_to(cs.p_lens)) {
+            splat(cs.p_raster, l * camera.splat_scale());
+        }
+    }
 }

@@ -31,6 +31,22 @@ pub(crate) fn quad(p: [[f32; 3]; 4], material: u32) -> ShapeDesc {
     ShapeDesc::new(Geometry::TriangleMesh(Arc::new(mesh)), material)
 }
 
+/// A full sphere of radius `radius` centred at `centre`, with material `material`.
+pub(crate) fn sphere(centre: Vec3, radius: f32, material: u32) -> ShapeDesc {
+    ShapeDesc {
+        object_to_world: Transform::translate(centre),
+        ..ShapeDesc::new(
+            Geometry::Sphere(crate::shape::SphereDesc {
+                radius,
+                z_min: -radius,
+                z_max: radius,
+                phi_max: 360.0,
+            }),
+            material,
+        )
+    }
+}
+
 /// A diffuse material of constant reflectance `c`.
 pub(crate) fn diffuse(c: Rgb) -> MaterialDesc {
     MaterialDesc::Diffuse(DiffuseMaterial {

@@ -8,12 +8,10 @@ use crate::integrator::Integrator;
 use crate::integrator::bdpt::tests::{
     assert_furnace, compare, furnace_desc, plane_under_sky, room_desc,
 };
-use crate::integrator::test_scenes::{H, W};
+use crate::integrator::test_scenes::{H, W, sphere};
 use crate::material::{DielectricMaterial, MaterialDesc};
-use crate::math::Transform;
 use crate::render::{RenderSettings, RenderStats};
-use crate::scene::desc::{Geometry, SceneDesc, ShapeDesc};
-use crate::shape::SphereDesc;
+use crate::scene::desc::SceneDesc;
 use crate::spectrum::Ior;
 use crate::texture::FloatTex;
 
@@ -128,18 +126,8 @@ fn room_with_glass() -> SceneDesc {
             remap_roughness: false,
         }));
     let glass = d.materials.len() as u32 - 1;
-    d.shapes.push(ShapeDesc {
-        object_to_world: Transform::translate(Vec3::new(0.2, 0.35, 0.0)),
-        ..ShapeDesc::new(
-            Geometry::Sphere(SphereDesc {
-                radius: 0.35,
-                z_min: -0.35,
-                z_max: 0.35,
-                phi_max: 360.0,
-            }),
-            glass,
-        )
-    });
+    d.shapes
+        .push(sphere(Vec3::new(0.2, 0.35, 0.0), 0.35, glass));
     d.integrator = Integrator::Vcm(VcmOptions {
         max_depth: 6,
         radius: Some(0.03),
