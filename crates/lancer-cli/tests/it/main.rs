@@ -5,6 +5,7 @@ mod common;
 
 mod bdpt_strategies;
 mod bench_scene;
+mod caustics;
 mod course_scenes;
 mod denoise;
 mod gbuffer;
