@@ -3,7 +3,7 @@
 //! single render's exact pixels, and `lancer info` naming it.
 
 use crate::common::{ScratchDir, read_exr, run_in};
-use crate::sppm::{SCENE, ok, render_scene};
+use crate::sppm::{SCENE, assert_splits_merge_exactly, ok, render_scene};
 
 /// sppm's test scene (a glass sphere on a grey floor under a distant light) with `path` and
 /// its caustics by light tracing.
@@ -32,32 +32,7 @@ fn caustics_count_their_paths_and_split_exactly() {
     assert!(stats["light_paths"].as_u64().unwrap() > 0, "{stats}");
     assert!(stats["connections"].as_u64().unwrap() > 0, "{stats}");
     let whole = read_exr(&dir.join("whole.exr"));
-    for by in ["samples", "tiles"] {
-        for i in 0..2 {
-            let (split, out, threads) = (format!("{i}/2"), format!("{by}{i}.exr"), ["1", "2"][i]);
-            ok(&render_scene(
-                &dir,
-                &s,
-                &[
-                    "-o",
-                    &out,
-                    "--threads",
-                    threads,
-                    "--split",
-                    &split,
-                    "--split-by",
-                    by,
-                ],
-            ));
-        }
-        let (a, b, m) = (
-            format!("{by}0.exr"),
-            format!("{by}1.exr"),
-            format!("{by}.exr"),
-        );
-        ok(&run_in(&dir, &["merge", &a, &b, "-o", &m]));
-        assert_eq!(read_exr(&dir.join(&m)), whole, "split by {by}");
-    }
+    assert_splits_merge_exactly(&dir, &s, &whole);
     std::fs::write(dir.join("s.pbrt"), &s).unwrap();
     let o = run_in(&dir, &["info", "s.pbrt", "--json"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));

@@ -35,6 +35,43 @@ pub fn render_scene(dir: &Path, scene: &str, extra: &[&str]) -> std::process::Ou
     run_in(dir, &args)
 }
 
+/// Renders `scene` in two parts split by samples and in two split by tiles (the first part on
+/// one thread, the second on two), merges each pair and asserts it equals `whole` (the single
+/// render, in `dir`).
+#[track_caller]
+pub fn assert_splits_merge_exactly(dir: &Path, scene: &str, whole: &crate::common::Img) {
+    for by in ["samples", "tiles"] {
+        for i in 0..2 {
+            let (split, out, threads) = (format!("{i}/2"), format!("{by}{i}.exr"), ["1", "2"][i]);
+            ok(&render_scene(
+                dir,
+                scene,
+                &[
+                    "-o",
+                    &out,
+                    "--threads",
+                    threads,
+                    "--split",
+                    &split,
+                    "--split-by",
+                    by,
+                ],
+            ));
+        }
+        let (a, b, m) = (
+            format!("{by}0.exr"),
+            format!("{by}1.exr"),
+            format!("{by}.exr"),
+        );
+        ok(&run_in(dir, &["merge", &a, &b, "-o", &m]));
+        assert_eq!(
+            &crate::common::read_exr(&dir.join(&m)),
+            whole,
+            "split by {by}"
+        );
+    }
+}
+
 #[track_caller]
 pub fn ok(o: &std::process::Output) -> String {
     let e = String::from_utf8_lossy(&o.stderr).to_string();
