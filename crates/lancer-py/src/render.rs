@@ -248,13 +248,8 @@ pub fn render_film(
             let mut done = vec![false; units.len()];
             let stats = pool.install(|| {
                 render_units(RenderJob {
-                    scene: built,
-                    settings,
-                    film,
-                    units: &units,
-                    done: &mut done,
-                    on_unit: &|_, _| {},
                     stop: &|| cancel.load(Ordering::Relaxed),
+                    ..RenderJob::new(built, settings, film, &units, &mut done)
                 })
             });
             let _ = done_tx.send(stats);

@@ -309,7 +309,22 @@ pub struct Splats<'a> {
     film: Option<FilmSplats<'a>>,
 }
 
-impl Splats<'_> {
+impl<'a> Splats<'a> {
+    /// Splats of `scene` rendered with `settings` into `plane` (a film of kind `kind`), or
+    /// nowhere without one.
+    pub fn new(
+        scene: &'a Scene,
+        settings: &'a RenderSettings,
+        plane: Option<&'a AtomicSplats>,
+        kind: FilmKind,
+    ) -> Self {
+        Splats {
+            scene,
+            max_component_value: settings.max_component_value,
+            film: plane.map(|p| FilmSplats::new(p, &settings.filter, kind)),
+        }
+    }
+
     /// Adds radiance `l` (at `lambda` in spectral mode) arriving at film point `p_film`
     /// (pixel units, full image) to the pixels around it, as pbrt-v4's `AddSplat`: turned
     /// into the film's colour as a camera sample is, scaled down to `maxcomponentvalue`, and
@@ -599,6 +614,28 @@ pub struct RenderJob<'a> {
     pub stop: &'a (dyn Fn() -> bool + Sync),
 }
 
+impl<'a> RenderJob<'a> {
+    /// The job of rendering `units` (those not marked in `done`) of `scene` with `settings`
+    /// into `film`, with hooks that do nothing (no report per unit, never stopped).
+    pub fn new(
+        scene: &'a Scene,
+        settings: &'a RenderSettings,
+        film: &'a mut Film,
+        units: &'a [WorkUnit],
+        done: &'a mut [bool],
+    ) -> Self {
+        RenderJob {
+            scene,
+            settings,
+            film,
+            units,
+            done,
+            on_unit: &|_, _| {},
+            stop: &|| false,
+        }
+    }
+}
+
 /// Renders the units of `job.units` not yet marked in `job.done` into `job.film`, marking
 /// each one as its sums are added (under the same lock, so the film and `done` always agree).
 /// Units run in parallel within a pass (a run of units with the same sample range), passes
@@ -643,13 +680,7 @@ pub fn render_units_with<I: SampleIntegrator + ?Sized>(
     let plane = integrator
         .splats()
         .then(|| AtomicSplats::new(settings.splat_bounds, kind.splat_channels()));
-    let splats = Splats {
-        scene,
-        max_component_value: settings.max_component_value,
-        film: plane
-            .as_ref()
-            .map(|p| FilmSplats::new(p, &settings.filter, kind)),
-    };
+    let splats = Splats::new(scene, settings, plane.as_ref(), kind);
     let state = Mutex::new((&mut *film, done));
     let ctx = UnitContext {
         scene,
@@ -774,15 +805,9 @@ mod tests {
                     assert_eq!(film.kind(), kind);
                     let units = work_units(&pixel, 1, s..s + 1, 1);
                     let mut done = vec![false; units.len()];
-                    render_units(RenderJob {
-                        scene: &scene,
-                        settings: &settings,
-                        film: &mut film,
-                        units: &units,
-                        done: &mut done,
-                        on_unit: &|_, _| {},
-                        stop: &|| false,
-                    });
+                    render_units(RenderJob::new(
+                        &scene, &settings, &mut film, &units, &mut done,
+                    ));
                     let rendered = film.pixels[0].value();
                     let id = SampleId { y: 0, x, sample: s };
                     let (replayed, _) = trace_sample(&scene, &settings, kind, id);

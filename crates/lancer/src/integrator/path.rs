@@ -167,13 +167,13 @@ pub fn li_observed<O: PathObserver, const NO_CAUSTICS: bool>(
         let wo = si.wo;
         // An area light hit by a BSDF-sampled ray: weighted against the chance that light
         // sampling picked the same point.
-        let le = memo.emitted(scene, hit, wo, wavelengths.as_ref());
-        let le = match scene.prim(hit.prim).emission {
-            Some(e) if caustic && scene.lights()[e.light as usize].caustic_source(-wo) => {
-                SampledSpectrum::ZERO
-            }
-            _ => le,
-        };
+        let mut le = memo.emitted(scene, hit, wo, wavelengths.as_ref());
+        if caustic
+            && (scene.prim(hit.prim).emission)
+                .is_some_and(|e| scene.lights()[e.light as usize].caustic_source(-wo))
+        {
+            le = SampledSpectrum::ZERO;
+        }
         if le != SampledSpectrum::ZERO {
             match (
                 depth == 0 || specular_bounce,

@@ -11,7 +11,6 @@
 
 use super::{RenderJob, RenderSettings, RenderStats, Splats, counts, scene_film_rgb};
 use crate::film::splat::AtomicSplats;
-use crate::film::tile::FilmSplats;
 use crate::integrator::mlt::sampler::PssSampler;
 use crate::integrator::mlt::{MltFilm, MltOptions, PathSample, path_sample};
 use crate::math::luminance;
@@ -112,11 +111,7 @@ pub(super) fn render_chains(job: RenderJob<'_>, options: &MltOptions) -> RenderS
     }
     let bootstrap = bootstrap(&chains);
     let plane = AtomicSplats::new(settings.splat_bounds, kind.splat_channels());
-    let splats = Splats {
-        scene,
-        max_component_value: settings.max_component_value,
-        film: Some(FilmSplats::new(&plane, &settings.filter, kind)),
-    };
+    let splats = Splats::new(scene, settings, Some(&plane), kind);
     let state = Mutex::new((&mut *film, &mut *done));
     let totals_m = Mutex::new(totals);
     ranges.par_iter().enumerate().for_each(|(r, range)| {

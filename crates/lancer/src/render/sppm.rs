@@ -493,26 +493,15 @@ mod tests {
         let calls = std::sync::atomic::AtomicU32::new(0);
         let stop = || calls.fetch_add(1, Ordering::Relaxed) >= 2;
         let stats = render_units(RenderJob {
-            scene: &scene,
-            settings: &settings,
-            film: &mut film,
-            units: &units,
-            done: &mut done,
-            on_unit: &|_, _| {},
             stop: &stop,
+            ..RenderJob::new(&scene, &settings, &mut film, &units, &mut done)
         });
         assert!(stats.cancelled && !done.iter().any(|&d| d));
         assert_eq!(film.pixels[0].samples, 2);
         assert_ne!(film.pixels, one.pixels);
-        render_units(RenderJob {
-            scene: &scene,
-            settings: &settings,
-            film: &mut film,
-            units: &units,
-            done: &mut done,
-            on_unit: &|_, _| {},
-            stop: &|| false,
-        });
+        render_units(RenderJob::new(
+            &scene, &settings, &mut film, &units, &mut done,
+        ));
         assert_eq!(film.pixels, one.pixels);
     }
 

@@ -26,15 +26,9 @@ pub(crate) fn render_on(
         .build()
         .unwrap();
     let stats = pool.install(|| {
-        render_units(RenderJob {
-            scene: &scene,
-            settings,
-            film: &mut film,
-            units: &units,
-            done: &mut done,
-            on_unit: &|_, _| {},
-            stop: &|| false,
-        })
+        render_units(RenderJob::new(
+            &scene, settings, &mut film, &units, &mut done,
+        ))
     });
     assert!(done.iter().all(|&d| d));
     (film, stats)

@@ -20,7 +20,7 @@ use super::{
     sppm::wavelength_sample,
 };
 use crate::film::splat::AtomicSplats;
-use crate::film::tile::{FilmKind, FilmSplats, FilmTile, GbufferTile, RgbTile, SpectralTile};
+use crate::film::tile::{FilmKind, FilmTile, GbufferTile, RgbTile, SpectralTile};
 use crate::film::{Film, PixelBounds};
 use crate::integrator::sppm::PhotonSampler;
 use crate::integrator::vcm::camera::{Merging, camera_path};
@@ -314,11 +314,7 @@ pub(super) fn render(job: RenderJob<'_>, options: VcmOptions) -> RenderStats {
     }
     let mut stats = RenderStats::default();
     let plane = AtomicSplats::new(settings.splat_bounds, kind.splat_channels());
-    let splats = Splats {
-        scene,
-        max_component_value: settings.max_component_value,
-        film: Some(FilmSplats::new(&plane, &settings.filter, kind)),
-    };
+    let splats = Splats::new(scene, settings, Some(&plane), kind);
     let pass = Pass {
         scene,
         settings,

@@ -58,28 +58,12 @@ fn render_film(
             };
             let f = &mut film;
             render_units_with(
-                RenderJob {
-                    scene: &scene,
-                    settings: &settings,
-                    film: f,
-                    units: &units,
-                    done: &mut done,
-                    on_unit: &|_, _| {},
-                    stop: &|| false,
-                },
+                RenderJob::new(&scene, &settings, f, &units, &mut done),
                 &observed,
             )
         }
         None => render_units_with(
-            RenderJob {
-                scene: &scene,
-                settings: &settings,
-                film: &mut film,
-                units: &units,
-                done: &mut done,
-                on_unit: &|_, _| {},
-                stop: &|| false,
-            },
+            RenderJob::new(&scene, &settings, &mut film, &units, &mut done),
             &settings.integrator,
         ),
     });

@@ -24,15 +24,7 @@ pub fn render_units_on<I: SampleIntegrator + ?Sized>(
         .unwrap();
     pool.install(|| {
         render_units_with(
-            RenderJob {
-                scene,
-                settings,
-                film,
-                units,
-                done: &mut done,
-                on_unit: &|_, _| {},
-                stop: &|| false,
-            },
+            RenderJob::new(scene, settings, film, units, &mut done),
             integrator,
         )
     })
