@@ -264,6 +264,20 @@ impl Scene {
         self.film_response.as_ref()
     }
 
+    /// Where the surfaces that may scatter specularly are ([`casters::find`]), found when
+    /// first asked (`path` with `caustics` aims its light paths at them).
+    pub fn caustic_casters(&self) -> Casters {
+        *self.casters.get_or_init(|| {
+            casters::find(
+                &self.shapes,
+                &self.prims,
+                &self.tris,
+                &self.materials,
+                !self.instances.is_empty() || self.motion.is_some(),
+            )
+        })
+    }
+
     /// Bounds of the bounded geometry.
     pub fn bounds(&self) -> Bounds3 {
         self.bounds
