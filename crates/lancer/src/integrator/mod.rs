@@ -328,7 +328,7 @@ pub(crate) fn bsdf_at_memo(
     memo: Option<&mut PathSpectra>,
 ) -> Option<(Bsdf, bool)> {
     let m = scene.prim(hit.prim).material;
-    let constant_diffuse = match (scene.material(m), hit.albedo) {
+    let constant_diffuse = match (scene.material(m), hit.albedo()) {
         (Material::Diffuse(DiffuseMaterial { reflectance }), None) => match reflectance {
             SpectrumTex::Const(c) => Some(*c),
             SpectrumTex::Measured(s) => Some(s.rgb),
@@ -377,7 +377,7 @@ fn bsdf_at_general(
                 let spectral = lambda.map(|lambda| scene.spectral_colours(m, lambda));
                 let mut bxdf = mat.bxdf(&tex, &tc, spectral)?;
                 // A shape's own colour (voxels) replaces a diffuse material's reflectance.
-                if let (Some(c), Material::Diffuse(_)) = (hit.albedo, mat) {
+                if let (Some(c), Material::Diffuse(_)) = (hit.albedo(), mat) {
                     bxdf = crate::material::BxDF::diffuse(albedo_at(
                         lambda,
                         c.clamp(Rgb::ZERO, Rgb::ONE),

@@ -42,8 +42,13 @@ pub struct SceneHit {
     /// Index of the primitive hit.
     pub prim: u32,
     /// Reflectance given by the shape itself (a voxel's palette colour), which a `diffuse`
-    /// material uses instead of its own.
-    pub albedo: Option<Rgb>,
+    /// material uses instead of its own, when `has_albedo` ([`SceneHit::albedo`]).
+    albedo: Rgb,
+    /// Whether `albedo` holds a colour. A flag rather than an `Option<Rgb>`: `Option<SceneHit>`
+    /// took its niche from that option's 16 bytes, which `intersect` wrote as two 8-byte stores
+    /// and its callers read as one 16-byte load: a failed store forward, a stall per ray. The
+    /// flag's niche is one byte, written and read as one.
+    has_albedo: bool,
     /// The hit's footprint ∂p/∂x, ∂p/∂y (zero when the scene's textures need none; see
     /// [`Scene::tex_coord_with_footprint`]).
     pub footprint: [Vec3; 2],
@@ -56,9 +61,17 @@ impl SceneHit {
         SceneHit {
             si,
             prim,
-            albedo,
+            albedo: albedo.unwrap_or(Rgb::ZERO),
+            has_albedo: albedo.is_some(),
             footprint: [Vec3::ZERO; 2],
         }
+    }
+
+    /// Reflectance given by the shape itself (a voxel's palette colour), which a `diffuse`
+    /// material uses instead of its own.
+    #[inline(always)]
+    pub fn albedo(&self) -> Option<Rgb> {
+        self.has_albedo.then_some(self.albedo)
     }
 }
 
@@ -313,16 +326,13 @@ impl Scene {
     /// The course's "keep the nearest valid hit": the smallest t with 0 < t < t_max over all
     /// primitives, found through the BVH. The interaction takes the ray's time, which the rays
     /// spawned from it inherit.
+    ///
+    /// The time is written where each record is built (a triangle's record by the triangle,
+    /// the others' by [`Scene::finish_hit`]): setting it on the returned record unwrapped and
+    /// rewrapped the `Option`, a copy of the whole record read back right after its piecewise
+    /// stores (a failed store forward per ray).
     #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<SceneHit> {
-        let mut hit = self.nearest_hit(ray)?;
-        hit.si.time = ray.time;
-        Some(hit)
-    }
-
-    /// [`Scene::intersect`] but for the interaction's time.
-    #[inline(always)]
-    fn nearest_hit(&self, ray: &Ray) -> Option<SceneHit> {
         crate::counters::count_ray();
         let mut best: Option<(crate::shape::ShapeHit, u32)> = None;
         // The ray is read in place and its end kept apart: a copy of a ray its caller has
@@ -447,7 +457,7 @@ impl Scene {
             )
     }
 
-    /// Completes `hit` in place: its footprint, and its shading frame changed by its
+    /// Completes `hit` in place: the ray's time, its footprint, and its shading frame changed by its
     /// primitive's material's bump or normal map (for a `mix`, the picked material's), a bump
     /// map reading the shading derivatives `derivatives` gives for the hit's interaction
     /// (called only then). The interaction is not copied on the way: a copy read back the
@@ -460,6 +470,7 @@ impl Scene {
         mut hit: SceneHit,
         derivatives: impl FnOnce(&SurfaceInteraction) -> ShadingDerivatives,
     ) -> SceneHit {
+        hit.si.time = ray.time;
         if let Some(f) = &self.footprints {
             let (dpdx, dpdy) = f.at_hit(ray.o, hit.si.p, hit.si.n);
             hit.footprint = [dpdx, dpdy];

@@ -253,7 +253,7 @@ fn interaction_with(
         },
         wo: -normalize(ray.d),
         t: hit.t,
-        time: 0.0,
+        time: ray.time,
     }
 }
 

@@ -304,7 +304,7 @@ fn hits_carry_the_voxel_colour() {
             let [x, y, z] = vox.hit_cell(&h);
             let index = grid.get(x, y, z);
             assert_ne!(index, 0);
-            assert_eq!(hit.albedo, Some(grid.palette()[index as usize]));
+            assert_eq!(hit.albedo(), Some(grid.palette()[index as usize]));
             checked += 1;
         }
     }
