@@ -90,7 +90,7 @@ impl AreaLight {
     /// radiance: the commonest light, sampled inline where lights are sampled
     /// ([`sample_triangle_li`]).
     #[inline(always)]
-    pub fn plain_triangle(&self) -> Option<(&[PackedVec3; 3], &PackedVec3)> {
+    pub fn plain_triangle(&self) -> Option<(&[Vec3; 3], &Vec3)> {
         match (&self.emitter, &self.image) {
             (Emitter::Triangle { p, n }, None) => Some((p, n)),
             _ => None,
@@ -274,9 +274,9 @@ pub enum Emitter {
     /// A triangle whose emitting side is the same all over it: sampled uniformly by area.
     Triangle {
         /// Vertices, world space.
-        p: [PackedVec3; 3],
+        p: [Vec3; 3],
         /// Unit geometric normal, oriented as [`Shape::sample_area`] orients it.
-        n: PackedVec3,
+        n: Vec3,
     },
     /// Any other shape, sampled through [`Shape::sample_area`].
     Shape,
@@ -331,8 +331,8 @@ impl Emitter {
             n = -n;
         }
         Emitter::Triangle {
-            p: t.p,
-            n: n.into(),
+            p: t.p.map(Vec3::from),
+            n,
         }
     }
 }
@@ -374,8 +374,8 @@ pub(super) fn sample_area_li(
 /// be inlined where lights are sampled).
 #[inline(always)]
 pub(super) fn sample_triangle_li(
-    p: &[PackedVec3; 3],
-    n: &PackedVec3,
+    p: &[Vec3; 3],
+    n: &Vec3,
     l: PackedRgb,
     two_sided: bool,
     area: f32,
@@ -389,7 +389,7 @@ pub(super) fn sample_triangle_li(
 /// [`Shape::sample_area`] computes it) and its normal `n`. The vertices are read in place: a
 /// copy of the record to the stack, reloaded at other offsets, stalled on store forwarding.
 #[inline(always)]
-fn triangle_point(p: &[PackedVec3; 3], n: &PackedVec3, u: Vec2) -> ShapeSample {
+fn triangle_point(p: &[Vec3; 3], n: &Vec3, u: Vec2) -> ShapeSample {
     let [b0, b1, b2] = sample_uniform_triangle(u);
     let (p0, p1, p2) = (Vec3::from(p[0]), Vec3::from(p[1]), Vec3::from(p[2]));
     ShapeSample {
@@ -601,7 +601,7 @@ mod tests {
         for flip in [false, true] {
             let (tri, mesh) = triangle(&[], flip);
             let e = Emitter::new(&tri, std::slice::from_ref(&mesh), None);
-            let want = if flip { -PackedVec3::Z } else { PackedVec3::Z };
+            let want = if flip { -Vec3::Z } else { Vec3::Z };
             assert!(
                 matches!(e, Emitter::Triangle { n, .. } if n == want),
                 "{e:?}"
@@ -615,7 +615,7 @@ mod tests {
         for flip in [false, true] {
             let (tri, mesh) = triangle(&down, flip);
             let e = Emitter::new(&tri, std::slice::from_ref(&mesh), None);
-            assert!(matches!(e, Emitter::Triangle { n, .. } if n == -PackedVec3::Z));
+            assert!(matches!(e, Emitter::Triangle { n, .. } if n == -Vec3::Z));
             assert_eq!(samples_of_both(&tri, &mesh, false), 256);
         }
     }
