@@ -39,7 +39,8 @@ pub struct AreaLightDesc {
 }
 
 /// A diffuse area light: a primitive of the scene that emits radiance L from its surface.
-/// There is one per emitting primitive, so its vectors are packed.
+/// There is one per emitting primitive, so its colour is packed; a triangle's vertices and
+/// normal are not ([`Emitter::Triangle`]: read on every light sample).
 #[derive(Clone, Debug, PartialEq)]
 pub struct AreaLight {
     /// Index of the primitive in the scene's shapes.
@@ -272,6 +273,8 @@ pub enum Emitter {
         flip: bool,
     },
     /// A triangle whose emitting side is the same all over it: sampled uniformly by area.
+    /// Its vectors are aligned, not packed: packed ones were read 16 bytes at a time, past
+    /// each field, and the light sample stalled on them.
     Triangle {
         /// Vertices, world space.
         p: [Vec3; 3],
@@ -391,10 +394,9 @@ pub(super) fn sample_triangle_li(
 #[inline(always)]
 fn triangle_point(p: &[Vec3; 3], n: &Vec3, u: Vec2) -> ShapeSample {
     let [b0, b1, b2] = sample_uniform_triangle(u);
-    let (p0, p1, p2) = (Vec3::from(p[0]), Vec3::from(p[1]), Vec3::from(p[2]));
     ShapeSample {
-        p: b0 * p0 + b1 * p1 + b2 * p2,
-        n: Vec3::from(*n),
+        p: b0 * p[0] + b1 * p[1] + b2 * p[2],
+        n: *n,
     }
 }
 

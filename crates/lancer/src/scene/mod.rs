@@ -457,9 +457,9 @@ impl Scene {
             )
     }
 
-    /// Completes `hit` in place: the ray's time, its footprint, and its shading frame changed by its
-    /// primitive's material's bump or normal map (for a `mix`, the picked material's), a bump
-    /// map reading the shading derivatives `derivatives` gives for the hit's interaction
+    /// Completes `hit` in place: the ray's time, its footprint, and its shading frame changed
+    /// by its primitive's material's bump or normal map (for a `mix`, the picked material's), a
+    /// bump map reading the shading derivatives `derivatives` gives for the hit's interaction
     /// (called only then). The interaction is not copied on the way: a copy read back the
     /// record its shape had just written piece by piece, and stalled every hit (store
     /// forwarding).

@@ -60,6 +60,10 @@ fn hit_at(scene: &Scene, o: Vec3, d: Vec3, time: f32) -> Option<(f32, Vec3, Vec3
     let any = scene.intersect_p(&r);
     let h = scene.intersect(&r);
     assert_eq!(any, h.is_some(), "intersect_p agrees with intersect");
+    assert!(
+        h.is_none_or(|h| h.si.time == time),
+        "the hit takes the ray's time"
+    );
     h.map(|h| {
         let m = scene.prims[h.prim as usize].material;
         (h.si.t, h.si.p, h.si.n, m)
@@ -166,6 +170,48 @@ fn a_rotating_mesh_and_a_moving_instance_turn_and_move() {
     }
     assert!(hit_at(&scene, at(10.0, 0.0), Vec3::Z, 1.0).is_none());
     assert!(hit_at(&scene, at(10.0, 10.0), Vec3::Z, 0.0).is_none());
+}
+
+/// Every kind of hit takes its ray's time, which the rays spawned from it inherit: a still
+/// triangle (its record returned as the triangle writes it), a still sphere (completed by
+/// `finish_hit`), a moving shape and an instance.
+#[test]
+fn every_kind_of_hit_carries_its_ray_time() {
+    let at = |x: f32| Transform::translate(Vec3::new(x, 0.0, 0.0));
+    let m = MotionDesc {
+        shapes: vec![MovingShapeDesc {
+            shape: shape(unit_sphere(), 2),
+            world_from_object: moving(at(10.0), at(10.0)),
+        }],
+        ..MotionDesc::default()
+    };
+    let desc = SceneDesc {
+        shapes: vec![
+            shape(square(), 1),
+            ShapeDesc {
+                object_to_world: at(5.0),
+                ..shape(unit_sphere(), 0)
+            },
+        ],
+        objects: vec![ObjectDesc {
+            name: "sq".into(),
+            shapes: vec![shape(square(), 2)],
+        }],
+        instances: vec![InstanceDesc {
+            object: 0,
+            object_to_world: at(-5.0),
+        }],
+        ..SceneDesc::default()
+    };
+    let scene = scene_with(m, desc);
+    for x in [0.0, 5.0, 10.0, -5.0] {
+        for time in [0.0, 0.37, 1.0] {
+            let r = Ray::new(Vec3::new(x, 0.2, -5.0), Vec3::Z).at_time(time);
+            let h = scene.intersect(&r).unwrap_or_else(|| panic!("x {x}"));
+            assert_eq!(h.si.time, time, "x {x}");
+            assert_eq!(h.si.spawn_ray(Vec3::Z).time, time, "x {x}");
+        }
+    }
 }
 
 #[test]
