@@ -3,7 +3,7 @@
 //! single render's exact pixels, and `lancer info` naming it.
 
 use crate::common::{ScratchDir, read_exr, run_in};
-use crate::sppm::{SCENE, assert_splits_merge_exactly, ok, render_scene};
+use crate::sppm::{SCENE, assert_splits_merge_exactly, render_stats};
 
 /// sppm's test scene (a glass sphere on a grey floor under a distant light) with `path` and
 /// its caustics by light tracing.
@@ -20,14 +20,7 @@ fn scene() -> String {
 fn caustics_count_their_paths_and_split_exactly() {
     let dir = ScratchDir::new("caustics-split");
     let s = scene();
-    let o = render_scene(
-        &dir,
-        &s,
-        &["-o", "whole.exr", "--threads", "2", "--stats", "json"],
-    );
-    let e = ok(&o);
-    assert!(!e.contains("warning"), "{e}");
-    let stats: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let stats = render_stats(&dir, &s, "whole.exr", &["--threads", "2"]);
     assert_eq!(stats["integrator"], "path");
     assert!(stats["light_paths"].as_u64().unwrap() > 0, "{stats}");
     assert!(stats["connections"].as_u64().unwrap() > 0, "{stats}");

@@ -2,7 +2,7 @@
 //! many connections they tried (and none for a camera-path integrator).
 
 use crate::common::ScratchDir;
-use crate::sppm::{SCENE, ok, render_scene};
+use crate::sppm::{SCENE, render_stats};
 
 /// The stats of the sppm test scene rendered with `integrator` (a pbrt `Integrator` line).
 fn stats(integrator: &str) -> serde_json::Value {
@@ -18,10 +18,7 @@ fn stats(integrator: &str) -> serde_json::Value {
         })
         .collect::<Vec<_>>()
         .join("\n");
-    let o = render_scene(&dir, &scene, &["-o", "s.exr", "--stats", "json"]);
-    let e = ok(&o);
-    assert!(!e.contains("warning"), "{e}");
-    serde_json::from_slice(&o.stdout).unwrap()
+    render_stats(&dir, &scene, "s.exr", &[])
 }
 
 #[test]

@@ -79,16 +79,22 @@ pub fn ok(o: &std::process::Output) -> String {
     e
 }
 
+/// Renders `scene` into `dir`/`out` with the options `extra` and `--stats json`: it succeeds
+/// without a warning; returns the stats.
+#[track_caller]
+pub fn render_stats(dir: &Path, scene: &str, out: &str, extra: &[&str]) -> serde_json::Value {
+    let mut args = vec!["-o", out, "--stats", "json"];
+    args.extend_from_slice(extra);
+    let o = render_scene(dir, scene, &args);
+    let e = ok(&o);
+    assert!(!e.contains("warning"), "{e}");
+    serde_json::from_slice(&o.stdout).unwrap()
+}
+
 #[test]
 fn sppm_splits_by_tiles_exactly_and_counts_photons() {
     let dir = ScratchDir::new("sppm-split");
-    let o = render(
-        &dir,
-        &["-o", "whole.exr", "--threads", "1", "--stats", "json"],
-    );
-    let e = ok(&o);
-    assert!(!e.contains("warning"), "{e}");
-    let stats: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let stats = render_stats(&dir, SCENE, "whole.exr", &["--threads", "1"]);
     assert_eq!(stats["integrator"], "sppm");
     assert_eq!(stats["photons"], 4 * 4000);
     assert_eq!(stats["samples"], 16 * 40 * 4);

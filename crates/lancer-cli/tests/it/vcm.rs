@@ -4,8 +4,7 @@
 //! uses, the default one too.
 
 use crate::common::{ScratchDir, read_exr, run_in};
-use crate::sppm::{SCENE, assert_splits_merge_exactly, ok, render_scene};
-use std::path::Path;
+use crate::sppm::{SCENE, assert_splits_merge_exactly, render_stats};
 
 /// sppm's test scene (a glass sphere on a grey floor under a distant light, 16 × 40 pixels,
 /// three tile rows) rendered by vcm: a caustic that merging renders.
@@ -18,21 +17,10 @@ fn scene() -> String {
     scene
 }
 
-/// [`scene`] rendered with the options `extra`.
-fn render(dir: &Path, extra: &[&str]) -> std::process::Output {
-    render_scene(dir, &scene(), extra)
-}
-
 #[test]
 fn vcm_counts_its_paths_and_splits_by_samples_and_tiles_exactly() {
     let dir = ScratchDir::new("vcm-split");
-    let o = render(
-        &dir,
-        &["-o", "whole.exr", "--threads", "2", "--stats", "json"],
-    );
-    let e = ok(&o);
-    assert!(!e.contains("warning"), "{e}");
-    let stats: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let stats = render_stats(&dir, &scene(), "whole.exr", &["--threads", "2"]);
     assert_eq!(stats["integrator"], "vcm");
     assert_eq!(stats["samples"], 16 * 40 * 4);
     assert_eq!(stats["light_paths"], 16 * 40 * 4);
