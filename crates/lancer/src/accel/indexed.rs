@@ -17,7 +17,8 @@ pub struct IndexedTris {
     /// The tree; its leaf table gives each leaf's range of slots (its primitive indices are
     /// freed: slot k is the k-th in leaf order).
     bvh: Bvh,
-    /// Vertex positions.
+    /// Vertex positions, and one more as padding: a packet loads each vertex as 16 bytes
+    /// ([`IndexedTri4::new`]).
     positions: Vec<PackedVec3>,
     /// Per slot, the vertex indices of its triangle.
     tris: Vec<[u32; 3]>,
@@ -28,13 +29,20 @@ impl IndexedTris {
     /// `positions` none of which is degenerate, with every index in range. Returns the tree and
     /// for each slot the index of its triangle in `tris`.
     ///
-    /// Panics if an index is out of range (the packets' gathers rely on it).
-    pub fn build(positions: Vec<PackedVec3>, tris: Vec<[u32; 3]>) -> (IndexedTris, Vec<u32>) {
+    /// Panics if an index is out of range (the packets' loads rely on it).
+    pub fn build(mut positions: Vec<PackedVec3>, tris: Vec<[u32; 3]>) -> (IndexedTris, Vec<u32>) {
         let n = positions.len();
         assert!(
             tris.iter().flatten().all(|&i| (i as usize) < n),
             "a triangle's vertex index is out of range"
         );
+        if tris.is_empty() {
+            // Nothing to test: no positions, nor their padding.
+            positions = Vec::new();
+        } else {
+            positions.reserve_exact(1);
+            positions.push(PackedVec3::ZERO);
+        }
         let mut bvh = Bvh::build_with(tris.len(), |k| {
             let [a, b, c] = tris[k].map(|i| Vec3::from(positions[i as usize]));
             Bounds3::from_point(a).union_point(b).union_point(c)
@@ -58,11 +66,6 @@ impl IndexedTris {
     /// True when there is no triangle.
     pub fn is_empty(&self) -> bool {
         self.tris.is_empty()
-    }
-
-    /// The vertex positions.
-    pub fn positions(&self) -> &[PackedVec3] {
-        &self.positions
     }
 
     /// The vertex indices of the triangle in slot `slot`.
@@ -106,13 +109,10 @@ impl IndexedTris {
         let range = self.bvh.leaf_range(leaf);
         let first = range.start as u32;
         debug_assert!(range.end <= self.tris.len());
-        // SAFETY: the leaves' ranges split 0..tris.len(): the tree and `tris` are built
-        // together (`build`) and never changed.
-        let tris = unsafe { self.tris.get_unchecked(range) };
-        let p = IndexedTri4 {
-            positions: &self.positions,
-            tris,
-        };
+        // SAFETY: the leaves' ranges split 0..tris.len(), each one to four triangles: the
+        // tree and `tris` are built together (`build`) and never changed. `build` checked
+        // every index against the positions, then added the padding position after them.
+        let p = unsafe { IndexedTri4::new(&self.positions, self.tris.get_unchecked(range)) };
         (p, first)
     }
 
@@ -179,6 +179,14 @@ mod tests {
             let (p, t) = grid(n);
             let (accel, order) = IndexedTris::build(p.clone(), t.clone());
             assert_eq!(accel.len(), t.len());
+            // The positions and one padding position after them (the packets' loads read
+            // into it); nothing without a triangle.
+            let bytes = if t.is_empty() {
+                0
+            } else {
+                12 * (p.len() + 1) + 12 * t.len()
+            };
+            assert_eq!(accel.geometry_bytes(), bytes);
             // Each input triangle in one slot, with its vertices.
             let mut seen = order.clone();
             seen.sort_unstable();

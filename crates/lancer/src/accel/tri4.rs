@@ -86,10 +86,29 @@ impl Packet for Tri4 {
 /// bit for bit) without copying their vertices into one.
 #[derive(Clone, Copy, Debug)]
 pub struct IndexedTri4<'a> {
-    /// The shared vertex positions.
-    pub positions: &'a [PackedVec3],
-    /// One to four triangles, each as three indices into `positions` (all in range).
-    pub tris: &'a [[u32; 3]],
+    /// The shared vertex positions, the last one padding (see [`IndexedTri4::new`]).
+    positions: &'a [PackedVec3],
+    /// One to four triangles, each as three indices into `positions`.
+    tris: &'a [[u32; 3]],
+}
+
+impl<'a> IndexedTri4<'a> {
+    /// The packet of `tris` over `positions`.
+    ///
+    /// # Safety
+    /// `tris` holds one to four triangles, and each of their indices is below
+    /// `positions.len() − 1`: the last position is padding, of which a vertex's 16-byte load
+    /// reads the first 4 bytes when the vertex before it is loaded.
+    #[inline(always)]
+    pub unsafe fn new(positions: &'a [PackedVec3], tris: &'a [[u32; 3]]) -> IndexedTri4<'a> {
+        debug_assert!((1..=4).contains(&tris.len()));
+        debug_assert!(
+            tris.iter()
+                .flatten()
+                .all(|&i| (i as usize) + 1 < positions.len())
+        );
+        IndexedTri4 { positions, tris }
+    }
 }
 
 impl Packet for IndexedTri4<'_> {
@@ -109,41 +128,75 @@ impl Packet for IndexedTri4<'_> {
     fn permuted(&self, pre: &TriangleRay) -> [[F4; 3]; 3] {
         let kz = pre.kz();
         let (kx, ky) = pre.kxy();
-        #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
-        if self.positions.len() <= (i32::MAX / 3) as usize && !self.tris.is_empty() {
-            // SAFETY: AVX2 is enabled (cfg); every triangle read is below `tris.len()` (lanes
-            // are clamped to the last one) and every vertex index below `positions.len()`
-            // (the type's contract), whose 3·i + 2 fits an i32 (checked).
-            return unsafe { self.gather_avx2([kx, ky, kz]) };
+        #[cfg(target_arch = "x86_64")]
+        {
+            // SAFETY: the constructor's contract: one to four triangles, whose vertices each
+            // have a position after them (padding at the end).
+            unsafe { self.transposed([kx, ky, kz]) }
         }
-        let n = self.tris.len().min(4);
-        let at = |lane: usize, k: usize, axis: usize| {
-            let v = self.tris[lane.min(n - 1)];
-            self.positions[v[k] as usize][axis]
-        };
-        [0, 1, 2].map(|k| [kx, ky, kz].map(|a| F4::load(&std::array::from_fn(|l| at(l, k, a)))))
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            let n = self.tris.len().min(4);
+            let at = |lane: usize, k: usize, axis: usize| {
+                let v = self.tris[lane.min(n - 1)];
+                self.positions[v[k] as usize][axis]
+            };
+            [0, 1, 2].map(|k| [kx, ky, kz].map(|a| F4::load(&std::array::from_fn(|l| at(l, k, a)))))
+        }
     }
 }
 
 impl IndexedTri4<'_> {
-    /// [`Packet::permuted`] by AVX2 gathers: per vertex of the four triangles, one gather
-    /// of its indices and one per axis of its coordinates.
-    #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+    /// [`Packet::permuted`] by plain loads: per vertex of the four triangles, its position
+    /// loaded as 16 bytes (x, y, z and the next position's x), the four transposed into lanes
+    /// x, y, z by unpacks. (AVX2 gathers did this in 12 instructions, but each waited tens of
+    /// cycles: a quarter of the cpu-clock samples of `Scene::intersect` on meshes of shared
+    /// vertices, a third of `intersect_p`'s.)
+    ///
+    /// # Safety
+    /// [`IndexedTri4::new`]'s contract.
+    #[cfg(target_arch = "x86_64")]
     #[inline(always)]
-    unsafe fn gather_avx2(&self, axes: [usize; 3]) -> [[F4; 3]; 3] {
+    unsafe fn transposed(&self, axes: [usize; 3]) -> [[F4; 3]; 3] {
         use std::arch::x86_64::*;
-        let n = self.tris.len().min(4);
-        // SAFETY: see `permuted`: the offsets read stay inside both arrays.
+        let last = self.tris.len() - 1;
+        // SAFETY: lanes are clamped to the last triangle, below `tris.len()`; each index
+        // read is below `positions.len() − 1`, so the 16 bytes from its position end inside
+        // the slice; the shuffles need SSE, part of every x86-64.
         unsafe {
-            let lane = _mm_min_epi32(_mm_setr_epi32(0, 1, 2, 3), _mm_set1_epi32(n as i32 - 1));
-            let tri_off = _mm_add_epi32(lane, _mm_add_epi32(lane, lane));
-            let tp = self.tris.as_ptr() as *const i32;
-            let pp = self.positions.as_ptr() as *const f32;
-            [0, 1, 2].map(|k| {
-                let vi = _mm_i32gather_epi32::<4>(tp.add(k), tri_off);
-                let off = _mm_add_epi32(vi, _mm_add_epi32(vi, vi));
-                axes.map(|a| F4::from_m128(_mm_i32gather_ps::<4>(pp.add(a), off)))
-            })
+            let t = |l: usize| *self.tris.get_unchecked(l.min(last));
+            let (t0, t1, t2, t3) = (t(0), t(1), t(2), t(3));
+            let p = self.positions.as_ptr() as *const f32;
+            // Vertex k of the four triangles, transposed to lanes x, y, z in the ray's order.
+            // (Written out: `array::map` here was left out of line, a call per packet.)
+            #[inline(always)]
+            unsafe fn lanes(p: *const f32, i: [u32; 4], axes: [usize; 3]) -> [F4; 3] {
+                // SAFETY: the caller's (every index has a position after it).
+                unsafe {
+                    let v0 = _mm_loadu_ps(p.add(3 * i[0] as usize));
+                    let v1 = _mm_loadu_ps(p.add(3 * i[1] as usize));
+                    let v2 = _mm_loadu_ps(p.add(3 * i[2] as usize));
+                    let v3 = _mm_loadu_ps(p.add(3 * i[3] as usize));
+                    // (x0 x1 y0 y1), (x2 x3 y2 y3), (z0 z1 · ·), (z2 z3 · ·)
+                    let (a, b) = (_mm_unpacklo_ps(v0, v1), _mm_unpacklo_ps(v2, v3));
+                    let (c, d) = (_mm_unpackhi_ps(v0, v1), _mm_unpackhi_ps(v2, v3));
+                    let xyz = [
+                        _mm_movelh_ps(a, b),
+                        _mm_movehl_ps(b, a),
+                        _mm_movelh_ps(c, d),
+                    ];
+                    [
+                        F4::from_m128(xyz[axes[0]]),
+                        F4::from_m128(xyz[axes[1]]),
+                        F4::from_m128(xyz[axes[2]]),
+                    ]
+                }
+            }
+            [
+                lanes(p, [t0[0], t1[0], t2[0], t3[0]], axes),
+                lanes(p, [t0[1], t1[1], t2[1], t3[1]], axes),
+                lanes(p, [t0[2], t1[2], t2[2], t3[2]], axes),
+            ]
         }
     }
 }

@@ -193,9 +193,9 @@ mod tests {
             assert!(scene.shapes.is_empty());
             assert_eq!(scene.tris.len(), n);
             assert_eq!(m.primitives, 4 * size_of::<PrimInfo>());
-            // 3 positions of 12 bytes and 3 indices of 4 bytes per triangle, and one mesh
-            // record of 20 bytes.
-            assert_eq!(m.meshes, n * 3 * (12 + 4) + 20, "{m:?}");
+            // 3 positions of 12 bytes and 3 indices of 4 bytes per triangle, one padding
+            // position after them (the packets' 16-byte loads), and one mesh record of 20 bytes.
+            assert_eq!(m.meshes, n * 3 * (12 + 4) + 12 + 20, "{m:?}");
             // No instance: the empty top-level tree only.
             assert!(scene.instances.objects.is_empty());
             assert_eq!(m.instances, scene.instances.memory_bytes());
