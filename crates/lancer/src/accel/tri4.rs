@@ -128,13 +128,22 @@ impl Packet for IndexedTri4<'_> {
     fn permuted(&self, pre: &TriangleRay) -> [[F4; 3]; 3] {
         let kz = pre.kz();
         let (kx, ky) = pre.kxy();
-        #[cfg(target_arch = "x86_64")]
+        // With `F4` in SSE registers (x86-64-v3; a plain x86-64 build has array lanes).
+        #[cfg(all(
+            target_arch = "x86_64",
+            target_feature = "sse4.1",
+            target_feature = "fma"
+        ))]
         {
             // SAFETY: the constructor's contract: one to four triangles, whose vertices each
             // have a position after them (padding at the end).
             unsafe { self.transposed([kx, ky, kz]) }
         }
-        #[cfg(not(target_arch = "x86_64"))]
+        #[cfg(not(all(
+            target_arch = "x86_64",
+            target_feature = "sse4.1",
+            target_feature = "fma"
+        )))]
         {
             let n = self.tris.len().min(4);
             let at = |lane: usize, k: usize, axis: usize| {
@@ -155,7 +164,11 @@ impl IndexedTri4<'_> {
     ///
     /// # Safety
     /// [`IndexedTri4::new`]'s contract.
-    #[cfg(target_arch = "x86_64")]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "sse4.1",
+        target_feature = "fma"
+    ))]
     #[inline(always)]
     unsafe fn transposed(&self, axes: [usize; 3]) -> [[F4; 3]; 3] {
         use std::arch::x86_64::*;
