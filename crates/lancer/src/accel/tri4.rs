@@ -128,30 +128,9 @@ impl Packet for IndexedTri4<'_> {
     fn permuted(&self, pre: &TriangleRay) -> [[F4; 3]; 3] {
         let kz = pre.kz();
         let (kx, ky) = pre.kxy();
-        // With `F4` in SSE registers (x86-64-v3; a plain x86-64 build has array lanes).
-        #[cfg(all(
-            target_arch = "x86_64",
-            target_feature = "sse4.1",
-            target_feature = "fma"
-        ))]
-        {
-            // SAFETY: the constructor's contract: one to four triangles, whose vertices each
-            // have a position after them (padding at the end).
-            unsafe { self.transposed([kx, ky, kz]) }
-        }
-        #[cfg(not(all(
-            target_arch = "x86_64",
-            target_feature = "sse4.1",
-            target_feature = "fma"
-        )))]
-        {
-            let n = self.tris.len().min(4);
-            let at = |lane: usize, k: usize, axis: usize| {
-                let v = self.tris[lane.min(n - 1)];
-                self.positions[v[k] as usize][axis]
-            };
-            [0, 1, 2].map(|k| [kx, ky, kz].map(|a| F4::load(&std::array::from_fn(|l| at(l, k, a)))))
-        }
+        // SAFETY: the constructor's contract: one to four triangles, whose vertices each have
+        // a position after them (padding at the end).
+        unsafe { self.transposed([kx, ky, kz]) }
     }
 }
 
@@ -175,7 +154,7 @@ impl IndexedTri4<'_> {
         let last = self.tris.len() - 1;
         // SAFETY: lanes are clamped to the last triangle, below `tris.len()`; each index
         // read is below `positions.len() − 1`, so the 16 bytes from its position end inside
-        // the slice; the shuffles need SSE, part of every x86-64.
+        // the slice; the loads and shuffles need SSE, which this function's cfg implies.
         unsafe {
             let t = |l: usize| *self.tris.get_unchecked(l.min(last));
             let (t0, t1, t2, t3) = (t(0), t(1), t(2), t(3));
@@ -211,6 +190,25 @@ impl IndexedTri4<'_> {
                 lanes(p, [t0[2], t1[2], t2[2], t3[2]], axes),
             ]
         }
+    }
+
+    /// [`IndexedTri4::transposed`] where `F4` is an array (a build without SSE4.1 and FMA):
+    /// lane by lane, read with bounds checks.
+    ///
+    /// # Safety
+    /// None needed; `unsafe` only to match the vector version.
+    #[cfg(not(all(
+        target_arch = "x86_64",
+        target_feature = "sse4.1",
+        target_feature = "fma"
+    )))]
+    #[inline(always)]
+    unsafe fn transposed(&self, axes: [usize; 3]) -> [[F4; 3]; 3] {
+        let last = self.tris.len() - 1;
+        let at = |lane: usize, k: usize, axis: usize| {
+            self.positions[self.tris[lane.min(last)][k] as usize][axis]
+        };
+        [0, 1, 2].map(|k| axes.map(|a| F4::load(&std::array::from_fn(|l| at(l, k, a)))))
     }
 }
 
