@@ -64,7 +64,8 @@ pub struct Bvh {
     leaves: Vec<[u32; 2]>,
     /// Bounds of everything.
     bounds: Bounds3,
-    /// The root reference (a node or a leaf).
+    /// The root reference: a node whenever the tree holds a primitive (one leaf alone gets a
+    /// node above it, whose box test turns away the rays that miss it).
     root: u32,
     /// Number of primitives in the tree.
     len: usize,
@@ -338,6 +339,36 @@ mod tests {
 
     fn rnd(i: u64) -> f32 {
         u32_to_unit_f32(hash_u64(&[i]) as u32)
+    }
+
+    #[test]
+    fn a_tree_of_one_leaf_turns_away_rays_that_miss_its_box() {
+        for n in 1..=MAX_LEAF as u64 {
+            let boxes: Vec<Bounds3> = (0..n)
+                .map(|i| {
+                    let c = Vec3::new(i as f32, 0.0, 0.0);
+                    Bounds3::new(c, c + Vec3::splat(0.5))
+                })
+                .collect();
+            let bvh = Bvh::build(&boxes);
+            assert_eq!(bvh.node_count(), 1, "one node above the leaf");
+            let mut visits = 0;
+            let far = Ray::new(Vec3::new(0.25, 10.0, 0.25), Vec3::new(0.0, 0.0, 1.0));
+            bvh.intersect_any(&far, |_, _| {
+                visits += 1;
+                false
+            });
+            assert_eq!(visits, 0, "{n} boxes: a ray passing above them");
+            let through = Ray::new(Vec3::new(0.25, 0.25, -5.0), Vec3::new(0.0, 0.0, 1.0));
+            bvh.intersect_any(&through, |_, _| {
+                visits += 1;
+                false
+            });
+            assert_eq!(
+                visits, n,
+                "{n} boxes: a ray through the first one reaches the leaf"
+            );
+        }
     }
 
     #[test]
