@@ -232,14 +232,19 @@ fn split(refs: &mut [PrimRef], depth: u32) -> (usize, Box4, Box4) {
         if best.0.is_finite() {
             let (_, a, plane) = best;
             // Partition: references in bins below the plane first.
+            // Without a branch on the side (it mispredicted half the time): a reference that
+            // stays is swapped with itself, so the references end in the same order.
+            let (lo, scale, plane_f) = (binner.lo[a], binner.scale[a], plane as f32);
             let (mut i, mut j) = (0usize, n);
             while i < j {
-                if binner.bins(refs[i].c2())[a] < plane {
-                    i += 1;
-                } else {
-                    j -= 1;
-                    refs.swap(i, j);
-                }
+                // Its bin, (c − lo)·scale floored and clamped to [0, BINS − 1], is below the
+                // whole number `plane` exactly when (c − lo)·scale is (a NaN counts as bin 0).
+                let x = (refs[i].c2()[a] - lo) * scale;
+                let below = x < plane_f || x.is_nan();
+                let k = if below { i } else { j - 1 };
+                refs.swap(i, k);
+                i += below as usize;
+                j -= !below as usize;
             }
             let (mut lb, mut rb) = (Box4::EMPTY, Box4::EMPTY);
             for b in 0..BINS {
