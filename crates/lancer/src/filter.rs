@@ -11,7 +11,8 @@ use crate::scene::desc::FilterDesc;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Filter {
     desc: FilterDesc,
-    /// Tabulated 1D marginals for x and y (empty for the box, sampled exactly).
+    /// Tabulated 1D marginals for x and y (none for the box and the triangle, sampled in
+    /// closed form).
     tables: Option<[Table1D; 2]>,
 }
 
@@ -75,6 +76,25 @@ impl Table1D {
     }
 }
 
+/// The largest float below 1 (pbrt's `OneMinusEpsilon`).
+const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
+
+/// A sample of the tent 1 − |x| on [−1, 1] from u in [0, 1), as pbrt-v4's `SampleTent(u, 1)`:
+/// u < ½ picks the left half and is stretched to u' = 2u, which x = −1 + √u' maps by the
+/// inverse of the CDF x ↦ x² of density 2x on [0, 1] (pbrt's `SampleLinear(u', 0, 1)`,
+/// u'/(0 + √u')); otherwise u' = 2u − 1 and x = u'/(1 + √(1 − u')) (`SampleLinear(u', 1, 0)`,
+/// density 2(1 − x)). Exact, so a sample's weight f/pdf is 1.
+fn sample_tent(u: f32) -> f32 {
+    if u < 0.5 {
+        let u = (u / 0.5).min(ONE_MINUS_EPSILON);
+        let x = if u == 0.0 { 0.0 } else { u / u.sqrt() };
+        -1.0 + x.min(ONE_MINUS_EPSILON)
+    } else {
+        let u = ((u - 0.5) / 0.5).min(ONE_MINUS_EPSILON);
+        (u / (1.0 + (1.0 - u).sqrt())).min(ONE_MINUS_EPSILON)
+    }
+}
+
 fn gaussian(x: f32, sigma: f32) -> f32 {
     (-x * x / (2.0 * sigma * sigma)).exp() / ((2.0 * std::f32::consts::PI).sqrt() * sigma)
 }
@@ -126,7 +146,8 @@ impl Filter {
     /// A filter from its description.
     pub fn new(desc: FilterDesc) -> Filter {
         let tables = match desc {
-            FilterDesc::Box { .. } => None,
+            // Sampled in closed form (pbrt-v4 does the same for both).
+            FilterDesc::Box { .. } | FilterDesc::Triangle { .. } => None,
             _ => {
                 let r = desc.radius();
                 let table = |r: f32| Table1D::new(r.max(1e-3), |x| profile(desc, x, r));
@@ -159,6 +180,10 @@ impl Filter {
                     (wx / tx.integral.max(1e-12)) * (wy / ty.integral.max(1e-12)),
                 )
             }
+            (None, FilterDesc::Triangle { radius }) => (
+                Vec2::new(radius[0] * sample_tent(u.x), radius[1] * sample_tent(u.y)),
+                1.0,
+            ),
             _ => (Vec2::ZERO, 1.0),
         }
     }
@@ -187,7 +212,11 @@ impl Filter {
             Some([tx, ty]) => tx.signed_integral * ty.signed_integral,
             None => {
                 let r = self.radius();
-                4.0 * r.x * r.y
+                match self.desc {
+                    // ∫ (r − |x|) dx over [−r, r] = r², per axis.
+                    FilterDesc::Triangle { .. } => r.x * r.x * r.y * r.y,
+                    _ => 4.0 * r.x * r.y,
+                }
             }
         }
     }
@@ -283,6 +312,38 @@ mod tests {
             // Nothing outside the radius.
             assert_eq!(f.evaluate(Vec2::new(r.x * 1.01, 0.0)), 0.0);
         }
+    }
+
+    #[test]
+    fn the_triangle_filter_samples_its_tent_exactly() {
+        // The fraction of samples left of x is the tent's CDF: (1 + x)²/2 for x ≤ 0,
+        // 1 − (1 − x)²/2 above (radius 1; the radius only scales the offsets).
+        let f = Filter::new(FilterDesc::Triangle { radius: [1.0, 2.0] });
+        let n = 4096;
+        let xs: Vec<f32> = (0..n)
+            .map(|i| {
+                let u = Vec2::new((i as f32 + 0.5) / n as f32, 0.25);
+                let (p, w) = f.sample(u);
+                assert_eq!(w, 1.0);
+                assert!(p.x.abs() < 1.0 && p.y.abs() < 2.0);
+                p.x
+            })
+            .collect();
+        assert!(xs.windows(2).all(|w| w[0] <= w[1]), "monotone in u");
+        for x in [-0.9f32, -0.5, -0.1, 0.0, 0.3, 0.75] {
+            let frac = xs.iter().filter(|&&s| s < x).count() as f32 / n as f32;
+            let cdf = if x <= 0.0 {
+                (1.0 + x).powi(2) / 2.0
+            } else {
+                1.0 - (1.0 - x).powi(2) / 2.0
+            };
+            assert!(
+                (frac - cdf).abs() < 1.0 / n as f32 + 1e-4,
+                "x {x}: {frac} vs {cdf}"
+            );
+        }
+        assert_eq!(sample_tent(0.0), -1.0);
+        assert_eq!(sample_tent(0.5), 0.0);
     }
 
     #[test]
