@@ -134,7 +134,14 @@ impl Sphere {
         let b = 2.0 * d.dot(o);
         let c = o.length_squared() - r * r;
         let v = o - (b / (2.0 * a)) * d;
-        let len = v.length();
+        // A clear miss needs no square roots: |v|² beyond r² by more than any rounding of
+        // |v| = √(v·v) could undo means |v| > r, a negative discriminant. (Only misses are
+        // turned away here; every other ray takes the same steps as before.)
+        let len2 = v.length_squared();
+        if len2 > r * r * (1.0 + 1e-12) {
+            return None;
+        }
+        let len = len2.sqrt();
         let discrim = 4.0 * a * (r + len) * (r - len);
         if discrim < 0.0 || a == 0.0 {
             return None;
