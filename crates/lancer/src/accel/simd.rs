@@ -26,10 +26,36 @@ mod imp {
             // SAFETY: `a` is four readable floats; the load has no alignment requirement.
             F4(unsafe { _mm_loadu_ps(a.as_ptr()) })
         }
-        /// The lanes of an SSE register.
+        /// The coordinates of the four positions `p[i[0]]` … `p[i[3]]` as lanes, axis `axes[0]`
+        /// first: each position loaded as 16 bytes (x, y, z and the next position's x), the
+        /// four transposed by unpacks. (AVX2 gathers did this in fewer instructions, but each
+        /// waited tens of cycles.)
+        ///
+        /// # Safety
+        /// Every index is below `p.len() − 1`: the 16 bytes from its position end inside `p`.
         #[inline(always)]
-        pub fn from_m128(v: __m128) -> F4 {
-            F4(v)
+        pub unsafe fn positions_as_lanes(
+            p: &[crate::math::PackedVec3],
+            i: [u32; 4],
+            axes: [usize; 3],
+        ) -> [F4; 3] {
+            let p = p.as_ptr() as *const f32;
+            // SAFETY: the caller's: each load ends inside the slice.
+            unsafe {
+                let v0 = _mm_loadu_ps(p.add(3 * i[0] as usize));
+                let v1 = _mm_loadu_ps(p.add(3 * i[1] as usize));
+                let v2 = _mm_loadu_ps(p.add(3 * i[2] as usize));
+                let v3 = _mm_loadu_ps(p.add(3 * i[3] as usize));
+                // (x0 x1 y0 y1), (x2 x3 y2 y3), (z0 z1 · ·), (z2 z3 · ·)
+                let (a, b) = (_mm_unpacklo_ps(v0, v1), _mm_unpacklo_ps(v2, v3));
+                let (c, d) = (_mm_unpackhi_ps(v0, v1), _mm_unpackhi_ps(v2, v3));
+                let xyz = [
+                    _mm_movelh_ps(a, b),
+                    _mm_movehl_ps(b, a),
+                    _mm_movelh_ps(c, d),
+                ];
+                [F4(xyz[axes[0]]), F4(xyz[axes[1]]), F4(xyz[axes[2]])]
+            }
         }
         /// Lane `i` (0 ≤ i < 4), taken in registers (no round trip through memory).
         #[inline(always)]
@@ -176,6 +202,19 @@ mod imp {
         #[inline(always)]
         pub fn splat(v: f32) -> F4 {
             F4([v; 4])
+        }
+        /// The coordinates of `p[i[0]]` … `p[i[3]]` as lanes, axis `axes[0]` first (read with
+        /// bounds checks).
+        ///
+        /// # Safety
+        /// None here; the SSE version's: every index below `p.len() − 1`.
+        #[inline(always)]
+        pub unsafe fn positions_as_lanes(
+            p: &[crate::math::PackedVec3],
+            i: [u32; 4],
+            axes: [usize; 3],
+        ) -> [F4; 3] {
+            axes.map(|a| F4(i.map(|k| p[k as usize][a])))
         }
         #[inline(always)]
         pub fn load(a: &[f32; 4]) -> F4 {

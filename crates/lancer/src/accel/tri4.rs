@@ -135,80 +135,27 @@ impl Packet for IndexedTri4<'_> {
 }
 
 impl IndexedTri4<'_> {
-    /// [`Packet::permuted`] by plain loads: per vertex of the four triangles, its position
-    /// loaded as 16 bytes (x, y, z and the next position's x), the four transposed into lanes
-    /// x, y, z by unpacks. (AVX2 gathers did this in 12 instructions, but each waited tens of
-    /// cycles: a quarter of the cpu-clock samples of `Scene::intersect` on meshes of shared
-    /// vertices, a third of `intersect_p`'s.)
+    /// [`Packet::permuted`]: vertex k of the four triangles as lanes ([`F4::positions_as_lanes`]),
+    /// lanes past the last triangle repeating it.
     ///
     /// # Safety
     /// [`IndexedTri4::new`]'s contract.
-    #[cfg(all(
-        target_arch = "x86_64",
-        target_feature = "sse4.1",
-        target_feature = "fma"
-    ))]
     #[inline(always)]
     unsafe fn transposed(&self, axes: [usize; 3]) -> [[F4; 3]; 3] {
-        use std::arch::x86_64::*;
         let last = self.tris.len() - 1;
-        // SAFETY: lanes are clamped to the last triangle, below `tris.len()`; each index
-        // read is below `positions.len() − 1`, so the 16 bytes from its position end inside
-        // the slice; the loads and shuffles need SSE, which this function's cfg implies.
+        // SAFETY: lanes are clamped to the last triangle, below `tris.len()`; every index is
+        // below `positions.len() − 1` (the contract). Written out: `array::map` here was left
+        // out of line, a call per packet.
         unsafe {
             let t = |l: usize| *self.tris.get_unchecked(l.min(last));
             let (t0, t1, t2, t3) = (t(0), t(1), t(2), t(3));
-            let p = self.positions.as_ptr() as *const f32;
-            // Vertex k of the four triangles, transposed to lanes x, y, z in the ray's order.
-            // (Written out: `array::map` here was left out of line, a call per packet.)
-            #[inline(always)]
-            unsafe fn lanes(p: *const f32, i: [u32; 4], axes: [usize; 3]) -> [F4; 3] {
-                // SAFETY: the caller's (every index has a position after it).
-                unsafe {
-                    let v0 = _mm_loadu_ps(p.add(3 * i[0] as usize));
-                    let v1 = _mm_loadu_ps(p.add(3 * i[1] as usize));
-                    let v2 = _mm_loadu_ps(p.add(3 * i[2] as usize));
-                    let v3 = _mm_loadu_ps(p.add(3 * i[3] as usize));
-                    // (x0 x1 y0 y1), (x2 x3 y2 y3), (z0 z1 · ·), (z2 z3 · ·)
-                    let (a, b) = (_mm_unpacklo_ps(v0, v1), _mm_unpacklo_ps(v2, v3));
-                    let (c, d) = (_mm_unpackhi_ps(v0, v1), _mm_unpackhi_ps(v2, v3));
-                    let xyz = [
-                        _mm_movelh_ps(a, b),
-                        _mm_movehl_ps(b, a),
-                        _mm_movelh_ps(c, d),
-                    ];
-                    [
-                        F4::from_m128(xyz[axes[0]]),
-                        F4::from_m128(xyz[axes[1]]),
-                        F4::from_m128(xyz[axes[2]]),
-                    ]
-                }
-            }
+            let p = self.positions;
             [
-                lanes(p, [t0[0], t1[0], t2[0], t3[0]], axes),
-                lanes(p, [t0[1], t1[1], t2[1], t3[1]], axes),
-                lanes(p, [t0[2], t1[2], t2[2], t3[2]], axes),
+                F4::positions_as_lanes(p, [t0[0], t1[0], t2[0], t3[0]], axes),
+                F4::positions_as_lanes(p, [t0[1], t1[1], t2[1], t3[1]], axes),
+                F4::positions_as_lanes(p, [t0[2], t1[2], t2[2], t3[2]], axes),
             ]
         }
-    }
-
-    /// [`IndexedTri4::transposed`] where `F4` is an array (a build without SSE4.1 and FMA):
-    /// lane by lane, read with bounds checks.
-    ///
-    /// # Safety
-    /// None needed; `unsafe` only to match the vector version.
-    #[cfg(not(all(
-        target_arch = "x86_64",
-        target_feature = "sse4.1",
-        target_feature = "fma"
-    )))]
-    #[inline(always)]
-    unsafe fn transposed(&self, axes: [usize; 3]) -> [[F4; 3]; 3] {
-        let last = self.tris.len() - 1;
-        let at = |lane: usize, k: usize, axis: usize| {
-            self.positions[self.tris[lane.min(last)][k] as usize][axis]
-        };
-        [0, 1, 2].map(|k| axes.map(|a| F4::load(&std::array::from_fn(|l| at(l, k, a)))))
     }
 }
 
