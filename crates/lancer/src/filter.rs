@@ -5,6 +5,7 @@
 //! then touches one pixel only, which is what lets tiles (and machines) render independently.
 
 use crate::math::Vec2;
+use crate::sampling::ONE_MINUS_EPSILON;
 use crate::scene::desc::FilterDesc;
 
 /// A filter ready for sampling.
@@ -75,9 +76,6 @@ impl Table1D {
         (x, w)
     }
 }
-
-/// The largest float below 1 (pbrt's `OneMinusEpsilon`).
-const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 
 /// A sample of the tent 1 − |x| on [−1, 1] from u in [0, 1), as pbrt-v4's `SampleTent(u, 1)`:
 /// u < ½ picks the left half and is stretched to u' = 2u, which x = −1 + √u' maps by the

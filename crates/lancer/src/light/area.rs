@@ -15,6 +15,7 @@ use super::bounds::{DirectionCone, LightBounds, LightExtent};
 use super::kind::{LightKind, LightLePdf, LightLeSample, LightType, point_error};
 use super::sample::{LightLiSample, LightSampleContext};
 use crate::math::{Frame, PackedRgb, PackedVec3, Rgb, Vec2, Vec3, cross};
+use crate::sampling::ONE_MINUS_EPSILON;
 use crate::sampling::{cosine_hemisphere_pdf, sample_cosine_hemisphere, sample_uniform_triangle};
 use crate::shape::{Shape, ShapeSample, TriangleMesh};
 use std::f32::consts::PI;
@@ -107,9 +108,6 @@ fn whole_sphere(shape: &Shape) -> Option<(PackedVec3, f32)> {
     let scale = glam::Mat3::from_mat4(t.m).determinant().abs().cbrt();
     whole.then(|| (t.point(Vec3::ZERO).into(), s.radius * scale))
 }
-
-/// The largest float below 1.
-const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 
 impl LightKind for AreaLight {
     fn light_type(&self) -> LightType {

@@ -18,10 +18,8 @@ use super::bounds::LightExtent;
 use super::bvh_build::{BinaryNode, LEAF, build_tree};
 use super::compact::{CompactLightBounds, CompactLightBounds4};
 use super::sample::LightSampleContext;
+use crate::sampling::ONE_MINUS_EPSILON;
 use glam::{Vec4, Vec4Swizzles};
-
-/// The largest float below 1.
-const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 
 /// Two levels of the tree below a node: its children A and B (lanes 0 and 1 of `children`;
 /// lanes 2 and 3 repeat B) and their children A₀, A₁, B₀, B₁ (lanes 0–3 of `grandchildren`),

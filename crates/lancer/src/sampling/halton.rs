@@ -7,6 +7,7 @@
 //! position (`permutedigits`, pbrt-v4's default) or by Owen scrambling (`owen`: the permutation
 //! of a digit also depends on the digits before it).
 
+use super::ONE_MINUS_EPSILON;
 use super::Randomization;
 use super::hash::{hash_u64, mix_bits, permutation_element};
 use std::sync::{Arc, Mutex, OnceLock};
@@ -40,9 +41,6 @@ const fn primes() -> [u32; PRIME_TABLE_SIZE] {
     }
     out
 }
-
-/// The largest float below 1 (pbrt's `OneMinusEpsilon`).
-const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 
 /// Radical inverse Φ_b(a) of `a` in base `PRIMES[base_index]`.
 pub fn radical_inverse(base_index: usize, mut a: u64) -> f32 {

@@ -20,6 +20,9 @@ pub use rng::Pcg32;
 pub use sampler::{Sampler, SamplerKind};
 pub use warp::*;
 
+/// The largest float below 1 (pbrt's `OneMinusEpsilon`): where a sample in [0, 1) must stay.
+pub const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
+
 /// Where an estimator takes its random numbers, one dimension after the other: a pixel
 /// sample's [`Sampler`], or the primary-sample vector of a Markov chain (`mlt`), which
 /// bidirectional path tracing's subpaths and connections draw from alike.

@@ -12,13 +12,11 @@
 //! not shift the others'.
 
 use crate::math::{PI, Vec2};
+use crate::sampling::ONE_MINUS_EPSILON;
 use crate::sampling::{Pcg32, SampleSource};
 
 /// Streams in the vector: camera subpath, light subpath, connection.
 pub const STREAMS: usize = 3;
-
-/// The largest f32 below 1.
-const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 
 /// One coordinate of the vector, with what a rejection restores.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
