@@ -191,6 +191,13 @@ pub trait SampleIntegrator: Sync {
     /// wavelengths in spectral mode.
     fn computes_radiance(&self) -> bool;
 
+    /// The path tracer's settings (maximum depth, regularisation) when this integrator is the
+    /// path tracer on `scene` (see [`Integrator::path_tracer`]): the tile loop then traces a
+    /// pixel's camera rays eight at a time and follows each path from its first hit.
+    fn path_tracer(&self, _scene: &Scene) -> Option<(u32, bool)> {
+        None
+    }
+
     /// The `mlt` settings when the integrator is Metropolis light transport, which renders
     /// Markov chains rather than camera samples (its units of work are ranges of chains).
     fn mlt(&self) -> Option<crate::integrator::mlt::MltOptions> {
@@ -258,6 +265,11 @@ impl SampleIntegrator for Integrator {
     #[inline(always)]
     fn computes_radiance(&self) -> bool {
         Integrator::computes_radiance(self)
+    }
+
+    #[inline(always)]
+    fn path_tracer(&self, scene: &Scene) -> Option<(u32, bool)> {
+        Integrator::path_tracer(self, scene)
     }
 
     fn mlt(&self) -> Option<crate::integrator::mlt::MltOptions> {
@@ -398,6 +410,26 @@ pub fn render_tile<T: FilmTile, I: SampleIntegrator + ?Sized>(
     // else, a pure function of seed, pixel and sample index), by the film's density. In RGB
     // mode nothing: the dimension layout is the same as before spectral mode existed.
     let spectral = settings.spectral && integrator.computes_radiance();
+    if let Some((max_depth, regularize)) = integrator.path_tracer(scene) {
+        let path = PathSettings {
+            max_depth,
+            regularize,
+            spectral,
+        };
+        render_tile_path(
+            scene,
+            settings,
+            &path,
+            film,
+            &mut sampler,
+            tile,
+            samples.clone(),
+            &mut stats,
+        );
+        stats.samples = tile.area() * samples.len() as u64;
+        stats.add_counts_since(counts0);
+        return stats;
+    }
     for y in tile.y0..tile.y1 {
         for x in tile.x0..tile.x1 {
             let i = (y - tile.y0) as usize * w + (x - tile.x0) as usize;
@@ -435,6 +467,104 @@ pub fn render_tile<T: FilmTile, I: SampleIntegrator + ?Sized>(
     stats.samples = tile.area() * samples.len() as u64;
     stats.add_counts_since(counts0);
     stats
+}
+
+/// The path tracer's settings, as [`render_tile_path`] takes them.
+struct PathSettings {
+    max_depth: u32,
+    regularize: bool,
+    /// Camera samples carry wavelengths.
+    spectral: bool,
+}
+
+/// [`render_tile`]'s loop for the path tracer: each pixel's samples in runs of up to eight
+/// (aligned on multiples of eight of the sample index, so that a run depends on the sample
+/// indices alone), whose camera rays are traced as one packet ([`Scene::intersect_packet`]:
+/// the rays of one pixel cross the same boxes); each path then goes on from its first hit,
+/// its sampler taken up again where its camera ray left it. Every sample's radiance is what
+/// the path tracer ([`crate::integrator::Integrator::li`]) computes for it.
+#[allow(clippy::too_many_arguments)] // render_tile's inputs
+#[inline(never)]
+fn render_tile_path<T: FilmTile>(
+    scene: &Scene,
+    settings: &RenderSettings,
+    path: &PathSettings,
+    film: &mut T,
+    sampler: &mut Sampler,
+    tile: &PixelBounds,
+    samples: std::ops::Range<u32>,
+    stats: &mut RenderStats,
+) {
+    use crate::accel::packet::LANES;
+    let w = tile.width() as usize;
+    let none = Ray::new(crate::math::Vec3::ZERO, crate::math::Vec3::Z);
+    for y in tile.y0..tile.y1 {
+        for x in tile.x0..tile.x1 {
+            let i = (y - tile.y0) as usize * w + (x - tile.x0) as usize;
+            // The packets' order: the direction through the pixel's centre (a function of the
+            // pixel alone, so that a sample's hit does not depend on which share its packet).
+            let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+            let order = scene
+                .camera()
+                .generate_ray(centre, Vec2::splat(0.5))
+                .map_or(crate::math::Vec3::Z, |r| r.ray.d);
+            let mut s0 = samples.start;
+            while s0 < samples.end {
+                let s1 = ((s0 / LANES as u32 + 1) * LANES as u32).min(samples.end);
+                let n = (s1 - s0) as usize;
+                let mut cams: [Option<crate::camera::CameraRay>; LANES] = [None; LANES];
+                let mut taken = [(0.0f32, Vec2::ZERO, Vec2::ZERO, 0u32); LANES];
+                let mut lambdas: [Option<SampledWavelengths>; LANES] = [None; LANES];
+                let mut rays = [none; LANES];
+                let mut active = 0u32;
+                for k in 0..n {
+                    let (ray, weight, p_film, p_lens) =
+                        camera_ray_at(scene, settings, sampler, x, y, s0 + k as u32);
+                    lambdas[k] = path
+                        .spectral
+                        .then(|| film.sample_wavelengths(sampler.get_1d()));
+                    taken[k] = (weight, p_film, p_lens, sampler.dimension());
+                    if let Some(r) = &ray {
+                        rays[k] = r.ray;
+                        active |= 1 << k;
+                    }
+                    cams[k] = ray;
+                }
+                let hits = scene.intersect_packet(&rays, active, order);
+                for (k, hit) in hits.iter().enumerate().take(n) {
+                    let s = s0 + k as u32;
+                    let (weight, p_film, p_lens, dim) = taken[k];
+                    let lambda = lambdas[k].as_ref();
+                    let l = match &cams[k] {
+                        Some(r) => {
+                            sampler.resume_pixel_sample(x, y, s as u64, dim);
+                            crate::integrator::li_from_hit(
+                                scene,
+                                &r.ray,
+                                hit,
+                                sampler,
+                                lambda,
+                                path.max_depth,
+                                path.regularize,
+                            ) * r.weight
+                        }
+                        None => SampledSpectrum::ZERO,
+                    };
+                    let sample = camera_sample::CameraSample {
+                        id: SampleId { y, x, sample: s },
+                        ray: cams[k].as_ref(),
+                        p_film,
+                        p_lens,
+                        l,
+                        lambda,
+                        weight,
+                    };
+                    camera_sample::add(scene, settings, film, stats, i, &sample);
+                }
+                s0 = s1;
+            }
+        }
+    }
 }
 
 /// The film colour of a camera sample's radiance: the scene's film response (sensor, white

@@ -5,6 +5,7 @@
 //! every hit it finds is the packet's, bit for bit.
 
 use super::Bvh;
+use super::packet::{self, PacketHits, RayPacket};
 use super::tri4::{IndexedTri4, Packet};
 use crate::math::{Bounds3, PackedVec3, Vec3};
 use crate::ray::Ray;
@@ -132,6 +133,16 @@ impl IndexedTris {
             Some(h.t)
         });
         best
+    }
+
+    /// [`IndexedTris::intersect_to`] for the rays of a packet, each ending at its `hits.t`:
+    /// each lane's nearest hit is kept in `hits`, its id the triangle's slot.
+    #[inline]
+    pub fn intersect_packet(&self, rp: &RayPacket, hits: &mut PacketHits) {
+        self.bvh.traverse_packet(rp, hits, |leaf, lanes, hits| {
+            let (p, first) = self.packet(leaf);
+            packet::leaf_nearest(&p, rp, lanes, hits, |j| first + j as u32);
+        });
     }
 
     /// True if any triangle is hit with 0 < t ≤ `ray.t_max`.

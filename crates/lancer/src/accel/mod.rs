@@ -4,6 +4,7 @@
 mod bvh;
 mod indexed;
 mod mesh;
+pub mod packet;
 mod simd;
 mod tri4;
 

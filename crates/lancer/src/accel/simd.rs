@@ -326,9 +326,10 @@ mod imp {
 
 pub(crate) use imp::{F4, M4, not_max_bits};
 
-// Eight `f32` lanes (AVX on x86-64-v3, arrays elsewhere): only what the 8-wide slab test
-// needs.
-#[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+// Eight `f32` lanes (AVX on x86-64-v3, arrays elsewhere): the 8-wide slab test's, and the
+// ray packets' (eight rays against one triangle, [`super::tri4`]), each the IEEE operation of
+// the scalar code as in `F4`.
+#[cfg(all(target_arch = "x86_64", target_feature = "avx", target_feature = "fma"))]
 mod imp8 {
     //! SAFETY (every `unsafe` block below): the intrinsics need AVX, which the `cfg` of this
     //! module guarantees the build enables.
@@ -378,10 +379,117 @@ mod imp8 {
         pub fn le_bits(self, o: F8) -> u32 {
             (unsafe { _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(self.0, o.0)) }) as u32
         }
+        #[inline(always)]
+        pub fn from_array(a: [f32; 8]) -> F8 {
+            F8::load(&a)
+        }
+        /// Lane `i` (0 ≤ i < 8).
+        #[inline(always)]
+        pub fn lane(self, i: usize) -> f32 {
+            // SAFETY: the permute reads only the low three bits of each index.
+            unsafe {
+                _mm256_cvtss_f32(_mm256_permutevar8x32_ps(
+                    self.0,
+                    _mm256_set1_epi32(i as i32),
+                ))
+            }
+        }
+        #[inline(always)]
+        pub fn add(self, o: F8) -> F8 {
+            F8(unsafe { _mm256_add_ps(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn div(self, o: F8) -> F8 {
+            F8(unsafe { _mm256_div_ps(self.0, o.0) })
+        }
+        /// −(self·b) + c, rounded once.
+        #[inline(always)]
+        pub fn neg_mul_add(self, b: F8, c: F8) -> F8 {
+            F8(unsafe { _mm256_fnmadd_ps(self.0, b.0, c.0) })
+        }
+        /// self·b − c, rounded once.
+        #[inline(always)]
+        pub fn mul_sub(self, b: F8, c: F8) -> F8 {
+            F8(unsafe { _mm256_fmsub_ps(self.0, b.0, c.0) })
+        }
+        #[inline(always)]
+        pub fn abs(self) -> F8 {
+            F8(unsafe { _mm256_andnot_ps(_mm256_set1_ps(-0.0), self.0) })
+        }
+        #[inline(always)]
+        pub fn lt(self, o: F8) -> M8 {
+            M8(unsafe { _mm256_cmp_ps::<_CMP_LT_OQ>(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn le(self, o: F8) -> M8 {
+            M8(unsafe { _mm256_cmp_ps::<_CMP_LE_OQ>(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn gt(self, o: F8) -> M8 {
+            M8(unsafe { _mm256_cmp_ps::<_CMP_GT_OQ>(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn ge(self, o: F8) -> M8 {
+            M8(unsafe { _mm256_cmp_ps::<_CMP_GE_OQ>(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn eq(self, o: F8) -> M8 {
+            M8(unsafe { _mm256_cmp_ps::<_CMP_EQ_OQ>(self.0, o.0) })
+        }
+        /// Lane-wise `if m { a } else { b }`.
+        #[inline(always)]
+        pub fn select(m: M8, a: F8, b: F8) -> F8 {
+            F8(unsafe { _mm256_blendv_ps(b.0, a.0, m.0) })
+        }
+        /// Bit k set where lane k of `self` < lane k of `o`.
+        #[inline(always)]
+        pub fn lt_bits(self, o: F8) -> u32 {
+            (unsafe { _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LT_OQ>(self.0, o.0)) }) as u32
+        }
+        /// `f` of each lane.
+        #[inline(always)]
+        pub fn map(self, f: impl Fn(f32) -> f32) -> F8 {
+            F8::from_array(self.to_array().map(f))
+        }
+    }
+
+    /// Eight lane masks.
+    #[derive(Clone, Copy, Debug)]
+    pub struct M8(__m256);
+
+    impl M8 {
+        /// The mask whose lane k is bit k of `bits`.
+        #[inline(always)]
+        pub fn from_bits(bits: u32) -> M8 {
+            // SAFETY: integer and float-mask operations of AVX2 (x86-64-v3).
+            unsafe {
+                let lanes = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+                let set = _mm256_and_si256(_mm256_set1_epi32(bits as i32), lanes);
+                M8(_mm256_castsi256_ps(_mm256_cmpeq_epi32(set, lanes)))
+            }
+        }
+        #[inline(always)]
+        pub fn and(self, o: M8) -> M8 {
+            M8(unsafe { _mm256_and_ps(self.0, o.0) })
+        }
+        #[inline(always)]
+        pub fn or(self, o: M8) -> M8 {
+            M8(unsafe { _mm256_or_ps(self.0, o.0) })
+        }
+        /// `self and not o`.
+        #[inline(always)]
+        pub fn and_not(self, o: M8) -> M8 {
+            M8(unsafe { _mm256_andnot_ps(o.0, self.0) })
+        }
+        /// Bit k set when lane k is true.
+        #[inline(always)]
+        pub fn bits(self) -> u32 {
+            (unsafe { _mm256_movemask_ps(self.0) }) as u32
+        }
     }
 }
 
-#[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
+#[cfg(not(all(target_arch = "x86_64", target_feature = "avx", target_feature = "fma")))]
 mod imp8 {
     /// Eight floats.
     #[derive(Clone, Copy, Debug)]
@@ -435,7 +543,234 @@ mod imp8 {
                 .map(|k| 1u32 << k)
                 .sum()
         }
+        #[inline(always)]
+        pub fn from_array(a: [f32; 8]) -> F8 {
+            F8(a)
+        }
+        #[inline(always)]
+        pub fn lane(self, i: usize) -> f32 {
+            self.0[i & 7]
+        }
+        #[inline(always)]
+        pub fn add(self, o: F8) -> F8 {
+            F8(std::array::from_fn(|k| self.0[k] + o.0[k]))
+        }
+        #[inline(always)]
+        pub fn div(self, o: F8) -> F8 {
+            F8(std::array::from_fn(|k| self.0[k] / o.0[k]))
+        }
+        /// −(self·b) + c, rounded once.
+        #[inline(always)]
+        pub fn neg_mul_add(self, b: F8, c: F8) -> F8 {
+            F8(std::array::from_fn(|k| {
+                (-self.0[k]).mul_add(b.0[k], c.0[k])
+            }))
+        }
+        /// self·b − c, rounded once.
+        #[inline(always)]
+        pub fn mul_sub(self, b: F8, c: F8) -> F8 {
+            F8(std::array::from_fn(|k| self.0[k].mul_add(b.0[k], -c.0[k])))
+        }
+        #[inline(always)]
+        pub fn abs(self) -> F8 {
+            F8(self.0.map(f32::abs))
+        }
+        #[inline(always)]
+        pub fn lt(self, o: F8) -> M8 {
+            M8(std::array::from_fn(|k| self.0[k] < o.0[k]))
+        }
+        #[inline(always)]
+        pub fn le(self, o: F8) -> M8 {
+            M8(std::array::from_fn(|k| self.0[k] <= o.0[k]))
+        }
+        #[inline(always)]
+        pub fn gt(self, o: F8) -> M8 {
+            M8(std::array::from_fn(|k| self.0[k] > o.0[k]))
+        }
+        #[inline(always)]
+        pub fn ge(self, o: F8) -> M8 {
+            M8(std::array::from_fn(|k| self.0[k] >= o.0[k]))
+        }
+        #[inline(always)]
+        pub fn eq(self, o: F8) -> M8 {
+            M8(std::array::from_fn(|k| self.0[k] == o.0[k]))
+        }
+        /// Lane-wise `if m { a } else { b }`.
+        #[inline(always)]
+        pub fn select(m: M8, a: F8, b: F8) -> F8 {
+            F8(std::array::from_fn(
+                |k| if m.0[k] { a.0[k] } else { b.0[k] },
+            ))
+        }
+        /// Bit k set where lane k of `self` < lane k of `o`.
+        #[inline(always)]
+        pub fn lt_bits(self, o: F8) -> u32 {
+            (0..8)
+                .filter(|&k| self.0[k] < o.0[k])
+                .map(|k| 1u32 << k)
+                .sum()
+        }
+        /// `f` of each lane.
+        #[inline(always)]
+        pub fn map(self, f: impl Fn(f32) -> f32) -> F8 {
+            F8(self.0.map(f))
+        }
+    }
+
+    /// Eight lane masks.
+    #[derive(Clone, Copy, Debug)]
+    pub struct M8([bool; 8]);
+
+    impl M8 {
+        /// The mask whose lane k is bit k of `bits`.
+        #[inline(always)]
+        pub fn from_bits(bits: u32) -> M8 {
+            M8(std::array::from_fn(|k| bits >> k & 1 != 0))
+        }
+        #[inline(always)]
+        pub fn and(self, o: M8) -> M8 {
+            M8(std::array::from_fn(|k| self.0[k] && o.0[k]))
+        }
+        #[inline(always)]
+        pub fn or(self, o: M8) -> M8 {
+            M8(std::array::from_fn(|k| self.0[k] || o.0[k]))
+        }
+        /// `self and not o`.
+        #[inline(always)]
+        pub fn and_not(self, o: M8) -> M8 {
+            M8(std::array::from_fn(|k| self.0[k] && !o.0[k]))
+        }
+        /// Bit k set when lane k is true.
+        #[inline(always)]
+        pub fn bits(self) -> u32 {
+            (0..8).filter(|&k| self.0[k]).map(|k| 1u32 << k).sum()
+        }
     }
 }
 
-pub(crate) use imp8::F8;
+pub(crate) use imp8::{F8, M8};
+
+/// The operations the watertight triangle test ([`super::tri4`]) runs on lanes: [`F4`] (one
+/// ray against four triangles) and [`F8`] (eight rays against one triangle). Each is the IEEE
+/// operation of the scalar code, so a lane's result does not depend on the width.
+pub(crate) trait Lanes: Copy {
+    /// The lanes' comparison results.
+    type Mask: MaskLanes;
+    /// Every lane's bit.
+    const ALL: u32;
+    fn splat(v: f32) -> Self;
+    fn add(self, o: Self) -> Self;
+    fn sub(self, o: Self) -> Self;
+    fn mul(self, o: Self) -> Self;
+    fn div(self, o: Self) -> Self;
+    /// −(self·b) + c, rounded once.
+    fn neg_mul_add(self, b: Self, c: Self) -> Self;
+    /// self·b − c, rounded once.
+    fn mul_sub(self, b: Self, c: Self) -> Self;
+    /// Lane-wise `if self > o { self } else { o }`.
+    fn max(self, o: Self) -> Self;
+    fn abs(self) -> Self;
+    fn lt(self, o: Self) -> Self::Mask;
+    fn gt(self, o: Self) -> Self::Mask;
+    fn ge(self, o: Self) -> Self::Mask;
+    fn le(self, o: Self) -> Self::Mask;
+    fn eq(self, o: Self) -> Self::Mask;
+}
+
+/// Lane masks of a [`Lanes`] type.
+pub(crate) trait MaskLanes: Copy {
+    fn and(self, o: Self) -> Self;
+    fn or(self, o: Self) -> Self;
+    /// `self and not o`.
+    fn and_not(self, o: Self) -> Self;
+    /// Bit k set when lane k is true.
+    fn bits(self) -> u32;
+}
+
+/// [`Lanes`] and [`MaskLanes`] for a vector type and its mask, by its own methods.
+macro_rules! lanes {
+    ($f:ident, $m:ident, $all:expr) => {
+        impl Lanes for $f {
+            type Mask = $m;
+            const ALL: u32 = $all;
+            #[inline(always)]
+            fn splat(v: f32) -> Self {
+                $f::splat(v)
+            }
+            #[inline(always)]
+            fn add(self, o: Self) -> Self {
+                $f::add(self, o)
+            }
+            #[inline(always)]
+            fn sub(self, o: Self) -> Self {
+                $f::sub(self, o)
+            }
+            #[inline(always)]
+            fn mul(self, o: Self) -> Self {
+                $f::mul(self, o)
+            }
+            #[inline(always)]
+            fn div(self, o: Self) -> Self {
+                $f::div(self, o)
+            }
+            #[inline(always)]
+            fn neg_mul_add(self, b: Self, c: Self) -> Self {
+                $f::neg_mul_add(self, b, c)
+            }
+            #[inline(always)]
+            fn mul_sub(self, b: Self, c: Self) -> Self {
+                $f::mul_sub(self, b, c)
+            }
+            #[inline(always)]
+            fn max(self, o: Self) -> Self {
+                $f::max(self, o)
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                $f::abs(self)
+            }
+            #[inline(always)]
+            fn lt(self, o: Self) -> $m {
+                $f::lt(self, o)
+            }
+            #[inline(always)]
+            fn gt(self, o: Self) -> $m {
+                $f::gt(self, o)
+            }
+            #[inline(always)]
+            fn ge(self, o: Self) -> $m {
+                $f::ge(self, o)
+            }
+            #[inline(always)]
+            fn le(self, o: Self) -> $m {
+                $f::le(self, o)
+            }
+            #[inline(always)]
+            fn eq(self, o: Self) -> $m {
+                $f::eq(self, o)
+            }
+        }
+
+        impl MaskLanes for $m {
+            #[inline(always)]
+            fn and(self, o: Self) -> Self {
+                $m::and(self, o)
+            }
+            #[inline(always)]
+            fn or(self, o: Self) -> Self {
+                $m::or(self, o)
+            }
+            #[inline(always)]
+            fn and_not(self, o: Self) -> Self {
+                $m::and_not(self, o)
+            }
+            #[inline(always)]
+            fn bits(self) -> u32 {
+                $m::bits(self)
+            }
+        }
+    };
+}
+
+lanes!(F4, M4, 0xf);
+lanes!(F8, M8, 0xff);

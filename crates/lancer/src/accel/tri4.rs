@@ -6,7 +6,7 @@
 //! Lanes whose edge function rounds to zero, where the scalar test redoes them in double
 //! precision, are handed to the scalar test itself.
 
-use super::simd::{F4, M4, not_max_bits};
+use super::simd::{F4, Lanes, MaskLanes, not_max_bits};
 use crate::math::{PackedVec3, Vec3, gamma};
 use crate::ray::Ray;
 use crate::shape::{ShapeHit, TriangleRay, intersect_triangle_with};
@@ -181,14 +181,16 @@ pub trait Packet {
     /// into the traversal loops: the ray and its set-up stay in registers across the leaves.
     #[inline(always)]
     fn intersect_to(&self, ray: &Ray, t_max: f32, pre: &TriangleRay) -> Option<(usize, ShapeHit)> {
-        let found = test(ray, t_max, pre, self.permuted(pre), self.used());
+        let (o, s) = ray_lanes(ray, pre);
+        let found = test(o, s, F4::splat(t_max), self.permuted(pre), self.used());
         nearest(ray, t_max, pre, found, |lane| self.lane_vertices(lane))
     }
 
     /// True if any lane's triangle is hit with 0 < t ≤ `ray.t_max`.
     #[inline(always)]
     fn intersect_any(&self, ray: &Ray, pre: &TriangleRay) -> bool {
-        let found = test(ray, ray.t_max, pre, self.permuted(pre), self.used());
+        let (o, s) = ray_lanes(ray, pre);
+        let found = test(o, s, F4::splat(ray.t_max), self.permuted(pre), self.used());
         any(ray, pre, found, |lane| self.lane_vertices(lane))
     }
 }
@@ -204,7 +206,7 @@ fn nearest(
     ray: &Ray,
     t_max: f32,
     pre: &TriangleRay,
-    found: Found,
+    found: Found<F4>,
     vertices: impl Fn(usize) -> [Vec3; 3],
 ) -> Option<(usize, ShapeHit)> {
     let Found {
@@ -252,7 +254,7 @@ fn nearest_redo(
     ray: &Ray,
     t_max: f32,
     pre: &TriangleRay,
-    found: Found,
+    found: Found<F4>,
     vertices: impl Fn(usize) -> [Vec3; 3],
 ) -> Option<(usize, ShapeHit)> {
     let Found { mut mask, redo, .. } = found;
@@ -287,7 +289,12 @@ fn nearest_redo(
 /// True if [`test`] `found` a hit, lanes to redo tested by the scalar test on
 /// `vertices(lane)`.
 #[inline(always)]
-fn any(ray: &Ray, pre: &TriangleRay, found: Found, vertices: impl Fn(usize) -> [Vec3; 3]) -> bool {
+fn any(
+    ray: &Ray,
+    pre: &TriangleRay,
+    found: Found<F4>,
+    vertices: impl Fn(usize) -> [Vec3; 3],
+) -> bool {
     let Found { mask, redo, .. } = found;
     if mask & !redo != 0 {
         return true;
@@ -300,22 +307,41 @@ fn any(ray: &Ray, pre: &TriangleRay, found: Found, vertices: impl Fn(usize) -> [
     })
 }
 
+/// The ray's part of [`test`] for one ray against four triangles: its origin in the ray's axis
+/// order (o[kx], o[ky], o[kz]) and its shear (S_x, S_y, S_z), as lanes.
+#[inline(always)]
+fn ray_lanes(ray: &Ray, pre: &TriangleRay) -> ([F4; 3], [F4; 3]) {
+    let kz = pre.kz();
+    let (kx, ky) = pre.kxy();
+    let o = ray.o.to_array();
+    let s = pre.shear();
+    (
+        [F4::splat(o[kx]), F4::splat(o[ky]), F4::splat(o[kz])],
+        [F4::splat(s.x), F4::splat(s.y), F4::splat(s.z)],
+    )
+}
+
 /// What [`test`] finds, kept in vector registers: the lanes hit, their t and barycentrics
 /// (b₁, b₂), and the lanes to redo with the scalar test.
 #[derive(Clone, Copy)]
-struct Found {
-    mask: u32,
-    t: F4,
-    b1: F4,
-    b2: F4,
-    redo: u32,
+pub(crate) struct Found<L> {
+    /// Lanes hit (not counting those to redo).
+    pub mask: u32,
+    /// Each lane's t.
+    pub t: L,
+    /// Each lane's barycentric b₁.
+    pub b1: L,
+    /// Each lane's barycentric b₂.
+    pub b2: L,
+    /// Lanes whose edge function rounded to zero: the scalar test decides them.
+    pub redo: u32,
 }
 
-impl Found {
+impl<L: Lanes> Found<L> {
     /// No lane hit; lanes `redo` to redo.
     #[inline(always)]
-    fn none(redo: u32) -> Found {
-        let zero = F4::splat(0.0);
+    fn none(redo: u32) -> Found<L> {
+        let zero = L::splat(0.0);
         Found {
             mask: 0,
             t: zero,
@@ -326,16 +352,20 @@ impl Found {
     }
 }
 
-/// The four tests on the lanes `used` of vertices `v` (`[vertex][axis]`, axes in the ray's
-/// order kx, ky, kz), the ray ending at `t_max`.
+/// The tests on the lanes `used`: lane k tests the triangle of vertices `v` (`[vertex][axis]`,
+/// axes in the ray's order kx, ky, kz) against the ray of origin `o` (in that order too) and
+/// shear `s`, ending at `t_max`. One ray against four triangles ([`F4`]), or eight rays, each
+/// in its own axis order, against one triangle ([`super::packet`]).
 #[inline(always)]
-fn test(ray: &Ray, t_max: f32, pre: &TriangleRay, v: [[F4; 3]; 3], used: u32) -> Found {
-    let kz = pre.kz();
-    let (kx, ky) = pre.kxy();
-    let o = ray.o.to_array();
-    let (ox, oy, oz) = (F4::splat(o[kx]), F4::splat(o[ky]), F4::splat(o[kz]));
-    let s = pre.shear();
-    let (sx, sy, sz) = (F4::splat(s.x), F4::splat(s.y), F4::splat(s.z));
+pub(crate) fn test<L: Lanes>(
+    o: [L; 3],
+    s: [L; 3],
+    t_max: L,
+    v: [[L; 3]; 3],
+    used: u32,
+) -> Found<L> {
+    let [ox, oy, oz] = o;
+    let [sx, sy, sz] = s;
     // Translate to the ray's origin, permute (kx, ky, kz), shear in x and y:
     // x' = x + S_x·z, y' = y + S_y·z.
     let vert = |k: usize| {
@@ -350,7 +380,7 @@ fn test(ray: &Ray, t_max: f32, pre: &TriangleRay, v: [[F4; 3]; 3], used: u32) ->
     let (p2x, p2y, p2z) = vert(2);
     // Edge functions e_i = a·b − c·d by Kahan's difference of products:
     // cd = c·d, err = fma(−c, d, cd), dop = fma(a, b, −cd), e = dop + err.
-    let dop = |a: F4, b: F4, c: F4, d: F4| {
+    let dop = |a: L, b: L, c: L, d: L| {
         let cd = c.mul(d);
         let err = c.neg_mul_add(d, cd);
         a.mul_sub(b, cd).add(err)
@@ -358,12 +388,12 @@ fn test(ray: &Ray, t_max: f32, pre: &TriangleRay, v: [[F4; 3]; 3], used: u32) ->
     let e0 = dop(p1x, p2y, p1y, p2x);
     let e1 = dop(p2x, p0y, p2y, p0x);
     let e2 = dop(p0x, p1y, p0y, p1x);
-    let zero = F4::splat(0.0);
+    let zero = L::splat(0.0);
     let redo = e0.eq(zero).or(e1.eq(zero)).or(e2.eq(zero)).bits() & used;
     // Same signs: not (some negative and some positive).
     let some_neg = e0.lt(zero).or(e1.lt(zero)).or(e2.lt(zero));
     let some_pos = e0.gt(zero).or(e1.gt(zero)).or(e2.gt(zero));
-    let edges_ok = some_neg.and(some_pos).bits() ^ 0xf;
+    let edges_ok = some_neg.and(some_pos).bits() ^ L::ALL;
     if edges_ok & used & !redo == 0 {
         // The ray passes outside every triangle (the common case): stop early.
         return Found::none(redo);
@@ -372,31 +402,31 @@ fn test(ray: &Ray, t_max: f32, pre: &TriangleRay, v: [[F4; 3]; 3], used: u32) ->
     let (p0z, p1z, p2z) = (p0z.mul(sz), p1z.mul(sz), p2z.mul(sz));
     // t_scaled = e₀z₀ + e₁z₁ + e₂z₂, compared with t_max·det on det's side.
     let t_scaled = e0.mul(p0z).add(e1.mul(p1z)).add(e2.mul(p2z));
-    let tmd = F4::splat(t_max).mul(det);
+    let tmd = t_max.mul(det);
     let neg_ok = det.lt(zero).and(t_scaled.lt(zero)).and(t_scaled.ge(tmd));
     let pos_ok = det.gt(zero).and(t_scaled.gt(zero)).and(t_scaled.le(tmd));
-    let inside: M4 = neg_ok.or(pos_ok).and_not(some_neg.and(some_pos));
+    let inside = neg_ok.or(pos_ok).and_not(some_neg.and(some_pos));
     let mut mask = inside.bits() & used & !redo;
     if mask == 0 {
         return Found::none(redo);
     }
-    let inv_det = F4::splat(1.0).div(det);
+    let inv_det = L::splat(1.0).div(det);
     let t = t_scaled.mul(inv_det);
     // Conservative bound on t's rounding error (PBRT-v4 §6.8.7): t must exceed δ_t.
-    let max3 = |a: F4, b: F4, c: F4| {
+    let max3 = |a: L, b: L, c: L| {
         let (a, b, c) = (a.abs(), b.abs(), c.abs());
         c.max(b).max(a)
     };
     let max_zt = max3(p0z, p1z, p2z);
     let max_xt = max3(p0x, p1x, p2x);
     let max_yt = max3(p0y, p1y, p2y);
-    let delta_z = F4::splat(gamma(3)).mul(max_zt);
-    let g5 = F4::splat(gamma(5));
+    let delta_z = L::splat(gamma(3)).mul(max_zt);
+    let g5 = L::splat(gamma(5));
     let delta_x = g5.mul(max_xt.add(max_zt));
     let delta_y = g5.mul(max_yt.add(max_zt));
     // δ_e = 2(γ₂·max_x·max_y + δ_y·max_x + δ_x·max_y)
-    let delta_e = F4::splat(2.0).mul(
-        F4::splat(gamma(2))
+    let delta_e = L::splat(2.0).mul(
+        L::splat(gamma(2))
             .mul(max_xt)
             .mul(max_yt)
             .add(delta_y.mul(max_xt))
@@ -404,9 +434,9 @@ fn test(ray: &Ray, t_max: f32, pre: &TriangleRay, v: [[F4; 3]; 3], used: u32) ->
     );
     let max_e = max3(e0, e1, e2);
     // δ_t = 3(γ₃·max_e·max_z + δ_e·max_z + δ_z·max_e)·|1/det|
-    let delta_t = F4::splat(3.0)
+    let delta_t = L::splat(3.0)
         .mul(
-            F4::splat(gamma(3))
+            L::splat(gamma(3))
                 .mul(max_e)
                 .mul(max_zt)
                 .add(delta_e.mul(max_zt))

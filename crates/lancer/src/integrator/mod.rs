@@ -25,6 +25,7 @@ mod emission;
 pub mod lightpath;
 pub mod mlt;
 mod path;
+pub(crate) use path::li_from_hit;
 mod path_spectra;
 mod simple;
 pub mod specular_differentials;
@@ -124,16 +125,33 @@ impl Integrator {
                 max_depth,
                 regularize,
             } => path::li_observed::<_, false>(
-                scene, ray, sampler, lambda, max_depth, regularize, path,
+                scene, ray, sampler, lambda, max_depth, regularize, path, None,
             ),
             // Without media, volpath is the path tracer (see `volpath`), vertices included.
             Integrator::VolPath {
                 max_depth,
                 regularize,
             } if scene.media().is_empty() => path::li_observed::<_, false>(
-                scene, ray, sampler, lambda, max_depth, regularize, path,
+                scene, ray, sampler, lambda, max_depth, regularize, path, None,
             ),
             _ => self.li(scene, ray, sampler, lambda),
+        }
+    }
+
+    /// The path tracer's settings (maximum depth, regularisation) when this integrator is the
+    /// path tracer on `scene`: `path`, and `volpath` on a scene without media. Its camera rays
+    /// may then be traced a pixel's samples at a time ([`path::li_from_hit`]).
+    pub fn path_tracer(&self, scene: &Scene) -> Option<(u32, bool)> {
+        match *self {
+            Integrator::Path {
+                max_depth,
+                regularize,
+            } => Some((max_depth, regularize)),
+            Integrator::VolPath {
+                max_depth,
+                regularize,
+            } if scene.media().is_empty() => Some((max_depth, regularize)),
+            _ => None,
         }
     }
 

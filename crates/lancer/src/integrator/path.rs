@@ -7,7 +7,7 @@ use crate::material::{Bsdf, TransportMode};
 use crate::math::{SampledSpectrum, Vec3, normalize};
 use crate::ray::Ray;
 use crate::sampling::{Sampler, power_heuristic};
-use crate::scene::Scene;
+use crate::scene::{Nearest, Scene};
 use crate::spectrum::hero::HERO_ONLY;
 use crate::spectrum::sampled::SampledWavelengths;
 
@@ -24,7 +24,39 @@ pub fn li(
     max_depth: u32,
     regularize: bool,
 ) -> SampledSpectrum {
-    li_observed::<_, false>(scene, ray, sampler, lambda, max_depth, regularize, &mut ())
+    li_observed::<_, false>(
+        scene,
+        ray,
+        sampler,
+        lambda,
+        max_depth,
+        regularize,
+        &mut (),
+        None,
+    )
+}
+
+/// [`li`] of a camera ray whose nearest hit in the scene's BVHs, `hit`, has already been found
+/// (by [`Scene::intersect_packet`], with the camera rays of the pixel's other samples).
+pub fn li_from_hit(
+    scene: &Scene,
+    ray: &Ray,
+    hit: &Nearest,
+    sampler: &mut Sampler,
+    lambda: Option<&SampledWavelengths>,
+    max_depth: u32,
+    regularize: bool,
+) -> SampledSpectrum {
+    li_observed::<_, false>(
+        scene,
+        ray,
+        sampler,
+        lambda,
+        max_depth,
+        regularize,
+        &mut (),
+        Some(hit),
+    )
 }
 
 /// Path tracing that leaves out the paths light tracing renders better, for
@@ -40,7 +72,7 @@ pub fn li_without_caustics(
     lambda: Option<&SampledWavelengths>,
     max_depth: u32,
 ) -> SampledSpectrum {
-    li_observed::<_, true>(scene, ray, sampler, lambda, max_depth, false, &mut ())
+    li_observed::<_, true>(scene, ray, sampler, lambda, max_depth, false, &mut (), None)
 }
 
 /// The density with which the last bounce chose the ray's direction, as MIS against light
@@ -101,7 +133,9 @@ impl PathObserver for Vec<PathVertex> {
 }
 
 /// [`li`], reporting each vertex of the path to `obs`; with `NO_CAUSTICS`,
-/// [`li_without_caustics`] (compiled away otherwise).
+/// [`li_without_caustics`] (compiled away otherwise); `first`, when given, is the camera
+/// ray's nearest hit in the scene's BVHs, already found.
+#[allow(clippy::too_many_arguments)] // li's, and the two ways of running it
 pub fn li_observed<O: PathObserver, const NO_CAUSTICS: bool>(
     scene: &Scene,
     ray: &Ray,
@@ -110,6 +144,7 @@ pub fn li_observed<O: PathObserver, const NO_CAUSTICS: bool>(
     max_depth: u32,
     regularize: bool,
     obs: &mut O,
+    mut first: Option<&Nearest>,
 ) -> SampledSpectrum {
     // The path's own copy of its wavelengths, which a dispersive surface may terminate.
     let mut wavelengths = lambda.copied();
@@ -133,7 +168,10 @@ pub fn li_observed<O: PathObserver, const NO_CAUSTICS: bool>(
         // Bound by reference, here and for the BSDF: moving the records out of the returned
         // Options copied them with wide loads right after the callee's narrower stores, which
         // stalled on store forwarding.
-        let mut found = scene.intersect(&ray);
+        let mut found = match first.take() {
+            Some(n) => scene.intersect_from(&ray, n),
+            None => scene.intersect(&ray),
+        };
         if diff.is_some() {
             specular_differentials::apply(&mut found, diff.as_ref());
         }

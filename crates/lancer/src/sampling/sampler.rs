@@ -216,6 +216,21 @@ impl Sampler {
         }
     }
 
+    /// The dimension the current sample draws next.
+    #[inline]
+    pub fn dimension(&self) -> u32 {
+        self.dim
+    }
+
+    /// Takes up sample `index` of pixel (`x`, `y`) again at dimension `dim` (one it had
+    /// reached): it draws on from there the values it would have drawn had it not been left
+    /// (each dimension's value is a function of pixel, index and dimension alone).
+    #[inline]
+    pub fn resume_pixel_sample(&mut self, x: i32, y: i32, index: u64, dim: u32) {
+        self.start_pixel_sample(x, y, index);
+        self.dim = dim;
+    }
+
     /// The rest of [`Sampler::start_pixel_sample`] for the point sets: their index of the
     /// sample, out of line.
     #[inline(never)]
@@ -557,6 +572,32 @@ mod tests {
             for _ in 0..40 {
                 assert_eq!(a.get_2d(), b.get_2d(), "{kind:?}");
                 assert_eq!(a.get_1d(), b.get_1d(), "{kind:?}");
+            }
+        }
+    }
+
+    /// A sample left for others (the tile loop's packets of camera rays) and taken up again
+    /// at the dimension it had reached draws on exactly what it would have drawn.
+    #[test]
+    fn a_resumed_sample_draws_what_it_would_have_drawn() {
+        for kind in all_kinds() {
+            let mut a = Sampler::new(kind, 16, 7);
+            let mut b = Sampler::new(kind, 16, 7);
+            for (x, y, i) in [(3, 5, 0u64), (3, 5, 9), (0, 15, 13)] {
+                a.start_pixel_sample(x, y, i);
+                b.start_pixel_sample(x, y, i);
+                let first = (a.get_pixel_2d(), a.get_1d(), a.get_2d());
+                assert_eq!(first, (b.get_pixel_2d(), b.get_1d(), b.get_2d()));
+                let dim = b.dimension();
+                // b takes another pixel's sample in between (its hashes, its Sobol block).
+                b.start_pixel_sample(x + 1, y, i + 1);
+                b.get_pixel_2d();
+                b.get_2d();
+                b.resume_pixel_sample(x, y, i, dim);
+                for _ in 0..20 {
+                    assert_eq!(a.get_1d(), b.get_1d(), "{kind:?}");
+                    assert_eq!(a.get_2d(), b.get_2d(), "{kind:?}");
+                }
             }
         }
     }

@@ -18,6 +18,7 @@ pub use prim::{AreaEmission, BuildError, IMAGE_EMISSION, PrimInfo};
 pub(crate) use spectra::SceneSpectra;
 pub use tris::SceneTris;
 
+use crate::accel::packet::{self, LANES, PacketHits, RayPacket};
 use crate::accel::{Bvh, Packet, Tri4};
 use crate::camera::Camera;
 use crate::light::{Light, LightDistribution, LightSampler};
@@ -25,7 +26,8 @@ use crate::material::Material;
 use crate::math::{Bounds3, Rgb, SampledSpectrum, Vec3, rgb_lanes};
 use crate::ray::Ray;
 use crate::shape::{
-    ShadingDerivatives, Shape, SurfaceInteraction, TriangleFrame, TriangleMesh, TriangleRay,
+    ShadingDerivatives, Shape, ShapeHit, SurfaceInteraction, TriangleFrame, TriangleMesh,
+    TriangleRay,
 };
 use crate::spectrum::sampled::SampledWavelengths;
 use crate::texture::{FloatTex, FloatTexture, SpectrumTexture, TexCoord, TextureEval};
@@ -52,6 +54,18 @@ pub struct SceneHit {
     /// The hit's footprint ∂p/∂x, ∂p/∂y (zero when the scene's textures need none; see
     /// [`Scene::tex_coord_with_footprint`]).
     pub footprint: [Vec3; 2],
+}
+
+/// A ray's nearest hit in the BVH of primitives and the plain meshes', as
+/// [`Scene::intersect_packet`] finds it and [`Scene::intersect_from`] completes it.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Nearest {
+    /// Where the ray ends: its nearest hit's t, or its own end.
+    t_max: f32,
+    /// The nearest hit on the primitives (hit, primitive).
+    best: Option<(ShapeHit, u32)>,
+    /// The nearest plain-mesh hit (slot, hit).
+    best_tri: Option<(u32, ShapeHit)>,
 }
 
 impl SceneHit {
@@ -375,6 +389,21 @@ impl Scene {
         if let Some((_, h)) = best_tri {
             t_max = h.t;
         }
+        self.nearest_rest(ray, t_max, best, best_tri)
+    }
+
+    /// [`Scene::intersect`]'s nearest hits of `ray` after the BVH of primitives and the plain
+    /// meshes: `best` (primitive hit, its index) and `best_tri` (plain-mesh slot, hit), the ray
+    /// ending at `t_max`; then the moving things and the instances, and the nearest hit's
+    /// record.
+    #[inline(always)]
+    fn nearest_rest(
+        &self,
+        ray: &Ray,
+        mut t_max: f32,
+        best: Option<(crate::shape::ShapeHit, u32)>,
+        best_tri: Option<(u32, crate::shape::ShapeHit)>,
+    ) -> Option<SceneHit> {
         let mut moving = None;
         if let Some(m) = &self.motion {
             moving = m.intersect(&Ray { t_max, ..*ray }, ray.time);
@@ -443,6 +472,98 @@ impl Scene {
         Some(self.finish_hit(ray, hit, |si| {
             shape.shading_derivatives(ray, &h, &self.meshes, si)
         }))
+    }
+
+    /// The first part of [`Scene::intersect`] for the rays of lanes `active` of `rays`,
+    /// traced as one packet through the BVH of primitives and the plain meshes' (what comes
+    /// before, the unbounded primitives, one ray at a time): each lane's nearest hit there,
+    /// which [`Scene::intersect_from`] completes into the ray's hit. Each ray finds what it
+    /// finds alone, the nearest hit being the same; of hits at exactly the same t on different
+    /// surfaces (two walls' common edge), the packet may keep another than the single ray: it
+    /// visits the leaves in their order along `order`, the same for every lane whichever share
+    /// the packet ([`crate::accel::Bvh::traverse_packet`]). For rays that cross the same
+    /// boxes, such as the camera rays of one pixel's samples.
+    pub fn intersect_packet(
+        &self,
+        rays: &[Ray; LANES],
+        active: u32,
+        order: Vec3,
+    ) -> [Nearest; LANES] {
+        let mut out = [Nearest::default(); LANES];
+        if active == 0 {
+            return out;
+        }
+        for _ in 0..active.count_ones() {
+            crate::counters::count_ray();
+        }
+        let rp = RayPacket::new(rays, active, order);
+        let mut hits = PacketHits::new(rays.each_ref().map(|r| r.t_max));
+        let lanes = |mut m: u32| {
+            std::iter::from_fn(move || {
+                (m != 0).then(|| {
+                    let k = m.trailing_zeros() as usize;
+                    m &= m - 1;
+                    k
+                })
+            })
+        };
+        if !self.unbounded.is_empty() {
+            for k in lanes(active) {
+                let mut r = rp.rays[k];
+                for &i in &self.unbounded {
+                    if let Some(h) = self.hit(i, &r, &rp.pre[k]) {
+                        r.t_max = h.t;
+                        hits.set(k, i, h);
+                    }
+                }
+            }
+        }
+        self.bvh.traverse_packet(&rp, &mut hits, |leaf, m, hits| {
+            let p = &self.packets[leaf as usize];
+            if !p.is_empty() {
+                packet::leaf_nearest(p, &rp, m, hits, |j| p.ids[j]);
+                return;
+            }
+            for k in lanes(m) {
+                let mut found = None;
+                self.bvh
+                    .leaf_nearest(leaf, &rp.rays[k], hits.t.lane(k), &mut |i, r| {
+                        let h = self.hit(i, r, &rp.pre[k])?;
+                        found = Some((i, h));
+                        Some(h.t)
+                    });
+                if let Some((i, h)) = found {
+                    hits.set(k, i, h);
+                }
+            }
+        });
+        let mut tri_hits = PacketHits::new(hits.t.to_array());
+        if !self.tris.is_empty() {
+            self.tris.intersect_packet(&rp, &mut tri_hits);
+        }
+        let (t, bu, bv) = (hits.t.to_array(), hits.u.to_array(), hits.v.to_array());
+        let (tt, tu, tv) = (
+            tri_hits.t.to_array(),
+            tri_hits.u.to_array(),
+            tri_hits.v.to_array(),
+        );
+        for k in lanes(active) {
+            let hit = |t: f32, u: f32, v: f32| ShapeHit { t, u, v };
+            out[k] = Nearest {
+                t_max: tt[k],
+                best: (hits.id[k] != u32::MAX).then(|| (hit(t[k], bu[k], bv[k]), hits.id[k])),
+                best_tri: (tri_hits.id[k] != u32::MAX)
+                    .then(|| (tri_hits.id[k], hit(tt[k], tu[k], tv[k]))),
+            };
+        }
+        out
+    }
+
+    /// The nearest hit of `ray`, completed from `n`, its nearest hit in the BVH of primitives
+    /// and the plain meshes' ([`Scene::intersect_packet`]): what [`Scene::intersect`] returns.
+    #[inline(always)]
+    pub fn intersect_from(&self, ray: &Ray, n: &Nearest) -> Option<SceneHit> {
+        self.nearest_rest(ray, n.t_max, n.best, n.best_tri)
     }
 
     /// Whether a hit on primitive `prim` needs [`Scene::finish_hit`]: the scene's textures

@@ -161,6 +161,17 @@ impl SceneTris {
         self.accel.intersect_to(ray, t_max, pre)
     }
 
+    /// [`SceneTris::intersect`] for the rays of a packet, each ending at its `hits.t`: each
+    /// lane's nearest hit is kept in `hits`, its id the triangle's slot.
+    #[inline]
+    pub fn intersect_packet(
+        &self,
+        rp: &crate::accel::packet::RayPacket,
+        hits: &mut crate::accel::packet::PacketHits,
+    ) {
+        self.accel.intersect_packet(rp, hits)
+    }
+
     /// True if any triangle is hit with 0 < t < `ray.t_max`.
     #[inline]
     pub fn intersect_any(&self, ray: &Ray, pre: &TriangleRay) -> bool {

@@ -253,3 +253,193 @@ fn scene_of_mixed_shapes_equals_brute_force() {
     }
     assert!(hits > 2000, "{hits} hits");
 }
+
+/// A height field of `n`×`n` quads over [−6, 6]², two triangles each (shared vertices: a plain
+/// mesh, kept in the scene's indexed triangles when large).
+fn height_field(rng: &mut Pcg32, n: u32) -> ShapeDesc {
+    let mut positions = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (i as f32 / n as f32, j as f32 / n as f32);
+            positions.push(PackedVec3::new(
+                12.0 * x - 6.0,
+                12.0 * y - 6.0,
+                rng.uniform() - 6.0,
+            ));
+        }
+    }
+    let mut indices = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let v = j * (n + 1) + i;
+            indices.extend_from_slice(&[v, v + 1, v + n + 2, v, v + n + 2, v + n + 1]);
+        }
+    }
+    shape(
+        Geometry::TriangleMesh(std::sync::Arc::new(TriangleMesh {
+            positions,
+            indices,
+            ..TriangleMesh::default()
+        })),
+        Vec3::ZERO,
+    )
+}
+
+/// Eight rays traced as a packet find what each finds alone: the same primitive, t, point and
+/// barycentric coordinates, bit for bit. Packets of rays from one point (a pixel's camera
+/// rays, the case packets are for) and of unrelated rays, some lanes empty, over every kind of
+/// shape, the indexed triangles of a large mesh and an infinite plane.
+#[test]
+fn packets_find_what_single_rays_find() {
+    let mut rng = Pcg32::new(12, 0);
+    let mut hits = 0;
+    for case in 0..6 {
+        let mut desc = mixed_scene(&mut rng);
+        desc.shapes.push(height_field(&mut rng, 60));
+        let scene = Scene::build(&desc).expect("valid scene");
+        assert!(scene.tris().len() > 4096, "the large mesh is indexed");
+        for p in 0..300 {
+            let coherent = p % 2 == 0;
+            let base = random_ray(&mut rng);
+            let rays: [Ray; 8] = std::array::from_fn(|_| {
+                if coherent {
+                    let jitter = (v3(&mut rng) - 0.5) * 0.02;
+                    Ray {
+                        d: base.d + jitter * base.d.length(),
+                        ..base
+                    }
+                } else {
+                    random_ray(&mut rng)
+                }
+            });
+            let active = match p % 5 {
+                0 => 0xff,
+                1 => 1,
+                2 => 0x80,
+                _ => 1 + rng.next_u32() % 255,
+            };
+            let got = scene.intersect_packet(&rays, active, base.d);
+            for (k, n) in got.iter().enumerate() {
+                if active >> k & 1 == 0 {
+                    continue;
+                }
+                let g = scene.intersect_from(&rays[k], n);
+                let key = |h: &lancer::scene::SceneHit| {
+                    (
+                        h.prim,
+                        h.si.t.to_bits(),
+                        h.si.p.to_array().map(f32::to_bits),
+                        h.si.uv.to_array().map(f32::to_bits),
+                    )
+                };
+                let want = scene.intersect(&rays[k]);
+                hits += want.is_some() as u32;
+                assert_eq!(
+                    g.as_ref().map(key),
+                    want.as_ref().map(key),
+                    "case {case} packet {p} lane {k} (coherent {coherent})"
+                );
+            }
+        }
+    }
+    assert!(hits > 4000, "{hits} hits");
+}
+
+/// Where a ray meets two surfaces at exactly the same t (a wall and a ceiling along their
+/// common edge), the packet keeps the same one whichever other rays share it and whichever
+/// lane it is in: a sample's hit depends on its own ray and the packet's order direction alone.
+#[test]
+fn a_packet_ray_keeps_the_same_surface_whatever_shares_its_packet() {
+    // A rectangle from corner `c` along `a` and `b`, as n × n quads (so that the two surfaces
+    // sit in different leaves, which the packet visits in some order).
+    let grid = |c: Vec3, a: Vec3, b: Vec3, n: u32| {
+        let mut positions = Vec::new();
+        for j in 0..=n {
+            for i in 0..=n {
+                let p = c + a * (i as f32 / n as f32) + b * (j as f32 / n as f32);
+                positions.push(PackedVec3::from(p));
+            }
+        }
+        let mut indices = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                let v = j * (n + 1) + i;
+                indices.extend_from_slice(&[v, v + 1, v + n + 2, v, v + n + 2, v + n + 1]);
+            }
+        }
+        shape(
+            Geometry::TriangleMesh(std::sync::Arc::new(TriangleMesh {
+                positions,
+                indices,
+                ..TriangleMesh::default()
+            })),
+            Vec3::ZERO,
+        )
+    };
+    let mut desc = SceneDesc::default();
+    // The wall x = −1 and the ceiling y = 2, meeting along the line x = −1, y = 2.
+    let edge = Vec3::new(0.0, 0.0, 8.0);
+    desc.shapes.push(grid(
+        Vec3::new(-1.0, -2.0, -4.0),
+        Vec3::new(0.0, 4.0, 0.0),
+        edge,
+        8,
+    ));
+    desc.shapes.push(grid(
+        Vec3::new(-3.0, 2.0, -4.0),
+        Vec3::new(2.0, 0.0, 0.0),
+        edge,
+        8,
+    ));
+    let scene = Scene::build(&desc).expect("valid scene");
+    let mut rng = Pcg32::new(3, 0);
+    // Rays from the origin at points of the edge: both surfaces at t = 1.
+    let edge_ray = |z: f32| Ray::new(Vec3::ZERO, Vec3::new(-1.0, 2.0, z));
+    let order = Vec3::new(-1.0, 2.0, 0.0);
+    let key = |h: Option<lancer::scene::SceneHit>| h.map(|h| (h.prim, h.si.t.to_bits()));
+    let mut ties = 0;
+    for _ in 0..200 {
+        let rays: [Ray; 8] = std::array::from_fn(|_| {
+            if rng.uniform() < 0.6 {
+                edge_ray((rng.next_u32() % 64) as f32 / 16.0 - 2.0)
+            } else {
+                // From elsewhere in the room: these cross the two surfaces' boxes in either
+                // order.
+                let o = Vec3::new(-2.0 * rng.uniform(), 4.0 * rng.uniform() - 2.0, 0.0);
+                let to = Vec3::new(-1.0 - 2.0 * rng.uniform(), 2.0 - 4.0 * rng.uniform(), 0.0);
+                let to = if rng.uniform() < 0.5 {
+                    Vec3::new(-1.0, to.y, 0.0)
+                } else {
+                    Vec3::new(to.x, 2.0, 0.0)
+                };
+                Ray::new(o, to - o)
+            }
+        });
+        let active = 1 + rng.next_u32() % 255;
+        let got = scene.intersect_packet(&rays, active, order);
+        for k in 0..8 {
+            if active >> k & 1 == 0 {
+                continue;
+            }
+            let here = key(scene.intersect_from(&rays[k], &got[k]));
+            // Alone, in lane 7 - k.
+            let mut alone = [rays[k]; 8];
+            alone[7 - k] = rays[k];
+            let single = scene.intersect_packet(&alone, 1 << (7 - k), order);
+            assert_eq!(
+                here,
+                key(scene.intersect_from(&rays[k], &single[7 - k])),
+                "lane {k}"
+            );
+            // A tie: a triangle of each surface hit at the same t (the wall's come first).
+            let t_of = |range: std::ops::Range<usize>| {
+                range
+                    .filter_map(|i| scene.shapes()[i].intersect(&rays[k]).map(|h| h.t))
+                    .next()
+            };
+            let wall = t_of(0..128);
+            ties += (wall.is_some() && wall == t_of(128..256)) as u32;
+        }
+    }
+    assert!(ties > 100, "{ties} rays at the edge");
+}

@@ -13,6 +13,7 @@
 
 mod build;
 
+use super::packet::{PacketHits, RayPacket};
 use super::simd::F8;
 use crate::math::{Bounds3, Vec3, gamma, next_float_down};
 use crate::ray::Ray;
@@ -282,6 +283,102 @@ impl Bvh {
     #[inline(always)]
     pub fn leaf_any<F: FnMut(u32, &Ray) -> bool>(&self, leaf: u32, ray: &Ray, hit: &mut F) -> bool {
         self.leaf_range(leaf).any(|k| hit(self.indices[k], ray))
+    }
+}
+
+impl Bvh {
+    /// Visits the leaves whose boxes the rays of `rp` cross, each leaf once with the lanes
+    /// whose ray crosses it before its end `hits.t` (lane k's). `leaf(id, lanes, hits)` tests
+    /// the leaf's primitives against those rays and may shorten their ends (nearest hits; −∞
+    /// ends a lane's search, the any-hit query's "stop"); a lane's farther boxes are then
+    /// culled for it. Each lane's box tests are the single ray's
+    /// ([`Slabs::test`]'s operations on its own values), so a ray is culled where it would be
+    /// alone. The children are visited in the order of their centres along the packet's
+    /// direction ([`RayPacket::order`]), nearest first: so which leaves a lane tests, and in
+    /// what order, depends on its own ray and that direction alone, never on the other lanes
+    /// (of two hits at exactly the same t, the one kept does not depend on the packet either).
+    #[inline(always)]
+    pub fn traverse_packet<F: FnMut(u32, u32, &mut PacketHits)>(
+        &self,
+        rp: &RayPacket,
+        hits: &mut PacketHits,
+        mut leaf: F,
+    ) {
+        if self.len == 0 {
+            return;
+        }
+        let grow = F8::splat(1.0 + 2.0 * gamma(3));
+        // Left uninitialised, as the single ray's (its entries are 64 bytes here).
+        let mut stack = [std::mem::MaybeUninit::<(u32, u32, F8)>::uninit(); STACK];
+        let mut sp = 0usize;
+        let mut cur = (self.root, rp.active);
+        // Each lane's end, one float below t_max, as the single-ray test takes it.
+        let mut t_end = hits.t.map(next_float_down);
+        loop {
+            let (node_ref, lanes) = cur;
+            if node_ref & LEAF == 0 {
+                let node = &self.nodes[node_ref as usize];
+                let mut order = [(0.0f32, 0u32, 0u32, F8::splat(0.0)); WIDTH];
+                let mut n = 0;
+                for k in 0..WIDTH {
+                    if node.child[k] == EMPTY {
+                        continue;
+                    }
+                    let mut t0 = F8::splat(0.0);
+                    let mut t1 = t_end;
+                    for a in 0..3 {
+                        let (lo, hi) = (F8::splat(node.min[a][k]), F8::splat(node.max[a][k]));
+                        let near = F8::select(rp.neg[a], hi, lo);
+                        let far = F8::select(rp.neg[a], lo, hi);
+                        let tn = near.sub(rp.o[a]).mul(rp.inv_d[a]);
+                        let tf = far.sub(rp.o[a]).mul(rp.inv_d[a]).mul(grow);
+                        t0 = tn.max(t0);
+                        t1 = tf.min(t1);
+                    }
+                    let crossed = t0.le_bits(t1) & lanes;
+                    if crossed == 0 {
+                        continue;
+                    }
+                    // Ordered by the box's centre along the packet's direction (twice it).
+                    let key = (0..3)
+                        .map(|a| (node.min[a][k] + node.max[a][k]) * rp.order[a])
+                        .sum::<f32>();
+                    let mut j = n;
+                    while j > 0 && order[j - 1].0 < key {
+                        order[j] = order[j - 1];
+                        j -= 1;
+                    }
+                    order[j] = (key, node.child[k], crossed, t0);
+                    n += 1;
+                }
+                if n > 0 {
+                    for &(_, c, m, t) in &order[..n - 1] {
+                        stack[sp].write((c, m, t));
+                        sp += 1;
+                    }
+                    cur = (order[n - 1].1, order[n - 1].2);
+                    continue;
+                }
+            } else {
+                leaf(node_ref & !LEAF, lanes, hits);
+                t_end = hits.t.map(next_float_down);
+            }
+            // Pop the next subtree some lane may still find a closer hit in.
+            loop {
+                if sp == 0 {
+                    return;
+                }
+                sp -= 1;
+                // SAFETY: every entry below the stack pointer was written by a push.
+                let (c, m, t) = unsafe { stack[sp].assume_init() };
+                // Entered before the lane's end, as in the single-ray pop.
+                let m = m & t.lt_bits(hits.t);
+                if m != 0 {
+                    cur = (c, m);
+                    break;
+                }
+            }
+        }
     }
 }
 
