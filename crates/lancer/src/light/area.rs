@@ -432,8 +432,13 @@ fn li_from_point(
 }
 
 /// Light from a whole sphere (centre `c`, radius `r`, normals inwards when `flip`) seen from
-/// outside: a direction uniform in the cone it fills (of half-angle θmax, sin θmax = r/d),
-/// then the point where it meets the sphere.
+/// outside, as pbrt-v4's `Sphere::Sample` takes it: a direction uniform in the cone the sphere
+/// fills (half-angle θmax, sin θmax = r/d), turned straight into the point it meets. With θ
+/// the sampled angle from the axis, cos θ = 1 − u₀(1 − cos θmax), the point's angle α from
+/// the centre's axis seen from the sphere's centre is cos α = sin²θ/sin θmax +
+/// cos θ·√(1 − sin²θ/sin²θmax), and the point is c + r·n with n = −(sin α cos φ, sin α sin φ,
+/// cos α) in the frame whose z points from the shading point to the centre (φ = 2πu₁). All in
+/// single precision: no ray is traced against the sphere.
 #[allow(clippy::too_many_arguments)]
 fn sample_sphere_cone(
     cone: &SphereCone,
@@ -445,13 +450,22 @@ fn sample_sphere_cone(
     c: Vec3,
     r: f32,
 ) -> Option<LightLiSample> {
-    let local = crate::sampling::sample_uniform_cone(u, cone.cos_theta_max);
-    let wi = cone.frame.from_local(local);
-    let p = cone.hit(ctx.p, wi, c, r);
-    let mut n = (p - c) / r;
-    if flip {
-        n = -n;
-    }
+    let (sin2_theta, cos_theta) = if cone.sin2_theta_max < SMALL_CONE_SIN2 {
+        // Small cones: sin²θ ≈ u₀ sin²θmax (the Taylor expansion pbrt-v4 takes).
+        let sin2 = cone.sin2_theta_max * u.x;
+        (sin2, (1.0 - sin2).sqrt())
+    } else {
+        let cos = (cone.cos_theta_max - 1.0) * u.x + 1.0;
+        (1.0 - cos * cos, cos)
+    };
+    let cos_alpha = sin2_theta / cone.sin_theta_max
+        + cos_theta * (1.0 - sin2_theta / cone.sin2_theta_max).max(0.0).sqrt();
+    let sin_alpha = (1.0 - cos_alpha * cos_alpha).max(0.0).sqrt();
+    let w = crate::math::spherical_direction(sin_alpha, cos_alpha, u.y * 2.0 * PI);
+    let outward = -cone.frame.from_local(w);
+    let p = c + r * outward;
+    let wi = crate::math::normalize(p - ctx.p);
+    let n = if flip { -outward } else { outward };
     if !two_sided && n.dot(wi) >= 0.0 {
         return None;
     }
@@ -459,7 +473,7 @@ fn sample_sphere_cone(
         l: l.into(),
         factor: 1.0,
         wi,
-        pdf: crate::sampling::uniform_cone_pdf(cone.cos_theta_max),
+        pdf: cone.pdf(),
         p_light: p,
     })
 }
@@ -478,7 +492,7 @@ pub(super) fn area_pdf_li(
     if let Emitter::Sphere { centre, radius, .. } = *emitter
         && let Some(cone) = SphereCone::new(ctx.p, centre.into(), radius)
     {
-        return crate::sampling::uniform_cone_pdf(cone.cos_theta_max);
+        return cone.pdf();
     }
     let Some((p, n)) = hit else { return 0.0 };
     let d2 = (p - ctx.p).length_squared();
@@ -490,11 +504,17 @@ pub(super) fn area_pdf_li(
     }
 }
 
+/// sin²(1.5°): below it, the cone's 1 − cos θmax and its samples are taken by their Taylor
+/// expansions (pbrt-v4's threshold), where 1 − √(1 − sin²θmax) would lose its digits.
+const SMALL_CONE_SIN2: f32 = 0.000_685_23;
+
 /// The cone of directions in which a sphere is seen from a point outside it.
 struct SphereCone {
     /// Frame whose z points at the centre.
     frame: Frame,
-    /// cos θmax, with sin θmax = r/d.
+    /// sin θmax = r/d, its square, and cos θmax.
+    sin_theta_max: f32,
+    sin2_theta_max: f32,
     cos_theta_max: f32,
 }
 
@@ -506,32 +526,26 @@ impl SphereCone {
         if d2 <= r2 * 1.0001 {
             return None;
         }
-        let sin2 = r2 / d2;
-        // For tiny cones 1 − sin² loses every digit: use cos ≈ 1 − sin²/2.
-        let cos_theta_max = if sin2 < 1e-4 {
-            1.0 - 0.5 * sin2
-        } else {
-            (1.0 - sin2).sqrt()
-        };
+        let d = d2.sqrt();
+        let sin_theta_max = r / d;
+        let sin2_theta_max = sin_theta_max * sin_theta_max;
         Some(SphereCone {
-            frame: Frame::from_z((c - p) / d2.sqrt()),
-            cos_theta_max,
+            frame: Frame::from_z((c - p) / d),
+            sin_theta_max,
+            sin2_theta_max,
+            cos_theta_max: (1.0 - sin2_theta_max).max(0.0).sqrt(),
         })
     }
 
-    /// Where the direction `w` from `p` first meets the sphere: the nearer root of
-    /// t² − 2t(w·(c − p)) + |c − p|² − r² = 0 (grazing directions that round to a miss take
-    /// the point of closest approach).
-    fn hit(&self, p: Vec3, w: Vec3, c: Vec3, r: f32) -> Vec3 {
-        let oc = (c - p).as_dvec3();
-        let w = w.as_dvec3();
-        let b = w.dot(oc);
-        let disc = b * b - (oc.length_squared() - (r as f64) * (r as f64));
-        let t = b - disc.max(0.0).sqrt();
-        let q = p.as_dvec3() + t * w;
-        // Put the point exactly on the sphere.
-        let c = c.as_dvec3();
-        (c + (q - c).normalize() * r as f64).as_vec3a()
+    /// The density of a direction uniform in the cone, 1/(2π(1 − cos θmax)), with
+    /// 1 − cos θmax ≈ sin²θmax/2 for small cones.
+    fn pdf(&self) -> f32 {
+        let one_minus_cos = if self.sin2_theta_max < SMALL_CONE_SIN2 {
+            self.sin2_theta_max / 2.0
+        } else {
+            1.0 - self.cos_theta_max
+        };
+        1.0 / (2.0 * PI * one_minus_cos)
     }
 }
 

@@ -292,9 +292,14 @@ fn disk_light_gives_the_closed_form_irradiance() {
 
 #[test]
 fn sphere_light_gives_the_closed_form_irradiance() {
-    // A sphere of radius r at distance d, straight above: E = π·L·(r/d)².
-    let (r, d, l) = (0.5f32, 2.0f32, 2.0f32);
-    for (label, z_max) in [("whole (cone sampling)", r), ("cut (area sampling)", 0.0)] {
+    // A sphere of radius r at distance d, straight above: E = π·L·(r/d)². The small one
+    // fills a cone below 1.5°, sampled by the Taylor expansion.
+    let l = 2.0f32;
+    for (label, r, d, z_max) in [
+        ("whole (cone sampling)", 0.5f32, 2.0f32, 0.5),
+        ("cut (area sampling)", 0.5, 2.0, 0.0),
+        ("whole, small (cone sampling)", 0.02, 2.0, 0.02),
+    ] {
         // The cut sphere keeps its lower half, which is all the point sees anyway.
         let scene = scene_of(vec![emitter(
             Geometry::Sphere(SphereDesc {
