@@ -20,7 +20,9 @@ use crate::material::{Material, MaterialDesc};
 use crate::math::{Bounds3, Transform, Vec3};
 use crate::shape::{Placing, Shape, TriangleMesh};
 use crate::spectrum::dense::Measured;
-use crate::texture::{FloatTex, FloatTexture, ImageTexture, Pyramids, SpectrumTexture};
+use crate::texture::{
+    FloatTex, FloatTexture, ImageTexture, Pyramids, SpectrumTex, SpectrumTexture,
+};
 
 impl Scene {
     /// Builds a scene: shapes moved to world space and put in a BVH, lights gathered, the
@@ -107,8 +109,10 @@ impl Scene {
         let light_sampler =
             LightSampler::new(desc.sampler.light_sampler, &extents, &lights.distribution);
         let footprints = footprints_for(desc, &textures, &camera);
+        let reads_footprints = materials.iter().map(reads_footprints).collect();
         Ok(Scene {
             footprints,
+            reads_footprints,
             light_sampler,
             shapes,
             prims,
@@ -194,6 +198,26 @@ fn footprints_for(desc: &SceneDesc, textures: &Textures, camera: &Camera) -> Opt
             desc.sampler.spp,
         )
     })
+}
+
+/// Whether a hit on material `m` may use its footprint: to filter a texture, to step a bump
+/// map, or to carry ray differentials through a specular bounce. Only the plain kinds are told
+/// apart: a `diffuse` of constant reflectance, a `conductor` of constant parameters that is
+/// never smooth enough to be specular; every other material may.
+fn reads_footprints(m: &Material) -> bool {
+    let textured = |t: &SpectrumTex| matches!(t, SpectrumTex::Tex(_));
+    match m {
+        Material::Diffuse(d) => textured(&d.reflectance),
+        Material::Conductor(c) => {
+            m.may_be_specular()
+                || textured(&c.eta)
+                || textured(&c.k)
+                || c.reflectance.as_ref().is_some_and(textured)
+                || matches!(c.uroughness, FloatTex::Tex(_))
+                || matches!(c.vroughness, FloatTex::Tex(_))
+        }
+        _ => true,
+    }
 }
 
 /// The description's materials, or one default material when it has none.
@@ -545,6 +569,44 @@ mod tests {
     use crate::scene::desc::{InstanceDesc, ObjectDesc};
     use crate::shape::{PlaneDesc, SphereDesc};
     use std::sync::Arc;
+
+    /// Footprints are skipped only where nothing can read them: a constant diffuse, a
+    /// constant rough conductor. A texture, a conductor smooth enough to be specular (its ray
+    /// differentials go on to the next hit), any other kind keep them.
+    #[test]
+    fn only_plain_surfaces_skip_their_footprints() {
+        use crate::material::{ConductorMaterial, DiffuseMaterial, DiffuseTransmissionMaterial};
+        use crate::math::Rgb;
+        let diffuse = |reflectance| Material::Diffuse(DiffuseMaterial { reflectance });
+        let conductor = |roughness, eta| {
+            Material::Conductor(ConductorMaterial {
+                eta,
+                k: SpectrumTex::Const(Rgb::splat(3.0)),
+                reflectance: None,
+                uroughness: roughness,
+                vroughness: roughness,
+                remap_roughness: true,
+            })
+        };
+        let grey = SpectrumTex::Const(Rgb::splat(0.5));
+        assert!(!reads_footprints(&diffuse(grey)));
+        assert!(reads_footprints(&diffuse(SpectrumTex::Tex(0))));
+        assert!(!reads_footprints(&conductor(FloatTex::Const(0.002), grey)));
+        assert!(reads_footprints(&conductor(FloatTex::Const(0.0), grey)));
+        assert!(reads_footprints(&conductor(FloatTex::Tex(0), grey)));
+        assert!(reads_footprints(&conductor(
+            FloatTex::Const(0.3),
+            SpectrumTex::Tex(1)
+        )));
+        // Another kind, even of constant colours.
+        assert!(reads_footprints(&Material::DiffuseTransmission(
+            DiffuseTransmissionMaterial {
+                reflectance: grey,
+                transmittance: grey,
+                scale: 1.0,
+            }
+        )));
+    }
 
     fn shape(geometry: Geometry) -> ShapeDesc {
         ShapeDesc {

@@ -151,6 +151,9 @@ pub struct Scene {
     /// What gives texture lookups their footprints, when a texture filters over them (an
     /// image texture with a MIP pyramid) or a bump map steps by them; `None` otherwise.
     footprints: Option<crate::camera::footprint::Footprints>,
+    /// Per material: whether a hit on it may read its footprint (when the scene has
+    /// footprints, they are computed for those hits only).
+    reads_footprints: Vec<bool>,
     /// The film's sensor, white balance and output space, unless it is the plain CIE 1931
     /// observer into sRGB.
     film_response: Option<crate::spectrum::FilmResponse>,
@@ -592,12 +595,14 @@ impl Scene {
         derivatives: impl FnOnce(&SurfaceInteraction) -> ShadingDerivatives,
     ) -> SceneHit {
         hit.si.time = ray.time;
-        if let Some(f) = &self.footprints {
+        let m = self.prims[hit.prim as usize].material;
+        if let Some(f) = &self.footprints
+            && self.reads_footprints[m as usize]
+        {
             let (dpdx, dpdy) = f.at_hit(ray.o, hit.si.p, hit.si.n);
             hit.footprint = [dpdx, dpdy];
         }
         let footprint = hit.footprint;
-        let m = self.prims[hit.prim as usize].material;
         crate::material::mix::apply_bump(
             &self.materials,
             &self.textures(),
