@@ -4,37 +4,6 @@
 use crate::math::{PI, Vec2, Vec3, cross, lerp, normalize, safe_sqrt};
 use crate::sampling::sample_uniform_disk_polar;
 
-/// cos²θ of a local direction.
-#[inline]
-fn cos2_theta(w: Vec3) -> f32 {
-    w.z * w.z
-}
-
-/// sin²θ of a unit local direction, as x² + y² rather than 1 − cos²θ: near the normal, where
-/// narrow lobes live, 1 − z² cancels catastrophically (z = 1 − 10⁻⁶ keeps only a few bits of
-/// sin²θ in f32), while x² + y² keeps full relative precision.
-#[inline]
-fn sin2_theta(w: Vec3) -> f32 {
-    (w.x * w.x + w.y * w.y).min(1.0)
-}
-
-/// tan²θ = sin²θ / cos²θ (infinite at grazing directions).
-#[inline]
-fn tan2_theta(w: Vec3) -> f32 {
-    sin2_theta(w) / cos2_theta(w)
-}
-
-/// (cos φ, sin φ) of a local direction; (1, 0) along the normal, where φ is undefined.
-#[inline]
-fn cos_sin_phi(w: Vec3) -> (f32, f32) {
-    let s = sin2_theta(w).sqrt();
-    if s == 0.0 {
-        (1.0, 0.0)
-    } else {
-        ((w.x / s).clamp(-1.0, 1.0), (w.y / s).clamp(-1.0, 1.0))
-    }
-}
-
 /// An anisotropic Trowbridge–Reitz distribution of microfacet normals with widths `alpha_x`
 /// along the tangent and `alpha_y` along the bitangent.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -113,32 +82,31 @@ impl TrowbridgeReitz {
     /// D(ωm) = 1 / (π αx αy cos⁴θm (1 + tan²θm (cos²φm/αx² + sin²φm/αy²))²),
     /// normalised so that ∫ D(ωm) cos θm dωm = 1.
     #[inline]
+    ///
+    /// With tan²θ cos²φ = x²/z² and tan²θ sin²φ = y²/z² (ωm = (x, y, z), a unit vector), the
+    /// angles need no square root: e = tan²θ (cos²φ/αx² + sin²φ/αy²) = ((x/αx)² + (y/αy)²)/z²
+    /// and cos⁴θ = z⁴.
     pub fn d(&self, wm: Vec3) -> f32 {
-        let tan2 = tan2_theta(wm);
-        if !tan2.is_finite() {
-            return 0.0;
-        }
-        let cos4 = cos2_theta(wm) * cos2_theta(wm);
+        let z2 = wm.z * wm.z;
+        let cos4 = z2 * z2;
         if cos4 < 1e-16 {
             return 0.0;
         }
-        let (c, s) = cos_sin_phi(wm);
-        let e = tan2 * ((c / self.alpha_x).powi(2) + (s / self.alpha_y).powi(2));
+        let e = ((wm.x / self.alpha_x).powi(2) + (wm.y / self.alpha_y).powi(2)) / z2;
         1.0 / (PI * self.alpha_x * self.alpha_y * cos4 * (1.0 + e) * (1.0 + e))
     }
 
     /// Smith's auxiliary function: the microfacet area hidden from `w` per unit visible area,
     /// Λ(ω) = (√(1 + α²(φ) tan²θ) − 1) / 2 with α²(φ) = (αx cos φ)² + (αy sin φ)²
-    /// (zero at grazing angles, where tan θ is infinite, as pbrt does).
+    /// (zero at grazing angles, where tan θ is infinite, as pbrt does). For ω = (x, y, z) a
+    /// unit vector, α²(φ) tan²θ = ((αx x)² + (αy y)²)/z²: one division, no angle.
     #[inline]
     pub fn lambda(&self, w: Vec3) -> f32 {
-        let tan2 = tan2_theta(w);
-        if !tan2.is_finite() {
+        let a2_tan2 = ((self.alpha_x * w.x).powi(2) + (self.alpha_y * w.y).powi(2)) / (w.z * w.z);
+        if !a2_tan2.is_finite() {
             return 0.0;
         }
-        let (c, s) = cos_sin_phi(w);
-        let alpha2 = (c * self.alpha_x).powi(2) + (s * self.alpha_y).powi(2);
-        ((1.0 + alpha2 * tan2).sqrt() - 1.0) / 2.0
+        ((1.0 + a2_tan2).sqrt() - 1.0) / 2.0
     }
 
     /// Smith's masking function: the fraction of microfacets visible from `w`,
