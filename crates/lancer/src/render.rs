@@ -538,14 +538,15 @@ fn render_tile_path<T: FilmTile>(
                     let l = match &cams[k] {
                         Some(r) => {
                             sampler.resume_pixel_sample(x, y, s as u64, dim);
-                            crate::integrator::li_from_hit(
+                            crate::integrator::li_observed::<_, false>(
                                 scene,
                                 &r.ray,
-                                hit,
                                 sampler,
                                 lambda,
                                 path.max_depth,
                                 path.regularize,
+                                &mut (),
+                                Some(hit),
                             ) * r.weight
                         }
                         None => SampledSpectrum::ZERO,

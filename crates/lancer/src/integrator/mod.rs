@@ -25,7 +25,7 @@ mod emission;
 pub mod lightpath;
 pub mod mlt;
 mod path;
-pub(crate) use path::li_from_hit;
+pub(crate) use path::li_observed;
 mod path_spectra;
 mod simple;
 pub mod specular_differentials;
@@ -140,7 +140,8 @@ impl Integrator {
 
     /// The path tracer's settings (maximum depth, regularisation) when this integrator is the
     /// path tracer on `scene`: `path`, and `volpath` on a scene without media. Its camera rays
-    /// may then be traced a pixel's samples at a time ([`path::li_from_hit`]).
+    /// may then be traced a pixel's samples at a time, each path going on from its first hit
+    /// ([`path::li_observed`]).
     pub fn path_tracer(&self, scene: &Scene) -> Option<(u32, bool)> {
         match *self {
             Integrator::Path {

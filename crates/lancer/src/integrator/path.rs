@@ -36,29 +36,6 @@ pub fn li(
     )
 }
 
-/// [`li`] of a camera ray whose nearest hit in the scene's BVHs, `hit`, has already been found
-/// (by [`Scene::intersect_packet`], with the camera rays of the pixel's other samples).
-pub fn li_from_hit(
-    scene: &Scene,
-    ray: &Ray,
-    hit: &Nearest,
-    sampler: &mut Sampler,
-    lambda: Option<&SampledWavelengths>,
-    max_depth: u32,
-    regularize: bool,
-) -> SampledSpectrum {
-    li_observed::<_, false>(
-        scene,
-        ray,
-        sampler,
-        lambda,
-        max_depth,
-        regularize,
-        &mut (),
-        Some(hit),
-    )
-}
-
 /// Path tracing that leaves out the paths light tracing renders better, for
 /// [`super::caustics`]: those whose first vertex (the surface the camera sees) scattered
 /// by a non-specular lobe and every later one by a specular lobe, on to a light (E D S⁺ L,
@@ -134,7 +111,8 @@ impl PathObserver for Vec<PathVertex> {
 
 /// [`li`], reporting each vertex of the path to `obs`; with `NO_CAUSTICS`,
 /// [`li_without_caustics`] (compiled away otherwise); `first`, when given, is the camera
-/// ray's nearest hit in the scene's BVHs, already found.
+/// ray's nearest hit in the scene's BVHs, already found (by [`Scene::intersect_packet`], with
+/// the camera rays of the pixel's other samples: the tile loop's case).
 #[allow(clippy::too_many_arguments)] // li's, and the two ways of running it
 pub fn li_observed<O: PathObserver, const NO_CAUSTICS: bool>(
     scene: &Scene,

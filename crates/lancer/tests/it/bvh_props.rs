@@ -254,18 +254,16 @@ fn scene_of_mixed_shapes_equals_brute_force() {
     assert!(hits > 2000, "{hits} hits");
 }
 
-/// A height field of `n`×`n` quads over [−6, 6]², two triangles each (shared vertices: a plain
-/// mesh, kept in the scene's indexed triangles when large).
-fn height_field(rng: &mut Pcg32, n: u32) -> ShapeDesc {
+/// A grid of `n`×`n` quads, two triangles each, vertex (i, j) at `point(i/n, j/n)` (shared
+/// vertices: a plain mesh, kept in the scene's indexed triangles when large).
+fn grid(n: u32, mut point: impl FnMut(f32, f32) -> Vec3) -> ShapeDesc {
     let mut positions = Vec::new();
     for j in 0..=n {
         for i in 0..=n {
-            let (x, y) = (i as f32 / n as f32, j as f32 / n as f32);
-            positions.push(PackedVec3::new(
-                12.0 * x - 6.0,
-                12.0 * y - 6.0,
-                rng.uniform() - 6.0,
-            ));
+            positions.push(PackedVec3::from(point(
+                i as f32 / n as f32,
+                j as f32 / n as f32,
+            )));
         }
     }
     let mut indices = Vec::new();
@@ -295,7 +293,10 @@ fn packets_find_what_single_rays_find() {
     let mut hits = 0;
     for case in 0..6 {
         let mut desc = mixed_scene(&mut rng);
-        desc.shapes.push(height_field(&mut rng, 60));
+        // A height field over [−6, 6]².
+        desc.shapes.push(grid(60, |x, y| {
+            Vec3::new(12.0 * x - 6.0, 12.0 * y - 6.0, rng.uniform() - 6.0)
+        }));
         let scene = Scene::build(&desc).expect("valid scene");
         assert!(scene.tris().len() > 4096, "the large mesh is indexed");
         for p in 0..300 {
@@ -350,47 +351,15 @@ fn packets_find_what_single_rays_find() {
 /// lane it is in: a sample's hit depends on its own ray and the packet's order direction alone.
 #[test]
 fn a_packet_ray_keeps_the_same_surface_whatever_shares_its_packet() {
-    // A rectangle from corner `c` along `a` and `b`, as n × n quads (so that the two surfaces
-    // sit in different leaves, which the packet visits in some order).
-    let grid = |c: Vec3, a: Vec3, b: Vec3, n: u32| {
-        let mut positions = Vec::new();
-        for j in 0..=n {
-            for i in 0..=n {
-                let p = c + a * (i as f32 / n as f32) + b * (j as f32 / n as f32);
-                positions.push(PackedVec3::from(p));
-            }
-        }
-        let mut indices = Vec::new();
-        for j in 0..n {
-            for i in 0..n {
-                let v = j * (n + 1) + i;
-                indices.extend_from_slice(&[v, v + 1, v + n + 2, v, v + n + 2, v + n + 1]);
-            }
-        }
-        shape(
-            Geometry::TriangleMesh(std::sync::Arc::new(TriangleMesh {
-                positions,
-                indices,
-                ..TriangleMesh::default()
-            })),
-            Vec3::ZERO,
-        )
-    };
     let mut desc = SceneDesc::default();
-    // The wall x = −1 and the ceiling y = 2, meeting along the line x = −1, y = 2.
-    let edge = Vec3::new(0.0, 0.0, 8.0);
-    desc.shapes.push(grid(
-        Vec3::new(-1.0, -2.0, -4.0),
-        Vec3::new(0.0, 4.0, 0.0),
-        edge,
-        8,
-    ));
-    desc.shapes.push(grid(
-        Vec3::new(-3.0, 2.0, -4.0),
-        Vec3::new(2.0, 0.0, 0.0),
-        edge,
-        8,
-    ));
+    // The wall x = −1 and the ceiling y = 2, meeting along the line x = −1, y = 2, each as
+    // 8 × 8 quads (so that the two sit in different leaves, which the packet visits in some
+    // order).
+    desc.shapes.push(grid(8, |a, b| {
+        Vec3::new(-1.0, 4.0 * a - 2.0, 8.0 * b - 4.0)
+    }));
+    desc.shapes
+        .push(grid(8, |a, b| Vec3::new(2.0 * a - 3.0, 2.0, 8.0 * b - 4.0)));
     let scene = Scene::build(&desc).expect("valid scene");
     let mut rng = Pcg32::new(3, 0);
     // Rays from the origin at points of the edge: both surfaces at t = 1.

@@ -308,8 +308,27 @@ impl Bvh {
             return;
         }
         let grow = F8::splat(1.0 + 2.0 * gamma(3));
-        // Left uninitialised, as the single ray's (its entries are 64 bytes here).
-        let mut stack = [std::mem::MaybeUninit::<(u32, u32, F8)>::uninit(); STACK];
+        // Child `k` of `node` against the rays of `lanes` ending at `t_end` (one float below
+        // their ends): the lanes that cross it, the single ray's test in each lane.
+        let crossing = |node: &Node, k: usize, lanes: u32, t_end: F8| {
+            let mut t0 = F8::splat(0.0);
+            let mut t1 = t_end;
+            for a in 0..3 {
+                let (lo, hi) = (F8::splat(node.min[a][k]), F8::splat(node.max[a][k]));
+                let near = F8::select(rp.neg[a], hi, lo);
+                let far = F8::select(rp.neg[a], lo, hi);
+                let tn = near.sub(rp.o[a]).mul(rp.inv_d[a]);
+                let tf = far.sub(rp.o[a]).mul(rp.inv_d[a]).mul(grow);
+                t0 = tn.max(t0);
+                t1 = tf.min(t1);
+            }
+            t0.le_bits(t1) & lanes
+        };
+        // Pushed subtrees as (child, parent node, slot << 8 | lanes): a popped one is tested
+        // again against the lanes' ends as they are then, which culls exactly the lanes whose
+        // entry distance is no longer before their end (the single ray's pop). Twelve bytes an
+        // entry, left uninitialised as the single ray's stack.
+        let mut stack = [std::mem::MaybeUninit::<(u32, u32, u32)>::uninit(); STACK];
         let mut sp = 0usize;
         let mut cur = (self.root, rp.active);
         // Each lane's end, one float below t_max, as the single-ray test takes it.
@@ -318,24 +337,13 @@ impl Bvh {
             let (node_ref, lanes) = cur;
             if node_ref & LEAF == 0 {
                 let node = &self.nodes[node_ref as usize];
-                let mut order = [(0.0f32, 0u32, 0u32, F8::splat(0.0)); WIDTH];
+                let mut order = [(0.0f32, 0u32, 0u32); WIDTH];
                 let mut n = 0;
                 for k in 0..WIDTH {
                     if node.child[k] == EMPTY {
                         continue;
                     }
-                    let mut t0 = F8::splat(0.0);
-                    let mut t1 = t_end;
-                    for a in 0..3 {
-                        let (lo, hi) = (F8::splat(node.min[a][k]), F8::splat(node.max[a][k]));
-                        let near = F8::select(rp.neg[a], hi, lo);
-                        let far = F8::select(rp.neg[a], lo, hi);
-                        let tn = near.sub(rp.o[a]).mul(rp.inv_d[a]);
-                        let tf = far.sub(rp.o[a]).mul(rp.inv_d[a]).mul(grow);
-                        t0 = tn.max(t0);
-                        t1 = tf.min(t1);
-                    }
-                    let crossed = t0.le_bits(t1) & lanes;
+                    let crossed = crossing(node, k, lanes, t_end);
                     if crossed == 0 {
                         continue;
                     }
@@ -348,15 +356,16 @@ impl Bvh {
                         order[j] = order[j - 1];
                         j -= 1;
                     }
-                    order[j] = (key, node.child[k], crossed, t0);
+                    order[j] = (key, k as u32, crossed);
                     n += 1;
                 }
                 if n > 0 {
-                    for &(_, c, m, t) in &order[..n - 1] {
-                        stack[sp].write((c, m, t));
+                    for &(_, k, m) in &order[..n - 1] {
+                        stack[sp].write((node.child[k as usize], node_ref, k << 8 | m));
                         sp += 1;
                     }
-                    cur = (order[n - 1].1, order[n - 1].2);
+                    let (_, k, m) = order[n - 1];
+                    cur = (node.child[k as usize], m);
                     continue;
                 }
             } else {
@@ -370,9 +379,9 @@ impl Bvh {
                 }
                 sp -= 1;
                 // SAFETY: every entry below the stack pointer was written by a push.
-                let (c, m, t) = unsafe { stack[sp].assume_init() };
-                // Entered before the lane's end, as in the single-ray pop.
-                let m = m & t.lt_bits(hits.t);
+                let (c, parent, slot_lanes) = unsafe { stack[sp].assume_init() };
+                let parent = &self.nodes[parent as usize];
+                let m = crossing(parent, (slot_lanes >> 8) as usize, slot_lanes & 0xff, t_end);
                 if m != 0 {
                     cur = (c, m);
                     break;
