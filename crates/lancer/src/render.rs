@@ -404,7 +404,6 @@ pub fn render_tile<T: FilmTile, I: SampleIntegrator + ?Sized>(
     let counts0 = counts();
     let mut stats = RenderStats::default();
     let mut sampler = Sampler::new(settings.sampler, settings.spp, settings.seed);
-    let w = tile.width() as usize;
     // In spectral mode (radiance integrators only), the sample's wavelengths are drawn from
     // the sampler's next dimension, right after the camera's (so they are, like everything
     // else, a pure function of seed, pixel and sample index), by the film's density. In RGB
@@ -426,16 +425,48 @@ pub fn render_tile<T: FilmTile, I: SampleIntegrator + ?Sized>(
             samples.clone(),
             &mut stats,
         );
-        stats.samples = tile.area() * samples.len() as u64;
-        stats.add_counts_since(counts0);
-        return stats;
+    } else {
+        render_tile_each(
+            scene,
+            settings,
+            integrator,
+            film,
+            splats,
+            &mut sampler,
+            tile,
+            samples.clone(),
+            spectral,
+            &mut stats,
+        );
     }
+    stats.samples = tile.area() * samples.len() as u64;
+    stats.add_counts_since(counts0);
+    stats
+}
+
+/// [`render_tile`]'s loop for every integrator but the path tracer: each camera sample on its
+/// own, in order (with wavelengths when `spectral`).
+#[allow(clippy::too_many_arguments)] // render_tile's inputs
+#[inline(always)]
+fn render_tile_each<T: FilmTile, I: SampleIntegrator + ?Sized>(
+    scene: &Scene,
+    settings: &RenderSettings,
+    integrator: &I,
+    film: &mut T,
+    splats: &Splats<'_>,
+    sampler: &mut Sampler,
+    tile: &PixelBounds,
+    samples: std::ops::Range<u32>,
+    spectral: bool,
+    stats: &mut RenderStats,
+) {
+    let w = tile.width() as usize;
     for y in tile.y0..tile.y1 {
         for x in tile.x0..tile.x1 {
             let i = (y - tile.y0) as usize * w + (x - tile.x0) as usize;
             for s in samples.clone() {
                 let (ray, weight, p_film, p_lens) =
-                    camera_ray_at(scene, settings, &mut sampler, x, y, s);
+                    camera_ray_at(scene, settings, sampler, x, y, s);
                 let lambda = spectral.then(|| film.sample_wavelengths(sampler.get_1d()));
                 // A ray the camera's lens blocks brings nothing back, but the sample still
                 // counts (as pbrt-v4 adds it to the film with its filter weight).
@@ -446,7 +477,7 @@ pub fn render_tile<T: FilmTile, I: SampleIntegrator + ?Sized>(
                             y,
                             weight: weight * r.weight,
                         };
-                        integrator.li_at(scene, &r.ray, &mut sampler, lambda.as_ref(), splats, at)
+                        integrator.li_at(scene, &r.ray, sampler, lambda.as_ref(), splats, at)
                             * r.weight
                     }
                     None => SampledSpectrum::ZERO,
@@ -460,13 +491,10 @@ pub fn render_tile<T: FilmTile, I: SampleIntegrator + ?Sized>(
                     lambda: lambda.as_ref(),
                     weight,
                 };
-                camera_sample::add(scene, settings, film, &mut stats, i, &sample);
+                camera_sample::add(scene, settings, film, stats, i, &sample);
             }
         }
     }
-    stats.samples = tile.area() * samples.len() as u64;
-    stats.add_counts_since(counts0);
-    stats
 }
 
 /// The path tracer's settings, as [`render_tile_path`] takes them.

@@ -356,15 +356,11 @@ impl Scene {
         // just written field by field costs a stall per ray (store forwarding).
         let mut t_max = ray.t_max;
         let pre = TriangleRay::new(ray);
-        if !self.unbounded.is_empty() {
-            let mut r = *ray;
-            for &i in &self.unbounded {
-                if let Some(h) = self.hit(i, &r, &pre) {
-                    r.t_max = h.t;
-                    best = Some((h, i));
-                }
-            }
-            t_max = r.t_max;
+        if !self.unbounded.is_empty()
+            && let Some((h, i)) = self.nearest_unbounded(ray, &pre)
+        {
+            t_max = h.t;
+            best = Some((h, i));
         }
         self.bvh.traverse(ray, t_max, |leaf, t_max| {
             let p = &self.packets[leaf as usize];
@@ -512,12 +508,8 @@ impl Scene {
         };
         if !self.unbounded.is_empty() {
             for k in lanes(active) {
-                let mut r = rp.rays[k];
-                for &i in &self.unbounded {
-                    if let Some(h) = self.hit(i, &r, &rp.pre[k]) {
-                        r.t_max = h.t;
-                        hits.set(k, i, h);
-                    }
+                if let Some((h, i)) = self.nearest_unbounded(&rp.rays[k], &rp.pre[k]) {
+                    hits.set(k, i, h);
                 }
             }
         }
@@ -612,6 +604,25 @@ impl Scene {
             derivatives,
         );
         hit
+    }
+
+    /// The nearest hit of `ray` on the primitives without finite bounds (infinite planes,
+    /// tested one after another, the ray shortened by each hit): (hit, primitive).
+    #[inline]
+    fn nearest_unbounded(
+        &self,
+        ray: &Ray,
+        pre: &TriangleRay,
+    ) -> Option<(crate::shape::ShapeHit, u32)> {
+        let mut r = *ray;
+        let mut best = None;
+        for &i in &self.unbounded {
+            if let Some(h) = self.hit(i, &r, pre) {
+                r.t_max = h.t;
+                best = Some((h, i));
+            }
+        }
+        best
     }
 
     /// Primitive `i`'s hit by `ray`, unless its alpha cuts the surface away there.
