@@ -461,7 +461,7 @@ fn sample_sphere_cone(
     let cos_alpha = sin2_theta / cone.sin_theta_max
         + cos_theta * (1.0 - sin2_theta / cone.sin2_theta_max).max(0.0).sqrt();
     let sin_alpha = (1.0 - cos_alpha * cos_alpha).max(0.0).sqrt();
-    let w = crate::math::spherical_direction(sin_alpha, cos_alpha, u.y * 2.0 * PI);
+    let w = crate::sampling::spherical_direction_turn(sin_alpha, cos_alpha, u.y);
     let outward = -cone.frame.from_local(w);
     let p = c + r * outward;
     let wi = crate::math::normalize(p - ctx.p);

@@ -2,7 +2,7 @@
 //! the incoming ray, `wi` towards where light comes from, and g > 0 scatters forward (wi near
 //! −wo).
 
-use crate::math::{Frame, Vec2, Vec3, spherical_direction};
+use crate::math::{Frame, Vec2, Vec3};
 use std::f32::consts::PI;
 
 /// p(cos θ) = (1 − g²) / (4π (1 + g² + 2g cos θ)^{3/2}), θ the angle between `wo` and `wi`
@@ -58,7 +58,7 @@ impl HgPhaseFunction {
         }
         .clamp(-1.0, 1.0);
         let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
-        let local = spherical_direction(sin_theta, cos_theta, 2.0 * PI * u.y);
+        let local = crate::sampling::spherical_direction_turn(sin_theta, cos_theta, u.y);
         let wi = Frame::from_z(wo).from_local(local);
         let pdf = henyey_greenstein(cos_theta, g);
         (pdf > 0.0 && pdf.is_finite()).then_some(PhaseSample { p: pdf, wi, pdf })

@@ -36,13 +36,41 @@ fn cos_sin_quarter_turn(phi: f32) -> (f32, f32) {
     (c, s)
 }
 
+/// (cos 2πt, sin 2πt), without a libm call: with q the integer nearest 4t and
+/// r = 4t − q ∈ [−½, ½] (exact), 2πt = qπ/2 + φ with φ = rπ/2 ∈ [−π/4, π/4], where
+/// [`cos_sin_quarter_turn`]'s series is exact to f32 precision; then q quarter turns:
+/// (cos, sin)(φ + qπ/2) = (c, s), (−s, c), (−c, −s), (s, −c) for q mod 4 = 0, 1, 2, 3.
+/// Sampling calls it with t = u ∈ [0, 1); any |t| < 2²¹ works.
+#[inline(always)]
+pub fn cos_sin_turn(t: f32) -> (f32, f32) {
+    let v = 4.0 * t;
+    let q = v.round();
+    let (c, s) = cos_sin_quarter_turn((v - q) * (PI / 2.0));
+    let q = q as i32;
+    // Odd quarters swap cosine and sine; quarters 1, 2 negate the cosine, 2, 3 the sine.
+    let (c, s) = if q & 1 != 0 { (s, c) } else { (c, s) };
+    let c = if (q + 1) & 2 != 0 { -c } else { c };
+    let s = if q & 2 != 0 { -s } else { s };
+    (c, s)
+}
+
+/// [`crate::math::spherical_direction`] with its azimuth in turns: (sin θ cos 2πt,
+/// sin θ sin 2πt, cos θ), both clamped to [−1, 1], by [`cos_sin_turn`] (samplers draw
+/// φ = 2πu).
+#[inline(always)]
+pub fn spherical_direction_turn(sin_theta: f32, cos_theta: f32, t: f32) -> Vec3 {
+    let s = sin_theta.clamp(-1.0, 1.0);
+    let (c, si) = cos_sin_turn(t);
+    Vec3::new(s * c, s * si, cos_theta.clamp(-1.0, 1.0))
+}
+
 /// A point uniform on the unit disk by polar coordinates: r = √u₀, φ = 2πu₁. Density 1/π.
 /// Unlike the concentric map it keeps u₁ ↦ φ linear, which visible-normal sampling relies on.
 #[inline]
 pub fn sample_uniform_disk_polar(u: Vec2) -> Vec2 {
     let r = u.x.max(0.0).sqrt();
-    let theta = 2.0 * PI * u.y;
-    Vec2::new(r * theta.cos(), r * theta.sin())
+    let (c, s) = cos_sin_turn(u.y);
+    Vec2::new(r * c, r * s)
 }
 
 /// A distance with density a·e^(−a·x) on [0, ∞): x = −ln(1 − u)/a.
@@ -73,9 +101,8 @@ pub fn sample_henyey_greenstein(wo: Vec3, g: f32, u: Vec2) -> (Vec3, f32) {
         (-(1.0 + g * g - s * s) / (2.0 * g)).clamp(-1.0, 1.0)
     };
     let sin_theta = safe_sqrt(1.0 - cos_theta * cos_theta);
-    let phi = 2.0 * PI * u.y;
     let frame = crate::math::Frame::from_z(wo);
-    let wi = frame.from_local(crate::math::spherical_direction(sin_theta, cos_theta, phi));
+    let wi = frame.from_local(spherical_direction_turn(sin_theta, cos_theta, u.y));
     (wi, henyey_greenstein(cos_theta, g))
 }
 
@@ -99,8 +126,8 @@ pub fn cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
 pub fn sample_uniform_sphere(u: Vec2) -> Vec3 {
     let z = 1.0 - 2.0 * u.x;
     let r = safe_sqrt(1.0 - z * z);
-    let phi = 2.0 * PI * u.y;
-    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    let (c, s) = cos_sin_turn(u.y);
+    Vec3::new(r * c, r * s, z)
 }
 
 /// Density of [`sample_uniform_sphere`].
@@ -114,8 +141,8 @@ pub fn uniform_sphere_pdf() -> f32 {
 pub fn sample_uniform_hemisphere(u: Vec2) -> Vec3 {
     let z = u.x;
     let r = safe_sqrt(1.0 - z * z);
-    let phi = 2.0 * PI * u.y;
-    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    let (c, s) = cos_sin_turn(u.y);
+    Vec3::new(r * c, r * s, z)
 }
 
 /// Density of [`sample_uniform_hemisphere`].
@@ -129,8 +156,8 @@ pub fn uniform_hemisphere_pdf() -> f32 {
 pub fn sample_uniform_cone(u: Vec2, cos_theta_max: f32) -> Vec3 {
     let cos_theta = (1.0 - u.x) + u.x * cos_theta_max;
     let sin_theta = safe_sqrt(1.0 - cos_theta * cos_theta);
-    let phi = u.y * 2.0 * PI;
-    Vec3::new(sin_theta * phi.cos(), sin_theta * phi.sin(), cos_theta)
+    let (c, s) = cos_sin_turn(u.y);
+    Vec3::new(sin_theta * c, sin_theta * s, cos_theta)
 }
 
 /// Density of [`sample_uniform_cone`].
@@ -166,10 +193,12 @@ pub fn equal_area_square_to_sphere(p: Vec2) -> Vec3 {
     let (up, vp) = (u.abs(), v.abs());
     let signed_distance = 1.0 - (up + vp);
     let r = 1.0 - signed_distance.abs();
-    let phi = if r == 0.0 { 1.0 } else { (vp - up) / r + 1.0 } * (PI / 4.0);
+    // φ/(2π) = ((|v| − |u|)/r + 1)/8.
+    let turn = if r == 0.0 { 1.0 } else { (vp - up) / r + 1.0 } / 8.0;
     let z = (1.0 - r * r).copysign(signed_distance);
-    let cos_phi = phi.cos().copysign(u);
-    let sin_phi = phi.sin().copysign(v);
+    let (cos_phi, sin_phi) = cos_sin_turn(turn);
+    let cos_phi = cos_phi.copysign(u);
+    let sin_phi = sin_phi.copysign(v);
     let s = r * safe_sqrt(2.0 - r * r);
     Vec3::new(cos_phi * s, sin_phi * s, z)
 }
@@ -203,6 +232,35 @@ pub fn equal_area_sphere_to_square(d: Vec3) -> Vec2 {
 mod tests {
     use super::*;
     use crate::math::normalize;
+
+    /// cos 2πt and sin 2πt over whole turns, both signs, against f64: within 2·2⁻²⁴ (a wrong
+    /// quarter or sign would be off by up to 2). The quarter boundaries and their neighbours
+    /// are in the sweep.
+    #[test]
+    fn turns_match_f64() {
+        let mut ts: Vec<f32> = (-4000..=4000).map(|i| i as f32 / 2000.0 + 1e-4).collect();
+        for k in (-8..=8).filter(|&k| k != 0) {
+            let b = k as f32 / 8.0;
+            ts.extend([
+                b,
+                f32::from_bits(b.to_bits() + 1),
+                f32::from_bits(b.to_bits() - 1),
+            ]);
+        }
+        ts.push(0.999_999_94);
+        for t in ts {
+            let (c, s) = cos_sin_turn(t);
+            let a = 2.0 * std::f64::consts::PI * t as f64;
+            assert!(
+                (c as f64 - a.cos()).abs() <= 2.0 * 6e-8,
+                "cos turn {t}: {c}"
+            );
+            assert!(
+                (s as f64 - a.sin()).abs() <= 2.0 * 6e-8,
+                "sin turn {t}: {s}"
+            );
+        }
+    }
 
     /// The series agree with libm's cos and sin over [−π/4, π/4] to within 2 ulp, and the
     /// concentric map with the polar formula it replaces.
