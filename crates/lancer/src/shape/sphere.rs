@@ -160,9 +160,21 @@ impl Sphere {
         if t0 >= t_max || t1 <= 0.0 {
             return None;
         }
+        // A whole sphere cuts nothing away: the nearer root in range is the hit, and the
+        // point and its φ (an f64 atan2) are left for the interaction.
+        let whole = self.z_min <= -self.radius
+            && self.z_max >= self.radius
+            && self.phi_max >= 2.0 * std::f32::consts::PI;
         for t in [t0, t1] {
             if t <= 0.0 || t >= t_max {
                 continue;
+            }
+            if whole {
+                return Some(ShapeHit {
+                    t: t as f32,
+                    u: 0.0,
+                    v: 0.0,
+                });
             }
             let (p, phi) = self.point_at(o, d, t);
             if self.inside_cut(p, phi) {
