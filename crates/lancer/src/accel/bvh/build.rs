@@ -152,6 +152,34 @@ impl Binner {
                 .reduce(Bins::new, |a, b| a.merge(&b));
         }
         let mut bins = Bins::new();
+        if refs.len() < 1024 {
+            self.add(&mut bins, refs);
+            return bins;
+        }
+        // Two sets of bins, for the even and the odd references: neighbours in a mesh often
+        // fall in the same bin, and one set made each update wait for the previous one's
+        // store. Merging is exact (counts, minima, maxima), so the result is the same. (A
+        // small range would spend more on clearing and merging the second set.)
+        let mut odd = Bins::new();
+        let mut pairs = refs.chunks_exact(2);
+        for pair in &mut pairs {
+            let (b0, b1) = (self.bins(pair[0].c2()), self.bins(pair[1].c2()));
+            for a in 0..3 {
+                bins.count[a][b0[a]] += 1;
+                bins.bounds[a][b0[a]].grow(&pair[0]);
+                odd.count[a][b1[a]] += 1;
+                odd.bounds[a][b1[a]].grow(&pair[1]);
+            }
+        }
+        self.add(&mut bins, pairs.remainder());
+        bins.merge(&odd)
+    }
+
+    /// Adds `refs` to `bins`, one after another.
+    // The axis indexes several parallel arrays at once.
+    #[allow(clippy::needless_range_loop)]
+    #[inline(always)]
+    fn add(&self, bins: &mut Bins, refs: &[PrimRef]) {
         for r in refs {
             let b = self.bins(r.c2());
             for a in 0..3 {
@@ -159,7 +187,6 @@ impl Binner {
                 bins.bounds[a][b[a]].grow(r);
             }
         }
-        bins
     }
 }
 
@@ -204,28 +231,35 @@ fn split(refs: &mut [PrimRef], depth: u32) -> (usize, Box4, Box4) {
             if ext[a] <= 0.0 {
                 continue;
             }
-            // Right-to-left sweep: right_cost[b] for the planes between bins b − 1 and b.
+            // Only the occupied bins matter: the planes between two occupied bins all split
+            // the same way at the same cost, and the first of them (just after the lower
+            // bin) is the one the full sweep kept (it keeps the first least cost). A small
+            // range occupies a few of the BINS bins.
+            let mut used = [0u8; BINS];
+            let mut m = 0;
+            for (b, &c) in bins.count[a].iter().enumerate() {
+                used[m] = b as u8;
+                m += (c > 0) as usize;
+            }
+            let used = &used[..m];
+            // Right-to-left sweep: right_cost[j] for the plane just after occupied bin j − 1
+            // (everything from occupied bin j on lies right of it).
             let mut right_cost = [0.0f32; BINS];
             let (mut rb, mut rn) = (Box4::EMPTY, 0u32);
-            for b in (1..BINS).rev() {
+            for j in (1..m).rev() {
+                let b = used[j] as usize;
                 rb = rb.union(&bins.bounds[a][b]);
                 rn += bins.count[a][b];
-                right_cost[b] = if rn > 0 {
-                    rb.half_area() * rn.div_ceil(4) as f32
-                } else {
-                    f32::NAN
-                };
+                right_cost[j] = rb.half_area() * rn.div_ceil(4) as f32;
             }
             let (mut lb, mut ln) = (Box4::EMPTY, 0u32);
-            for b in 1..BINS {
-                lb = lb.union(&bins.bounds[a][b - 1]);
-                ln += bins.count[a][b - 1];
-                if ln == 0 || ln as usize == n {
-                    continue;
-                }
-                let cost = lb.half_area() * ln.div_ceil(4) as f32 + right_cost[b];
+            for j in 1..m {
+                let b = used[j - 1] as usize;
+                lb = lb.union(&bins.bounds[a][b]);
+                ln += bins.count[a][b];
+                let cost = lb.half_area() * ln.div_ceil(4) as f32 + right_cost[j];
                 if cost < best.0 {
-                    best = (cost, a, b);
+                    best = (cost, a, b + 1);
                 }
             }
         }
