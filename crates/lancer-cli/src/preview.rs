@@ -83,10 +83,11 @@ impl LiveOutputs {
         }
     }
 
-    /// Hands over the final image and waits for the outputs' last writes.
-    pub fn finish(self, pixels: &[Rgb]) {
+    /// Hands over the final image (made by `pixels` only when some output is live) and waits
+    /// for the outputs' last writes.
+    pub fn finish(self, pixels: impl FnOnce() -> Vec<Rgb>) {
         if let Some(l) = &self.live {
-            l.finish(pixels);
+            l.finish(&pixels());
         }
         for t in self.threads {
             let _ = t.join();

@@ -17,7 +17,7 @@ use lancer::film::spectral_write::write_spectral_exr;
 use lancer::film::{Film, PixelBounds, PixelSum};
 use lancer::gbuffer::write::HALF_MAX;
 use lancer::gbuffer::{GbufferConfig, GbufferFilm, GbufferHeader, write_gbuffer_exr};
-use lancer::image_io::{ImageFormat, write_image};
+use lancer::image_io::{ImageFormat, write_image, write_image_fn};
 use lancer::render::strategies::StrategyImages;
 use lancer::render::{RenderJob, RenderSettings, RenderStats, WorkUnit, work_units};
 use lancer::{Scene, SceneDesc};
@@ -634,7 +634,6 @@ pub fn write(
     let t_write = Instant::now();
     let film = &plan.state.film;
     let bounds = plan.pixels.bounds;
-    let pixels = image.map_or_else(|| film.image(plan.meta.scale), <[_]>::to_vec);
     let fallback_dir = args
         .on_write_error
         .clone()
@@ -663,11 +662,21 @@ pub fn write(
         } else if plan.pixels.is_part {
             write_part(path, film, &plan.meta).map_err(|e| e.to_string())
         } else {
-            write_image(path, bounds.width(), bounds.height(), &pixels).map_err(|e| e.to_string())
+            // The film's pixels are computed as the encoder reads them: an image of them
+            // beside the film would be the peak memory of a small render.
+            let (w, h) = (bounds.width(), bounds.height());
+            match image {
+                Some(pixels) => write_image(path, w, h, pixels),
+                None => {
+                    let (divisor, scale) = (film.splat_divisor(), plan.meta.scale);
+                    write_image_fn(path, w, h, |i| film.image_pixel(i, divisor, scale))
+                }
+            }
+            .map_err(|e| e.to_string())
         }
     });
     let write_s = t_write.elapsed().as_secs_f64();
-    live.finish(&pixels);
+    live.finish(|| image.map_or_else(|| film.image(plan.meta.scale), <[_]>::to_vec));
     written?;
     if plan.state.checkpointed {
         let _ = std::fs::remove_file(&plan.checkpoint);

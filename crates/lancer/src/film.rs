@@ -326,12 +326,17 @@ impl Film {
     /// The image: each pixel's colour ([`Film::pixel_rgb`]: Σ w·L / Σ w, and its splats) times
     /// `scale`, row-major over `bounds`.
     pub fn image(&self, scale: f32) -> Vec<Rgb> {
-        let Some(n) = self.splat_divisor() else {
-            return self.pixels.iter().map(|p| p.value() * scale).collect();
-        };
+        let n = self.splat_divisor();
         (0..self.pixels.len())
-            .map(|i| self.pixel_rgb(i, Some(n)) * scale)
+            .map(|i| self.image_pixel(i, n, scale))
             .collect()
+    }
+
+    /// Pixel `i` of [`Film::image`], `divisor` being [`Film::splat_divisor`] (taken once by
+    /// the caller): for writers that read the film pixel by pixel.
+    #[inline]
+    pub fn image_pixel(&self, i: usize, divisor: Option<f64>, scale: f32) -> Rgb {
+        self.pixel_rgb(i, divisor) * scale
     }
 }
 

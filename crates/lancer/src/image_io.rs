@@ -79,8 +79,18 @@ pub fn srgb_to_linear(v: f32) -> f32 {
 /// Encodes pixels (row-major, row 0 at the top, linear RGB) as a PNG: clamped to [0, 1],
 /// sRGB-encoded, rounded to 8 bits.
 pub fn encode_png(width: u32, height: u32, pixels: &[Rgb]) -> Result<Vec<u8>, String> {
-    let mut data = Vec::with_capacity(pixels.len() * 3);
-    for p in pixels {
+    encode_png_fn(width, height, |i| pixels[i])
+}
+
+/// [`encode_png`] of the pixels `pixel(i)` gives (row-major index `i`), read one by one.
+pub fn encode_png_fn(
+    width: u32,
+    height: u32,
+    pixel: impl Fn(usize) -> Rgb,
+) -> Result<Vec<u8>, String> {
+    let n = width as usize * height as usize;
+    let mut data = Vec::with_capacity(n * 3);
+    for p in (0..n).map(pixel) {
         for c in 0..3 {
             let v = if p[c].is_finite() { p[c] } else { 0.0 };
             data.push((linear_to_srgb(v) * 255.0 + 0.5).clamp(0.0, 255.0) as u8);
@@ -112,10 +122,21 @@ pub fn encode_exr_into<W: Write + std::io::Seek>(
     height: u32,
     pixels: &[Rgb],
 ) -> Result<(), String> {
+    encode_exr_into_fn(out, width, height, |i| pixels[i])
+}
+
+/// [`encode_exr_into`] of the pixels `pixel(i)` gives (row-major index `i`), read as the
+/// encoder needs them: no image of the pixels is held besides the caller's own data.
+pub fn encode_exr_into_fn<W: Write + std::io::Seek>(
+    out: &mut W,
+    width: u32,
+    height: u32,
+    pixel: impl Fn(usize) -> Rgb + Sync,
+) -> Result<(), String> {
     use exr::prelude::*;
     let w = width as usize;
     let channels = SpecificChannels::rgb(|p: exr::math::Vec2<usize>| {
-        let c = pixels[p.y() * w + p.x()];
+        let c = pixel(p.y() * w + p.x());
         (c.x, c.y, c.z)
     });
     let image = Image::from_channels((width as usize, height as usize), channels);
@@ -178,6 +199,18 @@ pub fn write_image(
     height: u32,
     pixels: &[Rgb],
 ) -> Result<(), ImageWriteError> {
+    write_image_fn(path, width, height, |i| pixels[i])
+}
+
+/// [`write_image`] of the pixels `pixel(i)` gives (row-major index `i`), computed as the
+/// encoder reads them: a film is written without an image of it beside it in memory (a
+/// small render's peak memory is its film plus that image).
+pub fn write_image_fn(
+    path: &Path,
+    width: u32,
+    height: u32,
+    pixel: impl Fn(usize) -> Rgb + Sync,
+) -> Result<(), ImageWriteError> {
     let format = ImageFormat::from_path(path).ok_or_else(|| ImageWriteError::UnknownFormat {
         path: path.to_path_buf(),
     })?;
@@ -191,12 +224,14 @@ pub fn write_image(
     };
     match format {
         ImageFormat::Png => {
-            let bytes = encode_png(width, height, pixels).map_err(encode_error)?;
+            let bytes = encode_png_fn(width, height, pixel).map_err(encode_error)?;
             write_atomic(path, &bytes).map_err(io_error)
         }
         // Streamed into the temporary file: holding the encoded bytes as well as the pixels
         // raised the peak memory of a small render by a tenth.
-        ImageFormat::Exr => write_exr_streamed(path, |w| encode_exr_into(w, width, height, pixels)),
+        ImageFormat::Exr => {
+            write_exr_streamed(path, |w| encode_exr_into_fn(w, width, height, pixel))
+        }
     }
 }
 
