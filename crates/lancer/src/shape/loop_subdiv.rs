@@ -91,47 +91,6 @@ struct Topology {
     boundary: Rows,
 }
 
-/// Sorts (edge key, half-edge) pairs as `sort_unstable` would (the pairs are distinct, so the
-/// order is total), by counting first: the pairs are placed by the key's high half (the edge's
-/// smaller vertex, below `n_vertices`), then each vertex's few pairs are sorted among
-/// themselves, in parallel over runs of vertices. A comparison sort of the final level's
-/// half-edges took a tenth of a subdivided scene's load.
-fn sort_half_edges(half: &mut [(u64, u32)], n_vertices: usize) {
-    let mut start = vec![0u32; n_vertices + 1];
-    for &(k, _) in half.iter() {
-        start[(k >> 32) as usize + 1] += 1;
-    }
-    for v in 0..n_vertices {
-        start[v + 1] += start[v];
-    }
-    let mut fill = start.clone();
-    let mut placed = vec![(0u64, 0u32); half.len()];
-    for &e in half.iter() {
-        let v = (e.0 >> 32) as usize;
-        placed[fill[v] as usize] = e;
-        fill[v] += 1;
-    }
-    // Runs of vertices as disjoint slices, then each vertex's pairs sorted within its run.
-    const RUN: usize = 4096;
-    let mut runs = Vec::with_capacity(n_vertices / RUN + 1);
-    let mut rest = &mut placed[..];
-    let mut at = 0usize;
-    for v0 in (0..n_vertices).step_by(RUN) {
-        let v1 = (v0 + RUN).min(n_vertices);
-        let (run, tail) = rest.split_at_mut(start[v1] as usize - at);
-        runs.push((v0, v1, run));
-        rest = tail;
-        at = start[v1] as usize;
-    }
-    runs.into_par_iter().for_each(|(v0, v1, run)| {
-        let base = start[v0] as usize;
-        for v in v0..v1 {
-            run[start[v] as usize - base..start[v + 1] as usize - base].sort_unstable();
-        }
-    });
-    half.copy_from_slice(&placed);
-}
-
 impl Topology {
     fn new(n_vertices: usize, indices: &[u32]) -> Topology {
         // (edge, half-edge): sorted, the half-edges of each edge are together, in face order.
@@ -142,7 +101,7 @@ impl Topology {
                 (0..3).map(move |k| (key(t[k], t[(k + 1) % 3]), (3 * f + k) as u32))
             })
             .collect();
-        sort_half_edges(&mut half, n_vertices);
+        half.par_sort_unstable();
         let opposite = |h: u32| {
             let (f, k) = (h as usize / 3, h as usize % 3);
             indices[3 * f + (k + 2) % 3]
@@ -289,25 +248,6 @@ mod tests {
             indices: vec![0, 1, 2, 0, 3, 1, 0, 2, 3, 1, 3, 2],
             flip_normal: false,
         }
-    }
-
-    /// The counting sort puts the pairs in exactly sort_unstable's order: keys shared by
-    /// several half-edges, vertices with none, runs of vertices past the first.
-    #[test]
-    fn half_edges_sort_as_a_comparison_sort_does() {
-        let n = 10_000usize;
-        let mut rng = crate::sampling::Pcg32::new(7, 11);
-        let mut half: Vec<(u64, u32)> = (0..50_000u32)
-            .map(|h| {
-                let a = (rng.uniform() * (n / 2) as f32) as u32 * 2; // odd vertices have none
-                let b = a + 1 + (rng.uniform() * 5.0) as u32;
-                (key(a, b.min(n as u32 - 1).max(a + 1)), h)
-            })
-            .collect();
-        let mut want = half.clone();
-        want.sort_unstable();
-        sort_half_edges(&mut half, n);
-        assert_eq!(half, want);
     }
 
     #[test]
