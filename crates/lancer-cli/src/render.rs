@@ -669,7 +669,7 @@ pub fn write(
                 Some(pixels) => write_image(path, w, h, pixels),
                 None => {
                     let (divisor, scale) = (film.splat_divisor(), plan.meta.scale);
-                    write_image_fn(path, w, h, |i| film.image_pixel(i, divisor, scale))
+                    write_image_fn(path, w, h, |i| film.pixel_rgb(i, divisor) * scale)
                 }
             }
             .map_err(|e| e.to_string())

@@ -328,15 +328,8 @@ impl Film {
     pub fn image(&self, scale: f32) -> Vec<Rgb> {
         let n = self.splat_divisor();
         (0..self.pixels.len())
-            .map(|i| self.image_pixel(i, n, scale))
+            .map(|i| self.pixel_rgb(i, n) * scale)
             .collect()
-    }
-
-    /// Pixel `i` of [`Film::image`], `divisor` being [`Film::splat_divisor`] (taken once by
-    /// the caller): for writers that read the film pixel by pixel.
-    #[inline]
-    pub fn image_pixel(&self, i: usize, divisor: Option<f64>, scale: f32) -> Rgb {
-        self.pixel_rgb(i, divisor) * scale
     }
 }
 

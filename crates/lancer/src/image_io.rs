@@ -83,11 +83,7 @@ pub fn encode_png(width: u32, height: u32, pixels: &[Rgb]) -> Result<Vec<u8>, St
 }
 
 /// [`encode_png`] of the pixels `pixel(i)` gives (row-major index `i`), read one by one.
-pub fn encode_png_fn(
-    width: u32,
-    height: u32,
-    pixel: impl Fn(usize) -> Rgb,
-) -> Result<Vec<u8>, String> {
+fn encode_png_fn(width: u32, height: u32, pixel: impl Fn(usize) -> Rgb) -> Result<Vec<u8>, String> {
     let n = width as usize * height as usize;
     let mut data = Vec::with_capacity(n * 3);
     for p in (0..n).map(pixel) {
@@ -127,7 +123,7 @@ pub fn encode_exr_into<W: Write + std::io::Seek>(
 
 /// [`encode_exr_into`] of the pixels `pixel(i)` gives (row-major index `i`), read as the
 /// encoder needs them: no image of the pixels is held besides the caller's own data.
-pub fn encode_exr_into_fn<W: Write + std::io::Seek>(
+fn encode_exr_into_fn<W: Write + std::io::Seek>(
     out: &mut W,
     width: u32,
     height: u32,

@@ -83,7 +83,7 @@ impl AreaLight {
             l: image.as_ref().map_or(l, |im| (im.mean() * im.scale).into()),
             two_sided,
             area,
-            emitter: Emitter::new(shape, meshes, whole_sphere(shape)),
+            emitter: Emitter::new(shape, meshes, shape.whole_sphere()),
             image,
         })
     }
@@ -98,15 +98,6 @@ impl AreaLight {
             _ => None,
         }
     }
-}
-
-/// The world centre and radius of a shape that is a whole sphere (no cut, full sweep).
-fn whole_sphere(shape: &Shape) -> Option<(PackedVec3, f32)> {
-    let Shape::Sphere(s) = shape else { return None };
-    let whole = s.z_min <= -s.radius && s.z_max >= s.radius && s.phi_max >= 2.0 * PI;
-    let t = &s.placement.to_world;
-    let scale = glam::Mat3::from_mat4(t.m).determinant().abs().cbrt();
-    whole.then(|| (t.point(Vec3::ZERO).into(), s.radius * scale))
 }
 
 impl LightKind for AreaLight {

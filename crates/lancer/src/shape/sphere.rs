@@ -114,8 +114,18 @@ impl Sphere {
         (p, phi_of(p))
     }
 
+    /// True when nothing is cut away: the full z range and the full sweep.
     #[inline]
-    fn inside_cut(&self, p: DVec3, phi: f64) -> bool {
+    pub fn is_whole(&self) -> bool {
+        self.z_min <= -self.radius
+            && self.z_max >= self.radius
+            && self.phi_max >= 2.0 * std::f32::consts::PI
+    }
+
+    /// Whether the cuts keep the point at `t` along the object-space ray (`o`, `d`).
+    #[inline]
+    fn keeps(&self, o: DVec3, d: DVec3, t: f64) -> bool {
+        let (p, phi) = self.point_at(o, d, t);
         let r = self.radius;
         !((self.z_min > -r && (p.z as f32) < self.z_min)
             || (self.z_max < r && (p.z as f32) > self.z_max)
@@ -162,22 +172,12 @@ impl Sphere {
         }
         // A whole sphere cuts nothing away: the nearer root in range is the hit, and the
         // point and its φ (an f64 atan2) are left for the interaction.
-        let whole = self.z_min <= -self.radius
-            && self.z_max >= self.radius
-            && self.phi_max >= 2.0 * std::f32::consts::PI;
+        let whole = self.is_whole();
         for t in [t0, t1] {
             if t <= 0.0 || t >= t_max {
                 continue;
             }
-            if whole {
-                return Some(ShapeHit {
-                    t: t as f32,
-                    u: 0.0,
-                    v: 0.0,
-                });
-            }
-            let (p, phi) = self.point_at(o, d, t);
-            if self.inside_cut(p, phi) {
+            if whole || self.keeps(o, d, t) {
                 return Some(ShapeHit {
                     t: t as f32,
                     u: 0.0,
@@ -297,12 +297,10 @@ impl ShapeKind for Sphere {
     /// Its world centre and radius when nothing is cut away (the radius scaled by the cube root
     /// of the placement's |det|).
     fn whole_sphere(&self) -> Option<(PackedVec3, f32)> {
-        let whole = self.z_min <= -self.radius
-            && self.z_max >= self.radius
-            && self.phi_max >= 2.0 * std::f32::consts::PI;
         let t = &self.placement.to_world;
         let scale = glam::Mat3::from_mat4(t.m).determinant().abs().cbrt();
-        whole.then(|| (t.point(Vec3::ZERO).into(), self.radius * scale))
+        self.is_whole()
+            .then(|| (t.point(Vec3::ZERO).into(), self.radius * scale))
     }
 }
 

@@ -163,29 +163,30 @@ impl Binner {
         let mut odd = Bins::new();
         let mut pairs = refs.chunks_exact(2);
         for pair in &mut pairs {
-            let (b0, b1) = (self.bins(pair[0].c2()), self.bins(pair[1].c2()));
-            for a in 0..3 {
-                bins.count[a][b0[a]] += 1;
-                bins.bounds[a][b0[a]].grow(&pair[0]);
-                odd.count[a][b1[a]] += 1;
-                odd.bounds[a][b1[a]].grow(&pair[1]);
-            }
+            self.add_one(&mut bins, &pair[0]);
+            self.add_one(&mut odd, &pair[1]);
         }
         self.add(&mut bins, pairs.remainder());
         bins.merge(&odd)
     }
 
     /// Adds `refs` to `bins`, one after another.
-    // The axis indexes several parallel arrays at once.
-    #[allow(clippy::needless_range_loop)]
     #[inline(always)]
     fn add(&self, bins: &mut Bins, refs: &[PrimRef]) {
         for r in refs {
-            let b = self.bins(r.c2());
-            for a in 0..3 {
-                bins.count[a][b[a]] += 1;
-                bins.bounds[a][b[a]].grow(r);
-            }
+            self.add_one(bins, r);
+        }
+    }
+
+    /// Adds `r` to its bin on each axis.
+    // The axis indexes several parallel arrays at once.
+    #[allow(clippy::needless_range_loop)]
+    #[inline(always)]
+    fn add_one(&self, bins: &mut Bins, r: &PrimRef) {
+        let b = self.bins(r.c2());
+        for a in 0..3 {
+            bins.count[a][b[a]] += 1;
+            bins.bounds[a][b[a]].grow(r);
         }
     }
 }
