@@ -4,9 +4,9 @@
 //! lanes when a ray reaches it and tested as a [`super::Tri4`] packet tests them, so that
 //! every hit it finds is the packet's, bit for bit.
 
-use super::Bvh;
 use super::packet::{self, PacketHits, RayPacket};
 use super::tri4::{IndexedTri4, Packet};
+use super::{Bvh, Leaf};
 use crate::math::{Bounds3, PackedVec3, Vec3};
 use crate::ray::Ray;
 use crate::shape::{ShapeHit, TriangleRay};
@@ -48,6 +48,8 @@ impl IndexedTris {
             let [a, b, c] = tris[k].map(|i| Vec3::from(positions[i as usize]));
             Bounds3::from_point(a).union_point(b).union_point(c)
         });
+        // A leaf's id is then its first slot: its triangles come straight from the node.
+        bvh.number_leaves_by_slot();
         let order = std::mem::take(&mut bvh.indices);
         let sorted: Vec<[u32; 3]> = order.iter().map(|&i| tris[i as usize]).collect();
         drop(tris);
@@ -87,7 +89,7 @@ impl IndexedTris {
         self.bvh.node_count()
     }
 
-    /// Bytes of the tree alone (nodes and leaf table).
+    /// Bytes of the tree alone (its nodes: the leaves are numbered by their slots).
     pub fn tree_bytes(&self) -> usize {
         self.bvh.memory_bytes()
     }
@@ -106,13 +108,14 @@ impl IndexedTris {
     /// Leaf `leaf`'s triangles as a packet, and the slot of its first (lane k holds slot
     /// `first + k`).
     #[inline(always)]
-    fn packet(&self, leaf: u32) -> (IndexedTri4<'_>, u32) {
-        let range = self.bvh.leaf_range(leaf);
-        let first = range.start as u32;
+    fn packet(&self, leaf: Leaf) -> (IndexedTri4<'_>, u32) {
+        let first = leaf.id;
+        let range = first as usize..(first + leaf.count) as usize;
         debug_assert!(range.end <= self.tris.len());
-        // SAFETY: the leaves' ranges split 0..tris.len(), each one to four triangles: the
-        // tree and `tris` are built together (`build`) and never changed. `build` checked
-        // every index against the positions, then added the padding position after them.
+        // SAFETY: the leaves (numbered by their first slots) split 0..tris.len(), each one
+        // to four triangles: the tree and `tris` are built together (`build`) and never
+        // changed. `build` checked every index against the positions, then added the padding
+        // position after them.
         let p = unsafe { IndexedTri4::new(&self.positions, self.tris.get_unchecked(range)) };
         (p, first)
     }
@@ -126,13 +129,24 @@ impl IndexedTris {
         pre: &TriangleRay,
     ) -> Option<(u32, ShapeHit)> {
         let mut best = None;
-        self.bvh.traverse(ray, t_max, |leaf, t_max| {
-            let (p, first) = self.packet(leaf);
-            let (lane, h) = p.intersect_to(ray, t_max, pre)?;
-            best = Some((first + lane as u32, h));
-            Some(h.t)
-        });
+        let prefetch = |leaf| self.prefetch(leaf);
+        self.bvh
+            .traverse_prefetching(ray, t_max, prefetch, |leaf, t_max| {
+                let (p, first) = self.packet(leaf);
+                let (lane, h) = p.intersect_to(ray, t_max, pre)?;
+                best = Some((first + lane as u32, h));
+                Some(h.t)
+            });
         best
+    }
+
+    /// Asks for the lines of leaf `leaf`'s vertex indices (12 bytes a triangle, so at most
+    /// two lines), which its test will read first.
+    #[inline(always)]
+    fn prefetch(&self, leaf: Leaf) {
+        let p = self.tris.as_ptr().wrapping_add(leaf.id as usize) as *const u8;
+        super::prefetch(p);
+        super::prefetch(p.wrapping_add(12 * leaf.count as usize - 1));
     }
 
     /// [`IndexedTris::intersect_to`] for the rays of a packet, each ending at its `hits.t`:
@@ -148,8 +162,13 @@ impl IndexedTris {
     /// True if any triangle is hit with 0 < t ≤ `ray.t_max`.
     #[inline]
     pub fn intersect_any(&self, ray: &Ray, pre: &TriangleRay) -> bool {
+        // The first hit ends the search: −∞, nothing can be nearer.
+        let prefetch = |leaf| self.prefetch(leaf);
         self.bvh
-            .intersect_any_leaves(ray, |leaf, r| self.packet(leaf).0.intersect_any(r, pre))
+            .traverse_prefetching(ray, ray.t_max, prefetch, |leaf, _| {
+                let hit = self.packet(leaf).0.intersect_any(ray, pre);
+                hit.then_some(f32::NEG_INFINITY)
+            })
     }
 }
 

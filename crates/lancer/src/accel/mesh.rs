@@ -66,7 +66,7 @@ impl MeshBvh {
     pub fn intersect(&self, ray: &Ray, pre: &TriangleRay) -> Option<(u32, ShapeHit)> {
         let mut best = None;
         self.bvh.traverse(ray, ray.t_max, |leaf, t_max| {
-            let p = &self.packets[leaf as usize];
+            let p = &self.packets[leaf.id as usize];
             let (lane, h) = p.intersect_to(ray, t_max, pre)?;
             best = Some((p.ids[lane], h));
             Some(h.t)
@@ -78,7 +78,7 @@ impl MeshBvh {
     #[inline]
     pub fn intersect_any(&self, ray: &Ray, pre: &TriangleRay) -> bool {
         self.bvh.intersect_any_leaves(ray, |leaf, r| {
-            self.packets[leaf as usize].intersect_any(r, pre)
+            self.packets[leaf.id as usize].intersect_any(r, pre)
         })
     }
 }

@@ -363,7 +363,7 @@ impl Scene {
             best = Some((h, i));
         }
         self.bvh.traverse(ray, t_max, |leaf, t_max| {
-            let p = &self.packets[leaf as usize];
+            let p = &self.packets[leaf.id as usize];
             if !p.is_empty() {
                 let (lane, h) = p.intersect_to(ray, t_max, &pre)?;
                 best = Some((h, p.ids[lane]));
@@ -514,7 +514,7 @@ impl Scene {
             }
         }
         self.bvh.traverse_packet(&rp, &mut hits, |leaf, m, hits| {
-            let p = &self.packets[leaf as usize];
+            let p = &self.packets[leaf.id as usize];
             if !p.is_empty() {
                 packet::leaf_nearest(p, &rp, m, hits, |j| p.ids[j]);
                 return;
@@ -702,7 +702,7 @@ impl Scene {
             .iter()
             .any(|&i| self.hit(i, ray, &pre).is_some())
             || self.bvh.intersect_any_leaves(ray, |leaf, r| {
-                let p = &self.packets[leaf as usize];
+                let p = &self.packets[leaf.id as usize];
                 if !p.is_empty() {
                     return p.intersect_any(r, &pre);
                 }

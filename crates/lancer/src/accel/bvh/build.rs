@@ -536,6 +536,18 @@ impl Bvh {
             out.nodes.push(node);
             root = out.nodes.len() as u32 - 1;
         }
+        // Leaf references become `LEAF | count`, their numbers going to `leaf_id` (the build
+        // numbered them in its references).
+        let leaves = &out.leaves;
+        out.nodes.par_iter_mut().for_each(|node| {
+            for k in 0..WIDTH {
+                let c = node.child[k];
+                if c != EMPTY && c & LEAF != 0 {
+                    node.leaf_id[k] = c & !LEAF;
+                    node.child[k] = LEAF | leaves[(c & !LEAF) as usize][1];
+                }
+            }
+        });
         let indices = refs.par_iter().map(PrimRef::index).collect();
         drop(refs);
         // The arrays grew by doubling: give back what they hold in reserve.

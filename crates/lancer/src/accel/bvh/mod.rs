@@ -43,8 +43,12 @@ struct Node {
     min: [[f32; WIDTH]; 3],
     /// Upper corners: `max[axis][child]`.
     max: [[f32; WIDTH]; 3],
-    /// Child references: a node's index, `LEAF | leaf index`, or `EMPTY`.
+    /// Child references: a node's index, `LEAF | count` (a leaf of `count` primitives), or
+    /// `EMPTY`.
     child: [u32; WIDTH],
+    /// Per leaf child, its [`Leaf::id`] (0 for the other slots). It fills the node's last
+    /// cache line beside `child`: a leaf's id comes with the box test, not from a table.
+    leaf_id: [u32; WIDTH],
 }
 
 impl Node {
@@ -52,7 +56,19 @@ impl Node {
         min: [[f32::INFINITY; WIDTH]; 3],
         max: [[f32::NEG_INFINITY; WIDTH]; 3],
         child: [EMPTY; WIDTH],
+        leaf_id: [0; WIDTH],
     };
+}
+
+/// A leaf as a traversal reaches it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Leaf {
+    /// Its index among the leaves (`0..`[`Bvh::leaf_count`]), or, once
+    /// [`Bvh::number_leaves_by_slot`] has run, the position of its first primitive in
+    /// [`Bvh::indices`] (its primitives are the `count` from there).
+    pub id: u32,
+    /// Number of primitives in it, 1 to [`MAX_LEAF`].
+    pub count: u32,
 }
 
 /// A BVH over primitives given by their bounds. It stores primitive indices only; the caller
@@ -95,6 +111,21 @@ impl Bvh {
         self.indices = Vec::new();
     }
 
+    /// Renumbers the leaves by their ranges: each [`Leaf::id`] becomes the position of the
+    /// leaf's first primitive in [`Bvh::indices`], so that a traversal hands over a leaf's
+    /// range without a look-up in a table (a dependent load, a cache miss per leaf on large
+    /// meshes). Frees the leaf table, which no longer applies; `indices` stays.
+    pub fn number_leaves_by_slot(&mut self) {
+        for node in &mut self.nodes {
+            for k in 0..WIDTH {
+                if node.child[k] != EMPTY && node.child[k] & LEAF != 0 {
+                    node.leaf_id[k] = self.leaves[node.leaf_id[k] as usize][0];
+                }
+            }
+        }
+        self.leaves = Vec::new();
+    }
+
     /// Bounds of everything in the tree.
     pub fn bounds(&self) -> Bounds3 {
         self.bounds
@@ -105,26 +136,28 @@ impl Bvh {
         self.leaves.len()
     }
 
-    /// Positions in [`Bvh::indices`] of leaf `leaf`'s primitives.
+    /// Positions in [`Bvh::indices`] of the primitives of the leaf numbered `id` among the
+    /// leaves (not after [`Bvh::number_leaves_by_slot`]).
     #[inline(always)]
-    pub fn leaf_range(&self, leaf: u32) -> std::ops::Range<usize> {
-        let [first, count] = self.leaves[leaf as usize];
+    pub fn leaf_range(&self, id: u32) -> std::ops::Range<usize> {
+        let [first, count] = self.leaves[id as usize];
         first as usize..(first + count) as usize
     }
 
-    /// Asks the memory system for a node the traversal will visit soon.
+    /// Asks the memory system for a child the traversal will visit soon: a node's lines, or
+    /// through `leaf_data` what a leaf's test will read.
     #[inline(always)]
-    fn prefetch(&self, c: u32) {
-        #[cfg(target_arch = "x86_64")]
+    fn prefetch(&self, c: u32, id: u32, leaf_data: &impl Fn(Leaf)) {
         if c & LEAF == 0 {
-            use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-            let p = self.nodes.as_ptr().wrapping_add(c as usize) as *const i8;
-            // SAFETY: a prefetch never faults, whatever the address; `c` is a node index.
-            unsafe {
-                for line in 0..std::mem::size_of::<Node>() / 64 {
-                    _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(64 * line));
-                }
+            let p = self.nodes.as_ptr().wrapping_add(c as usize) as *const u8;
+            for line in 0..std::mem::size_of::<Node>() / 64 {
+                super::prefetch(p.wrapping_add(64 * line));
             }
+        } else {
+            leaf_data(Leaf {
+                id,
+                count: c & !LEAF,
+            });
         }
     }
 
@@ -135,10 +168,23 @@ impl Bvh {
     /// `ray` itself is never copied, so a ray its caller has just written field by field is
     /// read once, by the slab set-up. Returns true if some leaf reported a hit.
     #[inline(always)]
-    pub fn traverse<F: FnMut(u32, f32) -> Option<f32>>(
+    pub fn traverse<F: FnMut(Leaf, f32) -> Option<f32>>(
         &self,
         ray: &Ray,
         t_max: f32,
+        leaf: F,
+    ) -> bool {
+        self.traverse_prefetching(ray, t_max, |_| {}, leaf)
+    }
+
+    /// [`Bvh::traverse`], calling `leaf_data(leaf)` for each leaf it puts aside for later (a
+    /// farther crossed child), so that its owner may prefetch what the leaf's test will read.
+    #[inline(always)]
+    pub fn traverse_prefetching<F: FnMut(Leaf, f32) -> Option<f32>>(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        leaf_data: impl Fn(Leaf),
         mut leaf: F,
     ) -> bool {
         if self.len == 0 {
@@ -146,10 +192,11 @@ impl Bvh {
         }
         let slabs = Slabs::new(ray);
         let mut t_max = t_max;
-        // Left uninitialised: zeroing its 3 KiB cost 5 % of a path tracer's time per ray.
-        let mut stack = [std::mem::MaybeUninit::<(u32, f32)>::uninit(); STACK];
+        // (child, leaf id, entry distance). Left uninitialised: zeroing its 3 KiB cost 5 % of
+        // a path tracer's time per ray.
+        let mut stack = [std::mem::MaybeUninit::<(u32, u32, f32)>::uninit(); STACK];
         let mut sp = 0usize;
-        let mut cur = self.root;
+        let (mut cur, mut cur_id) = (self.root, 0u32);
         let mut found = false;
         loop {
             if cur & LEAF == 0 {
@@ -160,7 +207,7 @@ impl Bvh {
                     let k0 = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
                     if mask == 0 {
-                        cur = node.child[k0];
+                        (cur, cur_id) = (node.child[k0], node.leaf_id[k0]);
                         continue;
                     }
                     let k1 = mask.trailing_zeros() as usize;
@@ -172,17 +219,17 @@ impl Bvh {
                         } else {
                             (k0, k1)
                         };
-                        self.prefetch(node.child[far]);
-                        stack[sp].write((node.child[far], t_near[far]));
+                        self.prefetch(node.child[far], node.leaf_id[far], &leaf_data);
+                        stack[sp].write((node.child[far], node.leaf_id[far], t_near[far]));
                         sp += 1;
-                        cur = node.child[near];
+                        (cur, cur_id) = (node.child[near], node.leaf_id[near]);
                         continue;
                     }
                     // Order the crossed children by entry distance: push the farther ones
                     // (farthest first), descend into the nearest. Among equal distances the
                     // later child goes nearer the top, so it is visited first.
                     let mut mask = all;
-                    let mut hits = [(0.0f32, 0u32); WIDTH];
+                    let mut hits = [(0.0f32, 0usize); WIDTH];
                     let mut n = 0;
                     while mask != 0 {
                         let k = mask.trailing_zeros() as usize;
@@ -192,18 +239,25 @@ impl Bvh {
                             hits[j] = hits[j - 1];
                             j -= 1;
                         }
-                        hits[j] = (t_near[k], node.child[k]);
+                        hits[j] = (t_near[k], k);
                         n += 1;
                     }
-                    for &(t, c) in &hits[..n - 1] {
-                        self.prefetch(c);
-                        stack[sp].write((c, t));
+                    for &(t, k) in &hits[..n - 1] {
+                        self.prefetch(node.child[k], node.leaf_id[k], &leaf_data);
+                        stack[sp].write((node.child[k], node.leaf_id[k], t));
                         sp += 1;
                     }
-                    cur = hits[n - 1].1;
+                    let k = hits[n - 1].1;
+                    (cur, cur_id) = (node.child[k], node.leaf_id[k]);
                     continue;
                 }
-            } else if let Some(t) = leaf(cur & !LEAF, t_max) {
+            } else if let Some(t) = leaf(
+                Leaf {
+                    id: cur_id,
+                    count: cur & !LEAF,
+                },
+                t_max,
+            ) {
                 // −∞ is the any-hit query's "stop": nothing can be nearer.
                 if t == f32::NEG_INFINITY {
                     return true;
@@ -218,10 +272,10 @@ impl Bvh {
                 }
                 sp -= 1;
                 // SAFETY: every entry below the stack pointer was written by a push.
-                let (c, t) = unsafe { stack[sp].assume_init() };
+                let (c, id, t) = unsafe { stack[sp].assume_init() };
                 // Entered before t_max, as in the slab test.
                 if t < t_max {
-                    cur = c;
+                    (cur, cur_id) = (c, id);
                     break;
                 }
             }
@@ -232,7 +286,7 @@ impl Bvh {
     /// Children are still visited nearest first: an occluder, when there is one, tends to be
     /// found after fewer leaves.
     #[inline]
-    pub fn intersect_any_leaves<F: FnMut(u32, &Ray) -> bool>(
+    pub fn intersect_any_leaves<F: FnMut(Leaf, &Ray) -> bool>(
         &self,
         ray: &Ray,
         mut leaf: F,
@@ -263,14 +317,14 @@ impl Bvh {
     #[inline(always)]
     pub fn leaf_nearest<F: FnMut(u32, &Ray) -> Option<f32>>(
         &self,
-        leaf: u32,
+        leaf: Leaf,
         ray: &Ray,
         t_max: f32,
         hit: &mut F,
     ) -> Option<f32> {
         let mut r = Ray { t_max, ..*ray };
         let mut found = None;
-        for k in self.leaf_range(leaf) {
+        for k in self.leaf_range(leaf.id) {
             if let Some(t) = hit(self.indices[k], &r) {
                 r.t_max = t;
                 found = Some(t);
@@ -281,8 +335,13 @@ impl Bvh {
 
     /// True if any of leaf `leaf`'s primitives is hit.
     #[inline(always)]
-    pub fn leaf_any<F: FnMut(u32, &Ray) -> bool>(&self, leaf: u32, ray: &Ray, hit: &mut F) -> bool {
-        self.leaf_range(leaf).any(|k| hit(self.indices[k], ray))
+    pub fn leaf_any<F: FnMut(u32, &Ray) -> bool>(
+        &self,
+        leaf: Leaf,
+        ray: &Ray,
+        hit: &mut F,
+    ) -> bool {
+        self.leaf_range(leaf.id).any(|k| hit(self.indices[k], ray))
     }
 }
 
@@ -298,7 +357,7 @@ impl Bvh {
     /// what order, depends on its own ray and that direction alone, never on the other lanes
     /// (of two hits at exactly the same t, the one kept does not depend on the packet either).
     #[inline(always)]
-    pub fn traverse_packet<F: FnMut(u32, u32, &mut PacketHits)>(
+    pub fn traverse_packet<F: FnMut(Leaf, u32, &mut PacketHits)>(
         &self,
         rp: &RayPacket,
         hits: &mut PacketHits,
@@ -330,11 +389,12 @@ impl Bvh {
         // entry, left uninitialised as the single ray's stack.
         let mut stack = [std::mem::MaybeUninit::<(u32, u32, u32)>::uninit(); STACK];
         let mut sp = 0usize;
-        let mut cur = (self.root, rp.active);
+        // (child, its leaf id, lanes).
+        let mut cur = (self.root, 0u32, rp.active);
         // Each lane's end, one float below t_max, as the single-ray test takes it.
         let mut t_end = hits.t.map(next_float_down);
         loop {
-            let (node_ref, lanes) = cur;
+            let (node_ref, id, lanes) = cur;
             if node_ref & LEAF == 0 {
                 let node = &self.nodes[node_ref as usize];
                 let mut order = [(0.0f32, 0u32, 0u32); WIDTH];
@@ -365,11 +425,12 @@ impl Bvh {
                         sp += 1;
                     }
                     let (_, k, m) = order[n - 1];
-                    cur = (node.child[k as usize], m);
+                    cur = (node.child[k as usize], node.leaf_id[k as usize], m);
                     continue;
                 }
             } else {
-                leaf(node_ref & !LEAF, lanes, hits);
+                let count = node_ref & !LEAF;
+                leaf(Leaf { id, count }, lanes, hits);
                 t_end = hits.t.map(next_float_down);
             }
             // Pop the next subtree some lane may still find a closer hit in.
@@ -380,10 +441,10 @@ impl Bvh {
                 sp -= 1;
                 // SAFETY: every entry below the stack pointer was written by a push.
                 let (c, parent, slot_lanes) = unsafe { stack[sp].assume_init() };
-                let parent = &self.nodes[parent as usize];
-                let m = crossing(parent, (slot_lanes >> 8) as usize, slot_lanes & 0xff, t_end);
+                let (parent, slot) = (&self.nodes[parent as usize], (slot_lanes >> 8) as usize);
+                let m = crossing(parent, slot, slot_lanes & 0xff, t_end);
                 if m != 0 {
-                    cur = (c, m);
+                    cur = (c, parent.leaf_id[slot], m);
                     break;
                 }
             }
