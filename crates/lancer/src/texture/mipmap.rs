@@ -59,8 +59,9 @@ pub struct StFootprint {
 #[derive(Clone, PartialEq)]
 pub struct MipMap {
     levels: Vec<Arc<Image>>,
-    /// Per level, the same texels at one byte each when the level has at most 256 distinct
-    /// ones ([`PaletteLevel`]): lookups read these, a twelfth of the memory traffic.
+    /// Per level, the same texels at 1 to 8 bits each when the level has at most 256
+    /// distinct ones ([`PaletteLevel`]): lookups read these, a twelfth to a ninety-sixth of
+    /// the memory traffic.
     palettes: Vec<Option<PaletteLevel>>,
 }
 
