@@ -51,6 +51,7 @@ impl SceneTrisBuilder {
     /// Adds `mesh` (world space, checked), whose triangles are primitive record `prim`'s; its
     /// degenerate triangles, which no ray can hit, are left out.
     pub(crate) fn add(&mut self, mesh: TriangleMesh, prim: u32) {
+        let mesh = by_first_use(mesh);
         let base = self.positions.len() as u32;
         let record = MeshRecord {
             first_vertex: base,
@@ -93,6 +94,36 @@ impl SceneTrisBuilder {
             meshes: self.meshes,
         }
     }
+}
+
+/// `mesh` with its vertices renumbered in the order its faces first use them (those no face
+/// uses last, in their order): the same triangles, corner for corner. Neighbouring faces in
+/// the list (a coarse face's children after loop subdivision, a strip of a scanned mesh)
+/// then read neighbouring vertices, so that a triangle's corners, and those of a BVH leaf's
+/// triangles, come from a few cache lines rather than from wherever the file or the
+/// subdivision levels put them.
+fn by_first_use(mut mesh: TriangleMesh) -> TriangleMesh {
+    let n = mesh.positions.len();
+    let mut new_of = vec![u32::MAX; n];
+    let mut order: Vec<u32> = Vec::with_capacity(n);
+    for i in &mut mesh.indices {
+        let v = *i as usize;
+        if new_of[v] == u32::MAX {
+            new_of[v] = order.len() as u32;
+            order.push(*i);
+        }
+        *i = new_of[v];
+    }
+    order.extend((0..n as u32).filter(|&v| new_of[v as usize] == u32::MAX));
+    fn permute<T: Copy>(a: &mut Vec<T>, order: &[u32]) {
+        if !a.is_empty() {
+            *a = order.iter().map(|&v| a[v as usize]).collect();
+        }
+    }
+    permute(&mut mesh.positions, &order);
+    permute(&mut mesh.normals, &order);
+    permute(&mut mesh.uvs, &order);
+    mesh
 }
 
 impl SceneTris {
@@ -211,5 +242,43 @@ impl SceneTris {
             (m.normals != NONE).then(|| local.map(|i| self.normals[m.normals as usize + i].into()));
         let uvs = (m.uvs != NONE).then(|| local.map(|i| self.uvs[m.uvs as usize + i]));
         (m, normals, uvs)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn renumbering_keeps_every_corner_and_follows_first_use() {
+        // Six vertices, one unused (4), faces naming them out of order.
+        let v = |i: u32| PackedVec3::new(i as f32, (i * i) as f32, -(i as f32));
+        let mesh = TriangleMesh {
+            positions: (0..6).map(v).collect(),
+            normals: (0..6).map(|i| v(i + 10)).collect(),
+            uvs: (0..6).map(|i| Vec2::new(i as f32, 0.5)).collect(),
+            indices: vec![5, 2, 3, 3, 2, 0, 0, 1, 5],
+            flip_normal: true,
+        };
+        let r = by_first_use(mesh.clone());
+        assert_eq!(r.indices, vec![0, 1, 2, 2, 1, 3, 3, 4, 0]);
+        // The unused vertex comes last.
+        assert_eq!(r.positions[5], mesh.positions[4]);
+        assert!(r.flip_normal);
+        for (old, new) in mesh.indices.iter().zip(&r.indices) {
+            let (o, n) = (*old as usize, *new as usize);
+            assert_eq!(r.positions[n], mesh.positions[o]);
+            assert_eq!(r.normals[n], mesh.normals[o]);
+            assert_eq!(r.uvs[n], mesh.uvs[o]);
+        }
+        // Meshes without normals or (u, v) keep none.
+        let bare = TriangleMesh {
+            normals: vec![],
+            uvs: vec![],
+            ..mesh
+        };
+        let r = by_first_use(bare);
+        assert!(r.normals.is_empty() && r.uvs.is_empty());
+        assert_eq!(r.positions.len(), 6);
     }
 }

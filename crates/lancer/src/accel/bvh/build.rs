@@ -141,7 +141,11 @@ impl Binner {
             .max(Vec4::ZERO)
             .min(Vec4::splat((BINS - 1) as f32));
         // In [0, BINS − 1]: the signed conversion is one instruction, the unsigned one several.
-        [b.x as i32 as usize, b.y as i32 as usize, b.z as i32 as usize]
+        [
+            b.x as i32 as usize,
+            b.y as i32 as usize,
+            b.z as i32 as usize,
+        ]
     }
     // The axis indexes several parallel arrays at once.
     #[allow(clippy::needless_range_loop)]
