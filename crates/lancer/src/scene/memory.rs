@@ -185,10 +185,12 @@ mod tests {
         // Below the shared-vertex threshold a plain mesh's triangles are shapes of their own.
         assert_eq!(mesh_scene(10).shapes.len(), 10);
         let n0 = super::super::build::SHARED_VERTEX_MIN_TRIANGLES;
-        let (small, large) = (mesh_scene(n0 as u32), mesh_scene(2 * n0 as u32));
+        // The strip's tree is a full 8-ary one of 585 nodes up to 4·4096 triangles (one to
+        // four in each leaf): eight times the triangles needs more nodes.
+        let (small, large) = (mesh_scene(n0 as u32), mesh_scene(8 * n0 as u32));
         // From it on, a plain mesh: no shape record, one PrimInfo for all its triangles (in a
         // vector that grew to capacity 4), nothing unbounded.
-        for (n, scene) in [(n0, &small), (2 * n0, &large)] {
+        for (n, scene) in [(n0, &small), (8 * n0, &large)] {
             let m = scene.memory();
             assert!(scene.shapes.is_empty());
             assert_eq!(scene.tris.len(), n);
@@ -274,8 +276,9 @@ mod tests {
             ..SceneDesc::default()
         };
         let m = Scene::build(&desc).unwrap().memory();
-        // The texels, and once their byte form: 8 one-byte indices into a table of one texel.
-        assert_eq!(m.images, 8 * 12 + 8 + 12);
+        // The texels, and once their byte form: 8 one-bit indices (a byte) into a table of
+        // one texel.
+        assert_eq!(m.images, 8 * 12 + 1 + 12);
         assert_eq!(
             m.textures,
             size_of::<FloatTexture>() + size_of::<SpectrumTexture>()
