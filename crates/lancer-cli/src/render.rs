@@ -667,10 +667,7 @@ pub fn write(
             let (w, h) = (bounds.width(), bounds.height());
             match image {
                 Some(pixels) => write_image(path, w, h, pixels),
-                None => {
-                    let (divisor, scale) = (film.splat_divisor(), plan.meta.scale);
-                    write_image_fn(path, w, h, |i| film.pixel_rgb(i, divisor) * scale)
-                }
+                None => write_image_fn(path, w, h, film.scaled_pixels(plan.meta.scale)),
             }
             .map_err(|e| e.to_string())
         }

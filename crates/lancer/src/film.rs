@@ -326,10 +326,16 @@ impl Film {
     /// The image: each pixel's colour ([`Film::pixel_rgb`]: Σ w·L / Σ w, and its splats) times
     /// `scale`, row-major over `bounds`.
     pub fn image(&self, scale: f32) -> Vec<Rgb> {
-        let n = self.splat_divisor();
         (0..self.pixels.len())
-            .map(|i| self.pixel_rgb(i, n) * scale)
+            .map(self.scaled_pixels(scale))
             .collect()
+    }
+
+    /// Pixel `i` of [`Film::image`], computed when asked for: a writer reads the film through
+    /// it without an image of it beside it.
+    pub fn scaled_pixels(&self, scale: f32) -> impl Fn(usize) -> Rgb + Sync + '_ {
+        let n = self.splat_divisor();
+        move |i| self.pixel_rgb(i, n) * scale
     }
 }
 

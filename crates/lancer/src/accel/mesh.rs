@@ -79,12 +79,10 @@ impl MeshBvh {
     /// True if any triangle is hit with 0 < t ≤ `ray.t_max`.
     #[inline]
     pub fn intersect_any(&self, ray: &Ray, pre: &TriangleRay) -> bool {
-        // The first hit ends the search: −∞, nothing can be nearer.
         let prefetch = |leaf| self.prefetch(leaf);
         self.bvh
-            .traverse_prefetching(ray, ray.t_max, prefetch, |leaf, _| {
-                let hit = self.packets[leaf.id as usize].intersect_any(ray, pre);
-                hit.then_some(f32::NEG_INFINITY)
+            .intersect_any_leaves_prefetching(ray, prefetch, |leaf, r| {
+                self.packets[leaf.id as usize].intersect_any(r, pre)
             })
     }
 

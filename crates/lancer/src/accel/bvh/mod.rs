@@ -282,17 +282,26 @@ impl Bvh {
         }
     }
 
-    /// True as soon as `leaf(id, ray)` reports a hit in a leaf the ray crosses (shadow rays).
-    /// Children are still visited nearest first: an occluder, when there is one, tends to be
-    /// found after fewer leaves.
+    /// True as soon as `leaf(leaf, ray)` reports a hit in a leaf the ray crosses (shadow
+    /// rays). Children are still visited nearest first: an occluder, when there is one, tends
+    /// to be found after fewer leaves.
     #[inline]
-    pub fn intersect_any_leaves<F: FnMut(Leaf, &Ray) -> bool>(
+    pub fn intersect_any_leaves<F: FnMut(Leaf, &Ray) -> bool>(&self, ray: &Ray, leaf: F) -> bool {
+        self.intersect_any_leaves_prefetching(ray, |_| {}, leaf)
+    }
+
+    /// [`Bvh::intersect_any_leaves`], calling `leaf_data` on the leaves it puts aside as
+    /// [`Bvh::traverse_prefetching`] does.
+    #[inline]
+    pub fn intersect_any_leaves_prefetching<F: FnMut(Leaf, &Ray) -> bool>(
         &self,
         ray: &Ray,
+        leaf_data: impl Fn(Leaf),
         mut leaf: F,
     ) -> bool {
-        // The first hit ends the search, so the ray is never shortened: no copy of it.
-        self.traverse(ray, ray.t_max, |id, _| {
+        // The first hit ends the search (−∞: nothing can be nearer), so the ray is never
+        // shortened: no copy of it.
+        self.traverse_prefetching(ray, ray.t_max, leaf_data, |id, _| {
             leaf(id, ray).then_some(f32::NEG_INFINITY)
         })
     }
