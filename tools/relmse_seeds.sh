@@ -10,7 +10,7 @@
 #   tools/relmse_seeds.sh SCENE REF BIN [BIN...] [-- render flags...]
 # The flags default to --spp 64 --threads 2; SEEDS overrides the count.
 set -euo pipefail
-[ $# -ge 3 ] || { sed -n 2,12p "$0" >&2; exit 2; }
+[ $# -ge 3 ] || { sed -n 2,11p "$0" >&2; exit 2; }
 scene=$(realpath "$1") ref=$(realpath "$2"); shift 2
 bins=()
 while [ $# -gt 0 ] && [ "$1" != -- ]; do bins+=("$(realpath "$1")"); shift; done
@@ -19,12 +19,14 @@ flags=("$@"); [ ${#flags[@]} -gt 0 ] || flags=(--spp 64 --threads 2)
 seeds=${SEEDS:-6}
 cd "$(dirname "$scene")"
 for bin in "${bins[@]}"; do
-  all=() sum=0
+  all=()
   for seed in $(seq "$seeds"); do
     r=$("$bin" bench scene "$(basename "$scene")" --reference "$ref" --seed "$seed" "${flags[@]}" --json |
       sed -n 's/.*"relmse": *\([0-9.eE+-]*\).*/\1/p')
     [ -n "$r" ] || { echo "no relmse from $bin (seed $seed)" >&2; exit 1; }
-    all+=("$r"); sum=$(echo "$sum + $r" | bc -l)
+    all+=("$r")
   done
-  printf '%s: mean relmse %.5f over %d seeds (%s)\n' "$bin" "$(echo "$sum / $seeds" | bc -l)" "$seeds" "${all[*]}"
+  # awk, not bc: the JSON may write a small error as 1.5e-5.
+  printf '%s\n' "${all[@]}" | awk -v bin="$bin" -v list="${all[*]}" \
+    '{ s += $1; n++ } END { printf "%s: mean relmse %.6g over %d seeds (%s)\n", bin, s / n, n, list }'
 done

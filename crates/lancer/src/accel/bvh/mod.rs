@@ -301,8 +301,8 @@ impl Bvh {
     ) -> bool {
         // The first hit ends the search (−∞: nothing can be nearer), so the ray is never
         // shortened: no copy of it.
-        self.traverse_prefetching(ray, ray.t_max, leaf_data, |id, _| {
-            leaf(id, ray).then_some(f32::NEG_INFINITY)
+        self.traverse_prefetching(ray, ray.t_max, leaf_data, |reached, _| {
+            leaf(reached, ray).then_some(f32::NEG_INFINITY)
         })
     }
 
