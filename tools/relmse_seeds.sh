@@ -14,6 +14,7 @@ set -euo pipefail
 scene=$(realpath "$1") ref=$(realpath "$2"); shift 2
 bins=()
 while [ $# -gt 0 ] && [ "$1" != -- ]; do bins+=("$(realpath "$1")"); shift; done
+[ ${#bins[@]} -gt 0 ] || { echo "no BIN given before --" >&2; exit 2; }
 [ $# -gt 0 ] && shift
 flags=("$@"); [ ${#flags[@]} -gt 0 ] || flags=(--spp 64 --threads 2)
 seeds=${SEEDS:-6}
